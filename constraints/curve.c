@@ -1,0 +1,16 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Point on a user parametric curve p(s, t); the instance's ctx is a dal_curve.
+#include "dalembert/primitives.h"
+
+static int curve(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)p;
+  const dal_curve *c = ctx;
+  if (!c || !c->fn) return -1;
+  return c->fn(in[0], t, out, c->ctx);
+}
+
+const dal_primitive dal_map_curve2 = {"curve2", 1, 1, 2, 0, curve,
+                                      "in (s); ctx dal_curve; out p(s, t) (2D)"};
+const dal_primitive dal_map_curve3 = {"curve3", 1, 1, 3, 0, curve,
+                                      "in (s); ctx dal_curve; out p(s, t) (3D)"};

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Planar pendulums: about a (possibly oscillating) pivot, and hanging from another particle.
+#include "dalembert/primitives.h"
+
+// r = p(t) + l (sin th, -cos th), p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph))
+static int pendulum(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)ctx;
+  double l = p[0], x0 = p[1], y0 = p[2], ax = p[3], ay = p[4], w = p[5], ph = p[6];
+  dal_jet drive = dal_cos(dal_addc(dal_scale(t, w), ph));
+  out[0] = dal_add(dal_addc(dal_scale(drive, ax), x0), dal_scale(dal_sin(in[0]), l));
+  out[1] = dal_sub(dal_addc(dal_scale(drive, ay), y0), dal_scale(dal_cos(in[0]), l));
+  return 0;
+}
+
+// r = parent + l (sin th, -cos th)
+static int hanging(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)ctx;
+  (void)t;
+  out[0] = dal_add(in[0], dal_scale(dal_sin(in[2]), p[0]));
+  out[1] = dal_sub(in[1], dal_scale(dal_cos(in[2]), p[0]));
+  return 0;
+}
+
+const dal_primitive dal_map_pendulum = {
+    "pendulum", 1, 1, 2, 7, pendulum,
+    "in (theta); param (l, x0, y0, ax, ay, w, ph); out p(t) + l (sin th, -cos th)"};
+const dal_primitive dal_map_hanging = {
+    "hanging", 1, 3, 2, 1, hanging,
+    "in (x_parent, y_parent, theta); param (l); out parent + l (sin th, -cos th)"};

@@ -1,0 +1,64 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Export macro, status codes and version of the dalembert library.
+#ifndef DAL_BASE_H
+#define DAL_BASE_H
+
+#if defined(DAL_STATIC)
+#define DAL_API
+#elif defined(_WIN32) && defined(DAL_BUILDING)
+#define DAL_API __declspec(dllexport)
+#elif defined(_WIN32)
+#define DAL_API __declspec(dllimport)
+#elif defined(__GNUC__)
+#define DAL_API __attribute__((visibility("default")))
+#else
+#define DAL_API
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// The one list of status codes: X(name, value, description).
+/// 0 is success; every failure is negative. A detailed message naming the culprit and a
+/// remedy is kept by the object that failed (dal_builder_errmsg, dal_state_errmsg).
+#define DAL_STATUS_LIST(X)                                                                        \
+  X(DAL_OK, 0, "ok")                                                                              \
+  X(DAL_E_ARG, -1, "invalid argument (index, dimension, count or option)")                        \
+  X(DAL_E_NOMEM, -2, "out of memory")                                                             \
+  X(DAL_E_NONFINITE, -3, "non-finite input (NaN or inf)")                                         \
+  X(DAL_E_DOMAIN, -4, "a jet function produced NaN or inf (domain error)")                       \
+  X(DAL_E_SINGULAR, -5, "mass matrix singular or not positive definite")                          \
+  X(DAL_E_CALLBACK, -6, "a user callback reported an unrecoverable failure")                      \
+  X(DAL_E_CONSTRAINT, -7, "redundant or conflicting constraints")                                 \
+  X(DAL_E_INIT, -8, "consistent initial state could not be assembled")                            \
+  X(DAL_E_STEP, -9, "step size underflow")                                                        \
+  X(DAL_E_MAXSTEPS, -10, "too many steps before the target time")                                 \
+  X(DAL_E_CONV, -11, "nonlinear or error-test convergence failure")                               \
+  X(DAL_E_SOLVER, -12, "integrator or linear solver failure")                                     \
+  X(DAL_E_TIME, -13, "target time lies behind the current time")                                  \
+  X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                       \
+  X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                          \
+  X(DAL_E_IO, -16, "file input/output failed")
+
+/// Status codes returned by every fallible dalembert call.
+typedef enum dal_status {
+#define DAL_X_ENUM(name, value, text) name = value,
+  DAL_STATUS_LIST(DAL_X_ENUM)
+#undef DAL_X_ENUM
+} dal_status;
+
+/// Short static description of a status code ("unknown status" for other values).
+DAL_API const char *dal_status_string(int status);
+
+/// Symbolic name of a status code, e.g. "DAL_E_SINGULAR" ("DAL_UNKNOWN" for other values).
+DAL_API const char *dal_status_name(int status);
+
+/// Library version as "major.minor.patch" (static string).
+DAL_API const char *dal_version(void);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

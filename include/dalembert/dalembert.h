@@ -1,0 +1,14 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Umbrella header: everything a dalembert user needs.
+#ifndef DAL_DALEMBERT_H
+#define DAL_DALEMBERT_H
+
+#include "dalembert/base.h"
+#include "dalembert/jet.h"
+#include "dalembert/primitives.h"
+#include "dalembert/solve.h"
+#include "dalembert/state.h"
+#include "dalembert/system.h"
+
+#endif

@@ -1,0 +1,121 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Integrating the motion: methods, formulations, options, advance/evolve, statistics.
+//
+// A system without constraints runs as the ODE y = (q, qdot); a system with constraints runs
+// as a DAE (index-2 stabilized GGL through SUNDIALS IDA by default). After any failure the
+// state holds the last accepted step and dal_state_errmsg says what failed, when and why.
+#ifndef DAL_SOLVE_H
+#define DAL_SOLVE_H
+
+#include <stdio.h>
+
+#include "dalembert/base.h"
+#include "dalembert/state.h"
+#include "dalembert/system.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// Integration methods.
+typedef enum dal_method {
+  DAL_METHOD_AUTO = 0,   ///< pick by formulation and tolerance (documented in README)
+  DAL_METHOD_DOPRI5,     ///< Dormand-Prince 5(4), adaptive explicit RK (ARKODE ERKStep)
+  DAL_METHOD_FEHLBERG78, ///< Fehlberg 7(8), adaptive explicit RK (ARKODE ERKStep)
+  DAL_METHOD_BS,         ///< Gragg-Bulirsch-Stoer extrapolation with order/step control
+  DAL_METHOD_RK4,        ///< classical RK4 at the fixed step opts.fixed_step
+  DAL_METHOD_ADAMS,      ///< variable-order Adams-Moulton (CVODE, functional iteration)
+  DAL_METHOD_BDF,        ///< variable-order BDF (CVODE for ODEs, IDA for DAEs), stiff scenes
+} dal_method;
+
+/// Formulations of the equations of motion.
+typedef enum dal_formulation {
+  DAL_FORM_AUTO = 0, ///< ODE without constraints, GGL with constraints
+  DAL_FORM_ODE,      ///< minimal coordinates, y = (q, qdot); requires m = 0
+  DAL_FORM_GGL,      ///< index-2 stabilized (Gear-Gupta-Leimkuhler) DAE in IDA
+  DAL_FORM_INDEX1,   ///< acceleration level; Baumgarte and/or projection optional
+  DAL_FORM_INDEX3,   ///< index-3 DAE as written (for comparison; fails at tight tolerances)
+} dal_formulation;
+
+/// Linear solver for implicit methods.
+typedef enum dal_linsol {
+  DAL_LINSOL_AUTO = 0, ///< dense below opts.sparse_threshold unknowns, KLU above
+  DAL_LINSOL_DENSE,    ///< dense LU
+  DAL_LINSOL_KLU,      ///< sparse KLU with a library-assembled Jacobian (DAE forms)
+} dal_linsol;
+
+/// Options for advance/evolve. Always start from dal_solve_default_opts().
+typedef struct dal_solve_opts {
+  int magic;                  ///< set by dal_solve_default_opts; do not touch
+  dal_method method;          ///< integration method
+  dal_formulation form;       ///< formulation
+  dal_linsol linsol;          ///< linear solver for implicit methods
+  double rtol;                ///< relative tolerance (> 0), default 1e-8
+  double atol;                ///< absolute tolerance (> 0, units of q), default 1e-10
+  double h0;                  ///< initial step (0: automatic)
+  double hmin;                ///< minimum step (0: none)
+  double hmax;                ///< maximum step (0: none)
+  double fixed_step;          ///< step of DAL_METHOD_RK4 (> 0), default 1e-3
+  long max_steps;             ///< maximum steps per advance call, default 1000000
+  double baumgarte_alpha;     ///< INDEX1: damping of G v + dphi/dt (1/s), default 0 (off)
+  double baumgarte_beta;      ///< INDEX1: stiffness on phi (1/s^2), default 0 (off)
+  int project;                ///< INDEX1: project q and v onto the manifold after each step
+  int sparse_threshold;       ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
+} dal_solve_opts;
+
+/// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 1e-10.
+DAL_API void dal_solve_default_opts(dal_solve_opts *o);
+
+/// Short name of a method ("dopri5", "fehlberg78", "bs", "rk4", "adams", "bdf", "auto").
+DAL_API const char *dal_method_name(dal_method m);
+/// Short name of a formulation ("ode", "ggl", "index1", "index3", "auto").
+DAL_API const char *dal_formulation_name(dal_formulation f);
+
+/// Integration statistics accumulated since the last dal_state_set.
+typedef struct dal_stats {
+  long steps;        ///< accepted steps
+  long rejected;     ///< rejected steps (error test and convergence failures)
+  long rhs_evals;    ///< right-hand-side or residual evaluations
+  long jac_evals;    ///< Jacobian evaluations
+  long nonlin_iters; ///< nonlinear (Newton) iterations
+  long projections;  ///< manifold projections (INDEX1 with project)
+  double last_h;     ///< last step size taken
+  int foreign_code;  ///< last raw return code of the underlying solver (0 if none)
+} dal_stats;
+
+/// Statistics of the state's integration so far.
+DAL_API int dal_state_stats(const dal_state *st, dal_stats *out);
+
+/// Advance the state to time t1 (>= current time) with the given options (SICM's
+/// state-advancer). On success the state holds the exact-to-tolerance solution at t1,
+/// with dal_forward outputs evaluated there. On failure it holds the last accepted step.
+/// Changing opts between calls restarts the integrator from the current state.
+DAL_API int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                        double t1);
+
+/// Monitor called by dal_evolve at every output time with the state evaluated there
+/// (dal_forward outputs valid). Return 0 to continue, non-zero to stop (evolve returns it
+/// as DAL_E_CALLBACK if negative, DAL_OK if positive).
+typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx);
+
+/// Evolve from the current time t0 to t1, calling `monitor` (may be NULL) at t0 and at
+/// every t0 + k dt <= t1 (dt > 0), and at t1. The monitor sees the state at exactly those
+/// times (the integrator steps to each output time).
+DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                       double t1, double dt, dal_monitor_fn *monitor, void *ctx);
+
+/// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row.
+typedef struct dal_csv {
+  FILE *fp;         ///< output stream (borrowed)
+  int header_done;  ///< set after the header row is written
+  int wrap_angles;  ///< if nonzero, write q wrapped to [-pi, pi) (principal value)
+} dal_csv;
+
+/// Monitor that writes one CSV row (and the header first); ctx is a dal_csv *.
+DAL_API int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,112 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// State of one trajectory: (t, q, qdot), the computed physics, and the evaluation pipeline.
+//
+// A state belongs to one system and is used by one thread at a time; the system may be
+// shared. Pointers returned by accessors are borrowed views into the state, valid until the
+// next call that changes the state, and NULL when the quantity does not exist for the system.
+#ifndef DAL_STATE_H
+#define DAL_STATE_H
+
+#include "dalembert/base.h"
+#include "dalembert/jet.h"
+#include "dalembert/system.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// One trajectory's state and workspace.
+typedef struct dal_state dal_state;
+
+/// Energies of a state (after dal_forward).
+typedef struct dal_energies {
+  double T;  ///< kinetic energy, 1/2 sum m_k |v_k|^2
+  double U;  ///< potential energy (gravity, springs, user potentials)
+  double E;  ///< total energy T + U
+  double h;  ///< energy function (Jacobi integral) qdot . dL/dqdot - L = T2 - T0 + U
+  double T2; ///< 1/2 qdot' M qdot
+  double T1; ///< b' qdot, b = sum m_k J_k' dr_k/dt
+  double T0; ///< 1/2 sum m_k |dr_k/dt|^2
+} dal_energies;
+
+/// Create a state for `sys` (borrowed; must outlive the state), at t = 0 with q = qdot = 0.
+DAL_API int dal_state_create(const dal_system *sys, dal_state **out);
+
+/// Free a state (NULL is a no-op).
+DAL_API void dal_state_destroy(dal_state *st);
+
+/// The state's last error message ("" if none): names the culprit and a remedy.
+DAL_API const char *dal_state_errmsg(const dal_state *st);
+
+/// Set time, coordinates q (n) and velocities qdot (n) (copied). Any integrator history is
+/// discarded. Rejects non-finite values (DAL_E_NONFINITE naming the coordinate); on failure
+/// the state is unchanged.
+DAL_API int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *q,
+                          const double *qdot);
+
+/// Evaluate the physics at the current (t, q, qdot): positions, velocities, Jacobians,
+/// curvature terms, M, Q, c, accelerations qddot (Cholesky of M; for constrained systems the
+/// KKT system, which also gives the multipliers), energies and reaction forces.
+/// Errors: DAL_E_SINGULAR names the degenerate coordinate(s), t and q; DAL_E_DOMAIN names
+/// the primitive that produced NaN/inf; DAL_E_CALLBACK for a user callback failure.
+DAL_API int dal_forward(const dal_system *sys, dal_state *st);
+
+/// Current time.
+DAL_API double dal_state_time(const dal_state *st);
+/// Coordinates q (n).
+DAL_API const double *dal_state_q(const dal_state *st);
+/// Velocities qdot (n).
+DAL_API const double *dal_state_qdot(const dal_state *st);
+/// Accelerations qddot (n), after dal_forward.
+DAL_API const double *dal_state_qddot(const dal_state *st);
+/// Particle positions r (N x d, row-major), after dal_forward.
+DAL_API const double *dal_state_positions(const dal_state *st);
+/// Particle velocities v (N x d), after dal_forward.
+DAL_API const double *dal_state_velocities(const dal_state *st);
+/// Particle accelerations a_k = J_k qddot + gamma_k (N x d), after dal_forward.
+DAL_API const double *dal_state_accelerations(const dal_state *st);
+/// Explicit time derivatives dr_k/dt (N x d), after dal_forward.
+DAL_API const double *dal_state_drdt(const dal_state *st);
+/// Curvature terms gamma_k (N x d): the acceleration at qddot = 0, after dal_forward.
+DAL_API const double *dal_state_gamma(const dal_state *st);
+/// Jacobian of particle k, J_k = dr_k/dq, written densely into J (d x n, row-major,
+/// caller-owned). Returns DAL_E_ARG for a bad k.
+DAL_API int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double *J);
+/// Mass matrix M (n x n, column-major, symmetric), after dal_forward; NULL when the system
+/// stores M only implicitly (large redundant systems; use dal_state_jacobian).
+DAL_API const double *dal_state_mass_matrix(const dal_state *st);
+/// Generalized applied forces Q = sum_k J_k' F_k + Q_user - dU(q)/dq (n).
+DAL_API const double *dal_state_genforces(const dal_state *st);
+/// Velocity-product (Coriolis, centrifugal, moving-frame) terms c = sum_k m_k J_k' gamma_k (n).
+DAL_API const double *dal_state_bias(const dal_state *st);
+/// Applied Cartesian forces F_k (N x d), after dal_forward.
+DAL_API const double *dal_state_forces(const dal_state *st);
+/// Constraint (reaction) forces N_k = m_k a_k - F_k on each particle (N x d): the force the
+/// constraints (built into the map, and explicit ones) exert on particle k.
+DAL_API const double *dal_state_reactions(const dal_state *st);
+/// Multipliers lambda (m), one per constraint row, after dal_forward or a DAE step; the
+/// generalized constraint force is G' lambda (NULL when m = 0).
+DAL_API const double *dal_state_lambda(const dal_state *st);
+/// Constraint residuals phi (m) at position level (NULL when m = 0).
+DAL_API const double *dal_state_phi(const dal_state *st);
+/// Constraint residuals G qdot + dphi/dt (m) at velocity level (NULL when m = 0).
+DAL_API const double *dal_state_phidot(const dal_state *st);
+/// Energies of the state (after dal_forward).
+DAL_API int dal_state_energies(const dal_state *st, dal_energies *out);
+
+/// A proposed path q(t) over jets: write q[0..n-1] as jets in t (its first and second
+/// derivatives are the path's velocity and acceleration).
+typedef int dal_path_q_fn(dal_jet t, dal_jet *q, void *ctx);
+
+/// Lagrange-equation residual of a proposed path at time t:
+/// res = d/dt dL/dqdot - dL/dq - Q_nc (n), equal to M qddot + c - Q for particle systems.
+/// Zero (to rounding) exactly when the path is realizable. Uses st as workspace: its
+/// (t, q, qdot) become the path's values at t.
+DAL_API int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path,
+                                  void *ctx, double t, double *res);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

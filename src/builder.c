@@ -1,0 +1,380 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The mutable model builder: validates every addition and names the culprit on error.
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+int dal__set_err(char *buf, int status, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(buf, DAL_ERRMSG_LEN, fmt, ap);
+  va_end(ap);
+  return status;
+}
+
+// grow a vector to hold one more element of size sz; returns the new slot or NULL
+static void *vec_push(dal_vec *v, size_t sz) {
+  if (v->len == v->cap) {
+    int cap = v->cap ? 2 * v->cap : 8;
+    void *p = realloc(v->data, (size_t)cap * sz);
+    if (!p) return NULL;
+    v->data = p;
+    v->cap = cap;
+  }
+  char *slot = (char *)v->data + (size_t)v->len * sz;
+  memset(slot, 0, sz);
+  v->len++;
+  return slot;
+}
+
+static char *dup_name(const char *name, char prefix, int i) {
+  char tmp[32];
+  if (!name) {
+    snprintf(tmp, sizeof tmp, "%c%d", prefix, i);
+    name = tmp;
+  }
+  size_t len = strlen(name);
+  char *s = malloc(len + 1);
+  if (s) memcpy(s, name, len + 1);
+  return s;
+}
+
+int dal_builder_create(int dim, dal_builder **out) {
+  if (!out) return DAL_E_ARG;
+  *out = NULL;
+  if (dim != 2 && dim != 3) return DAL_E_ARG;
+  dal_builder *b = calloc(1, sizeof *b);
+  if (!b) return DAL_E_NOMEM;
+  b->dim = dim;
+  *out = b;
+  return DAL_OK;
+}
+
+void dal_builder_destroy(dal_builder *b) {
+  if (!b) return;
+  for (int i = 0; i < b->coords.len; ++i) free(((char **)b->coords.data)[i]);
+  for (int i = 0; i < b->parts.len; ++i) free(((char **)b->parts.data)[i]);
+  for (int i = 0; i < b->cons.len; ++i) free(((dal_con *)b->cons.data)[i].name);
+  dal_vec *vs[] = {&b->coords,  &b->parts,   &b->masses, &b->places, &b->cons,
+                   &b->ipool,   &b->ppool,   &b->springs, &b->dampers, &b->potr,
+                   &b->potq,    &b->forces,  &b->genforces};
+  for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i) free(vs[i]->data);
+  free(b);
+}
+
+const char *dal_builder_errmsg(const dal_builder *b) { return b ? b->err : ""; }
+
+#define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
+
+int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
+  if (!b) return DAL_E_ARG;
+  char **slot = vec_push(&b->coords, sizeof(char *));
+  if (!slot) return BFAIL(DAL_E_NOMEM, "out of memory adding a coordinate");
+  *slot = dup_name(name, 'q', b->coords.len - 1);
+  if (!*slot) {
+    b->coords.len--;
+    return BFAIL(DAL_E_NOMEM, "out of memory adding a coordinate");
+  }
+  if (index) *index = b->coords.len - 1;
+  return DAL_OK;
+}
+
+int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index) {
+  if (!b) return DAL_E_ARG;
+  const char *nm = name ? name : "(unnamed)";
+  if (!isfinite(mass))
+    return BFAIL(DAL_E_NONFINITE, "particle '%s': mass is %g; give a finite positive mass", nm,
+                 mass);
+  if (mass <= 0)
+    return BFAIL(DAL_E_ARG,
+                 "particle '%s': mass %g is not positive; a massless point belongs in a "
+                 "constraint or a coordinate map, not a particle",
+                 nm, mass);
+  if (b->lag)
+    return BFAIL(DAL_E_ARG, "particle '%s': the system is given by a Lagrangian; it has no "
+                            "particles", nm);
+  if (b->masses.cap == b->masses.len || b->places.cap == b->places.len ||
+      b->parts.cap == b->parts.len) {
+    // reserve all three before writing any, so a failure changes nothing
+    double *m = vec_push(&b->masses, sizeof(double));
+    if (!m) return BFAIL(DAL_E_NOMEM, "out of memory adding particle '%s'", nm);
+    b->masses.len--;
+    dal_place *p = vec_push(&b->places, sizeof(dal_place));
+    if (!p) return BFAIL(DAL_E_NOMEM, "out of memory adding particle '%s'", nm);
+    b->places.len--;
+    char **s = vec_push(&b->parts, sizeof(char *));
+    if (!s) return BFAIL(DAL_E_NOMEM, "out of memory adding particle '%s'", nm);
+    b->parts.len--;
+  }
+  char *copy = dup_name(name, 'p', b->parts.len);
+  if (!copy) return BFAIL(DAL_E_NOMEM, "out of memory adding particle '%s'", nm);
+  *(double *)vec_push(&b->masses, sizeof(double)) = mass;
+  dal_place *p = vec_push(&b->places, sizeof(dal_place));
+  p->parent = -1;
+  *(char **)vec_push(&b->parts, sizeof(char *)) = copy;
+  if (index) *index = b->parts.len - 1;
+  return DAL_OK;
+}
+
+// append ints and doubles to the pools; returns offsets or -1 on memory failure
+static int pool_ints(dal_builder *b, int n, const int *x) {
+  int off = b->ipool.len;
+  for (int i = 0; i < n; ++i) {
+    int *s = vec_push(&b->ipool, sizeof(int));
+    if (!s) {
+      b->ipool.len = off;
+      return -1;
+    }
+    *s = x[i];
+  }
+  return off;
+}
+
+static int pool_doubles(dal_builder *b, int n, const double *x) {
+  int off = b->ppool.len;
+  for (int i = 0; i < n; ++i) {
+    double *s = vec_push(&b->ppool, sizeof(double));
+    if (!s) {
+      b->ppool.len = off;
+      return -1;
+    }
+    *s = x[i];
+  }
+  return off;
+}
+
+// shared validation of a primitive instance: counts, coordinate indices, finite parameters
+static int check_instance(dal_builder *b, const char *what, const dal_primitive *prim,
+                          int nfixed, int ncoords, const int *coords, int nparam,
+                          const double *param) {
+  if (!prim || !prim->eval)
+    return BFAIL(DAL_E_ARG, "%s: primitive is NULL or has no eval function", what);
+  if (ncoords < 0 || (ncoords > 0 && !coords))
+    return BFAIL(DAL_E_ARG, "%s: %d coordinates given with a %s list", what, ncoords,
+                 coords ? "non-NULL" : "NULL");
+  if (prim->nin != nfixed + ncoords)
+    return BFAIL(DAL_E_ARG,
+                 "%s: primitive '%s' takes %d inputs but %d were given (%d from particles + %d "
+                 "coordinates); see its documentation in primitives.h",
+                 what, prim->name, prim->nin, nfixed + ncoords, nfixed, ncoords);
+  if (nparam != prim->nparam || (nparam > 0 && !param))
+    return BFAIL(DAL_E_ARG, "%s: primitive '%s' takes %d parameters but %d were given", what,
+                 prim->name, prim->nparam, nparam);
+  for (int i = 0; i < ncoords; ++i)
+    if (coords[i] < 0 || coords[i] >= b->coords.len)
+      return BFAIL(DAL_E_ARG, "%s: coordinate index %d (input %d) out of range [0, %d)", what,
+                   coords[i], i, b->coords.len);
+  for (int i = 0; i < nparam; ++i)
+    if (!isfinite(param[i]))
+      return BFAIL(DAL_E_NONFINITE, "%s: parameter %d of primitive '%s' is %g", what, i,
+                   prim->name, param[i]);
+  return DAL_OK;
+}
+
+int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, int parent,
+                      int ncoords, const int *coords, int nparam, const double *param,
+                      void *ctx) {
+  if (!b) return DAL_E_ARG;
+  if (particle < 0 || particle >= b->parts.len)
+    return BFAIL(DAL_E_ARG, "place: particle index %d out of range [0, %d)", particle,
+                 b->parts.len);
+  const char *pn = ((char **)b->parts.data)[particle];
+  char what[96];
+  snprintf(what, sizeof what, "placing particle '%s'", pn);
+  if (b->map)
+    return BFAIL(DAL_E_ARG, "%s: a whole-system map is set; use one or the other", what);
+  dal_place *pl = &((dal_place *)b->places.data)[particle];
+  if (pl->prim) return BFAIL(DAL_E_ARG, "%s: the particle is already placed", what);
+  if (parent >= 0) {
+    if (parent >= b->parts.len || parent == particle)
+      return BFAIL(DAL_E_ARG, "%s: parent index %d invalid", what, parent);
+    if (!((dal_place *)b->places.data)[parent].prim)
+      return BFAIL(DAL_E_ARG, "%s: parent '%s' must be placed first", what,
+                   ((char **)b->parts.data)[parent]);
+  }
+  int rc = check_instance(b, what, prim, parent >= 0 ? b->dim : 0, ncoords, coords, nparam,
+                          param);
+  if (rc) return rc;
+  if (prim->nout != b->dim)
+    return BFAIL(DAL_E_ARG, "%s: primitive '%s' gives %d outputs but the scene is %dD", what,
+                 prim->name, prim->nout, b->dim);
+  int coff = pool_ints(b, ncoords, coords);
+  int poff = pool_doubles(b, nparam, param);
+  if (coff < 0 || poff < 0) return BFAIL(DAL_E_NOMEM, "%s: out of memory", what);
+  pl = &((dal_place *)b->places.data)[particle];
+  pl->prim = prim;
+  pl->ctx = ctx;
+  pl->parent = parent;
+  pl->ncoord = ncoords;
+  pl->coord_off = coff;
+  pl->param_off = poff;
+  return DAL_OK;
+}
+
+int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
+  if (!b) return DAL_E_ARG;
+  if (!fn) return BFAIL(DAL_E_ARG, "set_map: map function is NULL");
+  for (int k = 0; k < b->places.len; ++k)
+    if (((dal_place *)b->places.data)[k].prim)
+      return BFAIL(DAL_E_ARG, "set_map: particle '%s' is already placed by a primitive",
+                   ((char **)b->parts.data)[k]);
+  b->map = fn;
+  b->map_ctx = ctx;
+  return DAL_OK;
+}
+
+int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx) {
+  if (!b) return DAL_E_ARG;
+  if (!fn) return BFAIL(DAL_E_ARG, "set_lagrangian: Lagrangian function is NULL");
+  if (b->parts.len)
+    return BFAIL(DAL_E_ARG, "set_lagrangian: the system already has %d particles; a "
+                            "Lagrangian system has none", b->parts.len);
+  b->lag = fn;
+  b->lag_ctx = ctx;
+  return DAL_OK;
+}
+
+int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primitive *prim,
+                               int nparts, const int *parts, int ncoords, const int *coords,
+                               int nparam, const double *param, void *ctx, int *index) {
+  if (!b) return DAL_E_ARG;
+  char what[96];
+  snprintf(what, sizeof what, "constraint '%s'", name ? name : "(unnamed)");
+  if (nparts < 0 || (nparts > 0 && !parts))
+    return BFAIL(DAL_E_ARG, "%s: %d particles given with a %s list", what, nparts,
+                 parts ? "non-NULL" : "NULL");
+  for (int i = 0; i < nparts; ++i)
+    if (parts[i] < 0 || parts[i] >= b->parts.len)
+      return BFAIL(DAL_E_ARG, "%s: particle index %d (input %d) out of range [0, %d)", what,
+                   parts[i], i, b->parts.len);
+  int rc = check_instance(b, what, prim, nparts * b->dim, ncoords, coords, nparam, param);
+  if (rc) return rc;
+  if (prim->nout < 1) return BFAIL(DAL_E_ARG, "%s: primitive '%s' has no outputs", what,
+                                   prim->name);
+  int row = 0;
+  for (int i = 0; i < b->cons.len; ++i) row += ((dal_con *)b->cons.data)[i].prim->nout;
+  int poff = pool_ints(b, nparts, parts);
+  int coff = pool_ints(b, ncoords, coords);
+  int pm = pool_doubles(b, nparam, param);
+  dal_con *c = (poff < 0 || coff < 0 || pm < 0) ? NULL : vec_push(&b->cons, sizeof(dal_con));
+  char *nm = c ? dup_name(name, 'c', b->cons.len - 1) : NULL;
+  if (!nm) {
+    if (c) b->cons.len--;
+    return BFAIL(DAL_E_NOMEM, "%s: out of memory", what);
+  }
+  c->name = nm;
+  c->prim = prim;
+  c->ctx = ctx;
+  c->npart = nparts;
+  c->part_off = poff;
+  c->ncoord = ncoords;
+  c->coord_off = coff;
+  c->param_off = pm;
+  c->row = row;
+  if (index) *index = row;
+  return DAL_OK;
+}
+
+int dal_builder_set_gravity(dal_builder *b, const double *g) {
+  if (!b) return DAL_E_ARG;
+  if (!g) return BFAIL(DAL_E_ARG, "set_gravity: g is NULL");
+  for (int i = 0; i < b->dim; ++i)
+    if (!isfinite(g[i])) return BFAIL(DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
+  memcpy(b->g, g, (size_t)b->dim * sizeof(double));
+  b->has_gravity = 1;
+  return DAL_OK;
+}
+
+static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb,
+                    const double *x0, dal_path_fn *fn, void *ctx, double k, double L) {
+  if (pa < 0 || pa >= b->parts.len)
+    return BFAIL(DAL_E_ARG, "%s: particle index %d out of range [0, %d)", kind, pa,
+                 b->parts.len);
+  if (pb >= b->parts.len || pb == pa || (pb < -1))
+    return BFAIL(DAL_E_ARG, "%s: second particle index %d invalid", kind, pb);
+  if (!isfinite(k) || !isfinite(L))
+    return BFAIL(DAL_E_NONFINITE, "%s on particle '%s': coefficient %g or length %g is not "
+                                  "finite", kind, ((char **)b->parts.data)[pa], k, L);
+  if (k < 0 || L < 0)
+    return BFAIL(DAL_E_ARG, "%s on particle '%s': coefficient %g and length %g must be >= 0",
+                 kind, ((char **)b->parts.data)[pa], k, L);
+  if (pb < 0 && !fn && !x0)
+    return BFAIL(DAL_E_ARG, "%s on particle '%s': anchor needs x0 or a path function", kind,
+                 ((char **)b->parts.data)[pa]);
+  if (pb < 0 && x0)
+    for (int i = 0; i < b->dim; ++i)
+      if (!isfinite(x0[i]))
+        return BFAIL(DAL_E_NONFINITE, "%s on particle '%s': anchor component %d is %g", kind,
+                     ((char **)b->parts.data)[pa], i, x0[i]);
+  dal_link *l = vec_push(v, sizeof(dal_link));
+  if (!l) return BFAIL(DAL_E_NOMEM, "%s: out of memory", kind);
+  l->a = pa;
+  l->b = pb;
+  l->k = k;
+  l->L = L;
+  if (pb < 0 && x0) memcpy(l->x0, x0, (size_t)b->dim * sizeof(double));
+  l->fn = pb < 0 ? fn : NULL;
+  l->ctx = ctx;
+  return DAL_OK;
+}
+
+int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
+  if (!b) return DAL_E_ARG;
+  if (pb < 0) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", pb);
+  return add_link(b, &b->springs, "spring", pa, pb, NULL, NULL, NULL, k, L);
+}
+
+int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
+                                  void *ctx, double k, double L) {
+  if (!b) return DAL_E_ARG;
+  return add_link(b, &b->springs, "anchor spring", p, -1, x0, fn, ctx, k, L);
+}
+
+int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
+  if (!b) return DAL_E_ARG;
+  if (pb < 0) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", pb);
+  return add_link(b, &b->dampers, "damper", pa, pb, NULL, NULL, NULL, c, 0.0);
+}
+
+int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
+                                  void *ctx, double c) {
+  if (!b) return DAL_E_ARG;
+  return add_link(b, &b->dampers, "anchor damper", p, -1, x0, fn, ctx, c, 0.0);
+}
+
+static int add_cb(dal_builder *b, dal_vec *v, const char *kind, int isnull, dal_cb cb) {
+  if (isnull) return BFAIL(DAL_E_ARG, "%s: function is NULL", kind);
+  dal_cb *c = vec_push(v, sizeof(dal_cb));
+  if (!c) return BFAIL(DAL_E_NOMEM, "%s: out of memory", kind);
+  *c = cb;
+  return DAL_OK;
+}
+
+int dal_builder_add_potential_r(dal_builder *b, dal_potential_r_fn *fn, void *ctx) {
+  if (!b) return DAL_E_ARG;
+  dal_cb cb = {.fn.potr = fn, .ctx = ctx};
+  return add_cb(b, &b->potr, "potential U(r,t)", fn == NULL, cb);
+}
+
+int dal_builder_add_potential_q(dal_builder *b, dal_potential_q_fn *fn, void *ctx) {
+  if (!b) return DAL_E_ARG;
+  dal_cb cb = {.fn.potq = fn, .ctx = ctx};
+  return add_cb(b, &b->potq, "potential U(q,t)", fn == NULL, cb);
+}
+
+int dal_builder_add_force(dal_builder *b, dal_force_fn *fn, void *ctx) {
+  if (!b) return DAL_E_ARG;
+  dal_cb cb = {.fn.force = fn, .ctx = ctx};
+  return add_cb(b, &b->forces, "force callback", fn == NULL, cb);
+}
+
+int dal_builder_add_genforce(dal_builder *b, dal_genforce_fn *fn, void *ctx) {
+  if (!b) return DAL_E_ARG;
+  dal_cb cb = {.fn.gen = fn, .ctx = ctx};
+  return add_cb(b, &b->genforces, "generalized force callback", fn == NULL, cb);
+}

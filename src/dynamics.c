@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// d'Alembert's principle: applied forces, M = sum m J'J, Q = sum J'F, c = sum m J' gamma,
+// accelerations, reactions N_k = m_k a_k - F_k, energies T, U, E and h.
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "internal.h"
+#include "linalg.h"
+
+// position and velocity of a link's anchor (fixed x0 or the path x(t))
+static int anchor(const dal_system *sys, dal_state *st, const dal_link *l, double *x,
+                  double *xd, const char *kind) {
+  int d = sys->dim;
+  if (!l->fn) {
+    memcpy(x, l->x0, (size_t)d * sizeof(double));
+    memset(xd, 0, (size_t)d * sizeof(double));
+    return DAL_OK;
+  }
+  dal_jet jx[3];
+  char what[160];
+  snprintf(what, sizeof what, "%s anchor path of particle '%s'", kind, sys->part_names[l->a]);
+  int rc = l->fn(dal_var(st->t, 1.0), jx, l->ctx);
+  if (rc) return dal__cb_status(st, rc, what);
+  for (int b = 0; b < d; ++b) {
+    if (!isfinite(jx[b].v) || !isfinite(jx[b].d))
+      return DAL_FAIL(st, DAL_E_DOMAIN, "%s is not finite at t=%.17g", what, st->t);
+    x[b] = jx[b].v;
+    xd[b] = jx[b].d;
+  }
+  return DAL_OK;
+}
+
+// unit vector e from a to b and distance; fails on coincident points
+static int direction(const dal_system *sys, dal_state *st, const double *ra, const double *rb,
+                     double *e, double *len, const dal_link *l, const char *kind) {
+  int d = sys->dim;
+  double s = 0.0;
+  for (int b = 0; b < d; ++b) {
+    e[b] = rb[b] - ra[b];
+    s += e[b] * e[b];
+  }
+  *len = sqrt(s);
+  if (*len == 0.0)
+    return DAL_FAIL(st, DAL_E_DOMAIN,
+                    "%s on particle '%s' has zero length at t=%.17g: its direction is "
+                    "undefined; start the particles apart",
+                    kind, sys->part_names[l->a], st->t);
+  for (int b = 0; b < d; ++b) e[b] /= *len;
+  return DAL_OK;
+}
+
+// applied Cartesian forces F (N x d) and their potential energy
+static int applied_forces(const dal_system *sys, dal_state *st, double *U) {
+  int d = sys->dim, N = sys->N, rc;
+  memset(st->F, 0, (size_t)N * (size_t)d * sizeof(double));
+  *U = 0.0;
+  if (sys->has_gravity)
+    for (int k = 0; k < N; ++k)
+      for (int b = 0; b < d; ++b) {
+        st->F[k * d + b] += sys->mass[k] * sys->g[b];
+        *U -= sys->mass[k] * sys->g[b] * st->r[k * d + b];
+      }
+  for (int i = 0; i < sys->nspring + sys->ndamper; ++i) {
+    int spring = i < sys->nspring;
+    const dal_link *l = spring ? &sys->springs[i] : &sys->dampers[i - sys->nspring];
+    const char *kind = spring ? "spring" : "damper";
+    double xa[3], va[3], e[3], len;
+    const double *rb = st->r + l->a * d, *vb = st->v + l->a * d;
+    const double *ra = xa, *vra = va;
+    if (l->b >= 0) {
+      // a spring between particles a and b pulls along e from a to b
+      ra = st->r + l->b * d;
+      vra = st->v + l->b * d;
+    } else if ((rc = anchor(sys, st, l, xa, va, kind)) != 0) {
+      return rc;
+    }
+    // e points from the other end to particle a
+    if ((rc = direction(sys, st, ra, rb, e, &len, l, kind)) != 0) return rc;
+    double f;
+    if (spring) {
+      f = l->k * (len - l->L);
+      *U += 0.5 * l->k * (len - l->L) * (len - l->L);
+    } else {
+      double rel = 0.0;
+      for (int b = 0; b < d; ++b) rel += (vb[b] - vra[b]) * e[b];
+      f = l->k * rel;
+    }
+    for (int b = 0; b < d; ++b) {
+      st->F[l->a * d + b] -= f * e[b];
+      if (l->b >= 0) st->F[l->b * d + b] += f * e[b];
+    }
+  }
+  // user potentials over positions: F -= grad U, exact by jets
+  int Nd = N * d;
+  for (int i = 0; i < sys->npotr; ++i) {
+    dal_jet Uj;
+    for (int j = 0; j < Nd; ++j) st->jr[j] = dal_const(st->r[j]);
+    for (int j = 0; j < Nd; ++j) {
+      st->jr[j].d = 1.0;
+      rc = sys->potr[i].fn.potr(st->jr, dal_const(st->t), &Uj, sys->potr[i].ctx);
+      st->jr[j].d = 0.0;
+      if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
+      if (!dal_jet_isfinite(Uj))
+        return DAL_FAIL(st, DAL_E_DOMAIN,
+                        "potential U(r,t) #%d is not finite at t=%.17g (gradient along "
+                        "particle '%s', component %d)",
+                        i, st->t, sys->part_names[j / d], j % d);
+      st->F[j] -= Uj.d;
+    }
+    if (Nd == 0) {
+      rc = sys->potr[i].fn.potr(st->jr, dal_const(st->t), &Uj, sys->potr[i].ctx);
+      if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
+    }
+    *U += Uj.v;
+  }
+  // user Cartesian forces
+  for (int i = 0; i < sys->nforce; ++i) {
+    rc = sys->forces[i].fn.force(st->t, st->r, st->v, st->F, sys->forces[i].ctx);
+    if (rc) return dal__cb_status(st, rc, "force callback");
+  }
+  for (int j = 0; j < Nd; ++j)
+    if (!isfinite(st->F[j]))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "applied force on particle '%s' (component %d) is %g at t=%.17g; check "
+                      "the force callbacks",
+                      sys->part_names[j / d], j % d, st->F[j], st->t);
+  return DAL_OK;
+}
+
+// generalized terms from user callbacks over q: Q += Q_user - dU/dq, U += U(q)
+int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
+  int n = sys->n, rc;
+  for (int i = 0; i < sys->npotq; ++i) {
+    dal_jet Uj = dal_const(0.0);
+    for (int j = 0; j < n; ++j) st->jq[j] = dal_const(st->q[j]);
+    for (int j = 0; j < n; ++j) {
+      st->jq[j].d = 1.0;
+      rc = sys->potq[i].fn.potq(st->jq, dal_const(st->t), &Uj, sys->potq[i].ctx);
+      st->jq[j].d = 0.0;
+      if (rc) return dal__cb_status(st, rc, "potential U(q,t)");
+      if (!dal_jet_isfinite(Uj))
+        return DAL_FAIL(st, DAL_E_DOMAIN,
+                        "potential U(q,t) #%d is not finite at t=%.17g (derivative along "
+                        "coordinate '%s')",
+                        i, st->t, sys->coord_names[j]);
+      st->Q[j] -= Uj.d;
+    }
+    *U += Uj.v;
+  }
+  for (int i = 0; i < sys->ngenforce; ++i) {
+    rc = sys->genforces[i].fn.gen(st->t, st->q, st->qdot, st->Q, sys->genforces[i].ctx);
+    if (rc) return dal__cb_status(st, rc, "generalized force callback");
+  }
+  for (int j = 0; j < n; ++j)
+    if (!isfinite(st->Q[j]))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "generalized force on coordinate '%s' is %g at t=%.17g; check the force "
+                      "callbacks",
+                      sys->coord_names[j], st->Q[j], st->t);
+  return DAL_OK;
+}
+
+int dal__dynamics(const dal_system *sys, dal_state *st) {
+  int d = sys->dim, n = sys->n, rc;
+  double U = 0.0;
+  memset(st->Q, 0, (size_t)n * sizeof(double));
+  memset(st->c, 0, (size_t)n * sizeof(double));
+  if (sys->N > 0) {
+    rc = applied_forces(sys, st, &U);
+    if (rc) return rc;
+  }
+  // Q = sum J_k' F_k, c = sum m_k J_k' gamma_k, M = sum m_k J_k' J_k (over dependencies)
+  if (st->M) memset(st->M, 0, (size_t)n * (size_t)n * sizeof(double));
+  double T = 0.0, T2 = 0.0, T1 = 0.0, T0 = 0.0;
+  for (int k = 0; k < sys->N; ++k) {
+    const int *dk = sys->pdep + sys->pdep_off[k];
+    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
+    const double *Jk = st->J + sys->pj_off[k];
+    double m = sys->mass[k];
+    for (int a = 0; a < d; ++a) {
+      const double *row = Jk + a * ndk;
+      double f = st->F[k * d + a], g = m * st->gamma[k * d + a];
+      for (int c = 0; c < ndk; ++c) {
+        st->Q[dk[c]] += row[c] * f;
+        st->c[dk[c]] += row[c] * g;
+      }
+      if (st->M)
+        for (int c2 = 0; c2 < ndk; ++c2) {
+          double w = m * row[c2];
+          double *col = st->M + (size_t)dk[c2] * n;
+          for (int c = 0; c < ndk; ++c) col[dk[c]] += w * row[c];
+        }
+      double v = st->v[k * d + a], rt = st->drdt[k * d + a], jq = v - rt;
+      T += 0.5 * m * v * v;
+      T2 += 0.5 * m * jq * jq;
+      T1 += m * jq * rt;
+      T0 += 0.5 * m * rt * rt;
+    }
+  }
+  rc = dal__genforces(sys, st, &U);
+  if (rc) return rc;
+  st->en.T = T;
+  st->en.U = U;
+  st->en.E = T + U;
+  st->en.T2 = T2;
+  st->en.T1 = T1;
+  st->en.T0 = T0;
+  st->en.h = T2 - T0 + U;
+  return DAL_OK;
+}
+
+void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y) {
+  int n = sys->n, d = sys->dim;
+  memset(y, 0, (size_t)n * sizeof(double));
+  for (int k = 0; k < sys->N; ++k) {
+    const int *dk = sys->pdep + sys->pdep_off[k];
+    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
+    const double *Jk = st->J + sys->pj_off[k];
+    for (int a = 0; a < d; ++a) {
+      double s = 0.0;
+      for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * x[dk[c]];
+      s *= sys->mass[k];
+      for (int c = 0; c < ndk; ++c) y[dk[c]] += Jk[a * ndk + c] * s;
+    }
+  }
+}
+
+int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
+  int n = sys->n;
+  for (int j = 0; j < n; ++j) st->qddot[j] = st->Q[j] - st->c[j];
+  int bad = -1;
+  int rc = dal__chol_solve(n, st->M, st->L, st->qddot, &bad);
+  if (rc) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_SINGULAR,
+                    "mass matrix singular or not positive definite at t=%.17g, %s: coordinate "
+                    "'%s' is degenerate (it moves no mass there, e.g. a chart singularity such "
+                    "as a spherical pendulum's pole); use redundant coordinates with "
+                    "constraints, or another chart",
+                    st->t, qs, sys->coord_names[bad]);
+  }
+  return DAL_OK;
+}
+
+void dal__finish(const dal_system *sys, dal_state *st) {
+  int d = sys->dim;
+  for (int k = 0; k < sys->N; ++k) {
+    const int *dk = sys->pdep + sys->pdep_off[k];
+    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
+    const double *Jk = st->J + sys->pj_off[k];
+    for (int a = 0; a < d; ++a) {
+      double s = st->gamma[k * d + a];
+      for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qddot[dk[c]];
+      st->a[k * d + a] = s;
+      st->N[k * d + a] = sys->mass[k] * s - st->F[k * d + a];
+    }
+  }
+}
+
+int dal__forward(const dal_system *sys, dal_state *st) {
+  int rc;
+  st->evaluated = 0;
+  if (sys->lag) {
+    double h;
+    rc = dal__lagrangian_terms(sys, st, st->M, st->qddot, &h);
+    if (rc) return rc;
+    int bad = -1;
+    if (dal__chol_solve(sys->n, st->M, st->L, st->qddot, &bad)) {
+      char qs[256];
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_SINGULAR,
+                      "d2L/dqdot2 singular or not positive definite at t=%.17g, %s: coordinate "
+                      "'%s' is degenerate; use another chart",
+                      st->t, qs, sys->coord_names[bad]);
+    }
+    st->en.T = st->en.U = st->en.T2 = st->en.T1 = st->en.T0 = NAN;
+    st->en.E = st->en.h = h;
+    st->evaluated = 1;
+    return DAL_OK;
+  }
+  if ((rc = dal__kinematics(sys, st)) != 0) return rc;
+  if (sys->m && (rc = dal__constraints(sys, st)) != 0) return rc;
+  if ((rc = dal__dynamics(sys, st)) != 0) return rc;
+  rc = sys->m ? dal__solve_kkt(sys, st) : dal__solve_unconstrained(sys, st);
+  if (rc) return rc;
+  dal__finish(sys, st);
+  st->evaluated = 1;
+  return DAL_OK;
+}

@@ -1,0 +1,134 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The standard Lagrange form: accelerations from L(t, q, qdot) by jets, and the residual
+// of Lagrange's equations along a proposed path (SICM 1.7, Lagrangian->state-derivative).
+//
+// Lagrange's equations expand to A qddot + X = dL/dq + Q_nc with A = d2L/dqdot2 and
+// X_i = d2L/dqdot_i dq . qdot + d2L/dqdot_i dt. Second partials come from second directional
+// derivatives by polarization: u'Hw = (D2(u + w) - D2(u) - D2(w)) / 2.
+#include <math.h>
+#include <string.h>
+
+#include "internal.h"
+
+// evaluate L with the jets currently in st->jq, st->jv and time jet t; check finiteness
+static int lag_eval(const dal_system *sys, dal_state *st, dal_jet t, dal_jet *L) {
+  int rc = sys->lag(t, st->jq, st->jv, L, sys->lag_ctx);
+  if (rc) return dal__cb_status(st, rc, "Lagrangian");
+  if (!dal_jet_isfinite(*L)) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_DOMAIN,
+                    "Lagrangian produced a non-finite value or derivative at t=%.17g, %s",
+                    st->t, qs);
+  }
+  return DAL_OK;
+}
+
+int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
+                          double *h_out) {
+  int n = sys->n, rc;
+  dal_jet L;
+  dal_jet t0 = dal_const(st->t), tw = dal_var(st->t, 1.0);
+  for (int i = 0; i < n; ++i) {
+    st->jq[i] = dal_const(st->q[i]);
+    st->jv[i] = dal_const(st->qdot[i]);
+  }
+  // A_ii = D2 along velocity direction e_i
+  for (int i = 0; i < n; ++i) {
+    st->jv[i].d = 1.0;
+    rc = lag_eval(sys, st, t0, &L);
+    st->jv[i].d = 0.0;
+    if (rc) return rc;
+    A[(size_t)i * n + i] = L.dd;
+  }
+  // off-diagonal A_ij by polarization
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n; ++j) {
+      st->jv[i].d = 1.0;
+      st->jv[j].d = 1.0;
+      rc = lag_eval(sys, st, t0, &L);
+      st->jv[i].d = 0.0;
+      st->jv[j].d = 0.0;
+      if (rc) return rc;
+      double aij = 0.5 * (L.dd - A[(size_t)i * n + i] - A[(size_t)j * n + j]);
+      A[(size_t)j * n + i] = aij;
+      A[(size_t)i * n + j] = aij;
+    }
+  // w = (dq = qdot, dt = 1): W = D2(w), X_i = (D2(e_i^v + w) - A_ii - W) / 2
+  for (int i = 0; i < n; ++i) st->jq[i].d = st->qdot[i];
+  rc = lag_eval(sys, st, tw, &L);
+  if (rc) return rc;
+  double W = L.dd;
+  for (int i = 0; i < n; ++i) {
+    st->jv[i].d = 1.0;
+    rc = lag_eval(sys, st, tw, &L);
+    st->jv[i].d = 0.0;
+    if (rc) return rc;
+    rhs[i] = -0.5 * (L.dd - A[(size_t)i * n + i] - W);
+  }
+  for (int i = 0; i < n; ++i) st->jq[i].d = 0.0;
+  // dL/dq_i by first derivatives
+  for (int i = 0; i < n; ++i) {
+    st->jq[i].d = 1.0;
+    rc = lag_eval(sys, st, t0, &L);
+    st->jq[i].d = 0.0;
+    if (rc) return rc;
+    rhs[i] += L.d;
+  }
+  // energy function h = qdot . dL/dqdot - L in one evaluation along dv = qdot
+  for (int i = 0; i < n; ++i) st->jv[i].d = st->qdot[i];
+  rc = lag_eval(sys, st, t0, &L);
+  if (rc) return rc;
+  *h_out = L.d - L.v;
+  // non-conservative generalized forces (and any U(q,t))
+  memset(st->Q, 0, (size_t)n * sizeof(double));
+  double U = 0.0;
+  rc = dal__genforces(sys, st, &U);
+  if (rc) return rc;
+  *h_out += U;
+  for (int i = 0; i < n; ++i) rhs[i] += st->Q[i];
+  return DAL_OK;
+}
+
+int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path, void *ctx,
+                          double t, double *res) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "lagrange_residual: the state belongs to another system");
+  if (!path || !res) return DAL_FAIL(st, DAL_E_ARG, "lagrange_residual: path or res is NULL");
+  if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "lagrange_residual: t is %g", t);
+  int n = sys->n, rc;
+  // the path's local tuple at t: q, qdot, qddot
+  rc = path(dal_var(t, 1.0), st->jq, ctx);
+  if (rc) return DAL_FAIL(st, DAL_E_CALLBACK, "proposed path failed (returned %d) at t=%.17g",
+                          rc, t);
+  double *qdd = st->work;
+  for (int i = 0; i < n; ++i) {
+    if (!dal_jet_isfinite(st->jq[i]))
+      return DAL_FAIL(st, DAL_E_DOMAIN, "proposed path: coordinate '%s' is not finite at "
+                                        "t=%.17g", sys->coord_names[i], t);
+    st->q[i] = st->jq[i].v;
+    st->qdot[i] = st->jq[i].d;
+    qdd[i] = st->jq[i].dd;
+  }
+  st->t = t;
+  dal__integ_reset(st);
+  st->evaluated = 0;
+  if (sys->lag) {
+    double h, *rhs = st->work + n;
+    rc = dal__lagrangian_terms(sys, st, st->M, rhs, &h);
+    if (rc) return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+    for (int i = 0; i < n; ++i) {
+      double s = -rhs[i];
+      for (int j = 0; j < n; ++j) s += st->M[(size_t)j * n + i] * qdd[j];
+      res[i] = s;
+    }
+    return DAL_OK;
+  }
+  if ((rc = dal__kinematics(sys, st)) != 0 || (rc = dal__dynamics(sys, st)) != 0)
+    return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+  dal__mass_apply(sys, st, qdd, res);
+  for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];
+  return DAL_OK;
+}

@@ -1,0 +1,173 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Trajectory state: allocation (all workspace up front), setting, accessors, error text.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "internal.h"
+
+void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len) {
+  size_t used = 0;
+  buf[0] = 0;
+  int shown = sys->n < 6 ? sys->n : 6;
+  for (int i = 0; i < shown && used < len; ++i)
+    used += (size_t)snprintf(buf + used, len - used, "%s%s=%.6g", i ? ", " : "",
+                             sys->coord_names[i], q[i]);
+  if (sys->n > shown && used < len) snprintf(buf + used, len - used, ", ...");
+}
+
+int dal__cb_status(dal_state *st, int rc, const char *what) {
+  if (rc == 0) return DAL_OK;
+  if (rc > 0) {
+    DAL_FAIL(st, DAL__RECOVERABLE, "%s asked for a smaller step (returned %d) at t=%.17g", what,
+             rc, st->t);
+    return DAL__RECOVERABLE;
+  }
+  return DAL_FAIL(st, DAL_E_CALLBACK, "%s failed (returned %d) at t=%.17g; the state holds the "
+                                      "last accepted step", what, rc, st->t);
+}
+
+int dal_state_create(const dal_system *sys, dal_state **out) {
+  if (!out) return DAL_E_ARG;
+  *out = NULL;
+  if (!sys) return DAL_E_ARG;
+  dal_state *st = calloc(1, sizeof *st);
+  if (!st) return DAL_E_NOMEM;
+  size_t n = (size_t)sys->n, Nd = (size_t)sys->N * (size_t)sys->dim, m = (size_t)sys->m;
+  st->sys = sys;
+  st->q = calloc(n, sizeof(double));
+  st->qdot = calloc(n, sizeof(double));
+  st->qddot = calloc(n, sizeof(double));
+  st->Q = calloc(n, sizeof(double));
+  st->c = calloc(n, sizeof(double));
+  st->work = calloc(4 * n + 1, sizeof(double));
+  st->r = calloc(Nd + 1, sizeof(double));
+  st->v = calloc(Nd + 1, sizeof(double));
+  st->a = calloc(Nd + 1, sizeof(double));
+  st->drdt = calloc(Nd + 1, sizeof(double));
+  st->gamma = calloc(Nd + 1, sizeof(double));
+  st->F = calloc(Nd + 1, sizeof(double));
+  st->N = calloc(Nd + 1, sizeof(double));
+  st->J = calloc((size_t)sys->pj_off[sys->N] + 1, sizeof(double));
+  if (sys->dense_M) {
+    st->M = calloc(n * n, sizeof(double));
+    st->L = calloc(n * n, sizeof(double));
+  }
+  if (m) {
+    st->lambda = calloc(m, sizeof(double));
+    st->phi = calloc(m, sizeof(double));
+    st->phidot = calloc(m, sizeof(double));
+    st->gphi = calloc(m, sizeof(double));
+    st->G = calloc((size_t)sys->g_total + 1, sizeof(double));
+  }
+  size_t jn = (size_t)sys->max_in, jo = (size_t)sys->max_out;
+  st->jin = calloc(jn + 1, sizeof(dal_jet));
+  st->jout = calloc(jo + 1, sizeof(dal_jet));
+  st->loc = calloc(jn * jo + 1, sizeof(double));
+  st->jq = calloc(n + 1, sizeof(dal_jet));
+  st->jv = calloc(n + 1, sizeof(dal_jet));
+  st->jr = calloc(Nd + 1, sizeof(dal_jet));
+  if (!st->q || !st->qdot || !st->qddot || !st->Q || !st->c || !st->work || !st->r || !st->v ||
+      !st->a || !st->drdt || !st->gamma || !st->F || !st->N || !st->J ||
+      (sys->dense_M && (!st->M || !st->L)) ||
+      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G)) || !st->jin ||
+      !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
+    dal_state_destroy(st);
+    return DAL_E_NOMEM;
+  }
+  dal_solve_default_opts(&st->integ_opts);
+  *out = st;
+  return DAL_OK;
+}
+
+void dal_state_destroy(dal_state *st) {
+  if (!st) return;
+  dal__integ_reset(st);
+  double *d[] = {st->q,  st->qdot, st->qddot, st->Q,      st->c,      st->work, st->r,
+                 st->v,  st->a,    st->drdt,  st->gamma,  st->F,      st->N,    st->J,
+                 st->M,  st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
+                 st->loc};
+  for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i) free(d[i]);
+  free(st->jin);
+  free(st->jout);
+  free(st->jq);
+  free(st->jv);
+  free(st->jr);
+  free(st);
+}
+
+const char *dal_state_errmsg(const dal_state *st) { return st ? st->err : ""; }
+
+int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *q,
+                  const double *qdot) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "state_set: the state belongs to another system");
+  if (!q || !qdot) return DAL_FAIL(st, DAL_E_ARG, "state_set: q or qdot is NULL");
+  if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: time is %g", t);
+  for (int i = 0; i < sys->n; ++i) {
+    if (!isfinite(q[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: coordinate '%s' is %g",
+                      sys->coord_names[i], q[i]);
+    if (!isfinite(qdot[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: velocity of coordinate '%s' is %g",
+                      sys->coord_names[i], qdot[i]);
+  }
+  dal__integ_reset(st);
+  memset(&st->stats, 0, sizeof st->stats);
+  st->t = t;
+  memcpy(st->q, q, (size_t)sys->n * sizeof(double));
+  memcpy(st->qdot, qdot, (size_t)sys->n * sizeof(double));
+  st->evaluated = 0;
+  st->err[0] = 0;
+  return DAL_OK;
+}
+
+int dal_forward(const dal_system *sys, dal_state *st) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "forward: the state belongs to another system");
+  int rc = dal__forward(sys, st);
+  // a recoverable callback request has no step to shrink here: report it as a failure
+  if (rc == DAL__RECOVERABLE) rc = DAL_E_CALLBACK;
+  return rc;
+}
+
+double dal_state_time(const dal_state *st) { return st ? st->t : NAN; }
+const double *dal_state_q(const dal_state *st) { return st ? st->q : NULL; }
+const double *dal_state_qdot(const dal_state *st) { return st ? st->qdot : NULL; }
+const double *dal_state_qddot(const dal_state *st) { return st ? st->qddot : NULL; }
+const double *dal_state_positions(const dal_state *st) { return st ? st->r : NULL; }
+const double *dal_state_velocities(const dal_state *st) { return st ? st->v : NULL; }
+const double *dal_state_accelerations(const dal_state *st) { return st ? st->a : NULL; }
+const double *dal_state_drdt(const dal_state *st) { return st ? st->drdt : NULL; }
+const double *dal_state_gamma(const dal_state *st) { return st ? st->gamma : NULL; }
+const double *dal_state_mass_matrix(const dal_state *st) { return st ? st->M : NULL; }
+const double *dal_state_genforces(const dal_state *st) { return st ? st->Q : NULL; }
+const double *dal_state_bias(const dal_state *st) { return st ? st->c : NULL; }
+const double *dal_state_forces(const dal_state *st) { return st ? st->F : NULL; }
+const double *dal_state_reactions(const dal_state *st) { return st ? st->N : NULL; }
+const double *dal_state_lambda(const dal_state *st) { return st ? st->lambda : NULL; }
+const double *dal_state_phi(const dal_state *st) { return st ? st->phi : NULL; }
+const double *dal_state_phidot(const dal_state *st) { return st ? st->phidot : NULL; }
+
+int dal_state_energies(const dal_state *st, dal_energies *out) {
+  if (!st || !out) return DAL_E_ARG;
+  *out = st->en;
+  return DAL_OK;
+}
+
+int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double *J) {
+  if (!sys || !st || !J || st->sys != sys) return DAL_E_ARG;
+  if (k < 0 || k >= sys->N) return DAL_E_ARG;
+  int d = sys->dim, n = sys->n;
+  memset(J, 0, (size_t)d * (size_t)n * sizeof(double));
+  const int *dep = sys->pdep + sys->pdep_off[k];
+  int nd = sys->pdep_off[k + 1] - sys->pdep_off[k];
+  const double *Jk = st->J + sys->pj_off[k];
+  for (int a = 0; a < d; ++a)
+    for (int c = 0; c < nd; ++c) J[a * n + dep[c]] = Jk[a * nd + c];
+  return DAL_OK;
+}
