@@ -187,13 +187,13 @@ static inline dal_jet dal_tan(dal_jet a) {
 
 /// asin(a); NaN outside [-1, 1], inf derivatives at +-1.
 static inline dal_jet dal_asin(dal_jet a) {
-  double w = 1.0 - a.v * a.v, f1 = 1.0 / sqrt(w);
+  double w = (1.0 - a.v) * (1.0 + a.v), f1 = 1.0 / sqrt(w); // 1 - a^2 accurate near +-1
   return dal_jet_chain(a, asin(a.v), f1, a.v * f1 / w);
 }
 
 /// acos(a); NaN outside [-1, 1], inf derivatives at +-1.
 static inline dal_jet dal_acos(dal_jet a) {
-  double w = 1.0 - a.v * a.v, f1 = 1.0 / sqrt(w);
+  double w = (1.0 - a.v) * (1.0 + a.v), f1 = 1.0 / sqrt(w); // 1 - a^2 accurate near +-1
   return dal_jet_chain(a, acos(a.v), -f1, -a.v * f1 / w);
 }
 
@@ -228,7 +228,7 @@ static inline dal_jet dal_cosh(dal_jet a) {
 
 /// tanh(a)
 static inline dal_jet dal_tanh(dal_jet a) {
-  double t = tanh(a.v), u = 1.0 - t * t;
+  double c = cosh(a.v), t = tanh(a.v), u = 1.0 / (c * c); // sech^2, not 1 - t^2 (cancels)
   return dal_jet_chain(a, t, u, -2.0 * t * u);
 }
 
