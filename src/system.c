@@ -67,6 +67,7 @@ static int cmp_int(const void *x, const void *y) {
 
 // sorted unique copy of list into out; returns its length
 static int sorted_unique(const int *list, int n, int *out) {
+  if (n <= 0) return 0; // list may be NULL (empty index pool)
   memcpy(out, list, (size_t)n * sizeof(int));
   qsort(out, (size_t)n, sizeof(int), cmp_int);
   int k = 0;
@@ -114,8 +115,14 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   s->place = b->map ? NULL : dup_mem(places, (size_t)N * sizeof(dal_place));
   s->pdep_off = calloc((size_t)N + 1, sizeof(int));
   s->pj_off = calloc((size_t)N + 1, sizeof(int));
-  int *tmp = malloc(((size_t)2 * n + 1) * sizeof(int));
-  int *tmp2 = malloc(((size_t)2 * n + 1) * sizeof(int));
+  // scratch lists hold an instance's raw coordinate list (repeats allowed) or a union
+  size_t ntmp = (size_t)2 * n + 1;
+  for (int k = 0; k < N && !b->map; ++k)
+    if ((size_t)places[k].ncoord >= ntmp) ntmp = (size_t)places[k].ncoord + 1;
+  for (int i = 0; i < b->cons.len; ++i)
+    if ((size_t)cons[i].ncoord >= ntmp) ntmp = (size_t)cons[i].ncoord + 1;
+  int *tmp = malloc(ntmp * sizeof(int));
+  int *tmp2 = malloc(ntmp * sizeof(int));
   size_t pcap = 0, ccap = 0;
   if (reserve_ints(&s->pdep, &pcap, (size_t)N + 1)) goto nomem;
   if (!s->coord_names || !s->part_names || !s->mass || !s->ipool || !s->ppool ||
