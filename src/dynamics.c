@@ -188,9 +188,9 @@ int dal__dynamics(const dal_system *sys, dal_state *st) {
       }
       if (st->M)
         for (int c2 = 0; c2 < ndk; ++c2) {
-          double w = m * row[c2];
           double *col = st->M + (size_t)dk[c2] * n;
-          for (int c = 0; c < ndk; ++c) col[dk[c]] += w * row[c];
+          // m (J_ac J_ac2): the product is symmetric in (c, c2), so M is exactly symmetric
+          for (int c = 0; c < ndk; ++c) col[dk[c]] += m * (row[c] * row[c2]);
         }
       double v = st->v[k * d + a], rt = st->drdt[k * d + a], jq = v - rt;
       T += 0.5 * m * v * v;
