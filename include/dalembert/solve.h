@@ -62,6 +62,8 @@ typedef struct dal_solve_opts {
   double baumgarte_beta;      ///< INDEX1: stiffness on phi (1/s^2), default 0 (off)
   int project;                ///< INDEX1: project q and v onto the manifold after each step
   int sparse_threshold;       ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
+  int fixed_erk;              ///< DOPRI5/FEHLBERG78: if nonzero, take fixed steps of
+                              ///< opts.fixed_step without error control (order studies); 0
 } dal_solve_opts;
 
 /// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 1e-10.

@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// CSV monitor: one row t, q..., qdot..., E, h per output time (header first), %.17g.
+#include <math.h>
+#include <stdio.h>
+
+#include "internal.h"
+
+// principal value of an angle in [-pi, pi)
+static double wrap_pi(double x) {
+  const double pi = 3.14159265358979323846, twopi = 6.28318530717958647692;
+  double r = x - twopi * floor((x + pi) / twopi);
+  if (r >= pi) r -= twopi;
+  if (r < -pi) r += twopi;
+  return r;
+}
+
+int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
+  dal_csv *c = ctx;
+  if (!sys || !st || !c || !c->fp) return DAL_E_ARG;
+  int n = sys->n;
+  if (!c->header_done) {
+    fputs("t", c->fp);
+    for (int i = 0; i < n; ++i) fprintf(c->fp, ",%s", sys->coord_names[i]);
+    for (int i = 0; i < n; ++i) fprintf(c->fp, ",%s_dot", sys->coord_names[i]);
+    fputs(",E,h\n", c->fp);
+    c->header_done = 1;
+  }
+  fprintf(c->fp, "%.17g", st->t);
+  for (int i = 0; i < n; ++i)
+    fprintf(c->fp, ",%.17g", c->wrap_angles ? wrap_pi(st->q[i]) : st->q[i]);
+  for (int i = 0; i < n; ++i) fprintf(c->fp, ",%.17g", st->qdot[i]);
+  fprintf(c->fp, ",%.17g,%.17g\n", st->en.E, st->en.h);
+  return ferror(c->fp) ? DAL_E_IO : DAL_OK;
+}

@@ -1,0 +1,192 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Variable-order multistep methods through SUNDIALS CVODE: Adams-Moulton (orders 1-12) with
+// fixed-point (functional) iteration, and BDF (orders 1-5) with Newton iteration on a dense
+// difference-quotient Jacobian (Hindmarsh et al., SUNDIALS, ACM TOMS 31, 2005; Hairer-Norsett-
+// Wanner, Solving ODEs I, sec. III.1-III.7). One internal step per call.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
+
+#include "solve_internal.h"
+
+typedef struct cv_mem {
+  SUNContext ctx;
+  void *cv;
+  N_Vector y, ele, ewt;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  SUNNonlinearSolver NLS;
+  long netf, nsf, nje, nni; // counters already added to the state's statistics
+} cv_mem;
+
+static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
+  dal_ode_integ *ig = ud;
+  return dal__ode_rhs(ig, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+static void cv_err(int code, const char *module, const char *function, char *msg, void *ud) {
+  dal_ode_integ *ig = ud;
+  snprintf(ig->sun_err, sizeof ig->sun_err, "%s %s (%d): %s", module, function, code, msg);
+}
+
+static void cv_free(void *p) {
+  cv_mem *m = p;
+  if (!m) return;
+  if (m->cv) CVodeFree(&m->cv);
+  if (m->NLS) SUNNonlinSolFree(m->NLS);
+  if (m->LS) SUNLinSolFree(m->LS);
+  if (m->A) SUNMatDestroy(m->A);
+  if (m->y) N_VDestroy(m->y);
+  if (m->ele) N_VDestroy(m->ele);
+  if (m->ewt) N_VDestroy(m->ewt);
+  if (m->ctx) SUNContext_Free(&m->ctx);
+  free(m);
+}
+
+// add the counters' growth since the last call to the statistics
+static void cv_sync_stats(dal_ode_integ *ig, cv_mem *m) {
+  long netf = 0, nsf = 0, nje = 0, nni = 0;
+  CVodeGetNumErrTestFails(m->cv, &netf);
+  CVodeGetNumStepSolveFails(m->cv, &nsf);
+  CVodeGetNumNonlinSolvIters(m->cv, &nni);
+  if (m->LS) CVodeGetNumJacEvals(m->cv, &nje);
+  dal_stats *s = &ig->st->stats;
+  s->rejected += (netf - m->netf) + (nsf - m->nsf);
+  s->jac_evals += nje - m->nje;
+  s->nonlin_iters += nni - m->nni;
+  m->netf = netf;
+  m->nsf = nsf;
+  m->nje = nje;
+  m->nni = nni;
+}
+
+// restart at the last accepted step (after a projection) with initial step h
+static int cv_restart(dal_ode_integ *ig, cv_mem *m, double h) {
+  cv_sync_stats(ig, m);
+  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  int flag = CVodeSetInitStep(m->cv, h);
+  if (flag == CV_SUCCESS) flag = CVodeReInit(m->cv, ig->t, m->y);
+  m->netf = m->nsf = m->nje = m->nni = 0;
+  return flag;
+}
+
+// the failure message and status for a CVODE return code
+static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
+  char var[128];
+  double h = 0;
+  CVodeGetCurrentStep(m->cv, &h);
+  ig->st->stats.foreign_code = flag;
+  // dominating variable: the largest weighted local error estimate of the failed try
+  CVodeGetEstLocalErrors(m->cv, m->ele);
+  CVodeGetErrWeights(m->cv, m->ewt);
+  const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
+  for (int i = 0; i < ig->ny; ++i) ig->ewt[i] = e[i] * w[i];
+  dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
+  const char *name = dal_method_name(ig->method);
+  switch (flag) {
+  case CV_RHSFUNC_FAIL:
+  case CV_FIRST_RHSFUNC_ERR:
+  case CV_REPTD_RHSFUNC_ERR:
+  case CV_UNREC_RHSFUNC_ERR:
+    return dal__ode_fail(ig, ig->rhs_rc < 0 ? ig->rhs_rc : DAL_E_CALLBACK,
+                         "%s; stopped at t=%.17g (last accepted step) before the target "
+                         "t=%.17g",
+                         ig->rhs_err, ig->t, ig->tout);
+  case CV_ERR_FAILURE:
+  case CV_TOO_MUCH_ACC:
+    return dal__ode_fail(ig, DAL_E_STEP,
+                         "step size underflow at t=%.17g (h=%.3g, %s): error dominated by %s; "
+                         "the solution may be singular there, or the tolerances too tight: "
+                         "loosen rtol/atol or check the model near this time",
+                         ig->t, h, name, var);
+  case CV_CONV_FAILURE:
+    return dal__ode_fail(ig, DAL_E_CONV,
+                         "%s iteration failed to converge at t=%.17g (h=%.3g), dominated by "
+                         "%s; the problem may be stiff (try DAL_METHOD_BDF) or singular there",
+                         name, ig->t, h, var);
+  case CV_TOO_MUCH_WORK:
+    return dal__ode_fail(ig, DAL_E_MAXSTEPS,
+                         "too many steps at t=%.17g before the target t=%.17g; raise "
+                         "opts.max_steps or loosen the tolerances",
+                         ig->t, ig->tout);
+  default:
+    return dal__ode_fail(ig, DAL_E_SOLVER, "CVODE (%s) failed at t=%.17g (code %d): %s", name,
+                         ig->t, flag, ig->sun_err);
+  }
+}
+
+static int cv_advance(dal_ode_integ *ig, double tout) {
+  cv_mem *m = ig->impl;
+  int flag = CVodeSetStopTime(m->cv, tout);
+  if (flag != CV_SUCCESS) return cv_failure(ig, m, flag);
+  while (ig->t < tout) {
+    realtype tret = ig->t;
+    ig->rhs_rc = 0;
+    flag = CVode(m->cv, tout, m->y, &tret, CV_ONE_STEP);
+    cv_sync_stats(ig, m);
+    if (flag < 0) return cv_failure(ig, m, flag);
+    ig->st->stats.foreign_code = flag;
+    if (flag == CV_TSTOP_RETURN || tret >= tout) tret = tout;
+    int projected = 0;
+    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
+    if (rc) return rc;
+    if (projected && ig->t < tout) {
+      double h = 0;
+      CVodeGetLastStep(m->cv, &h);
+      if ((flag = cv_restart(ig, m, h)) != CV_SUCCESS) return cv_failure(ig, m, flag);
+      if ((flag = CVodeSetStopTime(m->cv, tout)) != CV_SUCCESS) return cv_failure(ig, m, flag);
+    }
+  }
+  return DAL_OK;
+}
+
+int dal__cvode_create(dal_ode_integ *ig) {
+  dal_state *st = ig->st;
+  const dal_solve_opts *o = &ig->opts;
+  int bdf = ig->method == DAL_METHOD_BDF;
+  cv_mem *m = calloc(1, sizeof *m);
+  if (!m) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
+  ig->impl = m;
+  ig->free_impl = cv_free;
+  ig->advance = cv_advance;
+  int flag = SUNContext_Create(NULL, &m->ctx);
+  if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
+  m->y = N_VNew_Serial(ig->ny, m->ctx);
+  m->ele = N_VNew_Serial(ig->ny, m->ctx);
+  m->ewt = N_VNew_Serial(ig->ny, m->ctx);
+  if (!m->y || !m->ele || !m->ewt)
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
+  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->ctx);
+  if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
+  flag = CVodeSetErrHandlerFn(m->cv, cv_err, ig);
+  if (!flag) flag = CVodeInit(m->cv, cv_rhs, ig->t, m->y);
+  if (!flag) flag = CVodeSetUserData(m->cv, ig);
+  if (!flag) flag = CVodeSStolerances(m->cv, ig->rtol, ig->atol);
+  if (!flag && bdf) {
+    // Newton iteration on a dense difference-quotient Jacobian
+    m->A = SUNDenseMatrix(ig->ny, ig->ny, m->ctx);
+    m->LS = m->A ? SUNLinSol_Dense(m->y, m->A, m->ctx) : NULL;
+    flag = m->LS ? CVodeSetLinearSolver(m->cv, m->LS, m->A) : CV_MEM_FAIL;
+  } else if (!flag) {
+    // functional (fixed-point) iteration, no Jacobian
+    m->NLS = SUNNonlinSol_FixedPoint(m->y, 0, m->ctx);
+    flag = m->NLS ? CVodeSetNonlinearSolver(m->cv, m->NLS) : CV_MEM_FAIL;
+  }
+  if (!flag && o->h0 > 0) flag = CVodeSetInitStep(m->cv, o->h0);
+  if (!flag && o->hmin > 0) flag = CVodeSetMinStep(m->cv, o->hmin);
+  if (!flag && o->hmax > 0) flag = CVodeSetMaxStep(m->cv, o->hmax);
+  if (flag)
+    return DAL_FAIL(st, DAL_E_SOLVER, "CVODE setup failed (code %d): %s", flag, ig->sun_err);
+  return DAL_OK;
+}

@@ -1,0 +1,106 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Private interface between the integration driver (solve.c), the ODE integrators
+// (ode_*.c) and the DAE side (dae_ida.c, init.c, kkt.c).
+#ifndef DAL_SOLVE_INTERNAL_H
+#define DAL_SOLVE_INTERNAL_H
+
+#include "internal.h"
+
+/// A first-order ODE y' = f(t, y) built on a system and a state, optionally with a projection
+/// onto an invariant manifold after each accepted step.
+typedef struct dal_ode_problem {
+  const char *name; ///< "minimal", "index1"
+  /// size of y for this system
+  int (*size)(const dal_system *sys);
+  /// ydot = f(t, y); uses st as workspace (its q, qdot, t are overwritten and dal_forward
+  /// outputs become those at (t, y)). Returns 0, DAL__RECOVERABLE, or a negative status with
+  /// the state's error message set.
+  int (*rhs)(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
+             const double *y, double *ydot);
+  /// project y (in place) onto the invariant manifold at t; NULL if none
+  int (*project)(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
+                 double *y);
+  /// y from the state's (q, qdot)
+  void (*from_state)(const dal_system *sys, const dal_state *st, double *y);
+  /// the state's (t, q, qdot) from y (does not evaluate)
+  void (*to_state)(const dal_system *sys, dal_state *st, double t, const double *y);
+} dal_ode_problem;
+
+/// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (solve.c)
+extern const dal_ode_problem dal__problem_minimal;
+/// index-1 redundant coordinates: y = (q, v), f = (v, qddot from the KKT system with optional
+/// Baumgarte terms), projection onto phi = 0, G v + dphi/dt = 0 when opts->project (init.c)
+extern const dal_ode_problem dal__problem_index1;
+
+/// DAE integration through SUNDIALS IDA for the GGL, index-3 and BDF index-1 forms
+/// (dae_ida.c). create: allocate and initialize from the state's consistent (q, qdot);
+/// advance: integrate to tout, leaving the state at tout (or at the last accepted step on
+/// failure, with its error message naming time and dominating variable).
+int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                    void **mem);
+int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout);
+void dal__ida_free(void *mem);
+
+/// An ODE integrator run on a dal_ode_problem (ode_arkode.c, ode_cvode.c, ode_bs.c,
+/// ode_rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a
+/// step needs is allocated by the method's create function.
+typedef struct dal_ode_integ dal_ode_integ;
+struct dal_ode_integ {
+  const dal_ode_problem *prob;
+  const dal_system *sys;
+  dal_state *st;
+  dal_solve_opts opts; ///< copy of the options the integrator was created with
+  double rtol, atol;   ///< local tolerances of the error control (dal__tol_factor applied)
+  dal_method method;   ///< resolved method (never AUTO)
+  int ny;              ///< size of y
+  double t;            ///< time of the last accepted step
+  double tout;         ///< target of the current advance call
+  long ncall;          ///< steps accepted in the current advance call (for opts.max_steps)
+  double *y;           ///< solution at the last accepted step (ny)
+  double *ydot;        ///< scratch (ny) for the final evaluation
+  double *ewt;         ///< scratch (ny): error weights or scaled local errors of the last try
+  int rhs_rc;          ///< return code of the last right-hand-side call
+  char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
+  char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
+  void *impl;                   ///< method memory
+  /// integrate from t to tout (> t); on failure call dal__ode_fail
+  int (*advance)(dal_ode_integ *ig, double tout);
+  void (*free_impl)(void *impl);
+};
+
+/// Local tolerance factor of each method: its error control runs at c * rtol, c * atol (not
+/// below DAL_TOL_FLOOR), so that the global error tracks the requested tolerance (the
+/// measurements are in solve.h). Like RADAU5's tolerance transformation (Hairer-Wanner,
+/// Solving ODEs II, sec. IV.8).
+double dal__tol_factor(dal_method m);
+/// smallest local relative tolerance handed to an integrator
+#define DAL_TOL_FLOOR 1e-15
+
+/// y' = f(t, y) through the problem, counting evaluations and keeping the failure message;
+/// returns 0, DAL__RECOVERABLE or a negative status (solve.c)
+int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot);
+/// record an accepted step (t, y): copies y into ig->y, counts the step and, when the problem
+/// has a projection and opts.project is set, projects ig->y in place (*projected = 1 then;
+/// projected may be NULL). Returns 0 or a negative status (the projection failed; the state
+/// then holds the step before).
+int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected);
+/// stop with the state at the last accepted step (ig->t, ig->y), re-evaluated there, and the
+/// message fmt... (prefixed to nothing; name time and culprit in it). Returns status.
+int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/// name of component i of y ("coordinate 'x'", "velocity of 'x'") into buf
+const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t len);
+/// index of the largest |w[i]| (the dominating variable of an error estimate)
+int dal__ode_argmax(const double *w, int n);
+
+/// method constructors: fill ig->impl, ig->advance, ig->free_impl from ig->y at ig->t
+int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (ode_arkode.c)
+int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (ode_cvode.c)
+int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (ode_bs.c)
+int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (ode_rk4.c)
+
+#endif
