@@ -61,6 +61,8 @@ static int erk_restart(dal_ode_integ *ig, erk_mem *m, double h) {
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   int flag = ERKStepSetInitStep(m->ark, h);
   if (flag == ARK_SUCCESS) flag = ERKStepReset(m->ark, ig->t, m->y);
+  // a reset forgets the stop time
+  if (flag == ARK_SUCCESS) flag = ERKStepSetStopTime(m->ark, ig->tout);
   m->netf_base = 0;
   ERKStepGetNumErrTestFails(m->ark, &m->netf_base);
   return flag;
@@ -72,12 +74,14 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
   double h = 0;
   ERKStepGetCurrentStep(m->ark, &h);
   ig->st->stats.foreign_code = flag;
+  // an unrecoverable right-hand side decides, whatever the integrator made of it
+  if (ig->rhs_fatal) flag = ARK_RHSFUNC_FAIL;
   switch (flag) {
   case ARK_RHSFUNC_FAIL:
   case ARK_FIRST_RHSFUNC_ERR:
   case ARK_REPTD_RHSFUNC_ERR:
   case ARK_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig, ig->rhs_rc < 0 ? ig->rhs_rc : DAL_E_CALLBACK,
+    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal : DAL_E_CALLBACK,
                          "%s; stopped at t=%.17g (last accepted step) before the target "
                          "t=%.17g",
                          ig->rhs_err, ig->t, ig->tout);
@@ -152,10 +156,12 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     ig->rhs_rc = 0;
     flag = ERKStepEvolve(m->ark, tout, m->y, &tret, ARK_ONE_STEP);
     erk_sync_stats(ig, m);
+    if (flag >= 0 && ig->rhs_fatal) flag = ARK_RHSFUNC_FAIL;
+    if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = ARK_ERR_FAILURE;
     if (flag < 0) {
       // ERKStep treats any right-hand-side failure as final: a recoverable one restarts
       // here from the last accepted step with a quarter of the step that failed
-      if (ig->rhs_rc == DAL__RECOVERABLE && recover < ERK_MAX_RECOVER) {
+      if (!ig->rhs_fatal && ig->rhs_rc == DAL__RECOVERABLE && recover < ERK_MAX_RECOVER) {
         double h = 0;
         ERKStepGetCurrentStep(m->ark, &h);
         if (!(h > 0)) h = ig->st->stats.last_h;
@@ -169,14 +175,16 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     recover = 0;
     ig->st->stats.foreign_code = flag;
     // a step that reached the stop time within rounding lands exactly on tout
-    if (flag == ARK_TSTOP_RETURN || tret >= tout) tret = tout;
+    if (flag == ARK_TSTOP_RETURN) tret = tout;
+    if (tret > tout) return erk_failure(ig, m, ARK_BAD_T);
     int projected = 0;
     int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
     if (rc) return rc;
     if (projected && ig->t < tout) {
       double h = 0;
-      ERKStepGetLastStep(m->ark, &h);
+      ERKStepGetCurrentStep(m->ark, &h); // the step proposed next, not the one taken
       if ((flag = erk_restart(ig, m, h)) != ARK_SUCCESS) return erk_failure(ig, m, flag);
+      if ((flag = ERKStepSetStopTime(m->ark, tout)) != ARK_SUCCESS) return erk_failure(ig, m, flag);
     }
   }
   return DAL_OK;

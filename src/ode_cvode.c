@@ -86,6 +86,8 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   double h = 0;
   CVodeGetCurrentStep(m->cv, &h);
   ig->st->stats.foreign_code = flag;
+  // an unrecoverable right-hand side decides, whatever the integrator made of it
+  if (ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
   // dominating variable: the largest weighted local error estimate of the failed try
   CVodeGetEstLocalErrors(m->cv, m->ele);
   CVodeGetErrWeights(m->cv, m->ewt);
@@ -98,7 +100,7 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   case CV_FIRST_RHSFUNC_ERR:
   case CV_REPTD_RHSFUNC_ERR:
   case CV_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig, ig->rhs_rc < 0 ? ig->rhs_rc : DAL_E_CALLBACK,
+    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal : DAL_E_CALLBACK,
                          "%s; stopped at t=%.17g (last accepted step) before the target "
                          "t=%.17g",
                          ig->rhs_err, ig->t, ig->tout);
@@ -134,9 +136,12 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
     ig->rhs_rc = 0;
     flag = CVode(m->cv, tout, m->y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
+    if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
+    if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
     if (flag < 0) return cv_failure(ig, m, flag);
     ig->st->stats.foreign_code = flag;
-    if (flag == CV_TSTOP_RETURN || tret >= tout) tret = tout;
+    if (flag == CV_TSTOP_RETURN) tret = tout;
+    if (tret > tout) return cv_failure(ig, m, CV_BAD_T);
     int projected = 0;
     int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
     if (rc) return rc;

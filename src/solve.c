@@ -103,11 +103,23 @@ const dal_ode_problem dal__problem_minimal = {
 
 int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot) {
   dal_state *st = ig->st;
+  // after an unrecoverable failure nothing more is evaluated in this call: the integrator
+  // stops at its last accepted step (some retry a failing right-hand side)
+  if (ig->rhs_fatal) return ig->rhs_rc = ig->rhs_fatal;
   st->stats.rhs_evals++;
   int rc = ig->prob->rhs(ig->sys, st, &ig->opts, t, y, ydot);
   ig->rhs_rc = rc;
   if (rc) memcpy(ig->rhs_err, st->err, sizeof ig->rhs_err);
+  if (rc < 0) ig->rhs_fatal = rc;
   return rc;
+}
+
+int dal__ode_collapsed(dal_ode_integ *ig, double t) {
+  if (t - ig->t > 8 * 2.220446049250313e-16 * fmax(1.0, fabs(t))) {
+    ig->ntiny = 0;
+    return 0;
+  }
+  return ++ig->ntiny >= 5;
 }
 
 int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected) {
@@ -315,7 +327,7 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
 double dal__tol_factor(dal_method m) {
   switch (m) {
   case DAL_METHOD_DOPRI5: return 0.1;
-  case DAL_METHOD_FEHLBERG78: return 1.0;
+  case DAL_METHOD_FEHLBERG78: return 0.03;
   case DAL_METHOD_BS: return 0.005;
   case DAL_METHOD_ADAMS: return 0.01;
   case DAL_METHOD_BDF: return 0.001;
@@ -443,6 +455,8 @@ static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts
     dal_ode_integ *ig = h->ode;
     ig->tout = t1;
     ig->ncall = 0;
+    ig->rhs_fatal = 0;
+    ig->ntiny = 0;
     rc = ig->advance(ig, t1);
     if (!rc) {
       // the state at t1, evaluated there

@@ -61,6 +61,8 @@ struct dal_ode_integ {
   double *ydot;        ///< scratch (ny) for the final evaluation
   double *ewt;         ///< scratch (ny): error weights or scaled local errors of the last try
   int rhs_rc;          ///< return code of the last right-hand-side call
+  int rhs_fatal;       ///< first negative right-hand-side code of this advance call (0: none)
+  int ntiny;           ///< consecutive accepted steps of a few ulps of t (step size collapse)
   char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
   char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
   void *impl;                   ///< method memory
@@ -80,6 +82,9 @@ double dal__tol_factor(dal_method m);
 /// y' = f(t, y) through the problem, counting evaluations and keeping the failure message;
 /// returns 0, DAL__RECOVERABLE or a negative status (solve.c)
 int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot);
+/// true when the step just taken from ig->t to t is a few ulps of t, several times in a row:
+/// the integrator makes no progress (step size collapse)
+int dal__ode_collapsed(dal_ode_integ *ig, double t);
 /// record an accepted step (t, y): copies y into ig->y, counts the step and, when the problem
 /// has a projection and opts.project is set, projects ig->y in place (*projected = 1 then;
 /// projected may be NULL). Returns 0 or a negative status (the projection failed; the state
