@@ -196,6 +196,12 @@ int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, i
     if (!((dal_place *)b->places.data)[parent].prim)
       return BFAIL(DAL_E_ARG, "%s: parent '%s' must be placed first", what,
                    ((char **)b->parts.data)[parent]);
+    // kinematics runs in particle order, so a parent must precede its children
+    if (parent > particle)
+      return BFAIL(DAL_E_ARG,
+                   "%s: parent '%s' (particle %d) must be added before the particle it carries "
+                   "(particle %d); add particles from the root outwards",
+                   what, ((char **)b->parts.data)[parent], parent, particle);
   }
   int rc = check_instance(b, what, prim, parent >= 0 ? b->dim : 0, ncoords, coords, nparam,
                           param);

@@ -25,12 +25,13 @@ typedef struct fd_est {
   int valid;         // 0: no trustworthy bound (a singularity or the domain's edge is too near)
 } fd_est;
 
-/// FD derivatives of g at 0; `ulps` bounds the rounding of one value of g in ulps of |g|.
+/// FD derivatives of g at 0; one value of g carries at most `ulps` ulps of rounding relative
+/// to max(|g|) + `scale` (scale: the size of the intermediate quantities when g cancels).
 /// The bounds on g''' and g'''' come from coarse stencils at H and H/2, starting at H = 2^-6
 /// and halving H until both are finite and agree to 25% (or to their own rounding level):
 /// then the Taylor series converges on the stencil and twice the larger estimate bounds the
 /// derivative near 0. If that never happens down to H = 2h, the estimate is not valid.
-static inline fd_est fd_estimate(fd_fn *g, const void *ctx, double ulps) {
+static inline fd_est fd_estimate(fd_fn *g, const void *ctx, double ulps, double scale) {
   fd_est e;
   const double h = ldexp(1.0, -13);
   double g0 = g(0.0, ctx), gp = g(h, ctx), gm = g(-h, ctx);
@@ -52,7 +53,7 @@ static inline fd_est fd_estimate(fd_fn *g, const void *ctx, double ulps) {
       G = fmax(G, fmax(fmax(fabs(g1), fabs(gm1)), fmax(fabs(g2), fabs(gm2))));
     }
     if (!ok) continue;
-    double noise = ulps * DBL_EPSILON * G, Hs = ldexp(1.0, -k - 1);
+    double noise = ulps * DBL_EPSILON * (G + scale), Hs = ldexp(1.0, -k - 1);
     double r3 = 3.0 * noise / (Hs * Hs * Hs), r4 = 16.0 * noise / (Hs * Hs * Hs * Hs);
     if (fabs(e3[0] - e3[1]) > 0.25 * fmax(fabs(e3[0]), fabs(e3[1])) + 2.0 * r3) continue;
     if (fabs(e4[0] - e4[1]) > 0.25 * fmax(fabs(e4[0]), fabs(e4[1])) + 2.0 * r4) continue;

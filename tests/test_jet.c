@@ -441,7 +441,7 @@ static void test_op(const op *o) {
               sm.p, r.dd, e2);
 
     // finite differences along the curve (where their error bound is trustworthy)
-    fd_est fd = fd_estimate(op_along, &sm, 8.0);
+    fd_est fd = fd_estimate(op_along, &sm, 8.0, 0.0);
     if (!fd.valid) continue;
     nvalid++;
     worst_fd = fmax(worst_fd, fmax(fabs(r.d - fd.d1) / fd.tol1, fabs(r.dd - fd.d2) / fd.tol2));

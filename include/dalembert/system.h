@@ -96,10 +96,10 @@ DAL_API int dal_builder_add_particle(dal_builder *b, const char *name, double ma
 
 /// Place particle `particle` by primitive `prim` (a dal_map_*, nout == d; borrowed, must
 /// outlive the system). Local inputs are, in order: the position of particle `parent`
-/// (d values; parent < 0 for none; the parent must have been placed first), then the
-/// coordinates coords[0..ncoords-1]. Hence prim->nin == (parent >= 0 ? d : 0) + ncoords.
-/// `param` (nparam values, copied) must match prim->nparam; `ctx` is passed to prim->eval
-/// (borrowed). Each particle is placed once.
+/// (d values; parent < 0 for none; the parent must have been added (parent < particle) and
+/// placed first), then the coordinates coords[0..ncoords-1]. Hence
+/// prim->nin == (parent >= 0 ? d : 0) + ncoords. `param` (nparam values, copied) must match
+/// prim->nparam; `ctx` is passed to prim->eval (borrowed). Each particle is placed once.
 DAL_API int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim,
                               int parent, int ncoords, const int *coords, int nparam,
                               const double *param, void *ctx);
