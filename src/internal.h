@@ -143,6 +143,7 @@ struct dal_state {
   dal_jet *jq, *jv;     // n
   dal_jet *jr;          // N x d
   double *work;         // n-sized scratch (x 4)
+  struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
   int evaluated;        // dal_forward outputs are current
   // integrator (owned by solve.c)
   void *integ;
@@ -189,6 +190,10 @@ void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x
 /// The KKT solve of constrained systems: qddot and lambda from
 /// [M G'; G 0] [qddot; -lambda] = [Q - c; -gamma_phi]  (kkt.c)
 int dal__solve_kkt(const dal_system *sys, dal_state *st);
+
+/// KKT workspace of a constrained system (kkt.c): create (NULL on failure) and free
+struct dal_kkt *dal__kkt_create(const dal_system *sys);
+void dal__kkt_free(struct dal_kkt *k);
 
 /// full evaluation at the state's (t, q, qdot): kinematics, constraints, dynamics, qddot
 int dal__forward(const dal_system *sys, dal_state *st);

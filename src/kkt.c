@@ -1,70 +1,384 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// The KKT system of constrained dynamics: M qddot - G' lambda = Q - c, G qddot = -gamma_phi.
+// The KKT system of constrained dynamics [A G'; G 0]: dense (LAPACKE dsytrf) or sparse (KLU).
+//
+// Solves A x = a + G' y, G x = b with A = M (dynamics, M-orthogonal velocity projection) or
+// A = I (minimum-norm position steps). Small systems factor the dense symmetric indefinite
+// matrix by Bunch-Kaufman (LAPACK dsytrf) and estimate its condition (dsycon); large ones
+// (no dense M) assemble the matrix in compressed columns from the compact particle Jacobians
+// and constraint rows and factor it by KLU (Davis and Palamadai Natarajan, ACM TOMS 37, 2010),
+// reusing the symbolic analysis and, while its pivots stay good, the numeric factorization.
+// All storage is allocated once per state.
+#include <klu.h>
 #include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "internal.h"
+#include "dae_internal.h"
 
-// dense G (m x n, column-major) from the compact per-constraint blocks
-static void dense_G(const dal_system *sys, const dal_state *st, double *G) {
-  int m = sys->m;
-  memset(G, 0, (size_t)m * (size_t)sys->n * sizeof(double));
+/// reciprocal condition below which the KKT matrix counts as singular
+#define KKT_RCOND_MIN 1e-14
+
+struct dal_kkt {
+  int n, m, nk, sparse;
+  int cur;         // metric of the current factorization (-1: none)
+  double *scratch; // 4 vectors of nk
+  double *rhs;     // nk
+  // dense
+  double *K; // nk x nk, lower triangle
+  lapack_int *ipiv, *iwork;
+  double *work;
+  lapack_int lwork;
+  // sparse
+  int nnz;
+  int *Kp, *Ki;
+  double *Kx;
+  int *mpos_off, *mpos; // per particle: ndk x ndk positions of its M contributions
+  int *gpos;            // per compact G entry: positions in the G and G' blocks (2 each)
+  int *dpos;            // positions of the diagonal (j, j), j < n
+  klu_symbolic *sym;
+  klu_numeric *num[2];
+  klu_common common;
+};
+
+static int cmp_ll(const void *x, const void *y) {
+  long long a = *(const long long *)x, b = *(const long long *)y;
+  return (a > b) - (a < b);
+}
+
+// position of (row, col) in the compressed columns (the pattern always contains it)
+static int csc_find(const struct dal_kkt *k, int row, int col) {
+  int lo = k->Kp[col], hi = k->Kp[col + 1] - 1;
+  while (lo <= hi) {
+    int mid = (lo + hi) / 2;
+    if (k->Ki[mid] == row) return mid;
+    if (k->Ki[mid] < row) lo = mid + 1;
+    else hi = mid - 1;
+  }
+  return -1;
+}
+
+// sparse pattern of [M G'; G 0] (+ the diagonal of M), symbolic analysis and position maps
+static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
+  int n = sys->n, nk = k->nk;
+  size_t cap = (size_t)n;
+  for (int p = 0; p < sys->N; ++p) {
+    size_t nd = (size_t)(sys->pdep_off[p + 1] - sys->pdep_off[p]);
+    cap += nd * nd;
+  }
+  cap += 2 * (size_t)sys->g_total;
+  long long *key = malloc((cap + 1) * sizeof(long long));
+  if (!key) return -1;
+  size_t nt = 0;
+  for (int j = 0; j < n; ++j) key[nt++] = (long long)j * nk + j;
+  for (int p = 0; p < sys->N; ++p) {
+    const int *dp = sys->pdep + sys->pdep_off[p];
+    int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
+    for (int a = 0; a < nd; ++a)
+      for (int b = 0; b < nd; ++b) key[nt++] = (long long)dp[b] * nk + dp[a];
+  }
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const int *dc = sys->cdep + c->dep_off;
+    for (int r = 0; r < c->prim->nout; ++r)
+      for (int j = 0; j < c->ndep; ++j) {
+        int row = n + c->row + r;
+        key[nt++] = (long long)dc[j] * nk + row; // G block (row, col dc[j])
+        key[nt++] = (long long)row * nk + dc[j]; // G' block
+      }
+  }
+  qsort(key, nt, sizeof(long long), cmp_ll);
+  size_t nu = 0;
+  for (size_t i = 0; i < nt; ++i)
+    if (nu == 0 || key[nu - 1] != key[i]) key[nu++] = key[i];
+  k->nnz = (int)nu;
+  k->Kp = calloc((size_t)nk + 1, sizeof(int));
+  k->Ki = malloc(nu * sizeof(int));
+  k->Kx = malloc(nu * sizeof(double));
+  k->dpos = malloc(((size_t)n + 1) * sizeof(int));
+  k->mpos_off = malloc(((size_t)sys->N + 1) * sizeof(int));
+  k->gpos = malloc((2 * (size_t)sys->g_total + 1) * sizeof(int));
+  if (!k->Kp || !k->Ki || !k->Kx || !k->dpos || !k->mpos_off || !k->gpos) {
+    free(key);
+    return -1;
+  }
+  for (size_t i = 0; i < nu; ++i) {
+    int col = (int)(key[i] / nk);
+    k->Ki[i] = (int)(key[i] % nk);
+    k->Kp[col + 1]++;
+  }
+  free(key);
+  for (int j = 0; j < nk; ++j) k->Kp[j + 1] += k->Kp[j];
+  // position maps
+  for (int j = 0; j < n; ++j) k->dpos[j] = csc_find(k, j, j);
+  k->mpos_off[0] = 0;
+  for (int p = 0; p < sys->N; ++p) {
+    int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
+    k->mpos_off[p + 1] = k->mpos_off[p] + nd * nd;
+  }
+  k->mpos = malloc(((size_t)k->mpos_off[sys->N] + 1) * sizeof(int));
+  if (!k->mpos) return -1;
+  for (int p = 0; p < sys->N; ++p) {
+    const int *dp = sys->pdep + sys->pdep_off[p];
+    int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
+    int *mp = k->mpos + k->mpos_off[p];
+    for (int a = 0; a < nd; ++a)
+      for (int b = 0; b < nd; ++b) mp[a * nd + b] = csc_find(k, dp[a], dp[b]);
+  }
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const int *dc = sys->cdep + c->dep_off;
+    for (int r = 0; r < c->prim->nout; ++r)
+      for (int j = 0; j < c->ndep; ++j) {
+        int e = c->g_off + r * c->ndep + j, row = n + c->row + r;
+        k->gpos[2 * e] = csc_find(k, row, dc[j]);
+        k->gpos[2 * e + 1] = csc_find(k, dc[j], row);
+      }
+  }
+  klu_defaults(&k->common);
+  k->sym = klu_analyze(nk, k->Kp, k->Ki, &k->common);
+  return k->sym ? 0 : -1;
+}
+
+struct dal_kkt *dal__kkt_create(const dal_system *sys) {
+  struct dal_kkt *k = calloc(1, sizeof *k);
+  if (!k) return NULL;
+  k->n = sys->n;
+  k->m = sys->m;
+  k->nk = sys->n + sys->m;
+  k->sparse = !sys->dense_M;
+  k->cur = -1;
+  size_t nk = (size_t)k->nk;
+  k->scratch = calloc(4 * nk + 1, sizeof(double));
+  k->rhs = calloc(nk + 1, sizeof(double));
+  int ok = k->scratch && k->rhs;
+  if (ok && !k->sparse) {
+    k->lwork = (lapack_int)(64 * nk + 64);
+    k->K = malloc(nk * nk * sizeof(double));
+    k->ipiv = malloc(nk * sizeof(lapack_int));
+    k->iwork = malloc(nk * sizeof(lapack_int));
+    k->work = malloc((size_t)k->lwork * sizeof(double));
+    ok = k->K && k->ipiv && k->iwork && k->work;
+  } else if (ok) {
+    ok = sparse_setup(sys, k) == 0;
+  }
+  if (!ok) {
+    dal__kkt_free(k);
+    return NULL;
+  }
+  return k;
+}
+
+void dal__kkt_free(struct dal_kkt *k) {
+  if (!k) return;
+  for (int i = 0; i < 2; ++i)
+    if (k->num[i]) klu_free_numeric(&k->num[i], &k->common);
+  if (k->sym) klu_free_symbolic(&k->sym, &k->common);
+  free(k->scratch);
+  free(k->rhs);
+  free(k->K);
+  free(k->ipiv);
+  free(k->iwork);
+  free(k->work);
+  free(k->Kp);
+  free(k->Ki);
+  free(k->Kx);
+  free(k->mpos_off);
+  free(k->mpos);
+  free(k->gpos);
+  free(k->dpos);
+  free(k);
+}
+
+double *dal__kkt_scratch(dal_state *st, int i) { return st->kkt->scratch + (size_t)i * st->kkt->nk; }
+
+void dal__dense_G(const dal_system *sys, const dal_state *st, double *G, int ld) {
+  for (int j = 0; j < sys->n; ++j) memset(G + (size_t)j * ld, 0, (size_t)sys->m * sizeof(double));
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
     const int *dc = sys->cdep + c->dep_off;
     const double *Gc = st->G + c->g_off;
     for (int r = 0; r < c->prim->nout; ++r)
-      for (int k = 0; k < c->ndep; ++k) G[(size_t)dc[k] * m + c->row + r] = Gc[r * c->ndep + k];
+      for (int k = 0; k < c->ndep; ++k) G[(size_t)dc[k] * ld + c->row + r] = Gc[r * c->ndep + k];
   }
 }
 
-int dal__solve_kkt(const dal_system *sys, dal_state *st) {
-  int n = sys->n, m = sys->m, nk = n + m;
-  if (!st->M)
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "forward: the system has %d coordinates and is stored without a dense mass "
-                    "matrix; evaluate it through the DAE integrator", n);
-  double *K = malloc((size_t)nk * (size_t)nk * sizeof(double));
-  double *G = malloc((size_t)m * (size_t)n * sizeof(double) + 1);
-  double *x = malloc((size_t)nk * sizeof(double));
-  lapack_int *piv = malloc((size_t)nk * sizeof(lapack_int));
-  if (!K || !G || !x || !piv) {
-    free(K);
-    free(G);
-    free(x);
-    free(piv);
-    return DAL_FAIL(st, DAL_E_NOMEM, "forward: out of memory for the KKT system");
-  }
-  dense_G(sys, st, G);
-  // K = [M G'; G 0], unknowns (qddot, -lambda)
-  memset(K, 0, (size_t)nk * (size_t)nk * sizeof(double));
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) K[(size_t)j * nk + i] = st->M[(size_t)j * n + i];
-    for (int r = 0; r < m; ++r) {
-      K[(size_t)j * nk + n + r] = G[(size_t)j * m + r];
-      K[(size_t)(n + r) * nk + j] = G[(size_t)j * m + r];
+void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lambda, double *y) {
+  memset(y, 0, (size_t)sys->n * sizeof(double));
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const int *dc = sys->cdep + c->dep_off;
+    const double *Gc = st->G + c->g_off;
+    for (int r = 0; r < c->prim->nout; ++r) {
+      double l = lambda[c->row + r];
+      for (int k = 0; k < c->ndep; ++k) y[dc[k]] += Gc[r * c->ndep + k] * l;
     }
   }
-  for (int i = 0; i < n; ++i) x[i] = st->Q[i] - st->c[i];
-  for (int r = 0; r < m; ++r) x[n + r] = -st->gphi[r];
-  lapack_int info = LAPACKE_dsysv(LAPACK_COL_MAJOR, 'L', nk, 1, K, nk, piv, x, nk);
-  int rc = DAL_OK;
-  if (info != 0) {
-    int bad = info > 0 ? (int)info - 1 : 0;
-    rc = DAL_FAIL(st, DAL_E_CONSTRAINT,
-                  "forward: the KKT matrix [M G'; G 0] is singular at t=%.17g (pivot %d, %s "
-                  "'%s'): constraints are redundant or the mass matrix is degenerate",
-                  st->t, bad, bad < n ? "coordinate" : "constraint",
-                  bad < n ? sys->coord_names[bad] : sys->con[sys->row_con[bad - n]].name);
-  } else {
-    memcpy(st->qddot, x, (size_t)n * sizeof(double));
-    for (int r = 0; r < m; ++r) st->lambda[r] = -x[n + r];
+}
+
+// name the failure: a rank-deficient G is reported by name, otherwise a degenerate M
+static int kkt_singular(const dal_system *sys, dal_state *st, const char *what, double rcond) {
+  char saved[DAL_ERRMSG_LEN];
+  int rc = dal__check_rank(sys, st, NULL);
+  if (rc == DAL_E_CONSTRAINT) {
+    memcpy(saved, st->err, sizeof saved);
+    return DAL_FAIL(st, DAL_E_CONSTRAINT, "%s: %s", what, saved);
   }
-  free(K);
-  free(G);
-  free(x);
-  free(piv);
+  char qs[256];
+  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  return DAL_FAIL(st, DAL_E_SINGULAR,
+                  "%s: the KKT matrix [M G'; G 0] is singular at t=%.17g, %s (reciprocal "
+                  "condition %.3g): some motion allowed by the constraints moves no mass, or "
+                  "constraints are redundant; check the masses and the constraint list",
+                  what, st->t, qs, rcond);
+}
+
+static int factor_dense(const dal_system *sys, dal_state *st, int metric, const char *what) {
+  struct dal_kkt *k = st->kkt;
+  int n = k->n, nk = k->nk;
+  double *K = k->K;
+  // lower triangle: A, then G below it; the (2,2) block is zero
+  for (int j = 0; j < nk; ++j) memset(K + (size_t)j * nk, 0, (size_t)nk * sizeof(double));
+  if (metric == DAL_KKT_MASS)
+    for (int j = 0; j < n; ++j)
+      memcpy(K + (size_t)j * nk + j, st->M + (size_t)j * n + j, (size_t)(n - j) * sizeof(double));
+  else
+    for (int j = 0; j < n; ++j) K[(size_t)j * nk + j] = 1.0;
+  dal__dense_G(sys, st, K + n, nk);
+  double anorm = LAPACKE_dlansy_work(LAPACK_COL_MAJOR, '1', 'L', nk, K, nk, k->work);
+  lapack_int info = LAPACKE_dsytrf_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, k->work,
+                                        k->lwork);
+  double rcond = 0.0;
+  if (info == 0)
+    info = LAPACKE_dsycon_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, anorm, &rcond,
+                               k->work, k->iwork);
+  if (info != 0 || !(rcond >= KKT_RCOND_MIN)) return kkt_singular(sys, st, what, rcond);
+  return DAL_OK;
+}
+
+static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const char *what) {
+  struct dal_kkt *k = st->kkt;
+  int d = sys->dim;
+  memset(k->Kx, 0, (size_t)k->nnz * sizeof(double));
+  if (metric == DAL_KKT_MASS) {
+    for (int p = 0; p < sys->N; ++p) {
+      int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
+      const double *Jp = st->J + sys->pj_off[p];
+      const int *mp = k->mpos + k->mpos_off[p];
+      for (int a = 0; a < nd; ++a)
+        for (int b = 0; b < nd; ++b) {
+          double s = 0.0;
+          for (int c = 0; c < d; ++c) s += Jp[c * nd + a] * Jp[c * nd + b];
+          k->Kx[mp[a * nd + b]] += sys->mass[p] * s;
+        }
+    }
+  } else {
+    for (int j = 0; j < k->n; ++j) k->Kx[k->dpos[j]] = 1.0;
+  }
+  for (int e = 0; e < sys->g_total; ++e) {
+    k->Kx[k->gpos[2 * e]] = st->G[e];
+    k->Kx[k->gpos[2 * e + 1]] = st->G[e];
+  }
+  // reuse the numeric factorization while its pivots stay good, else factor afresh
+  klu_numeric **num = &k->num[metric];
+  int ok = 0;
+  if (*num) {
+    ok = klu_refactor(k->Kp, k->Ki, k->Kx, k->sym, *num, &k->common) &&
+         klu_rcond(k->sym, *num, &k->common) && k->common.rcond >= KKT_RCOND_MIN;
+    if (!ok) klu_free_numeric(num, &k->common);
+  }
+  if (!ok) {
+    *num = klu_factor(k->Kp, k->Ki, k->Kx, k->sym, &k->common);
+    if (!*num && k->common.status == KLU_OUT_OF_MEMORY)
+      return DAL_FAIL(st, DAL_E_NOMEM, "%s: out of memory factoring the KKT matrix", what);
+    ok = *num && klu_rcond(k->sym, *num, &k->common) && k->common.rcond >= KKT_RCOND_MIN;
+    if (!ok) {
+      double rc = *num ? k->common.rcond : 0.0;
+      if (*num) klu_free_numeric(num, &k->common);
+      return kkt_singular(sys, st, what, rc);
+    }
+  }
+  return DAL_OK;
+}
+
+int dal__kkt_factor(const dal_system *sys, dal_state *st, int metric, const char *what) {
+  struct dal_kkt *k = st->kkt;
+  DAL_ASSERT(k && (metric == DAL_KKT_IDENTITY || metric == DAL_KKT_MASS));
+  k->cur = -1;
+  int rc = k->sparse ? factor_sparse(sys, st, metric, what) : factor_dense(sys, st, metric, what);
+  if (rc == DAL_OK) k->cur = metric;
   return rc;
+}
+
+void dal__kkt_solve(const dal_system *sys, dal_state *st, const double *a, const double *b,
+                    double *x, double *y) {
+  struct dal_kkt *k = st->kkt;
+  int n = k->n, m = k->m, nk = k->nk;
+  (void)sys;
+  memcpy(k->rhs, a, (size_t)n * sizeof(double));
+  memcpy(k->rhs + n, b, (size_t)m * sizeof(double));
+  if (k->sparse) {
+    DAL_ASSERT(k->cur >= 0 && k->num[k->cur]);
+    klu_solve(k->sym, k->num[k->cur], nk, 1, k->rhs, &k->common);
+  } else {
+    LAPACKE_dsytrs(LAPACK_COL_MAJOR, 'L', nk, 1, k->K, nk, k->ipiv, k->rhs, nk);
+  }
+  memcpy(x, k->rhs, (size_t)n * sizeof(double));
+  for (int r = 0; r < m; ++r) y[r] = -k->rhs[n + r];
+}
+
+int dal__solve_kkt(const dal_system *sys, dal_state *st) {
+  int n = sys->n, m = sys->m;
+  int rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "forward");
+  if (rc) return rc;
+  double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
+  for (int i = 0; i < n; ++i) a[i] = st->Q[i] - st->c[i];
+  for (int r = 0; r < m; ++r) b[r] = -st->gphi[r];
+  dal__kkt_solve(sys, st, a, b, st->qddot, st->lambda);
+  return DAL_OK;
+}
+
+int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double *Qc) {
+  if (!sys || !st || !Qc || st->sys != sys) return DAL_E_ARG;
+  if (sys->m == 0) {
+    memset(Qc, 0, (size_t)sys->n * sizeof(double));
+    return DAL_OK;
+  }
+  dal__gt_apply(sys, st, st->lambda, Qc);
+  return DAL_OK;
+}
+
+int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
+  if (!sys || !st || !F || st->sys != sys) return DAL_E_ARG;
+  int d = sys->dim;
+  memset(F, 0, (size_t)sys->N * (size_t)d * sizeof(double));
+  // local Jacobians dphi/dr_k of each constraint at the current positions, times lambda
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const dal_primitive *prim = c->prim;
+    const int *parts = sys->ipool + c->part_off;
+    const int *coords = sys->ipool + c->coord_off;
+    const double *param = sys->ppool + c->param_off;
+    int kin = 0;
+    for (int a = 0; a < c->npart; ++a)
+      for (int b = 0; b < d; ++b) st->jin[kin++] = dal_const(st->r[parts[a] * d + b]);
+    for (int i = 0; i < c->ncoord; ++i) st->jin[kin++] = dal_const(st->q[coords[i]]);
+    for (int i = 0; i < c->npart * d; ++i) {
+      st->jin[i].d = 1.0;
+      int rc = prim->eval(st->jin, dal_const(st->t), param, st->jout, c->ctx);
+      st->jin[i].d = 0.0;
+      if (rc) {
+        char what[160];
+        snprintf(what, sizeof what, "constraint '%s' ('%s')", c->name, prim->name);
+        rc = dal__cb_status(st, rc, what);
+        return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+      }
+      double f = 0.0;
+      for (int r = 0; r < prim->nout; ++r) f += st->jout[r].d * st->lambda[c->row + r];
+      F[parts[i / d] * d + i % d] += f;
+    }
+  }
+  return DAL_OK;
 }

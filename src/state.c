@@ -61,6 +61,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     st->phidot = calloc(m, sizeof(double));
     st->gphi = calloc(m, sizeof(double));
     st->G = calloc((size_t)sys->g_total + 1, sizeof(double));
+    st->kkt = dal__kkt_create(sys);
   }
   size_t jn = (size_t)sys->max_in, jo = (size_t)sys->max_out;
   st->jin = calloc(jn + 1, sizeof(dal_jet));
@@ -72,7 +73,8 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   if (!st->q || !st->qdot || !st->qddot || !st->Q || !st->c || !st->work || !st->r || !st->v ||
       !st->a || !st->drdt || !st->gamma || !st->F || !st->N || !st->J ||
       (sys->dense_M && (!st->M || !st->L)) ||
-      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G)) || !st->jin ||
+      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->kkt)) ||
+      !st->jin ||
       !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
     dal_state_destroy(st);
     return DAL_E_NOMEM;
@@ -95,6 +97,7 @@ void dal_state_destroy(dal_state *st) {
   free(st->jq);
   free(st->jv);
   free(st->jr);
+  dal__kkt_free(st->kkt);
   free(st);
 }
 

@@ -5,6 +5,7 @@
 #define DAL_DALEMBERT_H
 
 #include "dalembert/base.h"
+#include "dalembert/dae.h"
 #include "dalembert/jet.h"
 #include "dalembert/primitives.h"
 #include "dalembert/solve.h"

@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Consistent initialization, manifold projection and the index-1 ODE of redundant coordinates.
+//
+// Positions: minimum-norm Gauss-Newton dq = -G'(G G')^-1 phi; velocities: M-orthogonal
+// projection dv = -M^-1 G'(G M^-1 G')^-1 (G v + dphi/dt); both through the KKT system
+// (Hairer, Lubich and Wanner, Geometric Numerical Integration, 2nd ed., IV.4 and VII.1;
+// Hairer and Wanner, Solving ODEs II, VII.2). Index-1 with Baumgarte terms: Baumgarte,
+// Comput. Methods Appl. Mech. Eng. 1, 1972.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dae_internal.h"
+#include "solve_internal.h"
+
+/// position iterations of the consistent initialization, and of a projection after a step
+#define INIT_MAXIT 50
+#define PROJECT_MAXIT 10
+
+int dal__eval_constraints(const dal_system *sys, dal_state *st) {
+  st->evaluated = 0;
+  int rc = dal__kinematics(sys, st);
+  if (rc) return rc;
+  return dal__constraints(sys, st);
+}
+
+static double max_abs(const double *x, int n, int *at) {
+  double mx = 0.0;
+  if (at) *at = n > 0 ? 0 : -1;
+  for (int i = 0; i < n; ++i)
+    if (fabs(x[i]) > mx || isnan(x[i])) {
+      mx = fabs(x[i]);
+      if (at) *at = i;
+      if (isnan(mx)) break;
+    }
+  return mx;
+}
+
+// positions onto phi = 0: damped minimum-norm Gauss-Newton
+static int project_positions(const dal_system *sys, dal_state *st, double tol, int maxit,
+                             int *iters) {
+  int n = sys->n, m = sys->m, worst = 0, it = 0, rc;
+  double *zero = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
+  double *q0 = dal__kkt_scratch(st, 2), *dq = dal__kkt_scratch(st, 3);
+  memset(zero, 0, (size_t)n * sizeof(double));
+  double res = max_abs(st->phi, m, &worst);
+  for (; it < maxit && !(res <= tol); ++it) {
+    if (!isfinite(res)) break;
+    rc = dal__kkt_factor(sys, st, DAL_KKT_IDENTITY, "projection onto the constraints");
+    if (rc) return rc;
+    for (int r = 0; r < m; ++r) b[r] = -st->phi[r];
+    dal__kkt_solve(sys, st, zero, b, dq, b);
+    memcpy(q0, st->q, (size_t)n * sizeof(double));
+    // backtrack while the residual grows (far guesses); accept the full step otherwise
+    double s = 1.0, nres = INFINITY;
+    for (int k = 0; k < 8; ++k, s *= 0.5) {
+      for (int j = 0; j < n; ++j) st->q[j] = q0[j] + s * dq[j];
+      rc = dal__eval_constraints(sys, st);
+      if (rc < 0 && rc != DAL_E_DOMAIN) return rc;
+      nres = rc ? INFINITY : max_abs(st->phi, m, &worst);
+      if (nres < res || nres <= tol) break;
+    }
+    if (!(nres < res) && !(nres <= tol)) {
+      // no decrease along the Gauss-Newton direction: stalled (conflicting constraints)
+      memcpy(st->q, q0, (size_t)n * sizeof(double));
+      rc = dal__eval_constraints(sys, st);
+      if (rc) return rc;
+      res = max_abs(st->phi, m, &worst);
+      ++it;
+      break;
+    }
+    res = nres;
+  }
+  if (iters) *iters = it;
+  if (!(res <= tol)) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_INIT,
+                    "positions cannot be brought onto the constraints at t=%.17g: after %d "
+                    "Gauss-Newton iterations constraint '%s' (row %d) still has residual %.3g "
+                    "> %.3g at %s; the constraints conflict (no position satisfies them all) "
+                    "or the initial guess is too far from the constraint manifold",
+                    st->t, it, sys->con[sys->row_con[worst]].name, worst, res, tol, qs);
+  }
+  return DAL_OK;
+}
+
+// velocities onto G v + dphi/dt = 0, M-orthogonally (kinematics at q current)
+static int project_velocities(const dal_system *sys, dal_state *st) {
+  int n = sys->n, m = sys->m, rc;
+  double *zero = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
+  double *dv = dal__kkt_scratch(st, 3);
+  if (max_abs(st->phidot, m, NULL) == 0.0) return DAL_OK;
+  // M at q (dense systems assemble it in dynamics; M depends on q and t only)
+  if (st->M && (rc = dal__dynamics(sys, st)) != 0) return rc;
+  rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "velocity projection");
+  if (rc) return rc;
+  memset(zero, 0, (size_t)n * sizeof(double));
+  for (int r = 0; r < m; ++r) b[r] = -st->phidot[r];
+  dal__kkt_solve(sys, st, zero, b, dv, b);
+  for (int j = 0; j < n; ++j) st->qdot[j] += dv[j];
+  return dal__eval_constraints(sys, st);
+}
+
+int dal__project_state(const dal_system *sys, dal_state *st, double tol, int maxit,
+                       int *iters) {
+  if (iters) *iters = 0;
+  if (sys->m == 0) return DAL_OK;
+  int rc = dal__eval_constraints(sys, st);
+  if (rc) return rc;
+  rc = project_positions(sys, st, tol, maxit, iters);
+  if (rc) return rc;
+  return project_velocities(sys, st);
+}
+
+// the consistent initialization without touching integrator memory
+static int make_consistent(const dal_system *sys, dal_state *st, double tol,
+                           dal_init_report *rep) {
+  int n = sys->n, m = sys->m, rc;
+  memset(rep, 0, sizeof *rep);
+  rep->phi_row = rep->phidot_row = rep->dq_coord = rep->dqdot_coord = -1;
+  if (!(tol > 0.0)) tol = 1e-12 * fmax(1.0, max_abs(st->q, n, NULL));
+  rep->tol = tol;
+  if (m == 0) {
+    rc = dal__forward(sys, st);
+    return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+  }
+  double *save = malloc(2 * (size_t)n * sizeof(double));
+  if (!save) return DAL_FAIL(st, DAL_E_NOMEM, "consistent initialization: out of memory");
+  memcpy(save, st->q, (size_t)n * sizeof(double));
+  memcpy(save + n, st->qdot, (size_t)n * sizeof(double));
+  rc = dal__eval_constraints(sys, st);
+  if (rc == 0) {
+    rep->phi_before = max_abs(st->phi, m, &rep->phi_row);
+    rep->phidot_before = max_abs(st->phidot, m, &rep->phidot_row);
+    rc = project_positions(sys, st, tol, INIT_MAXIT, &rep->iterations);
+  }
+  if (rc == 0) {
+    rep->phi_after = max_abs(st->phi, m, NULL);
+    rc = project_velocities(sys, st);
+  }
+  if (rc == 0) {
+    rep->phidot_after = max_abs(st->phidot, m, NULL);
+    rc = dal__forward(sys, st);
+  }
+  if (rc) {
+    // the state keeps what the caller gave
+    memcpy(st->q, save, (size_t)n * sizeof(double));
+    memcpy(st->qdot, save + n, (size_t)n * sizeof(double));
+    st->evaluated = 0;
+    free(save);
+    return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+  }
+  for (int j = 0; j < n; ++j) {
+    double dq = fabs(st->q[j] - save[j]), dv = fabs(st->qdot[j] - save[n + j]);
+    if (dq > rep->dq_max) {
+      rep->dq_max = dq;
+      rep->dq_coord = j;
+    }
+    if (dv > rep->dqdot_max) {
+      rep->dqdot_max = dv;
+      rep->dqdot_coord = j;
+    }
+  }
+  free(save);
+  return DAL_OK;
+}
+
+int dal_make_consistent(const dal_system *sys, dal_state *st, double tol,
+                        dal_init_report *rep) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "make_consistent: the state belongs to another system");
+  if (!isfinite(tol))
+    return DAL_FAIL(st, DAL_E_ARG, "make_consistent: tolerance %g is not finite", tol);
+  dal_init_report local;
+  dal__integ_reset(st);
+  return make_consistent(sys, st, tol, rep ? rep : &local);
+}
+
+// ---------------------------------------------------------------------------------------
+// the index-1 ODE y = (q, v), y' = (v, qddot) with optional Baumgarte terms and projection
+
+static int index1_size(const dal_system *sys) { return 2 * sys->n; }
+
+static void index1_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
+  st->t = t;
+  memcpy(st->q, y, (size_t)sys->n * sizeof(double));
+  memcpy(st->qdot, y + sys->n, (size_t)sys->n * sizeof(double));
+  st->evaluated = 0;
+}
+
+static void index1_from_state(const dal_system *sys, const dal_state *st, double *y) {
+  memcpy(y, st->q, (size_t)sys->n * sizeof(double));
+  memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
+}
+
+static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                      double t, const double *y, double *ydot) {
+  int n = sys->n, m = sys->m, rc;
+  index1_to_state(sys, st, t, y);
+  if ((rc = dal__kinematics(sys, st)) != 0) return rc;
+  if (m && (rc = dal__constraints(sys, st)) != 0) return rc;
+  if ((rc = dal__dynamics(sys, st)) != 0) return rc;
+  if (m == 0) {
+    rc = dal__solve_unconstrained(sys, st);
+  } else {
+    // G qddot = -(gamma_phi + 2 alpha (G v + dphi/dt) + beta^2 phi)
+    double al = opts->baumgarte_alpha, be = opts->baumgarte_beta;
+    double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
+    rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "index-1 right-hand side");
+    if (rc == 0) {
+      for (int i = 0; i < n; ++i) a[i] = st->Q[i] - st->c[i];
+      for (int r = 0; r < m; ++r)
+        b[r] = -(st->gphi[r] + 2.0 * al * st->phidot[r] + be * be * st->phi[r]);
+      dal__kkt_solve(sys, st, a, b, st->qddot, st->lambda);
+    }
+  }
+  if (rc) return rc;
+  for (int i = 0; i < n; ++i)
+    if (!isfinite(st->qddot[i])) {
+      DAL_FAIL(st, DAL__RECOVERABLE,
+               "index-1: acceleration of coordinate '%s' is %g at t=%.17g; the state may have "
+               "left the model's domain", sys->coord_names[i], st->qddot[i], t);
+      return DAL__RECOVERABLE;
+    }
+  dal__finish(sys, st);
+  st->evaluated = 1;
+  memcpy(ydot, st->qdot, (size_t)n * sizeof(double));
+  memcpy(ydot + n, st->qddot, (size_t)n * sizeof(double));
+  return DAL_OK;
+}
+
+static int index1_project(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                          double t, double *y) {
+  index1_to_state(sys, st, t, y);
+  // well below the integrator's absolute tolerance, above the rounding floor
+  double tol = fmax(1e-2 * opts->atol, 4e-16 * fmax(1.0, max_abs(st->q, sys->n, NULL)));
+  int rc = dal__project_state(sys, st, tol, PROJECT_MAXIT, NULL);
+  if (rc) return rc;
+  index1_from_state(sys, st, y);
+  return DAL_OK;
+}
+
+const dal_ode_problem dal__problem_index1 = {
+    "index1", index1_size, index1_rhs, index1_project, index1_from_state, index1_to_state,
+};
+
+// used by the IDA driver: rank check, then the consistent initialization
+int dal__dae_start(const dal_system *sys, dal_state *st, dal_init_report *rep) {
+  dal_init_report local;
+  int rc = dal__eval_constraints(sys, st);
+  if (rc == 0) rc = dal__check_rank(sys, st, NULL);
+  if (rc == 0) rc = make_consistent(sys, st, 0.0, rep ? rep : &local);
+  return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+}
