@@ -1,47 +1,45 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Flagship demo (stand-in): library version, a jet self-check, and a pendulum's acceleration.
-#include <math.h>
+// Flagship demo: run the seed scenes (SICM oscillator, SICM driven pendulum, bead on a
+// rotating ring) in full mode, leaving their CSVs and charts in one folder.
+//
+// Usage: demo [OUTDIR]   (default ./demo-output); demo --check runs each scene's own check.
+// The scenes are the sibling programs sicm_oscillator, sicm_driven_pendulum and ring_scene
+// (built next to this one); each is self-contained and documented in its own file.
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "dalembert/dalembert.h"
 
 int main(int argc, char **argv) {
   int check = argc > 1 && strcmp(argv[1], "--check") == 0;
-  printf("dalembert %s\n", dal_version());
-  // jet self-check: d/ds sin(x + s)^2 + cos(x + s)^2 = 0
-  dal_jet x = dal_var(0.7, 1.0);
-  dal_jet one = dal_add(dal_sq(dal_sin(x)), dal_sq(dal_cos(x)));
-  printf("jet check: sin^2+cos^2 = %.17g (d %.3g, dd %.3g)\n", one.v, one.d, one.dd);
-  int bad = fabs(one.v - 1) > 1e-15 || fabs(one.d) > 1e-15 || fabs(one.dd) > 1e-14;
-
-  // a simple pendulum built from the pendulum primitive: theta'' = -g/l sin theta
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  dal_state *st = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.81}, par[7] = {1.0, 0, 0, 0, 0, 0, 0}, q = 1.0, qd = 0.0;
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  if (!rc) rc = dal_state_create(sys, &st);
-  if (!rc) rc = dal_state_set(sys, st, 0.0, &q, &qd);
-  if (!rc) rc = dal_forward(sys, st);
-  if (!rc) {
-    double a = dal_state_qddot(st)[0], ref = -9.81 * sin(1.0);
-    printf("pendulum at theta=1: theta'' = %.17g (closed form %.17g)\n", a, ref);
-    bad |= fabs(a - ref) > 1e-13;
-  } else if (st) {
-    printf("forward failed: %s\n", dal_state_errmsg(st));
+  const char *out = !check && argc > 1 ? argv[1] : "demo-output";
+  // the scene programs live in this program's directory
+  char dir[1024] = ".";
+  const char *slash = strrchr(argv[0], '/');
+  if (slash && (size_t)(slash - argv[0]) < sizeof dir) {
+    memcpy(dir, argv[0], (size_t)(slash - argv[0]));
+    dir[slash - argv[0]] = 0;
   }
-  dal_state_destroy(st);
-  dal_system_destroy(sys);
-  dal_builder_destroy(b);
-  bad |= rc != 0;
+  printf("dalembert %s: seed scenes%s\n", dal_version(), check ? " (checks)" : "");
+  const char *scenes[3] = {"sicm_oscillator", "sicm_driven_pendulum", "ring_scene"};
+  int bad = 0;
+  for (int i = 0; i < 3; ++i) {
+    char cmd[3200];
+    if (check)
+      snprintf(cmd, sizeof cmd, "'%s/%s' --check", dir, scenes[i]);
+    else
+      snprintf(cmd, sizeof cmd, "'%s/%s' --out '%s'", dir, scenes[i], out);
+    printf("\n== %s\n", scenes[i]);
+    fflush(stdout);
+    int rc = system(cmd);
+    if (rc != 0) {
+      printf("%s failed (status %d)\n", scenes[i], rc);
+      bad = 1;
+    }
+  }
+  if (!check) printf("\nCSVs and charts are in %s/\n", out);
   if (check) printf("%s\n", bad ? "FAILED" : "ok");
   return bad;
 }

@@ -40,6 +40,7 @@ typedef struct bs_mem {
   double err[BS_KMAX + 2];  // error estimate of column j
   int k;                    // target column, 2 <= k <= BS_KMAX - 1
   double H;                 // proposed step
+  int kshort;               // target column for steps shortened to land on an output time
   int rejected_last;        // the previous attempt was rejected
 } bs_mem;
 
@@ -157,15 +158,15 @@ static void bs_reject(bs_mem *m, int kc) {
   int knew = kc;
   if (kc >= 3 && m->W[kc - 1] < 0.8 * m->W[kc]) knew = kc - 1;
   if (knew < 2) knew = 2;
-  m->k = knew;
+  m->k = m->kshort = knew;
   m->H = m->hopt[knew];
 }
 
 // one attempt of a step of size H from (ig->t, ig->y); BS_ACCEPT (result in m->ynew and the
 // accepted column in *kc), BS_REJECT (m->k, m->H set for the retry), or a negative code.
 // A recoverable right-hand-side failure or the stability check halve the step.
-static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int *kc) {
-  int k = m->k, rc;
+static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
+  int rc;
   double t = ig->t, n1 = m->nseq[1];
   for (int j = 1; j <= k + 1; ++j) {
     rc = bs_column(ig, m, t, H, j);
@@ -265,8 +266,11 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
                            ig->t, H, m->k,
                            dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var,
                                              sizeof var));
-    int kc = 0;
-    rc = bs_attempt(ig, m, H, &kc);
+    // a shortened step uses the order that sufficed for the last shortened one: with outputs
+    // denser than the natural steps a low order is cheapest; the natural order and step are
+    // kept for the next full step
+    int shortened = last && H < Hprop, kc = 0;
+    rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, &kc);
     if (rc == DAL__RECOVERABLE || rc == BS_REJECT || rc == BS_UNSTABLE) {
       // rejected: bs_attempt has set the order and step of the retry
       m->rejected_last = 1;
@@ -291,9 +295,20 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
       return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g (last accepted step) before the "
                                    "target t=%.17g",
                            ig->rhs_err, ig->t, tout);
-    // accepted: choose the next order and step, unless the step was shortened to land on
-    // tout (then it says nothing about the best order; keep order and step)
-    if (!(last && H < Hprop) || m->rejected_last) bs_select(m, kc, H);
+    // accepted: choose the next order and step (9.27); a shortened step only chooses the
+    // order of the next shortened step: the first column that converged, plus one
+    if (!shortened || m->rejected_last) {
+      bs_select(m, kc, H);
+      m->kshort = m->k;
+    } else {
+      int jmin = kc;
+      for (int j = 2; j < kc; ++j)
+        if (m->err[j] <= 1.0) {
+          jmin = j;
+          break;
+        }
+      m->kshort = jmin + 1 < m->k ? jmin + 1 : m->k;
+    }
     m->rejected_last = 0;
     nrej = 0;
     m->f0_ok = 0;
@@ -323,6 +338,7 @@ int dal__bs_create(dal_ode_integ *ig) {
   for (int j = 2; j <= BS_KMAX + 1; ++j) m->A[j] = m->A[j - 1] + m->nseq[j];
   int k = (int)(-log10(ig->rtol) * 0.6 + 1.5);
   m->k = k < 2 ? 2 : k > BS_KMAX - 1 ? BS_KMAX - 1 : k;
+  m->kshort = m->k;
   m->H = 0.0;
   return DAL_OK;
 }

@@ -19,13 +19,28 @@ extern "C" {
 #endif
 
 /// Integration methods.
+///
+/// DAL_METHOD_AUTO picks, for the ODE and index-1 forms, by opts.rtol:
+///   rtol > 1e-6: DOPRI5;  1e-12 <= rtol <= 1e-6: Adams;  rtol < 1e-12: Bulirsch-Stoer;
+/// and BDF (IDA) for the GGL and index-3 forms. Measured wall time to t = 10 on a 6-link
+/// pendulum chain (ms, same run): rtol 1e-4: dopri5 2.9, adams 3.0, fehlberg78 7.7, bs 9.8;
+/// 1e-8: bs 18, adams 23, fehlberg78 24, dopri5 30; 1e-12: adams 47, bs 48, fehlberg78 88,
+/// dopri5 255. Below 1e-12 Adams' local tolerance nears rounding and BS is the robust choice
+/// (on a single pendulum BS is fastest from 1e-5 down).
+///
+/// Tolerances are targets for the global error: each method runs its local error control at
+/// c * rtol, c * atol with c = 0.1 (DOPRI5), 0.03 (Fehlberg), 0.005 (BS), 0.01 (Adams),
+/// 0.001 (BDF), measured so that on the pendulum released at 60, 120 and 170 degrees (vs the
+/// Jacobi-elliptic solution) and the 2D harmonic oscillator the error at t = 10 stays below
+/// 16 x rtol for rtol = 1e-4 ... 1e-12 (worst factors 12, 7, 6, 11, 15; tests allow 100).
+/// Ill-conditioned problems (chaos, near-separatrix motion) amplify local errors further.
 typedef enum dal_method {
-  DAL_METHOD_AUTO = 0,   ///< pick by formulation and tolerance (documented in README)
+  DAL_METHOD_AUTO = 0,   ///< pick by formulation and tolerance (rule above)
   DAL_METHOD_DOPRI5,     ///< Dormand-Prince 5(4), adaptive explicit RK (ARKODE ERKStep)
-  DAL_METHOD_FEHLBERG78, ///< Fehlberg 7(8), adaptive explicit RK (ARKODE ERKStep)
+  DAL_METHOD_FEHLBERG78, ///< Fehlberg 7(8), adaptive explicit RK of order 8 (ARKODE ERKStep)
   DAL_METHOD_BS,         ///< Gragg-Bulirsch-Stoer extrapolation with order/step control
   DAL_METHOD_RK4,        ///< classical RK4 at the fixed step opts.fixed_step
-  DAL_METHOD_ADAMS,      ///< variable-order Adams-Moulton (CVODE, functional iteration)
+  DAL_METHOD_ADAMS,      ///< variable-order Adams-Moulton (CVODE, fixed-point iteration)
   DAL_METHOD_BDF,        ///< variable-order BDF (CVODE for ODEs, IDA for DAEs), stiff scenes
 } dal_method;
 
