@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# SPDX-FileCopyrightText: 2026 dalembert engineers
+# Consumer check driver (run by ctest), one step per mode:
+#   run.sh install   <build dir> <prefix>
+#   run.sh cmake     <prefix> <work dir> <libdir> <cc> <shared|static> [<extra C/link flags>]
+#   run.sh pkgconfig <prefix> <work dir> <libdir> <cc> <shared|static> [<extra C/link flags>]
+# install: a fresh `cmake --install` of the main build into <prefix>. cmake: configure and
+# build tests/consumer as a separate project with CMAKE_PREFIX_PATH=<prefix>, then run it.
+# pkgconfig: compile tests/consumer/main.c with the flags `pkg-config` gives for dalembert.pc
+# found through PKG_CONFIG_PATH in <prefix>, then run it. Extra flags (sanitizers) are passed
+# to the compiler and linker so that the consumer matches an instrumented library.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+mode=$1
+
+if [ "$mode" = install ]; then
+  build=$2 prefix=$3
+  rm -rf "$prefix"
+  cmake --install "$build" --prefix "$prefix"
+  exit 0
+fi
+
+prefix=$2 work=$3 libdir=$4 cc=$5 kind=$6 flags=${7:-}
+rm -rf "$work"
+mkdir -p "$work"
+export LD_LIBRARY_PATH="$prefix/$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
+
+case "$mode" in
+  cmake)
+    cmake -S "$here" -B "$work" -DCMAKE_PREFIX_PATH="$prefix" -DDAL_CONSUMER_PREFIX="$prefix" \
+      -DCMAKE_C_COMPILER="$cc" -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
+      -DCMAKE_BUILD_TYPE=Release
+    cmake --build "$work"
+    "$work/consumer"
+    ;;
+  pkgconfig)
+    export PKG_CONFIG_PATH="$prefix/$libdir/pkgconfig"
+    static=""
+    [ "$kind" = static ] && static="--static"
+    version=$(pkg-config --modversion dalembert)
+    cflags=$(pkg-config --cflags dalembert)
+    libs=$(pkg-config $static --libs dalembert)
+    echo "pkg-config: version $version, cflags '$cflags', libs '$libs'"
+    # the flags must point into the prefix, not to the source tree or a system install
+    case "$cflags" in
+      *"-I$prefix/"*) ;;
+      *) echo "pkg-config cflags do not point into $prefix"; exit 1 ;;
+    esac
+    # shellcheck disable=SC2086
+    "$cc" -std=c11 -Wall -Wextra -pedantic -Werror $flags $cflags \
+      -DDAL_EXPECT_VERSION="\"$version\"" "$here/main.c" -o "$work/consumer" $libs -lm
+    "$work/consumer"
+    ;;
+  *)
+    echo "usage: run.sh install|cmake|pkgconfig ..." >&2
+    exit 2
+    ;;
+esac
