@@ -127,8 +127,7 @@ static int scene(double omega, double theta0, double T, double dt, FILE *csvfp, 
   double mid = 0.5 * (w.thmin + w.thmax);
   printf("omega = %.3f omega_c: theta in [%.6f, %.6f] (turning points [%.6f, %.6f]), "
          "mid-range %.6f, centre %s = %.6f\n",
-         omega / wc, w.thmin, w.thmax, lo, hi, mid, omega < wc ? "0" : "acos(g/(R w^2))",
-         centre);
+         omega / wc, w.thmin, w.thmax, lo, hi, mid, omega < wc ? "0" : "acos(g/(R w^2))", centre);
   printf("  Jacobi integral h = %.12f drifts by %.2e; E = T + U varies by %.4f; h vs formula "
          "%.1e\n",
          w.h0, w.dh, w.dE, fabs(en.h - hf));
@@ -165,8 +164,8 @@ int main(int argc, char **argv) {
   }
   double wc = sqrt(g / R), T = check ? 10.0 : 20.0, dt = 1e-3, hd, ev;
   double w_lo = 0.7 * wc, w_hi = 1.5 * wc, th0 = 0.3;
-  printf("bead on a rotating ring: R=%g g=%g, omega_c = sqrt(g/R) = %.4f, theta0 = %g\n", R, g,
-         wc, th0);
+  printf("bead on a rotating ring: R=%g g=%g, omega_c = sqrt(g/R) = %.4f, theta0 = %g\n", R, g, wc,
+         th0);
   int bad = 0;
   if (check) {
     bad |= scene(w_lo, th0, T, dt, NULL, &hd, &ev);

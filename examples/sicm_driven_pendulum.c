@@ -82,8 +82,8 @@ static int run(const dal_system *sys, dal_method m, double theta0, double thetad
   if (rc) fprintf(stderr, "integration failed (%d): %s\n", rc, dal_state_errmsg(st));
   dal_stats s;
   dal_state_stats(st, &s);
-  printf("  %s from thetadot0 = %g: %ld steps, %ld rejected, %ld evaluations\n",
-         dal_method_name(m), thetadot0, s.steps, s.rejected, s.rhs_evals);
+  printf("  %s from thetadot0 = %g: %ld steps, %ld rejected, %ld evaluations\n", dal_method_name(m),
+         thetadot0, s.steps, s.rejected, s.rhs_evals);
   dal_state_destroy(st);
   return rc;
 }
@@ -134,7 +134,8 @@ static int check_mode(const dal_system *sys) {
   long n = bs.n - 1;
   if (n % 2) --n;
   double work = bs.power[0] + bs.power[n];
-  for (long k = 1; k < n; ++k) work += (k % 2 ? 4.0 : 2.0) * bs.power[k];
+  for (long k = 1; k < n; ++k)
+    work += (k % 2 ? 4.0 : 2.0) * bs.power[k];
   work *= dt / 3.0;
   double dE = bs.E[n] - bs.E[0];
   printf("energy bookkeeping to t=%g: E(t) - E(0) = %.12f, work of the rod = %.12f (diff %.2e)\n",

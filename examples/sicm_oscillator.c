@@ -74,15 +74,16 @@ static int advance_and_compare(const dal_system *sys, dal_method m) {
   const double *q = dal_state_q(st), *v = dal_state_qdot(st);
   double qe[2], ve[2], err = 0;
   exact(10.0, qe, ve);
-  for (int i = 0; i < 2; ++i) err = fmax(err, fmax(fabs(q[i] - qe[i]), fabs(v[i] - ve[i])));
+  for (int i = 0; i < 2; ++i)
+    err = fmax(err, fmax(fabs(q[i] - qe[i]), fabs(v[i] - ve[i])));
   dal_state_energies(st, &en);
   dal_stats s;
   dal_state_stats(st, &s);
   printf("%-6s (up %.17g (up %.17g %.17g) (up %.17g %.17g))\n", dal_method_name(m),
          dal_state_time(st), q[0], q[1], v[0], v[1]);
   printf("closed (up 10 (up %.17g %.17g) (up %.17g %.17g))\n", qe[0], qe[1], ve[0], ve[1]);
-  printf("       error %.2e, energy drift %.2e, %ld steps, %ld evaluations\n", err,
-         fabs(en.E - E0), s.steps, s.rhs_evals);
+  printf("       error %.2e, energy drift %.2e, %ld steps, %ld evaluations\n", err, fabs(en.E - E0),
+         s.steps, s.rhs_evals);
   int bad = !(err < 100 * o.rtol * 6) || !(fabs(en.E - E0) < 100 * o.rtol * fabs(E0));
   dal_state_destroy(st);
   return bad;
@@ -154,8 +155,8 @@ int main(int argc, char **argv) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int bad = build(&b, &sys) != 0;
-  printf("SICM harmonic oscillator: m=%g k=%g, q(0)=(1,2), qdot(0)=(3,4), to t=10 at 1e-12\n",
-         mass, k);
+  printf("SICM harmonic oscillator: m=%g k=%g, q(0)=(1,2), qdot(0)=(3,4), to t=10 at 1e-12\n", mass,
+         k);
   if (!bad) bad |= advance_and_compare(sys, DAL_METHOD_BS);
   if (!bad) bad |= advance_and_compare(sys, DAL_METHOD_AUTO);
   if (!bad && !check) bad |= full_mode(sys, dir);

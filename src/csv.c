@@ -21,15 +21,18 @@ int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   int n = sys->n;
   if (!c->header_done) {
     fputs("t", c->fp);
-    for (int i = 0; i < n; ++i) fprintf(c->fp, ",%s", sys->coord_names[i]);
-    for (int i = 0; i < n; ++i) fprintf(c->fp, ",%s_dot", sys->coord_names[i]);
+    for (int i = 0; i < n; ++i)
+      fprintf(c->fp, ",%s", sys->coord_names[i]);
+    for (int i = 0; i < n; ++i)
+      fprintf(c->fp, ",%s_dot", sys->coord_names[i]);
     fputs(",E,h\n", c->fp);
     c->header_done = 1;
   }
   fprintf(c->fp, "%.17g", st->t);
   for (int i = 0; i < n; ++i)
     fprintf(c->fp, ",%.17g", c->wrap_angles ? wrap_pi(st->q[i]) : st->q[i]);
-  for (int i = 0; i < n; ++i) fprintf(c->fp, ",%.17g", st->qdot[i]);
+  for (int i = 0; i < n; ++i)
+    fprintf(c->fp, ",%.17g", st->qdot[i]);
   fprintf(c->fp, ",%.17g,%.17g\n", st->en.E, st->en.h);
   return ferror(c->fp) ? DAL_E_IO : DAL_OK;
 }

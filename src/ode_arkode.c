@@ -91,7 +91,8 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
     ERKStepGetEstLocalErrors(m->ark, m->ele);
     ERKStepGetErrWeights(m->ark, m->ewt);
     const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
-    for (int i = 0; i < ig->ny; ++i) ig->ewt[i] = e[i] * w[i];
+    for (int i = 0; i < ig->ny; ++i)
+      ig->ewt[i] = e[i] * w[i];
     int i = dal__ode_argmax(ig->ewt, ig->ny);
     return dal__ode_fail(ig, DAL_E_STEP,
                          "step size underflow at t=%.17g (h=%.3g, %s): error dominated by %s; "
@@ -106,11 +107,10 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
                          "opts.max_steps or loosen the tolerances",
                          ig->t, ig->tout);
   case ARK_CONV_FAILURE:
-    return dal__ode_fail(ig, DAL_E_CONV, "convergence failure at t=%.17g: %s", ig->t,
-                         ig->sun_err);
+    return dal__ode_fail(ig, DAL_E_CONV, "convergence failure at t=%.17g: %s", ig->t, ig->sun_err);
   default:
-    return dal__ode_fail(ig, DAL_E_SOLVER, "ARKODE failed at t=%.17g (code %d): %s", ig->t,
-                         flag, ig->sun_err);
+    return dal__ode_fail(ig, DAL_E_SOLVER, "ARKODE failed at t=%.17g (code %d): %s", ig->t, flag,
+                         ig->sun_err);
   }
 }
 
@@ -134,9 +134,11 @@ static int erk_set_fehlberg(void *ark) {
     G->c[i] = F->c[i];
     G->b[i] = F->b[i];
     G->d[i] = F->d[i];
-    for (int j = 0; j < s; ++j) G->A[i][j] = F->A[i][j];
+    for (int j = 0; j < s; ++j)
+      G->A[i][j] = F->A[i][j];
   }
-  for (int j = 0; j < s; ++j) G->A[s][j] = F->b[j];
+  for (int j = 0; j < s; ++j)
+    G->A[s][j] = F->b[j];
   G->c[s] = 1.0;
   G->b[s] = G->d[s] = 0.0;
   G->q = F->q;
@@ -184,7 +186,6 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
       double h = 0;
       ERKStepGetCurrentStep(m->ark, &h); // the step proposed next, not the one taken
       if ((flag = erk_restart(ig, m, h)) != ARK_SUCCESS) return erk_failure(ig, m, flag);
-      if ((flag = ERKStepSetStopTime(m->ark, tout)) != ARK_SUCCESS) return erk_failure(ig, m, flag);
     }
   }
   return DAL_OK;

@@ -27,12 +27,12 @@
 enum { BS_ACCEPT = 0, BS_REJECT = 2, BS_UNSTABLE = 3 };
 
 typedef struct bs_mem {
-  double *f0;       // f(t, y) at the start of the step (ny)
-  int f0_ok;        // f0 belongs to (ig->t, ig->y)
-  double *za, *zb;  // midpoint rule iterates (ny)
-  double *fz;       // f at a midpoint iterate (ny)
-  double *T;        // extrapolation tableau, one row: T[(l-1) ny + i] (BS_KMAX x ny)
-  double *ynew;     // accepted value (ny)
+  double *f0;      // f(t, y) at the start of the step (ny)
+  int f0_ok;       // f0 belongs to (ig->t, ig->y)
+  double *za, *zb; // midpoint rule iterates (ny)
+  double *fz;      // f at a midpoint iterate (ny)
+  double *T;       // extrapolation tableau, one row: T[(l-1) ny + i] (BS_KMAX x ny)
+  double *ynew;    // accepted value (ny)
   int nseq[BS_KMAX + 2];
   double A[BS_KMAX + 2];    // work A_j (9.26)
   double hopt[BS_KMAX + 2]; // optimal step of column j (9.25)
@@ -88,7 +88,8 @@ static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
       }
       if (del2 > 4.0 * fmax(del1, 1e-300)) return BS_UNSTABLE;
     }
-    for (int i = 0; i < ny; ++i) z0[i] += 2.0 * h * m->fz[i];
+    for (int i = 0; i < ny; ++i)
+      z0[i] += 2.0 * h * m->fz[i];
     double *sw = z0;
     z0 = z1;
     z1 = sw;
@@ -213,9 +214,11 @@ static int bs_initial_step(dal_ode_integ *ig, bs_mem *m, double tout, double *H)
   double d0 = wnorm(ig, ig->y, ig->y), d1 = wnorm(ig, m->f0, ig->y);
   double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
   h0 = fmin(h0, tout - ig->t);
-  for (int i = 0; i < ny; ++i) m->za[i] = ig->y[i] + h0 * m->f0[i];
+  for (int i = 0; i < ny; ++i)
+    m->za[i] = ig->y[i] + h0 * m->f0[i];
   if ((rc = dal__ode_rhs(ig, ig->t + h0, m->za, m->fz)) != 0) return rc;
-  for (int i = 0; i < ny; ++i) m->zb[i] = m->fz[i] - m->f0[i];
+  for (int i = 0; i < ny; ++i)
+    m->zb[i] = m->fz[i] - m->f0[i];
   double d2 = wnorm(ig, m->zb, ig->y) / h0, dm = fmax(d1, d2);
   double h1 = dm <= 1e-15 ? fmax(1e-6, h0 * 1e-3) : pow(0.01 / dm, 1.0 / (2 * m->k + 1));
   *H = fmin(100 * h0, h1);
@@ -258,14 +261,13 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     }
     double hfloor = fmax(o->hmin, 16 * 2.220446049250313e-16 * fabs(ig->t));
     if (H < hfloor && !last)
-      return dal__ode_fail(ig, DAL_E_STEP,
-                           "step size underflow at t=%.17g (H=%.3g, bs order column %d): error "
-                           "dominated by %s; the solution may be singular there, or the "
-                           "tolerances too tight: loosen rtol/atol or check the model near "
-                           "this time",
-                           ig->t, H, m->k,
-                           dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var,
-                                             sizeof var));
+      return dal__ode_fail(
+          ig, DAL_E_STEP,
+          "step size underflow at t=%.17g (H=%.3g, bs order column %d): error "
+          "dominated by %s; the solution may be singular there, or the "
+          "tolerances too tight: loosen rtol/atol or check the model near "
+          "this time",
+          ig->t, H, m->k, dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var));
     // a shortened step uses the order that sufficed for the last shortened one: with outputs
     // denser than the natural steps a low order is cheapest; the natural order and step are
     // kept for the next full step
@@ -281,19 +283,20 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
                                "%s; still after %d step reductions (H=%.3g); stopped at "
                                "t=%.17g (last accepted step)",
                                ig->rhs_err, nrej, H, ig->t);
-        return dal__ode_fail(ig, DAL_E_STEP,
-                             "step size underflow at t=%.17g (H=%.3g after %d rejections): "
-                             "error dominated by %s; loosen rtol/atol or check the model near "
-                             "this time",
-                             ig->t, H, nrej,
-                             dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var,
-                                               sizeof var));
+        return dal__ode_fail(
+            ig, DAL_E_STEP,
+            "step size underflow at t=%.17g (H=%.3g after %d rejections): "
+            "error dominated by %s; loosen rtol/atol or check the model near "
+            "this time",
+            ig->t, H, nrej,
+            dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var));
       }
       continue;
     }
     if (rc)
-      return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g (last accepted step) before the "
-                                   "target t=%.17g",
+      return dal__ode_fail(ig, rc,
+                           "%s; stopped at t=%.17g (last accepted step) before the "
+                           "target t=%.17g",
                            ig->rhs_err, ig->t, tout);
     // accepted: choose the next order and step (9.27); a shortened step only chooses the
     // order of the next shortened step: the first column that converged, plus one
@@ -333,9 +336,11 @@ int dal__bs_create(dal_ode_integ *ig) {
   if (!m->f0 || !m->za || !m->zb || !m->fz || !m->ynew || !m->T)
     return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
   // step numbers n_j = 2j and work A_1 = n_1 + 1, A_j = A_{j-1} + n_j
-  for (int j = 1; j <= BS_KMAX + 1; ++j) m->nseq[j] = 2 * j;
+  for (int j = 1; j <= BS_KMAX + 1; ++j)
+    m->nseq[j] = 2 * j;
   m->A[1] = m->nseq[1] + 1;
-  for (int j = 2; j <= BS_KMAX + 1; ++j) m->A[j] = m->A[j - 1] + m->nseq[j];
+  for (int j = 2; j <= BS_KMAX + 1; ++j)
+    m->A[j] = m->A[j - 1] + m->nseq[j];
   int k = (int)(-log10(ig->rtol) * 0.6 + 1.5);
   m->k = k < 2 ? 2 : k > BS_KMAX - 1 ? BS_KMAX - 1 : k;
   m->kshort = m->k;

@@ -92,7 +92,8 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   CVodeGetEstLocalErrors(m->cv, m->ele);
   CVodeGetErrWeights(m->cv, m->ewt);
   const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
-  for (int i = 0; i < ig->ny; ++i) ig->ewt[i] = e[i] * w[i];
+  for (int i = 0; i < ig->ny; ++i)
+    ig->ewt[i] = e[i] * w[i];
   dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
   const char *name = dal_method_name(ig->method);
   switch (flag) {
@@ -127,6 +128,21 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   }
 }
 
+// The projection moved the accepted step y (the integrator's) to ig->y by more than the
+// requested tolerance (weighted RMS norm with the user's rtol, atol above 1). Only then is
+// the integrator re-initialized at the projected point: a restart drops the multistep
+// history back to order 1, and re-initializing after every step would keep Adams at order 1
+// (measured: a million steps to t = 4e-6 on a Cartesian pendulum). Between restarts the
+// reported states are projected and the integrator's own drift stays within the tolerance.
+static int cv_moved(const dal_ode_integ *ig, const double *y) {
+  double s = 0.0;
+  for (int i = 0; i < ig->ny; ++i) {
+    double w = (ig->y[i] - y[i]) / (ig->opts.atol + ig->opts.rtol * fabs(ig->y[i]));
+    s += w * w;
+  }
+  return s > ig->ny;
+}
+
 static int cv_advance(dal_ode_integ *ig, double tout) {
   cv_mem *m = ig->impl;
   int flag = CVodeSetStopTime(m->cv, tout);
@@ -145,9 +161,9 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
     int projected = 0;
     int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
     if (rc) return rc;
-    if (projected && ig->t < tout) {
+    if (projected && ig->t < tout && cv_moved(ig, N_VGetArrayPointer(m->y))) {
       double h = 0;
-      CVodeGetLastStep(m->cv, &h);
+      CVodeGetCurrentStep(m->cv, &h);
       if ((flag = cv_restart(ig, m, h)) != CV_SUCCESS) return cv_failure(ig, m, flag);
       if ((flag = CVodeSetStopTime(m->cv, tout)) != CV_SUCCESS) return cv_failure(ig, m, flag);
     }

@@ -33,11 +33,14 @@ static int rk4_step(dal_ode_integ *ig, rk4_mem *m, double t, const double *y, do
                     double *y1) {
   int ny = ig->ny, rc;
   if ((rc = dal__ode_rhs(ig, t, y, m->k1)) != 0) return rc;
-  for (int i = 0; i < ny; ++i) m->yt[i] = y[i] + 0.5 * h * m->k1[i];
+  for (int i = 0; i < ny; ++i)
+    m->yt[i] = y[i] + 0.5 * h * m->k1[i];
   if ((rc = dal__ode_rhs(ig, t + 0.5 * h, m->yt, m->k2)) != 0) return rc;
-  for (int i = 0; i < ny; ++i) m->yt[i] = y[i] + 0.5 * h * m->k2[i];
+  for (int i = 0; i < ny; ++i)
+    m->yt[i] = y[i] + 0.5 * h * m->k2[i];
   if ((rc = dal__ode_rhs(ig, t + 0.5 * h, m->yt, m->k3)) != 0) return rc;
-  for (int i = 0; i < ny; ++i) m->yt[i] = y[i] + h * m->k3[i];
+  for (int i = 0; i < ny; ++i)
+    m->yt[i] = y[i] + h * m->k3[i];
   if ((rc = dal__ode_rhs(ig, t + h, m->yt, m->k4)) != 0) return rc;
   for (int i = 0; i < ny; ++i)
     y1[i] = y[i] + h / 6.0 * (m->k1[i] + 2.0 * (m->k2[i] + m->k3[i]) + m->k4[i]);

@@ -26,24 +26,36 @@ void dal_solve_default_opts(dal_solve_opts *o) {
 
 const char *dal_method_name(dal_method m) {
   switch (m) {
-  case DAL_METHOD_AUTO: return "auto";
-  case DAL_METHOD_DOPRI5: return "dopri5";
-  case DAL_METHOD_FEHLBERG78: return "fehlberg78";
-  case DAL_METHOD_BS: return "bs";
-  case DAL_METHOD_RK4: return "rk4";
-  case DAL_METHOD_ADAMS: return "adams";
-  case DAL_METHOD_BDF: return "bdf";
+  case DAL_METHOD_AUTO:
+    return "auto";
+  case DAL_METHOD_DOPRI5:
+    return "dopri5";
+  case DAL_METHOD_FEHLBERG78:
+    return "fehlberg78";
+  case DAL_METHOD_BS:
+    return "bs";
+  case DAL_METHOD_RK4:
+    return "rk4";
+  case DAL_METHOD_ADAMS:
+    return "adams";
+  case DAL_METHOD_BDF:
+    return "bdf";
   }
   return "unknown";
 }
 
 const char *dal_formulation_name(dal_formulation f) {
   switch (f) {
-  case DAL_FORM_AUTO: return "auto";
-  case DAL_FORM_ODE: return "ode";
-  case DAL_FORM_GGL: return "ggl";
-  case DAL_FORM_INDEX1: return "index1";
-  case DAL_FORM_INDEX3: return "index3";
+  case DAL_FORM_AUTO:
+    return "auto";
+  case DAL_FORM_ODE:
+    return "ode";
+  case DAL_FORM_GGL:
+    return "ggl";
+  case DAL_FORM_INDEX1:
+    return "index1";
+  case DAL_FORM_INDEX3:
+    return "index3";
   }
   return "unknown";
 }
@@ -73,8 +85,8 @@ static void minimal_from_state(const dal_system *sys, const dal_state *st, doubl
   memcpy(y + n, st->qdot, n * sizeof(double));
 }
 
-static int minimal_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                       double t, const double *y, double *ydot) {
+static int minimal_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
+                       const double *y, double *ydot) {
   (void)opts;
   int n = sys->n;
   minimal_to_state(sys, st, t, y);
@@ -95,8 +107,8 @@ static int minimal_rhs(const dal_system *sys, dal_state *st, const dal_solve_opt
   return DAL_OK;
 }
 
-const dal_ode_problem dal__problem_minimal = {
-    "minimal", minimal_size, minimal_rhs, NULL, minimal_from_state, minimal_to_state};
+const dal_ode_problem dal__problem_minimal = {"minimal", minimal_size,       minimal_rhs,
+                                              NULL,      minimal_from_state, minimal_to_state};
 
 // ---------------------------------------------------------------------------------------------
 // services for the ODE integrators
@@ -169,8 +181,10 @@ int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...) {
   if (rc) {
     char again[DAL_ERRMSG_LEN];
     memcpy(again, st->err, sizeof again);
-    snprintf(st->err, sizeof st->err, "%.300s (re-evaluating the last accepted step failed too: "
-             "%.140s)", msg, again);
+    snprintf(st->err, sizeof st->err,
+             "%.300s (re-evaluating the last accepted step failed too: "
+             "%.140s)",
+             msg, again);
   } else {
     memcpy(st->err, msg, sizeof msg);
   }
@@ -264,8 +278,8 @@ static int check_opts(dal_state *st, const dal_solve_opts *o) {
   const char *hn[3] = {"h0", "hmin", "hmax"};
   for (int i = 0; i < 3; ++i)
     if (!(*hs[i] >= 0) || !isfinite(*hs[i]))
-      return DAL_FAIL(st, DAL_E_ARG, "opts.%s = %g must be >= 0 and finite (0: automatic)",
-                      hn[i], *hs[i]);
+      return DAL_FAIL(st, DAL_E_ARG, "opts.%s = %g must be >= 0 and finite (0: automatic)", hn[i],
+                      *hs[i]);
   if (o->hmax > 0 && o->hmin > o->hmax)
     return DAL_FAIL(st, DAL_E_ARG, "opts.hmin = %g exceeds opts.hmax = %g", o->hmin, o->hmax);
   if (o->max_steps <= 0)
@@ -295,8 +309,8 @@ static dal_method auto_method(double rtol) {
 }
 
 // resolve formulation and method; *prob is NULL for the IDA route
-static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
-                   dal_method *meth, const dal_ode_problem **prob) {
+static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method *meth,
+                   const dal_ode_problem **prob) {
   dal_formulation form = o->form;
   dal_method m = o->method;
   if (form == DAL_FORM_AUTO) form = sys->m ? DAL_FORM_GGL : DAL_FORM_ODE;
@@ -326,12 +340,18 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
 
 double dal__tol_factor(dal_method m) {
   switch (m) {
-  case DAL_METHOD_DOPRI5: return 0.1;
-  case DAL_METHOD_FEHLBERG78: return 0.03;
-  case DAL_METHOD_BS: return 0.005;
-  case DAL_METHOD_ADAMS: return 0.01;
-  case DAL_METHOD_BDF: return 0.001;
-  default: return 1.0;
+  case DAL_METHOD_DOPRI5:
+    return 0.1;
+  case DAL_METHOD_FEHLBERG78:
+    return 0.03;
+  case DAL_METHOD_BS:
+    return 0.005;
+  case DAL_METHOD_ADAMS:
+    return 0.01;
+  case DAL_METHOD_BDF:
+    return 0.001;
+  default:
+    return 1.0;
   }
 }
 
@@ -363,13 +383,22 @@ static int ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts
   int rc;
   switch (meth) {
   case DAL_METHOD_DOPRI5:
-  case DAL_METHOD_FEHLBERG78: rc = dal__erk_create(ig); break;
+  case DAL_METHOD_FEHLBERG78:
+    rc = dal__erk_create(ig);
+    break;
   case DAL_METHOD_ADAMS:
-  case DAL_METHOD_BDF: rc = dal__cvode_create(ig); break;
-  case DAL_METHOD_BS: rc = dal__bs_create(ig); break;
-  case DAL_METHOD_RK4: rc = dal__rk4_create(ig); break;
-  default: rc = DAL_FAIL(st, DAL_E_UNSUPPORTED, "no ODE integrator for method '%s'",
-                         dal_method_name(meth));
+  case DAL_METHOD_BDF:
+    rc = dal__cvode_create(ig);
+    break;
+  case DAL_METHOD_BS:
+    rc = dal__bs_create(ig);
+    break;
+  case DAL_METHOD_RK4:
+    rc = dal__rk4_create(ig);
+    break;
+  default:
+    rc =
+        DAL_FAIL(st, DAL_E_UNSUPPORTED, "no ODE integrator for method '%s'", dal_method_name(meth));
   }
   if (rc) {
     if (rc > 0) rc = DAL_E_SOLVER;
@@ -389,8 +418,7 @@ static void handle_sync(const dal_system *sys, dal_state *st, dal_integ_handle *
 }
 
 // the state's (t, q, qdot) still are where the integrator left them
-static int handle_current(const dal_system *sys, const dal_state *st,
-                          const dal_integ_handle *h) {
+static int handle_current(const dal_system *sys, const dal_state *st, const dal_integ_handle *h) {
   size_t n = (size_t)sys->n;
   return h->t == st->t && memcmp(h->qq, st->q, n * sizeof(double)) == 0 &&
          memcmp(h->qq + n, st->qdot, n * sizeof(double)) == 0;
@@ -503,8 +531,7 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
 }
 
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
-static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor,
-                        void *ctx) {
+static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
   if (!monitor) return 0;
   int mr = monitor(sys, st, ctx);
   if (mr > 0) return 1;
@@ -526,12 +553,14 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
   double t0 = st->t, span = (t1 - t0) / dt;
   if (span > 1e12)
     return DAL_FAIL(st, DAL_E_ARG,
-                    "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt",
-                    span, t0, t1, dt);
+                    "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
+                    t0, t1, dt);
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
   long K = (long)floor(span);
-  while (K > 0 && t0 + (double)K * dt > t1) --K;
-  while (t0 + (double)(K + 1) * dt <= t1) ++K;
+  while (K > 0 && t0 + (double)K * dt > t1)
+    --K;
+  while (t0 + (double)(K + 1) * dt <= t1)
+    ++K;
   for (long k = 0; k <= K; ++k) {
     double tk = t0 + (double)k * dt;
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)

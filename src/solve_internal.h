@@ -37,8 +37,7 @@ extern const dal_ode_problem dal__problem_index1;
 /// (dae_ida.c). create: allocate and initialize from the state's consistent (q, qdot);
 /// advance: integrate to tout, leaving the state at tout (or at the last accepted step on
 /// failure, with its error message naming time and dominating variable).
-int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                    void **mem);
+int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem);
 int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout);
 void dal__ida_free(void *mem);
 

@@ -50,7 +50,8 @@ static inline void ref_ellip_sncndn(double u, double m, double *sn, double *cn, 
   if (u < 0) u += P;
   // phi_N = 2^N a_N u, then phi_{n-1} = (phi_n + asin(c_n / a_n sin phi_n)) / 2
   double phi = ldexp(a[n] * u, n);
-  for (int i = n; i > 0; --i) phi = 0.5 * (phi + asin(c[i] / a[i] * sin(phi)));
+  for (int i = n; i > 0; --i)
+    phi = 0.5 * (phi + asin(c[i] / a[i] * sin(phi)));
   *sn = sin(phi);
   *cn = cos(phi);
   *dn = sqrt(1.0 - m * *sn * *sn);

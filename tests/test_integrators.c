@@ -52,7 +52,7 @@ static int spring_pot(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
 
 // an optional extra callback on the oscillator (domain checks, failures)
 typedef struct osc_cb {
-  int mode;        // 0 none, 1 recoverable outside the energy shell, 2 stop after t_fail
+  int mode; // 0 none, 1 recoverable outside the energy shell, 2 stop after t_fail
   double E0, tfail;
   long fails, calls;
 } osc_cb;
@@ -306,8 +306,8 @@ static void test_orders(void) {
   double p5 = richardson_order(pend, &th0, &v0, DAL_METHOD_DOPRI5, 0.025, 2.0);
   double p8 = richardson_order(pend, &th0, &v0, DAL_METHOD_FEHLBERG78, 0.4, 2.0);
   double p4 = richardson_order(pend, &th0, &v0, DAL_METHOD_RK4, 0.1, 2.0);
-  printf("fixed-step orders on the 120 deg pendulum: dopri5 %.2f, fehlberg78 %.2f, rk4 %.2f\n",
-         p5, p8, p4);
+  printf("fixed-step orders on the 120 deg pendulum: dopri5 %.2f, fehlberg78 %.2f, rk4 %.2f\n", p5,
+         p8, p4);
   CHECK_MSG(fabs(p5 - 5) < 0.5, "dopri5 order %.2f", p5);
   CHECK_MSG(fabs(p8 - 8) < 0.6, "fehlberg78 order %.2f", p8);
   CHECK_MSG(fabs(p4 - 4) < 0.5, "rk4 order %.2f", p4);
@@ -409,8 +409,8 @@ static void test_evolve(void) {
     CHECK_OK(dal_evolve(osc, st, &o, 1.05, 0.1, record, &m));
     CHECK(m.n == 9);
     for (int k = 0; k < 8 && k < m.n; ++k)
-      CHECK_MSG(m.t[k] == 0.3 + (double)k * 0.1, "%s output %d at %.17g",
-                dal_method_name(o.method), k, m.t[k]);
+      CHECK_MSG(m.t[k] == 0.3 + (double)k * 0.1, "%s output %d at %.17g", dal_method_name(o.method),
+                k, m.t[k]);
     CHECK(m.n < 9 || m.t[8] == 1.05);
     CHECK_MSG(m.err < 1e-7, "%s monitor error %.3g", dal_method_name(o.method), m.err);
     // a positive monitor return stops evolve with success where it stood
@@ -492,7 +492,8 @@ static void test_unrecoverable(void) {
     CHECK(strstr(msg, "generalized force callback") != NULL);
     CHECK(strstr(msg, "last accepted step") != NULL);
     // the state is evaluated at the accepted step
-    for (int i = 0; i < 2; ++i) CHECK_CLOSE(dal_state_qddot(st)[i], -0.5 * dal_state_q(st)[i], 1e-14);
+    for (int i = 0; i < 2; ++i)
+      CHECK_CLOSE(dal_state_qddot(st)[i], -0.5 * dal_state_q(st)[i], 1e-14);
     // and equals a reference run stopped at that time
     double y[4] = {dal_state_q(st)[0], dal_state_q(st)[1], dal_state_qdot(st)[0],
                    dal_state_qdot(st)[1]};
@@ -523,18 +524,64 @@ static void test_step_failure(void) {
     o.method = adaptive[mi];
     int rc = dal_advance(sys, st, &o, 2.0);
     const char *msg = dal_state_errmsg(st);
-    CHECK_MSG(rc == DAL_E_STEP || rc == DAL_E_CONV || rc == DAL_E_MAXSTEPS,
-              "%s: rc %d (%s)", dal_method_name(o.method), rc, msg);
+    CHECK_MSG(rc == DAL_E_STEP || rc == DAL_E_CONV || rc == DAL_E_MAXSTEPS, "%s: rc %d (%s)",
+              dal_method_name(o.method), rc, msg);
     double t = dal_state_time(st), x = dal_state_q(st)[0];
     CHECK(t > 0.999 && t < 1.0);
-    CHECK_MSG(strstr(msg, "'x'") != NULL && strstr(msg, "'y'") == NULL &&
-                  strstr(msg, "t=") != NULL,
+    CHECK_MSG(strstr(msg, "'x'") != NULL && strstr(msg, "'y'") == NULL && strstr(msg, "t=") != NULL,
               "%s: %s", dal_method_name(o.method), msg);
     // the state is a point of the trajectory: bounded, and y untouched
     CHECK(fabs(x) <= 1.0 && dal_state_q(st)[1] == 0.0);
     CHECK_CLOSE(dal_state_qddot(st)[0], -x / ((1 - t) * (1 - t)), 1e-12);
     printf("  %-10s stops at t=%.9f: %.160s\n", dal_method_name(o.method), t, msg);
     dal_state_destroy(st);
+  }
+  dal_system_destroy(sys);
+}
+
+// ---------------------------------------------------------------------------------------------
+// redundant coordinates, index-1 form: the ODE methods with projection onto the constraints
+
+static void test_index1(void) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  int c[2], p, rc = dal_builder_create(2, &b);
+  double g[2] = {0, -G}, par[3] = {1.0, 0, 0};
+  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
+  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
+  if (!rc) rc = dal_builder_compile(b, &sys);
+  CHECK_OK(rc);
+  dal_builder_destroy(b);
+  if (rc) return;
+  double th0 = 120 * PI / 180, ex, exd;
+  ref_pendulum(th0, sqrt(G), 10.0, &ex, &exd);
+  const dal_method ms[5] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
+                            DAL_METHOD_ADAMS, DAL_METHOD_RK4};
+  for (int mi = 0; mi < 5; ++mi) {
+    double q0[2] = {sin(th0), -cos(th0)}, v0[2] = {0, 0}, drift[2];
+    for (int proj = 0; proj < 2; ++proj) {
+      dal_solve_opts o;
+      dal_solve_default_opts(&o);
+      o.method = ms[mi];
+      o.form = DAL_FORM_INDEX1;
+      o.project = proj;
+      o.rtol = o.atol = 1e-8;
+      run_out r = run(sys, q0, v0, &o, 10.0);
+      CHECK_OK(r.rc);
+      // the bob's angle against the elliptic solution; the distance to the pivot
+      double th = atan2(r.y[0], -r.y[1]);
+      drift[proj] = fabs(hypot(r.y[0], r.y[1]) - 1.0);
+      CHECK_MSG(fabs(th - ex) < 100 * o.rtol, "index1 %s project %d: theta error %.3g",
+                dal_method_name(o.method), proj, th - ex);
+      CHECK(proj ? r.s.projections == r.s.steps && r.s.steps > 0 : r.s.projections == 0);
+    }
+    CHECK_MSG(drift[1] < 1e-9 && drift[1] < drift[0], "index1 %s: drift %.3g projected, %.3g not",
+              dal_method_name(ms[mi]), drift[1], drift[0]);
   }
   dal_system_destroy(sys);
 }
@@ -556,9 +603,12 @@ static void test_options(void) {
     double *field;
     double bad;
     const char *name;
-  } cases[] = {{&o.rtol, 0.0, "rtol"},        {&o.rtol, NAN, "rtol"},
-               {&o.atol, -1.0, "atol"},       {&o.atol, INFINITY, "atol"},
-               {&o.fixed_step, 0.0, "fixed_step"}, {&o.hmax, -1.0, "hmax"}};
+  } cases[] = {{&o.rtol, 0.0, "rtol"},
+               {&o.rtol, NAN, "rtol"},
+               {&o.atol, -1.0, "atol"},
+               {&o.atol, INFINITY, "atol"},
+               {&o.fixed_step, 0.0, "fixed_step"},
+               {&o.hmax, -1.0, "hmax"}};
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
     dal_solve_default_opts(&o);
     *cases[i].field = cases[i].bad;
@@ -586,8 +636,8 @@ static void test_options(void) {
   CHECK_OK(dal_advance(osc, st, &o, 1.0));
   o.method = DAL_METHOD_BS;
   CHECK_OK(dal_advance(osc, st, &o, 2.0));
-  double ex[4], y[4] = {dal_state_q(st)[0], dal_state_q(st)[1], dal_state_qdot(st)[0],
-                        dal_state_qdot(st)[1]};
+  double ex[4],
+      y[4] = {dal_state_q(st)[0], dal_state_q(st)[1], dal_state_qdot(st)[0], dal_state_qdot(st)[1]};
   osc_exact(2.0, ex);
   CHECK(rel_err(y, ex, 4) < 1e-6);
   // so does a state changed between calls (dal_state_set restarts the integrator)
@@ -660,6 +710,7 @@ int main(void) {
   test_recoverable();
   test_unrecoverable();
   test_step_failure();
+  test_index1();
   test_options();
   test_determinism();
   test_csv();
