@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Variable-order multistep methods through SUNDIALS CVODE: Adams-Moulton (orders 1-12) with
 // fixed-point (functional) iteration, and BDF (orders 1-5) with Newton iteration on a dense
-// difference-quotient Jacobian (Hindmarsh et al., SUNDIALS, ACM TOMS 31, 2005; Hairer-Norsett-
+// difference-quotient Newton matrix (Hindmarsh et al., SUNDIALS, ACM TOMS 31, 2005; Hairer-Norsett-
 // Wanner, Solving ODEs I, sec. III.1-III.7). One internal step per call.
 #include <math.h>
 #include <stdio.h>
@@ -32,6 +32,38 @@ typedef struct cv_mem {
 static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
   dal_ode_integ *ig = ud;
   return dal__ode_rhs(ig, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+// Newton matrix for BDF: difference quotients column by column, with CVODE's increments
+// (inc_j = max(sqrt(uround) |y_j|, min_inc / w_j), min_inc from the step, size and |f|;
+// Hindmarsh et al. 2005, sec. 2.1). Written here so that a step allocates nothing (CVODE's
+// own dense difference quotient clones a vector per Jacobian).
+static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_Vector tmp1,
+                  N_Vector tmp2, N_Vector tmp3) {
+  (void)tmp3;
+  dal_ode_integ *ig = ud;
+  cv_mem *m = ig->impl;
+  int n = ig->ny;
+  double h = 0, *yp = N_VGetArrayPointer(tmp2), *fp = N_VGetArrayPointer(tmp1);
+  const double *y0 = N_VGetArrayPointer(y), *f0 = N_VGetArrayPointer(fy);
+  const double *w = N_VGetArrayPointer(m->ewt);
+  CVodeGetCurrentStep(m->cv, &h);
+  CVodeGetErrWeights(m->cv, m->ewt);
+  double fnorm = 0, uround = 2.220446049250313e-16, srur = sqrt(uround);
+  for (int i = 0; i < n; ++i) fnorm += (f0[i] * w[i]) * (f0[i] * w[i]);
+  fnorm = sqrt(fnorm / n);
+  double min_inc = fnorm != 0 ? 1000.0 * fabs(h) * uround * n * fnorm : 1.0;
+  memcpy(yp, y0, (size_t)n * sizeof(double));
+  for (int j = 0; j < n; ++j) {
+    double inc = fmax(srur * fabs(y0[j]), min_inc / w[j]);
+    yp[j] = y0[j] + inc;
+    int rc = dal__ode_rhs(ig, t, yp, fp);
+    yp[j] = y0[j];
+    if (rc) return rc;
+    double *col = SUNDenseMatrix_Column(J, j);
+    for (int i = 0; i < n; ++i) col[i] = (fp[i] - f0[i]) / inc;
+  }
+  return 0;
 }
 
 static void cv_err(int code, const char *module, const char *function, char *msg, void *ud) {
@@ -199,6 +231,7 @@ int dal__cvode_create(dal_ode_integ *ig) {
     m->A = SUNDenseMatrix(ig->ny, ig->ny, m->ctx);
     m->LS = m->A ? SUNLinSol_Dense(m->y, m->A, m->ctx) : NULL;
     flag = m->LS ? CVodeSetLinearSolver(m->cv, m->LS, m->A) : CV_MEM_FAIL;
+    if (!flag) flag = CVodeSetJacFn(m->cv, cv_jac);
   } else if (!flag) {
     // functional (fixed-point) iteration, no Jacobian
     m->NLS = SUNNonlinSol_FixedPoint(m->y, 0, m->ctx);
