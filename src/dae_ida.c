@@ -9,7 +9,8 @@
 //   index3: q' - v,          M v' - (Q - c) - G' lambda,  phi
 //   index1: q' - v,          M v' - (Q - c) - G' lambda,
 //           G v' + gamma_phi + 2 alpha (G v + phi_t) + beta^2 phi
-// lambda and mu are algebraic and kept out of IDA's error test (IDASetId + IDASetSuppressAlg).
+// lambda and mu are algebraic and kept out of IDA's error test (IDASetId + IDASetSuppressAlg);
+// index-3 keeps v out of it too (the error test then sees q only).
 // Small systems use IDA's dense solver with its difference-quotient Newton matrix; large ones
 // KLU with a Newton matrix assembled here in compressed columns from exact pieces: M, G, G',
 // and the geometric stiffness sum_i w_i Hess(phi_i) of each constraint, computed from jets by
@@ -528,14 +529,18 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d unknowns", w->neq);
     goto fail;
   }
-  // differential q, v; algebraic lambda, mu (out of the error test). Absolute tolerances:
-  // opts.atol for q and v; multipliers and mu get loose ones, they only weigh Newton steps.
+  // error test on q and v; lambda and mu (algebraic) out of it. Index-3 keeps only q in
+  // the error test, the usual practice for the higher-index variables of a BDF code (Brenan,
+  // Campbell and Petzold, sec. 5.4): with v in it the steps collapse at rtol <= 1e-6.
+  // Absolute tolerances: opts.atol for q and v; multipliers and mu get loose ones, they only
+  // weigh Newton corrections.
   {
+    int nerr = (form == DAL_FORM_INDEX3 ? 1 : 2) * w->n;
     double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
     double fscale = 0.0;
     for (int r = 0; r < w->m; ++r) fscale = fmax(fscale, fabs(st->lambda[r]));
     for (int i = 0; i < w->neq; ++i) {
-      id[i] = i < 2 * w->n ? 1.0 : 0.0;
+      id[i] = i < nerr ? 1.0 : 0.0;
       at[i] = opts->atol;
     }
     for (int r = 0; r < w->m; ++r) {
@@ -671,8 +676,8 @@ static int map_failure(ida_mem *w, int flag, double tfail) {
   case IDA_ERR_FAIL:
     code = DAL_E_STEP;
     what = "repeated error-test failures (step size underflow)";
-    remedy = "loosen the tolerances or check the forces for discontinuities; the index-3 "
-             "form fails this way at tight tolerances, use GGL";
+    remedy = "loosen the tolerances, or check the forces for discontinuities and the "
+             "constraints for a near-singular configuration";
     break;
   case IDA_CONV_FAIL:
   case IDA_NLS_FAIL:
