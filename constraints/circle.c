@@ -25,7 +25,8 @@ static int circle3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
     e[i] = dal_addc(in[i], -p[1 + i]);
     h = dal_add(h, dal_scale(e[i], n[i]));
   }
-  for (int i = 0; i < 3; ++i) e[i] = dal_sub(e[i], dal_scale(h, n[i]));
+  for (int i = 0; i < 3; ++i)
+    e[i] = dal_sub(e[i], dal_scale(h, n[i]));
   out[0] = h;
   out[1] = dal_addc(dal_norm(e, 3), -p[0]);
   return 0;
@@ -33,23 +34,33 @@ static int circle3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
 
 // the circle's plane contains the vertical through c and the direction (cos a, sin a, 0),
 // a = w t + phi0; rows: n(t).(r - c) with n = (-sin a, cos a, 0), and |r - c| - R
-static int turning_circle(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
-                          void *ctx) {
+static int turning_circle(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
   (void)ctx;
   dal_jet a = dal_addc(dal_scale(t, p[1]), p[2]);
   dal_jet e[3];
-  for (int i = 0; i < 3; ++i) e[i] = dal_addc(in[i], -p[3 + i]);
+  for (int i = 0; i < 3; ++i)
+    e[i] = dal_addc(in[i], -p[3 + i]);
   out[0] = dal_sub(dal_mul(e[1], dal_cos(a)), dal_mul(e[0], dal_sin(a)));
   out[1] = dal_addc(dal_norm(e, 3), -p[0]);
   return 0;
 }
 
-const dal_primitive dal_con_circle2 = {"on_circle2", 1, 2, 1, 3, circle2,
-                                       "in (x, y); param (R, cx, cy); out |r - c| - R"};
+const dal_primitive dal_con_circle2 = {
+    "on_circle2", 1, 2, 1, 3, circle2, "in (x, y); param (R, cx, cy); out |r - c| - R"};
 const dal_primitive dal_con_circle3 = {
-    "on_circle3", 1, 3, 2, 7, circle3,
+    "on_circle3",
+    1,
+    3,
+    2,
+    7,
+    circle3,
     "in (x, y, z); param (R, cx, cy, cz, nx, ny, nz); out (n.(r - c), |(r - c)_plane| - R)"};
 const dal_primitive dal_con_turning_circle = {
-    "turning_circle", 1, 3, 2, 6, turning_circle,
+    "turning_circle",
+    1,
+    3,
+    2,
+    6,
+    turning_circle,
     "in (x, y, z); param (R, w, phi0, cx, cy, cz); out (n(t).(r - c), |r - c| - R), "
     "n(t) = (-sin(w t + phi0), cos(w t + phi0), 0)"};

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Distance (rod) constraints: between two particles, and from a particle to a fixed or moving point.
+// Distance (rod) constraints: between two particles, and from a particle to a fixed or moving
+// point.
 #include <stddef.h>
 
 #include "dalembert/primitives.h"
@@ -8,7 +9,8 @@
 // |b - a| - L over d components, a and b given as jet arrays
 static dal_jet rod(const dal_jet *a, const dal_jet *b, double L, int d) {
   dal_jet e[3];
-  for (int i = 0; i < d; ++i) e[i] = dal_sub(b[i], a[i]);
+  for (int i = 0; i < d; ++i)
+    e[i] = dal_sub(b[i], a[i]);
   return dal_addc(dal_norm(e, d), -L);
 }
 
@@ -29,17 +31,18 @@ static int distance3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
 // the anchor x0 + x(t) (x = 0 without a moving-point context) as jets
 static int anchor_point(dal_jet t, const double *x0, void *ctx, dal_jet *x, int d) {
   const dal_moving_point *mp = ctx;
-  for (int i = 0; i < d; ++i) x[i] = dal_const(0.0);
+  for (int i = 0; i < d; ++i)
+    x[i] = dal_const(0.0);
   if (mp && mp->fn) {
     int rc = mp->fn(t, x, mp->ctx);
     if (rc) return rc;
   }
-  for (int i = 0; i < d; ++i) x[i] = dal_addc(x[i], x0[i]);
+  for (int i = 0; i < d; ++i)
+    x[i] = dal_addc(x[i], x0[i]);
   return 0;
 }
 
-static int anchor(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx,
-                  int d) {
+static int anchor(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx, int d) {
   dal_jet x[3];
   int rc = anchor_point(t, p + 1, ctx, x, d);
   if (rc) return rc;
@@ -55,15 +58,24 @@ static int anchor3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
   return anchor(in, t, p, out, ctx, 3);
 }
 
-const dal_primitive dal_con_distance2 = {"distance2", 1, 4, 1, 1, distance2,
-                                         "in (xa, ya, xb, yb); param (L); out |b - a| - L"};
+const dal_primitive dal_con_distance2 = {
+    "distance2", 1, 4, 1, 1, distance2, "in (xa, ya, xb, yb); param (L); out |b - a| - L"};
 const dal_primitive dal_con_distance3 = {
-    "distance3", 1, 6, 1, 1, distance3,
-    "in (xa, ya, za, xb, yb, zb); param (L); out |b - a| - L"};
+    "distance3", 1, 6, 1, 1, distance3, "in (xa, ya, za, xb, yb, zb); param (L); out |b - a| - L"};
 const dal_primitive dal_con_anchor2 = {
-    "anchor2", 1, 2, 1, 3, anchor2,
+    "anchor2",
+    1,
+    2,
+    1,
+    3,
+    anchor2,
     "in (x, y); param (L, x0, y0); ctx NULL or dal_moving_point; out |r - (x0 + x(t))| - L"};
 const dal_primitive dal_con_anchor3 = {
-    "anchor3", 1, 3, 1, 4, anchor3,
+    "anchor3",
+    1,
+    3,
+    1,
+    4,
+    anchor3,
     "in (x, y, z); param (L, x0, y0, z0); ctx NULL or dal_moving_point; "
     "out |r - (x0 + x(t))| - L"};

@@ -29,7 +29,8 @@ static int line3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, vo
   u[k] = 1.0;
   double e1[3] = {a[1] * u[2] - a[2] * u[1], a[2] * u[0] - a[0] * u[2], a[0] * u[1] - a[1] * u[0]};
   double n1 = sqrt(e1[0] * e1[0] + e1[1] * e1[1] + e1[2] * e1[2]);
-  for (int i = 0; i < 3; ++i) e1[i] /= n1;
+  for (int i = 0; i < 3; ++i)
+    e1[i] /= n1;
   double e2[3] = {a[1] * e1[2] - a[2] * e1[1], a[2] * e1[0] - a[0] * e1[2],
                   a[0] * e1[1] - a[1] * e1[0]};
   dal_jet h1 = dal_const(0.0), h2 = dal_const(0.0);
@@ -45,8 +46,7 @@ static int line3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, vo
 
 // 2D line through c at angle a(t) = w t + phi0 from the x axis:
 // -(x - cx) sin a + (y - cy) cos a
-static int turning_line2(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
-                         void *ctx) {
+static int turning_line2(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
   (void)ctx;
   dal_jet a = dal_addc(dal_scale(t, p[2]), p[3]);
   dal_jet ex = dal_addc(in[0], -p[0]), ey = dal_addc(in[1], -p[1]);
@@ -55,13 +55,28 @@ static int turning_line2(const dal_jet *in, dal_jet t, const double *p, dal_jet 
 }
 
 const dal_primitive dal_con_line2 = {
-    "on_line2", 1, 2, 1, 4, line2,
+    "on_line2",
+    1,
+    2,
+    1,
+    4,
+    line2,
     "in (x, y); param (cx, cy, ax, ay); out signed distance from the line c + s a"};
 const dal_primitive dal_con_line3 = {
-    "on_line3", 1, 3, 2, 6, line3,
+    "on_line3",
+    1,
+    3,
+    2,
+    6,
+    line3,
     "in (x, y, z); param (cx, cy, cz, ax, ay, az); out (e1.(r - c), e2.(r - c)), e1, e2 "
     "orthonormal and normal to a"};
 const dal_primitive dal_con_turning_line2 = {
-    "turning_line2", 1, 2, 1, 4, turning_line2,
+    "turning_line2",
+    1,
+    2,
+    1,
+    4,
+    turning_line2,
     "in (x, y); param (cx, cy, w, phi0); out -(x - cx) sin a + (y - cy) cos a, "
     "a = w t + phi0"};

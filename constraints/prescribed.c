@@ -17,5 +17,10 @@ static int prescribed(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
 }
 
 const dal_primitive dal_con_prescribed = {
-    "prescribed", 1, 1, 1, 1, prescribed,
+    "prescribed",
+    1,
+    1,
+    1,
+    1,
+    prescribed,
     "in (q); param (q0); ctx NULL or dal_prescribed; out q - (q0 + f(t))"};

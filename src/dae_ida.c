@@ -77,8 +77,10 @@ static void silent_handler(int code, const char *module, const char *function, c
 static void unknown_name(const ida_mem *w, int i, char *buf, size_t len) {
   const dal_system *sys = w->sys;
   int n = w->n;
-  if (i < n) snprintf(buf, len, "q[%d] (coordinate '%s')", i, sys->coord_names[i]);
-  else if (i < 2 * n) snprintf(buf, len, "v[%d] (velocity of '%s')", i - n, sys->coord_names[i - n]);
+  if (i < n)
+    snprintf(buf, len, "q[%d] (coordinate '%s')", i, sys->coord_names[i]);
+  else if (i < 2 * n)
+    snprintf(buf, len, "v[%d] (velocity of '%s')", i - n, sys->coord_names[i - n]);
   else if (i < w->off_l + w->m)
     snprintf(buf, len, "lambda[%d] (constraint '%s')", i - w->off_l,
              sys->con[sys->row_con[i - w->off_l]].name);
@@ -127,14 +129,18 @@ static int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void *data)
   const double *v = y + n, *lam = y + w->off_l, *vd = yd + n;
   double *Fq = F, *Fv = F + n, *Fl = F + w->off_l;
   // Fq = q' - v (+ G' mu)
-  if (w->form == DAL_FORM_GGL && m) dal__gt_apply(sys, st, y + w->off_mu, Fq);
-  else memset(Fq, 0, (size_t)n * sizeof(double));
-  for (int i = 0; i < n; ++i) Fq[i] += yd[i] - v[i];
+  if (w->form == DAL_FORM_GGL && m)
+    dal__gt_apply(sys, st, y + w->off_mu, Fq);
+  else
+    memset(Fq, 0, (size_t)n * sizeof(double));
+  for (int i = 0; i < n; ++i)
+    Fq[i] += yd[i] - v[i];
   // Fv = M v' - (Q - c) - G' lambda
   dal__mass_apply(sys, st, vd, Fv);
   double *gl = dal__kkt_scratch(st, 0);
   if (m) dal__gt_apply(sys, st, lam, gl);
-  for (int i = 0; i < n; ++i) Fv[i] -= st->Q[i] - st->c[i] + (m ? gl[i] : 0.0);
+  for (int i = 0; i < n; ++i)
+    Fv[i] -= st->Q[i] - st->c[i] + (m ? gl[i] : 0.0);
   // constraint rows
   if (w->form == DAL_FORM_GGL) {
     for (int r = 0; r < m; ++r) {
@@ -151,7 +157,8 @@ static int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void *data)
       const int *dc = sys->cdep + c->dep_off;
       const double *Gc = st->G + c->g_off;
       for (int r = 0; r < c->prim->nout; ++r)
-        for (int k = 0; k < c->ndep; ++k) Fl[c->row + r] += Gc[r * c->ndep + k] * vd[dc[k]];
+        for (int k = 0; k < c->ndep; ++k)
+          Fl[c->row + r] += Gc[r * c->ndep + k] * vd[dc[k]];
     }
     for (int r = 0; r < m; ++r)
       Fl[r] += st->gphi[r] + 2.0 * al * st->phidot[r] + be * be * st->phi[r];
@@ -167,8 +174,10 @@ static int find_entry(const ida_mem *w, int row, int col) {
   while (lo <= hi) {
     int mid = (lo + hi) / 2;
     if (w->rowind[mid] == row) return mid;
-    if (w->rowind[mid] < row) lo = mid + 1;
-    else hi = mid - 1;
+    if (w->rowind[mid] < row)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
   }
   return -1;
 }
@@ -193,10 +202,12 @@ static int con_dir(ida_mem *w, const dal_con *c, const double *dir, double tdot)
   int d = sys->dim, k = 0;
   const int *parts = sys->ipool + c->part_off, *coords = sys->ipool + c->coord_off;
   for (int a = 0; a < c->npart; ++a)
-    for (int b = 0; b < d; ++b, ++k) st->jin[k] = dal_var(st->r[parts[a] * d + b], dir[k]);
-  for (int i = 0; i < c->ncoord; ++i, ++k) st->jin[k] = dal_var(st->q[coords[i]], dir[k]);
-  int rc = c->prim->eval(st->jin, dal_var(st->t, tdot), sys->ppool + c->param_off, st->jout,
-                         c->ctx);
+    for (int b = 0; b < d; ++b, ++k)
+      st->jin[k] = dal_var(st->r[parts[a] * d + b], dir[k]);
+  for (int i = 0; i < c->ncoord; ++i, ++k)
+    st->jin[k] = dal_var(st->q[coords[i]], dir[k]);
+  int rc =
+      c->prim->eval(st->jin, dal_var(st->t, tdot), sys->ppool + c->param_off, st->jout, c->ctx);
   if (rc) {
     char what[160];
     snprintf(what, sizeof what, "constraint '%s' ('%s')", c->name, c->prim->name);
@@ -215,8 +226,10 @@ static int con_curvature(ida_mem *w, const dal_con *c) {
   // local velocities udot
   int k = 0;
   for (int a = 0; a < c->npart; ++a)
-    for (int b = 0; b < d; ++b) w->udot[k++] = st->v[parts[a] * d + b];
-  for (int i = 0; i < c->ncoord; ++i) w->udot[k++] = st->qdot[coords[i]];
+    for (int b = 0; b < d; ++b)
+      w->udot[k++] = st->v[parts[a] * d + b];
+  for (int i = 0; i < c->ncoord; ++i)
+    w->udot[k++] = st->qdot[coords[i]];
   memset(dir, 0, (size_t)nin * sizeof(double));
   // diagonal: along e_i
   for (int i = 0; i < nin; ++i) {
@@ -224,7 +237,8 @@ static int con_curvature(ida_mem *w, const dal_con *c) {
     rc = con_dir(w, c, dir, 0.0);
     dir[i] = 0.0;
     if (rc) return rc;
-    for (int r = 0; r < nout; ++r) H[(r * nin + i) * nin + i] = st->jout[r].dd;
+    for (int r = 0; r < nout; ++r)
+      H[(r * nin + i) * nin + i] = st->jout[r].dd;
   }
   // off-diagonal by polarization: along e_i + e_j
   for (int i = 0; i < nin; ++i)
@@ -234,8 +248,7 @@ static int con_curvature(ida_mem *w, const dal_con *c) {
       dir[i] = dir[j] = 0.0;
       if (rc) return rc;
       for (int r = 0; r < nout; ++r) {
-        double h = 0.5 * (st->jout[r].dd - H[(r * nin + i) * nin + i] -
-                          H[(r * nin + j) * nin + j]);
+        double h = 0.5 * (st->jout[r].dd - H[(r * nin + i) * nin + i] - H[(r * nin + j) * nin + j]);
         H[(r * nin + i) * nin + j] = H[(r * nin + j) * nin + i] = h;
       }
     }
@@ -243,7 +256,8 @@ static int con_curvature(ida_mem *w, const dal_con *c) {
   rc = con_dir(w, c, w->udot, 1.0);
   if (rc) return rc;
   double *g0 = w->g0;
-  for (int r = 0; r < nout; ++r) g0[r] = st->jout[r].dd;
+  for (int r = 0; r < nout; ++r)
+    g0[r] = st->jout[r].dd;
   for (int i = 0; i < nin; ++i) {
     w->udot[i] += 1.0;
     rc = con_dir(w, c, w->udot, 1.0);
@@ -271,13 +285,16 @@ static void local_chain(ida_mem *w, const dal_con *c) {
     const double *Jp = st->J + sys->pj_off[p];
     int col = 0;
     for (int cp = 0; cp < ndp; ++cp) {
-      while (dc[col] != dp[cp]) ++col;
-      for (int b = 0; b < d; ++b) w->Ju[(a * d + b) * nd + col] = Jp[b * ndp + cp];
+      while (dc[col] != dp[cp])
+        ++col;
+      for (int b = 0; b < d; ++b)
+        w->Ju[(a * d + b) * nd + col] = Jp[b * ndp + cp];
     }
   }
   for (int i = 0; i < c->ncoord; ++i) {
     int col = 0;
-    while (dc[col] != coords[i]) ++col;
+    while (dc[col] != coords[i])
+      ++col;
     w->Ju[(c->npart * d + i) * nd + col] += 1.0;
   }
 }
@@ -288,14 +305,16 @@ static void chained_hessian(ida_mem *w, const dal_con *c, const double *wt) {
   double *Hs = w->tmp; // nin x nin then reused
   memset(Hs, 0, (size_t)nin * (size_t)nin * sizeof(double));
   for (int r = 0; r < nout; ++r)
-    for (int i = 0; i < nin * nin; ++i) Hs[i] += wt[r] * w->H[r * nin * nin + i];
+    for (int i = 0; i < nin * nin; ++i)
+      Hs[i] += wt[r] * w->H[r * nin * nin + i];
   for (int a = 0; a < nd; ++a)
     for (int b = 0; b < nd; ++b) {
       double s = 0.0;
       for (int i = 0; i < nin; ++i) {
         double ji = w->Ju[i * nd + a];
         if (ji == 0.0) continue;
-        for (int j = 0; j < nin; ++j) s += ji * Hs[i * nin + j] * w->Ju[j * nd + b];
+        for (int j = 0; j < nin; ++j)
+          s += ji * Hs[i * nin + j] * w->Ju[j * nd + b];
       }
       w->Hq[a * nd + b] = s;
     }
@@ -319,7 +338,8 @@ static int assemble(ida_mem *w, double cj, const double *y) {
     for (int a = 0; a < nd; ++a)
       for (int b = 0; b < nd; ++b) {
         double s = 0.0;
-        for (int c = 0; c < d; ++c) s += Jp[c * nd + a] * Jp[c * nd + b];
+        for (int c = 0; c < d; ++c)
+          s += Jp[c * nd + a] * Jp[c * nd + b];
         jadd(w, n + dp[a], n + dp[b], cj * sys->mass[p] * s);
       }
   }
@@ -341,9 +361,9 @@ static int assemble(ida_mem *w, double cj, const double *y) {
         int j = dc[k];
         jadd(w, n + j, w->off_l + row, -g); // -G' lambda in the v rows
         if (w->form == DAL_FORM_GGL) {
-          jadd(w, j, w->off_mu + row, g);     // G' mu in the q rows
-          jadd(w, w->off_l + row, n + j, g);  // G v
-          jadd(w, w->off_mu + row, j, g);     // phi
+          jadd(w, j, w->off_mu + row, g);    // G' mu in the q rows
+          jadd(w, w->off_l + row, n + j, g); // G v
+          jadd(w, w->off_mu + row, j, g);    // phi
         } else if (w->form == DAL_FORM_INDEX3) {
           jadd(w, w->off_l + row, j, g); // phi
         } else {
@@ -354,7 +374,8 @@ static int assemble(ida_mem *w, double cj, const double *y) {
         if (w->form != DAL_FORM_INDEX3) {
           double s = 0.0;
           if (!w->recording)
-            for (int i = 0; i < nin; ++i) s += w->Ju[i * nd + k] * w->hv[r * nin + i];
+            for (int i = 0; i < nin; ++i)
+              s += w->Ju[i * nd + k] * w->hv[r * nin + i];
           if (w->form == DAL_FORM_GGL) {
             jadd(w, w->off_l + row, j, s);
           } else {
@@ -367,11 +388,13 @@ static int assemble(ida_mem *w, double cj, const double *y) {
     // geometric stiffness: -sum lambda_r H_r in the v rows, +sum mu_r H_r in the q rows
     if (!w->recording) chained_hessian(w, c, y + w->off_l + c->row);
     for (int a = 0; a < nd; ++a)
-      for (int b = 0; b < nd; ++b) jadd(w, n + dc[a], dc[b], w->recording ? 0.0 : -w->Hq[a * nd + b]);
+      for (int b = 0; b < nd; ++b)
+        jadd(w, n + dc[a], dc[b], w->recording ? 0.0 : -w->Hq[a * nd + b]);
     if (w->form == DAL_FORM_GGL) {
       if (!w->recording) chained_hessian(w, c, y + w->off_mu + c->row);
       for (int a = 0; a < nd; ++a)
-        for (int b = 0; b < nd; ++b) jadd(w, dc[a], dc[b], w->recording ? 0.0 : w->Hq[a * nd + b]);
+        for (int b = 0; b < nd; ++b)
+          jadd(w, dc[a], dc[b], w->recording ? 0.0 : w->Hq[a * nd + b]);
     }
   }
   return DAL_OK;
@@ -406,7 +429,8 @@ static int build_pattern(ida_mem *w) {
     w->rowind[i] = (sunindextype)(w->keys[i] % w->neq);
     w->colptr[w->keys[i] / w->neq + 1]++;
   }
-  for (int j = 0; j < w->neq; ++j) w->colptr[j + 1] += w->colptr[j];
+  for (int j = 0; j < w->neq; ++j)
+    w->colptr[j + 1] += w->colptr[j];
   free(w->keys);
   w->keys = NULL;
   return 0;
@@ -474,25 +498,25 @@ static void load_y(ida_mem *w) {
   memcpy(yp + n, st->qddot, (size_t)n * sizeof(double));
 }
 
-#define IDA_CHECK(call)                                                                        \
-  do {                                                                                         \
-    int f_ = (call);                                                                           \
-    if (f_ < 0) {                                                                              \
-      st->stats.foreign_code = f_;                                                             \
-      rc = DAL_FAIL(st, DAL_E_SOLVER, "IDA setup failed in %s (flag %d): %s", #call, f_,       \
-                    w->ida_msg);                                                               \
-      goto fail;                                                                               \
-    }                                                                                          \
+#define IDA_CHECK(call)                                                                            \
+  do {                                                                                             \
+    int f_ = (call);                                                                               \
+    if (f_ < 0) {                                                                                  \
+      st->stats.foreign_code = f_;                                                                 \
+      rc = DAL_FAIL(st, DAL_E_SOLVER, "IDA setup failed in %s (flag %d): %s", #call, f_,           \
+                    w->ida_msg);                                                                   \
+      goto fail;                                                                                   \
+    }                                                                                              \
   } while (0)
 
-int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                    void **mem) {
+int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem) {
   *mem = NULL;
   dal_formulation form = opts->form == DAL_FORM_AUTO ? DAL_FORM_GGL : opts->form;
   if (form != DAL_FORM_GGL && form != DAL_FORM_INDEX3 && form != DAL_FORM_INDEX1)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "the DAE integrator (IDA) runs the GGL, index-3 and index-1 forms, not "
-                    "'%s'", dal_formulation_name(form));
+                    "'%s'",
+                    dal_formulation_name(form));
   if (sys->lag)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "a Lagrangian system has no particles or constraints for the DAE "
@@ -511,9 +535,9 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   w->off_l = 2 * w->n;
   w->off_mu = form == DAL_FORM_GGL ? 2 * w->n + w->m : -1;
   w->neq = 2 * w->n + (form == DAL_FORM_GGL ? 2 : 1) * w->m;
-  w->sparse = opts->linsol == DAL_LINSOL_KLU ||
-              (opts->linsol == DAL_LINSOL_AUTO &&
-               (w->neq >= opts->sparse_threshold || !sys->dense_M));
+  w->sparse =
+      opts->linsol == DAL_LINSOL_KLU ||
+      (opts->linsol == DAL_LINSOL_AUTO && (w->neq >= opts->sparse_threshold || !sys->dense_M));
   if (SUNContext_Create(NULL, &w->ctx) != 0) {
     free(w);
     return DAL_FAIL(st, DAL_E_NOMEM, "IDA: cannot create the SUNDIALS context");
@@ -538,7 +562,8 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     int nerr = (form == DAL_FORM_INDEX3 ? 1 : 2) * w->n;
     double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
     double fscale = 0.0;
-    for (int r = 0; r < w->m; ++r) fscale = fmax(fscale, fabs(st->lambda[r]));
+    for (int r = 0; r < w->m; ++r)
+      fscale = fmax(fscale, fabs(st->lambda[r]));
     for (int i = 0; i < w->neq; ++i) {
       id[i] = i < nerr ? 1.0 : 0.0;
       at[i] = opts->atol;
@@ -719,8 +744,8 @@ static int map_failure(ida_mem *w, int flag, double tfail) {
   return DAL_FAIL(st, code,
                   "IDA (%s form, %s) at t=%.17g: %s; error dominated by %s; %s; the state "
                   "holds the last accepted step (t=%.17g)%s [IDA flag %d: %.120s]",
-                  form_name(w->form), w->sparse ? "KLU" : "dense", tfail, what, var, remedy,
-                  st->t, cause, flag, w->ida_msg);
+                  form_name(w->form), w->sparse ? "KLU" : "dense", tfail, what, var, remedy, st->t,
+                  cause, flag, w->ida_msg);
 }
 
 int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout) {

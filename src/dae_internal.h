@@ -37,8 +37,7 @@ int dal__eval_constraints(const dal_system *sys, dal_state *st);
 /// max |phi| <= tol) then qdot onto G qdot + dphi/dt = 0 (M-orthogonal). Leaves kinematics,
 /// constraint rows and (when the velocity was projected) dynamics current. *iters receives the
 /// position iterations (nullable). No allocation.
-int dal__project_state(const dal_system *sys, dal_state *st, double tol, int maxit,
-                       int *iters);
+int dal__project_state(const dal_system *sys, dal_state *st, double tol, int maxit, int *iters);
 
 /// Rank check (diagnose.c): writes the named message into the state when G is rank
 /// deficient. Returns DAL_OK, DAL_E_CONSTRAINT or DAL_E_NOMEM; rep is nullable.

@@ -25,7 +25,8 @@ static void name_list(const dal_system *sys, const int *rows, int nrows, char *b
   int seen[8], ns = 0;
   for (int i = 0; i < nrows; ++i) {
     int c = sys->row_con[rows[i]], dup = 0;
-    for (int j = 0; j < ns; ++j) dup |= seen[j] == c;
+    for (int j = 0; j < ns; ++j)
+      dup |= seen[j] == c;
     if (!dup && ns < 8) seen[ns++] = c;
   }
   // sort by constraint index so the message reads in model order
@@ -71,11 +72,11 @@ int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report 
   // A = G' (n x m): column r is the gradient of row r
   dal__dense_G(sys, st, G, m);
   for (int r = 0; r < m; ++r)
-    for (int j = 0; j < n; ++j) A[(size_t)r * n + j] = G[(size_t)j * m + r];
+    for (int j = 0; j < n; ++j)
+      A[(size_t)r * n + j] = G[(size_t)j * m + r];
   lapack_int info = LAPACKE_dgeqp3(LAPACK_COL_MAJOR, n, m, A, n, jpvt, tau);
   if (info != 0) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "constraint check: QR of G' failed (LAPACK info %d)",
-                  (int)info);
+    rc = DAL_FAIL(st, DAL_E_NOMEM, "constraint check: QR of G' failed (LAPACK info %d)", (int)info);
     goto done;
   }
   int kmax = n < m ? n : m, rank = 0;
@@ -97,14 +98,16 @@ int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report 
   double zmax = 0.0;
   for (int i = rank - 1; i >= 0; --i) {
     double s = A[(size_t)rank * n + i];
-    for (int j = i + 1; j < rank; ++j) s -= A[(size_t)j * n + i] * z[j];
+    for (int j = i + 1; j < rank; ++j)
+      s -= A[(size_t)j * n + i] * z[j];
     z[i] = s / A[(size_t)i * n + i];
     if (fabs(z[i]) > zmax) zmax = fabs(z[i]);
   }
   for (int i = 0; i < rank; ++i)
     if (fabs(z[i]) > 1e-8 * zmax) rows[nrows++] = (int)jpvt[i] - 1;
   rep->ndependent = nrows;
-  for (int i = 0; i < nrows && i < 8; ++i) rep->rows[i] = rows[i];
+  for (int i = 0; i < nrows && i < 8; ++i)
+    rep->rows[i] = rows[i];
   char names[320], qs[256];
   int ncon = 0;
   name_list(sys, rows, nrows, names, sizeof names, &ncon);

@@ -50,13 +50,15 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
     if (!isfinite(res)) break;
     rc = dal__kkt_factor(sys, st, DAL_KKT_IDENTITY, "projection onto the constraints");
     if (rc) return rc;
-    for (int r = 0; r < m; ++r) b[r] = -st->phi[r];
+    for (int r = 0; r < m; ++r)
+      b[r] = -st->phi[r];
     dal__kkt_solve(sys, st, zero, b, dq, b);
     memcpy(q0, st->q, (size_t)n * sizeof(double));
     // backtrack while the residual grows (far guesses); accept the full step otherwise
     double s = 1.0, nres = INFINITY;
     for (int k = 0; k < 8; ++k, s *= 0.5) {
-      for (int j = 0; j < n; ++j) st->q[j] = q0[j] + s * dq[j];
+      for (int j = 0; j < n; ++j)
+        st->q[j] = q0[j] + s * dq[j];
       rc = dal__eval_constraints(sys, st);
       if (rc < 0 && rc != DAL_E_DOMAIN) return rc;
       nres = rc ? INFINITY : max_abs(st->phi, m, &worst);
@@ -98,14 +100,15 @@ static int project_velocities(const dal_system *sys, dal_state *st) {
   rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "velocity projection");
   if (rc) return rc;
   memset(zero, 0, (size_t)n * sizeof(double));
-  for (int r = 0; r < m; ++r) b[r] = -st->phidot[r];
+  for (int r = 0; r < m; ++r)
+    b[r] = -st->phidot[r];
   dal__kkt_solve(sys, st, zero, b, dv, b);
-  for (int j = 0; j < n; ++j) st->qdot[j] += dv[j];
+  for (int j = 0; j < n; ++j)
+    st->qdot[j] += dv[j];
   return dal__eval_constraints(sys, st);
 }
 
-int dal__project_state(const dal_system *sys, dal_state *st, double tol, int maxit,
-                       int *iters) {
+int dal__project_state(const dal_system *sys, dal_state *st, double tol, int maxit, int *iters) {
   if (iters) *iters = 0;
   if (sys->m == 0) return DAL_OK;
   int rc = dal__eval_constraints(sys, st);
@@ -116,8 +119,7 @@ int dal__project_state(const dal_system *sys, dal_state *st, double tol, int max
 }
 
 // the consistent initialization without touching integrator memory
-static int make_consistent(const dal_system *sys, dal_state *st, double tol,
-                           dal_init_report *rep) {
+static int make_consistent(const dal_system *sys, dal_state *st, double tol, dal_init_report *rep) {
   int n = sys->n, m = sys->m, rc;
   memset(rep, 0, sizeof *rep);
   rep->phi_row = rep->phidot_row = rep->dq_coord = rep->dqdot_coord = -1;
@@ -168,8 +170,7 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol,
   return DAL_OK;
 }
 
-int dal_make_consistent(const dal_system *sys, dal_state *st, double tol,
-                        dal_init_report *rep) {
+int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_init_report *rep) {
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "make_consistent: the state belongs to another system");
@@ -197,8 +198,8 @@ static void index1_from_state(const dal_system *sys, const dal_state *st, double
   memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
 }
 
-static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                      double t, const double *y, double *ydot) {
+static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
+                      const double *y, double *ydot) {
   int n = sys->n, m = sys->m, rc;
   index1_to_state(sys, st, t, y);
   if ((rc = dal__kinematics(sys, st)) != 0) return rc;
@@ -212,7 +213,8 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
     double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
     rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "index-1 right-hand side");
     if (rc == 0) {
-      for (int i = 0; i < n; ++i) a[i] = st->Q[i] - st->c[i];
+      for (int i = 0; i < n; ++i)
+        a[i] = st->Q[i] - st->c[i];
       for (int r = 0; r < m; ++r)
         b[r] = -(st->gphi[r] + 2.0 * al * st->phidot[r] + be * be * st->phi[r]);
       dal__kkt_solve(sys, st, a, b, st->qddot, st->lambda);
@@ -223,7 +225,8 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
     if (!isfinite(st->qddot[i])) {
       DAL_FAIL(st, DAL__RECOVERABLE,
                "index-1: acceleration of coordinate '%s' is %g at t=%.17g; the state may have "
-               "left the model's domain", sys->coord_names[i], st->qddot[i], t);
+               "left the model's domain",
+               sys->coord_names[i], st->qddot[i], t);
       return DAL__RECOVERABLE;
     }
   dal__finish(sys, st);

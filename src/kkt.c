@@ -54,8 +54,10 @@ static int csc_find(const struct dal_kkt *k, int row, int col) {
   while (lo <= hi) {
     int mid = (lo + hi) / 2;
     if (k->Ki[mid] == row) return mid;
-    if (k->Ki[mid] < row) lo = mid + 1;
-    else hi = mid - 1;
+    if (k->Ki[mid] < row)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
   }
   return -1;
 }
@@ -72,12 +74,14 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
   long long *key = malloc((cap + 1) * sizeof(long long));
   if (!key) return -1;
   size_t nt = 0;
-  for (int j = 0; j < n; ++j) key[nt++] = (long long)j * nk + j;
+  for (int j = 0; j < n; ++j)
+    key[nt++] = (long long)j * nk + j;
   for (int p = 0; p < sys->N; ++p) {
     const int *dp = sys->pdep + sys->pdep_off[p];
     int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
     for (int a = 0; a < nd; ++a)
-      for (int b = 0; b < nd; ++b) key[nt++] = (long long)dp[b] * nk + dp[a];
+      for (int b = 0; b < nd; ++b)
+        key[nt++] = (long long)dp[b] * nk + dp[a];
   }
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
@@ -110,9 +114,11 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
     k->Kp[col + 1]++;
   }
   free(key);
-  for (int j = 0; j < nk; ++j) k->Kp[j + 1] += k->Kp[j];
+  for (int j = 0; j < nk; ++j)
+    k->Kp[j + 1] += k->Kp[j];
   // position maps
-  for (int j = 0; j < n; ++j) k->dpos[j] = csc_find(k, j, j);
+  for (int j = 0; j < n; ++j)
+    k->dpos[j] = csc_find(k, j, j);
   k->mpos_off[0] = 0;
   for (int p = 0; p < sys->N; ++p) {
     int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
@@ -125,7 +131,8 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
     int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
     int *mp = k->mpos + k->mpos_off[p];
     for (int a = 0; a < nd; ++a)
-      for (int b = 0; b < nd; ++b) mp[a * nd + b] = csc_find(k, dp[a], dp[b]);
+      for (int b = 0; b < nd; ++b)
+        mp[a * nd + b] = csc_find(k, dp[a], dp[b]);
   }
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
@@ -192,16 +199,20 @@ void dal__kkt_free(struct dal_kkt *k) {
   free(k);
 }
 
-double *dal__kkt_scratch(dal_state *st, int i) { return st->kkt->scratch + (size_t)i * st->kkt->nk; }
+double *dal__kkt_scratch(dal_state *st, int i) {
+  return st->kkt->scratch + (size_t)i * st->kkt->nk;
+}
 
 void dal__dense_G(const dal_system *sys, const dal_state *st, double *G, int ld) {
-  for (int j = 0; j < sys->n; ++j) memset(G + (size_t)j * ld, 0, (size_t)sys->m * sizeof(double));
+  for (int j = 0; j < sys->n; ++j)
+    memset(G + (size_t)j * ld, 0, (size_t)sys->m * sizeof(double));
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
     const int *dc = sys->cdep + c->dep_off;
     const double *Gc = st->G + c->g_off;
     for (int r = 0; r < c->prim->nout; ++r)
-      for (int k = 0; k < c->ndep; ++k) G[(size_t)dc[k] * ld + c->row + r] = Gc[r * c->ndep + k];
+      for (int k = 0; k < c->ndep; ++k)
+        G[(size_t)dc[k] * ld + c->row + r] = Gc[r * c->ndep + k];
   }
 }
 
@@ -213,7 +224,8 @@ void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lam
     const double *Gc = st->G + c->g_off;
     for (int r = 0; r < c->prim->nout; ++r) {
       double l = lambda[c->row + r];
-      for (int k = 0; k < c->ndep; ++k) y[dc[k]] += Gc[r * c->ndep + k] * l;
+      for (int k = 0; k < c->ndep; ++k)
+        y[dc[k]] += Gc[r * c->ndep + k] * l;
     }
   }
 }
@@ -240,20 +252,22 @@ static int factor_dense(const dal_system *sys, dal_state *st, int metric, const 
   int n = k->n, nk = k->nk;
   double *K = k->K;
   // lower triangle: A, then G below it; the (2,2) block is zero
-  for (int j = 0; j < nk; ++j) memset(K + (size_t)j * nk, 0, (size_t)nk * sizeof(double));
+  for (int j = 0; j < nk; ++j)
+    memset(K + (size_t)j * nk, 0, (size_t)nk * sizeof(double));
   if (metric == DAL_KKT_MASS)
     for (int j = 0; j < n; ++j)
       memcpy(K + (size_t)j * nk + j, st->M + (size_t)j * n + j, (size_t)(n - j) * sizeof(double));
   else
-    for (int j = 0; j < n; ++j) K[(size_t)j * nk + j] = 1.0;
+    for (int j = 0; j < n; ++j)
+      K[(size_t)j * nk + j] = 1.0;
   dal__dense_G(sys, st, K + n, nk);
   double anorm = LAPACKE_dlansy_work(LAPACK_COL_MAJOR, '1', 'L', nk, K, nk, k->work);
-  lapack_int info = LAPACKE_dsytrf_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, k->work,
-                                        k->lwork);
+  lapack_int info =
+      LAPACKE_dsytrf_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, k->work, k->lwork);
   double rcond = 0.0;
   if (info == 0)
-    info = LAPACKE_dsycon_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, anorm, &rcond,
-                               k->work, k->iwork);
+    info = LAPACKE_dsycon_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, anorm, &rcond, k->work,
+                               k->iwork);
   if (info != 0 || !(rcond >= KKT_RCOND_MIN)) return kkt_singular(sys, st, what, rcond);
   return DAL_OK;
 }
@@ -270,12 +284,14 @@ static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const
       for (int a = 0; a < nd; ++a)
         for (int b = 0; b < nd; ++b) {
           double s = 0.0;
-          for (int c = 0; c < d; ++c) s += Jp[c * nd + a] * Jp[c * nd + b];
+          for (int c = 0; c < d; ++c)
+            s += Jp[c * nd + a] * Jp[c * nd + b];
           k->Kx[mp[a * nd + b]] += sys->mass[p] * s;
         }
     }
   } else {
-    for (int j = 0; j < k->n; ++j) k->Kx[k->dpos[j]] = 1.0;
+    for (int j = 0; j < k->n; ++j)
+      k->Kx[k->dpos[j]] = 1.0;
   }
   for (int e = 0; e < sys->g_total; ++e) {
     k->Kx[k->gpos[2 * e]] = st->G[e];
@@ -326,7 +342,8 @@ void dal__kkt_solve(const dal_system *sys, dal_state *st, const double *a, const
     LAPACKE_dsytrs(LAPACK_COL_MAJOR, 'L', nk, 1, k->K, nk, k->ipiv, k->rhs, nk);
   }
   memcpy(x, k->rhs, (size_t)n * sizeof(double));
-  for (int r = 0; r < m; ++r) y[r] = -k->rhs[n + r];
+  for (int r = 0; r < m; ++r)
+    y[r] = -k->rhs[n + r];
 }
 
 int dal__solve_kkt(const dal_system *sys, dal_state *st) {
@@ -334,8 +351,10 @@ int dal__solve_kkt(const dal_system *sys, dal_state *st) {
   int rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "forward");
   if (rc) return rc;
   double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
-  for (int i = 0; i < n; ++i) a[i] = st->Q[i] - st->c[i];
-  for (int r = 0; r < m; ++r) b[r] = -st->gphi[r];
+  for (int i = 0; i < n; ++i)
+    a[i] = st->Q[i] - st->c[i];
+  for (int r = 0; r < m; ++r)
+    b[r] = -st->gphi[r];
   dal__kkt_solve(sys, st, a, b, st->qddot, st->lambda);
   return DAL_OK;
 }
@@ -363,8 +382,10 @@ int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
     const double *param = sys->ppool + c->param_off;
     int kin = 0;
     for (int a = 0; a < c->npart; ++a)
-      for (int b = 0; b < d; ++b) st->jin[kin++] = dal_const(st->r[parts[a] * d + b]);
-    for (int i = 0; i < c->ncoord; ++i) st->jin[kin++] = dal_const(st->q[coords[i]]);
+      for (int b = 0; b < d; ++b)
+        st->jin[kin++] = dal_const(st->r[parts[a] * d + b]);
+    for (int i = 0; i < c->ncoord; ++i)
+      st->jin[kin++] = dal_const(st->q[coords[i]]);
     for (int i = 0; i < c->npart * d; ++i) {
       st->jin[i].d = 1.0;
       int rc = prim->eval(st->jin, dal_const(st->t), param, st->jout, c->ctx);
@@ -376,7 +397,8 @@ int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
         return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
       }
       double f = 0.0;
-      for (int r = 0; r < prim->nout; ++r) f += st->jout[r].d * st->lambda[c->row + r];
+      for (int r = 0; r < prim->nout; ++r)
+        f += st->jout[r].d * st->lambda[c->row + r];
       F[parts[i / d] * d + i % d] += f;
     }
   }

@@ -55,8 +55,7 @@ static int drive_path(dal_jet t, dal_jet *x, void *ctx) {
 }
 
 /// Cartesian pendulum: one particle (x, y), rod of length l to the pivot (x0, y0) + x(t)
-static dal_system *cart_pendulum(double l, double m, double x0, double y0,
-                                 dal_moving_point *mp) {
+static dal_system *cart_pendulum(double l, double m, double x0, double y0, dal_moving_point *mp) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
@@ -66,8 +65,8 @@ static dal_system *cart_pendulum(double l, double m, double x0, double y0,
   if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
   if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
-                                           mp, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par, mp, NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "cart_pendulum: %s\n", dal_builder_errmsg(b));
   dal_builder_destroy(b);
@@ -111,13 +110,16 @@ static dal_system *double_pendulum(int dae, double l1, double l2, double m1, dou
     int c[4];
     const char *nm[4] = {"x1", "y1", "x2", "y2"};
     double rod1[3] = {l1, 0, 0};
-    for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(b, nm[i], &c[i]);
+    for (int i = 0; i < 4 && !rc; ++i)
+      rc = dal_builder_add_coord(b, nm[i], &c[i]);
     if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
     if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_add_constraint(b, "rod1", &dal_con_anchor2, 1, &p[0], 0, NULL, 3,
-                                             rod1, NULL, NULL);
-    if (!rc) rc = dal_builder_add_constraint(b, "rod2", &dal_con_distance2, 2, p, 0, NULL, 1,
-                                             &l2, NULL, NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "rod1", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod1, NULL,
+                                      NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "rod2", &dal_con_distance2, 2, p, 0, NULL, 1, &l2, NULL,
+                                      NULL);
   }
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "double_pendulum: %s\n", dal_builder_errmsg(b));
@@ -144,13 +146,15 @@ static dal_system *chain(int N) {
     snprintf(nm, sizeof nm, "rod%d", k);
     if (k == 0) {
       double par[3] = {1.0, 0.0, 0.0};
-      if (!rc) rc = dal_builder_add_constraint(b, nm, &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
-                                               NULL, NULL);
+      if (!rc)
+        rc =
+            dal_builder_add_constraint(b, nm, &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
     } else {
       int pp[2] = {k - 1, k};
       double L = 1.0;
-      if (!rc) rc = dal_builder_add_constraint(b, nm, &dal_con_distance2, 2, pp, 0, NULL, 1, &L,
-                                               NULL, NULL);
+      if (!rc)
+        rc = dal_builder_add_constraint(b, nm, &dal_con_distance2, 2, pp, 0, NULL, 1, &L, NULL,
+                                        NULL);
     }
   }
   if (!rc) rc = dal_builder_compile(b, &s);
@@ -183,7 +187,8 @@ static int set_from_particles(const dal_system *sys, dal_state *st, const dal_st
 
 static double max_abs(const double *x, int n) {
   double m = 0.0;
-  for (int i = 0; i < n; ++i) m = fmax(m, fabs(x[i]));
+  for (int i = 0; i < n; ++i)
+    m = fmax(m, fabs(x[i]));
   return m;
 }
 
@@ -280,15 +285,17 @@ static void test_double_and_driven(void) {
       CHECK_OK(dal_advance(ms, a, &om, t));
       CHECK_OK(dal_advance(ds, b, &od, t));
       const double *r = dal_state_positions(a), *q = dal_state_q(b);
-      for (int i = 0; i < 4; ++i) emax = fmax(emax, fabs(q[i] - r[i]));
+      for (int i = 0; i < 4; ++i)
+        emax = fmax(emax, fabs(q[i] - r[i]));
       // the reactions of the minimal run are the constraint forces of the redundant one
       double F[4];
       CHECK_OK(dal_constraint_forces(ds, b, F));
       const double *N = dal_state_reactions(a);
-      for (int i = 0; i < 4; ++i) fmaxd = fmax(fmaxd, fabs(F[i] - N[i]) / 10.0);
+      for (int i = 0; i < 4; ++i)
+        fmaxd = fmax(fmaxd, fabs(F[i] - N[i]) / 10.0);
     }
-    printf("  double pendulum GGL vs minimal: %.2e (%.0fx rtol), forces %.2e\n", emax,
-           emax / tol, fmaxd);
+    printf("  double pendulum GGL vs minimal: %.2e (%.0fx rtol), forces %.2e\n", emax, emax / tol,
+           fmaxd);
     CHECK_MSG(emax < 1e3 * tol, "double pendulum error %g", emax);
     CHECK_MSG(fmaxd < 1e4 * tol, "constraint forces differ by %g", fmaxd);
     dal_state_destroy(a);
@@ -340,12 +347,14 @@ static void test_rotating_ring(void) {
   if (!rc) rc = dal_builder_compile(bm, &ms);
   int cc[3];
   if (!rc) rc = dal_builder_create(3, &bd);
-  for (int i = 0; i < 3 && !rc; ++i) rc = dal_builder_add_coord(bd, NULL, &cc[i]);
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(bd, NULL, &cc[i]);
   if (!rc) rc = dal_builder_add_particle(bd, "bead", 0.2, &p);
   if (!rc) rc = dal_builder_place(bd, p, &dal_map_cartesian3, -1, 3, cc, 0, NULL, NULL);
   if (!rc) rc = dal_builder_set_gravity(bd, g);
-  if (!rc) rc = dal_builder_add_constraint(bd, "ring", &dal_con_turning_circle, 1, &p, 0, NULL,
-                                           6, pc, NULL, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(bd, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, pc,
+                                    NULL, NULL);
   if (!rc) rc = dal_builder_compile(bd, &ds);
   CHECK_OK(rc);
   dal_builder_destroy(bm);
@@ -366,7 +375,8 @@ static void test_rotating_ring(void) {
     CHECK_OK(dal_advance(ms, a, &om, t));
     CHECK_OK(dal_advance(ds, b, &od, t));
     const double *r = dal_state_positions(a), *q = dal_state_q(b);
-    for (int i = 0; i < 3; ++i) emax = fmax(emax, fabs(q[i] - r[i]));
+    for (int i = 0; i < 3; ++i)
+      emax = fmax(emax, fabs(q[i] - r[i]));
     phimax = fmax(phimax, max_abs(dal_state_phi(b), 2));
   }
   printf("  rotating ring GGL vs minimal: %.2e (%.0fx rtol), residual %.1e\n", emax, emax / tol,
@@ -390,8 +400,9 @@ static void test_turning_line(void) {
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
   if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_constraint(b, "rod", &dal_con_turning_line2, 1, &p, 0, NULL, 4,
-                                           par, NULL, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "rod", &dal_con_turning_line2, 1, &p, 0, NULL, 4, par, NULL,
+                                    NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc);
@@ -442,8 +453,9 @@ static void test_prescribed(void) {
   if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
   if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_add_constraint(b, "motor", &dal_con_prescribed, 0, NULL, 1, &c, 1,
-                                           &th0, &pr, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "motor", &dal_con_prescribed, 0, NULL, 1, &c, 1, &th0, &pr,
+                                    NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc);
@@ -614,10 +626,12 @@ static void test_consistent_init(void) {
   if (!rc) rc = dal_builder_add_coord(bb, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(bb, "bob", 1.0, &p);
   if (!rc) rc = dal_builder_place(bb, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_constraint(bb, "left", &dal_con_anchor2, 1, &p, 0, NULL, 3, pa,
-                                           NULL, NULL);
-  if (!rc) rc = dal_builder_add_constraint(bb, "right", &dal_con_anchor2, 1, &p, 0, NULL, 3, pb,
-                                           NULL, NULL);
+  if (!rc)
+    rc =
+        dal_builder_add_constraint(bb, "left", &dal_con_anchor2, 1, &p, 0, NULL, 3, pa, NULL, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(bb, "right", &dal_con_anchor2, 1, &p, 0, NULL, 3, pb, NULL,
+                                    NULL);
   if (!rc) rc = dal_builder_compile(bb, &cs);
   dal_builder_destroy(bb);
   CHECK_OK(rc);
@@ -651,10 +665,11 @@ static void test_redundant(void) {
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p[0]);
   if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, p, 0, NULL, 3, par,
-                                           NULL, NULL);
-  if (!rc) rc = dal_builder_add_constraint(b, "rod_copy", &dal_con_anchor2, 1, p, 0, NULL, 3,
-                                           par, NULL, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, p, 0, NULL, 3, par, NULL, NULL);
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "rod_copy", &dal_con_anchor2, 1, p, 0, NULL, 3, par, NULL,
+                                    NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc);
@@ -707,8 +722,8 @@ static void test_redundant(void) {
   rc = dal_check_constraints(s, st, &rep);
   msg = dal_state_errmsg(st);
   CHECK(rc == DAL_E_CONSTRAINT && rep.rank == 5 && rep.m == 6);
-  CHECK_MSG(strstr(msg, "rank 5 of 6") && strstr(msg, "redundant") && strstr(msg, "'rod"),
-            "%s", msg);
+  CHECK_MSG(strstr(msg, "rank 5 of 6") && strstr(msg, "redundant") && strstr(msg, "'rod"), "%s",
+            msg);
   printf("  %s\n", msg);
   // dropping a diagonal leaves a full-rank set: the check passes
   dal_state_destroy(st);
@@ -732,14 +747,15 @@ static void test_klu_vs_dense(void) {
   CHECK_OK(dal_advance(s, a, &od, 1.0));
   CHECK_OK(dal_advance(s, b, &ok, 1.0));
   double diff = 0.0;
-  for (int i = 0; i < 2 * N; ++i) diff = fmax(diff, fabs(dal_state_q(a)[i] - dal_state_q(b)[i]));
+  for (int i = 0; i < 2 * N; ++i)
+    diff = fmax(diff, fabs(dal_state_q(a)[i] - dal_state_q(b)[i]));
   dal_stats sa, sb;
   dal_state_stats(a, &sa);
   dal_state_stats(b, &sb);
   printf("  chain N=5 dense vs KLU: %.2e; Newton iterations/step %.2f vs %.2f, residual "
          "evaluations %ld vs %ld\n",
-         diff, (double)sa.nonlin_iters / sa.steps, (double)sb.nonlin_iters / sb.steps,
-         sa.rhs_evals, sb.rhs_evals);
+         diff, (double)sa.nonlin_iters / sa.steps, (double)sb.nonlin_iters / sb.steps, sa.rhs_evals,
+         sb.rhs_evals);
   CHECK_MSG(diff < 1e3 * tol, "dense and KLU differ by %g", diff);
   // the exact Newton matrix converges at least as fast as the difference-quotient one
   CHECK((double)sb.nonlin_iters / sb.steps < 1.2 * (double)sa.nonlin_iters / sa.steps);
@@ -784,8 +800,8 @@ static void test_large_chain(void) {
   CHECK_OK(dal_advance(s, st, &o, 0.05));
   dal_state_energies(st, &e1);
   double phi = max_abs(dal_state_phi(st), N), phidot = max_abs(dal_state_phidot(st), N);
-  printf("  chain N=%d (KLU): residuals %.1e %.1e, relative energy change %.1e\n", N, phi,
-         phidot, fabs(e1.E - e0.E) / fabs(e0.E));
+  printf("  chain N=%d (KLU): residuals %.1e %.1e, relative energy change %.1e\n", N, phi, phidot,
+         fabs(e1.E - e0.E) / fabs(e0.E));
   CHECK(phi < 1e-7 && phidot < 1e-6);
   CHECK(fabs(e1.E - e0.E) < 1e-6 * fabs(e0.E));
   dal_state_destroy(st);
@@ -835,7 +851,8 @@ static void test_failures(void) {
     pd[i] = fabs(dal_state_phidot(st)[0]);
   }
   printf("  at rtol 1e-8 over 5 s: GGL error %.1e, |phidot| %.1e; index-3 error %.1e, "
-         "|phidot| %.1e\n", err[0], pd[0], err[1], pd[1]);
+         "|phidot| %.1e\n",
+         err[0], pd[0], err[1], pd[1]);
   CHECK(err[1] > 100.0 * err[0]);
   CHECK(pd[1] > tol && pd[1] > 100.0 * pd[0]);
   // an unrecoverable force callback: its status and name, the state at the last good step
@@ -850,8 +867,9 @@ static void test_failures(void) {
   if (!rc2) rc2 = dal_builder_add_particle(b, "bob", 1.0, &p);
   if (!rc2) rc2 = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
   if (!rc2) rc2 = dal_builder_add_force(b, failing_force, NULL);
-  if (!rc2) rc2 = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
-                                             NULL, NULL);
+  if (!rc2)
+    rc2 =
+        dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
   if (!rc2) rc2 = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc2);

@@ -92,8 +92,7 @@ typedef struct dal_constraint_report {
 /// Systems with more than 512 rows or n m > 1e6 are not checked by QR (rank = -1, DAL_OK):
 /// their singular KKT or Jacobian factorizations are reported when they occur.
 /// `rep` is nullable. Uses the state as workspace (its kinematics become current).
-DAL_API int dal_check_constraints(const dal_system *sys, dal_state *st,
-                                  dal_constraint_report *rep);
+DAL_API int dal_check_constraints(const dal_system *sys, dal_state *st, dal_constraint_report *rep);
 
 /// Force exerted by the explicit constraints on each particle, from the state's current
 /// multipliers (after dal_forward, dal_make_consistent or a step): F (N x d, row-major,
