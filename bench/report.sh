@@ -1,0 +1,243 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# SPDX-FileCopyrightText: 2026 dalembert engineers
+# Headline figures of the benchmark, computed from the CSV files only: writes
+# bench/results/summary.md and copies it into README.md between <!-- bench:begin/end -->.
+# Usage: bench/report.sh [results-dir] [README]
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+dir=${1:-$root/bench/results}
+readme=${2:-$root/README.md}
+out=$dir/summary.md
+rel=bench/results # image paths as seen from the README
+
+meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/machine.txt"; }
+
+{
+  echo "_Measured $(meta date) on $(meta machine), $(meta nproc) cores, $(meta cpu);"
+  echo "dalembert $(meta version) at commit $(meta commit), \`scripts/bench.sh $(meta mode)\`."
+  echo "Every figure below is computed by \`bench/report.sh\` from the CSV files in"
+  echo "\`bench/results/\`; wall times are medians of repeated runs._"
+  echo
+
+  # ---------------------------------------------------------------- overhead
+  if [[ -s $dir/overhead.csv ]]; then
+    echo "**Library overhead against the hand-written chain** (\`overhead.csv\`): the N-link"
+    echo "chain in minimal coordinates, equations derived by hand in plain C (dense mass matrix,"
+    echo "LAPACKE Cholesky) and integrated by the same SUNDIALS integrator at the same"
+    echo "tolerance, runs interleaved in one process, horizon 2 s."
+    echo
+    echo "| N | rtol | fastest library method | library (ms) | hand-written, same method (ms) | ratio | ratio range over methods |"
+    echo "|---:|---:|---|---:|---:|---:|---:|"
+    awk -F, 'NR > 1 {
+        key = $1 "," $3
+        if (!(key in best) || $4 < bl[key]) { best[key] = $2; bl[key] = $4; bh[key] = $5; br[key] = $6 }
+        if (!(key in lo) || $6 < lo[key]) lo[key] = $6
+        if (!(key in hi) || $6 > hi[key]) hi[key] = $6
+        if (!(key in seen)) { seen[key] = 1; order[++n] = key }
+      }
+      END {
+        for (i = 1; i <= n; ++i) {
+          k = order[i]; split(k, p, ",")
+          printf "| %d | %s | %s | %.3f | %.3f | %.2f | %.2f - %.2f |\n", p[1], p[2], best[k], 1e3 * bl[k], 1e3 * bh[k], br[k], lo[k], hi[k]
+        }
+      }' "$dir/overhead.csv"
+    echo
+  fi
+
+  if [[ -s $dir/overhead_ir.csv ]]; then
+    echo "The same comparison in instructions executed (\`overhead_ir.csv\`, callgrind, one run"
+    echo "of each side; unaffected by the machine's load), rtol 1e-8:"
+    echo
+    awk -F, 'NR > 1 { if (!($2 in seen)) { seen[$2] = 1; m[++nm] = $2 }
+        if (!($1 in sn)) { sn[$1] = 1; n[++nn] = $1 }
+        r[$1, $2] = $7; rhs[$1, $2] = ($8 == $9) }
+      END {
+        line = "| method"; sep = "|---"
+        for (i = 1; i <= nn; ++i) { line = line " | N = " n[i]; sep = sep "|---:" }
+        print line " |"; print sep "|"
+        for (j = 1; j <= nm; ++j) {
+          line = "| " m[j]
+          for (i = 1; i <= nn; ++i) line = line sprintf(" | %.2f%s", r[n[i], m[j]], rhs[n[i], m[j]] ? "" : "*")
+          print line " |"
+        }
+        print "\nRatios of instructions, library / hand-written (both sides took the same number of right-hand-side evaluations unless marked *)."
+        # the target: within 1.5x for the best method
+        met = ""; missed = ""
+        for (i = 1; i <= nn; ++i) {
+          b = 1e300
+          for (j = 1; j <= nm; ++j) if ((n[i], m[j]) in r && r[n[i], m[j]] < b) b = r[n[i], m[j]]
+          if (b <= 1.5) met = met (met == "" ? "" : ", ") n[i]; else missed = missed (missed == "" ? "" : ", ") sprintf("%s (%.2f)", n[i], b)
+        }
+        printf "Target (within 1.5x for the best method): met at N = %s; missed at N = %s.\n", met == "" ? "none" : met, missed == "" ? "none" : missed
+      }' "$dir/overhead_ir.csv"
+    echo
+  fi
+
+  # ---------------------------------------------------------------- fastest per band
+  if [[ -s $dir/work_precision.csv ]]; then
+    echo "**Fastest method per scene and accuracy band** (\`work_precision.csv\`): the cheapest"
+    echo "library configuration (formulation/method, any rtol from 1e-3 to 1e-13) whose"
+    echo "max position error at the final time is below the band, with its wall time. The"
+    echo "hand-written baseline is left out; \`-\` means no configuration reached the band."
+    echo
+    echo "| scene | err <= 1e-3 | err <= 1e-6 | err <= 1e-9 | err <= 1e-12 |"
+    echo "|---|---|---|---|---|"
+    awk -F, 'NR > 1 && $2 != "handwritten" && $8 != "nan" && $8 + 0 > 0 {
+        if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
+        for (b = 1; b <= 4; ++b) {
+          band = 10 ^ (-3 * b)
+          if ($8 + 0 <= band && (!(($1, b) in w) || $5 + 0 < w[$1, b])) { w[$1, b] = $5 + 0; m[$1, b] = $2 "/" $3 }
+        }
+      }
+      END {
+        for (i = 1; i <= n; ++i) {
+          s = order[i]; line = "| " s
+          for (b = 1; b <= 4; ++b)
+            line = line ((s, b) in w ? sprintf(" | %s %.2g ms", m[s, b], 1e3 * w[s, b]) : " | -")
+          print line " |"
+        }
+      }' "$dir/work_precision.csv"
+    echo
+    # the hand-written baseline on the same bands, for the chain-like scenes
+    echo "Hand-written baseline on the same bands (cheapest SUNDIALS method):"
+    echo
+    echo "| scene | err <= 1e-3 | err <= 1e-6 | err <= 1e-9 | err <= 1e-12 |"
+    echo "|---|---|---|---|---|"
+    awk -F, 'NR > 1 && $2 == "handwritten" && $8 != "nan" && $8 + 0 > 0 {
+        if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
+        for (b = 1; b <= 4; ++b) {
+          band = 10 ^ (-3 * b)
+          if ($8 + 0 <= band && (!(($1, b) in w) || $5 + 0 < w[$1, b])) { w[$1, b] = $5 + 0; m[$1, b] = $3 }
+        }
+      }
+      END {
+        for (i = 1; i <= n; ++i) {
+          s = order[i]; line = "| " s
+          for (b = 1; b <= 4; ++b)
+            line = line ((s, b) in w ? sprintf(" | %s %.2g ms", m[s, b], 1e3 * w[s, b]) : " | -")
+          print line " |"
+        }
+      }' "$dir/work_precision.csv"
+    echo
+  fi
+
+  # ---------------------------------------------------------------- cost growth
+  if [[ -s $dir/cost_fit.csv ]]; then
+    echo "**Cost growth** (\`cost_growth.csv\`, \`cost_fit.csv\`): wall time per simulated second"
+    echo "of the chain against N; exponent p of cost ~ N^p by least squares on log-log over"
+    echo "N >= 16. The requested tolerances differ per formulation so that the achieved errors"
+    echo "are alike (last column); \`handwritten-tridiag\` is the hand-written chain in its O(N)"
+    echo "form (rod tensions from a tridiagonal system), a lower bound for any implementation."
+    echo
+    echo "| formulation | method | rtol | exponent p | points | largest N | s per simulated s at largest N | error range |"
+    echo "|---|---|---:|---:|---:|---:|---:|---:|"
+    awk -F, 'FNR == NR { if (FNR > 1) { last[$1] = $5
+          if (!($1 in lo) || $6 + 0 < lo[$1]) lo[$1] = $6 + 0
+          if (!($1 in hi) || $6 + 0 > hi[$1]) hi[$1] = $6 + 0 } ; next }
+      FNR > 1 && $1 != "crossover" {
+        printf "| %s | %s | %s | %.2f | %d | %d | %.3g | %.0e - %.0e |\n", $1, $2, $3, $4, $5, $7, last[$1], lo[$1], hi[$1]
+      }
+      $1 == "crossover" { cross = $4 }
+      END {
+        if (cross == "" || cross == "nan" || cross == "-nan")
+          print "\nNo crossover in the measured range: the sparse DAE never became cheaper than the dense minimal-coordinate ODE."
+        else
+          printf "\nCrossover: the sparse Cartesian DAE (GGL, KLU) becomes cheaper than the dense minimal-coordinate ODE from N = %.0f on.\n", cross
+      }' "$dir/cost_growth.csv" "$dir/cost_fit.csv"
+    echo
+  fi
+
+  # ---------------------------------------------------------------- where methods fail
+  echo "**Where methods fail**"
+  echo
+  if [[ -s $dir/drift.csv ]]; then
+    awk -F, 'NR > 1 { k = $1 "/" $2; if (!(k in seen)) { seen[k] = 1; o[++n] = k } ; last[k] = $5; t[k] = $4; if ($5 + 0 > mx[k]) mx[k] = $5 + 0 }
+      END {
+        printf "- Constraint drift (Cartesian double pendulum, rtol 1e-6, `drift.csv`): max |phi| at the end of the run:"
+        for (i = 1; i <= n; ++i) printf " %s %.1e (t = %g s)%s", o[i], last[o[i]], t[o[i]], i < n ? ";" : ".\n"
+      }' "$dir/drift.csv"
+  fi
+  if [[ -s $dir/energy.csv ]]; then
+    awk -F, 'NR > 1 { k = $1 "/" $2; if (!(k in seen)) { seen[k] = 1; o[++n] = k } ; if ($5 + 0 > mx[k]) mx[k] = $5 + 0; t[k] = $4 }
+      END {
+        printf "- Energy error over a long run (double pendulum, rtol 1e-8, `energy.csv`): max |dE/E0|:"
+        for (i = 1; i <= n; ++i) printf " %s %.1e (to t = %g s)%s", o[i], mx[o[i]], t[o[i]], i < n ? ";" : ".\n"
+      }' "$dir/energy.csv"
+  fi
+  if [[ -s $dir/dae_tolerance.csv ]]; then
+    awk -F, 'NR > 1 { f = $1; if (!(f in seen)) { seen[f] = 1; o[++n] = f }
+        if ($4 == "DAL_OK") { ok[f] = $3; if (!(f in best) || $8 + 0 < best[f]) best[f] = $8 + 0 }
+        else if (!(f in fail)) { fail[f] = $3; why[f] = $4 } }
+      END {
+        printf "- IDA tolerance sweep (Cartesian double pendulum, BDF, `dae_tolerance.csv`):"
+        for (i = 1; i <= n; ++i) {
+          f = o[i]
+          printf " %s: ", f
+          if (f in fail) printf "first failure at rtol %s (%s)", fail[f], why[f]; else printf "no failure down to rtol 1e-14"
+          if (f in ok) printf ", smallest error reached %.1e", best[f]
+          printf "%s", i < n ? ";" : ".\n"
+        }
+      }' "$dir/dae_tolerance.csv"
+  fi
+  if [[ -s $dir/stiff.csv ]]; then
+    awk -F, 'NR > 1 { k = $1 + 0; if (k > kmax) kmax = k; if (!($3 in sr)) { sr[$3] = 1; r[++nr] = $3 }
+        st[k, $3, $2] = $4; rhs[k, $3, $2] = $6; w[k, $3, $2] = $5 }
+      END {
+        printf "- Stiff spring pendulum (k = %.0e N/m, unit mass, t in [0, 1], `stiff.csv`), right-hand sides (wall time):", kmax
+        split("dopri5 fehlberg78 adams bdf", m, " ")
+        for (j = 1; j <= nr; ++j) {
+          printf " at rtol %s", r[j]
+          for (i = 1; i <= 4; ++i) {
+            x = st[kmax, r[j], m[i]]
+            printf " %s %s%s", m[i], x == "DAL_OK" ? sprintf("%d (%.3g s)", rhs[kmax, r[j], m[i]], w[kmax, r[j], m[i]]) : x, i < 4 ? "," : ""
+          }
+          if (st[kmax, r[j], "bdf"] == "DAL_OK" && st[kmax, r[j], "dopri5"] == "DAL_OK")
+            printf " (dopri5 / bdf: %.1fx the evaluations, %.1fx the time)", rhs[kmax, r[j], "dopri5"] / rhs[kmax, r[j], "bdf"], w[kmax, r[j], "dopri5"] / w[kmax, r[j], "bdf"]
+          printf "%s", j < nr ? ";" : ".\n"
+        }
+      }' "$dir/stiff.csv"
+  fi
+  if [[ -s $dir/singular.csv ]]; then
+    awk -F, 'NR > 1 { c = $1 " (phidot0 " $2 ")"; if (!(c in seen)) { seen[c] = 1; o[++n] = c }
+        r[c] = r[c] (r[c] == "" ? "" : ", ") $3 "/" $4 " " ($6 == "DAL_OK" ? sprintf("ok, %d steps", $9) : $6) }
+      END {
+        print "- Spherical pendulum at its pole (`singular.csv`), minimal (theta, phi) against redundant (x, y, z + rod):"
+        for (i = 1; i <= n; ++i) printf "  - %s: %s\n", o[i], r[o[i]]
+      }' "$dir/singular.csv"
+  fi
+  echo
+
+  # ---------------------------------------------------------------- references
+  if [[ -s $dir/references.csv ]]; then
+    echo "**References** (\`references.csv\`): numerical references are two independent"
+    echo "computations at rtol 1e-14 whose agreement bounds the error floor of the charts."
+    echo
+    echo "| scene | t1 (s) | reference | agreement |"
+    echo "|---|---:|---|---:|"
+    awk -F, 'NR > 1 { printf "| %s | %g | %s | %s |\n", $1, $2, $4, ($3 + 0 == 0 ? "exact" : sprintf("%.1e", $3)) }' "$dir/references.csv"
+    echo
+  fi
+
+  # ---------------------------------------------------------------- charts
+  echo "![work-precision, all scenes]($rel/wp_all.png)"
+  echo
+  for c in overhead cost_growth drift energy dae_tolerance stiff singular; do
+    [[ -s $dir/$c.png ]] && echo "![$c]($rel/$c.png)" && echo
+  done
+  echo "SVG versions of every chart and one chart per scene with its own legend"
+  echo "(\`wp_<scene>.svg\`) are beside the PNGs."
+} >"$out"
+
+# copy into the README between the markers (append the section if it has none)
+if [[ -f $readme ]]; then
+  if grep -q '<!-- bench:begin -->' "$readme" && grep -q '<!-- bench:end -->' "$readme"; then
+    awk -v f="$out" '
+      /<!-- bench:begin -->/ { print; while ((getline l < f) > 0) print l; skip = 1; next }
+      /<!-- bench:end -->/ { skip = 0 }
+      !skip { print }' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
+  else
+    { echo; echo "## Speed and accuracy"; echo; echo "<!-- bench:begin -->"; cat "$out"; echo "<!-- bench:end -->"; } >>"$readme"
+  fi
+fi
+echo "bench: wrote $out"

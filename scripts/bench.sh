@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# SPDX-FileCopyrightText: 2026 dalembert engineers
+# Regenerate every benchmark figure: Release build, dal_bench -> bench/results/*.csv, gnuplot
+# charts (PNG + SVG), and the README's "Speed and accuracy" section (bench/report.sh).
+# Usage: scripts/bench.sh [--quick | --full]   (quick: a few minutes; full: much longer)
+set -euo pipefail
+mode=--quick
+case "${1:-}" in
+  --quick | "") mode=--quick ;;
+  --full) mode=--full ;;
+  *) echo "usage: scripts/bench.sh [--quick | --full]" >&2; exit 2 ;;
+esac
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+"$root/scripts/deps.sh"
+bdir=${DAL_BENCH_BUILD_DIR:-$root/build-release}
+out=$root/bench/results
+start=$(date +%s)
+cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=Release -DDAL_BUILD_TESTS=OFF \
+  -DDAL_BUILD_EXAMPLES=OFF -DDAL_BUILD_BENCH=ON >/dev/null
+cmake --build "$bdir" -j "$(nproc)" --target dal_bench
+mkdir -p "$out"
+# where and when: read by bench/report.sh
+{
+  echo "date=$(date -u +%Y-%m-%d)"
+  echo "machine=$(uname -m)"
+  echo "nproc=$(nproc)"
+  echo "cpu=$(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)"
+  echo "version=$(awk -F'[ )]+' '/^project\(dalembert/ {print $3; exit}' "$root/CMakeLists.txt")"
+  echo "commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
+  echo "mode=$mode"
+} >"$out/machine.txt"
+"$bdir/bench/dal_bench" "$mode" --out "$out"
+"$root/bench/overhead_ir.sh" "$bdir/bench/dal_bench" "$out" "$mode"
+rm -f "$out"/*.png "$out"/*.svg
+# (gnuplot warns about curves without points, e.g. a formulation that failed at every rtol)
+gnuplot -e "dir='$out'" "$root/bench/plots.gp" 2>&1 | { grep -v "Skipping data file" || true; } >&2
+"$root/bench/report.sh" "$out" "$root/README.md"
+echo "bench: results, charts and summary in $out ($(($(date +%s) - start)) s)"
