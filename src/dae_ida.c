@@ -517,6 +517,11 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
                     "the DAE integrator (IDA) runs the GGL, index-3 and index-1 forms, not "
                     "'%s'",
                     dal_formulation_name(form));
+  if (form == DAL_FORM_INDEX1 && opts->project)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "the index-1 form with projection runs with the ODE methods (DOPRI5, "
+                    "Fehlberg 7(8), Bulirsch-Stoer, Adams), not with BDF in IDA; with BDF use "
+                    "Baumgarte terms (opts.baumgarte_alpha/beta) or the GGL form");
   if (sys->lag)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "a Lagrangian system has no particles or constraints for the DAE "

@@ -834,6 +834,14 @@ static void test_failures(void) {
   CHECK(dal_state_time(st) > 0.0 && dal_state_time(st) < 5.0);
   CHECK(fabs(dal_state_phi(st)[0]) < 1e-9);
   CHECK_MSG(strstr(msg, "dominated by") && strstr(msg, "last accepted step"), "%s", msg);
+  // projection needs an ODE method: with BDF (IDA) the request is refused, naming the remedy
+  o = opts_of(DAL_FORM_INDEX1, DAL_METHOD_BDF, tol);
+  o.project = 1;
+  double tkeep = dal_state_time(st);
+  CHECK(dal_advance(s, st, &o, 5.0) == DAL_E_UNSUPPORTED);
+  CHECK(strstr(dal_state_errmsg(st), "Baumgarte") != NULL);
+  CHECK(dal_state_time(st) == tkeep);
+  o = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   // and it continues from there
   o.max_steps = 100000;
   CHECK_OK(dal_advance(s, st, &o, 5.0));
