@@ -4,10 +4,11 @@
 //
 // Solves A x = a + G' y, G x = b with A = M (dynamics, M-orthogonal velocity projection) or
 // A = I (minimum-norm position steps). Small systems factor the dense symmetric indefinite
-// matrix by Bunch-Kaufman (LAPACK dsytrf) and estimate its condition (dsycon); large ones
-// (no dense M) assemble the matrix in compressed columns from the compact particle Jacobians
-// and constraint rows and factor it by KLU (Davis and Palamadai Natarajan, ACM TOMS 37, 2010),
-// reusing the symbolic analysis and, while its pivots stay good, the numeric factorization.
+// matrix by Bunch-Kaufman (LAPACK dsytrf) and estimate its condition (dsycon); large or sparse
+// ones (no dense M, or order >= 200 and <= 5% non-zeros) assemble the matrix in compressed
+// columns from the compact particle Jacobians and constraint rows and factor it by KLU (Davis
+// and Palamadai Natarajan, ACM TOMS 37, 2010), reusing the symbolic analysis and, while its
+// pivots stay good, the numeric factorization.
 // All storage is allocated once per state.
 #include <klu.h>
 #include <lapacke.h>
@@ -20,6 +21,8 @@
 
 /// reciprocal condition below which the KKT matrix counts as singular
 #define KKT_RCOND_MIN 1e-14
+/// smallest KKT order factored sparse when a dense M exists
+#define KKT_SPARSE_MIN 200
 
 struct dal_kkt {
   int n, m, nk, sparse;
@@ -155,7 +158,13 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
   k->n = sys->n;
   k->m = sys->m;
   k->nk = sys->n + sys->m;
-  k->sparse = !sys->dense_M;
+  // sparse without a dense M, or when the KKT matrix is large and at most 5% full
+  double nnz = 2.0 * sys->g_total + sys->n;
+  for (int p = 0; p < sys->N; ++p) {
+    double nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
+    nnz += nd * nd;
+  }
+  k->sparse = !sys->dense_M || (k->nk >= KKT_SPARSE_MIN && nnz <= 0.05 * k->nk * (double)k->nk);
   k->cur = -1;
   size_t nk = (size_t)k->nk;
   k->scratch = calloc(4 * nk + 1, sizeof(double));
