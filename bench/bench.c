@@ -21,14 +21,14 @@
 
 // run-wide settings
 typedef struct bench_cfg {
-  int quick;          // quick mode: fewer tolerances, sizes and repeats
-  const char *out;    // output directory
-  double budget;      // seconds of repeated runs per configuration
-  int min_reps;       // repeats at least this often (unless a run is long)
-  int max_reps;       // and at most this often
-  double long_run;    // a single run longer than this is not repeated
-  long max_steps;     // step budget of one run (a run that needs more is reported failed)
-  FILE *failures;     // failures.csv
+  int quick;       // quick mode: fewer tolerances, sizes and repeats
+  const char *out; // output directory
+  double budget;   // seconds of repeated runs per configuration
+  int min_reps;    // repeats at least this often (unless a run is long)
+  int max_reps;    // and at most this often
+  double long_run; // a single run longer than this is not repeated
+  long max_steps;  // step budget of one run (a run that needs more is reported failed)
+  FILE *failures;  // failures.csv
 } bench_cfg;
 
 // the outcome of one configuration
@@ -86,10 +86,13 @@ static int lib_once(bench_model *m, const dal_solve_opts *o, double t1, double *
   res->rhs = s.rhs_evals;
   res->steps = s.steps;
   res->status = rc;
-  if (rc) snprintf(res->msg, sizeof res->msg, "%s", dal_state_errmsg(m->st));
-  else res->msg[0] = 0;
+  if (rc)
+    snprintf(res->msg, sizeof res->msg, "%s", dal_state_errmsg(m->st));
+  else
+    res->msg[0] = 0;
   const double *pos = dal_state_positions(m->st);
-  for (int i = 0; i < npd; ++i) r[i] = rc ? NAN : pos[i];
+  for (int i = 0; i < npd; ++i)
+    r[i] = rc ? NAN : pos[i];
   return rc;
 }
 
@@ -140,8 +143,10 @@ static int hand_once(hand_chain *ch, const double *y0, double *y, dal_method met
   res->rhs = hs.rhs_evals;
   res->steps = hs.steps;
   res->status = rc ? DAL_E_SOLVER : DAL_OK;
-  if (rc) snprintf(res->msg, sizeof res->msg, "SUNDIALS returned %d", rc);
-  else res->msg[0] = 0;
+  if (rc)
+    snprintf(res->msg, sizeof res->msg, "SUNDIALS returned %d", rc);
+  else
+    res->msg[0] = 0;
   hand_chain_positions(ch, y, r);
   return rc;
 }
@@ -174,7 +179,7 @@ static void hand_measure(const bench_cfg *cfg, hand_chain *ch, const double *y0,
 // ---------------------------------------------------------------- work-precision
 
 static const dal_method ode_methods[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
-                                         DAL_METHOD_ADAMS, DAL_METHOD_BDF, DAL_METHOD_RK4};
+                                         DAL_METHOD_ADAMS,  DAL_METHOD_BDF,        DAL_METHOD_RK4};
 static const dal_method hand_methods[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78,
                                           DAL_METHOD_ADAMS, DAL_METHOD_BDF};
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
@@ -184,7 +189,9 @@ static int dae_methods(bench_form f, dal_method *out) {
   int n = 0;
   switch (f) {
   case BF_GGL:
-  case BF_INDEX3: out[n++] = DAL_METHOD_BDF; break;
+  case BF_INDEX3:
+    out[n++] = DAL_METHOD_BDF;
+    break;
   case BF_INDEX1:
     out[n++] = DAL_METHOD_BDF;
     out[n++] = DAL_METHOD_DOPRI5;
@@ -199,7 +206,8 @@ static int dae_methods(bench_form f, dal_method *out) {
     out[n++] = DAL_METHOD_BS;
     out[n++] = DAL_METHOD_ADAMS;
     break;
-  default: break;
+  default:
+    break;
   }
   return n;
 }
@@ -226,7 +234,7 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
     return;
   }
   static const double quick_tols[] = {1e-3, 1e-6, 1e-9, 1e-12};
-  static const double full_tols[] = {1e-3, 1e-4, 1e-5, 1e-6,  1e-7, 1e-8,
+  static const double full_tols[] = {1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
                                      1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
   const double *tols = cfg->quick ? quick_tols : full_tols;
   int ntol = cfg->quick ? COUNT(quick_tols) : COUNT(full_tols);
@@ -242,7 +250,8 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
       run_res r;
       lib_measure(cfg, &m, &o, sc->t1, ref, npd, &r);
       if (r.status == DAL_E_UNSUPPORTED) break;
-      if (r.status) log_failure(cfg, "wp", sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
+      if (r.status)
+        log_failure(cfg, "wp", sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
       wp_row(fp, sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
       if (r.status == DAL_E_MAXSTEPS) break; // tighter tolerances would cost more still
     }
@@ -265,7 +274,8 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
   }
   // redundant coordinates
   rc = scene_model(sc, 1, &m, err, sizeof err);
-  if (rc && rc != DAL_E_UNSUPPORTED) fprintf(stderr, "  cannot build redundant %s: %s\n", sc->name, err);
+  if (rc && rc != DAL_E_UNSUPPORTED)
+    fprintf(stderr, "  cannot build redundant %s: %s\n", sc->name, err);
   for (int f = BF_GGL; !rc && f <= BF_INDEX3; ++f) {
     dal_method meths[4];
     int nm = dae_methods((bench_form)f, meths);
@@ -276,11 +286,12 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
         o.max_steps = cfg->max_steps;
         run_res r;
         lib_measure(cfg, &m, &o, sc->t1, ref, npd, &r);
-        if (r.status) log_failure(cfg, "wp", sc->name, bench_form_name((bench_form)f),
-                                  bench_method_name(meths[mi]), tols[ti], &r);
+        if (r.status)
+          log_failure(cfg, "wp", sc->name, bench_form_name((bench_form)f),
+                      bench_method_name(meths[mi]), tols[ti], &r);
         if (r.status == DAL_E_UNSUPPORTED) break;
-        wp_row(fp, sc->name, bench_form_name((bench_form)f), bench_method_name(meths[mi]),
-               tols[ti], &r);
+        wp_row(fp, sc->name, bench_form_name((bench_form)f), bench_method_name(meths[mi]), tols[ti],
+               &r);
         if (r.status == DAL_E_MAXSTEPS) break;
       }
   }
@@ -336,8 +347,8 @@ static void exp_overhead(const bench_cfg *cfg) {
     char how[160], err[400];
     bench_model m;
     hand_chain *ch = y0 ? scene_hand_chain(&sc, y0) : NULL;
-    int rc = (ref && y && r && ch) ? scene_reference(&sc, ref, &agree, how, sizeof how)
-                                   : DAL_E_NOMEM;
+    int rc =
+        (ref && y && r && ch) ? scene_reference(&sc, ref, &agree, how, sizeof how) : DAL_E_NOMEM;
     if (!rc) rc = scene_model(&sc, 0, &m, err, sizeof err);
     for (int mi = 0; !rc && mi < COUNT(hand_methods); ++mi)
       for (int ti = 0; ti < ntol; ++ti) {
@@ -368,8 +379,9 @@ static void exp_overhead(const bench_cfg *cfg) {
                 bench_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs, rl.steps,
                 rh.steps, rl.err, rh.err, (a / (double)rl.rhs) / (b / (double)rh.rhs));
         fflush(fp);
-        fprintf(stderr, "overhead N=%d %s rtol %.0e: lib %.3g s hand %.3g s ratio %.2f "
-                        "(rhs %ld vs %ld)\n",
+        fprintf(stderr,
+                "overhead N=%d %s rtol %.0e: lib %.3g s hand %.3g s ratio %.2f "
+                "(rhs %ld vs %ld)\n",
                 N, bench_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs);
       }
     if (!rc) scene_model_free(&m);
@@ -416,8 +428,8 @@ static double cost_t1(int N) {
 // tolerances differ per formulation so that the achieved errors are alike (about 1e-8 to
 // 1e-7; IDA's error is 100-1000x its tolerance, the library's ODE path tightens its own).
 static void exp_cost(const bench_cfg *cfg) {
-  FILE *fp = bench_csv_open(cfg->out, "cost_growth.csv",
-                            "formulation,method,N,rtol,wall_s_per_sim_s,err");
+  FILE *fp =
+      bench_csv_open(cfg->out, "cost_growth.csv", "formulation,method,N,rtol,wall_s_per_sim_s,err");
   FILE *fit = bench_csv_open(cfg->out, "cost_fit.csv",
                              "formulation,method,rtol,exponent,n_points,N_min,N_max");
   if (!fp || !fit) {
@@ -429,8 +441,7 @@ static void exp_cost(const bench_cfg *cfg) {
   int nmax_tri = cfg->quick ? 4096 : 16384;
   enum { C_ODE, C_GGL, C_HAND, C_TRI, C_NUM };
   const char *fname[C_NUM] = {"ode", "ggl", "handwritten", "handwritten-tridiag"};
-  dal_method fmeth[C_NUM] = {DAL_METHOD_ADAMS, DAL_METHOD_BDF, DAL_METHOD_ADAMS,
-                             DAL_METHOD_ADAMS};
+  dal_method fmeth[C_NUM] = {DAL_METHOD_ADAMS, DAL_METHOD_BDF, DAL_METHOD_ADAMS, DAL_METHOD_ADAMS};
   double frtol[C_NUM] = {1e-6, 1e-8, 1e-6, 1e-6};
   int fmax[C_NUM] = {nmax_dense, nmax_sparse, nmax_dense, nmax_tri};
   cost_pt pts[C_NUM][20];
@@ -477,7 +488,8 @@ static void exp_cost(const bench_cfg *cfg) {
           hand_measure(cfg, ch, y0, fmeth[f], frtol[f], t1, ref, &r);
         } else {
           // the O(N) tension form
-          double *y = malloc((size_t)npd * sizeof(double)), *rr = malloc((size_t)npd * sizeof(double));
+          double *y = malloc((size_t)npd * sizeof(double)),
+                 *rr = malloc((size_t)npd * sizeof(double));
           double walls[64];
           int reps = 0;
           for (; y && rr && reps < cfg->max_reps; ++reps) {
@@ -510,11 +522,11 @@ static void exp_cost(const bench_cfg *cfg) {
         log_failure(cfg, "cost", sc.name, fname[f], bench_method_name(fmeth[f]), frtol[f], &r);
         continue;
       }
-      fprintf(fp, "%s,%s,%d,%.0e,%.6e,%.3e\n", fname[f], bench_method_name(fmeth[f]), N,
-              frtol[f], r.wall / t1, r.err);
+      fprintf(fp, "%s,%s,%d,%.0e,%.6e,%.3e\n", fname[f], bench_method_name(fmeth[f]), N, frtol[f],
+              r.wall / t1, r.err);
       fflush(fp);
-      fprintf(stderr, "  %-20s N=%5d: %.3e s per simulated s, err %.2e, %ld steps\n", fname[f],
-              N, r.wall / t1, r.err, r.steps);
+      fprintf(stderr, "  %-20s N=%5d: %.3e s per simulated s, err %.2e, %ld steps\n", fname[f], N,
+              r.wall / t1, r.err, r.steps);
       pts[f][npts[f]].N = N;
       pts[f][npts[f]].w = r.wall / t1;
       ++npts[f];
@@ -525,8 +537,8 @@ static void exp_cost(const bench_cfg *cfg) {
   for (int f = 0; f < C_NUM; ++f) {
     int used;
     double e = fit_exponent(pts[f], npts[f], 16, &used);
-    fprintf(fit, "%s,%s,%.0e,%.3f,%d,%d,%d\n", fname[f], bench_method_name(fmeth[f]), frtol[f],
-            e, used, 16, npts[f] ? pts[f][npts[f] - 1].N : 0);
+    fprintf(fit, "%s,%s,%.0e,%.3f,%d,%d,%d\n", fname[f], bench_method_name(fmeth[f]), frtol[f], e,
+            used, 16, npts[f] ? pts[f][npts[f] - 1].N : 0);
   }
   // crossover: first N where the sparse DAE is cheaper than the dense ODE (log interpolation)
   double cross = NAN;
@@ -684,7 +696,8 @@ static void exp_daetol(const bench_cfg *cfg) {
       o.max_steps = cfg->max_steps;
       run_res r;
       lib_measure(cfg, &m, &o, sc.t1, ref, npd, &r);
-      if (r.status) log_failure(cfg, "daetol", sc.name, bench_form_name(forms[fi]), "bdf", rtol, &r);
+      if (r.status)
+        log_failure(cfg, "daetol", sc.name, bench_form_name(forms[fi]), "bdf", rtol, &r);
       fprintf(fp, "%s,bdf,%.0e,%s,%.6e,%ld,%ld,%.6e\n", bench_form_name(forms[fi]), rtol,
               dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err);
       fflush(fp);
@@ -696,8 +709,8 @@ static void exp_daetol(const bench_cfg *cfg) {
 // ---------------------------------------------------------------- stiff spring pendulum
 
 static void exp_stiff(const bench_cfg *cfg) {
-  FILE *fp = bench_csv_open(cfg->out, "stiff.csv",
-                            "k,method,rtol,status,wall_s,rhs_evals,steps,err");
+  FILE *fp =
+      bench_csv_open(cfg->out, "stiff.csv", "k,method,rtol,status,wall_s,rhs_evals,steps,err");
   if (!fp) return;
   const double t1 = 1.0, rtols[2] = {1e-3, 1e-6}, th0 = PI / 4;
   double th, thd, ref[2];
@@ -707,8 +720,7 @@ static void exp_stiff(const bench_cfg *cfg) {
   double ks_quick[] = {1e2, 1e4, 1e6, 1e8}, ks_full[] = {1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8};
   double *ks = cfg->quick ? ks_quick : ks_full;
   int nk = cfg->quick ? COUNT(ks_quick) : COUNT(ks_full);
-  dal_method meths[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_ADAMS,
-                        DAL_METHOD_BDF};
+  dal_method meths[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_ADAMS, DAL_METHOD_BDF};
   for (int ki = 0; ki < nk; ++ki) {
     // a bob on a very stiff spring of rest length 1 to the origin, in Cartesian coordinates
     dal_builder *b = NULL;
@@ -733,20 +745,21 @@ static void exp_stiff(const bench_cfg *cfg) {
     m.qd0 = qd0;
     dal_builder_destroy(b);
     for (int ri = 0; ri < 2; ++ri)
-    for (int mi = 0; !rc && mi < COUNT(meths); ++mi) {
-      double rtol = rtols[ri];
-      dal_solve_opts o;
-      bench_opts(&o, BF_ODE, meths[mi], rtol);
-      o.max_steps = cfg->max_steps;
-      run_res r;
-      lib_measure(cfg, &m, &o, t1, ref, 2, &r);
-      if (r.status) log_failure(cfg, "stiff", "spring", "ode", bench_method_name(meths[mi]), rtol, &r);
-      fprintf(fp, "%.0e,%s,%.0e,%s,%.6e,%ld,%ld,%.6e\n", ks[ki], bench_method_name(meths[mi]),
-              rtol, dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err);
-      fflush(fp);
-      fprintf(stderr, "stiff k=%.0e %s rtol %.0e: %s %.3g s, %ld rhs\n", ks[ki],
-              bench_method_name(meths[mi]), rtol, dal_status_name(r.status), r.wall, r.rhs);
-    }
+      for (int mi = 0; !rc && mi < COUNT(meths); ++mi) {
+        double rtol = rtols[ri];
+        dal_solve_opts o;
+        bench_opts(&o, BF_ODE, meths[mi], rtol);
+        o.max_steps = cfg->max_steps;
+        run_res r;
+        lib_measure(cfg, &m, &o, t1, ref, 2, &r);
+        if (r.status)
+          log_failure(cfg, "stiff", "spring", "ode", bench_method_name(meths[mi]), rtol, &r);
+        fprintf(fp, "%.0e,%s,%.0e,%s,%.6e,%ld,%ld,%.6e\n", ks[ki], bench_method_name(meths[mi]),
+                rtol, dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err);
+        fflush(fp);
+        fprintf(stderr, "stiff k=%.0e %s rtol %.0e: %s %.3g s, %ld rhs\n", ks[ki],
+                bench_method_name(meths[mi]), rtol, dal_status_name(r.status), r.wall, r.rhs);
+      }
     dal_state_destroy(m.st);
     dal_system_destroy(m.sys);
   }
@@ -774,8 +787,9 @@ static int spherical_model(int redundant, double th0, double thd0, double phd0, 
     if (!rc) rc = dal_builder_add_coord(b, "z", &c[2]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
     if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor3, 1, &p, 0, NULL, 4, par,
-                                             NULL, NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor3, 1, &p, 0, NULL, 4, par, NULL,
+                                      NULL);
   }
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &m->sys);
@@ -817,8 +831,11 @@ static void exp_singular(const bench_cfg *cfg) {
                {"near-pole", PI / 3, 0.0, 1e-7}, {"through-pole", PI / 3, 0.0, 0.0}};
   for (int ci = 0; ci < COUNT(cases); ++ci) {
     // reference: the hand-written Cartesian equations, two methods
-    double th0 = cases[ci].th0, y0[6] = {sin(th0), 0.0, -cos(th0),
-                                         cases[ci].thd0 * cos(th0), cases[ci].phd0 * sin(th0),
+    double th0 = cases[ci].th0, y0[6] = {sin(th0),
+                                         0.0,
+                                         -cos(th0),
+                                         cases[ci].thd0 * cos(th0),
+                                         cases[ci].phd0 * sin(th0),
                                          cases[ci].thd0 * sin(th0)};
     double ya[6], yb[6], gg = g;
     memcpy(ya, y0, sizeof ya);
@@ -855,9 +872,9 @@ static void exp_singular(const bench_cfg *cfg) {
         if (r.status)
           log_failure(cfg, "singular", cases[ci].name, bench_form_name(runs[ri].f),
                       bench_method_name(runs[ri].meth), rtol, &r);
-        fprintf(fp, "%s,%.0e,%s,%s,%.0e,%s,%.6e,%ld,%ld,%.6e,%d\n", cases[ci].name,
-                cases[ci].phd0, bench_form_name(runs[ri].f), bench_method_name(runs[ri].meth),
-                rtol, dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err, ci);
+        fprintf(fp, "%s,%.0e,%s,%s,%.0e,%s,%.6e,%ld,%ld,%.6e,%d\n", cases[ci].name, cases[ci].phd0,
+                bench_form_name(runs[ri].f), bench_method_name(runs[ri].meth), rtol,
+                dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err, ci);
         fflush(fp);
       }
       scene_model_free(&m);
@@ -883,7 +900,8 @@ static int exp_smoke(void) {
   hand_chain *ch = scene_hand_chain(&sc, y);
   srand(7);
   for (int trial = 0; ch && trial < 20; ++trial) {
-    for (int i = 0; i < 10; ++i) y[i] = 4.0 * rand() / RAND_MAX - 2.0;
+    for (int i = 0; i < 10; ++i)
+      y[i] = 4.0 * rand() / RAND_MAX - 2.0;
     hand_chain_rhs_dense(0.0, y, f1, ch);
     hand_chain_rhs_tridiag(0.0, y, f2, ch);
     dal_state_set(m.sys, m.st, 0.0, y, y + 5);
@@ -904,6 +922,17 @@ static int exp_smoke(void) {
   }
   hand_chain_destroy(ch);
   scene_model_free(&m);
+  // the benchmark's elliptic reference against the tests' independent one
+  double worst = 0.0;
+  for (int i = 0; i <= 40; ++i) {
+    double t = 0.25 * i, a, ad, b, bd;
+    ref_pendulum(5.0 * PI / 6.0, 1.0, 9.81, t, &a, &ad);
+    bench_tests_pendulum(5.0 * PI / 6.0, sqrt(9.81), t, &b, &bd);
+    worst = fmax(worst, fmax(fabs(a - b), fabs(ad - bd) / 10.0));
+  }
+  fprintf(stderr, "smoke: bench/ref.h vs tests/ref_elliptic.h (150 deg, t in [0, 10]): %.2e\n",
+          worst);
+  if (!(worst < 1e-12)) bad = 1;
   // the pendulum at 1e-8 against the Jacobi elliptic solution
   scene_init(&sc, SC_PENDULUM, 1, 0);
   double ref[2], agree, r[2];
@@ -991,10 +1020,14 @@ int main(int argc, char **argv) {
   const char *exps[16];
   int nexp = 0;
   for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--quick") == 0) cfg.quick = 1;
-    else if (strcmp(argv[i], "--full") == 0) cfg.quick = 0;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) cfg.out = argv[++i];
-    else if (argv[i][0] != '-' && nexp < 16) exps[nexp++] = argv[i];
+    if (strcmp(argv[i], "--quick") == 0)
+      cfg.quick = 1;
+    else if (strcmp(argv[i], "--full") == 0)
+      cfg.quick = 0;
+    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+      cfg.out = argv[++i];
+    else if (argv[i][0] != '-' && nexp < 16)
+      exps[nexp++] = argv[i];
     else {
       fprintf(stderr, "usage: dal_bench [--quick|--full] [--out DIR] [smoke wp overhead cost "
                       "drift energy daetol stiff singular]\n");
@@ -1010,10 +1043,11 @@ int main(int argc, char **argv) {
   }
   if (argc > 1 && strcmp(argv[1], "ir") == 0) return exp_ir(argc - 2, argv + 2);
   if (nexp == 1 && strcmp(exps[0], "smoke") == 0) return exp_smoke();
-  static const char *all[] = {"wp", "overhead", "cost", "drift", "energy", "daetol", "stiff",
-                              "singular"};
+  static const char *all[] = {"wp",     "overhead", "cost",  "drift",
+                              "energy", "daetol",   "stiff", "singular"};
   if (nexp == 0) {
-    for (int i = 0; i < COUNT(all); ++i) exps[i] = all[i];
+    for (int i = 0; i < COUNT(all); ++i)
+      exps[i] = all[i];
     nexp = COUNT(all);
   }
   cfg.failures = bench_csv_open(cfg.out, "failures.csv",
@@ -1021,16 +1055,26 @@ int main(int argc, char **argv) {
   if (!cfg.failures) return 1;
   for (int i = 0; i < nexp; ++i) {
     double t0 = bench_now();
-    if (strcmp(exps[i], "wp") == 0) exp_wp(&cfg);
-    else if (strcmp(exps[i], "overhead") == 0) exp_overhead(&cfg);
-    else if (strcmp(exps[i], "cost") == 0) exp_cost(&cfg);
-    else if (strcmp(exps[i], "drift") == 0) exp_drift(&cfg);
-    else if (strcmp(exps[i], "energy") == 0) exp_energy(&cfg);
-    else if (strcmp(exps[i], "daetol") == 0) exp_daetol(&cfg);
-    else if (strcmp(exps[i], "stiff") == 0) exp_stiff(&cfg);
-    else if (strcmp(exps[i], "singular") == 0) exp_singular(&cfg);
-    else if (strcmp(exps[i], "smoke") == 0) exp_smoke();
-    else fprintf(stderr, "dal_bench: unknown experiment '%s'\n", exps[i]);
+    if (strcmp(exps[i], "wp") == 0)
+      exp_wp(&cfg);
+    else if (strcmp(exps[i], "overhead") == 0)
+      exp_overhead(&cfg);
+    else if (strcmp(exps[i], "cost") == 0)
+      exp_cost(&cfg);
+    else if (strcmp(exps[i], "drift") == 0)
+      exp_drift(&cfg);
+    else if (strcmp(exps[i], "energy") == 0)
+      exp_energy(&cfg);
+    else if (strcmp(exps[i], "daetol") == 0)
+      exp_daetol(&cfg);
+    else if (strcmp(exps[i], "stiff") == 0)
+      exp_stiff(&cfg);
+    else if (strcmp(exps[i], "singular") == 0)
+      exp_singular(&cfg);
+    else if (strcmp(exps[i], "smoke") == 0)
+      exp_smoke();
+    else
+      fprintf(stderr, "dal_bench: unknown experiment '%s'\n", exps[i]);
     fprintf(stderr, "== %s: %.1f s\n", exps[i], bench_now() - t0);
   }
   fclose(cfg.failures);

@@ -50,7 +50,8 @@ static int set_fehlberg_fsal(void *mem) {
     G->c[i] = F->c[i];
     G->b[i] = F->b[i];
     G->d[i] = F->d[i];
-    for (int j = 0; j < s; ++j) G->A[i][j] = F->A[i][j];
+    for (int j = 0; j < s; ++j)
+      G->A[i][j] = F->A[i][j];
     G->A[s][i] = F->b[i];
   }
   G->c[s] = 1.0;
@@ -64,8 +65,7 @@ static int set_fehlberg_fsal(void *mem) {
 }
 
 static int run_erk(SUNContext sctx, hand_call *call, N_Vector y, double t0, double t1,
-                   dal_method method, double rtol, double atol, long max_steps,
-                   hand_stats *out) {
+                   dal_method method, double rtol, double atol, long max_steps, hand_stats *out) {
   void *mem = ERKStepCreate(sun_rhs, t0, y, sctx);
   if (!mem) return -1;
   int rc = method == DAL_METHOD_DOPRI5 ? ERKStepSetTableNum(mem, ARKODE_DORMAND_PRINCE_7_4_5)
@@ -86,8 +86,7 @@ static int run_erk(SUNContext sctx, hand_call *call, N_Vector y, double t0, doub
 }
 
 static int run_cvode(SUNContext sctx, hand_call *call, N_Vector y, double t0, double t1,
-                     dal_method method, double rtol, double atol, long max_steps,
-                     hand_stats *out) {
+                     dal_method method, double rtol, double atol, long max_steps, hand_stats *out) {
   int adams = method == DAL_METHOD_ADAMS;
   void *mem = CVodeCreate(adams ? CV_ADAMS : CV_BDF, sctx);
   SUNMatrix A = NULL;
@@ -126,8 +125,7 @@ static int run_cvode(SUNContext sctx, hand_call *call, N_Vector y, double t0, do
 }
 
 int hand_integrate(hand_rhs_fn *f, void *ctx, int n, double *y, double t0, double t1,
-                   dal_method method, double rtol, double atol, long max_steps,
-                   hand_stats *out) {
+                   dal_method method, double rtol, double atol, long max_steps, hand_stats *out) {
   hand_stats dummy;
   if (!out) out = &dummy;
   memset(out, 0, sizeof *out);
@@ -166,8 +164,8 @@ hand_chain *hand_chain_create(int N, double g) {
   size_t n = (size_t)N;
   ch->N = N;
   ch->g = g;
-  double **arr[] = {&ch->m, &ch->l, &ch->mu, &ch->s, &ch->c, &ch->b, &ch->diag,
-                    &ch->off, &ch->rhs, &ch->T, &ch->ax, &ch->ay};
+  double **arr[] = {&ch->m,    &ch->l,   &ch->mu,  &ch->s, &ch->c,  &ch->b,
+                    &ch->diag, &ch->off, &ch->rhs, &ch->T, &ch->ax, &ch->ay};
   for (size_t i = 0; i < sizeof arr / sizeof arr[0]; ++i)
     if (!(*arr[i] = calloc(n, sizeof(double)))) {
       hand_chain_destroy(ch);
@@ -178,16 +176,19 @@ hand_chain *hand_chain_create(int N, double g) {
     hand_chain_destroy(ch);
     return NULL;
   }
-  for (int i = 0; i < N; ++i) ch->m[i] = ch->l[i] = 1.0;
-  for (int i = N - 1; i >= 0; --i) ch->mu[i] = ch->m[i] + (i + 1 < N ? ch->mu[i + 1] : 0.0);
+  for (int i = 0; i < N; ++i)
+    ch->m[i] = ch->l[i] = 1.0;
+  for (int i = N - 1; i >= 0; --i)
+    ch->mu[i] = ch->m[i] + (i + 1 < N ? ch->mu[i + 1] : 0.0);
   return ch;
 }
 
 void hand_chain_destroy(hand_chain *ch) {
   if (!ch) return;
-  double *arr[] = {ch->m, ch->l, ch->mu, ch->s,   ch->c,  ch->b, ch->diag,
-                   ch->off, ch->rhs, ch->T, ch->ax, ch->ay, ch->M};
-  for (size_t i = 0; i < sizeof arr / sizeof arr[0]; ++i) free(arr[i]);
+  double *arr[] = {ch->m,   ch->l,   ch->mu, ch->s,  ch->c,  ch->b, ch->diag,
+                   ch->off, ch->rhs, ch->T,  ch->ax, ch->ay, ch->M};
+  for (size_t i = 0; i < sizeof arr / sizeof arr[0]; ++i)
+    free(arr[i]);
   free(ch);
 }
 
@@ -205,7 +206,8 @@ int hand_chain_rhs_dense(double t, const double *y, double *ydot, void *ctx) {
   // lower triangle of M and the right-hand side Q - c
   for (int j = 0; j < N; ++j) {
     b[j] = -ch->g * l[j] * mu[j] * s[j];
-    for (int i = j; i < N; ++i) M[(size_t)j * N + i] = mu[i] * l[i] * l[j] * (c[i] * c[j] + s[i] * s[j]);
+    for (int i = j; i < N; ++i)
+      M[(size_t)j * N + i] = mu[i] * l[i] * l[j] * (c[i] * c[j] + s[i] * s[j]);
   }
   for (int i = 0; i < N; ++i)
     for (int j = 0; j < N; ++j) {
@@ -246,7 +248,8 @@ int hand_chain_rhs_tridiag(double t, const double *y, double *ydot, void *ctx) {
     r[k] -= f * r[k - 1];
   }
   T[N - 1] = r[N - 1] / dg[N - 1];
-  for (int k = N - 2; k >= 0; --k) T[k] = (r[k] - off[k] * T[k + 1]) / dg[k];
+  for (int k = N - 2; k >= 0; --k)
+    T[k] = (r[k] - off[k] * T[k + 1]) / dg[k];
   // particle accelerations from the forces, then the angular ones
   double pax = 0.0, pay = 0.0;
   for (int k = 0; k < N; ++k) {

@@ -33,11 +33,11 @@ int hand_integrate(hand_rhs_fn *f, void *ctx, int n, double *y, double t0, doubl
 typedef struct hand_chain {
   int N;
   double g;
-  double *m, *l; ///< masses and lengths (N)
-  double *mu;    ///< tail masses mu_i = sum_{k >= i} m_k (N)
-  double *s, *c; ///< scratch sin/cos (N)
-  double *M;     ///< dense mass matrix (N x N, column-major)
-  double *b;     ///< right-hand side / solution (N)
+  double *m, *l;                ///< masses and lengths (N)
+  double *mu;                   ///< tail masses mu_i = sum_{k >= i} m_k (N)
+  double *s, *c;                ///< scratch sin/cos (N)
+  double *M;                    ///< dense mass matrix (N x N, column-major)
+  double *b;                    ///< right-hand side / solution (N)
   double *diag, *off, *rhs, *T; ///< tridiagonal tension system (N)
   double *ax, *ay;              ///< particle accelerations (N)
   long nevals;                  ///< right-hand-side evaluations so far

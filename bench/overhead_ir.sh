@@ -32,8 +32,9 @@ for N in 1 2 4 8 16 32; do
   for m in $methods; do
     read -r il rl < <(count lib "$N" "$m" "$rtol" "$t1")
     read -r ih rh < <(count hand "$N" "$m" "$rtol" "$t1")
-    awk -v N="$N" -v m="$m" -v r="$rtol" -v t="$t1" -v il="$il" -v ih="$ih" -v rl="$rl" -v rh="$rh" \
-      'BEGIN {printf "%d,%s,%s,%s,%d,%d,%.4f,%d,%d\n", N, m, r, t, il, ih, il / ih, rl, rh}' >>"$out"
+    awk -v N="$N" -v m="$m" -v r="$rtol" -v t="$t1" -v il="$il" -v ih="$ih" -v rl="$rl" \
+      -v rh="$rh" 'BEGIN {printf "%d,%s,%s,%s,%d,%d,%.4f,%d,%d\n", N, m, r, t, il, ih, il / ih, rl, rh}' \
+      >>"$out"
     echo "overhead_ir N=$N $m: $(tail -1 "$out")" >&2
   done
 done

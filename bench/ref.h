@@ -41,8 +41,7 @@ static inline void ref_jacobi(double u, double m, double *sn, double *cn, double
 
 /// Simple pendulum of length l under gravity g released from rest at amplitude th0
 /// (|th0| < pi): theta(t) and thetadot(t), from sin(theta/2) = k cd(w t | k^2), k = sin(th0/2).
-static inline void ref_pendulum(double th0, double l, double g, double t, double *th,
-                                double *thd) {
+static inline void ref_pendulum(double th0, double l, double g, double t, double *th, double *thd) {
   double k = sin(0.5 * th0), w = sqrt(g / l), sn, cn, dn;
   ref_jacobi(w * t, k * k, &sn, &cn, &dn);
   // cd = cn/dn; d/du cd = -(1 - m) sn / dn^2
@@ -53,10 +52,11 @@ static inline void ref_pendulum(double th0, double l, double g, double t, double
 }
 
 /// Isotropic 2D harmonic oscillator m r'' = -k r: position at t from (r0, v0).
-static inline void ref_oscillator(double m, double k, const double *r0, const double *v0,
-                                  double t, double *r) {
+static inline void ref_oscillator(double m, double k, const double *r0, const double *v0, double t,
+                                  double *r) {
   double w = sqrt(k / m);
-  for (int i = 0; i < 2; ++i) r[i] = r0[i] * cos(w * t) + v0[i] / w * sin(w * t);
+  for (int i = 0; i < 2; ++i)
+    r[i] = r0[i] * cos(w * t) + v0[i] / w * sin(w * t);
 }
 
 #endif

@@ -31,7 +31,9 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
     echo "|---:|---:|---|---:|---:|---:|---:|"
     awk -F, 'NR > 1 {
         key = $1 "," $3
-        if (!(key in best) || $4 < bl[key]) { best[key] = $2; bl[key] = $4; bh[key] = $5; br[key] = $6 }
+        if (!(key in best) || $4 < bl[key]) {
+          best[key] = $2; bl[key] = $4; bh[key] = $5; br[key] = $6
+        }
         if (!(key in lo) || $6 < lo[key]) lo[key] = $6
         if (!(key in hi) || $6 > hi[key]) hi[key] = $6
         if (!(key in seen)) { seen[key] = 1; order[++n] = key }
@@ -39,7 +41,8 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
       END {
         for (i = 1; i <= n; ++i) {
           k = order[i]; split(k, p, ",")
-          printf "| %d | %s | %s | %.3f | %.3f | %.2f | %.2f - %.2f |\n", p[1], p[2], best[k], 1e3 * bl[k], 1e3 * bh[k], br[k], lo[k], hi[k]
+          printf "| %d | %s | %s | %.3f | %.3f | %.2f | %.2f - %.2f |\n", p[1], p[2], best[k],
+                 1e3 * bl[k], 1e3 * bh[k], br[k], lo[k], hi[k]
         }
       }' "$dir/overhead.csv"
     echo
@@ -58,18 +61,22 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
         print line " |"; print sep "|"
         for (j = 1; j <= nm; ++j) {
           line = "| " m[j]
-          for (i = 1; i <= nn; ++i) line = line sprintf(" | %.2f%s", r[n[i], m[j]], rhs[n[i], m[j]] ? "" : "*")
+          for (i = 1; i <= nn; ++i)
+            line = line sprintf(" | %.2f%s", r[n[i], m[j]], rhs[n[i], m[j]] ? "" : "*")
           print line " |"
         }
-        print "\nRatios of instructions, library / hand-written (both sides took the same number of right-hand-side evaluations unless marked *)."
+        print "\nRatios of instructions, library / hand-written (both sides took the same number"
+        print "of right-hand-side evaluations unless marked *)."
         # the target: within 1.5x for the best method
         met = ""; missed = ""
         for (i = 1; i <= nn; ++i) {
           b = 1e300
           for (j = 1; j <= nm; ++j) if ((n[i], m[j]) in r && r[n[i], m[j]] < b) b = r[n[i], m[j]]
-          if (b <= 1.5) met = met (met == "" ? "" : ", ") n[i]; else missed = missed (missed == "" ? "" : ", ") sprintf("%s (%.2f)", n[i], b)
+          if (b <= 1.5) met = met (met == "" ? "" : ", ") n[i]
+          else missed = missed (missed == "" ? "" : ", ") sprintf("%s (%.2f)", n[i], b)
         }
-        printf "Target (within 1.5x for the best method): met at N = %s; missed at N = %s.\n", met == "" ? "none" : met, missed == "" ? "none" : missed
+        printf "\nTarget (within 1.5x for the best method): met at N = %s; missed at N = %s.\n",
+               met == "" ? "none" : met, missed == "" ? "none" : missed
       }' "$dir/overhead_ir.csv"
     echo
   fi
@@ -87,7 +94,9 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
         if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
         for (b = 1; b <= 4; ++b) {
           band = 10 ^ (-3 * b)
-          if ($8 + 0 <= band && (!(($1, b) in w) || $5 + 0 < w[$1, b])) { w[$1, b] = $5 + 0; m[$1, b] = $2 "/" $3 }
+          if ($8 + 0 <= band && (!(($1, b) in w) || $5 + 0 < w[$1, b])) {
+            w[$1, b] = $5 + 0; m[$1, b] = $2 "/" $3
+          }
         }
       }
       END {
@@ -108,7 +117,9 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
         if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 }
         for (b = 1; b <= 4; ++b) {
           band = 10 ^ (-3 * b)
-          if ($8 + 0 <= band && (!(($1, b) in w) || $5 + 0 < w[$1, b])) { w[$1, b] = $5 + 0; m[$1, b] = $3 }
+          if ($8 + 0 <= band && (!(($1, b) in w) || $5 + 0 < w[$1, b])) {
+            w[$1, b] = $5 + 0; m[$1, b] = $3
+          }
         }
       }
       END {
@@ -136,14 +147,17 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
           if (!($1 in lo) || $6 + 0 < lo[$1]) lo[$1] = $6 + 0
           if (!($1 in hi) || $6 + 0 > hi[$1]) hi[$1] = $6 + 0 } ; next }
       FNR > 1 && $1 != "crossover" {
-        printf "| %s | %s | %s | %.2f | %d | %d | %.3g | %.0e - %.0e |\n", $1, $2, $3, $4, $5, $7, last[$1], lo[$1], hi[$1]
+        printf "| %s | %s | %s | %.2f | %d | %d | %.3g | %.0e - %.0e |\n", $1, $2, $3, $4, $5,
+               $7, last[$1], lo[$1], hi[$1]
       }
       $1 == "crossover" { cross = $4 }
       END {
         if (cross == "" || cross == "nan" || cross == "-nan")
-          print "\nNo crossover in the measured range: the sparse DAE never became cheaper than the dense minimal-coordinate ODE."
+          print "\nNo crossover in the measured range: the sparse DAE never became cheaper than" \
+                " the dense minimal-coordinate ODE."
         else
-          printf "\nCrossover: the sparse Cartesian DAE (GGL, KLU) becomes cheaper than the dense minimal-coordinate ODE from N = %.0f on.\n", cross
+          printf "\nCrossover: the sparse Cartesian DAE (GGL, KLU) becomes cheaper than the" \
+                 " dense minimal-coordinate ODE from N = %.0f on.\n", cross
       }' "$dir/cost_growth.csv" "$dir/cost_fit.csv"
     echo
   fi
@@ -152,31 +166,40 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
   echo "**Where methods fail**"
   echo
   if [[ -s $dir/drift.csv ]]; then
-    awk -F, 'NR > 1 { k = $1 "/" $2; if (!(k in seen)) { seen[k] = 1; o[++n] = k } ; last[k] = $5; t[k] = $4; if ($5 + 0 > mx[k]) mx[k] = $5 + 0 }
+    awk -F, 'NR > 1 { k = $1 "/" $2; if (!(k in seen)) { seen[k] = 1; o[++n] = k }
+        last[k] = $7; t[k] = $4 }
       END {
-        printf "- Constraint drift (Cartesian double pendulum, rtol 1e-6, `drift.csv`): max |phi| at the end of the run:"
-        for (i = 1; i <= n; ++i) printf " %s %.1e (t = %g s)%s", o[i], last[o[i]], t[o[i]], i < n ? ";" : ".\n"
+        printf "- Constraint drift (Cartesian double pendulum, rtol 1e-6, `drift.csv`):"
+        printf " max |phi| over the whole run:"
+        for (i = 1; i <= n; ++i)
+          printf " %s %.1e (t = %g s)%s", o[i], last[o[i]], t[o[i]], i < n ? ";" : ".\n"
       }' "$dir/drift.csv"
   fi
   if [[ -s $dir/energy.csv ]]; then
-    awk -F, 'NR > 1 { k = $1 "/" $2; if (!(k in seen)) { seen[k] = 1; o[++n] = k } ; if ($5 + 0 > mx[k]) mx[k] = $5 + 0; t[k] = $4 }
+    awk -F, 'NR > 1 { k = $1 "/" $2; if (!(k in seen)) { seen[k] = 1; o[++n] = k }
+        if ($5 + 0 > mx[k]) mx[k] = $5 + 0; t[k] = $4 }
       END {
-        printf "- Energy error over a long run (double pendulum, rtol 1e-8, `energy.csv`): max |dE/E0|:"
-        for (i = 1; i <= n; ++i) printf " %s %.1e (to t = %g s)%s", o[i], mx[o[i]], t[o[i]], i < n ? ";" : ".\n"
+        printf "- Energy error over a long run (double pendulum, rtol 1e-8, `energy.csv`):"
+        printf " max |dE/E0|:"
+        for (i = 1; i <= n; ++i)
+          printf " %s %.1e (to t = %g s)%s", o[i], mx[o[i]], t[o[i]], i < n ? ";" : ".\n"
       }' "$dir/energy.csv"
   fi
   if [[ -s $dir/dae_tolerance.csv ]]; then
     awk -F, 'NR > 1 { f = $1; if (!(f in seen)) { seen[f] = 1; o[++n] = f }
-        if ($4 == "DAL_OK") { ok[f] = $3; if (!(f in best) || $8 + 0 < best[f]) best[f] = $8 + 0 }
-        else if (!(f in fail)) { fail[f] = $3; why[f] = $4 } }
+        if ($4 == "DAL_OK") {
+          if (!(f in best) || $8 + 0 < best[f]) best[f] = $8 + 0
+          if (!(f in hi)) hi[f] = $3; lo[f] = $3
+        } else fails[f] = fails[f] (fails[f] == "" ? "" : ", ") $3 " (" $4 ")" }
       END {
-        printf "- IDA tolerance sweep (Cartesian double pendulum, BDF, `dae_tolerance.csv`):"
+        printf "- IDA tolerance sweep (Cartesian double pendulum, BDF, rtol 1e-2 ... 1e-14,"
+        printf " `dae_tolerance.csv`):"
         for (i = 1; i <= n; ++i) {
           f = o[i]
-          printf " %s: ", f
-          if (f in fail) printf "first failure at rtol %s (%s)", fail[f], why[f]; else printf "no failure down to rtol 1e-14"
-          if (f in ok) printf ", smallest error reached %.1e", best[f]
-          printf "%s", i < n ? ";" : ".\n"
+          printf " %s ", f
+          if (f in best) printf "succeeds from rtol %s to %s, smallest error %.1e", hi[f], lo[f], best[f]
+          else printf "never succeeds"
+          printf ", %s%s", f in fails ? "fails at rtol " fails[f] : "no failure", i < n ? ";" : ".\n"
         }
       }' "$dir/dae_tolerance.csv"
   fi
@@ -184,25 +207,31 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
     awk -F, 'NR > 1 { k = $1 + 0; if (k > kmax) kmax = k; if (!($3 in sr)) { sr[$3] = 1; r[++nr] = $3 }
         st[k, $3, $2] = $4; rhs[k, $3, $2] = $6; w[k, $3, $2] = $5 }
       END {
-        printf "- Stiff spring pendulum (k = %.0e N/m, unit mass, t in [0, 1], `stiff.csv`), right-hand sides (wall time):", kmax
+        printf "- Stiff spring pendulum (k = %.0e N/m, unit mass, t in [0, 1], `stiff.csv`),", kmax
+        printf " right-hand sides (wall time):"
         split("dopri5 fehlberg78 adams bdf", m, " ")
         for (j = 1; j <= nr; ++j) {
           printf " at rtol %s", r[j]
           for (i = 1; i <= 4; ++i) {
             x = st[kmax, r[j], m[i]]
-            printf " %s %s%s", m[i], x == "DAL_OK" ? sprintf("%d (%.3g s)", rhs[kmax, r[j], m[i]], w[kmax, r[j], m[i]]) : x, i < 4 ? "," : ""
+            if (x == "DAL_OK") x = sprintf("%d (%.3g s)", rhs[kmax, r[j], m[i]], w[kmax, r[j], m[i]])
+            printf " %s %s%s", m[i], x, i < 4 ? "," : ""
           }
           if (st[kmax, r[j], "bdf"] == "DAL_OK" && st[kmax, r[j], "dopri5"] == "DAL_OK")
-            printf " (dopri5 / bdf: %.1fx the evaluations, %.1fx the time)", rhs[kmax, r[j], "dopri5"] / rhs[kmax, r[j], "bdf"], w[kmax, r[j], "dopri5"] / w[kmax, r[j], "bdf"]
+            printf " (dopri5 / bdf: %.1fx the evaluations, %.1fx the time)",
+                   rhs[kmax, r[j], "dopri5"] / rhs[kmax, r[j], "bdf"],
+                   w[kmax, r[j], "dopri5"] / w[kmax, r[j], "bdf"]
           printf "%s", j < nr ? ";" : ".\n"
         }
       }' "$dir/stiff.csv"
   fi
   if [[ -s $dir/singular.csv ]]; then
     awk -F, 'NR > 1 { c = $1 " (phidot0 " $2 ")"; if (!(c in seen)) { seen[c] = 1; o[++n] = c }
-        r[c] = r[c] (r[c] == "" ? "" : ", ") $3 "/" $4 " " ($6 == "DAL_OK" ? sprintf("ok, %d steps", $9) : $6) }
+        x = $6 == "DAL_OK" ? sprintf("ok, %d steps", $9) : $6
+        r[c] = r[c] (r[c] == "" ? "" : ", ") $3 "/" $4 " " x }
       END {
-        print "- Spherical pendulum at its pole (`singular.csv`), minimal (theta, phi) against redundant (x, y, z + rod):"
+        print "- Spherical pendulum at its pole (`singular.csv`), minimal (theta, phi) against" \
+              " redundant (x, y, z + rod):"
         for (i = 1; i <= n; ++i) printf "  - %s: %s\n", o[i], r[o[i]]
       }' "$dir/singular.csv"
   fi
@@ -215,7 +244,8 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
     echo
     echo "| scene | t1 (s) | reference | agreement |"
     echo "|---|---:|---|---:|"
-    awk -F, 'NR > 1 { printf "| %s | %g | %s | %s |\n", $1, $2, $4, ($3 + 0 == 0 ? "exact" : sprintf("%.1e", $3)) }' "$dir/references.csv"
+    awk -F, 'NR > 1 { a = $3 + 0 == 0 ? "exact" : sprintf("%.1e", $3)
+        printf "| %s | %g | %s | %s |\n", $1, $2, $4, a }' "$dir/references.csv"
     echo
   fi
 
@@ -237,7 +267,11 @@ if [[ -f $readme ]]; then
       /<!-- bench:end -->/ { skip = 0 }
       !skip { print }' "$readme" >"$readme.tmp" && mv "$readme.tmp" "$readme"
   else
-    { echo; echo "## Speed and accuracy"; echo; echo "<!-- bench:begin -->"; cat "$out"; echo "<!-- bench:end -->"; } >>"$readme"
+    {
+      printf '\n## Speed and accuracy\n\n<!-- bench:begin -->\n'
+      cat "$out"
+      echo "<!-- bench:end -->"
+    } >>"$readme"
   fi
 fi
 echo "bench: wrote $out"

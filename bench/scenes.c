@@ -39,9 +39,15 @@ void scene_init(bench_scene *sc, scene_kind kind, int N, double t1) {
   sc->N = 1;
   double def = 10.0;
   switch (kind) {
-  case SC_HO2D: snprintf(sc->name, sizeof sc->name, "ho2d"); break;
-  case SC_PENDULUM: snprintf(sc->name, sizeof sc->name, "pendulum"); break;
-  case SC_RING: snprintf(sc->name, sizeof sc->name, "ring"); break;
+  case SC_HO2D:
+    snprintf(sc->name, sizeof sc->name, "ho2d");
+    break;
+  case SC_PENDULUM:
+    snprintf(sc->name, sizeof sc->name, "pendulum");
+    break;
+  case SC_RING:
+    snprintf(sc->name, sizeof sc->name, "ring");
+    break;
   case SC_DRIVEN:
     snprintf(sc->name, sizeof sc->name, "driven");
     def = 5.0;
@@ -144,7 +150,8 @@ static int build_minimal(const bench_scene *sc, dal_builder *b, bench_model *m) 
     if (!rc) m->q0[0] = 1.0;
     return rc;
   }
-  default: break;
+  default:
+    break;
   }
   // chain-like: pendulum about the origin, then links hanging from the previous particle
   int N = sc->N;
@@ -156,8 +163,10 @@ static int build_minimal(const bench_scene *sc, dal_builder *b, bench_model *m) 
     rc = dal_builder_add_coord(b, name, &c);
     snprintf(name, sizeof name, "p%d", i);
     if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    if (!rc && i == 0) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
-    else if (!rc) rc = dal_builder_place(b, p, &dal_map_hanging, p - 1, 1, &c, 1, &len, NULL);
+    if (!rc && i == 0)
+      rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
+    else if (!rc)
+      rc = dal_builder_place(b, p, &dal_map_hanging, p - 1, 1, &c, 1, &len, NULL);
     m->q0[i] = chain_th0(sc, i);
   }
   if (!rc) rc = dal_builder_set_gravity(b, g2);
@@ -185,8 +194,8 @@ static int add_cartesian(dal_builder *b, int d, int i, int *p) {
   snprintf(name, sizeof name, "p%d", i);
   if (!rc) rc = dal_builder_add_particle(b, name, 1.0, p);
   if (!rc)
-    rc = dal_builder_place(b, *p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c,
-                           0, NULL, NULL);
+    rc = dal_builder_place(b, *p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c, 0,
+                           NULL, NULL);
   return rc;
 }
 
@@ -199,8 +208,9 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
     // bead held on the turning circle; starts on the ring at rest relative to it
     double par[6] = {RING_R, ring_w(), 0.0, 0.0, 0.0, 0.0};
     rc = add_cartesian(b, 3, 0, &p);
-    if (!rc) rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &p, 0, NULL,
-                                             6, par, NULL, NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, par,
+                                      NULL, NULL);
     if (!rc) rc = dal_builder_set_gravity(b, g3);
     if (!rc) rc = model_alloc(m, 3);
     if (!rc) {
@@ -214,8 +224,9 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
     // rod to the moving pivot (0, a cos(w t)), which starts at (0, a) at rest
     double par[3] = {DRV_L, 0.0, 0.0}, gd[2] = {0.0, -DRV_G};
     rc = add_cartesian(b, 2, 0, &p);
-    if (!rc) rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
-                                             (void *)&driven_point, NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
+                                      (void *)&driven_point, NULL);
     if (!rc) rc = dal_builder_set_gravity(b, gd);
     if (!rc) rc = model_alloc(m, 2);
     if (!rc) {
@@ -224,8 +235,10 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
     }
     return rc;
   }
-  case SC_HO2D: return DAL_E_UNSUPPORTED;
-  default: break;
+  case SC_HO2D:
+    return DAL_E_UNSUPPORTED;
+  default:
+    break;
   }
   // chain-like: rod to the pivot, then rods between neighbours; released from rest
   int N = sc->N;
@@ -237,8 +250,8 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
     snprintf(name, sizeof name, "rod%d", i);
     if (!rc && i == 0) {
       double par[3] = {1.0, 0.0, 0.0};
-      rc = dal_builder_add_constraint(b, name, &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL,
-                                      NULL);
+      rc =
+          dal_builder_add_constraint(b, name, &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
     } else if (!rc) {
       double L = 1.0;
       int ends[2] = {p - 1, p};
@@ -278,9 +291,7 @@ void scene_model_free(bench_model *m) {
   memset(m, 0, sizeof *m);
 }
 
-int scene_model_reset(bench_model *m) {
-  return dal_state_set(m->sys, m->st, 0.0, m->q0, m->qd0);
-}
+int scene_model_reset(bench_model *m) { return dal_state_set(m->sys, m->st, 0.0, m->q0, m->qd0); }
 
 // integrate a hand-written scene by two methods into ya and yb; ya is the reference
 static int two_methods(hand_rhs_fn *f1, hand_rhs_fn *f2, void *ctx, int n, const double *y0,
@@ -290,8 +301,8 @@ static int two_methods(hand_rhs_fn *f1, hand_rhs_fn *f2, void *ctx, int n, const
   int rc = hand_integrate(f1, ctx, n, ya, 0.0, t1, DAL_METHOD_FEHLBERG78, REF_RTOL, REF_ATOL,
                           100000000, NULL);
   if (!rc)
-    rc = hand_integrate(f2, ctx, n, yb, 0.0, t1, DAL_METHOD_DOPRI5, REF_RTOL, REF_ATOL,
-                        100000000, NULL);
+    rc = hand_integrate(f2, ctx, n, yb, 0.0, t1, DAL_METHOD_DOPRI5, REF_RTOL, REF_ATOL, 100000000,
+                        NULL);
   return rc ? DAL_E_SOLVER : DAL_OK;
 }
 
@@ -338,7 +349,8 @@ int scene_reference(const bench_scene *sc, double *r, double *agree, char *how, 
     snprintf(how, len, "hand-written ODE: fehlberg78 vs dopri5 at rtol 1e-14");
     return rc;
   }
-  default: break;
+  default:
+    break;
   }
   // chain-like: O(N) tension form by Fehlberg 7(8) against the dense form by Dormand-Prince
   int N = sc->N;
@@ -353,8 +365,10 @@ int scene_reference(const bench_scene *sc, double *r, double *agree, char *how, 
     hand_chain_positions(ch, y, r);
     hand_chain_positions(ch, y + n2, rb);
     *agree = bench_maxdiff(r, rb, 2 * N);
-    snprintf(how, len, "hand-written chain: O(N) form by fehlberg78 vs %s form by dopri5 at "
-                       "rtol 1e-14", N <= 256 ? "dense" : "O(N)");
+    snprintf(how, len,
+             "hand-written chain: O(N) form by fehlberg78 vs %s form by dopri5 at "
+             "rtol 1e-14",
+             N <= 256 ? "dense" : "O(N)");
   }
   hand_chain_destroy(ch);
   free(y0);
@@ -370,8 +384,8 @@ int scene_reference_fast(const bench_scene *sc, double *r) {
   hand_chain *ch = y ? scene_hand_chain(sc, y) : NULL;
   int rc = DAL_E_NOMEM;
   if (ch) {
-    rc = hand_integrate(hand_chain_rhs_tridiag, ch, (int)n2, y, 0.0, sc->t1,
-                        DAL_METHOD_FEHLBERG78, 1e-12, 1e-14, 100000000, NULL);
+    rc = hand_integrate(hand_chain_rhs_tridiag, ch, (int)n2, y, 0.0, sc->t1, DAL_METHOD_FEHLBERG78,
+                        1e-12, 1e-14, 100000000, NULL);
     rc = rc ? DAL_E_SOLVER : DAL_OK;
     hand_chain_positions(ch, y, r);
   }

@@ -11,7 +11,14 @@
 #include "hand.h"
 
 /// Kinds of scenes.
-typedef enum scene_kind { SC_HO2D, SC_PENDULUM, SC_RING, SC_DRIVEN, SC_DOUBLE, SC_CHAIN } scene_kind;
+typedef enum scene_kind {
+  SC_HO2D,
+  SC_PENDULUM,
+  SC_RING,
+  SC_DRIVEN,
+  SC_DOUBLE,
+  SC_CHAIN
+} scene_kind;
 
 /// One benchmark scene: a kind, its size and horizon.
 typedef struct bench_scene {

@@ -50,13 +50,20 @@ double bench_maxdiff(const double *a, const double *b, int n) {
 
 const char *bench_method_name(dal_method m) {
   switch (m) {
-  case DAL_METHOD_DOPRI5: return "dopri5";
-  case DAL_METHOD_FEHLBERG78: return "fehlberg78";
-  case DAL_METHOD_BS: return "bs";
-  case DAL_METHOD_RK4: return "rk4";
-  case DAL_METHOD_ADAMS: return "adams";
-  case DAL_METHOD_BDF: return "bdf";
-  default: return "auto";
+  case DAL_METHOD_DOPRI5:
+    return "dopri5";
+  case DAL_METHOD_FEHLBERG78:
+    return "fehlberg78";
+  case DAL_METHOD_BS:
+    return "bs";
+  case DAL_METHOD_RK4:
+    return "rk4";
+  case DAL_METHOD_ADAMS:
+    return "adams";
+  case DAL_METHOD_BDF:
+    return "bdf";
+  default:
+    return "auto";
   }
 }
 
@@ -74,10 +81,18 @@ void bench_opts(dal_solve_opts *o, bench_form f, dal_method m, double rtol) {
   o->fixed_step = 0.5 * pow(rtol, 0.25);
   o->max_steps = 5000000;
   switch (f) {
-  case BF_ODE: o->form = DAL_FORM_ODE; break;
-  case BF_GGL: o->form = DAL_FORM_GGL; break;
-  case BF_INDEX3: o->form = DAL_FORM_INDEX3; break;
-  case BF_INDEX1: o->form = DAL_FORM_INDEX1; break;
+  case BF_ODE:
+    o->form = DAL_FORM_ODE;
+    break;
+  case BF_GGL:
+    o->form = DAL_FORM_GGL;
+    break;
+  case BF_INDEX3:
+    o->form = DAL_FORM_INDEX3;
+    break;
+  case BF_INDEX1:
+    o->form = DAL_FORM_INDEX1;
+    break;
   case BF_INDEX1_BAUMGARTE:
     o->form = DAL_FORM_INDEX1;
     o->baumgarte_alpha = 20.0;
@@ -87,6 +102,7 @@ void bench_opts(dal_solve_opts *o, bench_form f, dal_method m, double rtol) {
     o->form = DAL_FORM_INDEX1;
     o->project = 1;
     break;
-  default: o->form = DAL_FORM_AUTO;
+  default:
+    o->form = DAL_FORM_AUTO;
   }
 }

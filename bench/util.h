@@ -44,4 +44,8 @@ const char *bench_form_name(bench_form f);
 /// step h = 0.5 rtol^(1/4).
 void bench_opts(dal_solve_opts *o, bench_form f, dal_method m, double rtol);
 
+/// The exact pendulum of tests/ref_elliptic.h (written independently of bench/ref.h):
+/// theta(t), thetadot(t) released from rest at th0, w0 = sqrt(g/l).
+void bench_tests_pendulum(double th0, double w0, double t, double *th, double *thd);
+
 #endif
