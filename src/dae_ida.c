@@ -259,9 +259,10 @@ static int con_curvature(ida_mem *w, const dal_con *c) {
   for (int r = 0; r < nout; ++r)
     g0[r] = st->jout[r].dd;
   for (int i = 0; i < nin; ++i) {
-    w->udot[i] += 1.0;
+    double keep = w->udot[i];
+    w->udot[i] = keep + 1.0;
     rc = con_dir(w, c, w->udot, 1.0);
-    w->udot[i] -= 1.0;
+    w->udot[i] = keep;
     if (rc) return rc;
     for (int r = 0; r < nout; ++r) {
       hv[r * nin + i] = 0.5 * (st->jout[r].dd - g0[r] - H[(r * nin + i) * nin + i]);
