@@ -23,19 +23,29 @@ static int find_sorted(const int *list, int n, int j) {
   return -1;
 }
 
-// call a jet function and check that every output is finite; names the culprit
+// the owner of a primitive instance: particle k (owner = k >= 0) or constraint c (-1 - c)
+static void owner_name(const dal_system *sys, int owner, char *buf, size_t len) {
+  if (owner >= 0) snprintf(buf, len, "particle '%s'", sys->part_names[owner]);
+  else snprintf(buf, len, "constraint '%s'", sys->con[-1 - owner].name);
+}
+
+// call a jet function and check that every output is finite; names the culprit (the name
+// is only formatted on failure: this runs on every evaluation)
 static int eval_checked(const dal_system *sys, dal_state *st, const dal_primitive *prim,
-                        const double *param, void *ctx, dal_jet t, const char *kind,
-                        const char *name) {
+                        const double *param, void *ctx, dal_jet t, int owner) {
+  const char *kind = owner >= 0 ? "coordinate map" : "constraint";
+  char name[160];
   int rc = prim->eval(st->jin, t, param, st->jout, ctx);
   if (rc) {
-    char what[160];
+    char what[240];
+    owner_name(sys, owner, name, sizeof name);
     snprintf(what, sizeof what, "%s '%s' of %s", kind, prim->name, name);
     return dal__cb_status(st, rc, what);
   }
   for (int i = 0; i < prim->nout; ++i)
     if (!dal_jet_isfinite(st->jout[i])) {
       char qs[256];
+      owner_name(sys, owner, name, sizeof name);
       dal__fmt_q(sys, st->q, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_DOMAIN,
                       "%s '%s' of %s produced a non-finite value or derivative (output %d: "
@@ -66,13 +76,13 @@ static void load_inputs(const dal_system *sys, dal_state *st, int npart, const i
 
 // local Jacobian loc (nout x nin, row-major) by one evaluation per input direction
 static int local_jacobian(const dal_system *sys, dal_state *st, const dal_primitive *prim,
-                          const double *param, void *ctx, const char *kind, const char *name) {
+                          const double *param, void *ctx, int owner) {
   int nin = prim->nin, nout = prim->nout;
   dal_jet t = dal_const(st->t);
   for (int i = 0; i < nin; ++i) {
     if (i > 0) st->jin[i - 1].d = 0.0;
     st->jin[i].d = 1.0;
-    int rc = eval_checked(sys, st, prim, param, ctx, t, kind, name);
+    int rc = eval_checked(sys, st, prim, param, ctx, t, owner);
     if (rc) return rc;
     for (int a = 0; a < nout; ++a) st->loc[a * nin + i] = st->jout[a].d;
   }
@@ -150,16 +160,13 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
       const int *coords = sys->ipool + pl->coord_off;
       const double *param = sys->ppool + pl->param_off;
       int np = pl->parent >= 0 ? 1 : 0, nin = prim->nin;
-      char name[160];
-      snprintf(name, sizeof name, "particle '%s'", sys->part_names[k]);
       // local Jacobian at the current values
       load_inputs(sys, st, np, &pl->parent, pl->ncoord, coords, 0);
-      rc = local_jacobian(sys, st, prim, param, pl->ctx, "coordinate map", name);
+      rc = local_jacobian(sys, st, prim, param, pl->ctx, k);
       if (rc) return rc;
       // along the state direction: r, v, gamma
       load_inputs(sys, st, np, &pl->parent, pl->ncoord, coords, 1);
-      rc = eval_checked(sys, st, prim, param, pl->ctx, dal_var(st->t, 1.0), "coordinate map",
-                        name);
+      rc = eval_checked(sys, st, prim, param, pl->ctx, dal_var(st->t, 1.0), k);
       if (rc) return rc;
       for (int a = 0; a < d; ++a) {
         st->r[k * d + a] = st->jout[a].v;
@@ -201,13 +208,11 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     const int *coords = sys->ipool + c->coord_off;
     const double *param = sys->ppool + c->param_off;
     int nin = prim->nin, nout = prim->nout;
-    char name[160];
-    snprintf(name, sizeof name, "constraint '%s'", c->name);
     load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 0);
-    rc = local_jacobian(sys, st, prim, param, c->ctx, "constraint", name);
+    rc = local_jacobian(sys, st, prim, param, c->ctx, -1 - ci);
     if (rc) return rc;
     load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 1);
-    rc = eval_checked(sys, st, prim, param, c->ctx, dal_var(st->t, 1.0), "constraint", name);
+    rc = eval_checked(sys, st, prim, param, c->ctx, dal_var(st->t, 1.0), -1 - ci);
     if (rc) return rc;
     for (int r = 0; r < nout; ++r) {
       st->phi[c->row + r] = st->jout[r].v;
