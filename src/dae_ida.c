@@ -137,7 +137,7 @@ static int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void *data)
     Fq[i] += yd[i] - v[i];
   // Fv = M v' - (Q - c) - G' lambda
   dal__mass_apply(sys, st, vd, Fv);
-  double *gl = dal__kkt_scratch(st, 0);
+  double *gl = m ? dal__kkt_scratch(st, 0) : NULL; // no KKT workspace when m = 0
   if (m) dal__gt_apply(sys, st, lam, gl);
   for (int i = 0; i < n; ++i)
     Fv[i] -= st->Q[i] - st->c[i] + (m ? gl[i] : 0.0);

@@ -551,6 +551,12 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
     return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive and finite",
                     dt);
   double t0 = st->t, span = (t1 - t0) / dt;
+  // a dt below the floating-point spacing of t would give output times that never advance
+  if (t0 + dt == t0 || t1 + dt == t1)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "evolve: output interval dt = %g is below the floating-point resolution of "
+                    "t between %g and %g; use a larger dt or restart the clock near 0",
+                    dt, t0, t1);
   if (span > 1e12)
     return DAL_FAIL(st, DAL_E_ARG,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,

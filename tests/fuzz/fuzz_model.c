@@ -65,6 +65,13 @@ static double fz_pos(fz *f, double typical) {
 }
 
 // ---------------------------------------------------------------- invariants
+// FZ_TRACE=1 in the environment prints each stage's status (to see what inputs reach)
+static void fz_trace(const char *stage, int rc, const char *msg) {
+  static int on = -1; // read once; the value never changes during a run
+  if (on < 0) on = getenv("FZ_TRACE") != NULL;
+  if (on) fprintf(stderr, "fz %-8s %-18s %.100s\n", stage, dal_status_name(rc), msg ? msg : "");
+}
+
 static void fz_die(const char *what, int rc, const char *msg) {
   fprintf(stderr, "fuzz_model: invariant violated: %s (status %d %s) msg='%s'\n", what, rc,
           dal_status_name(rc), msg ? msg : "");
@@ -272,12 +279,22 @@ static const dal_primitive *fz_prim(fz *f) {
 }
 
 // ---------------------------------------------------------------- the model
+#define FZ_MAX_CTX 8
+
+// typed contexts of primitive instances
+typedef union fz_ctx_slot {
+  dal_curve curve;
+  dal_moving_point point;
+  dal_prescribed presc;
+} fz_ctx_slot;
+
 typedef struct fz_model {
   int dim, n, N, placed[FZ_MAX_PARTS];
-  fz_cb cbs[12];
+  int next_coord; // next coordinate handed out by fz_coords
+  fz_cb cbs[24];
   int ncb;
-  dal_curve curves[4];
-  int ncurve;
+  fz_ctx_slot ctxs[FZ_MAX_CTX];
+  int nctx;
 } fz_model;
 
 static fz_cb *fz_new_cb(fz *f, fz_model *m) {
@@ -293,28 +310,50 @@ static fz_cb *fz_new_cb(fz *f, fz_model *m) {
   return c;
 }
 
-// the context for a primitive instance: a curve for curve primitives, else a callback (or NULL)
-static void *fz_ctx(fz *f, fz_model *m, const dal_primitive *prim) {
-  int want = fz_pick(f, 8);
-  if (want == 0) return NULL;
-  // a curve primitive's ctx must be a dal_curve; any other takes a callback context
-  if (prim && strncmp(prim->name, "curve", 5) == 0) {
-    if (m->ncurve >= 4) return NULL;
-    dal_curve *cv = &m->curves[m->ncurve++];
-    fz_cb *c = fz_new_cb(f, m);
-    c->d = prim->nout;
-    cv->fn = fz_curve;
-    cv->ctx = c;
-    return cv;
-  }
-  return fz_new_cb(f, m);
+static int fz_time(dal_jet t, dal_jet *f, void *ctx) {
+  fz_cb *c = ctx;
+  int rc = fz_mode_rc(c);
+  *f = dal_scale(dal_sin(dal_scale(t, 3.0)), fz_mode_val(c, c->scale));
+  return rc;
 }
 
-// list of k coordinate indices: mostly valid, sometimes out of range
-static void fz_coords(fz *f, const fz_model *m, int k, int *out) {
+// the context for a primitive instance, of the type its documentation asks for: a dal_curve
+// for curve primitives, a dal_moving_point for anchors, a dal_prescribed for prescribed
+// motions, a callback context for the user primitive that reads one; NULL now and then
+static void *fz_ctx(fz *f, fz_model *m, const dal_primitive *prim) {
+  if (!prim || fz_pick(f, 8) == 7) return NULL;
+  if (m->nctx >= FZ_MAX_CTX) return NULL;
+  fz_ctx_slot *s = &m->ctxs[m->nctx++];
+  fz_cb *c = fz_new_cb(f, m);
+  c->d = prim->nout;
+  if (strncmp(prim->name, "curve", 5) == 0) {
+    s->curve.fn = fz_curve;
+    s->curve.ctx = c;
+    return &s->curve;
+  }
+  if (strncmp(prim->name, "anchor", 6) == 0) {
+    c->d = prim->nin; // the anchor point has the particle's dimension
+    s->point.fn = fz_path;
+    s->point.ctx = c;
+    return &s->point;
+  }
+  if (strcmp(prim->name, "prescribed") == 0) {
+    s->presc.fn = fz_time;
+    s->presc.ctx = c;
+    return &s->presc;
+  }
+  if (strcmp(prim->name, "u_callback") == 0) return c;
+  return NULL;
+}
+
+// list of k coordinate indices: mostly the next unused ones (so that most coordinates move
+// some mass), sometimes any, now and then out of range
+static void fz_coords(fz *f, fz_model *m, int k, int *out) {
   for (int i = 0; i < k; ++i) {
     int c = fz_pick(f, 32);
-    out[i] = c < 30 ? (m->n ? c % m->n : 0) : (c == 30 ? -1 : m->n + 3);
+    if (m->n == 0) out[i] = c < 30 ? 0 : -1;
+    else if (c < 24) out[i] = m->next_coord++ % m->n;
+    else out[i] = c < 30 ? c % m->n : (c == 30 ? -1 : m->n + 3);
   }
 }
 
@@ -327,7 +366,7 @@ static void fz_params(fz *f, int k, double *out) {
 
 // a coordinate map for a d-dimensional scene (nout == d), or now and then any primitive
 static const dal_primitive *fz_map_prim(fz *f, int d) {
-  if (fz_pick(f, 8) == 0) return fz_prim(f);
+  if (fz_pick(f, 8) == 7) return fz_prim(f);
   const dal_primitive *fit[32];
   int nfit = 0;
   for (int i = 0; i < dal_primitive_count() && nfit < 32; ++i) {
@@ -341,12 +380,12 @@ static const dal_primitive *fz_map_prim(fz *f, int d) {
 static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
   const dal_primitive *prim = fz_map_prim(f, m->dim);
   int parent = -1;
-  if (k > 0 && fz_pick(f, 3) == 0) parent = fz_pick(f, k + 1) - (fz_pick(f, 8) == 0);
+  if (k > 0 && fz_pick(f, 3) == 2) parent = fz_pick(f, k + 1) - (fz_pick(f, 8) == 7);
   int fixed = parent >= 0 ? m->dim : 0;
   int nc = prim ? prim->nin - fixed : 1;
   int np = prim ? prim->nparam : 0;
-  if (fz_pick(f, 16) == 0) nc += fz_pick(f, 3) - 1;
-  if (fz_pick(f, 16) == 0) np += fz_pick(f, 3) - 1;
+  if (fz_pick(f, 16) == 15) nc += fz_pick(f, 3) - 1;
+  if (fz_pick(f, 16) == 15) np += fz_pick(f, 3) - 1;
   if (nc < 0) nc = fz_pick(f, 2) ? 0 : -1;
   if (nc > FZ_MAX_COORDS) nc = FZ_MAX_COORDS;
   if (np < 0) np = 0;
@@ -356,9 +395,9 @@ static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
   fz_coords(f, m, nc > 0 ? nc : 0, coords);
   fz_params(f, np, par);
   void *ctx = fz_ctx(f, m, prim);
-  int pk = fz_pick(f, 24) == 0 ? k + FZ_MAX_PARTS : k;
-  int rc = dal_builder_place(b, pk, prim, parent, nc, fz_pick(f, 20) ? coords : NULL, np,
-                             fz_pick(f, 20) ? par : NULL, ctx);
+  int pk = fz_pick(f, 24) == 23 ? k + FZ_MAX_PARTS : k;
+  int rc = dal_builder_place(b, pk, prim, parent, nc, fz_pick(f, 20) != 19 ? coords : NULL, np,
+                             fz_pick(f, 20) != 19 ? par : NULL, ctx);
   fz_b(b, "place", rc);
   if (!rc && pk == k) m->placed[k] = 1;
   // mostly fall back to a valid placement so that the model compiles
@@ -385,7 +424,7 @@ static void fz_constraint(fz *f, dal_builder *b, fz_model *m, int i) {
   }
   int nc = prim ? prim->nin - nparts * m->dim : 1;
   int np = prim ? prim->nparam : 0;
-  if (fz_pick(f, 16) == 0) nc += fz_pick(f, 3) - 1;
+  if (fz_pick(f, 16) == 15) nc += fz_pick(f, 3) - 1;
   if (nc < 0) nc = 0;
   if (nc > FZ_MAX_COORDS) nc = FZ_MAX_COORDS;
   if (np > FZ_MAX_PARAM) np = FZ_MAX_PARAM;
@@ -404,7 +443,7 @@ static void fz_constraint(fz *f, dal_builder *b, fz_model *m, int i) {
 // build the model from the bytes; returns a compiled system or NULL
 static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
   int dim = 2 + fz_pick(f, 2);
-  if (fz_pick(f, 64) == 0) dim = fz_pick(f, 5); // invalid dimension now and then
+  if (fz_pick(f, 64) == 63) dim = fz_pick(f, 5); // invalid dimension now and then
   dal_builder *b = NULL;
   int rc = dal_builder_create(dim, &b);
   fz_status("builder_create", rc);
@@ -414,20 +453,26 @@ static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
   }
   *bout = b;
   m->dim = dim;
-  m->n = fz_pick(f, FZ_MAX_COORDS + 1);
+  // particles first, then about as many coordinates as they can use (unused coordinates
+  // only make the mass matrix singular)
+  int kind = fz_pick(f, 16); // 14: Lagrangian, 15: whole-system map, else particles
+  int nparts = kind == 14 ? 0 : 1 + fz_pick(f, FZ_MAX_PARTS);
+  if (fz_pick(f, 32) == 31) nparts = 0;
+  int ncmax = nparts ? dim * nparts : FZ_MAX_COORDS;
+  m->n = 1 + fz_pick(f, ncmax < FZ_MAX_COORDS ? ncmax : FZ_MAX_COORDS);
+  if (fz_pick(f, 8) == 7) m->n = fz_pick(f, FZ_MAX_COORDS + 1);
   for (int i = 0; i < m->n; ++i) {
     char name[16];
     snprintf(name, sizeof name, "q%d", i);
     int idx = -1;
     fz_b(b, "add_coord", dal_builder_add_coord(b, fz_pick(f, 4) ? name : NULL, &idx));
   }
-  int kind = fz_pick(f, 16); // 0: Lagrangian, 1: whole-system map, else particles
-  if (kind == 0) {
+  if (kind == 14) {
     fz_cb *c = fz_new_cb(f, m);
     c->n = m->n;
     fz_b(b, "set_lagrangian", dal_builder_set_lagrangian(b, fz_lagr, c));
   }
-  m->N = kind == 0 ? 0 : fz_pick(f, FZ_MAX_PARTS + 1);
+  m->N = nparts;
   for (int k = 0; k < m->N; ++k) {
     char name[16];
     snprintf(name, sizeof name, "p%d", k);
@@ -438,14 +483,14 @@ static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
       fz_b(b, "add_particle", dal_builder_add_particle(b, name, 1.0, &idx));
     }
   }
-  if (kind == 1 && m->N > 0) {
+  if (kind == 15 && m->N > 0) {
     fz_cb *c = fz_new_cb(f, m);
     c->N = m->N;
     c->n = m->n;
     fz_b(b, "set_map", dal_builder_set_map(b, fz_map, c));
   } else {
     for (int k = 0; k < m->N; ++k)
-      if (fz_pick(f, 32)) fz_place(f, b, m, k);
+      if (fz_pick(f, 32) != 31) fz_place(f, b, m, k);
   }
   int ncon = fz_pick(f, 4);
   for (int i = 0; i < ncon; ++i) fz_constraint(f, b, m, i);
@@ -475,7 +520,7 @@ static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
       break;
     case 3:
       fz_b(b, "add_anchor_spring",
-           dal_builder_add_anchor_spring(b, pa, fz_pick(f, 8) ? x0 : NULL, NULL, NULL,
+           dal_builder_add_anchor_spring(b, pa, fz_pick(f, 8) != 7 ? x0 : NULL, NULL, NULL,
                                          fz_pos(f, 5.0), fz_pos(f, 0.5)));
       break;
     case 4:
@@ -484,7 +529,7 @@ static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
                                          fz_pos(f, 0.5)));
       break;
     case 5:
-      fz_b(b, "add_force", dal_builder_add_force(b, fz_pick(f, 16) ? fz_force : NULL, c));
+      fz_b(b, "add_force", dal_builder_add_force(b, fz_pick(f, 16) != 15 ? fz_force : NULL, c));
       break;
     case 6:
       fz_b(b, "add_genforce", dal_builder_add_genforce(b, fz_genforce, c));
@@ -499,6 +544,7 @@ static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
   }
   dal_system *sys = NULL;
   rc = fz_b(b, "compile", dal_builder_compile(b, &sys));
+  fz_trace("compile", rc, dal_builder_errmsg(b));
   if (rc && sys) fz_die("compile returned a system on failure", rc, NULL);
   if (!rc) {
     if (dal_system_ncoords(sys) != m->n || dal_system_dim(sys) != m->dim)
@@ -540,9 +586,11 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   const double *q = dal_state_q(st);
   for (int i = 0; i < dal_system_ncoords(sys); ++i)
     if (!isfinite(q[i])) fz_die("monitor sees a non-finite q", 0, NULL);
-  if (++mo->calls != mo->stop_at) return 0;
+  // stop at the chosen call (alternately as success or as failure), and after 64 calls
+  // whatever dt was (a tiny dt means countless output times)
+  if (++mo->calls != mo->stop_at && mo->calls < 64) return 0;
   mo->stopped = 1;
-  return mo->calls % 2 ? 1 : -1;
+  return mo->calls % 2 || mo->calls >= 64 ? 1 : -1;
 }
 
 static void fz_opts(fz *f, dal_solve_opts *o) {
@@ -550,19 +598,19 @@ static void fz_opts(fz *f, dal_solve_opts *o) {
   o->method = (dal_method)fz_pick(f, 7);
   o->form = (dal_formulation)fz_pick(f, 5);
   o->linsol = (dal_linsol)fz_pick(f, 3);
-  if (fz_pick(f, 32) == 0) o->method = (dal_method)(7 + fz_pick(f, 3));
-  if (fz_pick(f, 32) == 0) o->form = (dal_formulation)(5 + fz_pick(f, 3));
+  if (fz_pick(f, 32) == 31) o->method = (dal_method)(7 + fz_pick(f, 3));
+  if (fz_pick(f, 32) == 31) o->form = (dal_formulation)(5 + fz_pick(f, 3));
   o->rtol = fz_u8(f) < 220 ? pow(10.0, -2.0 - fz_pick(f, 11)) : fz_num(f);
   o->atol = fz_u8(f) < 220 ? pow(10.0, -3.0 - fz_pick(f, 11)) : fz_num(f);
-  if (fz_pick(f, 8) == 0) o->h0 = fz_num(f);
-  if (fz_pick(f, 8) == 0) o->hmin = fz_num(f);
-  if (fz_pick(f, 8) == 0) o->hmax = fz_num(f);
+  if (fz_pick(f, 8) == 7) o->h0 = fz_u8(f) < 128 ? 1e-4 : fz_num(f);
+  if (fz_pick(f, 8) == 7) o->hmin = fz_u8(f) < 128 ? 1e-12 : fz_num(f);
+  if (fz_pick(f, 8) == 7) o->hmax = fz_u8(f) < 128 ? 1e-2 : fz_num(f);
   o->fixed_step = fz_u8(f) < 220 ? 1e-3 * (1 + fz_pick(f, 10)) : fz_num(f);
   o->max_steps = 1 + fz_pick(f, 200);
-  if (fz_pick(f, 32) == 0) o->max_steps = -fz_pick(f, 3);
-  if (fz_pick(f, 4) == 0) {
-    o->baumgarte_alpha = fz_num(f);
-    o->baumgarte_beta = fz_num(f);
+  if (fz_pick(f, 32) == 31) o->max_steps = -fz_pick(f, 3);
+  if (fz_pick(f, 4) == 3) {
+    o->baumgarte_alpha = fz_u8(f) < 200 ? fz_pick(f, 20) : fz_num(f);
+    o->baumgarte_beta = fz_u8(f) < 200 ? fz_pick(f, 20) : fz_num(f);
   }
   o->project = fz_pick(f, 2);
   o->sparse_threshold = fz_pick(f, 2) ? 200 : fz_pick(f, 40);
@@ -601,7 +649,8 @@ static void fz_run(fz *f, const dal_system *sys, fz_model *m) {
     t0 = 0.0;
     fz_s(st, "state_set", dal_state_set(sys, st, t0, q, qd));
   }
-  fz_s(st, "forward", dal_forward(sys, st));
+  rc = fz_s(st, "forward", dal_forward(sys, st));
+  fz_trace("forward", rc, dal_state_errmsg(st));
   double J[3 * FZ_MAX_COORDS];
   fz_status("state_jacobian", dal_state_jacobian(sys, st, fz_pick(f, 8) - 1, J));
   dal_energies en;
@@ -628,12 +677,14 @@ static void fz_run(fz *f, const dal_system *sys, fz_model *m) {
       fz_mon mo = {ta, t1, 0, fz_pick(f, 6), 0};
       double dt = fz_u8(f) < 230 ? hz / (1 + fz_pick(f, 8)) : fz_num(f);
       rc = fz_s(st, "evolve", dal_evolve(sys, st, &o, t1, dt, fz_monitor, &mo));
+      fz_trace("evolve", rc, dal_state_errmsg(st));
       // a monitor that stopped the run early leaves the state before t1
       fz_check_state(sys, st, ta, mo.stopped ? NAN : t1, rc, "evolve");
       if (rc == DAL_OK && mo.calls < 1 && isfinite(t1) && t1 >= ta)
         fz_die("evolve succeeded without calling the monitor", rc, NULL);
     } else {
       rc = fz_s(st, "advance", dal_advance(sys, st, &o, t1));
+      fz_trace("advance", rc, dal_state_errmsg(st));
       fz_check_state(sys, st, ta, t1, rc, "advance");
     }
     dal_stats stats;

@@ -2,11 +2,13 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Replays fuzz inputs through the libFuzzer entry point without libFuzzer (a ctest).
 //
-// usage: fuzz_replay [--random COUNT SEED] PATH...
+// usage: fuzz_replay [--slow SECONDS] [--dump DIR] [--random COUNT SEED] PATH...
 // Each PATH is a file or a directory whose regular files are replayed in name order (so runs
 // are reproducible). --random also feeds COUNT pseudo-random inputs from a fixed seed, which
-// gives every build (including the sanitizer one) some fuzzing without clang. A violated
-// invariant aborts inside the target; a crash or a leak fails the test under the sanitizers.
+// gives every build (including the sanitizer one) some fuzzing without clang; --dump writes
+// them to DIR (to seed a corpus or keep a reproducer). --slow names every input that takes
+// longer than SECONDS. A violated invariant aborts inside the target; a crash or a leak
+// fails the test under the sanitizers.
 #define _POSIX_C_SOURCE 200809L
 #include <dirent.h>
 #include <stdint.h>
@@ -14,8 +16,26 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+static double slow_limit = -1.0; // report inputs slower than this (seconds; < 0: never)
+
+static double now(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_MONOTONIC, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+// run one input, timing it
+static void run_one(const uint8_t *data, size_t len, const char *what) {
+  double t0 = now();
+  LLVMFuzzerTestOneInput(data, len);
+  double dt = now() - t0;
+  if (slow_limit >= 0 && dt > slow_limit)
+    fprintf(stderr, "fuzz_replay: slow input %s: %.3f s\n", what, dt);
+}
 
 // read a whole file; returns 0 on success
 static int replay_file(const char *path) {
@@ -44,7 +64,7 @@ static int replay_file(const char *path) {
     fprintf(stderr, "fuzz_replay: out of memory reading %s\n", path);
     return 1;
   }
-  LLVMFuzzerTestOneInput(buf, len);
+  run_one(buf, len, path);
   free(buf);
   return 0;
 }
@@ -110,7 +130,16 @@ static uint64_t next_rand(uint64_t *s) {
 
 int main(int argc, char **argv) {
   int bad = 0, count = 0;
+  const char *dump = NULL;
   for (int a = 1; a < argc; ++a) {
+    if (strcmp(argv[a], "--slow") == 0 && a + 1 < argc) {
+      slow_limit = strtod(argv[++a], NULL);
+      continue;
+    }
+    if (strcmp(argv[a], "--dump") == 0 && a + 1 < argc) {
+      dump = argv[++a];
+      continue;
+    }
     if (strcmp(argv[a], "--random") == 0 && a + 2 < argc) {
       long nrand = strtol(argv[a + 1], NULL, 10);
       uint64_t seed = strtoull(argv[a + 2], NULL, 10) | 1u;
@@ -119,7 +148,14 @@ int main(int argc, char **argv) {
       for (long k = 0; k < nrand; ++k) {
         size_t len = 16 + (size_t)(next_rand(&seed) % (sizeof buf - 16));
         for (size_t i = 0; i < len; ++i) buf[i] = (uint8_t)(next_rand(&seed) >> 56);
-        LLVMFuzzerTestOneInput(buf, len);
+        char what[4096];
+        snprintf(what, sizeof what, "%s/random-%ld", dump ? dump : "(random)", k);
+        if (dump) {
+          FILE *fp = fopen(what, "wb");
+          if (!fp || fwrite(buf, 1, len, fp) != len) bad = 1;
+          if (fp) fclose(fp);
+        }
+        run_one(buf, len, what);
         ++count;
       }
       continue;
