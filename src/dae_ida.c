@@ -148,7 +148,7 @@ static int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void *data)
       F[w->off_mu + r] = st->phi[r];
     }
   } else if (w->form == DAL_FORM_INDEX3) {
-    memcpy(Fl, st->phi, (size_t)m * sizeof(double));
+    if (m) memcpy(Fl, st->phi, (size_t)m * sizeof(double));
   } else {
     double al = w->opts.baumgarte_alpha, be = w->opts.baumgarte_beta;
     memset(Fl, 0, (size_t)m * sizeof(double));
@@ -714,8 +714,11 @@ static int map_failure(ida_mem *w, int flag, double tfail) {
   case IDA_NLS_FAIL:
     code = DAL_E_CONV;
     what = "the Newton iteration failed to converge repeatedly";
-    remedy = "check the constraints (dal_check_constraints) for near-redundancy, or use the "
-             "GGL form";
+    remedy = w->form == DAL_FORM_GGL
+                 ? "check the constraints (dal_check_constraints) for near-redundancy or a "
+                   "vanishing gradient near this configuration"
+                 : "check the constraints (dal_check_constraints) for near-redundancy, or use "
+                   "the GGL form";
     break;
   case IDA_LINIT_FAIL:
   case IDA_LSETUP_FAIL:

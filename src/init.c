@@ -41,7 +41,7 @@ static double max_abs(const double *x, int n, int *at) {
 // positions onto phi = 0: damped minimum-norm Gauss-Newton
 static int project_positions(const dal_system *sys, dal_state *st, double tol, int maxit,
                              int *iters) {
-  int n = sys->n, m = sys->m, worst = 0, it = 0, rc;
+  int n = sys->n, m = sys->m, worst = 0, it = 0, rc, stalled = 0;
   double *zero = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
   double *q0 = dal__kkt_scratch(st, 2), *dq = dal__kkt_scratch(st, 3);
   memset(zero, 0, (size_t)n * sizeof(double));
@@ -49,6 +49,12 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
   for (; it < maxit && !(res <= tol); ++it) {
     if (!isfinite(res)) break;
     rc = dal__kkt_factor(sys, st, DAL_KKT_IDENTITY, "projection onto the constraints");
+    if (rc == DAL_E_SINGULAR && it > 0) {
+      // the iteration ran into a point where the constraint gradients vanish or become
+      // dependent, with residuals left: a stationary point of |phi|, no solution near it
+      stalled = 2;
+      break;
+    }
     if (rc) return rc;
     for (int r = 0; r < m; ++r)
       b[r] = -st->phi[r];
@@ -71,20 +77,49 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
       if (rc) return rc;
       res = max_abs(st->phi, m, &worst);
       ++it;
+      stalled = 1;
       break;
     }
     res = nres;
   }
   if (iters) *iters = it;
+  if (!(res <= tol) && stalled) {
+    // stalled with residuals left on two or more constraints: each step that reduces one
+    // increases another, so they conflict (at least near this guess); name them all
+    char names[256] = "", qs[256];
+    int nbad = 0, last = -1;
+    size_t used = 0;
+    for (int r = 0; r < m; ++r) {
+      int ci = sys->row_con[r];
+      if (!(fabs(st->phi[r]) > tol) || ci == last) continue;
+      last = ci;
+      if (nbad++ < 4 && used < sizeof names)
+        used += (size_t)snprintf(names + used, sizeof names - used, "%s'%s' (%.3g)",
+                                 nbad > 1 ? " and " : "", sys->con[ci].name, st->phi[r]);
+    }
+    if (nbad >= 2) {
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_CONSTRAINT,
+                      "constraints %s%s conflict: Gauss-Newton stalls at t=%.17g, %s with "
+                      "these residuals > %.3g (a step that reduces one increases another, or "
+                      "their gradients become dependent); no "
+                      "position near this guess satisfies them together: fix their parameters, "
+                      "or start from a guess near a common solution",
+                      names, nbad > 4 ? " and others" : "", st->t, qs, tol);
+    }
+  }
   if (!(res <= tol)) {
     char qs[256];
     dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_INIT,
                     "positions cannot be brought onto the constraints at t=%.17g: after %d "
                     "Gauss-Newton iterations constraint '%s' (row %d) still has residual %.3g "
-                    "> %.3g at %s; the constraints conflict (no position satisfies them all) "
+                    "> %.3g at %s%s; the constraints conflict (no position satisfies them all) "
                     "or the initial guess is too far from the constraint manifold",
-                    st->t, it, sys->con[sys->row_con[worst]].name, worst, res, tol, qs);
+                    st->t, it, sys->con[sys->row_con[worst]].name, worst, res, tol, qs,
+                    stalled == 2 ? ", where the constraint gradients vanish (the residual is "
+                                   "stationary there)"
+                                 : "");
   }
   return DAL_OK;
 }

@@ -87,6 +87,8 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
                          ig->rhs_err, ig->t, ig->tout);
   case ARK_ERR_FAILURE:
   case ARK_TOO_MUCH_ACC: {
+    // a callback that keeps asking for a smaller step, not the solution, stopped us
+    if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
     // dominating variable: the largest weighted local error estimate of the failed try
     ERKStepGetEstLocalErrors(m->ark, m->ele);
     ERKStepGetErrWeights(m->ark, m->ewt);

@@ -139,6 +139,8 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
                          ig->rhs_err, ig->t, ig->tout);
   case CV_ERR_FAILURE:
   case CV_TOO_MUCH_ACC:
+    // a callback that keeps asking for a smaller step, not the solution, stopped us
+    if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
     return dal__ode_fail(ig, DAL_E_STEP,
                          "step size underflow at t=%.17g (h=%.3g, %s): error dominated by %s; "
                          "the solution may be singular there, or the tolerances too tight: "

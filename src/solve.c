@@ -123,7 +123,26 @@ int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot) {
   ig->rhs_rc = rc;
   if (rc) memcpy(ig->rhs_err, st->err, sizeof ig->rhs_err);
   if (rc < 0) ig->rhs_fatal = rc;
+  if (rc == DAL__RECOVERABLE) {
+    ig->nrecov++;
+    ig->recov_t = t;
+  }
   return rc;
+}
+
+int dal__ode_recov_blocked(const dal_ode_integ *ig) {
+  return ig->nrecov > 0 && ig->recov_t >= ig->t && ig->rhs_err[0];
+}
+
+int dal__ode_recov_fail(dal_ode_integ *ig, double h) {
+  char cause[DAL_ERRMSG_LEN];
+  memcpy(cause, ig->rhs_err, sizeof cause);
+  return dal__ode_fail(ig, DAL_E_CALLBACK,
+                       "%s; the step was shrunk to h=%.3g and it still fails (%d times in this "
+                       "call): a failure that persists is not recoverable; fix the callback, or "
+                       "return < 0 from it to stop at once; stopped at t=%.17g (last accepted "
+                       "step) before the target t=%.17g",
+                       cause, h, ig->nrecov, ig->t, ig->tout);
 }
 
 int dal__ode_collapsed(dal_ode_integ *ig, double t) {
@@ -159,12 +178,22 @@ int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected
   st->stats.last_h = t - ig->t;
   ig->t = t;
   ig->ncall++;
-  if (ig->t < ig->tout && ig->ncall >= ig->opts.max_steps)
+  if (ig->t < ig->tout && ig->ncall >= ig->opts.max_steps) {
+    // the variable that limits the steps: the fastest-changing one relative to its
+    // tolerance, |y_i'| / (atol + rtol |y_i|), at the last accepted step
+    char var[128] = "(not evaluated)";
+    if (ig->prob->rhs(ig->sys, st, &ig->opts, ig->t, ig->y, ig->ydot) == 0) {
+      for (int i = 0; i < ig->ny; ++i)
+        ig->ewt[i] = ig->ydot[i] / (ig->atol + ig->rtol * fabs(ig->y[i]));
+      dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
+    }
     return dal__ode_fail(ig, DAL_E_MAXSTEPS,
                          "%ld steps taken at t=%.17g before the target t=%.17g "
-                         "(opts.max_steps); raise max_steps, loosen the tolerances, or use "
+                         "(opts.max_steps); the fastest-changing variable (relative to its "
+                         "tolerance) is %s; raise max_steps, loosen the tolerances, or use "
                          "DAL_METHOD_BDF if the problem is stiff",
-                         ig->ncall, ig->t, ig->tout);
+                         ig->ncall, ig->t, ig->tout, var);
+  }
   return DAL_OK;
 }
 
@@ -261,6 +290,15 @@ static int check_opts(dal_state *st, const dal_solve_opts *o) {
     return DAL_FAIL(st, DAL_E_ARG, "opts.form = %d is not a dal_formulation", (int)o->form);
   if ((int)o->linsol < DAL_LINSOL_AUTO || (int)o->linsol > DAL_LINSOL_KLU)
     return DAL_FAIL(st, DAL_E_ARG, "opts.linsol = %d is not a dal_linsol", (int)o->linsol);
+  // NaN or inf in any real option is a non-finite input, as everywhere in the library
+  const double *reals[8] = {&o->rtol, &o->atol, &o->fixed_step, &o->h0,
+                            &o->hmin, &o->hmax, &o->baumgarte_alpha, &o->baumgarte_beta};
+  const char *rnames[8] = {"rtol", "atol", "fixed_step", "h0",
+                           "hmin", "hmax", "baumgarte_alpha", "baumgarte_beta"};
+  for (int i = 0; i < 8; ++i)
+    if (!isfinite(*reals[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "opts.%s = %g is not finite; give a finite value",
+                      rnames[i], *reals[i]);
   if (!(o->rtol > 0) || !isfinite(o->rtol))
     return DAL_FAIL(st, DAL_E_ARG, "opts.rtol = %g must be positive and finite (e.g. 1e-8)",
                     o->rtol);
@@ -485,6 +523,7 @@ static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts
     ig->ncall = 0;
     ig->rhs_fatal = 0;
     ig->ntiny = 0;
+    ig->nrecov = 0;
     rc = ig->advance(ig, t1);
     if (!rc) {
       // the state at t1, evaluated there
@@ -515,7 +554,7 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
   int rc = check_opts(st, o);
   if (rc) return rc;
   if (!isfinite(t1))
-    return DAL_FAIL(st, DAL_E_TIME, "%s: target time is %g; give a finite time", what, t1);
+    return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
   if (t1 < st->t)
     return DAL_FAIL(st, DAL_E_TIME,
                     "%s: target time %.17g lies behind the current time %.17g; integration runs "

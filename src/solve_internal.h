@@ -62,6 +62,8 @@ struct dal_ode_integ {
   int rhs_rc;          ///< return code of the last right-hand-side call
   int rhs_fatal;       ///< first negative right-hand-side code of this advance call (0: none)
   int ntiny;           ///< consecutive accepted steps of a few ulps of t (step size collapse)
+  int nrecov;          ///< recoverable right-hand-side failures in this advance call
+  double recov_t;      ///< time of the last of them
   char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
   char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
   void *impl;                   ///< method memory
@@ -100,6 +102,12 @@ int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...)
 const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t len);
 /// index of the largest |w[i]| (the dominating variable of an error estimate)
 int dal__ode_argmax(const double *w, int n);
+/// true when recoverable right-hand-side failures after the last accepted step are what
+/// keeps the integrator from advancing (a step collapse is then the callback's doing)
+int dal__ode_recov_blocked(const dal_ode_integ *ig);
+/// the status and message of a step collapse caused by a callback that keeps asking for a
+/// smaller step (see dal__ode_recov_blocked); h is the last step size tried
+int dal__ode_recov_fail(dal_ode_integ *ig, double h);
 
 /// method constructors: fill ig->impl, ig->advance, ig->free_impl from ig->y at ig->t
 int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (ode_arkode.c)

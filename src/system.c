@@ -82,7 +82,8 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   int n = b->coords.len, N = b->parts.len, d = b->dim;
   dal_place *places = b->places.data;
   dal_con *cons = b->cons.data;
-  const int *ip = b->ipool.data;
+  static const int no_ints[1] = {0}; // an empty pool is NULL: ip + 0 must stay valid C
+  const int *ip = b->ipool.data ? (const int *)b->ipool.data : no_ints;
 
   // validate the model as a whole
   if (n == 0) return BFAIL(DAL_E_ARG, "the model has no generalized coordinates");

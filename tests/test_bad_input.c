@@ -716,6 +716,564 @@ static int row_path_domain(char *msg) {
   return rc;
 }
 
+// ---------------------------------------------------------------- integration rows
+// The oscillator: 'bob' (2 kg) on the free plane with force_cb's spring F_x = -4 x, started at
+// x = 0.5 at rest: x(t) = 0.5 cos(sqrt(2) t) is the independent reference for "the state
+// holds the last accepted step" and for "fixing the cause lets the run continue".
+#define OSC_W 1.4142135623730951
+
+typedef struct osc {
+  dal_builder *b;
+  dal_system *sys;
+  dal_state *st;
+  force_ctx fc;
+} osc;
+
+static int osc_make(osc *o, int mode, double t_fail, int n_fail) {
+  int bob;
+  memset(o, 0, sizeof *o);
+  o->fc = (force_ctx){mode, t_fail, n_fail, 0, 0};
+  double q[2] = {0.5, 0.0}, qd[2] = {0.0, 0.0};
+  int rc = free2(&o->b, &bob);
+  if (!rc) rc = dal_builder_add_force(o->b, force_cb, &o->fc);
+  if (!rc) rc = dal_builder_compile(o->b, &o->sys);
+  if (!rc) rc = dal_state_create(o->sys, &o->st);
+  if (!rc) rc = dal_state_set(o->sys, o->st, 0.0, q, qd);
+  return rc;
+}
+
+static void osc_free(osc *o) { destroy_all(o->b, o->sys, o->st); }
+
+static dal_solve_opts tight_opts(dal_method m) {
+  dal_solve_opts so;
+  dal_solve_default_opts(&so);
+  so.method = m;
+  so.rtol = 1e-10;
+  so.atol = 1e-12;
+  return so;
+}
+
+// the state lies on the exact trajectory at its own time (an accepted step, not a trial one)
+static void check_on_oscillator(const dal_state *st, double tol) {
+  double t = dal_state_time(st);
+  CHECK_CLOSE(dal_state_q(st)[0], 0.5 * cos(OSC_W * t), tol);
+  CHECK_CLOSE(dal_state_qdot(st)[0], -0.5 * OSC_W * sin(OSC_W * t), tol);
+  CHECK(dal_state_q(st)[1] == 0.0 && dal_state_qdot(st)[1] == 0.0);
+}
+
+// a bad option: rejected before any work, the state untouched, the good option then works
+static int opts_row(char *msg, int field, double bad) {
+  osc o;
+  CHECK_OK(osc_make(&o, 0, 0.0, 0));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  double *f[4] = {&so.rtol, &so.atol, &so.fixed_step, &so.hmax};
+  *f[field] = bad;
+  int rc = dal_advance(o.sys, o.st, &so, 1.0);
+  copy_msg(msg, dal_state_errmsg(o.st));
+  CHECK(dal_state_time(o.st) == 0.0 && dal_state_q(o.st)[0] == 0.5);
+  so = tight_opts(DAL_METHOD_DOPRI5);
+  CHECK_OK(dal_advance(o.sys, o.st, &so, 1.0));
+  CHECK(dal_state_time(o.st) == 1.0);
+  check_on_oscillator(o.st, 1e-7);
+  osc_free(&o);
+  return rc;
+}
+static int row_rtol_nan(char *msg) { return opts_row(msg, 0, NAN); }
+static int row_atol_inf(char *msg) { return opts_row(msg, 1, INFINITY); }
+static int row_rtol_zero(char *msg) { return opts_row(msg, 0, 0.0); }
+static int row_atol_negative(char *msg) { return opts_row(msg, 1, -1e-8); }
+static int row_rtol_negative(char *msg) { return opts_row(msg, 0, -1e-6); }
+static int row_fixed_step_nan(char *msg) { return opts_row(msg, 2, NAN); }
+
+// target time behind (or not a number): nothing moves, forward integration then works
+static int time_row(char *msg, double t1) {
+  osc o;
+  CHECK_OK(osc_make(&o, 0, 0.0, 0));
+  dal_solve_opts so = tight_opts(DAL_METHOD_BS);
+  CHECK_OK(dal_advance(o.sys, o.st, &so, 1.0));
+  int rc = dal_advance(o.sys, o.st, &so, t1);
+  copy_msg(msg, dal_state_errmsg(o.st));
+  CHECK(dal_state_time(o.st) == 1.0);
+  check_on_oscillator(o.st, 1e-7);
+  CHECK_OK(dal_advance(o.sys, o.st, &so, 2.0));
+  check_on_oscillator(o.st, 1e-7);
+  osc_free(&o);
+  return rc;
+}
+static int row_time_behind(char *msg) { return time_row(msg, 0.25); }
+static int row_time_nan(char *msg) { return time_row(msg, NAN); }
+
+// evolve with an output interval below the resolution of t (was an endless loop)
+static int row_evolve_dt_unresolvable(char *msg) {
+  osc o;
+  CHECK_OK(osc_make(&o, 0, 0.0, 0));
+  double q[2] = {0.5, 0.0}, qd[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(o.sys, o.st, 1e17, q, qd));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  int rc = dal_evolve(o.sys, o.st, &so, 1e17 + 64.0, 1.0, NULL, NULL);
+  copy_msg(msg, dal_state_errmsg(o.st));
+  CHECK(dal_state_time(o.st) == 1e17);
+  osc_free(&o);
+  return rc;
+}
+
+// too many steps: stop at an accepted step on the trajectory; calling again continues
+static int row_max_steps(char *msg) {
+  osc o;
+  CHECK_OK(osc_make(&o, 0, 0.0, 0));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  so.max_steps = 5;
+  int rc = dal_advance(o.sys, o.st, &so, 3.0);
+  copy_msg(msg, dal_state_errmsg(o.st));
+  double t = dal_state_time(o.st);
+  CHECK(t > 0.0 && t < 3.0);
+  check_on_oscillator(o.st, 1e-8);
+  dal_stats stats;
+  CHECK_OK(dal_state_stats(o.st, &stats));
+  CHECK(stats.steps == 5);
+  so.max_steps = 100000;
+  CHECK_OK(dal_advance(o.sys, o.st, &so, 3.0));
+  CHECK(dal_state_time(o.st) == 3.0);
+  check_on_oscillator(o.st, 1e-7);
+  osc_free(&o);
+  return rc;
+}
+
+// a force callback misbehaving from t = 0.7 on, for every method in turn: the run stops at
+// the last accepted step before 0.7, which lies on the trajectory; with the callback fixed
+// the same call goes on to t = 2 and still follows the closed form
+static int callback_row(char *msg, int mode) {
+  const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
+                           DAL_METHOD_RK4,    DAL_METHOD_ADAMS,      DAL_METHOD_BDF};
+  int rc0 = 0;
+  for (size_t i = 0; i < sizeof ms / sizeof ms[0]; ++i) {
+    osc o;
+    CHECK_OK(osc_make(&o, mode, 0.7, -1));
+    dal_solve_opts so = tight_opts(ms[i]);
+    so.fixed_step = 1e-3;
+    int rc = dal_advance(o.sys, o.st, &so, 2.0);
+    if (i == 0) {
+      rc0 = rc;
+      copy_msg(msg, dal_state_errmsg(o.st));
+    }
+    CHECK_MSG(rc == rc0, "%s: status %s, %s with dopri5: %s", dal_method_name(ms[i]),
+              dal_status_name(rc), dal_status_name(rc0), dal_state_errmsg(o.st));
+    double t = dal_state_time(o.st);
+    // (an accepted step may end past 0.7 when the failing evaluation is the next step's first)
+    CHECK_MSG(t > 0.0 && t < 0.75, "%s stopped at t=%.17g", dal_method_name(ms[i]), t);
+    check_on_oscillator(o.st, ms[i] == DAL_METHOD_RK4 ? 1e-9 : 1e-7);
+    o.fc.mode = 0;
+    CHECK_OK(dal_advance(o.sys, o.st, &so, 2.0));
+    CHECK(dal_state_time(o.st) == 2.0);
+    check_on_oscillator(o.st, ms[i] == DAL_METHOD_RK4 ? 1e-9 : 1e-7);
+    osc_free(&o);
+  }
+  return rc0;
+}
+static int row_callback_stop(char *msg) { return callback_row(msg, 3); }
+static int row_callback_nan(char *msg) { return callback_row(msg, 1); }
+static int row_callback_recoverable_always(char *msg) { return callback_row(msg, 2); }
+
+// a transient recoverable failure (> 0, three times): the integrator shrinks the step and
+// succeeds, on the trajectory
+static int row_callback_recoverable_transient(char *msg) {
+  const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
+                           DAL_METHOD_RK4,    DAL_METHOD_ADAMS,      DAL_METHOD_BDF};
+  int rc0 = 0;
+  for (size_t i = 0; i < sizeof ms / sizeof ms[0]; ++i) {
+    osc o;
+    CHECK_OK(osc_make(&o, 2, 0.7, 3));
+    dal_solve_opts so = tight_opts(ms[i]);
+    so.fixed_step = 1e-3;
+    int rc = dal_advance(o.sys, o.st, &so, 2.0);
+    if (rc) copy_msg(msg, dal_state_errmsg(o.st));
+    CHECK_MSG(rc == DAL_OK, "%s: %s: %s", dal_method_name(ms[i]), dal_status_name(rc),
+              dal_state_errmsg(o.st));
+    rc0 = rc0 ? rc0 : rc;
+    CHECK(o.fc.fails == 3);
+    CHECK(dal_state_time(o.st) == 2.0);
+    check_on_oscillator(o.st, ms[i] == DAL_METHOD_RK4 ? 1e-9 : 1e-7);
+    osc_free(&o);
+  }
+  return rc0;
+}
+
+// U(r) = sqrt(1 - x) pulls 'bob' towards x = 1, where the potential ends: the run stops at
+// an accepted step short of it, naming the potential; sent back (new state) it runs on
+static int pot_edge(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
+  (void)t;
+  (void)ctx;
+  *U = dal_sqrt(dal_sub(dal_const(1.0), r[0]));
+  return 0;
+}
+
+static int row_potential_domain_in_flight(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  int bob;
+  CHECK_OK(free2(&b, &bob));
+  CHECK_OK(dal_builder_add_potential_r(b, pot_edge, NULL));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {0.0, 0.0}, qd[2] = {1.0, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  int rc = dal_advance(sys, st, &so, 5.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  double t = dal_state_time(st), x = dal_state_q(st)[0];
+  CHECK(t > 0.0 && t < 1.0 && x > 0.5 && x < 1.0);
+  // energy is conserved up to the stop: E = 1/2 m v^2 + sqrt(1 - x) = 1 + 1
+  dal_energies e;
+  CHECK_OK(dal_state_energies(st, &e));
+  CHECK_CLOSE(e.E, 2.0, 1e-8);
+  q[0] = 0.0;
+  qd[0] = -1.0;
+  CHECK_OK(dal_state_set(sys, st, t, q, qd));
+  CHECK_OK(dal_advance(sys, st, &so, t + 1.0));
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// the spherical pendulum in minimal coordinates heading for its pole with a tiny L_z: the
+// run stops (chart singularity) at an accepted step, naming the azimuth 'phi'; energy and
+// L_z up to there are those of the start
+static int row_pole_in_flight(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(spherical(&b, &sys, &st));
+  double q[2] = {0.5, 0.0}, qd[2] = {-3.0, 1e-9};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  CHECK_OK(dal_forward(sys, st));
+  dal_energies e0, e1;
+  CHECK_OK(dal_state_energies(st, &e0));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  int rc = dal_advance(sys, st, &so, 1.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  double t = dal_state_time(st), th = dal_state_q(st)[0];
+  CHECK(t > 0.0 && t < 1.0 && fabs(th) < 0.1);
+  CHECK_OK(dal_state_energies(st, &e1));
+  CHECK_CLOSE(e1.E, e0.E, 1e-6 * fabs(e0.E) + 1e-9);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// a force ~ 1/|r|^3 attracting 'bob' to the origin, hit head-on: the speed blows up in finite
+// time, the step size collapses; the message names the time and the coordinate 'x'
+static int force_inverse_cube(double t, const double *r, const double *v, double *F,
+                              void *ctx) {
+  (void)t;
+  (void)v;
+  (void)ctx;
+  double d = hypot(r[0], r[1]);
+  F[0] -= r[0] / (d * d * d * d);
+  F[1] -= r[1] / (d * d * d * d);
+  return 0;
+}
+
+static int row_step_collapse(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  int bob;
+  CHECK_OK(free2(&b, &bob));
+  CHECK_OK(dal_builder_add_force(b, force_inverse_cube, NULL));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {1.0, 0.0}, qd[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  int rc = dal_advance(sys, st, &so, 5.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  // collision time of x'' = -1/(2 x^3) from x = 1 at rest: x^2 = 1 - t^2/2, T = sqrt(2)
+  double t = dal_state_time(st), x = dal_state_q(st)[0];
+  CHECK(t > 1.3 && t < OSC_W && x > 0.0 && x < 0.3);
+  CHECK_CLOSE(x * x, 1.0 - t * t / 2.0, 1e-6);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// ---------------------------------------------------------------- DAE rows
+// the Cartesian pendulum: 'bob' at (x, y), rods from the origin; scene options:
+// dup: a second rod identical to the first (redundant); far: a second anchor 3 m away (no
+// common point: conflicting)
+static int cart_pendulum(dal_builder **b, dal_system **sys, dal_state **st, int second,
+                         double ax, force_ctx *fc) {
+  int c[2], bob;
+  double rod[3] = {1.0, 0.0, 0.0}, rod2[3] = {1.0, ax, 0.0};
+  int rc = free2(b, &bob);
+  if (!rc) rc = dal_builder_set_gravity(*b, g2);
+  if (!rc)
+    rc = dal_builder_add_constraint(*b, "rodA", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod, NULL,
+                                    NULL);
+  if (!rc && second)
+    rc = dal_builder_add_constraint(*b, "rodB", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod2,
+                                    NULL, NULL);
+  if (!rc && fc) rc = dal_builder_add_force(*b, force_cb, fc);
+  if (!rc) rc = dal_builder_compile(*b, sys);
+  if (!rc) rc = dal_state_create(*sys, st);
+  (void)c;
+  return rc;
+}
+
+static void cart_set(const dal_system *sys, dal_state *st, double th) {
+  double q[2] = {sin(th), -cos(th)}, qd[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+}
+
+static int row_redundant_constraints(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 1, 0.0, NULL));
+  cart_set(sys, st, 0.5);
+  dal_constraint_report rep;
+  int rc = dal_check_constraints(sys, st, &rep);
+  copy_msg(msg, dal_state_errmsg(st));
+  CHECK(rep.m == 2 && rep.rank == 1);
+  // advance refuses the same way and leaves the state alone
+  dal_solve_opts so = tight_opts(DAL_METHOD_AUTO);
+  CHECK(dal_advance(sys, st, &so, 1.0) == rc);
+  CHECK(strstr(dal_state_errmsg(st), "'rodB'") != NULL);
+  CHECK(dal_state_time(st) == 0.0 && dal_state_q(st)[0] == sin(0.5));
+  destroy_all(b, sys, st);
+  // the fix: one rod
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 0, 0.0, NULL));
+  cart_set(sys, st, 0.5);
+  CHECK_OK(dal_check_constraints(sys, st, &rep));
+  CHECK_OK(dal_advance(sys, st, &so, 1.0));
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+static int row_conflicting_constraints(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 1, 3.0, NULL));
+  cart_set(sys, st, 0.5);
+  double q0 = dal_state_q(st)[0], q1 = dal_state_q(st)[1];
+  dal_solve_opts so = tight_opts(DAL_METHOD_AUTO);
+  int rc = dal_advance(sys, st, &so, 1.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  CHECK(dal_state_time(st) == 0.0 && dal_state_q(st)[0] == q0 && dal_state_q(st)[1] == q1);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// an initial guess where the rod is undefined: the bob at the anchor itself, where the rod's
+// direction (and gradient) does not exist
+static int row_init_at_anchor(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 0, 0.0, NULL));
+  double q[2] = {0.0, 0.0}, qd[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  dal_init_report rep;
+  int rc = dal_make_consistent(sys, st, 0.0, &rep);
+  copy_msg(msg, dal_state_errmsg(st));
+  CHECK(dal_state_q(st)[0] == 0.0 && dal_state_q(st)[1] == 0.0);
+  // a guess off the rod but not at the anchor is projected onto it
+  q[0] = 0.3;
+  q[1] = -0.2;
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  CHECK_OK(dal_make_consistent(sys, st, 0.0, &rep));
+  CHECK_CLOSE(hypot(dal_state_q(st)[0], dal_state_q(st)[1]), 1.0, 1e-12);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// a force callback failing from t = 0.7 on in the DAE (GGL through IDA): the state holds the
+// last accepted step, on the rod; fixed, the run continues
+static int dae_callback_row(char *msg, int mode, int n_fail) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  force_ctx fc = {mode, 0.7, n_fail, 0, 0};
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 0, 0.0, &fc));
+  cart_set(sys, st, 0.5);
+  dal_solve_opts so = tight_opts(DAL_METHOD_AUTO);
+  so.rtol = 1e-8;
+  so.atol = 1e-10;
+  int rc = dal_advance(sys, st, &so, 2.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  double t = dal_state_time(st);
+  if (n_fail < 0) {
+    CHECK_MSG(t > 0.5 && t <= 0.7, "stopped at t=%.17g", t);
+  } else {
+    CHECK(t == 2.0 && fc.fails == n_fail);
+  }
+  CHECK_CLOSE(hypot(dal_state_q(st)[0], dal_state_q(st)[1]), 1.0, 1e-8);
+  fc.mode = 0;
+  CHECK_OK(dal_advance(sys, st, &so, 3.0));
+  CHECK(dal_state_time(st) == 3.0);
+  CHECK_CLOSE(hypot(dal_state_q(st)[0], dal_state_q(st)[1]), 1.0, 1e-8);
+  destroy_all(b, sys, st);
+  return rc;
+}
+static int row_dae_callback_stop(char *msg) { return dae_callback_row(msg, 3, -1); }
+static int row_dae_callback_transient(char *msg) { return dae_callback_row(msg, 2, 3); }
+
+static int row_dae_max_steps(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 0, 0.0, NULL));
+  cart_set(sys, st, 0.5);
+  dal_solve_opts so = tight_opts(DAL_METHOD_AUTO);
+  so.max_steps = 10;
+  int rc = dal_advance(sys, st, &so, 2.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  double t = dal_state_time(st);
+  CHECK(t > 0.0 && t < 2.0);
+  CHECK_CLOSE(hypot(dal_state_q(st)[0], dal_state_q(st)[1]), 1.0, 1e-8);
+  so.max_steps = 100000;
+  CHECK_OK(dal_advance(sys, st, &so, 2.0));
+  CHECK(dal_state_time(st) == 2.0);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// a constraint no position satisfies, exp(x) + 1 = 0: the projection cannot assemble a
+// consistent state and says which constraint is left with what residual
+static int never(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)t;
+  (void)p;
+  (void)ctx;
+  out[0] = dal_addc(dal_exp(in[0]), 1.0);
+  return 0;
+}
+static const dal_primitive user_never = {"never", 1, 1, 1, 0, never, "exp(x) + 1"};
+
+static int row_init_unassemblable(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  int bob, x = 0;
+  CHECK_OK(free2(&b, &bob));
+  CHECK_OK(dal_builder_add_constraint(b, "unreachable", &user_never, 0, NULL, 1, &x, 0, NULL,
+                                      NULL, NULL));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {0.5, 0.25}, qd[2] = {0.1, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  int rc = dal_make_consistent(sys, st, 0.0, NULL);
+  copy_msg(msg, dal_state_errmsg(st));
+  CHECK(dal_state_q(st)[0] == 0.5 && dal_state_q(st)[1] == 0.25 && dal_state_qdot(st)[0] == 0.1);
+  dal_solve_opts so = tight_opts(DAL_METHOD_AUTO);
+  CHECK(dal_advance(sys, st, &so, 1.0) == rc);
+  CHECK(dal_state_time(st) == 0.0 && dal_state_q(st)[0] == 0.5);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// a bead sliding under gravity along y^2 = x^3 into the cusp at the origin, where the
+// constraint gradient vanishes: IDA's Newton iteration fails there (GGL); the state holds
+// the last accepted step, on the curve, with the energy of the start
+static int cusp(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)t;
+  (void)p;
+  (void)ctx;
+  out[0] = dal_sub(dal_sq(in[1]), dal_mul(in[0], dal_sq(in[0])));
+  return 0;
+}
+static const dal_primitive user_cusp = {"cusp", 1, 2, 1, 0, cusp, "y^2 - x^3"};
+
+static int cusp_scene(dal_builder **b, dal_system **sys, dal_state **st) {
+  int bob;
+  double g[2] = {-9.81, 0.0}, q[2] = {1.0, 1.0}, qd[2] = {0.0, 0.0};
+  int rc = free2(b, &bob);
+  if (!rc) rc = dal_builder_set_gravity(*b, g);
+  if (!rc)
+    rc = dal_builder_add_constraint(*b, "cusp", &user_cusp, 1, &bob, 0, NULL, 0, NULL, NULL,
+                                    NULL);
+  if (!rc) rc = dal_builder_compile(*b, sys);
+  if (!rc) rc = dal_state_create(*sys, st);
+  if (!rc) rc = dal_state_set(*sys, *st, 0.0, q, qd);
+  return rc;
+}
+
+static int row_ida_conv_cusp(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cusp_scene(&b, &sys, &st));
+  dal_solve_opts so = tight_opts(DAL_METHOD_AUTO);
+  so.rtol = 1e-6;
+  so.atol = 1e-8;
+  int rc = dal_advance(sys, st, &so, 2.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  double t = dal_state_time(st), x = dal_state_q(st)[0], y = dal_state_q(st)[1];
+  CHECK(t > 0.5 && t < 1.0 && x > 0.0 && x < 0.01);
+  CHECK_CLOSE(y * y, x * x * x, 1e-9);
+  dal_energies e;
+  CHECK_OK(dal_state_energies(st, &e));
+  CHECK_CLOSE(e.E, 9.81 * 2.0, 1e-3); // U = -m g . r = 9.81 m x, m = 2, x0 = 1
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// the same bead with the index-3 form at rtol 1e-10: the Newton iteration fails at once;
+// the GGL form at the same tolerance runs (the remedy the message gives)
+static int row_index3_tight(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cusp_scene(&b, &sys, &st));
+  dal_solve_opts so = tight_opts(DAL_METHOD_BDF);
+  so.form = DAL_FORM_INDEX3;
+  int rc = dal_advance(sys, st, &so, 0.5);
+  copy_msg(msg, dal_state_errmsg(st));
+  double t = dal_state_time(st), x = dal_state_q(st)[0], y = dal_state_q(st)[1];
+  CHECK(t >= 0.0 && t < 0.5);
+  CHECK_CLOSE(y * y, x * x * x, 1e-9);
+  so.form = DAL_FORM_GGL;
+  CHECK_OK(dal_advance(sys, st, &so, 0.5));
+  CHECK(dal_state_time(st) == 0.5);
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// the ODE formulation asked for a constrained system
+static int row_form_ode_with_constraints(char *msg) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  CHECK_OK(cart_pendulum(&b, &sys, &st, 0, 0.0, NULL));
+  cart_set(sys, st, 0.5);
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  so.form = DAL_FORM_ODE;
+  int rc = dal_advance(sys, st, &so, 1.0);
+  copy_msg(msg, dal_state_errmsg(st));
+  CHECK(dal_state_time(st) == 0.0);
+  so.form = DAL_FORM_INDEX1;
+  CHECK_OK(dal_advance(sys, st, &so, 1.0));
+  destroy_all(b, sys, st);
+  return rc;
+}
+
+// a DAE formulation asked for a system without constraints (crashed IDA once): it runs
+static int row_dae_form_without_constraints(char *msg) {
+  osc o;
+  CHECK_OK(osc_make(&o, 0, 0.0, 0));
+  dal_solve_opts so = tight_opts(DAL_METHOD_BDF);
+  const dal_formulation forms[] = {DAL_FORM_GGL, DAL_FORM_INDEX3, DAL_FORM_INDEX1};
+  int rc = DAL_OK;
+  for (int i = 0; i < 3 && rc == DAL_OK; ++i) {
+    double q[2] = {0.5, 0.0}, qd[2] = {0.0, 0.0};
+    CHECK_OK(dal_state_set(o.sys, o.st, 0.0, q, qd));
+    so.form = forms[i];
+    so.rtol = 1e-8;
+    rc = dal_advance(o.sys, o.st, &so, 1.0);
+    copy_msg(msg, dal_state_errmsg(o.st));
+    if (rc == DAL_OK) check_on_oscillator(o.st, 1e-5);
+  }
+  osc_free(&o);
+  return rc;
+}
+
 // ---------------------------------------------------------------- the table
 static const bad_row rows[] = {
     {"builder dimension 4", DAL_E_ARG, NULL, NULL, row_dim},
@@ -783,6 +1341,49 @@ static const bad_row rows[] = {
      row_lagrangian_singular},
     {"lagrange_residual: path outside its domain", DAL_E_DOMAIN, "'theta'", "t=0.5",
      row_path_domain},
+    {"advance: rtol NaN", DAL_E_NONFINITE, "rtol", "nan", row_rtol_nan},
+    {"advance: atol inf", DAL_E_NONFINITE, "atol", "inf", row_atol_inf},
+    {"advance: fixed_step NaN", DAL_E_NONFINITE, "fixed_step", "nan", row_fixed_step_nan},
+    {"advance: rtol zero", DAL_E_ARG, "rtol", "positive", row_rtol_zero},
+    {"advance: rtol negative", DAL_E_ARG, "rtol", "positive", row_rtol_negative},
+    {"advance: atol negative", DAL_E_ARG, "atol", "positive", row_atol_negative},
+    {"advance: target time behind", DAL_E_TIME, "behind", "0.25", row_time_behind},
+    {"advance: target time NaN", DAL_E_NONFINITE, "target time", "nan", row_time_nan},
+    {"evolve: dt below the resolution of t", DAL_E_ARG, "dt", "resolution",
+     row_evolve_dt_unresolvable},
+    {"advance: too many steps", DAL_E_MAXSTEPS, "t=", "fastest-changing variable",
+     row_max_steps},
+    {"advance: force callback < 0 (6 methods)", DAL_E_CALLBACK, "force callback", "t=",
+     row_callback_stop},
+    {"advance: force callback NaN (6 methods)", DAL_E_NONFINITE, "'bob'", "t=",
+     row_callback_nan},
+    {"advance: force callback > 0 forever (6 methods)", DAL_E_CALLBACK, "force callback", "t=",
+     row_callback_recoverable_always},
+    {"advance: force callback > 0 transient (6 methods)", DAL_OK, NULL, NULL,
+     row_callback_recoverable_transient},
+    {"advance: potential leaves its domain", DAL_E_DOMAIN, "U(r,t)", "t=",
+     row_potential_domain_in_flight},
+    {"advance: spherical pendulum into its pole", DAL_E_SINGULAR, "'phi'", "t=",
+     row_pole_in_flight},
+    {"advance: step size collapse (1/r^3 head-on)", DAL_E_STEP, "t=", "'x'",
+     row_step_collapse},
+    {"dae: redundant constraints", DAL_E_CONSTRAINT, "'rodA'", "'rodB'",
+     row_redundant_constraints},
+    {"dae: conflicting constraints", DAL_E_CONSTRAINT, "'rodA'", "'rodB'",
+     row_conflicting_constraints},
+    {"dae: initial guess where the rod is undefined", DAL_E_DOMAIN, "'rodA'", "t=",
+     row_init_at_anchor},
+    {"dae: no position satisfies a constraint", DAL_E_INIT, "'unreachable'", "t=",
+     row_init_unassemblable},
+    {"dae: force callback < 0", DAL_E_CALLBACK, "force callback", "t=", row_dae_callback_stop},
+    {"dae: force callback > 0 transient", DAL_OK, NULL, NULL, row_dae_callback_transient},
+    {"dae: too many steps", DAL_E_MAXSTEPS, "t=", "dominated by", row_dae_max_steps},
+    {"dae: IDA Newton failure (bead into a cusp)", DAL_E_CONV, "t=", "dominated by",
+     row_ida_conv_cusp},
+    {"dae: index-3 at rtol 1e-10", DAL_E_CONV, "t=", "dominated by", row_index3_tight},
+    {"dae: ODE formulation with constraints", DAL_E_UNSUPPORTED, "'rodA'", "ode",
+     row_form_ode_with_constraints},
+    {"dae forms without constraints", DAL_OK, NULL, NULL, row_dae_form_without_constraints},
 };
 
 int main(void) {
@@ -802,7 +1403,7 @@ int main(void) {
                 r->name, r->culprit2, msg);
     // a failure always leaves a message where an object could keep one
     if (r->culprit) CHECK_MSG(msg[0] != 0, "row '%s': empty message", r->name);
-    printf("%-48s %-16s %s | %s\n", r->name, dal_status_name(rc),
+    printf("%-50s %-16s %s | %s\n", r->name, dal_status_name(rc),
            check_failures == before ? "ok  " : "FAIL", msg);
   }
   return check_summary("test_bad_input");

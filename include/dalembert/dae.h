@@ -78,10 +78,11 @@ typedef struct dal_init_report {
 /// `tol` is the position tolerance in length units; tol <= 0 selects 1e-12 max(1, max|q_i|).
 /// `rep` (nullable) receives the report. A system without constraints is only evaluated.
 /// Any integrator history is discarded. Errors: DAL_E_INIT when the positions cannot be
-/// brought onto phi = 0 (conflicting constraints or a guess too far away; the message names
-/// the constraint with the largest residual) — the state is then unchanged;
-/// DAL_E_CONSTRAINT when G is rank deficient (the message names the dependent constraints);
-/// the errors of dal_forward.
+/// brought onto phi = 0 (a guess too far away; the message names the constraint with the
+/// largest residual) — the state is then unchanged; DAL_E_CONSTRAINT when G is rank deficient
+/// (the message names the dependent constraints) or when the projection stalls with
+/// residuals left on two or more constraints (they conflict near the guess; the message names
+/// them); the errors of dal_forward.
 DAL_API int dal_make_consistent(const dal_system *sys, dal_state *st, double tol,
                                 dal_init_report *rep);
 
