@@ -4,14 +4,21 @@
 # Valgrind memcheck of every example's --check run, the bad-input suite and the fuzz corpus.
 #
 # usage: scripts/valgrind.sh        (DAL_VALGRIND_BUILD_DIR: build directory, default
-#                                    build-valgrind; a plain build, no sanitizers)
+#                                    build-valgrind; a plain build, no sanitizers; an existing
+#                                    configured build directory is reused as it is)
 # Fails on any memory error or definite/indirect leak. "Still reachable" blocks (SUNDIALS'
 # and OpenBLAS' process-lifetime allocations) are not errors.
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 DAL_WITH_VALGRIND=1 "$root/scripts/deps.sh"
 bdir=${DAL_VALGRIND_BUILD_DIR:-$root/build-valgrind}
-cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDAL_BUILD_BENCH=OFF >/dev/null
+if [[ ! -f "$bdir/CMakeCache.txt" ]]; then
+  cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDAL_BUILD_BENCH=OFF >/dev/null
+fi
+if grep -q "^DAL_SANITIZE:BOOL=ON" "$bdir/CMakeCache.txt"; then
+  echo "valgrind: $bdir is a sanitizer build; use a plain one" >&2
+  exit 1
+fi
 cmake --build "$bdir" -j "$(nproc)"
 export OPENBLAS_NUM_THREADS=1
 vg=(valgrind -q --error-exitcode=99 --leak-check=full --errors-for-leak-kinds=definite,indirect
