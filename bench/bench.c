@@ -28,6 +28,7 @@ typedef struct bench_cfg {
   int max_reps;    // and at most this often
   double long_run; // a single run longer than this is not repeated
   long max_steps;  // step budget of one run (a run that needs more is reported failed)
+  double slow_run; // after a run this slow (s), tighter tolerances of its combination are skipped
   FILE *failures;  // failures.csv
 } bench_cfg;
 
@@ -253,7 +254,8 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
       if (r.status)
         log_failure(cfg, "wp", sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
       wp_row(fp, sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
-      if (r.status == DAL_E_MAXSTEPS) break; // tighter tolerances would cost more still
+      // tighter tolerances would cost more still
+      if (r.status == DAL_E_MAXSTEPS || r.wall > cfg->slow_run) break;
     }
   if (!rc) scene_model_free(&m);
   // the hand-written twin
@@ -292,7 +294,7 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
         if (r.status == DAL_E_UNSUPPORTED) break;
         wp_row(fp, sc->name, bench_form_name((bench_form)f), bench_method_name(meths[mi]), tols[ti],
                &r);
-        if (r.status == DAL_E_MAXSTEPS) break;
+        if (r.status == DAL_E_MAXSTEPS || r.wall > cfg->slow_run) break;
       }
   }
   if (!rc) scene_model_free(&m);
@@ -1016,7 +1018,7 @@ static int exp_ir(int argc, char **argv) {
 // ---------------------------------------------------------------- main
 
 int main(int argc, char **argv) {
-  bench_cfg cfg = {1, "bench/results", 0.05, 3, 15, 0.1, 50000, NULL};
+  bench_cfg cfg = {1, "bench/results", 0.05, 3, 15, 0.1, 50000, 2.0, NULL};
   const char *exps[16];
   int nexp = 0;
   for (int i = 1; i < argc; ++i) {
@@ -1039,7 +1041,8 @@ int main(int argc, char **argv) {
     cfg.min_reps = 3;
     cfg.max_reps = 31;
     cfg.long_run = 2.0;
-    cfg.max_steps = 500000;
+    cfg.max_steps = 200000;
+    cfg.slow_run = 10.0;
   }
   if (argc > 1 && strcmp(argv[1], "ir") == 0) return exp_ir(argc - 2, argv + 2);
   if (nexp == 1 && strcmp(exps[0], "smoke") == 0) return exp_smoke();
