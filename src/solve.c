@@ -309,6 +309,12 @@ static int check_opts(dal_state *st, const dal_solve_opts *o) {
   if (!(o->atol > 0) || !isfinite(o->atol))
     return DAL_FAIL(st, DAL_E_ARG, "opts.atol = %g must be positive and finite (e.g. 1e-10)",
                     o->atol);
+  // the integrators weight errors by 1 / (atol + rtol |y|): it must stay finite
+  if (o->atol < 1e-300)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "opts.atol = %g is too small for double precision (its error weights "
+                    "overflow); use >= 1e-300, e.g. 1e-10",
+                    o->atol);
   if (!(o->fixed_step > 0) || !isfinite(o->fixed_step))
     return DAL_FAIL(st, DAL_E_ARG, "opts.fixed_step = %g must be positive and finite",
                     o->fixed_step);
@@ -555,6 +561,15 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
   if (rc) return rc;
   if (!isfinite(t1))
     return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
+  // a step bound below the spacing of doubles at t cannot move t
+  const double hs[3] = {o->h0, o->hmin, o->hmax};
+  const char *hn[3] = {"h0", "hmin", "hmax"};
+  for (int i = 0; i < 3; ++i)
+    if (hs[i] > 0 && (st->t + hs[i] == st->t || t1 + hs[i] == t1))
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "%s: opts.%s = %g is below the floating-point resolution of t between %g "
+                      "and %g; use a larger value or 0 (automatic)",
+                      what, hn[i], hs[i], st->t, t1);
   if (t1 < st->t)
     return DAL_FAIL(st, DAL_E_TIME,
                     "%s: target time %.17g lies behind the current time %.17g; integration runs "

@@ -784,6 +784,7 @@ static int row_rtol_zero(char *msg) { return opts_row(msg, 0, 0.0); }
 static int row_atol_negative(char *msg) { return opts_row(msg, 1, -1e-8); }
 static int row_rtol_negative(char *msg) { return opts_row(msg, 0, -1e-6); }
 static int row_fixed_step_nan(char *msg) { return opts_row(msg, 2, NAN); }
+static int row_atol_subnormal(char *msg) { return opts_row(msg, 1, 4.9e-324); }
 
 // target time behind (or not a number): nothing moves, forward integration then works
 static int time_row(char *msg, double t1) {
@@ -1347,6 +1348,7 @@ static const bad_row rows[] = {
     {"advance: rtol zero", DAL_E_ARG, "rtol", "positive", row_rtol_zero},
     {"advance: rtol negative", DAL_E_ARG, "rtol", "positive", row_rtol_negative},
     {"advance: atol negative", DAL_E_ARG, "atol", "positive", row_atol_negative},
+    {"advance: atol subnormal", DAL_E_ARG, "atol", "too small", row_atol_subnormal},
     {"advance: target time behind", DAL_E_TIME, "behind", "0.25", row_time_behind},
     {"advance: target time NaN", DAL_E_NONFINITE, "target time", "nan", row_time_nan},
     {"evolve: dt below the resolution of t", DAL_E_ARG, "dt", "resolution",

@@ -69,7 +69,7 @@ static double fz_pos(fz *f, double typical) {
 static void fz_trace(const char *stage, int rc, const char *msg) {
   static int on = -1; // read once; the value never changes during a run
   if (on < 0) on = getenv("FZ_TRACE") != NULL;
-  if (on) fprintf(stderr, "fz %-8s %-18s %.100s\n", stage, dal_status_name(rc), msg ? msg : "");
+  if (on) fprintf(stderr, "fz %-8s %-18s %.400s\n", stage, dal_status_name(rc), msg ? msg : "");
 }
 
 static void fz_die(const char *what, int rc, const char *msg) {
