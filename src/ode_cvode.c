@@ -114,19 +114,22 @@ static int cv_restart(dal_ode_integ *ig, cv_mem *m, double h) {
 
 // the failure message and status for a CVODE return code
 static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
-  char var[128];
+  char var[128] = "(not estimated)";
   double h = 0;
   CVodeGetCurrentStep(m->cv, &h);
   ig->st->stats.foreign_code = flag;
   // an unrecoverable right-hand side decides, whatever the integrator made of it
   if (ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
-  // dominating variable: the largest weighted local error estimate of the failed try
-  CVodeGetEstLocalErrors(m->cv, m->ele);
-  CVodeGetErrWeights(m->cv, m->ewt);
-  const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
-  for (int i = 0; i < ig->ny; ++i)
-    ig->ewt[i] = e[i] * w[i];
-  dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
+  // dominating variable: the largest weighted local error estimate of the failed try (only
+  // after error tests or Newton iterations: before, CVODE's vectors hold no values)
+  if (flag == CV_ERR_FAILURE || flag == CV_TOO_MUCH_ACC || flag == CV_CONV_FAILURE) {
+    CVodeGetEstLocalErrors(m->cv, m->ele);
+    CVodeGetErrWeights(m->cv, m->ewt);
+    const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
+    for (int i = 0; i < ig->ny; ++i)
+      ig->ewt[i] = e[i] * w[i];
+    dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
+  }
   const char *name = dal_method_name(ig->method);
   switch (flag) {
   case CV_RHSFUNC_FAIL:
