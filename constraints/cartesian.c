@@ -21,6 +21,6 @@ static int cartesian3(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
 }
 
 const dal_primitive dal_map_cartesian2 = {"cartesian2", 1, 2, 2, 0, cartesian2,
-                                          "in (x, y); out (x, y)"};
+                                          "in (x, y); out (x, y)", 0};
 const dal_primitive dal_map_cartesian3 = {"cartesian3", 1, 3, 3, 0, cartesian3,
-                                          "in (x, y, z); out (x, y, z)"};
+                                          "in (x, y, z); out (x, y, z)", 0};

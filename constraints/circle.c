@@ -46,7 +46,7 @@ static int turning_circle(const dal_jet *in, dal_jet t, const double *p, dal_jet
 }
 
 const dal_primitive dal_con_circle2 = {
-    "on_circle2", 1, 2, 1, 3, circle2, "in (x, y); param (R, cx, cy); out |r - c| - R"};
+    "on_circle2", 1, 2, 1, 3, circle2, "in (x, y); param (R, cx, cy); out |r - c| - R", 0};
 const dal_primitive dal_con_circle3 = {
     "on_circle3",
     1,
@@ -54,7 +54,7 @@ const dal_primitive dal_con_circle3 = {
     2,
     7,
     circle3,
-    "in (x, y, z); param (R, cx, cy, cz, nx, ny, nz); out (n.(r - c), |(r - c)_plane| - R)"};
+    "in (x, y, z); param (R, cx, cy, cz, nx, ny, nz); out (n.(r - c), |(r - c)_plane| - R)", 0};
 const dal_primitive dal_con_turning_circle = {
     "turning_circle",
     1,
@@ -63,4 +63,4 @@ const dal_primitive dal_con_turning_circle = {
     6,
     turning_circle,
     "in (x, y, z); param (R, w, phi0, cx, cy, cz); out (n(t).(r - c), |r - c| - R), "
-    "n(t) = (-sin(w t + phi0), cos(w t + phi0), 0)"};
+    "n(t) = (-sin(w t + phi0), cos(w t + phi0), 0)", 0};

@@ -11,6 +11,6 @@ static int curve(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, vo
 }
 
 const dal_primitive dal_map_curve2 = {"curve2", 1, 1, 2, 0, curve,
-                                      "in (s); ctx dal_curve; out p(s, t) (2D)"};
+                                      "in (s); ctx dal_curve; out p(s, t) (2D)", 0};
 const dal_primitive dal_map_curve3 = {"curve3", 1, 1, 3, 0, curve,
-                                      "in (s); ctx dal_curve; out p(s, t) (3D)"};
+                                      "in (s); ctx dal_curve; out p(s, t) (3D)", 0};

@@ -59,9 +59,9 @@ static int anchor3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
 }
 
 const dal_primitive dal_con_distance2 = {
-    "distance2", 1, 4, 1, 1, distance2, "in (xa, ya, xb, yb); param (L); out |b - a| - L"};
+    "distance2", 1, 4, 1, 1, distance2, "in (xa, ya, xb, yb); param (L); out |b - a| - L", 0};
 const dal_primitive dal_con_distance3 = {
-    "distance3", 1, 6, 1, 1, distance3, "in (xa, ya, za, xb, yb, zb); param (L); out |b - a| - L"};
+    "distance3", 1, 6, 1, 1, distance3, "in (xa, ya, za, xb, yb, zb); param (L); out |b - a| - L", 0};
 const dal_primitive dal_con_anchor2 = {
     "anchor2",
     1,
@@ -69,7 +69,7 @@ const dal_primitive dal_con_anchor2 = {
     1,
     3,
     anchor2,
-    "in (x, y); param (L, x0, y0); ctx NULL or dal_moving_point; out |r - (x0 + x(t))| - L"};
+    "in (x, y); param (L, x0, y0); ctx NULL or dal_moving_point; out |r - (x0 + x(t))| - L", 0};
 const dal_primitive dal_con_anchor3 = {
     "anchor3",
     1,
@@ -78,4 +78,4 @@ const dal_primitive dal_con_anchor3 = {
     4,
     anchor3,
     "in (x, y, z); param (L, x0, y0, z0); ctx NULL or dal_moving_point; "
-    "out |r - (x0 + x(t))| - L"};
+    "out |r - (x0 + x(t))| - L", 0};

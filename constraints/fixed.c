@@ -20,6 +20,6 @@ static int fixed3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, v
   return fixed(in, t, p, out, 3);
 }
 
-const dal_primitive dal_map_fixed2 = {"fixed2", 1, 0, 2, 2, fixed2, "param (x, y); out (x, y)"};
+const dal_primitive dal_map_fixed2 = {"fixed2", 1, 0, 2, 2, fixed2, "param (x, y); out (x, y)", 0};
 const dal_primitive dal_map_fixed3 = {"fixed3", 1, 0, 3, 3, fixed3,
-                                      "param (x, y, z); out (x, y, z)"};
+                                      "param (x, y, z); out (x, y, z)", 0};

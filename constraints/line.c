@@ -61,7 +61,7 @@ const dal_primitive dal_con_line2 = {
     1,
     4,
     line2,
-    "in (x, y); param (cx, cy, ax, ay); out signed distance from the line c + s a"};
+    "in (x, y); param (cx, cy, ax, ay); out signed distance from the line c + s a", 0};
 const dal_primitive dal_con_line3 = {
     "on_line3",
     1,
@@ -70,7 +70,7 @@ const dal_primitive dal_con_line3 = {
     6,
     line3,
     "in (x, y, z); param (cx, cy, cz, ax, ay, az); out (e1.(r - c), e2.(r - c)), e1, e2 "
-    "orthonormal and normal to a"};
+    "orthonormal and normal to a", 0};
 const dal_primitive dal_con_turning_line2 = {
     "turning_line2",
     1,
@@ -79,4 +79,4 @@ const dal_primitive dal_con_turning_line2 = {
     4,
     turning_line2,
     "in (x, y); param (cx, cy, w, phi0); out -(x - cx) sin a + (y - cy) cos a, "
-    "a = w t + phi0"};
+    "a = w t + phi0", 0};

@@ -24,7 +24,8 @@ static int hanging(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
 
 const dal_primitive dal_map_pendulum = {
     "pendulum", 1, 1, 2, 7, pendulum,
-    "in (theta); param (l, x0, y0, ax, ay, w, ph); out p(t) + l (sin th, -cos th)"};
+    "in (theta); param (l, x0, y0, ax, ay, w, ph); out p(t) + l (sin th, -cos th)", 0};
 const dal_primitive dal_map_hanging = {
     "hanging", 1, 3, 2, 1, hanging,
-    "in (x_parent, y_parent, theta); param (l); out parent + l (sin th, -cos th)"};
+    "in (x_parent, y_parent, theta); param (l); out parent + l (sin th, -cos th)",
+    DAL_PRIM_TRANSLATES};

@@ -23,4 +23,4 @@ const dal_primitive dal_con_plane = {"on_plane",
                                      6,
                                      on_plane,
                                      "in (x, y, z); param (cx, cy, cz, nx, ny, nz); "
-                                     "out n.(r - c) / |n|"};
+                                     "out n.(r - c) / |n|", 0};

@@ -23,4 +23,4 @@ const dal_primitive dal_con_prescribed = {
     1,
     1,
     prescribed,
-    "in (q); param (q0); ctx NULL or dal_prescribed; out q - (q0 + f(t))"};
+    "in (q); param (q0); ctx NULL or dal_prescribed; out q - (q0 + f(t))", 0};

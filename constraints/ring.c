@@ -17,4 +17,4 @@ static int ring(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
 
 const dal_primitive dal_map_ring = {
     "ring", 1, 1, 3, 3, ring,
-    "in (theta); param (R, w, phi0); out (R s cos(wt+phi0), R s sin(wt+phi0), -R cos th)"};
+    "in (theta); param (R, w, phi0); out (R s cos(wt+phi0), R s sin(wt+phi0), -R cos th)", 0};

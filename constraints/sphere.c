@@ -16,4 +16,4 @@ static int sphere(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, v
 
 const dal_primitive dal_map_sphere = {
     "sphere", 1, 2, 3, 4, sphere,
-    "in (theta, phi); param (R, cx, cy, cz); out c + R (s cos ph, s sin ph, cos th)"};
+    "in (theta, phi); param (R, cx, cy, cz); out c + R (s cos ph, s sin ph, cos th)", 0};

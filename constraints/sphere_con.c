@@ -14,4 +14,4 @@ static int on_sphere(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
 }
 
 const dal_primitive dal_con_sphere = {
-    "on_sphere", 1, 3, 1, 4, on_sphere, "in (x, y, z); param (R, cx, cy, cz); out |r - c| - R"};
+    "on_sphere", 1, 3, 1, 4, on_sphere, "in (x, y, z); param (R, cx, cy, cz); out |r - c| - R", 0};

@@ -16,4 +16,4 @@ static int spherical(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
 
 const dal_primitive dal_map_spherical = {
     "spherical", 1, 2, 3, 4, spherical,
-    "in (theta, phi); param (l, x0, y0, z0); out pivot + l (s cos ph, s sin ph, -cos th)"};
+    "in (theta, phi); param (l, x0, y0, z0); out pivot + l (s cos ph, s sin ph, -cos th)", 0};

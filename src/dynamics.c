@@ -162,6 +162,69 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
   return DAL_OK;
 }
 
+// Composite-mass assembly for a tree whose parent links are translations (r_k = r_p + f):
+// then J_k = sum of L_a over the ancestors a of k (L_a: a's local coordinate columns), so
+//   M = sum_a sum_{b ancestor-or-self of a} mu_a (L_a' L_b + L_b' L_a for b != a),
+//   Q = sum_a L_a' (sum of F over a's subtree),  c = sum_a L_a' (sum of m gamma over it),
+// with mu_a the subtree mass: O(N depth) work instead of O(N n^2) (Featherstone's composite
+// rigid body idea for point masses).
+static void tree_assembly(const dal_system *sys, dal_state *st) {
+  int d = sys->dim, n = sys->n, N = sys->N, Nd = N * d;
+  double *cf = st->cf, *cg = st->cf + Nd;
+  for (int k = 0; k < N; ++k)
+    for (int a = 0; a < d; ++a) {
+      cf[k * d + a] = st->F[k * d + a];
+      cg[k * d + a] = sys->mass[k] * st->gamma[k * d + a];
+    }
+  for (int k = N - 1; k >= 0; --k) {
+    int p = sys->place[k].parent;
+    if (p >= 0)
+      for (int a = 0; a < d; ++a) {
+        cf[p * d + a] += cf[k * d + a];
+        cg[p * d + a] += cg[k * d + a];
+      }
+  }
+  for (int k = 0; k < N; ++k) {
+    const dal_place *pk = &sys->place[k];
+    const int *ck = sys->ipool + pk->coord_off;
+    const double *Lk = st->Lc + sys->ploc_off[k];
+    int nk = pk->ncoord;
+    for (int i = 0; i < nk; ++i) {
+      double q = 0.0, c = 0.0;
+      for (int a = 0; a < d; ++a) {
+        q += Lk[a * nk + i] * cf[k * d + a];
+        c += Lk[a * nk + i] * cg[k * d + a];
+      }
+      st->Q[ck[i]] += q;
+      st->c[ck[i]] += c;
+    }
+    if (!st->M) continue;
+    for (int b = k; b >= 0; b = sys->place[b].parent) {
+      const dal_place *pb = &sys->place[b];
+      const int *cb = sys->ipool + pb->coord_off;
+      const double *Lb = st->Lc + sys->ploc_off[b];
+      int nb = pb->ncoord;
+      for (int i = 0; i < nk; ++i)
+        for (int j = 0; j < nb; ++j) {
+          double s = 0.0;
+          for (int a = 0; a < d; ++a) s += Lk[a * nk + i] * Lb[a * nb + j];
+          s *= sys->mu[k];
+          st->M[(size_t)cb[j] * n + ck[i]] += s;
+          if (b != k) st->M[(size_t)ck[i] * n + cb[j]] += s;
+        }
+    }
+  }
+  // the two triangles were summed in different orders: make M exactly symmetric
+  if (st->M)
+    for (int j = 0; j < n; ++j)
+      for (int i = j + 1; i < n; ++i) {
+        double *lo = st->M + (size_t)j * n + i, *up = st->M + (size_t)i * n + j;
+        double s = 0.5 * (*lo + *up);
+        *lo = s;
+        *up = s;
+      }
+}
+
 int dal__dynamics(const dal_system *sys, dal_state *st) {
   int d = sys->dim, n = sys->n, rc;
   double U = 0.0;
@@ -173,25 +236,35 @@ int dal__dynamics(const dal_system *sys, dal_state *st) {
   }
   // Q = sum J_k' F_k, c = sum m_k J_k' gamma_k, M = sum m_k J_k' J_k (over dependencies)
   if (st->M) memset(st->M, 0, (size_t)n * (size_t)n * sizeof(double));
+  if (st->tree && sys->place) {
+    tree_assembly(sys, st);
+  } else {
+    for (int k = 0; k < sys->N; ++k) {
+      const int *dk = sys->pdep + sys->pdep_off[k];
+      int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
+      const double *Jk = st->J + sys->pj_off[k];
+      double m = sys->mass[k];
+      for (int a = 0; a < d; ++a) {
+        const double *row = Jk + a * ndk;
+        double f = st->F[k * d + a], g = m * st->gamma[k * d + a];
+        for (int c = 0; c < ndk; ++c) {
+          st->Q[dk[c]] += row[c] * f;
+          st->c[dk[c]] += row[c] * g;
+        }
+        if (st->M)
+          for (int c2 = 0; c2 < ndk; ++c2) {
+            double *col = st->M + (size_t)dk[c2] * n;
+            // m (J_ac J_ac2): the product is symmetric in (c, c2), so M is exactly symmetric
+            for (int c = 0; c < ndk; ++c) col[dk[c]] += m * (row[c] * row[c2]);
+          }
+      }
+    }
+  }
+  // energies: T from v, and its split by powers of qdot through J qdot = v - dr/dt
   double T = 0.0, T2 = 0.0, T1 = 0.0, T0 = 0.0;
   for (int k = 0; k < sys->N; ++k) {
-    const int *dk = sys->pdep + sys->pdep_off[k];
-    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
-    const double *Jk = st->J + sys->pj_off[k];
     double m = sys->mass[k];
     for (int a = 0; a < d; ++a) {
-      const double *row = Jk + a * ndk;
-      double f = st->F[k * d + a], g = m * st->gamma[k * d + a];
-      for (int c = 0; c < ndk; ++c) {
-        st->Q[dk[c]] += row[c] * f;
-        st->c[dk[c]] += row[c] * g;
-      }
-      if (st->M)
-        for (int c2 = 0; c2 < ndk; ++c2) {
-          double *col = st->M + (size_t)dk[c2] * n;
-          // m (J_ac J_ac2): the product is symmetric in (c, c2), so M is exactly symmetric
-          for (int c = 0; c < ndk; ++c) col[dk[c]] += m * (row[c] * row[c2]);
-        }
       double v = st->v[k * d + a], rt = st->drdt[k * d + a], jq = v - rt;
       T += 0.5 * m * v * v;
       T2 += 0.5 * m * jq * jq;
@@ -247,13 +320,23 @@ int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
 
 void dal__finish(const dal_system *sys, dal_state *st) {
   int d = sys->dim;
+  int tree = st->tree && sys->place;
   for (int k = 0; k < sys->N; ++k) {
     const int *dk = sys->pdep + sys->pdep_off[k];
     int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
     const double *Jk = st->J + sys->pj_off[k];
+    const dal_place *pk = tree ? &sys->place[k] : NULL;
     for (int a = 0; a < d; ++a) {
       double s = st->gamma[k * d + a];
-      for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qddot[dk[c]];
+      if (pk) {
+        // through a translation: J_k qddot = (a_p - gamma_p) + L_k qddot_local
+        const int *ck = sys->ipool + pk->coord_off;
+        const double *Lk = st->Lc + sys->ploc_off[k];
+        if (pk->parent >= 0) s += st->a[pk->parent * d + a] - st->gamma[pk->parent * d + a];
+        for (int i = 0; i < pk->ncoord; ++i) s += Lk[a * pk->ncoord + i] * st->qddot[ck[i]];
+      } else {
+        for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qddot[dk[c]];
+      }
       st->a[k * d + a] = s;
       st->N[k * d + a] = sys->mass[k] * s - st->F[k * d + a];
     }

@@ -122,6 +122,9 @@ struct dal_system {
   dal_cb *potr, *potq, *forces, *genforces;
   // sizes
   int max_in, max_out; // largest local input/output count of any primitive instance or map
+  // tree assembly (placements only): subtree masses and local coordinate columns
+  double *mu;   // mu[k] = sum of the masses of particle k and all particles it carries
+  int *ploc_off; // offset of particle k's local coordinate columns (d x ncoord) in st->Lc
   int dense_M;         // M is assembled densely (n x n)
 };
 
@@ -143,6 +146,9 @@ struct dal_state {
   dal_jet *jq, *jv;     // n
   dal_jet *jr;          // N x d
   double *work;         // n-sized scratch (x 4)
+  double *Lc;           // local coordinate columns of each placement (sys->ploc_off)
+  double *cf;           // subtree sums of F and m gamma (2 x N x d)
+  int tree;             // every parent link is a translation: tree assembly applies
   struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
   int evaluated;        // dal_forward outputs are current
   // integrator (owned by solve.c)

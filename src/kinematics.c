@@ -75,18 +75,19 @@ static void load_inputs(const dal_system *sys, dal_state *st, int npart, const i
 }
 
 // local Jacobian loc (nout x nin, row-major) by one evaluation per input direction
+// (directions before `first` are skipped: the caller fills those columns)
 static int local_jacobian(const dal_system *sys, dal_state *st, const dal_primitive *prim,
-                          const double *param, void *ctx, int owner) {
+                          const double *param, void *ctx, int owner, int first) {
   int nin = prim->nin, nout = prim->nout;
   dal_jet t = dal_const(st->t);
-  for (int i = 0; i < nin; ++i) {
-    if (i > 0) st->jin[i - 1].d = 0.0;
+  for (int i = first; i < nin; ++i) {
+    if (i > first) st->jin[i - 1].d = 0.0;
     st->jin[i].d = 1.0;
     int rc = eval_checked(sys, st, prim, param, ctx, t, owner);
     if (rc) return rc;
     for (int a = 0; a < nout; ++a) st->loc[a * nin + i] = st->jout[a].d;
   }
-  if (nin > 0) st->jin[nin - 1].d = 0.0;
+  if (nin > first) st->jin[nin - 1].d = 0.0;
   return DAL_OK;
 }
 
@@ -153,17 +154,30 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
   if (sys->map) {
     rc = kinematics_map(sys, st);
     if (rc) return rc;
+    st->tree = 0;
   } else {
+    st->tree = 1;
     for (int k = 0; k < sys->N; ++k) {
       const dal_place *pl = &sys->place[k];
       const dal_primitive *prim = pl->prim;
       const int *coords = sys->ipool + pl->coord_off;
       const double *param = sys->ppool + pl->param_off;
-      int np = pl->parent >= 0 ? 1 : 0, nin = prim->nin;
-      // local Jacobian at the current values
-      load_inputs(sys, st, np, &pl->parent, pl->ncoord, coords, 0);
-      rc = local_jacobian(sys, st, prim, param, pl->ctx, k);
+      int np = pl->parent >= 0 ? 1 : 0, nin = prim->nin, nc = pl->ncoord;
+      // local Jacobian at the current values; a translating map's parent block is I
+      int translates = np && (prim->flags & DAL_PRIM_TRANSLATES);
+      load_inputs(sys, st, np, &pl->parent, nc, coords, 0);
+      rc = local_jacobian(sys, st, prim, param, pl->ctx, k, translates ? d : 0);
       if (rc) return rc;
+      int identity = 1;
+      for (int a = 0; a < d && np; ++a)
+        for (int b = 0; b < d; ++b) {
+          if (translates) st->loc[a * nin + b] = a == b;
+          identity &= st->loc[a * nin + b] == (a == b);
+        }
+      st->tree &= identity;
+      double *Lk = st->Lc + sys->ploc_off[k];
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
       // along the state direction: r, v, gamma
       load_inputs(sys, st, np, &pl->parent, pl->ncoord, coords, 1);
       rc = eval_checked(sys, st, prim, param, pl->ctx, dal_var(st->t, 1.0), k);
@@ -179,11 +193,27 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
       double *Jk = st->J + sys->pj_off[k];
       memset(Jk, 0, (size_t)d * (size_t)ndk * sizeof(double));
       if (np) chain_particle(sys, st, pl->parent, st->loc, nin, 0, d, dk, ndk, Jk);
-      for (int i = 0; i < pl->ncoord; ++i) {
+      for (int i = 0; i < nc; ++i) {
         int c = find_sorted(dk, ndk, coords[i]);
-        for (int a = 0; a < d; ++a) Jk[a * ndk + c] += st->loc[a * nin + np * d + i];
+        for (int a = 0; a < d; ++a) Jk[a * ndk + c] += Lk[a * nc + i];
+      }
+      // dr/dt = v - J qdot; through a translation J_k qdot = J_p qdot + L_k qdot_local
+      if (identity && np) {
+        int p = pl->parent;
+        for (int a = 0; a < d; ++a) {
+          double s = st->v[p * d + a] - st->drdt[p * d + a];
+          for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * st->qdot[coords[i]];
+          st->drdt[k * d + a] = st->v[k * d + a] - s;
+        }
+      } else {
+        for (int a = 0; a < d; ++a) {
+          double s = 0.0;
+          for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qdot[dk[c]];
+          st->drdt[k * d + a] = st->v[k * d + a] - s;
+        }
       }
     }
+    return DAL_OK;
   }
   // explicit time derivative dr/dt = v - J qdot
   for (int k = 0; k < sys->N; ++k) {
@@ -209,7 +239,7 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     const double *param = sys->ppool + c->param_off;
     int nin = prim->nin, nout = prim->nout;
     load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 0);
-    rc = local_jacobian(sys, st, prim, param, c->ctx, -1 - ci);
+    rc = local_jacobian(sys, st, prim, param, c->ctx, -1 - ci, 0);
     if (rc) return rc;
     load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 1);
     rc = eval_checked(sys, st, prim, param, c->ctx, dal_var(st->t, 1.0), -1 - ci);

@@ -43,6 +43,8 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   st->Q = calloc(n, sizeof(double));
   st->c = calloc(n, sizeof(double));
   st->work = calloc(4 * n + 1, sizeof(double));
+  st->Lc = calloc((size_t)sys->ploc_off[sys->N] + 1, sizeof(double));
+  st->cf = calloc(2 * Nd + 1, sizeof(double));
   st->r = calloc(Nd + 1, sizeof(double));
   st->v = calloc(Nd + 1, sizeof(double));
   st->a = calloc(Nd + 1, sizeof(double));
@@ -74,7 +76,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
       !st->a || !st->drdt || !st->gamma || !st->F || !st->N || !st->J ||
       (sys->dense_M && (!st->M || !st->L)) ||
       (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->kkt)) ||
-      !st->jin ||
+      !st->jin || !st->Lc || !st->cf ||
       !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
     dal_state_destroy(st);
     return DAL_E_NOMEM;
@@ -90,7 +92,7 @@ void dal_state_destroy(dal_state *st) {
   double *d[] = {st->q,  st->qdot, st->qddot, st->Q,      st->c,      st->work, st->r,
                  st->v,  st->a,    st->drdt,  st->gamma,  st->F,      st->N,    st->J,
                  st->M,  st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
-                 st->loc};
+                 st->loc, st->Lc, st->cf};
   for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i) free(d[i]);
   free(st->jin);
   free(st->jout);

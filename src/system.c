@@ -218,6 +218,15 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
 
   // dense mass matrix unless the redundant system is large (then M is applied through J)
   s->dense_M = (m == 0 || n <= 512);
+
+  // tree assembly data: subtree masses (parents precede children) and local column offsets
+  s->mu = dup_mem(s->mass, (size_t)N * sizeof(double));
+  s->ploc_off = calloc((size_t)N + 1, sizeof(int));
+  if (!s->mu || !s->ploc_off) goto nomem;
+  for (int k = N - 1; k >= 0 && s->place; --k)
+    if (s->place[k].parent >= 0) s->mu[s->place[k].parent] += s->mu[k];
+  for (int k = 0; k < N; ++k)
+    s->ploc_off[k + 1] = s->ploc_off[k] + (s->place ? d * s->place[k].ncoord : 0);
   free(tmp);
   free(tmp2);
   b->err[0] = 0;
@@ -249,6 +258,8 @@ void dal_system_destroy(dal_system *s) {
   free(s->pdep_off);
   free(s->pdep);
   free(s->pj_off);
+  free(s->mu);
+  free(s->ploc_off);
   free(s->con);
   free(s->cdep);
   free(s->row_con);

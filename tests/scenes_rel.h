@@ -31,9 +31,9 @@ static inline int rel_rod_pair(const dal_jet *in, dal_jet t, const double *p,
 }
 
 static const dal_primitive rel_prim_rod_fixed = {"rel_rod_fixed", 1, 2, 1, 3, rel_rod_fixed,
-                                                 "|r - a| - L"};
+                                                 "|r - a| - L", 0};
 static const dal_primitive rel_prim_rod_pair = {"rel_rod_pair", 1, 4, 1, 1, rel_rod_pair,
-                                                "|r_b - r_a| - L"};
+                                                "|r_b - r_a| - L", 0};
 
 /// a weak velocity-dependent force read from a const context (shared read-only by threads)
 typedef struct rel_drag {

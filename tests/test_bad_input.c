@@ -189,7 +189,7 @@ static int rod2(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
   out[0] = dal_addc(dal_hypot(dal_sub(in[2], in[0]), dal_sub(in[3], in[1])), -p[0]);
   return 0;
 }
-static const dal_primitive user_rod2 = {"user_rod2", 1, 4, 1, 1, rod2, "|b - a| - L (2D)"};
+static const dal_primitive user_rod2 = {"user_rod2", 1, 4, 1, 1, rod2, "|b - a| - L (2D)", 0};
 
 // two free particles 'a' and 'b' in the plane (coordinates xa, ya, xb, yb)
 static int two_free(dal_builder **b, int *pa, int *pb) {
@@ -572,7 +572,7 @@ static int sqrt_map(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
   out[1] = dal_const(0.0);
   return 0;
 }
-static const dal_primitive user_sqrt = {"sqrtmap", 1, 1, 2, 0, sqrt_map, "(sqrt s, 0)"};
+static const dal_primitive user_sqrt = {"sqrtmap", 1, 1, 2, 0, sqrt_map, "(sqrt s, 0)", 0};
 
 static int row_map_domain(char *msg) {
   dal_builder *b = NULL;
@@ -1146,7 +1146,7 @@ static int never(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, vo
   out[0] = dal_addc(dal_exp(in[0]), 1.0);
   return 0;
 }
-static const dal_primitive user_never = {"never", 1, 1, 1, 0, never, "exp(x) + 1"};
+static const dal_primitive user_never = {"never", 1, 1, 1, 0, never, "exp(x) + 1", 0};
 
 static int row_init_unassemblable(char *msg) {
   dal_builder *b = NULL;
@@ -1180,7 +1180,7 @@ static int cusp(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
   out[0] = dal_sub(dal_sq(in[1]), dal_mul(in[0], dal_sq(in[0])));
   return 0;
 }
-static const dal_primitive user_cusp = {"cusp", 1, 2, 1, 0, cusp, "y^2 - x^3"};
+static const dal_primitive user_cusp = {"cusp", 1, 2, 1, 0, cusp, "y^2 - x^3", 0};
 
 static int cusp_scene(dal_builder **b, dal_system **sys, dal_state **st) {
   int bob;

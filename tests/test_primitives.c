@@ -221,8 +221,8 @@ static int slider_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *o
   out[1] = out[2] = dal_const(0.0);
   return 0;
 }
-static const dal_primitive slider2 = {"slider2", 1, 1, 2, 0, slider_eval, "test helper"};
-static const dal_primitive slider3 = {"slider3", 1, 1, 3, 0, slider_eval, "test helper"};
+static const dal_primitive slider2 = {"slider2", 1, 1, 2, 0, slider_eval, "test helper", 0};
+static const dal_primitive slider3 = {"slider3", 1, 1, 3, 0, slider_eval, "test helper", 0};
 
 // test map "warp": a curved particle position from d coordinates (a parent with gamma != 0)
 static int warp_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
@@ -234,8 +234,8 @@ static int warp_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
   return 0;
 }
 static int dim2 = 2, dim3 = 3;
-static const dal_primitive warp2 = {"warp2", 1, 2, 2, 0, warp_eval, "test helper"};
-static const dal_primitive warp3 = {"warp3", 1, 3, 3, 0, warp_eval, "test helper"};
+static const dal_primitive warp2 = {"warp2", 1, 2, 2, 0, warp_eval, "test helper", 0};
+static const dal_primitive warp3 = {"warp3", 1, 3, 3, 0, warp_eval, "test helper", 0};
 
 // the scene under test: coordinates q (n), `npart` warp particles on the first npart * d
 // coordinates, then the primitive's remaining inputs on the following coordinates

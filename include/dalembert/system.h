@@ -43,7 +43,14 @@ typedef struct dal_primitive {
   int nparam;       ///< number of real parameters
   dal_jet_fn *eval; ///< the function
   const char *doc;  ///< one line: inputs, parameters, outputs
+  unsigned flags;   ///< DAL_PRIM_* hints (0 if none); added in version 1 of the table
 } dal_primitive;
+
+/// Primitive hint: a map whose first d inputs are a parent's position p and whose output is
+/// p + f(other inputs, t). The library then skips the d parent directions when it forms the
+/// local Jacobian and uses the composite-mass (tree) assembly of M, Q and c. A wrong hint
+/// gives wrong dynamics; leave flags 0 when unsure (the library still detects the case).
+#define DAL_PRIM_TRANSLATES 1u
 
 /// A parametric curve point p(s, t) of dimension d for dal_map_curve2/3: write p[0..d-1].
 typedef int dal_curve_fn(dal_jet s, dal_jet t, dal_jet *p, void *ctx);

@@ -259,13 +259,13 @@ static int u_callback(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
 }
 
 static const dal_primitive u_prims[] = {
-    {"u_circle2", 1, 2, 1, 1, u_circle2, "x^2 + y^2 - R^2"},
-    {"u_dist2", 1, 4, 1, 1, u_dist2, "|b - a| - L (2D)"},
-    {"u_dist3", 1, 6, 1, 1, u_dist3, "|b - a| - L (3D)"},
-    {"u_lin", 1, 1, 1, 2, u_lin, "a u - b sin t"},
-    {"u_pair", 1, 2, 2, 0, u_pair, "(u0 - u1, u0 + sin u1)"},
-    {"u_callback", 1, 1, 2, 0, u_callback, "(u^2 + ct, sin u), may fail"},
-    {"u_broken", 1, 1, 2, 0, NULL, "no eval function"},
+    {"u_circle2", 1, 2, 1, 1, u_circle2, "x^2 + y^2 - R^2", 0},
+    {"u_dist2", 1, 4, 1, 1, u_dist2, "|b - a| - L (2D)", 0},
+    {"u_dist3", 1, 6, 1, 1, u_dist3, "|b - a| - L (3D)", 0},
+    {"u_lin", 1, 1, 1, 2, u_lin, "a u - b sin t", 0},
+    {"u_pair", 1, 2, 2, 0, u_pair, "(u0 - u1, u0 + sin u1)", 0},
+    {"u_callback", 1, 1, 2, 0, u_callback, "(u^2 + ct, sin u), may fail", 0},
+    {"u_broken", 1, 1, 2, 0, NULL, "no eval function", 0},
 };
 #define FZ_NUPRIM ((int)(sizeof u_prims / sizeof u_prims[0]))
 
