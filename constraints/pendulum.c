@@ -7,9 +7,10 @@
 static int pendulum(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
   (void)ctx;
   double l = p[0], x0 = p[1], y0 = p[2], ax = p[3], ay = p[4], w = p[5], ph = p[6];
-  dal_jet drive = dal_cos(dal_addc(dal_scale(t, w), ph));
-  out[0] = dal_add(dal_addc(dal_scale(drive, ax), x0), dal_scale(dal_sin(in[0]), l));
-  out[1] = dal_sub(dal_addc(dal_scale(drive, ay), y0), dal_scale(dal_cos(in[0]), l));
+  dal_jet drive = dal_cos(dal_addc(dal_scale(t, w), ph)), s, c;
+  dal_sincos(in[0], &s, &c);
+  out[0] = dal_add(dal_addc(dal_scale(drive, ax), x0), dal_scale(s, l));
+  out[1] = dal_sub(dal_addc(dal_scale(drive, ay), y0), dal_scale(c, l));
   return 0;
 }
 
@@ -17,8 +18,10 @@ static int pendulum(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
 static int hanging(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
   (void)ctx;
   (void)t;
-  out[0] = dal_add(in[0], dal_scale(dal_sin(in[2]), p[0]));
-  out[1] = dal_sub(in[1], dal_scale(dal_cos(in[2]), p[0]));
+  dal_jet s, c;
+  dal_sincos(in[2], &s, &c);
+  out[0] = dal_add(in[0], dal_scale(s, p[0]));
+  out[1] = dal_sub(in[1], dal_scale(c, p[0]));
   return 0;
 }
 

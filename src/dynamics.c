@@ -287,6 +287,13 @@ int dal__dynamics(const dal_system *sys, dal_state *st) {
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y) {
   int n = sys->n, d = sys->dim;
   memset(y, 0, (size_t)n * sizeof(double));
+  if (!st->J_valid) {
+    // the tree assembly formed M without J (minimal coordinates always have a dense M)
+    DAL_ASSERT(st->M);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) y[i] += st->M[(size_t)j * n + i] * x[j];
+    return;
+  }
   for (int k = 0; k < sys->N; ++k) {
     const int *dk = sys->pdep + sys->pdep_off[k];
     int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];

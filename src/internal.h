@@ -149,6 +149,9 @@ struct dal_state {
   double *Lc;           // local coordinate columns of each placement (sys->ploc_off)
   double *cf;           // subtree sums of F and m gamma (2 x N x d)
   int tree;             // every parent link is a translation: tree assembly applies
+  int need_J;           // compact J is formed on every evaluation (sticky once a link is
+                        // found that is not a translation, or when m > 0)
+  int J_valid;          // compact J is current (else dal_state_jacobian rebuilds it from Lc)
   struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
   int evaluated;        // dal_forward outputs are current
   // integrator (owned by solve.c)

@@ -155,8 +155,11 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
     rc = kinematics_map(sys, st);
     if (rc) return rc;
     st->tree = 0;
+    st->J_valid = 1;
   } else {
+  restart:
     st->tree = 1;
+    st->J_valid = st->need_J;
     for (int k = 0; k < sys->N; ++k) {
       const dal_place *pl = &sys->place[k];
       const dal_primitive *prim = pl->prim;
@@ -175,6 +178,11 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
           identity &= st->loc[a * nin + b] == (a == b);
         }
       st->tree &= identity;
+      if (!identity && !st->J_valid) {
+        // a link that is not a translation: form J for every particle from now on
+        st->need_J = 1;
+        goto restart;
+      }
       double *Lk = st->Lc + sys->ploc_off[k];
       for (int a = 0; a < d; ++a)
         for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
@@ -187,21 +195,24 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
         st->v[k * d + a] = st->jout[a].d;
         st->gamma[k * d + a] = st->jout[a].dd;
       }
-      // global Jacobian by the chain rule
+      // global Jacobian by the chain rule (not needed by a tree of translations without
+      // constraints: M, Q, c, dr/dt and accelerations then come from the local columns)
       const int *dk = sys->pdep + sys->pdep_off[k];
       int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
       double *Jk = st->J + sys->pj_off[k];
-      memset(Jk, 0, (size_t)d * (size_t)ndk * sizeof(double));
-      if (np) chain_particle(sys, st, pl->parent, st->loc, nin, 0, d, dk, ndk, Jk);
-      for (int i = 0; i < nc; ++i) {
-        int c = find_sorted(dk, ndk, coords[i]);
-        for (int a = 0; a < d; ++a) Jk[a * ndk + c] += Lk[a * nc + i];
+      if (st->J_valid) {
+        memset(Jk, 0, (size_t)d * (size_t)ndk * sizeof(double));
+        if (np) chain_particle(sys, st, pl->parent, st->loc, nin, 0, d, dk, ndk, Jk);
+        for (int i = 0; i < nc; ++i) {
+          int c = find_sorted(dk, ndk, coords[i]);
+          for (int a = 0; a < d; ++a) Jk[a * ndk + c] += Lk[a * nc + i];
+        }
       }
       // dr/dt = v - J qdot; through a translation J_k qdot = J_p qdot + L_k qdot_local
-      if (identity && np) {
+      if (identity) {
         int p = pl->parent;
         for (int a = 0; a < d; ++a) {
-          double s = st->v[p * d + a] - st->drdt[p * d + a];
+          double s = np ? st->v[p * d + a] - st->drdt[p * d + a] : 0.0;
           for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * st->qdot[coords[i]];
           st->drdt[k * d + a] = st->v[k * d + a] - s;
         }

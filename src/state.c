@@ -82,6 +82,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     return DAL_E_NOMEM;
   }
   dal_solve_default_opts(&st->integ_opts);
+  st->need_J = sys->m > 0 || !sys->place;
   *out = st;
   return DAL_OK;
 }
@@ -169,6 +170,17 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
   if (k < 0 || k >= sys->N) return DAL_E_ARG;
   int d = sys->dim, n = sys->n;
   memset(J, 0, (size_t)d * (size_t)n * sizeof(double));
+  if (!st->J_valid && st->tree && sys->place) {
+    // a tree of translations: J_k is the sum of the local columns of k and its ancestors
+    for (int b = k; b >= 0; b = sys->place[b].parent) {
+      const dal_place *pb = &sys->place[b];
+      const int *cb = sys->ipool + pb->coord_off;
+      const double *Lb = st->Lc + sys->ploc_off[b];
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < pb->ncoord; ++i) J[a * n + cb[i]] += Lb[a * pb->ncoord + i];
+    }
+    return DAL_OK;
+  }
   const int *dep = sys->pdep + sys->pdep_off[k];
   int nd = sys->pdep_off[k + 1] - sys->pdep_off[k];
   const double *Jk = st->J + sys->pj_off[k];

@@ -179,6 +179,13 @@ static inline dal_jet dal_cos(dal_jet a) {
   return dal_jet_chain(a, c, -s, -c);
 }
 
+/// sin(a) and cos(a) together, from one evaluation of each function's value.
+static inline void dal_sincos(dal_jet a, dal_jet *s, dal_jet *c) {
+  double sv = sin(a.v), cv = cos(a.v);
+  *s = dal_jet_chain(a, sv, cv, -sv);
+  *c = dal_jet_chain(a, cv, -sv, -cv);
+}
+
 /// tan(a)
 static inline dal_jet dal_tan(dal_jet a) {
   double t = tan(a.v), u = 1.0 + t * t;
