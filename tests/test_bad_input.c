@@ -995,6 +995,68 @@ static int row_step_collapse(char *msg) {
   return rc;
 }
 
+// the oscillator again, with a second callback that misbehaves from t = 0.7 on: a potential
+// U(r) over jets (adds nothing) or a whole-system coordinate map (the identity) in place of
+// the placement; the force callback stays well behaved
+static int ctl_rc(force_ctx *c, double t) {
+  c->calls++;
+  if (c->mode == 0 || t < c->t_fail || (c->n_fail >= 0 && c->fails >= c->n_fail)) return 0;
+  c->fails++;
+  return c->mode == 2 ? 1 : -5;
+}
+
+static int pot_ctl(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
+  *U = dal_scale(r[0], 0.0);
+  return ctl_rc(ctx, t.v);
+}
+
+static int map_ctl(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
+  r[0] = q[0];
+  r[1] = q[1];
+  return ctl_rc(ctx, t.v);
+}
+
+static int osc2_make(osc *o, int map, force_ctx *ctl) {
+  int c[2], bob;
+  memset(o, 0, sizeof *o);
+  double q[2] = {0.5, 0.0}, qd[2] = {0.0, 0.0};
+  int rc = dal_builder_create(2, &o->b);
+  if (!rc) rc = dal_builder_add_coord(o->b, "x", &c[0]);
+  if (!rc) rc = dal_builder_add_coord(o->b, "y", &c[1]);
+  if (!rc) rc = dal_builder_add_particle(o->b, "bob", 2.0, &bob);
+  if (!rc && map) rc = dal_builder_set_map(o->b, map_ctl, ctl);
+  if (!rc && !map)
+    rc = dal_builder_place(o->b, bob, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  if (!rc && !map) rc = dal_builder_add_potential_r(o->b, pot_ctl, ctl);
+  if (!rc) rc = dal_builder_add_force(o->b, force_cb, &o->fc);
+  if (!rc) rc = dal_builder_compile(o->b, &o->sys);
+  if (!rc) rc = dal_state_create(o->sys, &o->st);
+  if (!rc) rc = dal_state_set(o->sys, o->st, 0.0, q, qd);
+  return rc;
+}
+
+static int ctl_row(char *msg, int map, int mode, int n_fail) {
+  osc o;
+  force_ctx ctl = {mode, 0.7, n_fail, 0, 0};
+  CHECK_OK(osc2_make(&o, map, &ctl));
+  dal_solve_opts so = tight_opts(DAL_METHOD_DOPRI5);
+  int rc = dal_advance(o.sys, o.st, &so, 2.0);
+  copy_msg(msg, dal_state_errmsg(o.st));
+  double t = dal_state_time(o.st);
+  if (rc) CHECK_MSG(t > 0.0 && t <= 0.7, "stopped at t=%.17g", t);
+  else CHECK(t == 2.0 && ctl.fails == n_fail);
+  check_on_oscillator(o.st, 1e-7);
+  ctl.mode = 0;
+  CHECK_OK(dal_advance(o.sys, o.st, &so, 3.0));
+  check_on_oscillator(o.st, 1e-7);
+  osc_free(&o);
+  return rc;
+}
+static int row_potential_stop(char *msg) { return ctl_row(msg, 0, 3, -1); }
+static int row_potential_transient(char *msg) { return ctl_row(msg, 0, 2, 2); }
+static int row_map_stop_in_flight(char *msg) { return ctl_row(msg, 1, 3, -1); }
+static int row_map_transient(char *msg) { return ctl_row(msg, 1, 2, 2); }
+
 // ---------------------------------------------------------------- DAE rows
 // the Cartesian pendulum: 'bob' at (x, y), rods from the origin; scene options:
 // dup: a second rod identical to the first (redundant); far: a second anchor 3 m away (no
@@ -1365,6 +1427,13 @@ static const bad_row rows[] = {
      row_callback_recoverable_transient},
     {"advance: potential leaves its domain", DAL_E_DOMAIN, "U(r,t)", "t=",
      row_potential_domain_in_flight},
+    {"advance: potential U(r) callback < 0", DAL_E_CALLBACK, "potential U(r,t)", "t=",
+     row_potential_stop},
+    {"advance: potential U(r) callback > 0 transient", DAL_OK, NULL, NULL,
+     row_potential_transient},
+    {"advance: coordinate map callback < 0", DAL_E_CALLBACK, "coordinate map", "t=",
+     row_map_stop_in_flight},
+    {"advance: coordinate map callback > 0 transient", DAL_OK, NULL, NULL, row_map_transient},
     {"advance: spherical pendulum into its pole", DAL_E_SINGULAR, "'phi'", "t=",
      row_pole_in_flight},
     {"advance: step size collapse (1/r^3 head-on)", DAL_E_STEP, "t=", "'x'",
