@@ -199,30 +199,43 @@ static void tree_assembly(const dal_system *sys, dal_state *st) {
       st->c[ck[i]] += c;
     }
     if (!st->M) continue;
+    // lower triangle only (M[col * n + row], row >= col); a pair and its transpose are
+    // one entry there, a coordinate paired with itself counts twice
+    double *restrict M = st->M;
+    const double muk = sys->mu[k];
     for (int b = k; b >= 0; b = sys->place[b].parent) {
       const dal_place *pb = &sys->place[b];
       const int *cb = sys->ipool + pb->coord_off;
-      const double *Lb = st->Lc + sys->ploc_off[b];
+      const double *restrict Lb = st->Lc + sys->ploc_off[b];
       int nb = pb->ncoord;
+      if (nk == 1 && nb == 1) {
+        // one coordinate each (chains, pendulums): one entry
+        double v = 0.0;
+        for (int a = 0; a < d; ++a) v += Lk[a] * Lb[a];
+        int r = ck[0] > cb[0] ? ck[0] : cb[0], c = ck[0] > cb[0] ? cb[0] : ck[0];
+        M[(size_t)c * n + r] += (r == c && b != k ? 2.0 : 1.0) * muk * v;
+        continue;
+      }
       for (int i = 0; i < nk; ++i)
-        for (int j = 0; j < nb; ++j) {
-          double s = 0.0;
-          for (int a = 0; a < d; ++a) s += Lk[a * nk + i] * Lb[a * nb + j];
-          s *= sys->mu[k];
-          st->M[(size_t)cb[j] * n + ck[i]] += s;
-          if (b != k) st->M[(size_t)ck[i] * n + cb[j]] += s;
+        for (int j = 0; j < (b == k ? i + 1 : nb); ++j) {
+          double v = 0.0;
+          for (int a = 0; a < d; ++a) v += Lk[a * nk + i] * Lb[a * nb + j];
+          v *= muk;
+          int r = ck[i], c = cb[j];
+          if (r == c && (b != k || i != j)) v *= 2.0;
+          if (r < c) {
+            int tmp = r;
+            r = c;
+            c = tmp;
+          }
+          M[(size_t)c * n + r] += v;
         }
     }
   }
-  // the two triangles were summed in different orders: make M exactly symmetric
+  // mirror the lower triangle: M is exactly symmetric
   if (st->M)
     for (int j = 0; j < n; ++j)
-      for (int i = j + 1; i < n; ++i) {
-        double *lo = st->M + (size_t)j * n + i, *up = st->M + (size_t)i * n + j;
-        double s = 0.5 * (*lo + *up);
-        *lo = s;
-        *up = s;
-      }
+      for (int i = j + 1; i < n; ++i) st->M[(size_t)i * n + j] = st->M[(size_t)j * n + i];
 }
 
 int dal__dynamics(const dal_system *sys, dal_state *st) {
