@@ -389,7 +389,7 @@ int dal__forward(const dal_system *sys, dal_state *st) {
   if ((rc = dal__dynamics(sys, st)) != 0) return rc;
   rc = sys->m ? dal__solve_kkt(sys, st) : dal__solve_unconstrained(sys, st);
   if (rc) return rc;
-  dal__finish(sys, st);
-  st->evaluated = 1;
+  if (!st->lean) dal__finish(sys, st);
+  st->evaluated = !st->lean;
   return DAL_OK;
 }

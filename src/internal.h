@@ -152,6 +152,8 @@ struct dal_state {
   int need_J;           // compact J is formed on every evaluation (sticky once a link is
                         // found that is not a translation, or when m > 0)
   int J_valid;          // compact J is current (else dal_state_jacobian rebuilds it from Lc)
+  int lean;             // inside an integrator's right-hand side: skip particle accelerations
+                        // and reactions (dal__finish), which only outputs need
   struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
   int evaluated;        // dal_forward outputs are current
   // integrator (owned by solve.c)

@@ -119,7 +119,10 @@ int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot) {
   // stops at its last accepted step (some retry a failing right-hand side)
   if (ig->rhs_fatal) return ig->rhs_rc = ig->rhs_fatal;
   st->stats.rhs_evals++;
+  // the integrator needs only qddot: outputs are evaluated where the state stops
+  st->lean = 1;
   int rc = ig->prob->rhs(ig->sys, st, &ig->opts, t, y, ydot);
+  st->lean = 0;
   ig->rhs_rc = rc;
   if (rc) memcpy(ig->rhs_err, st->err, sizeof ig->rhs_err);
   if (rc < 0) ig->rhs_fatal = rc;
