@@ -232,8 +232,9 @@ static void tree_assembly(const dal_system *sys, dal_state *st) {
         }
     }
   }
-  // mirror the lower triangle: M is exactly symmetric
-  if (st->M)
+  // mirror the lower triangle: M is exactly symmetric (an integrator's right-hand side
+  // without constraints needs only the lower triangle, which Cholesky reads)
+  if (st->M && (!st->lean || sys->m > 0))
     for (int j = 0; j < n; ++j)
       for (int i = j + 1; i < n; ++i) st->M[(size_t)i * n + j] = st->M[(size_t)j * n + i];
 }
