@@ -252,8 +252,8 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
       lib_measure(cfg, &m, &o, sc->t1, ref, npd, &r);
       if (r.status == DAL_E_UNSUPPORTED) break;
       if (r.status)
-        log_failure(cfg, "wp", sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
-      wp_row(fp, sc->name, "ode", bench_method_name(o.method), tols[ti], &r);
+        log_failure(cfg, "wp", sc->name, "ode", dal_method_name(o.method), tols[ti], &r);
+      wp_row(fp, sc->name, "ode", dal_method_name(o.method), tols[ti], &r);
       // tighter tolerances would cost more still
       if (r.status == DAL_E_MAXSTEPS || r.wall > cfg->slow_run) break;
     }
@@ -267,9 +267,9 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
         run_res r;
         hand_measure(cfg, ch, y0, hand_methods[mi], tols[ti], sc->t1, ref, &r);
         if (r.status)
-          log_failure(cfg, "wp", sc->name, "handwritten", bench_method_name(hand_methods[mi]),
+          log_failure(cfg, "wp", sc->name, "handwritten", dal_method_name(hand_methods[mi]),
                       tols[ti], &r);
-        wp_row(fp, sc->name, "handwritten", bench_method_name(hand_methods[mi]), tols[ti], &r);
+        wp_row(fp, sc->name, "handwritten", dal_method_name(hand_methods[mi]), tols[ti], &r);
       }
     hand_chain_destroy(ch);
     free(y0);
@@ -290,9 +290,9 @@ static void wp_scene(const bench_cfg *cfg, const bench_scene *sc, FILE *fp, FILE
         lib_measure(cfg, &m, &o, sc->t1, ref, npd, &r);
         if (r.status)
           log_failure(cfg, "wp", sc->name, bench_form_name((bench_form)f),
-                      bench_method_name(meths[mi]), tols[ti], &r);
+                      dal_method_name(meths[mi]), tols[ti], &r);
         if (r.status == DAL_E_UNSUPPORTED) break;
-        wp_row(fp, sc->name, bench_form_name((bench_form)f), bench_method_name(meths[mi]), tols[ti],
+        wp_row(fp, sc->name, bench_form_name((bench_form)f), dal_method_name(meths[mi]), tols[ti],
                &r);
         if (r.status == DAL_E_MAXSTEPS || r.wall > cfg->slow_run) break;
       }
@@ -363,7 +363,7 @@ static void exp_overhead(const bench_cfg *cfg) {
         hand_once(ch, y0, y, hand_methods[mi], tols[ti], t1, r, &rh);
         rh.err = rh.status ? NAN : bench_maxdiff(r, ref, npd);
         if (rl.status) {
-          log_failure(cfg, "overhead", sc.name, "ode", bench_method_name(o.method), tols[ti], &rl);
+          log_failure(cfg, "overhead", sc.name, "ode", dal_method_name(o.method), tols[ti], &rl);
           continue;
         }
         // interleaved repeats, at least 5 pairs
@@ -378,13 +378,13 @@ static void exp_overhead(const bench_cfg *cfg) {
         }
         double a = bench_median(wl, reps), b = bench_median(wh, reps);
         fprintf(fp, "%d,%s,%.0e,%.6e,%.6e,%.4f,%ld,%ld,%ld,%ld,%.3e,%.3e,%.4f\n", N,
-                bench_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs, rl.steps,
+                dal_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs, rl.steps,
                 rh.steps, rl.err, rh.err, (a / (double)rl.rhs) / (b / (double)rh.rhs));
         fflush(fp);
         fprintf(stderr,
                 "overhead N=%d %s rtol %.0e: lib %.3g s hand %.3g s ratio %.2f "
                 "(rhs %ld vs %ld)\n",
-                N, bench_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs);
+                N, dal_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs);
       }
     if (!rc) scene_model_free(&m);
     hand_chain_destroy(ch);
@@ -521,10 +521,10 @@ static void exp_cost(const bench_cfg *cfg) {
         free(y0);
       }
       if (r.status) {
-        log_failure(cfg, "cost", sc.name, fname[f], bench_method_name(fmeth[f]), frtol[f], &r);
+        log_failure(cfg, "cost", sc.name, fname[f], dal_method_name(fmeth[f]), frtol[f], &r);
         continue;
       }
-      fprintf(fp, "%s,%s,%d,%.0e,%.6e,%.3e\n", fname[f], bench_method_name(fmeth[f]), N, frtol[f],
+      fprintf(fp, "%s,%s,%d,%.0e,%.6e,%.3e\n", fname[f], dal_method_name(fmeth[f]), N, frtol[f],
               r.wall / t1, r.err);
       fflush(fp);
       fprintf(stderr, "  %-20s N=%5d: %.3e s per simulated s, err %.2e, %ld steps\n", fname[f], N,
@@ -539,7 +539,7 @@ static void exp_cost(const bench_cfg *cfg) {
   for (int f = 0; f < C_NUM; ++f) {
     int used;
     double e = fit_exponent(pts[f], npts[f], 16, &used);
-    fprintf(fit, "%s,%s,%.0e,%.3f,%d,%d,%d\n", fname[f], bench_method_name(fmeth[f]), frtol[f], e,
+    fprintf(fit, "%s,%s,%.0e,%.3f,%d,%d,%d\n", fname[f], dal_method_name(fmeth[f]), frtol[f], e,
             used, 16, npts[f] ? pts[f][npts[f] - 1].N : 0);
   }
   // crossover: first N where the sparse DAE is cheaper than the dense ODE (log interpolation)
@@ -611,7 +611,7 @@ static void long_run(const bench_cfg *cfg, const char *what, bench_model *m, ben
   bench_opts(&o, f, meth, rtol);
   if (meth == DAL_METHOD_RK4) o.fixed_step = 1e-3;
   o.max_steps = cfg->max_steps;
-  mon_ctx c = {fp, bench_form_name(f), bench_method_name(meth), rtol, 0.0, energy, 1, 0.0};
+  mon_ctx c = {fp, bench_form_name(f), dal_method_name(meth), rtol, 0.0, energy, 1, 0.0};
   double t0 = bench_now();
   int rc = scene_model_reset(m);
   if (!rc) rc = dal_evolve(m->sys, m->st, &o, t1, dt, long_monitor, &c);
@@ -755,12 +755,12 @@ static void exp_stiff(const bench_cfg *cfg) {
         run_res r;
         lib_measure(cfg, &m, &o, t1, ref, 2, &r);
         if (r.status)
-          log_failure(cfg, "stiff", "spring", "ode", bench_method_name(meths[mi]), rtol, &r);
-        fprintf(fp, "%.0e,%s,%.0e,%s,%.6e,%ld,%ld,%.6e\n", ks[ki], bench_method_name(meths[mi]),
+          log_failure(cfg, "stiff", "spring", "ode", dal_method_name(meths[mi]), rtol, &r);
+        fprintf(fp, "%.0e,%s,%.0e,%s,%.6e,%ld,%ld,%.6e\n", ks[ki], dal_method_name(meths[mi]),
                 rtol, dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err);
         fflush(fp);
         fprintf(stderr, "stiff k=%.0e %s rtol %.0e: %s %.3g s, %ld rhs\n", ks[ki],
-                bench_method_name(meths[mi]), rtol, dal_status_name(r.status), r.wall, r.rhs);
+                dal_method_name(meths[mi]), rtol, dal_status_name(r.status), r.wall, r.rhs);
       }
     dal_state_destroy(m.st);
     dal_system_destroy(m.sys);
@@ -873,9 +873,9 @@ static void exp_singular(const bench_cfg *cfg) {
         lib_measure(cfg, &m, &o, t1, ya, 3, &r);
         if (r.status)
           log_failure(cfg, "singular", cases[ci].name, bench_form_name(runs[ri].f),
-                      bench_method_name(runs[ri].meth), rtol, &r);
+                      dal_method_name(runs[ri].meth), rtol, &r);
         fprintf(fp, "%s,%.0e,%s,%s,%.0e,%s,%.6e,%ld,%ld,%.6e,%d\n", cases[ci].name, cases[ci].phd0,
-                bench_form_name(runs[ri].f), bench_method_name(runs[ri].meth), rtol,
+                bench_form_name(runs[ri].f), dal_method_name(runs[ri].meth), rtol,
                 dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err, ci);
         fflush(fp);
       }
@@ -988,7 +988,7 @@ static int exp_ir(int argc, char **argv) {
   double rtol = atof(argv[3]), t1 = atof(argv[4]);
   dal_method meth = DAL_METHOD_AUTO;
   for (int k = DAL_METHOD_DOPRI5; k <= DAL_METHOD_BDF; ++k)
-    if (strcmp(argv[2], bench_method_name((dal_method)k)) == 0) meth = (dal_method)k;
+    if (strcmp(argv[2], dal_method_name((dal_method)k)) == 0) meth = (dal_method)k;
   if (N < 1 || meth == DAL_METHOD_AUTO || !(rtol > 0) || !(t1 > 0)) return 2;
   bench_scene sc;
   scene_init(&sc, SC_CHAIN, N, t1);

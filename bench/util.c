@@ -48,25 +48,6 @@ double bench_maxdiff(const double *a, const double *b, int n) {
   return m;
 }
 
-const char *bench_method_name(dal_method m) {
-  switch (m) {
-  case DAL_METHOD_DOPRI5:
-    return "dopri5";
-  case DAL_METHOD_FEHLBERG78:
-    return "fehlberg78";
-  case DAL_METHOD_BS:
-    return "bs";
-  case DAL_METHOD_RK4:
-    return "rk4";
-  case DAL_METHOD_ADAMS:
-    return "adams";
-  case DAL_METHOD_BDF:
-    return "bdf";
-  default:
-    return "auto";
-  }
-}
-
 const char *bench_form_name(bench_form f) {
   static const char *names[BF_COUNT] = {"ode",         "ggl",    "index1",     "index1-baumgarte",
                                         "index1-proj", "index3", "handwritten"};

@@ -31,11 +31,6 @@ static int erk_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
   return dal__ode_rhs(ig, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
 }
 
-static void erk_err(int code, const char *module, const char *function, char *msg, void *ud) {
-  dal_ode_integ *ig = ud;
-  snprintf(ig->sun_err, sizeof ig->sun_err, "%s %s (%d): %s", module, function, code, msg);
-}
-
 static void erk_free(void *p) {
   erk_mem *m = p;
   if (!m) return;
@@ -211,7 +206,7 @@ int dal__erk_create(dal_ode_integ *ig) {
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   m->ark = ERKStepCreate(erk_rhs, ig->t, m->y, m->ctx);
   if (!m->ark) return DAL_FAIL(st, DAL_E_NOMEM, "ERKStepCreate failed");
-  flag = ERKStepSetErrHandlerFn(m->ark, erk_err, ig);
+  flag = ERKStepSetErrHandlerFn(m->ark, dal__ode_sun_err, ig);
   if (!flag) flag = ERKStepSetUserData(m->ark, ig);
   if (!flag && ig->method == DAL_METHOD_FEHLBERG78)
     flag = erk_set_fehlberg(m->ark);

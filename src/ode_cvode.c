@@ -66,11 +66,6 @@ static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_
   return 0;
 }
 
-static void cv_err(int code, const char *module, const char *function, char *msg, void *ud) {
-  dal_ode_integ *ig = ud;
-  snprintf(ig->sun_err, sizeof ig->sun_err, "%s %s (%d): %s", module, function, code, msg);
-}
-
 static void cv_free(void *p) {
   cv_mem *m = p;
   if (!m) return;
@@ -227,7 +222,7 @@ int dal__cvode_create(dal_ode_integ *ig) {
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->ctx);
   if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
-  flag = CVodeSetErrHandlerFn(m->cv, cv_err, ig);
+  flag = CVodeSetErrHandlerFn(m->cv, dal__ode_sun_err, ig);
   if (!flag) flag = CVodeInit(m->cv, cv_rhs, ig->t, m->y);
   if (!flag) flag = CVodeSetUserData(m->cv, ig);
   if (!flag) flag = CVodeSStolerances(m->cv, ig->rtol, ig->atol);

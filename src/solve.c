@@ -235,6 +235,11 @@ const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t 
   return buf;
 }
 
+void dal__ode_sun_err(int code, const char *module, const char *function, char *msg, void *ud) {
+  dal_ode_integ *ig = ud;
+  snprintf(ig->sun_err, sizeof ig->sun_err, "%s %s (%d): %s", module, function, code, msg);
+}
+
 int dal__ode_argmax(const double *w, int n) {
   int best = 0;
   for (int i = 1; i < n; ++i)

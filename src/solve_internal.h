@@ -102,6 +102,9 @@ int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...)
 const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t len);
 /// index of the largest |w[i]| (the dominating variable of an error estimate)
 int dal__ode_argmax(const double *w, int n);
+/// SUNDIALS error handler of the ODE drivers (ud is the dal_ode_integ): keeps the message in
+/// ig->sun_err instead of printing it
+void dal__ode_sun_err(int code, const char *module, const char *function, char *msg, void *ud);
 /// true when recoverable right-hand-side failures after the last accepted step are what
 /// keeps the integrator from advancing (a step collapse is then the callback's doing)
 int dal__ode_recov_blocked(const dal_ode_integ *ig);
