@@ -1087,6 +1087,63 @@ static void test_tree_vs_general(void) {
   scene_free(&ge);
 }
 
+// a parent link that is not a translation (the child sits at 1.5 x its parent's position plus
+// a pendulum offset): the library must leave the tree assembly and form J by the chain rule
+static int scaled_child(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)t;
+  (void)ctx;
+  out[0] = dal_add(dal_scale(in[0], 1.5), dal_scale(dal_sin(in[2]), p[0]));
+  out[1] = dal_sub(dal_scale(in[1], 1.5), dal_scale(dal_cos(in[2]), p[0]));
+  return 0;
+}
+static const dal_primitive scaled_prim = {"scaled_child", 1, 3, 2, 1, scaled_child,
+                                          "1.5 parent + l (sin th, -cos th)", 0};
+
+static int scaled_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
+  (void)t;
+  (void)ctx;
+  r[0] = dal_sin(q[0]);
+  r[1] = dal_neg(dal_cos(q[0]));
+  r[2] = dal_add(dal_scale(r[0], 1.5), dal_scale(dal_sin(q[1]), 0.8));
+  r[3] = dal_sub(dal_scale(r[1], 1.5), dal_scale(dal_cos(q[1]), 0.8));
+  return 0;
+}
+
+static void test_non_translating_parent(void) {
+  scene s[2];
+  for (int general = 0; general < 2; ++general) {
+    dal_builder *b = builder(2);
+    int c[2], p[2];
+    double g[2] = {0.0, -9.81}, root[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 0.8;
+    BUILD(dal_builder_add_coord(b, NULL, &c[0]));
+    BUILD(dal_builder_add_coord(b, NULL, &c[1]));
+    BUILD(dal_builder_add_particle(b, NULL, 1.0, &p[0]));
+    BUILD(dal_builder_add_particle(b, NULL, 2.0, &p[1]));
+    if (general) {
+      BUILD(dal_builder_set_map(b, scaled_map, NULL));
+    } else {
+      BUILD(dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c[0], 7, root, NULL));
+      BUILD(dal_builder_place(b, p[1], &scaled_prim, p[0], 1, &c[1], 1, &l, NULL));
+    }
+    BUILD(dal_builder_set_gravity(b, g));
+    s[general] = scene_make(compile(b));
+  }
+  for (int trial = 0; trial < 50 && s[0].st && s[1].st; ++trial) {
+    double q[2] = {rnd(-3, 3), rnd(-3, 3)}, qd[2] = {rnd(-2, 2), rnd(-2, 2)};
+    if (at(&s[0], 0.0, q, qd) || at(&s[1], 0.0, q, qd)) break;
+    near_vec("scaled qddot", dal_state_qddot(s[0].st), dal_state_qddot(s[1].st), 2, 1e-12, 1.0);
+    near_vec("scaled accelerations", dal_state_accelerations(s[0].st),
+             dal_state_accelerations(s[1].st), 4, 1e-12, 1.0);
+    near_vec("scaled dr/dt", dal_state_drdt(s[0].st), dal_state_drdt(s[1].st), 4, 1e-13, 1.0);
+    double Jt[4], Jg[4];
+    CHECK_OK(dal_state_jacobian(s[0].sys, s[0].st, 1, Jt));
+    CHECK_OK(dal_state_jacobian(s[1].sys, s[1].st, 1, Jg));
+    near_vec("scaled J", Jt, Jg, 4, 1e-14, 1.0);
+  }
+  scene_free(&s[0]);
+  scene_free(&s[1]);
+}
+
 int main(void) {
   printf("d'Alembert route vs Lagrangian route vs hand-derived equations:\n");
   test_harmonic_oscillator();
@@ -1098,5 +1155,6 @@ int main(void) {
   test_forces();
   test_lagrangian_genforce();
   test_tree_vs_general();
+  test_non_translating_parent();
   return check_summary("test_mechanics");
 }
