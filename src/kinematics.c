@@ -109,7 +109,6 @@ static void chain_particle(const dal_system *sys, const dal_state *st, int p, co
       out[r * ndep_out + c] += s;
     }
   }
-  (void)ndep_out;
 }
 
 // whole-system user map: all particles from r(q, t)
