@@ -9,14 +9,6 @@
 
 #include "internal.h"
 
-int dal__set_err(char *buf, int status, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(buf, DAL_ERRMSG_LEN, fmt, ap);
-  va_end(ap);
-  return status;
-}
-
 // grow a vector to hold one more element of size sz; returns the new slot or NULL
 static void *vec_push(dal_vec *v, size_t sz) {
   if (v->len == v->cap) {

@@ -102,19 +102,11 @@ static int eval_at(ida_mem *w, double t, const double *y) {
   const dal_system *sys = w->sys;
   dal_state *st = w->st;
   st->t = t;
-  st->evaluated = 0;
   memcpy(st->q, y, (size_t)w->n * sizeof(double));
   memcpy(st->qdot, y + w->n, (size_t)w->n * sizeof(double));
-  int rc = dal__kinematics(sys, st);
-  if (rc == 0 && w->m) rc = dal__constraints(sys, st);
-  if (rc == 0) {
-    // the residual applies M through the particle Jacobians: skip the dense assembly
-    double *Msave = st->M;
-    st->M = NULL;
-    rc = dal__dynamics(sys, st);
-    st->M = Msave;
-  }
-  return rc;
+  dal__state_moved(st);
+  // the residual applies M through the particle Jacobians: no dense assembly
+  return dal__eval(sys, st, DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN);
 }
 
 static int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void *data) {
@@ -666,7 +658,8 @@ static int finish_state(ida_mem *w, double t, const double *y) {
   st->t = t;
   memcpy(st->q, y, (size_t)w->n * sizeof(double));
   memcpy(st->qdot, y + w->n, (size_t)w->n * sizeof(double));
-  int rc = dal__forward(w->sys, st);
+  dal__state_moved(st);
+  int rc = dal__eval(w->sys, st, DAL_P_ALL);
   return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
 }
 
@@ -765,7 +758,7 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   if (tout == t0) return finish_state(w, t0, N_VGetArrayPointer(w->y));
   if (!w->started) {
     // IDA's own first step is ~1e-16 at tight tolerances and fails: start near 0.1 sqrt(rtol)
-    double h0 = w->opts.h0 > 0 ? w->opts.h0 : 0.1 * sqrt(w->opts.rtol);
+    double h0 = w->opts.h0 > 0 ? w->opts.h0 : DAL_IDA_H0_FACTOR * sqrt(w->opts.rtol);
     if (w->opts.hmax > 0 && h0 > w->opts.hmax) h0 = w->opts.hmax;
     if (h0 > fabs(tout - t0)) h0 = fabs(tout - t0);
     IDASetInitStep(w->ida, tout > t0 ? h0 : -h0);

@@ -30,6 +30,9 @@ void dal__dense_G(const dal_system *sys, const dal_state *st, double *G, int ld)
 /// y (n) = G' lambda for the state's current G (compact blocks).
 void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lambda, double *y);
 
+/// max |x_i| over n entries (NaN counts as largest); *at (nullable) receives its index
+double dal__max_abs(const double *x, int n, int *at);
+
 /// Kinematics and constraint rows at the state's (t, q, qdot) (no dynamics).
 int dal__eval_constraints(const dal_system *sys, dal_state *st);
 

@@ -16,8 +16,6 @@
 #include "dae_internal.h"
 
 /// largest systems checked by dense QR
-#define RANK_MAX_ROWS 512
-#define RANK_MAX_ENTRIES 1000000.0
 
 // append "'name'" list of the constraints owning rows[0..nrows) to buf (unique, in order)
 static void name_list(const dal_system *sys, const int *rows, int nrows, char *buf, size_t len,
@@ -54,7 +52,7 @@ int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report 
   rep->rmin = 1.0;
   rep->rank = m;
   if (m == 0) return DAL_OK;
-  if (m > RANK_MAX_ROWS || (double)n * (double)m > RANK_MAX_ENTRIES) {
+  if (m > DAL_RANK_MAX_ROWS || (double)n * (double)m > DAL_RANK_MAX_ENTRIES) {
     rep->rank = -1;
     return DAL_OK;
   }

@@ -168,7 +168,7 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
 //   Q = sum_a L_a' (sum of F over a's subtree),  c = sum_a L_a' (sum of m gamma over it),
 // with mu_a the subtree mass: O(N depth) work instead of O(N n^2) (Featherstone's composite
 // rigid body idea for point masses).
-static void tree_assembly(const dal_system *sys, dal_state *st) {
+static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
   int d = sys->dim, n = sys->n, N = sys->N, Nd = N * d;
   double *cf = st->cf, *cg = st->cf + Nd;
   for (int k = 0; k < N; ++k)
@@ -198,7 +198,7 @@ static void tree_assembly(const dal_system *sys, dal_state *st) {
       st->Q[ck[i]] += q;
       st->c[ck[i]] += c;
     }
-    if (!st->M) continue;
+    if (!want_M) continue;
     // lower triangle only (M[col * n + row], row >= col); a pair and its transpose are
     // one entry there, a coordinate paired with itself counts twice
     double *restrict M = st->M;
@@ -232,15 +232,12 @@ static void tree_assembly(const dal_system *sys, dal_state *st) {
         }
     }
   }
-  // mirror the lower triangle: M is exactly symmetric (an integrator's right-hand side
-  // without constraints needs only the lower triangle, which Cholesky reads)
-  if (st->M && (!st->lean || sys->m > 0))
-    for (int j = 0; j < n; ++j)
-      for (int i = j + 1; i < n; ++i) st->M[(size_t)i * n + j] = st->M[(size_t)j * n + i];
 }
 
-int dal__dynamics(const dal_system *sys, dal_state *st) {
+int dal__dynamics(const dal_system *sys, dal_state *st, int want_M) {
   int d = sys->dim, n = sys->n, rc;
+  DAL_NEED(st, DAL_P_KIN);
+  want_M = sys->dense_M ? want_M : 0;
   double U = 0.0;
   memset(st->Q, 0, (size_t)n * sizeof(double));
   memset(st->c, 0, (size_t)n * sizeof(double));
@@ -249,10 +246,11 @@ int dal__dynamics(const dal_system *sys, dal_state *st) {
     if (rc) return rc;
   }
   // Q = sum J_k' F_k, c = sum m_k J_k' gamma_k, M = sum m_k J_k' J_k (over dependencies)
-  if (st->M) memset(st->M, 0, (size_t)n * (size_t)n * sizeof(double));
-  if (st->tree && sys->place) {
-    tree_assembly(sys, st);
+  if (want_M) memset(st->M, 0, (size_t)n * (size_t)n * sizeof(double));
+  if (st->tree) {
+    tree_assembly(sys, st, want_M);
   } else {
+    DAL_NEED(st, DAL_P_J);
     for (int k = 0; k < sys->N; ++k) {
       const int *dk = sys->pdep + sys->pdep_off[k];
       int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
@@ -265,7 +263,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st) {
           st->Q[dk[c]] += row[c] * f;
           st->c[dk[c]] += row[c] * g;
         }
-        if (st->M)
+        if (want_M)
           for (int c2 = 0; c2 < ndk; ++c2) {
             double *col = st->M + (size_t)dk[c2] * n;
             // m (J_ac J_ac2): the product is symmetric in (c, c2), so M is exactly symmetric
@@ -295,15 +293,24 @@ int dal__dynamics(const dal_system *sys, dal_state *st) {
   st->en.T1 = T1;
   st->en.T0 = T0;
   st->en.h = T2 - T0 + U;
+  st->have |= DAL_P_DYN;
+  if (want_M) {
+    // the tree assembly writes the lower triangle; mirror it when the caller reads all of M
+    // (an integrator's unconstrained right-hand side needs only the lower one, which
+    // Cholesky reads)
+    if (want_M > 1 && st->tree)
+      for (int j = 0; j < n; ++j)
+        for (int i = j + 1; i < n; ++i) st->M[(size_t)i * n + j] = st->M[(size_t)j * n + i];
+    st->have |= want_M > 1 || !st->tree ? DAL_P_M | DAL_P_MLOW : DAL_P_MLOW;
+  }
   return DAL_OK;
 }
 
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y) {
   int n = sys->n, d = sys->dim;
   memset(y, 0, (size_t)n * sizeof(double));
-  if (!st->J_valid) {
-    // the tree assembly formed M without J (minimal coordinates always have a dense M)
-    DAL_ASSERT(st->M);
+  if (!(st->have & DAL_P_J)) {
+    DAL_NEED(st, DAL_P_M);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) y[i] += st->M[(size_t)j * n + i] * x[j];
     return;
@@ -325,6 +332,7 @@ int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
   int n = sys->n;
   for (int j = 0; j < n; ++j) st->qddot[j] = st->Q[j] - st->c[j];
   int bad = -1;
+  DAL_NEED(st, DAL_P_MLOW | DAL_P_DYN);
   int rc = dal__chol_solve(n, st->M, st->L, st->qddot, &bad);
   if (rc) {
     char qs[256];
@@ -341,56 +349,29 @@ int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
 
 void dal__finish(const dal_system *sys, dal_state *st) {
   int d = sys->dim;
-  int tree = st->tree && sys->place;
+  DAL_NEED(st, DAL_P_KIN | DAL_P_DYN | DAL_P_ACC);
   for (int k = 0; k < sys->N; ++k) {
-    const int *dk = sys->pdep + sys->pdep_off[k];
-    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
-    const double *Jk = st->J + sys->pj_off[k];
-    const dal_place *pk = tree ? &sys->place[k] : NULL;
     for (int a = 0; a < d; ++a) {
       double s = st->gamma[k * d + a];
-      if (pk) {
-        // through a translation: J_k qddot = (a_p - gamma_p) + L_k qddot_local
+      if (sys->place) {
+        // a_k = Lp_k (a_p - gamma_p) + Lc_k qddot_local + gamma_k
+        const dal_place *pk = &sys->place[k];
         const int *ck = sys->ipool + pk->coord_off;
-        const double *Lk = st->Lc + sys->ploc_off[k];
-        if (pk->parent >= 0) s += st->a[pk->parent * d + a] - st->gamma[pk->parent * d + a];
+        const double *Lk = st->Lc + sys->ploc_off[k], *Lp = st->Lp + (size_t)k * d * d;
+        int p = pk->parent;
+        for (int b = 0; b < d && p >= 0; ++b)
+          s += Lp[a * d + b] * (st->a[p * d + b] - st->gamma[p * d + b]);
         for (int i = 0; i < pk->ncoord; ++i) s += Lk[a * pk->ncoord + i] * st->qddot[ck[i]];
       } else {
+        DAL_NEED(st, DAL_P_J);
+        const int *dk = sys->pdep + sys->pdep_off[k];
+        int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
+        const double *Jk = st->J + sys->pj_off[k];
         for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qddot[dk[c]];
       }
       st->a[k * d + a] = s;
       st->N[k * d + a] = sys->mass[k] * s - st->F[k * d + a];
     }
   }
-}
-
-int dal__forward(const dal_system *sys, dal_state *st) {
-  int rc;
-  st->evaluated = 0;
-  if (sys->lag) {
-    double h;
-    rc = dal__lagrangian_terms(sys, st, st->M, st->qddot, &h);
-    if (rc) return rc;
-    int bad = -1;
-    if (dal__chol_solve(sys->n, st->M, st->L, st->qddot, &bad)) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      return DAL_FAIL(st, DAL_E_SINGULAR,
-                      "d2L/dqdot2 singular or not positive definite at t=%.17g, %s: coordinate "
-                      "'%s' is degenerate; use another chart",
-                      st->t, qs, sys->coord_names[bad]);
-    }
-    st->en.T = st->en.U = st->en.T2 = st->en.T1 = st->en.T0 = NAN;
-    st->en.E = st->en.h = h;
-    st->evaluated = 1;
-    return DAL_OK;
-  }
-  if ((rc = dal__kinematics(sys, st)) != 0) return rc;
-  if (sys->m && (rc = dal__constraints(sys, st)) != 0) return rc;
-  if ((rc = dal__dynamics(sys, st)) != 0) return rc;
-  rc = sys->m ? dal__solve_kkt(sys, st) : dal__solve_unconstrained(sys, st);
-  if (rc) return rc;
-  if (!st->lean) dal__finish(sys, st);
-  st->evaluated = !st->lean;
-  return DAL_OK;
+  st->have |= DAL_P_OUT;
 }

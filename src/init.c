@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Consistent initialization, manifold projection and the index-1 ODE of redundant coordinates.
+// Consistent initialization and manifold projection of redundant coordinates.
 //
 // Positions: minimum-norm Gauss-Newton dq = -G'(G G')^-1 phi; velocities: M-orthogonal
 // projection dv = -M^-1 G'(G M^-1 G')^-1 (G v + dphi/dt); both through the KKT system
@@ -15,18 +15,15 @@
 #include "dae_internal.h"
 #include "solve_internal.h"
 
-/// position iterations of the consistent initialization, and of a projection after a step
+/// position iterations of the consistent initialization
 #define INIT_MAXIT 50
-#define PROJECT_MAXIT 10
 
 int dal__eval_constraints(const dal_system *sys, dal_state *st) {
-  st->evaluated = 0;
-  int rc = dal__kinematics(sys, st);
-  if (rc) return rc;
-  return dal__constraints(sys, st);
+  dal__state_moved(st);
+  return dal__eval(sys, st, DAL_P_CON);
 }
 
-static double max_abs(const double *x, int n, int *at) {
+double dal__max_abs(const double *x, int n, int *at) {
   double mx = 0.0;
   if (at) *at = n > 0 ? 0 : -1;
   for (int i = 0; i < n; ++i)
@@ -45,7 +42,7 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
   double *zero = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
   double *q0 = dal__kkt_scratch(st, 2), *dq = dal__kkt_scratch(st, 3);
   memset(zero, 0, (size_t)n * sizeof(double));
-  double res = max_abs(st->phi, m, &worst);
+  double res = dal__max_abs(st->phi, m, &worst);
   for (; it < maxit && !(res <= tol); ++it) {
     if (!isfinite(res)) break;
     rc = dal__kkt_factor(sys, st, DAL_KKT_IDENTITY, "projection onto the constraints");
@@ -67,7 +64,7 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
         st->q[j] = q0[j] + s * dq[j];
       rc = dal__eval_constraints(sys, st);
       if (rc < 0 && rc != DAL_E_DOMAIN) return rc;
-      nres = rc ? INFINITY : max_abs(st->phi, m, &worst);
+      nres = rc ? INFINITY : dal__max_abs(st->phi, m, &worst);
       if (nres < res || nres <= tol) break;
     }
     if (!(nres < res) && !(nres <= tol)) {
@@ -75,7 +72,7 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
       memcpy(st->q, q0, (size_t)n * sizeof(double));
       rc = dal__eval_constraints(sys, st);
       if (rc) return rc;
-      res = max_abs(st->phi, m, &worst);
+      res = dal__max_abs(st->phi, m, &worst);
       ++it;
       stalled = 1;
       break;
@@ -129,9 +126,9 @@ static int project_velocities(const dal_system *sys, dal_state *st) {
   int n = sys->n, m = sys->m, rc;
   double *zero = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
   double *dv = dal__kkt_scratch(st, 3);
-  if (max_abs(st->phidot, m, NULL) == 0.0) return DAL_OK;
+  if (dal__max_abs(st->phidot, m, NULL) == 0.0) return DAL_OK;
   // M at q (dense systems assemble it in dynamics; M depends on q and t only)
-  if (st->M && (rc = dal__dynamics(sys, st)) != 0) return rc;
+  if (sys->dense_M && (rc = dal__eval(sys, st, DAL_P_CON | DAL_P_MLOW)) != 0) return rc;
   rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "velocity projection");
   if (rc) return rc;
   memset(zero, 0, (size_t)n * sizeof(double));
@@ -158,10 +155,10 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dal
   int n = sys->n, m = sys->m, rc;
   memset(rep, 0, sizeof *rep);
   rep->phi_row = rep->phidot_row = rep->dq_coord = rep->dqdot_coord = -1;
-  if (!(tol > 0.0)) tol = 1e-12 * fmax(1.0, max_abs(st->q, n, NULL));
+  if (!(tol > 0.0)) tol = 1e-12 * fmax(1.0, dal__max_abs(st->q, n, NULL));
   rep->tol = tol;
   if (m == 0) {
-    rc = dal__forward(sys, st);
+    rc = dal__eval(sys, st, DAL_P_ALL);
     return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
   }
   double *save = malloc(2 * (size_t)n * sizeof(double));
@@ -170,23 +167,23 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dal
   memcpy(save + n, st->qdot, (size_t)n * sizeof(double));
   rc = dal__eval_constraints(sys, st);
   if (rc == 0) {
-    rep->phi_before = max_abs(st->phi, m, &rep->phi_row);
-    rep->phidot_before = max_abs(st->phidot, m, &rep->phidot_row);
+    rep->phi_before = dal__max_abs(st->phi, m, &rep->phi_row);
+    rep->phidot_before = dal__max_abs(st->phidot, m, &rep->phidot_row);
     rc = project_positions(sys, st, tol, INIT_MAXIT, &rep->iterations);
   }
   if (rc == 0) {
-    rep->phi_after = max_abs(st->phi, m, NULL);
+    rep->phi_after = dal__max_abs(st->phi, m, NULL);
     rc = project_velocities(sys, st);
   }
   if (rc == 0) {
-    rep->phidot_after = max_abs(st->phidot, m, NULL);
-    rc = dal__forward(sys, st);
+    rep->phidot_after = dal__max_abs(st->phidot, m, NULL);
+    rc = dal__eval(sys, st, DAL_P_ALL);
   }
   if (rc) {
     // the state keeps what the caller gave
     memcpy(st->q, save, (size_t)n * sizeof(double));
     memcpy(st->qdot, save + n, (size_t)n * sizeof(double));
-    st->evaluated = 0;
+    dal__state_moved(st);
     free(save);
     return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
   }
@@ -215,76 +212,6 @@ int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_in
   dal__integ_reset(st);
   return make_consistent(sys, st, tol, rep ? rep : &local);
 }
-
-// ---------------------------------------------------------------------------------------
-// the index-1 ODE y = (q, v), y' = (v, qddot) with optional Baumgarte terms and projection
-
-static int index1_size(const dal_system *sys) { return 2 * sys->n; }
-
-static void index1_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
-  st->t = t;
-  memcpy(st->q, y, (size_t)sys->n * sizeof(double));
-  memcpy(st->qdot, y + sys->n, (size_t)sys->n * sizeof(double));
-  st->evaluated = 0;
-}
-
-static void index1_from_state(const dal_system *sys, const dal_state *st, double *y) {
-  memcpy(y, st->q, (size_t)sys->n * sizeof(double));
-  memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
-}
-
-static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
-                      const double *y, double *ydot) {
-  int n = sys->n, m = sys->m, rc;
-  index1_to_state(sys, st, t, y);
-  if ((rc = dal__kinematics(sys, st)) != 0) return rc;
-  if (m && (rc = dal__constraints(sys, st)) != 0) return rc;
-  if ((rc = dal__dynamics(sys, st)) != 0) return rc;
-  if (m == 0) {
-    rc = dal__solve_unconstrained(sys, st);
-  } else {
-    // G qddot = -(gamma_phi + 2 alpha (G v + dphi/dt) + beta^2 phi)
-    double al = opts->baumgarte_alpha, be = opts->baumgarte_beta;
-    double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
-    rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "index-1 right-hand side");
-    if (rc == 0) {
-      for (int i = 0; i < n; ++i)
-        a[i] = st->Q[i] - st->c[i];
-      for (int r = 0; r < m; ++r)
-        b[r] = -(st->gphi[r] + 2.0 * al * st->phidot[r] + be * be * st->phi[r]);
-      dal__kkt_solve(sys, st, a, b, st->qddot, st->lambda);
-    }
-  }
-  if (rc) return rc;
-  for (int i = 0; i < n; ++i)
-    if (!isfinite(st->qddot[i])) {
-      DAL_FAIL(st, DAL__RECOVERABLE,
-               "index-1: acceleration of coordinate '%s' is %g at t=%.17g; the state may have "
-               "left the model's domain",
-               sys->coord_names[i], st->qddot[i], t);
-      return DAL__RECOVERABLE;
-    }
-  dal__finish(sys, st);
-  st->evaluated = 1;
-  memcpy(ydot, st->qdot, (size_t)n * sizeof(double));
-  memcpy(ydot + n, st->qddot, (size_t)n * sizeof(double));
-  return DAL_OK;
-}
-
-static int index1_project(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                          double t, double *y) {
-  index1_to_state(sys, st, t, y);
-  // well below the integrator's absolute tolerance, above the rounding floor
-  double tol = fmax(1e-2 * opts->atol, 4e-16 * fmax(1.0, max_abs(st->q, sys->n, NULL)));
-  int rc = dal__project_state(sys, st, tol, PROJECT_MAXIT, NULL);
-  if (rc) return rc;
-  index1_from_state(sys, st, y);
-  return DAL_OK;
-}
-
-const dal_ode_problem dal__problem_index1 = {
-    "index1", index1_size, index1_rhs, index1_project, index1_from_state, index1_to_state,
-};
 
 // used by the IDA driver: rank check, then the consistent initialization
 int dal__dae_start(const dal_system *sys, dal_state *st, dal_init_report *rep) {

@@ -7,6 +7,7 @@
 #include <stddef.h>
 
 #include "dalembert/dalembert.h"
+#include "limits.h"
 
 #define DAL_ERRMSG_LEN 512
 #define DAL_OPTS_MAGIC 0x0da1e3b7
@@ -108,6 +109,7 @@ struct dal_system {
   // per-particle dependency coordinates (sorted): pdep[pdep_off[k] .. pdep_off[k+1])
   int *pdep_off, *pdep;
   int *pj_off; // offset of particle k's compact J (d x ndep_k, row-major); pj_off[N] = total
+  int *con_loff; // offset of constraint c's local Jacobian (nout x nin) in st->Gl; [ncon] total
   // constraints
   int ncon;
   dal_con *con;
@@ -128,6 +130,24 @@ struct dal_system {
   int dense_M;         // M is assembled densely (n x n)
 };
 
+/// Products of an evaluation at the state's (t, q, qdot). A caller asks dal__eval for the set
+/// it needs; st->have holds the set that is current. Anything that moves the state clears it
+/// (dal__state_moved), and a consumer asserts the bits it reads (DAL_NEED).
+enum {
+  DAL_P_KIN = 1u << 0,  ///< r, v, gamma, drdt, local columns Lc / Lp and st->tree
+  DAL_P_J = 1u << 1,    ///< compact particle Jacobians J
+  DAL_P_CON = 1u << 2,  ///< phi, phidot, gphi, compact G, local constraint Jacobians Gl
+  DAL_P_DYN = 1u << 3,  ///< F, Q, c and the energies' T, U, E, T2, T1, T0, h
+  DAL_P_MLOW = 1u << 4, ///< lower triangle of the dense M (dense_M systems)
+  DAL_P_M = 1u << 5,    ///< the whole dense M (symmetric)
+  DAL_P_ACC = 1u << 6,  ///< qddot, and lambda when m > 0
+  DAL_P_OUT = 1u << 7,  ///< particle accelerations a and reactions N
+  /// what a user reads after dal_forward: everything the system has
+  DAL_P_ALL = DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN | DAL_P_M | DAL_P_ACC | DAL_P_OUT,
+};
+/// a consumer reads product bits `p`: they must be current (debug builds check)
+#define DAL_NEED(st, p) DAL_ASSERT(((st)->have & (p)) == (p))
+
 /// workspace and outputs of one trajectory
 struct dal_state {
   const dal_system *sys;
@@ -139,24 +159,22 @@ struct dal_state {
   double *L;                // Cholesky / scratch n x n (dense_M) or NULL
   double *Q, *c;            // n
   double *lambda, *phi, *phidot, *gphi, *G; // constraint outputs (m, m, m, m, compact)
+  double *Gl;               // local constraint Jacobians (nout x nin per constraint, con_loff)
   dal_energies en;
+  unsigned have;            // products current for (t, q, qdot): DAL_P_* bits
+  int tree;                 // (DAL_P_KIN) every parent link is a translation at this point
   // jet scratch
   dal_jet *jin, *jout; // max_in, max_out
   double *loc;          // local Jacobian, max_out x max_in
+  double *dir;          // local direction scratch (2 x max_in)
   dal_jet *jq, *jv;     // n
   dal_jet *jr;          // N x d
   double *work;         // n-sized scratch (x 4)
   double *Lc;           // local coordinate columns of each placement (sys->ploc_off)
+  double *Lp;           // local parent block of each placement (d x d per particle)
   double *cf;           // subtree sums of F and m gamma (2 x N x d)
-  int tree;             // every parent link is a translation: tree assembly applies
-  int need_J;           // compact J is formed on every evaluation (sticky once a link is
-                        // found that is not a translation, or when m > 0)
-  int J_valid;          // compact J is current (else dal_state_jacobian rebuilds it from Lc)
-  int lean;             // inside an integrator's right-hand side: skip particle accelerations
-                        // and reactions (dal__finish), which only outputs need
   struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
-  int evaluated;        // dal_forward outputs are current
-  // integrator (owned by solve.c)
+  // integrator (owned by the driver)
   void *integ;
   void (*integ_free)(void *);
   dal_solve_opts integ_opts;
@@ -178,24 +196,54 @@ void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len);
 /// check a user callback's return: 0 ok, >0 recoverable, <0 stop; name the culprit
 int dal__cb_status(dal_state *st, int rc, const char *what);
 
-// pipeline (kinematics.c, dynamics.c, lagrangian.c)
-/// particle r, v, gamma, J (compact), drdt at the state's (t, q, qdot)
-int dal__kinematics(const dal_system *sys, dal_state *st);
-/// constraint phi, phidot, gamma_phi and compact G (requires kinematics)
+/// The one conversion of an internal code to a public status: DAL__RECOVERABLE (a callback
+/// asked for a smaller step where there is none to shrink) becomes DAL_E_CALLBACK, any other
+/// positive (foreign) code DAL_E_SOLVER; statuses pass through.
+int dal__public_status(int rc);
+
+// evaluation pipeline (eval.c -> kinematics.c, dynamics.c, lagrangian.c, kkt.c)
+/// Evaluate at the state's (t, q, qdot) what `need` (DAL_P_* bits) asks for, and what that
+/// depends on; st->have becomes the set computed. Returns 0, DAL__RECOVERABLE or a negative
+/// status with the state's message naming the culprit.
+int dal__eval(const dal_system *sys, dal_state *st, unsigned need);
+/// the state's (t, q, qdot) changed: no product is current any more
+static inline void dal__state_moved(dal_state *st) { st->have = 0; }
+
+/// one primitive instance: a particle's placement (owner k >= 0) or a constraint (-1 - c)
+typedef struct dal_inst {
+  const dal_primitive *prim;
+  const double *param;
+  void *ctx;
+  int npart, ncoord;
+  const int *parts, *coords;
+} dal_inst;
+/// the instance of an owner (particle k >= 0, constraint -1 - c)
+dal_inst dal__inst(const dal_system *sys, int owner);
+/// Evaluate a primitive instance with its inputs u (particle positions, then coordinates) at
+/// their values plus the curve s -> u + s d1 + s^2/2 d2 (d1, d2 local (nin); NULL = 0) and
+/// time t + s tdot: st->jout receives value, first and second derivative along it. Checks the
+/// callback's return and the outputs' finiteness, naming the owner.
+int dal__prim_eval(const dal_system *sys, dal_state *st, int owner, const double *d1,
+                   const double *d2, double tdot);
+
+/// particle r, v, gamma, drdt, local columns (and compact J when want_J) (DAL_P_KIN [| J])
+int dal__kinematics(const dal_system *sys, dal_state *st, int want_J);
+/// constraint phi, phidot, gamma_phi, compact G and local Jacobians (requires KIN and J)
 int dal__constraints(const dal_system *sys, dal_state *st);
-/// applied forces F, energies' U, Q, c and (dense) M (requires kinematics)
-int dal__dynamics(const dal_system *sys, dal_state *st);
+/// applied forces F, energies, Q, c and, when want_M, the dense M (lower triangle; mirrored
+/// when want_M > 1) (requires KIN, and J unless st->tree)
+int dal__dynamics(const dal_system *sys, dal_state *st, int want_M);
 /// generalized terms from user callbacks over q: Q += Q_user - dU/dq, *U += U(q)
 int dal__genforces(const dal_system *sys, dal_state *st, double *U);
 /// qddot from M qddot = Q - c by Cholesky (m = 0); names degenerate coordinates
 int dal__solve_unconstrained(const dal_system *sys, dal_state *st);
-/// particle accelerations, reactions and energies from qddot
+/// particle accelerations and reactions from qddot (requires KIN, ACC; J unless a tree)
 void dal__finish(const dal_system *sys, dal_state *st);
 /// Lagrangian route: A = d2L/dqdot2 (n x n col-major into A), rhs = dL/dq - X + Q_nc
 int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
                           double *h_out);
 
-/// M x for the state's current J (works with or without dense M): y (n) = M x
+/// M x through the particle Jacobians (requires DAL_P_J) or the dense M (DAL_P_M): y (n) = M x
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y);
 
 /// The KKT solve of constrained systems: qddot and lambda from
@@ -205,9 +253,6 @@ int dal__solve_kkt(const dal_system *sys, dal_state *st);
 /// KKT workspace of a constrained system (kkt.c): create (NULL on failure) and free
 struct dal_kkt *dal__kkt_create(const dal_system *sys);
 void dal__kkt_free(struct dal_kkt *k);
-
-/// full evaluation at the state's (t, q, qdot): kinematics, constraints, dynamics, qddot
-int dal__forward(const dal_system *sys, dal_state *st);
 
 /// drop integrator memory (called by dal_state_set and dal_state_destroy)
 void dal__integ_reset(dal_state *st);

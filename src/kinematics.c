@@ -3,8 +3,10 @@
 // Kinematics by jets: positions, velocities, Jacobians, curvature terms, constraint rows.
 //
 // Each primitive instance is evaluated along each of its local input directions (its local
-// Jacobian) and once along the state's direction s -> (q + s qdot, t + s), whose jet gives
-// (r, v, gamma) exactly. Global Jacobians follow by the chain rule through parents.
+// Jacobian) and once along the state's motion s -> (q + s qdot, t + s), whose jet gives
+// (r, v, gamma) exactly. A placement's local Jacobian has a parent block Lp (d x d) and
+// coordinate columns Lc (d x ncoord); global Jacobians follow by the chain rule through
+// parents, J_k = Lp_k J_parent + Lc_k, and are formed only when asked for.
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -23,26 +25,50 @@ static int find_sorted(const int *list, int n, int j) {
   return -1;
 }
 
+dal_inst dal__inst(const dal_system *sys, int owner) {
+  dal_inst in;
+  if (owner >= 0) {
+    const dal_place *pl = &sys->place[owner];
+    in.prim = pl->prim;
+    in.param = sys->ppool + pl->param_off;
+    in.ctx = pl->ctx;
+    in.npart = pl->parent >= 0 ? 1 : 0;
+    in.parts = &pl->parent;
+    in.ncoord = pl->ncoord;
+    in.coords = sys->ipool + pl->coord_off;
+  } else {
+    const dal_con *c = &sys->con[-1 - owner];
+    in.prim = c->prim;
+    in.param = sys->ppool + c->param_off;
+    in.ctx = c->ctx;
+    in.npart = c->npart;
+    in.parts = sys->ipool + c->part_off;
+    in.ncoord = c->ncoord;
+    in.coords = sys->ipool + c->coord_off;
+  }
+  return in;
+}
+
 // the owner of a primitive instance: particle k (owner = k >= 0) or constraint c (-1 - c)
 static void owner_name(const dal_system *sys, int owner, char *buf, size_t len) {
   if (owner >= 0) snprintf(buf, len, "particle '%s'", sys->part_names[owner]);
   else snprintf(buf, len, "constraint '%s'", sys->con[-1 - owner].name);
 }
 
-// call a jet function and check that every output is finite; names the culprit (the name
-// is only formatted on failure: this runs on every evaluation)
-static int eval_checked(const dal_system *sys, dal_state *st, const dal_primitive *prim,
-                        const double *param, void *ctx, dal_jet t, int owner) {
+// call a jet function on st->jin and check that every output is finite; names the culprit
+// (the name is only formatted on failure: this runs on every evaluation)
+static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
+                        int owner) {
   const char *kind = owner >= 0 ? "coordinate map" : "constraint";
   char name[160];
-  int rc = prim->eval(st->jin, t, param, st->jout, ctx);
+  int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
   if (rc) {
     char what[240];
     owner_name(sys, owner, name, sizeof name);
-    snprintf(what, sizeof what, "%s '%s' of %s", kind, prim->name, name);
+    snprintf(what, sizeof what, "%s '%s' of %s", kind, in->prim->name, name);
     return dal__cb_status(st, rc, what);
   }
-  for (int i = 0; i < prim->nout; ++i)
+  for (int i = 0; i < in->prim->nout; ++i)
     if (!dal_jet_isfinite(st->jout[i])) {
       char qs[256];
       owner_name(sys, owner, name, sizeof name);
@@ -52,42 +78,61 @@ static int eval_checked(const dal_system *sys, dal_state *st, const dal_primitiv
                       "%g, %g, %g) at t=%.17g, %s; an input is outside the primitive's domain "
                       "(sqrt/log/asin of an invalid value, a division by zero, a derivative of "
                       "sqrt at 0)",
-                      kind, prim->name, name, i, st->jout[i].v, st->jout[i].d, st->jout[i].dd,
-                      st->t, qs);
+                      kind, in->prim->name, name, i, st->jout[i].v, st->jout[i].d,
+                      st->jout[i].dd, st->t, qs);
     }
   return DAL_OK;
 }
 
-// fill jin with the values u of an instance's inputs: particle positions, then coordinates;
-// mode 0: values only, mode 1: the state direction (v and gamma of particles, qdot of coords)
-static void load_inputs(const dal_system *sys, dal_state *st, int npart, const int *parts,
-                        int ncoord, const int *coords, int mode) {
+// the values u of an instance's inputs (particle positions, then coordinates) as jets on the
+// curve u + s d1 + s^2/2 d2 (d1, d2 nullable)
+static void load_inputs(const dal_system *sys, dal_state *st, const dal_inst *in,
+                        const double *d1, const double *d2) {
   int d = sys->dim, k = 0;
-  for (int a = 0; a < npart; ++a)
+  for (int a = 0; a < in->npart; ++a)
+    for (int b = 0; b < d; ++b, ++k)
+      st->jin[k] = dal_jet_make(st->r[in->parts[a] * d + b], d1 ? d1[k] : 0.0, d2 ? d2[k] : 0.0);
+  for (int i = 0; i < in->ncoord; ++i, ++k)
+    st->jin[k] = dal_jet_make(st->q[in->coords[i]], d1 ? d1[k] : 0.0, d2 ? d2[k] : 0.0);
+}
+
+int dal__prim_eval(const dal_system *sys, dal_state *st, int owner, const double *d1,
+                   const double *d2, double tdot) {
+  dal_inst in = dal__inst(sys, owner);
+  load_inputs(sys, st, &in, d1, d2);
+  return eval_checked(sys, st, &in, dal_var(st->t, tdot), owner);
+}
+
+// the state's motion in an instance's local inputs: d1 = (v of particles, qdot of
+// coordinates), d2 = (gamma of particles, 0) into st->dir (2 x nin)
+static void local_motion(const dal_system *sys, dal_state *st, const dal_inst *in) {
+  int d = sys->dim, nin = in->prim->nin, k = 0;
+  double *d1 = st->dir, *d2 = st->dir + nin;
+  for (int a = 0; a < in->npart; ++a)
     for (int b = 0; b < d; ++b, ++k) {
-      int p = parts[a] * d + b;
-      st->jin[k] = mode ? dal_jet_make(st->r[p], st->v[p], st->gamma[p]) : dal_const(st->r[p]);
+      d1[k] = st->v[in->parts[a] * d + b];
+      d2[k] = st->gamma[in->parts[a] * d + b];
     }
-  for (int i = 0; i < ncoord; ++i, ++k) {
-    int j = coords[i];
-    st->jin[k] = mode ? dal_var(st->q[j], st->qdot[j]) : dal_const(st->q[j]);
+  for (int i = 0; i < in->ncoord; ++i, ++k) {
+    d1[k] = st->qdot[in->coords[i]];
+    d2[k] = 0.0;
   }
 }
 
 // local Jacobian loc (nout x nin, row-major) by one evaluation per input direction
 // (directions before `first` are skipped: the caller fills those columns)
-static int local_jacobian(const dal_system *sys, dal_state *st, const dal_primitive *prim,
-                          const double *param, void *ctx, int owner, int first) {
-  int nin = prim->nin, nout = prim->nout;
+static int local_jacobian(const dal_system *sys, dal_state *st, const dal_inst *in, int owner,
+                          int first) {
+  int nin = in->prim->nin, nout = in->prim->nout;
   dal_jet t = dal_const(st->t);
+  load_inputs(sys, st, in, NULL, NULL);
   for (int i = first; i < nin; ++i) {
     if (i > first) st->jin[i - 1].d = 0.0;
     st->jin[i].d = 1.0;
-    int rc = eval_checked(sys, st, prim, param, ctx, t, owner);
+    int rc = eval_checked(sys, st, in, t, owner);
     if (rc) return rc;
     for (int a = 0; a < nout; ++a) st->loc[a * nin + i] = st->jout[a].d;
   }
-  if (nin > first) st->jin[nin - 1].d = 0.0;
   return DAL_OK;
 }
 
@@ -111,7 +156,7 @@ static void chain_particle(const dal_system *sys, const dal_state *st, int p, co
   }
 }
 
-// whole-system user map: all particles from r(q, t)
+// whole-system user map: all particles from r(q, t), with J (all n columns per particle)
 static int kinematics_map(const dal_system *sys, dal_state *st) {
   int n = sys->n, Nd = sys->N * sys->dim;
   dal_jet t = dal_const(st->t);
@@ -127,7 +172,6 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
                         "whole-system coordinate map produced a non-finite value for particle "
                         "'%s' at t=%.17g (coordinate direction '%s')",
                         sys->part_names[i / sys->dim], st->t, sys->coord_names[j]);
-      // particle k's compact J has all n columns: J_k[a, j]
       st->J[(size_t)(i / sys->dim) * sys->dim * n + (size_t)(i % sys->dim) * n + j] =
           st->jr[i].d;
     }
@@ -139,120 +183,112 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
     if (!dal_jet_isfinite(st->jr[i]))
       return DAL_FAIL(st, DAL_E_DOMAIN,
                       "whole-system coordinate map produced a non-finite value for particle "
-                      "'%s' at t=%.17g", sys->part_names[i / sys->dim], st->t);
+                      "'%s' at t=%.17g",
+                      sys->part_names[i / sys->dim], st->t);
     st->r[i] = st->jr[i].v;
     st->v[i] = st->jr[i].d;
     st->gamma[i] = st->jr[i].dd;
   }
+  // explicit time derivative dr/dt = v - J qdot
+  int d = sys->dim;
+  for (int k = 0; k < sys->N; ++k)
+    for (int a = 0; a < d; ++a) {
+      const double *row = st->J + (size_t)k * d * n + (size_t)a * n;
+      double s = 0.0;
+      for (int c = 0; c < n; ++c) s += row[c] * st->qdot[c];
+      st->drdt[k * d + a] = st->v[k * d + a] - s;
+    }
+  st->tree = 0;
+  st->have |= DAL_P_KIN | DAL_P_J;
   return DAL_OK;
 }
 
-int dal__kinematics(const dal_system *sys, dal_state *st) {
-  int d = sys->dim, rc;
-  if (sys->N == 0) return DAL_OK;
-  if (sys->map) {
-    rc = kinematics_map(sys, st);
-    if (rc) return rc;
-    st->tree = 0;
-    st->J_valid = 1;
-  } else {
-  restart:
-    st->tree = 1;
-    st->J_valid = st->need_J;
-    for (int k = 0; k < sys->N; ++k) {
-      const dal_place *pl = &sys->place[k];
-      const dal_primitive *prim = pl->prim;
-      const int *coords = sys->ipool + pl->coord_off;
-      const double *param = sys->ppool + pl->param_off;
-      int np = pl->parent >= 0 ? 1 : 0, nin = prim->nin, nc = pl->ncoord;
-      // local Jacobian at the current values; a translating map's parent block is I
-      int translates = np && (prim->flags & DAL_PRIM_TRANSLATES);
-      load_inputs(sys, st, np, &pl->parent, nc, coords, 0);
-      rc = local_jacobian(sys, st, prim, param, pl->ctx, k, translates ? d : 0);
-      if (rc) return rc;
-      int identity = 1;
-      for (int a = 0; a < d && np; ++a)
-        for (int b = 0; b < d; ++b) {
-          if (translates) st->loc[a * nin + b] = a == b;
-          identity &= st->loc[a * nin + b] == (a == b);
-        }
-      st->tree &= identity;
-      if (!identity && !st->J_valid) {
-        // a link that is not a translation: form J for every particle from now on
-        st->need_J = 1;
-        goto restart;
-      }
-      double *Lk = st->Lc + sys->ploc_off[k];
-      for (int a = 0; a < d; ++a)
-        for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
-      // along the state direction: r, v, gamma
-      load_inputs(sys, st, np, &pl->parent, pl->ncoord, coords, 1);
-      rc = eval_checked(sys, st, prim, param, pl->ctx, dal_var(st->t, 1.0), k);
-      if (rc) return rc;
-      for (int a = 0; a < d; ++a) {
-        st->r[k * d + a] = st->jout[a].v;
-        st->v[k * d + a] = st->jout[a].d;
-        st->gamma[k * d + a] = st->jout[a].dd;
-      }
-      // global Jacobian by the chain rule (not needed by a tree of translations without
-      // constraints: M, Q, c, dr/dt and accelerations then come from the local columns)
-      const int *dk = sys->pdep + sys->pdep_off[k];
-      int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
-      double *Jk = st->J + sys->pj_off[k];
-      if (st->J_valid) {
-        memset(Jk, 0, (size_t)d * (size_t)ndk * sizeof(double));
-        if (np) chain_particle(sys, st, pl->parent, st->loc, nin, 0, d, dk, ndk, Jk);
-        for (int i = 0; i < nc; ++i) {
-          int c = find_sorted(dk, ndk, coords[i]);
-          for (int a = 0; a < d; ++a) Jk[a * ndk + c] += Lk[a * nc + i];
-        }
-      }
-      // dr/dt = v - J qdot; through a translation J_k qdot = J_p qdot + L_k qdot_local
-      if (identity) {
-        int p = pl->parent;
-        for (int a = 0; a < d; ++a) {
-          double s = np ? st->v[p * d + a] - st->drdt[p * d + a] : 0.0;
-          for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * st->qdot[coords[i]];
-          st->drdt[k * d + a] = st->v[k * d + a] - s;
-        }
-      } else {
-        for (int a = 0; a < d; ++a) {
-          double s = 0.0;
-          for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qdot[dk[c]];
-          st->drdt[k * d + a] = st->v[k * d + a] - s;
-        }
-      }
+// J_k = Lp_k J_parent + Lc_k over k's dependency columns (parents first)
+static void form_jacobians(const dal_system *sys, dal_state *st) {
+  int d = sys->dim;
+  for (int k = 0; k < sys->N; ++k) {
+    const dal_place *pl = &sys->place[k];
+    const int *coords = sys->ipool + pl->coord_off;
+    const int *dk = sys->pdep + sys->pdep_off[k];
+    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k], nc = pl->ncoord;
+    double *Jk = st->J + sys->pj_off[k];
+    const double *Lk = st->Lc + sys->ploc_off[k];
+    memset(Jk, 0, (size_t)d * (size_t)ndk * sizeof(double));
+    if (pl->parent >= 0)
+      chain_particle(sys, st, pl->parent, st->Lp + (size_t)k * d * d, d, 0, d, dk, ndk, Jk);
+    for (int i = 0; i < nc; ++i) {
+      int c = find_sorted(dk, ndk, coords[i]);
+      for (int a = 0; a < d; ++a) Jk[a * ndk + c] += Lk[a * nc + i];
     }
+  }
+  st->have |= DAL_P_J;
+}
+
+int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
+  int d = sys->dim, rc;
+  st->tree = sys->place != NULL;
+  if (sys->N == 0) {
+    st->have |= DAL_P_KIN | DAL_P_J;
     return DAL_OK;
   }
-  // explicit time derivative dr/dt = v - J qdot
+  if (sys->map) return kinematics_map(sys, st);
   for (int k = 0; k < sys->N; ++k) {
-    const int *dk = sys->pdep + sys->pdep_off[k];
-    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
-    const double *Jk = st->J + sys->pj_off[k];
+    const dal_place *pl = &sys->place[k];
+    dal_inst in = dal__inst(sys, k);
+    int np = in.npart, nin = in.prim->nin, nc = pl->ncoord, p = pl->parent;
+    // local Jacobian at the current values; a translating map's parent block is I
+    int translates = np && (in.prim->flags & DAL_PRIM_TRANSLATES);
+    rc = local_jacobian(sys, st, &in, k, translates ? d : 0);
+    if (rc) return rc;
+    double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
+    int identity = 1;
+    for (int a = 0; a < d && np; ++a)
+      for (int b = 0; b < d; ++b) {
+        Lp[a * d + b] = translates ? (a == b) : st->loc[a * nin + b];
+        identity &= Lp[a * d + b] == (a == b);
+      }
+    st->tree &= identity;
+    for (int a = 0; a < d; ++a)
+      for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
+    // along the state's motion: r, v, gamma
+    local_motion(sys, st, &in);
+    load_inputs(sys, st, &in, st->dir, st->dir + nin);
+    rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k);
+    if (rc) return rc;
+    for (int a = 0; a < d; ++a) {
+      st->r[k * d + a] = st->jout[a].v;
+      st->v[k * d + a] = st->jout[a].d;
+      st->gamma[k * d + a] = st->jout[a].dd;
+    }
+    // dr/dt = v - J_k qdot, with J_k qdot = Lp_k (v_p - drdt_p) + Lc_k qdot_local
     for (int a = 0; a < d; ++a) {
       double s = 0.0;
-      for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qdot[dk[c]];
+      for (int b = 0; b < d && np; ++b)
+        s += Lp[a * d + b] * (st->v[p * d + b] - st->drdt[p * d + b]);
+      for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * st->qdot[in.coords[i]];
       st->drdt[k * d + a] = st->v[k * d + a] - s;
     }
   }
+  st->have |= DAL_P_KIN;
+  // global Jacobians: asked for, or needed by the general assembly (a link that is not a
+  // translation); a tree of translations assembles M, Q, c from the local columns
+  if (want_J || !st->tree) form_jacobians(sys, st);
   return DAL_OK;
 }
 
 int dal__constraints(const dal_system *sys, dal_state *st) {
   int d = sys->dim, rc;
+  DAL_NEED(st, DAL_P_KIN | DAL_P_J);
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
-    const dal_primitive *prim = c->prim;
-    const int *parts = sys->ipool + c->part_off;
-    const int *coords = sys->ipool + c->coord_off;
-    const double *param = sys->ppool + c->param_off;
-    int nin = prim->nin, nout = prim->nout;
-    load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 0);
-    rc = local_jacobian(sys, st, prim, param, c->ctx, -1 - ci, 0);
+    dal_inst in = dal__inst(sys, -1 - ci);
+    int nin = in.prim->nin, nout = in.prim->nout;
+    rc = local_jacobian(sys, st, &in, -1 - ci, 0);
     if (rc) return rc;
-    load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 1);
-    rc = eval_checked(sys, st, prim, param, c->ctx, dal_var(st->t, 1.0), -1 - ci);
+    memcpy(st->Gl + sys->con_loff[ci], st->loc, (size_t)nout * (size_t)nin * sizeof(double));
+    local_motion(sys, st, &in);
+    load_inputs(sys, st, &in, st->dir, st->dir + nin);
+    rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), -1 - ci);
     if (rc) return rc;
     for (int r = 0; r < nout; ++r) {
       st->phi[c->row + r] = st->jout[r].v;
@@ -263,11 +299,13 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     double *G = st->G + c->g_off;
     memset(G, 0, (size_t)nout * (size_t)c->ndep * sizeof(double));
     for (int a = 0; a < c->npart; ++a)
-      chain_particle(sys, st, parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
     for (int i = 0; i < c->ncoord; ++i) {
-      int col = find_sorted(dc, c->ndep, coords[i]);
-      for (int r = 0; r < nout; ++r) G[r * c->ndep + col] += st->loc[r * nin + c->npart * d + i];
+      int col = find_sorted(dc, c->ndep, in.coords[i]);
+      for (int r = 0; r < nout; ++r)
+        G[r * c->ndep + col] += st->loc[r * nin + c->npart * d + i];
     }
   }
+  st->have |= DAL_P_CON;
   return DAL_OK;
 }

@@ -19,10 +19,6 @@
 
 #include "dae_internal.h"
 
-/// reciprocal condition below which the KKT matrix counts as singular
-#define KKT_RCOND_MIN 1e-14
-/// smallest KKT order factored sparse when a dense M exists
-#define KKT_SPARSE_MIN 200
 
 struct dal_kkt {
   int n, m, nk, sparse;
@@ -164,7 +160,7 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
     double nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
     nnz += nd * nd;
   }
-  k->sparse = !sys->dense_M || (k->nk >= KKT_SPARSE_MIN && nnz <= 0.05 * k->nk * (double)k->nk);
+  k->sparse = !sys->dense_M || (k->nk >= DAL_KKT_SPARSE_MIN && nnz <= DAL_KKT_SPARSE_FILL * k->nk * (double)k->nk);
   k->cur = -1;
   size_t nk = (size_t)k->nk;
   k->scratch = calloc(4 * nk + 1, sizeof(double));
@@ -263,6 +259,7 @@ static int factor_dense(const dal_system *sys, dal_state *st, int metric, const 
   // lower triangle: A, then G below it; the (2,2) block is zero
   for (int j = 0; j < nk; ++j)
     memset(K + (size_t)j * nk, 0, (size_t)nk * sizeof(double));
+  if (metric == DAL_KKT_MASS) DAL_NEED(st, DAL_P_MLOW);
   if (metric == DAL_KKT_MASS)
     for (int j = 0; j < n; ++j)
       memcpy(K + (size_t)j * nk + j, st->M + (size_t)j * n + j, (size_t)(n - j) * sizeof(double));
@@ -277,7 +274,7 @@ static int factor_dense(const dal_system *sys, dal_state *st, int metric, const 
   if (info == 0)
     info = LAPACKE_dsycon_work(LAPACK_COL_MAJOR, 'L', nk, K, nk, k->ipiv, anorm, &rcond, k->work,
                                k->iwork);
-  if (info != 0 || !(rcond >= KKT_RCOND_MIN)) return kkt_singular(sys, st, what, rcond);
+  if (info != 0 || !(rcond >= DAL_KKT_RCOND_MIN)) return kkt_singular(sys, st, what, rcond);
   return DAL_OK;
 }
 
@@ -311,14 +308,14 @@ static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const
   int ok = 0;
   if (*num) {
     ok = klu_refactor(k->Kp, k->Ki, k->Kx, k->sym, *num, &k->common) &&
-         klu_rcond(k->sym, *num, &k->common) && k->common.rcond >= KKT_RCOND_MIN;
+         klu_rcond(k->sym, *num, &k->common) && k->common.rcond >= DAL_KKT_RCOND_MIN;
     if (!ok) klu_free_numeric(num, &k->common);
   }
   if (!ok) {
     *num = klu_factor(k->Kp, k->Ki, k->Kx, k->sym, &k->common);
     if (!*num && k->common.status == KLU_OUT_OF_MEMORY)
       return DAL_FAIL(st, DAL_E_NOMEM, "%s: out of memory factoring the KKT matrix", what);
-    ok = *num && klu_rcond(k->sym, *num, &k->common) && k->common.rcond >= KKT_RCOND_MIN;
+    ok = *num && klu_rcond(k->sym, *num, &k->common) && k->common.rcond >= DAL_KKT_RCOND_MIN;
     if (!ok) {
       double rc = *num ? k->common.rcond : 0.0;
       if (*num) klu_free_numeric(num, &k->common);
@@ -331,6 +328,7 @@ static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const
 int dal__kkt_factor(const dal_system *sys, dal_state *st, int metric, const char *what) {
   struct dal_kkt *k = st->kkt;
   DAL_ASSERT(k && (metric == DAL_KKT_IDENTITY || metric == DAL_KKT_MASS));
+  DAL_NEED(st, DAL_P_CON | DAL_P_J);
   k->cur = -1;
   int rc = k->sparse ? factor_sparse(sys, st, metric, what) : factor_dense(sys, st, metric, what);
   if (rc == DAL_OK) k->cur = metric;
@@ -374,6 +372,7 @@ int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double 
     memset(Qc, 0, (size_t)sys->n * sizeof(double));
     return DAL_OK;
   }
+  if ((st->have & (DAL_P_CON | DAL_P_ACC)) != (DAL_P_CON | DAL_P_ACC)) return DAL_E_STATE;
   dal__gt_apply(sys, st, st->lambda, Qc);
   return DAL_OK;
 }
@@ -382,32 +381,20 @@ int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
   if (!sys || !st || !F || st->sys != sys) return DAL_E_ARG;
   int d = sys->dim;
   memset(F, 0, (size_t)sys->N * (size_t)d * sizeof(double));
-  // local Jacobians dphi/dr_k of each constraint at the current positions, times lambda
+  if (sys->m == 0) return DAL_OK;
+  if ((st->have & (DAL_P_CON | DAL_P_ACC)) != (DAL_P_CON | DAL_P_ACC))
+    return DAL_FAIL(st, DAL_E_STATE,
+                    "constraint_forces: the state holds no evaluated multipliers; call "
+                    "dal_forward or integrate first");
+  // F_k = (dphi/dr_k)' lambda from each constraint's local Jacobian at the evaluated point
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
-    const dal_primitive *prim = c->prim;
     const int *parts = sys->ipool + c->part_off;
-    const int *coords = sys->ipool + c->coord_off;
-    const double *param = sys->ppool + c->param_off;
-    int kin = 0;
-    for (int a = 0; a < c->npart; ++a)
-      for (int b = 0; b < d; ++b)
-        st->jin[kin++] = dal_const(st->r[parts[a] * d + b]);
-    for (int i = 0; i < c->ncoord; ++i)
-      st->jin[kin++] = dal_const(st->q[coords[i]]);
+    int nin = c->prim->nin;
+    const double *Gl = st->Gl + sys->con_loff[ci];
     for (int i = 0; i < c->npart * d; ++i) {
-      st->jin[i].d = 1.0;
-      int rc = prim->eval(st->jin, dal_const(st->t), param, st->jout, c->ctx);
-      st->jin[i].d = 0.0;
-      if (rc) {
-        char what[160];
-        snprintf(what, sizeof what, "constraint '%s' ('%s')", c->name, prim->name);
-        rc = dal__cb_status(st, rc, what);
-        return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
-      }
       double f = 0.0;
-      for (int r = 0; r < prim->nout; ++r)
-        f += st->jout[r].d * st->lambda[c->row + r];
+      for (int r = 0; r < c->prim->nout; ++r) f += Gl[r * nin + i] * st->lambda[c->row + r];
       F[parts[i / d] * d + i % d] += f;
     }
   }

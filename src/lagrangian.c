@@ -114,10 +114,11 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
   }
   st->t = t;
   dal__integ_reset(st);
-  st->evaluated = 0;
+  dal__state_moved(st);
   if (sys->lag) {
     double h, *rhs = st->work + n;
     rc = dal__lagrangian_terms(sys, st, st->M, rhs, &h);
+    st->have |= DAL_P_M | DAL_P_MLOW;
     if (rc) return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
     for (int i = 0; i < n; ++i) {
       double s = -rhs[i];
@@ -126,7 +127,7 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
     }
     return DAL_OK;
   }
-  if ((rc = dal__kinematics(sys, st)) != 0 || (rc = dal__dynamics(sys, st)) != 0)
+  if ((rc = dal__eval(sys, st, DAL_P_J | DAL_P_DYN)) != 0)
     return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
   dal__mass_apply(sys, st, qdd, res);
   for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];

@@ -259,7 +259,7 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
       H = tout - ig->t;
       last = 1;
     }
-    double hfloor = fmax(o->hmin, 16 * 2.220446049250313e-16 * fabs(ig->t));
+    double hfloor = fmax(o->hmin, 16 * DBL_EPSILON * fabs(ig->t));
     if (H < hfloor && !last)
       return dal__ode_fail(
           ig, DAL_E_STEP,

@@ -49,7 +49,7 @@ static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_
   const double *w = N_VGetArrayPointer(m->ewt);
   CVodeGetCurrentStep(m->cv, &h);
   CVodeGetErrWeights(m->cv, m->ewt);
-  double fnorm = 0, uround = 2.220446049250313e-16, srur = sqrt(uround);
+  double fnorm = 0, uround = DBL_EPSILON, srur = sqrt(uround);
   for (int i = 0; i < n; ++i) fnorm += (f0[i] * w[i]) * (f0[i] * w[i]);
   fnorm = sqrt(fnorm / n);
   double min_inc = fnorm != 0 ? 1000.0 * fabs(h) * uround * n * fnorm : 1.0;

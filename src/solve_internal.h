@@ -13,11 +13,11 @@ typedef struct dal_ode_problem {
   const char *name; ///< "minimal", "index1"
   /// size of y for this system
   int (*size)(const dal_system *sys);
-  /// ydot = f(t, y); uses st as workspace (its q, qdot, t are overwritten and dal_forward
-  /// outputs become those at (t, y)). Returns 0, DAL__RECOVERABLE, or a negative status with
-  /// the state's error message set.
+  /// ydot = f(t, y); uses st as workspace (its q, qdot, t are overwritten) and evaluates at
+  /// least the products `need` (DAL_P_ACC inside an integrator, DAL_P_ALL where the state
+  /// stops). Returns 0, DAL__RECOVERABLE, or a negative status with the state's message set.
   int (*rhs)(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
-             const double *y, double *ydot);
+             const double *y, double *ydot, unsigned need);
   /// project y (in place) onto the invariant manifold at t; NULL if none
   int (*project)(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
                  double *y);
@@ -27,7 +27,7 @@ typedef struct dal_ode_problem {
   void (*to_state)(const dal_system *sys, dal_state *st, double t, const double *y);
 } dal_ode_problem;
 
-/// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (solve.c)
+/// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (form_minimal.c)
 extern const dal_ode_problem dal__problem_minimal;
 /// index-1 redundant coordinates: y = (q, v), f = (v, qddot from the KKT system with optional
 /// Baumgarte terms), projection onto phi = 0, G v + dphi/dt = 0 when opts->project (init.c)
@@ -72,13 +72,35 @@ struct dal_ode_integ {
   void (*free_impl)(void *impl);
 };
 
-/// Local tolerance factor of each method: its error control runs at c * rtol, c * atol (not
-/// below DAL_TOL_FLOOR), so that the global error tracks the requested tolerance (the
-/// measurements are in solve.h). Like RADAU5's tolerance transformation (Hairer-Wanner,
-/// Solving ODEs II, sec. IV.8).
+/// One row per integration method (GSL's gsl_odeiv2_step_type): adding a method is one row
+/// in methods.c and one file. `tol_factor`: the method's local error control runs at
+/// tol_factor * rtol, tol_factor * atol (not below DAL_TOL_FLOOR), so that the global error
+/// tracks the requested tolerance (measurements in solve.h; like RADAU5's tolerance
+/// transformation, Hairer-Wanner, Solving ODEs II, sec. IV.8). `ode_create` runs the method
+/// on an ODE problem (NULL: none); `dae` marks the method that runs the DAE forms in IDA.
+typedef struct dal_method_row {
+  dal_method id;
+  const char *name;
+  double tol_factor;
+  int (*ode_create)(dal_ode_integ *ig);
+  int dae;
+} dal_method_row;
+/// the row of a method (AUTO has a row too, with no create function)
+const dal_method_row *dal__method_row(dal_method m);
+/// local tolerance factor of a method (its row's tol_factor)
 double dal__tol_factor(dal_method m);
-/// smallest local relative tolerance handed to an integrator
-#define DAL_TOL_FLOOR 1e-15
+
+/// the automatic method for an ODE formulation by relative tolerance (rule in solve.h)
+dal_method dal__auto_method(double rtol);
+/// validate options; the state's message names the field and the remedy (opts.c)
+int dal__check_opts(dal_state *st, const dal_solve_opts *o);
+/// every option is the same in a and b (opts.c; a new field cannot be forgotten)
+int dal__same_opts(const dal_solve_opts *a, const dal_solve_opts *b);
+/// a fresh ODE integrator for method meth on problem prob at the state's (t, q, qdot), and
+/// its destruction (ode.c)
+int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                    dal_method meth, const dal_ode_problem *prob, dal_ode_integ **out);
+void dal__ode_destroy(void *ig);
 
 /// y' = f(t, y) through the problem, counting evaluations and keeping the failure message;
 /// returns 0, DAL__RECOVERABLE or a negative status (solve.c)

@@ -8,27 +8,6 @@
 
 #include "internal.h"
 
-void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len) {
-  size_t used = 0;
-  buf[0] = 0;
-  int shown = sys->n < 6 ? sys->n : 6;
-  for (int i = 0; i < shown && used < len; ++i)
-    used += (size_t)snprintf(buf + used, len - used, "%s%s=%.6g", i ? ", " : "",
-                             sys->coord_names[i], q[i]);
-  if (sys->n > shown && used < len) snprintf(buf + used, len - used, ", ...");
-}
-
-int dal__cb_status(dal_state *st, int rc, const char *what) {
-  if (rc == 0) return DAL_OK;
-  if (rc > 0) {
-    DAL_FAIL(st, DAL__RECOVERABLE, "%s asked for a smaller step (returned %d) at t=%.17g", what,
-             rc, st->t);
-    return DAL__RECOVERABLE;
-  }
-  return DAL_FAIL(st, DAL_E_CALLBACK, "%s failed (returned %d) at t=%.17g; the state holds the "
-                                      "last accepted step", what, rc, st->t);
-}
-
 int dal_state_create(const dal_system *sys, dal_state **out) {
   if (!out) return DAL_E_ARG;
   *out = NULL;
@@ -53,6 +32,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   st->F = calloc(Nd + 1, sizeof(double));
   st->N = calloc(Nd + 1, sizeof(double));
   st->J = calloc((size_t)sys->pj_off[sys->N] + 1, sizeof(double));
+  st->Lp = calloc(Nd * (size_t)sys->dim + 1, sizeof(double));
   if (sys->dense_M) {
     st->M = calloc(n * n, sizeof(double));
     st->L = calloc(n * n, sizeof(double));
@@ -63,26 +43,28 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     st->phidot = calloc(m, sizeof(double));
     st->gphi = calloc(m, sizeof(double));
     st->G = calloc((size_t)sys->g_total + 1, sizeof(double));
+    st->Gl = calloc((size_t)sys->con_loff[sys->ncon] + 1, sizeof(double));
     st->kkt = dal__kkt_create(sys);
   }
   size_t jn = (size_t)sys->max_in, jo = (size_t)sys->max_out;
   st->jin = calloc(jn + 1, sizeof(dal_jet));
   st->jout = calloc(jo + 1, sizeof(dal_jet));
   st->loc = calloc(jn * jo + 1, sizeof(double));
+  st->dir = calloc(2 * jn + 1, sizeof(double));
   st->jq = calloc(n + 1, sizeof(dal_jet));
   st->jv = calloc(n + 1, sizeof(dal_jet));
   st->jr = calloc(Nd + 1, sizeof(dal_jet));
   if (!st->q || !st->qdot || !st->qddot || !st->Q || !st->c || !st->work || !st->r || !st->v ||
       !st->a || !st->drdt || !st->gamma || !st->F || !st->N || !st->J ||
       (sys->dense_M && (!st->M || !st->L)) ||
-      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->kkt)) ||
-      !st->jin || !st->Lc || !st->cf ||
+      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->Gl ||
+             !st->kkt)) ||
+      !st->jin || !st->Lc || !st->Lp || !st->dir || !st->cf ||
       !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
     dal_state_destroy(st);
     return DAL_E_NOMEM;
   }
   dal_solve_default_opts(&st->integ_opts);
-  st->need_J = sys->m > 0 || !sys->place;
   *out = st;
   return DAL_OK;
 }
@@ -93,7 +75,7 @@ void dal_state_destroy(dal_state *st) {
   double *d[] = {st->q,  st->qdot, st->qddot, st->Q,      st->c,      st->work, st->r,
                  st->v,  st->a,    st->drdt,  st->gamma,  st->F,      st->N,    st->J,
                  st->M,  st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
-                 st->loc, st->Lc, st->cf};
+                 st->loc, st->Lc, st->cf, st->Lp, st->Gl, st->dir};
   for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i) free(d[i]);
   free(st->jin);
   free(st->jout);
@@ -126,7 +108,7 @@ int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *
   st->t = t;
   memcpy(st->q, q, (size_t)sys->n * sizeof(double));
   memcpy(st->qdot, qdot, (size_t)sys->n * sizeof(double));
-  st->evaluated = 0;
+  dal__state_moved(st);
   st->err[0] = 0;
   return DAL_OK;
 }
@@ -135,7 +117,7 @@ int dal_forward(const dal_system *sys, dal_state *st) {
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "forward: the state belongs to another system");
-  int rc = dal__forward(sys, st);
+  int rc = dal__eval(sys, st, DAL_P_ALL);
   // a recoverable callback request has no step to shrink here: report it as a failure
   if (rc == DAL__RECOVERABLE) rc = DAL_E_CALLBACK;
   return rc;
@@ -168,16 +150,31 @@ int dal_state_energies(const dal_state *st, dal_energies *out) {
 int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double *J) {
   if (!sys || !st || !J || st->sys != sys) return DAL_E_ARG;
   if (k < 0 || k >= sys->N) return DAL_E_ARG;
+  if (!(st->have & DAL_P_KIN)) return DAL_E_STATE;
   int d = sys->dim, n = sys->n;
   memset(J, 0, (size_t)d * (size_t)n * sizeof(double));
-  if (!st->J_valid && st->tree && sys->place) {
-    // a tree of translations: J_k is the sum of the local columns of k and its ancestors
+  if (!(st->have & DAL_P_J)) {
+    // from the local blocks: J_k = sum over b = k and its ancestors of P_b Lc_b, with
+    // P_k = I and P_parent(b) = P_b Lp_b
+    double P[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1}, T[9];
+    if (d == 2) P[2] = 0, P[3] = 1, P[4] = 0;
     for (int b = k; b >= 0; b = sys->place[b].parent) {
       const dal_place *pb = &sys->place[b];
       const int *cb = sys->ipool + pb->coord_off;
-      const double *Lb = st->Lc + sys->ploc_off[b];
+      const double *Lb = st->Lc + sys->ploc_off[b], *Lp = st->Lp + (size_t)b * d * d;
       for (int a = 0; a < d; ++a)
-        for (int i = 0; i < pb->ncoord; ++i) J[a * n + cb[i]] += Lb[a * pb->ncoord + i];
+        for (int i = 0; i < pb->ncoord; ++i) {
+          double s = 0.0;
+          for (int c = 0; c < d; ++c) s += P[a * d + c] * Lb[c * pb->ncoord + i];
+          J[a * n + cb[i]] += s;
+        }
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < d; ++c) {
+          double s = 0.0;
+          for (int e = 0; e < d; ++e) s += P[a * d + e] * Lp[e * d + c];
+          T[a * d + c] = s;
+        }
+      memcpy(P, T, (size_t)d * d * sizeof(double));
     }
     return DAL_OK;
   }

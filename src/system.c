@@ -169,7 +169,8 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   for (int i = 0; i < s->ncon; ++i) m += cons[i].prim->nout;
   s->m = m;
   s->row_con = malloc(((size_t)m + 1) * sizeof(int));
-  if (!s->row_con || reserve_ints(&s->cdep, &ccap, (size_t)s->ncon + 1)) goto nomem;
+  s->con_loff = calloc((size_t)s->ncon + 1, sizeof(int));
+  if (!s->row_con || !s->con_loff || reserve_ints(&s->cdep, &ccap, (size_t)s->ncon + 1)) goto nomem;
   s->g_total = 0;
   for (int i = 0; i < s->ncon; ++i) {
     dal_con *c = &s->con[i];
@@ -193,6 +194,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     cdep_total += nd;
     c->g_off = s->g_total;
     s->g_total += c->prim->nout * nd;
+    s->con_loff[i + 1] = s->con_loff[i] + c->prim->nout * c->prim->nin;
     for (int r = 0; r < c->prim->nout; ++r) s->row_con[c->row + r] = i;
     if (c->prim->nin > s->max_in) s->max_in = c->prim->nin;
     if (c->prim->nout > s->max_out) s->max_out = c->prim->nout;
@@ -217,7 +219,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     goto nomem;
 
   // dense mass matrix unless the redundant system is large (then M is applied through J)
-  s->dense_M = (m == 0 || n <= 512);
+  s->dense_M = (m == 0 || n <= DAL_DENSE_M_MAX);
 
   // tree assembly data: subtree masses (parents precede children) and local column offsets
   s->mu = dup_mem(s->mass, (size_t)N * sizeof(double));
@@ -258,6 +260,7 @@ void dal_system_destroy(dal_system *s) {
   free(s->pdep_off);
   free(s->pdep);
   free(s->pj_off);
+  free(s->con_loff);
   free(s->mu);
   free(s->ploc_off);
   free(s->con);

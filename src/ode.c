@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Services shared by the ODE integrators: counted right-hand sides, accepted steps, progress
+// and failure handling (the state always keeps the last accepted step), creation.
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "solve_internal.h"
+
+int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot) {
+  dal_state *st = ig->st;
+  // after an unrecoverable failure nothing more is evaluated in this call: the integrator
+  // stops at its last accepted step (some retry a failing right-hand side)
+  if (ig->rhs_fatal) return ig->rhs_rc = ig->rhs_fatal;
+  st->stats.rhs_evals++;
+  int rc = ig->prob->rhs(ig->sys, st, &ig->opts, t, y, ydot, DAL_P_ACC);
+  ig->rhs_rc = rc;
+  if (rc) memcpy(ig->rhs_err, st->err, sizeof ig->rhs_err);
+  if (rc < 0) ig->rhs_fatal = rc;
+  if (rc == DAL__RECOVERABLE) {
+    ig->nrecov++;
+    ig->recov_t = t;
+  }
+  return rc;
+}
+
+int dal__ode_recov_blocked(const dal_ode_integ *ig) {
+  return ig->nrecov > 0 && ig->recov_t >= ig->t && ig->rhs_err[0];
+}
+
+int dal__ode_recov_fail(dal_ode_integ *ig, double h) {
+  char cause[DAL_ERRMSG_LEN];
+  memcpy(cause, ig->rhs_err, sizeof cause);
+  return dal__ode_fail(ig, DAL_E_CALLBACK,
+                       "%s; the step was shrunk to h=%.3g and it still fails (%d times in this "
+                       "call): a failure that persists is not recoverable; fix the callback, or "
+                       "return < 0 from it to stop at once; stopped at t=%.17g (last accepted "
+                       "step) before the target t=%.17g",
+                       cause, h, ig->nrecov, ig->t, ig->tout);
+}
+
+int dal__ode_collapsed(dal_ode_integ *ig, double t) {
+  if (t - ig->t > DAL_TINY_STEP(t)) {
+    ig->ntiny = 0;
+    return 0;
+  }
+  return ++ig->ntiny >= 5;
+}
+
+int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected) {
+  dal_state *st = ig->st;
+  if (projected) *projected = 0;
+  if (ig->prob->project && ig->opts.project) {
+    // project a copy so that the last accepted step survives a failing projection
+    memcpy(ig->ydot, y, (size_t)ig->ny * sizeof(double));
+    int rc = ig->prob->project(ig->sys, st, &ig->opts, t, ig->ydot);
+    if (rc) {
+      char msg[DAL_ERRMSG_LEN];
+      memcpy(msg, st->err, sizeof msg);
+      return dal__ode_fail(ig, rc < 0 ? rc : DAL_E_CONV,
+                           "projection onto the constraint manifold failed after the step to "
+                           "t=%.17g: %s; the state holds the step before (t=%.17g)",
+                           t, msg, ig->t);
+    }
+    st->stats.projections++;
+    memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
+    if (projected) *projected = 1;
+  } else {
+    memcpy(ig->y, y, (size_t)ig->ny * sizeof(double));
+  }
+  st->stats.steps++;
+  st->stats.last_h = t - ig->t;
+  ig->t = t;
+  ig->ncall++;
+  if (ig->t < ig->tout && ig->ncall >= ig->opts.max_steps) {
+    // the variable that limits the steps: the fastest-changing one relative to its
+    // tolerance, |y_i'| / (atol + rtol |y_i|), at the last accepted step
+    char var[128] = "(not evaluated)";
+    if (ig->prob->rhs(ig->sys, st, &ig->opts, ig->t, ig->y, ig->ydot, DAL_P_ACC) == 0) {
+      for (int i = 0; i < ig->ny; ++i)
+        ig->ewt[i] = ig->ydot[i] / (ig->atol + ig->rtol * fabs(ig->y[i]));
+      dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
+    }
+    return dal__ode_fail(ig, DAL_E_MAXSTEPS,
+                         "%ld steps taken at t=%.17g before the target t=%.17g "
+                         "(opts.max_steps); the fastest-changing variable (relative to its "
+                         "tolerance) is %s; raise max_steps, loosen the tolerances, or use "
+                         "DAL_METHOD_BDF if the problem is stiff",
+                         ig->ncall, ig->t, ig->tout, var);
+  }
+  return DAL_OK;
+}
+
+int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...) {
+  char msg[DAL_ERRMSG_LEN];
+  va_list ap;
+  va_start(ap, fmt);
+  vsnprintf(msg, sizeof msg, fmt, ap);
+  va_end(ap);
+  dal_state *st = ig->st;
+  // back to the last accepted step, evaluated there
+  ig->prob->to_state(ig->sys, st, ig->t, ig->y);
+  int rc = ig->prob->rhs(ig->sys, st, &ig->opts, ig->t, ig->y, ig->ydot, DAL_P_ALL);
+  if (rc) {
+    char again[DAL_ERRMSG_LEN];
+    memcpy(again, st->err, sizeof again);
+    snprintf(st->err, sizeof st->err,
+             "%.300s (re-evaluating the last accepted step failed too: "
+             "%.140s)",
+             msg, again);
+  } else {
+    memcpy(st->err, msg, sizeof msg);
+  }
+  return dal__public_status(status);
+}
+
+const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t len) {
+  int n = ig->sys->n;
+  if (i >= 0 && i < n)
+    snprintf(buf, len, "coordinate '%s'", ig->sys->coord_names[i]);
+  else if (i >= n && i < 2 * n)
+    snprintf(buf, len, "velocity of '%s'", ig->sys->coord_names[i - n]);
+  else
+    snprintf(buf, len, "component %d of the ODE state", i);
+  return buf;
+}
+
+void dal__ode_sun_err(int code, const char *module, const char *function, char *msg, void *ud) {
+  dal_ode_integ *ig = ud;
+  snprintf(ig->sun_err, sizeof ig->sun_err, "%s %s (%d): %s", module, function, code, msg);
+}
+
+int dal__ode_argmax(const double *w, int n) {
+  int best = 0;
+  for (int i = 1; i < n; ++i)
+    if (fabs(w[i]) > fabs(w[best])) best = i;
+  return best;
+}
+
+void dal__ode_destroy(void *p) {
+  dal_ode_integ *ig = p;
+  if (!ig) return;
+  if (ig->free_impl) ig->free_impl(ig->impl);
+  free(ig->y);
+  free(ig->ydot);
+  free(ig->ewt);
+  free(ig);
+}
+
+// a fresh ODE integrator at the state's (t, q, qdot)
+int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                      dal_method meth, const dal_ode_problem *prob, dal_ode_integ **out) {
+  *out = NULL;
+  dal_ode_integ *ig = calloc(1, sizeof *ig);
+  if (!ig) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  ig->prob = prob;
+  ig->sys = sys;
+  ig->st = st;
+  ig->opts = *o;
+  ig->method = meth;
+  ig->ny = prob->size(sys);
+  double c = dal__tol_factor(meth);
+  ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
+  ig->atol = c * o->atol;
+  ig->t = st->t;
+  size_t ny = (size_t)ig->ny + 1;
+  ig->y = calloc(ny, sizeof(double));
+  ig->ydot = calloc(ny, sizeof(double));
+  ig->ewt = calloc(ny, sizeof(double));
+  if (!ig->y || !ig->ydot || !ig->ewt) {
+    dal__ode_destroy(ig);
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  }
+  prob->from_state(sys, st, ig->y);
+  const dal_method_row *row = dal__method_row(meth);
+  int rc = row && row->ode_create
+               ? row->ode_create(ig)
+               : DAL_FAIL(st, DAL_E_UNSUPPORTED, "no ODE integrator for method '%s'",
+                          dal_method_name(meth));
+  if (rc) {
+    if (rc > 0) rc = DAL_E_SOLVER;
+    dal__ode_destroy(ig);
+    return rc;
+  }
+  *out = ig;
+  return DAL_OK;
+}
+
