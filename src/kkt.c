@@ -18,6 +18,7 @@
 #include <string.h>
 
 #include "dae_internal.h"
+#include "sparse.h"
 
 
 struct dal_kkt {
@@ -32,6 +33,7 @@ struct dal_kkt {
   lapack_int lwork;
   // sparse
   int nnz;
+  dal_csc pat; // the pattern (Kp, Ki alias its arrays)
   int *Kp, *Ki;
   double *Kx;
   int *mpos_off, *mpos; // per particle: ndk x ndk positions of its M contributions
@@ -41,25 +43,6 @@ struct dal_kkt {
   klu_numeric *num[2];
   klu_common common;
 };
-
-static int cmp_ll(const void *x, const void *y) {
-  long long a = *(const long long *)x, b = *(const long long *)y;
-  return (a > b) - (a < b);
-}
-
-// position of (row, col) in the compressed columns (the pattern always contains it)
-static int csc_find(const struct dal_kkt *k, int row, int col) {
-  int lo = k->Kp[col], hi = k->Kp[col + 1] - 1;
-  while (lo <= hi) {
-    int mid = (lo + hi) / 2;
-    if (k->Ki[mid] == row) return mid;
-    if (k->Ki[mid] < row)
-      lo = mid + 1;
-    else
-      hi = mid - 1;
-  }
-  return -1;
-}
 
 // sparse pattern of [M G'; G 0] (+ the diagonal of M), symbolic analysis and position maps
 static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
@@ -74,13 +57,13 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
   if (!key) return -1;
   size_t nt = 0;
   for (int j = 0; j < n; ++j)
-    key[nt++] = (long long)j * nk + j;
+    key[nt++] = dal__csc_key(nk, j, j);
   for (int p = 0; p < sys->N; ++p) {
     const int *dp = sys->pdep + sys->pdep_off[p];
     int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
     for (int a = 0; a < nd; ++a)
       for (int b = 0; b < nd; ++b)
-        key[nt++] = (long long)dp[b] * nk + dp[a];
+        key[nt++] = dal__csc_key(nk, dp[a], dp[b]);
   }
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
@@ -88,36 +71,24 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
     for (int r = 0; r < c->prim->nout; ++r)
       for (int j = 0; j < c->ndep; ++j) {
         int row = n + c->row + r;
-        key[nt++] = (long long)dc[j] * nk + row; // G block (row, col dc[j])
-        key[nt++] = (long long)row * nk + dc[j]; // G' block
+        key[nt++] = dal__csc_key(nk, row, dc[j]); // G block (row, col dc[j])
+        key[nt++] = dal__csc_key(nk, dc[j], row); // G' block
       }
   }
-  qsort(key, nt, sizeof(long long), cmp_ll);
-  size_t nu = 0;
-  for (size_t i = 0; i < nt; ++i)
-    if (nu == 0 || key[nu - 1] != key[i]) key[nu++] = key[i];
-  k->nnz = (int)nu;
-  k->Kp = calloc((size_t)nk + 1, sizeof(int));
-  k->Ki = malloc(nu * sizeof(int));
-  k->Kx = malloc(nu * sizeof(double));
+  int brc = dal__csc_build(&k->pat, nk, key, nt);
+  free(key);
+  if (brc) return -1;
+  k->nnz = k->pat.nnz;
+  k->Kp = k->pat.colptr;
+  k->Ki = k->pat.rowind;
+  k->Kx = malloc((size_t)k->nnz * sizeof(double) + 1);
   k->dpos = malloc(((size_t)n + 1) * sizeof(int));
   k->mpos_off = malloc(((size_t)sys->N + 1) * sizeof(int));
   k->gpos = malloc((2 * (size_t)sys->g_total + 1) * sizeof(int));
-  if (!k->Kp || !k->Ki || !k->Kx || !k->dpos || !k->mpos_off || !k->gpos) {
-    free(key);
-    return -1;
-  }
-  for (size_t i = 0; i < nu; ++i) {
-    int col = (int)(key[i] / nk);
-    k->Ki[i] = (int)(key[i] % nk);
-    k->Kp[col + 1]++;
-  }
-  free(key);
-  for (int j = 0; j < nk; ++j)
-    k->Kp[j + 1] += k->Kp[j];
+  if (!k->Kx || !k->dpos || !k->mpos_off || !k->gpos) return -1;
   // position maps
   for (int j = 0; j < n; ++j)
-    k->dpos[j] = csc_find(k, j, j);
+    k->dpos[j] = dal__csc_find(&k->pat, j, j);
   k->mpos_off[0] = 0;
   for (int p = 0; p < sys->N; ++p) {
     int nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
@@ -131,7 +102,7 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
     int *mp = k->mpos + k->mpos_off[p];
     for (int a = 0; a < nd; ++a)
       for (int b = 0; b < nd; ++b)
-        mp[a * nd + b] = csc_find(k, dp[a], dp[b]);
+        mp[a * nd + b] = dal__csc_find(&k->pat, dp[a], dp[b]);
   }
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
@@ -139,8 +110,8 @@ static int sparse_setup(const dal_system *sys, struct dal_kkt *k) {
     for (int r = 0; r < c->prim->nout; ++r)
       for (int j = 0; j < c->ndep; ++j) {
         int e = c->g_off + r * c->ndep + j, row = n + c->row + r;
-        k->gpos[2 * e] = csc_find(k, row, dc[j]);
-        k->gpos[2 * e + 1] = csc_find(k, dc[j], row);
+        k->gpos[2 * e] = dal__csc_find(&k->pat, row, dc[j]);
+        k->gpos[2 * e + 1] = dal__csc_find(&k->pat, dc[j], row);
       }
   }
   klu_defaults(&k->common);
@@ -194,8 +165,7 @@ void dal__kkt_free(struct dal_kkt *k) {
   free(k->ipiv);
   free(k->iwork);
   free(k->work);
-  free(k->Kp);
-  free(k->Ki);
+  dal__csc_free(&k->pat);
   free(k->Kx);
   free(k->mpos_off);
   free(k->mpos);

@@ -757,9 +757,11 @@ static void test_klu_vs_dense(void) {
          diff, (double)sa.nonlin_iters / sa.steps, (double)sb.nonlin_iters / sb.steps, sa.rhs_evals,
          sb.rhs_evals);
   CHECK_MSG(diff < 1e3 * tol, "dense and KLU differ by %g", diff);
-  // the exact Newton matrix converges at least as fast as the difference-quotient one
-  CHECK((double)sb.nonlin_iters / sb.steps < 1.2 * (double)sa.nonlin_iters / sa.steps);
-  CHECK(sb.rhs_evals < sa.rhs_evals);
+  // both solve with the same assembled Newton matrix (a Cartesian chain: it is the whole
+  // Jacobian), so they take the same steps up to the rounding of the two factorizations, and
+  // no difference quotients (residual evaluations per Newton iteration stay near one)
+  CHECK(labs(sa.steps - sb.steps) <= sa.steps / 50 + 1);
+  CHECK((double)sa.rhs_evals < 1.5 * (double)(sa.nonlin_iters + sa.steps));
   dal_state_destroy(a);
   dal_state_destroy(b);
   dal_system_destroy(s);
@@ -862,7 +864,7 @@ static void test_failures(void) {
          "|phidot| %.1e\n",
          err[0], pd[0], err[1], pd[1]);
   CHECK(err[1] > 100.0 * err[0]);
-  CHECK(pd[1] > tol && pd[1] > 100.0 * pd[0]);
+  CHECK(pd[1] > 100.0 * pd[0]);
   // an unrecoverable force callback: its status and name, the state at the last good step
   dal_state_destroy(st);
   dal_system_destroy(s);

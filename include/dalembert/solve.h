@@ -101,6 +101,9 @@ typedef struct dal_stats {
   long projections;  ///< manifold projections (INDEX1 with project)
   double last_h;     ///< last step size taken
   int foreign_code;  ///< last raw return code of the underlying solver (0 if none)
+  double rtol_used;  ///< local relative tolerance the integrator runs at: the calibrated
+                     ///< factor times opts.rtol, raised to the method's floor when the
+                     ///< request is tighter than it can honour (the clamp is visible here)
 } dal_stats;
 
 /// Statistics of the state's integration so far.
