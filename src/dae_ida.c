@@ -218,7 +218,8 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   // weigh Newton corrections.
   {
     double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
-    double fscale = 0.0, atol = fac * opts->atol;
+    // a clamped rtol raises atol in proportion: the requested ratio atol / rtol is kept
+    double fscale = 0.0, atol = opts->atol * (w->rtol / opts->rtol);
     for (int r = 0; r < w->m; ++r)
       fscale = fmax(fscale, fabs(st->lambda[r]));
     dal__dae_mask(&w->f, id);

@@ -119,7 +119,7 @@ double dal__dae_tol_factor(dal_formulation form) {
   case DAL_FORM_INDEX1:
     return 0.0002;
   default:
-    return 0.005;
+    return 0.001;
   }
 }
 

@@ -78,6 +78,12 @@ static int index1_project(const dal_system *sys, dal_state *st, const dal_solve_
 }
 
 const dal_ode_problem dal__problem_index1 = {
-    "index1", index1_size, index1_rhs, index1_project, index1_from_state, index1_to_state,
+    .name = "index1",
+    .size = index1_size,
+    .rhs = index1_rhs,
+    .project = index1_project,
+    .from_state = index1_from_state,
+    .to_state = index1_to_state,
+    .tol_factor = 0.2,
 };
 

@@ -44,6 +44,13 @@ static int minimal_rhs(const dal_system *sys, dal_state *st, const dal_solve_opt
   return DAL_OK;
 }
 
-const dal_ode_problem dal__problem_minimal = {"minimal", minimal_size,       minimal_rhs,
-                                              NULL,      minimal_from_state, minimal_to_state};
+const dal_ode_problem dal__problem_minimal = {
+    .name = "minimal",
+    .size = minimal_size,
+    .rhs = minimal_rhs,
+    .project = NULL,
+    .from_state = minimal_from_state,
+    .to_state = minimal_to_state,
+    .tol_factor = 1.0,
+};
 

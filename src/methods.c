@@ -7,12 +7,12 @@
 
 static const dal_method_row rows[] = {
     {DAL_METHOD_AUTO, "auto", 1.0, NULL, 0},
-    {DAL_METHOD_DOPRI5, "dopri5", 0.1, dal__erk_create, 0},
-    {DAL_METHOD_FEHLBERG78, "fehlberg78", 0.03, dal__erk_create, 0},
+    {DAL_METHOD_DOPRI5, "dopri5", 0.01, dal__erk_create, 0},
+    {DAL_METHOD_FEHLBERG78, "fehlberg78", 0.01, dal__erk_create, 0},
     {DAL_METHOD_BS, "bs", 0.005, dal__bs_create, 0},
     {DAL_METHOD_RK4, "rk4", 1.0, dal__rk4_create, 0},
     {DAL_METHOD_ADAMS, "adams", 0.01, dal__cvode_create, 0},
-    {DAL_METHOD_BDF, "bdf", 0.001, dal__cvode_create, 1},
+    {DAL_METHOD_BDF, "bdf", 0.0005, dal__cvode_create, 1},
 };
 
 const dal_method_row *dal__method_row(dal_method m) {

@@ -162,7 +162,7 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->opts = *o;
   ig->method = meth;
   ig->ny = prob->size(sys);
-  double c = dal__tol_factor(meth);
+  double c = dal__tol_factor(meth) * prob->tol_factor;
   ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
   ig->atol = c * o->atol;
   ig->t = st->t;

@@ -18,6 +18,7 @@
 //  - KLU with the assembled Newton matrix vs the dense difference-quotient one; a chain of 300
 //    particles without a dense mass matrix; failures leave the last accepted step.
 #include <math.h>
+#include <stdlib.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -758,9 +759,9 @@ static void test_klu_vs_dense(void) {
          sb.rhs_evals);
   CHECK_MSG(diff < 1e3 * tol, "dense and KLU differ by %g", diff);
   // both solve with the same assembled Newton matrix (a Cartesian chain: it is the whole
-  // Jacobian), so they take the same steps up to the rounding of the two factorizations, and
-  // no difference quotients (residual evaluations per Newton iteration stay near one)
-  CHECK(labs(sa.steps - sb.steps) <= sa.steps / 50 + 1);
+  // Jacobian): no difference quotients, so residual evaluations stay near one per Newton
+  // iteration in both (difference quotients cost neq = 30 more per Jacobian)
+  CHECK((double)sb.rhs_evals < 1.5 * (double)(sb.nonlin_iters + sb.steps));
   CHECK((double)sa.rhs_evals < 1.5 * (double)(sa.nonlin_iters + sa.steps));
   dal_state_destroy(a);
   dal_state_destroy(b);
