@@ -2,12 +2,16 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Jets: every operation against hand derivatives and finite differences, identities, domains.
 //
-// Every operation of jet.h is applied to input jets x = (v, d, dd), i.e. to curves
-// x(s) = v + d s + dd s^2 / 2, at random points and directions. References:
-//  - hand-written partial derivatives f_i, f_ij of each operation: the output jet must be
-//    (f, sum f_i d_i, sum f_i dd_i + sum f_ij d_i d_j) to ~1e-14 relative to its terms;
+// Every operation of jet.h is applied to input jets x = (v, d, dd, d3), i.e. to curves
+// x(s) = v + d s + dd s^2 / 2 + d3 s^3 / 6, at random points and directions. References:
+//  - hand-written partial derivatives f_i, f_ij, f_ijk of each operation: the output jet must
+//    be (f, sum f_i d_i, sum f_i dd_i + sum f_ij d_i d_j, sum f_i d3_i + 3 sum f_ij d_i dd_j +
+//    sum f_ijk d_i d_j d_k) to ~1e-14 relative to its terms;
 //  - central finite differences of the value along the curve, to their estimated truncation
-//    and rounding error (fd.h; curve arguments are exact in double);
+//    and rounding error (fd.h for the first two derivatives; a Richardson-extrapolated third
+//    difference with its own bound for the third; curve arguments are exact in double);
+//  - the lower coefficients never read d3 (bit-identical with d3 = NaN), and the order-2
+//    constructors dal_jet_make / dal_jet_chain mark d3 unknown (NaN);
 //  - identities (sin^2 + cos^2 = 1 with zero derivatives, exp(log x) = x, ...) and chain
 //    rule through 3-4 nested functions against hand-differentiated closed forms;
 //  - domain errors give non-finite jets, and the library reports them where they arise
@@ -30,6 +34,8 @@ static unsigned long long seed = 0x9e3779b97f4a7c15ULL;
 // the operations under test, each with hand-written value, gradient and Hessian
 typedef dal_jet op_jet_fn(const dal_jet *x, double p);
 typedef void op_hand_fn(const double *x, double p, double *f, double *g, double *H);
+/// third partial derivatives f_ijk into T[i * 4 + j * 2 + k] (zeroed by the caller)
+typedef void op_hand3_fn(const double *x, double p, double *T);
 
 typedef struct op {
   const char *name;
@@ -40,6 +46,7 @@ typedef struct op {
   int pint;            // p is an integer
   op_jet_fn *jet;
   op_hand_fn *hand;
+  op_hand3_fn *hand3; // NULL: the operation leaves d3 unknown (NaN)
 } op;
 
 static void zero_gh(double *g, double *H) {
@@ -327,6 +334,110 @@ static void h_chain(const double *x, double p, double *f, double *g, double *H) 
   g[0] = 3.0 * x[0] * x[0];
   H[0] = 6.0 * x[0];
 }
+// ---------------------------------------------------------------------------------------------
+// third partial derivatives f_ijk of each operation, by hand (T zeroed by the caller)
+static void h3_zero(const double *x, double p, double *T) {
+  (void)x;
+  (void)p;
+  (void)T;
+}
+static void h3_div(const double *x, double p, double *T) {
+  (void)p;
+  double a = x[0], b = x[1], b3 = b * b * b;
+  // f = a / b: f_abb = 2 / b^3, f_bbb = -6 a / b^4, the others 0
+  T[0 * 4 + 1 * 2 + 1] = T[1 * 4 + 0 * 2 + 1] = T[1 * 4 + 1 * 2 + 0] = 2.0 / b3;
+  T[7] = -6.0 * a / (b3 * b);
+}
+static void h3_sqrt(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = 0.375 / (x[0] * x[0] * sqrt(x[0])); // 3/8 x^-5/2
+}
+static void h3_pow(const double *x, double p, double *T) {
+  double f = x[0] > 0 ? exp(p * log(x[0])) : ipow(x[0], (int)p);
+  T[0] = p * (p - 1.0) * (p - 2.0) * f / (x[0] * x[0] * x[0]);
+}
+static void h3_powi(const double *x, double p, double *T) {
+  int n = (int)p;
+  T[0] = n * (n - 1.0) * (n - 2.0) * ipow(x[0], n - 3);
+}
+static void h3_exp(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = exp(x[0]);
+}
+static void h3_log(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = 2.0 / (x[0] * x[0] * x[0]);
+}
+static void h3_sin(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = -cos(x[0]);
+}
+static void h3_cos(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = sin(x[0]);
+}
+static void h3_tan(const double *x, double p, double *T) {
+  (void)p;
+  double c = cos(x[0]), sec2 = 1.0 / (c * c), t = sin(x[0]) / c;
+  T[0] = 2.0 * sec2 * sec2 + 4.0 * t * t * sec2; // d/dx (2 tan sec^2)
+}
+static void h3_asin(const double *x, double p, double *T) {
+  (void)p;
+  double w = (1.0 - x[0]) * (1.0 + x[0]);
+  T[0] = (1.0 + 2.0 * x[0] * x[0]) / (w * w * sqrt(w));
+}
+static void h3_acos(const double *x, double p, double *T) {
+  h3_asin(x, p, T);
+  T[0] = -T[0];
+}
+static void h3_atan(const double *x, double p, double *T) {
+  (void)p;
+  double u = 1.0 + x[0] * x[0];
+  T[0] = (6.0 * x[0] * x[0] - 2.0) / (u * u * u);
+}
+// atan2(y, x): argument 0 is y, argument 1 is x; f is harmonic: f_xxy = -f_yyy, f_xyy = -f_xxx
+static void h3_atan2(const double *a, double p, double *T) {
+  (void)p;
+  double y = a[0], x = a[1], r2 = x * x + y * y, r6 = r2 * r2 * r2;
+  double fyyy = (6.0 * x * y * y - 2.0 * x * x * x) / r6;
+  double fxxx = (2.0 * y * y * y - 6.0 * x * x * y) / r6;
+  T[0] = fyyy;                // yyy
+  T[1] = T[2] = T[4] = -fxxx; // yyx
+  T[3] = T[5] = T[6] = -fyyy; // yxx
+  T[7] = fxxx;                // xxx
+}
+static void h3_sinh(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = cosh(x[0]);
+}
+static void h3_cosh(const double *x, double p, double *T) {
+  (void)p;
+  T[0] = sinh(x[0]);
+}
+static void h3_tanh(const double *x, double p, double *T) {
+  (void)p;
+  double c = cosh(x[0]), s2 = 1.0 / (c * c), t = sinh(x[0]) / c;
+  T[0] = -2.0 * s2 * s2 + 4.0 * t * t * s2; // d/dx (-2 tanh sech^2)
+}
+static void h3_hypot(const double *x, double p, double *T) {
+  (void)p;
+  double a = x[0], b = x[1], r = sqrt(a * a + b * b), r5 = r * r * r * r * r;
+  T[0] = -3.0 * a * b * b / r5;                            // aaa
+  T[1] = T[2] = T[4] = (2.0 * a * a * b - b * b * b) / r5; // aab
+  T[3] = T[5] = T[6] = (2.0 * a * b * b - a * a * a) / r5; // abb
+  T[7] = -3.0 * a * a * b / r5;                            // bbb
+}
+static void h3_chain3(const double *x, double p, double *T) {
+  (void)x;
+  (void)p;
+  T[0] = 6.0;
+}
+// the order-3 chain helper with f = x^3 (f' = 3x^2, f'' = 6x, f''' = 6)
+static dal_jet j_chain3(const dal_jet *x, double p) {
+  (void)p;
+  double v = x[0].v;
+  return dal_jet_chain3(x[0], v * v * v, 3.0 * v * v, 6.0 * v, 6.0);
+}
 // dal_norm of (x0, x1): same function as hypot, through the vector routine
 static dal_jet j_norm(const dal_jet *x, double p) {
   (void)p;
@@ -334,45 +445,81 @@ static dal_jet j_norm(const dal_jet *x, double p) {
 }
 
 static const op ops[] = {
-    {"add", 2, {-5, -5}, {5, 5}, 0, 0, 0, 0, j_add, h_add},
-    {"sub", 2, {-5, -5}, {5, 5}, 0, 0, 0, 0, j_sub, h_sub},
-    {"mul", 2, {-5, -5}, {5, 5}, 0, 0, 0, 0, j_mul, h_mul},
-    {"div", 2, {-5, -3}, {5, 3}, 0.4, 0, 0, 0, j_div, h_div},
-    {"neg", 1, {-5, 0}, {5, 0}, 0, 0, 0, 0, j_neg, h_neg},
-    {"scale", 1, {-5, 0}, {5, 0}, 0, -3, 3, 0, j_scale, h_scale},
-    {"addc", 1, {-5, 0}, {5, 0}, 0, -3, 3, 0, j_addc, h_addc},
-    {"sq", 1, {-5, 0}, {5, 0}, 0, 0, 0, 0, j_sq, h_sq},
-    {"sqrt", 1, {0.2, 0}, {9, 0}, 0, 0, 0, 0, j_sqrt, h_sqrt},
-    {"pow(real p)", 1, {0.2, 0}, {4, 0}, 0, -2.5, 3.5, 0, j_pow, h_pow},
-    {"pow(integer p, any sign of base)", 1, {-3, 0}, {3, 0}, 0.4, -4, 5, 1, j_pow, h_pow},
-    {"pow(p = 0)", 1, {0.2, 0}, {4, 0}, 0, 0, 0, 0, j_pow, h_pow},
-    {"powi(n in -5..6, any sign of base)", 1, {-3, 0}, {3, 0}, 0.4, -5, 6, 1, j_powi, h_powi},
-    {"exp", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_exp, h_exp},
-    {"log", 1, {0.2, 0}, {10, 0}, 0, 0, 0, 0, j_log, h_log},
-    {"sin", 1, {-7, 0}, {7, 0}, 0, 0, 0, 0, j_sin, h_sin},
-    {"cos", 1, {-7, 0}, {7, 0}, 0, 0, 0, 0, j_cos, h_cos},
-    {"tan", 1, {-1.3, 0}, {1.3, 0}, 0, 0, 0, 0, j_tan, h_tan},
-    {"asin", 1, {-0.9995, 0}, {0.9995, 0}, 0, 0, 0, 0, j_asin, h_asin},
-    {"acos", 1, {-0.9995, 0}, {0.9995, 0}, 0, 0, 0, 0, j_acos, h_acos},
-    {"atan", 1, {-50, 0}, {50, 0}, 0, 0, 0, 0, j_atan, h_atan},
-    {"atan2", 2, {-3, -3}, {3, 3}, 0.4, 0, 0, 0, j_atan2, h_atan2},
-    {"sinh", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_sinh, h_sinh},
-    {"cosh", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_cosh, h_cosh},
-    {"tanh", 1, {-12, 0}, {12, 0}, 0, 0, 0, 0, j_tanh, h_tanh},
-    {"hypot", 2, {-3, -3}, {3, 3}, 0.4, 0, 0, 0, j_hypot, h_hypot},
-    {"norm", 2, {-3, -3}, {3, 3}, 0.4, 0, 0, 0, j_norm, h_hypot},
-    {"jet_chain", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_chain, h_chain},
+    {"add", 2, {-5, -5}, {5, 5}, 0, 0, 0, 0, j_add, h_add, h3_zero},
+    {"sub", 2, {-5, -5}, {5, 5}, 0, 0, 0, 0, j_sub, h_sub, h3_zero},
+    {"mul", 2, {-5, -5}, {5, 5}, 0, 0, 0, 0, j_mul, h_mul, h3_zero},
+    {"div", 2, {-5, -3}, {5, 3}, 0.4, 0, 0, 0, j_div, h_div, h3_div},
+    {"neg", 1, {-5, 0}, {5, 0}, 0, 0, 0, 0, j_neg, h_neg, h3_zero},
+    {"scale", 1, {-5, 0}, {5, 0}, 0, -3, 3, 0, j_scale, h_scale, h3_zero},
+    {"addc", 1, {-5, 0}, {5, 0}, 0, -3, 3, 0, j_addc, h_addc, h3_zero},
+    {"sq", 1, {-5, 0}, {5, 0}, 0, 0, 0, 0, j_sq, h_sq, h3_zero},
+    {"sqrt", 1, {0.2, 0}, {9, 0}, 0, 0, 0, 0, j_sqrt, h_sqrt, h3_sqrt},
+    {"pow(real p)", 1, {0.2, 0}, {4, 0}, 0, -2.5, 3.5, 0, j_pow, h_pow, h3_pow},
+    {"pow(integer p, any sign of base)", 1, {-3, 0}, {3, 0}, 0.4, -4, 5, 1, j_pow, h_pow, h3_pow},
+    {"pow(p = 0)", 1, {0.2, 0}, {4, 0}, 0, 0, 0, 0, j_pow, h_pow, h3_pow},
+    {"powi(n in -5..6, any sign of base)", 1, {-3, 0}, {3, 0}, 0.4, -5, 6, 1, j_powi, h_powi, h3_powi},
+    {"exp", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_exp, h_exp, h3_exp},
+    {"log", 1, {0.2, 0}, {10, 0}, 0, 0, 0, 0, j_log, h_log, h3_log},
+    {"sin", 1, {-7, 0}, {7, 0}, 0, 0, 0, 0, j_sin, h_sin, h3_sin},
+    {"cos", 1, {-7, 0}, {7, 0}, 0, 0, 0, 0, j_cos, h_cos, h3_cos},
+    {"tan", 1, {-1.3, 0}, {1.3, 0}, 0, 0, 0, 0, j_tan, h_tan, h3_tan},
+    {"asin", 1, {-0.9995, 0}, {0.9995, 0}, 0, 0, 0, 0, j_asin, h_asin, h3_asin},
+    {"acos", 1, {-0.9995, 0}, {0.9995, 0}, 0, 0, 0, 0, j_acos, h_acos, h3_acos},
+    {"atan", 1, {-50, 0}, {50, 0}, 0, 0, 0, 0, j_atan, h_atan, h3_atan},
+    {"atan2", 2, {-3, -3}, {3, 3}, 0.4, 0, 0, 0, j_atan2, h_atan2, h3_atan2},
+    {"sinh", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_sinh, h_sinh, h3_sinh},
+    {"cosh", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_cosh, h_cosh, h3_cosh},
+    {"tanh", 1, {-12, 0}, {12, 0}, 0, 0, 0, 0, j_tanh, h_tanh, h3_tanh},
+    {"hypot", 2, {-3, -3}, {3, 3}, 0.4, 0, 0, 0, j_hypot, h_hypot, h3_hypot},
+    {"norm", 2, {-3, -3}, {3, 3}, 0.4, 0, 0, 0, j_norm, h_hypot, h3_hypot},
+    {"jet_chain", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_chain, h_chain, NULL},
+    {"jet_chain3", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_chain3, h_chain, h3_chain3},
 };
 
 // ---------------------------------------------------------------------------------------------
-// one sample: argument curves x_i(s) = v_i + d_i s + dd_i s^2 / 2 (exact in double)
+// one sample: argument curves x_i(s) = v_i + d_i s + dd_i s^2 / 2 + c3_i s^3 (exact in
+// double; the third derivative is d3_i = 6 c3_i)
 typedef struct sample {
   const op *o;
-  double v[2], d[2], dd[2], p;
+  double v[2], d[2], dd[2], c3[2], p;
 } sample;
 
 static double curve_arg(const sample *sm, int i, double s) {
-  return sm->v[i] + sm->d[i] * s + 0.5 * sm->dd[i] * (s * s);
+  return sm->v[i] + sm->d[i] * s + 0.5 * sm->dd[i] * (s * s) + sm->c3[i] * (s * s * s);
+}
+
+/// third derivative of g at 0 by the central stencil D(h) = (g(2h) - 2 g(h) + 2 g(-h) -
+/// g(-2h)) / (2 h^3) = g3 + h^2/4 g5 + ... (gk: k-th derivative), Richardson-extrapolated from
+/// h/2 and h/4. The estimate is trusted when D(h) - D(h/2) and D(h/2) - D(h/4) shrink like
+/// h^2 (ratio 1/4 +- 0.1, or at the rounding level); its error bound is then twice
+/// |D(h/2) - D(h/4)| (3 times the error of D(h/4) alone, far above the extrapolated error) plus
+/// four times the rounding.
+typedef struct fd3_est {
+  double d3, tol;
+  int valid;
+} fd3_est;
+
+static fd3_est fd3_estimate(fd_fn *g, const void *ctx, double ulps) {
+  fd3_est e = {NAN, INFINITY, 0};
+  for (int k = 4; k <= 9 && !e.valid; ++k) {
+    double D[3], G = 0.0;
+    int ok = 1;
+    for (int j = 0; j < 3; ++j) {
+      double h = ldexp(1.0, -k - j);
+      double g1 = g(h, ctx), gm1 = g(-h, ctx), g2 = g(2.0 * h, ctx), gm2 = g(-2.0 * h, ctx);
+      if (!isfinite(g1) || !isfinite(gm1) || !isfinite(g2) || !isfinite(gm2)) ok = 0;
+      G = fmax(G, fmax(fmax(fabs(g1), fabs(gm1)), fmax(fabs(g2), fabs(gm2))));
+      D[j] = (g2 - 2.0 * g1 + 2.0 * gm1 - gm2) / (2.0 * h * h * h);
+    }
+    if (!ok) continue;
+    double hs = ldexp(1.0, -k - 2), r = 3.0 * ulps * DBL_EPSILON * G / (hs * hs * hs);
+    double d01 = fabs(D[0] - D[1]), d12 = fabs(D[1] - D[2]);
+    if (fabs(d12 - 0.25 * d01) > 0.1 * d01 + 4.0 * r) continue; // not yet in the h^2 regime
+    e.d3 = D[2] + (D[2] - D[1]) / 3.0;
+    e.tol = 2.0 * (d12 + 2.0 * r) + 1e-300;
+    e.valid = 1;
+  }
+  return e;
 }
 
 // value of the operation along the curve, through the jet's own value path
@@ -393,10 +540,10 @@ static int excluded(const op *o, const double *v) {
 }
 
 static void test_op(const op *o) {
-  int fails0 = check_failures, quadrant[4] = {0, 0, 0, 0}, nvalid = 0;
-  double worst_an = 0.0, worst_fd = 0.0;
+  int fails0 = check_failures, quadrant[4] = {0, 0, 0, 0}, nvalid = 0, nvalid3 = 0;
+  double worst_an = 0.0, worst_fd = 0.0, worst_an3 = 0.0, worst_fd3 = 0.0;
   for (int it = 0; it < NSAMPLE; ++it) {
-    sample sm = {o, {0, 0}, {0, 0}, {0, 0}, 0.0};
+    sample sm = {o, {0, 0}, {0, 0}, {0, 0}, {0, 0}, 0.0};
     do {
       for (int i = 0; i < o->arity; ++i)
         sm.v[i] = fd_grid(check_rand(&seed, o->lo[i], o->hi[i]), 20);
@@ -404,6 +551,7 @@ static void test_op(const op *o) {
     for (int i = 0; i < o->arity; ++i) {
       sm.d[i] = fd_grid(check_rand(&seed, -1, 1), 10);
       sm.dd[i] = fd_grid(check_rand(&seed, -1, 1), 10);
+      sm.c3[i] = fd_grid(check_rand(&seed, -1, 1), 10) / 8.0;
     }
     sm.p = check_rand(&seed, o->plo, o->phi);
     if (o->pint) sm.p = floor(sm.p + 0.5);
@@ -411,8 +559,17 @@ static void test_op(const op *o) {
 
     // the jet
     dal_jet x[2];
-    for (int i = 0; i < o->arity; ++i) x[i] = dal_jet_make(sm.v[i], sm.d[i], sm.dd[i]);
+    for (int i = 0; i < o->arity; ++i)
+      x[i] = dal_jet_make3(sm.v[i], sm.d[i], sm.dd[i], 6.0 * sm.c3[i]);
     dal_jet r = o->jet(x, sm.p);
+
+    // the lower coefficients do not read d3: bit-identical with an unknown (NaN) d3
+    dal_jet xn[2];
+    for (int i = 0; i < o->arity; ++i) xn[i] = dal_jet_make(sm.v[i], sm.d[i], sm.dd[i]);
+    dal_jet rn = o->jet(xn, sm.p);
+    int constant = (o->jet == j_pow || o->jet == j_powi) && sm.p == 0.0; // x^0 = 1: d3 = 0
+    CHECK_MSG(rn.v == r.v && rn.d == r.d && rn.dd == r.dd && (constant || !isfinite(rn.d3)),
+              "%s: value or derivatives depend on d3, or d3 = NaN is lost", o->name);
 
     // hand derivatives: g' = sum f_i d_i, g'' = sum f_i dd_i + sum f_ij d_i d_j
     double f, g[2] = {0, 0}, H[4] = {0, 0, 0, 0};
@@ -440,6 +597,42 @@ static void test_op(const op *o) {
               "%s second derivative at (%g, %g) p=%g: %.17g vs %.17g", o->name, sm.v[0], sm.v[1],
               sm.p, r.dd, e2);
 
+    // third derivative: sum f_i d3_i + 3 sum f_ij d_i dd_j + sum f_ijk d_i d_j d_k
+    if (o->hand3) {
+      double T[8] = {0, 0, 0, 0, 0, 0, 0, 0}, e3 = 0, s3 = 0;
+      o->hand3(sm.v, sm.p, T);
+      for (int i = 0; i < o->arity; ++i) {
+        double t1 = g[i] * 6.0 * sm.c3[i];
+        e3 += t1;
+        s3 += fabs(t1);
+        for (int j = 0; j < o->arity; ++j) {
+          double t2 = 3.0 * H[i * 2 + j] * sm.d[i] * sm.dd[j];
+          e3 += t2;
+          s3 += fabs(t2);
+          for (int k = 0; k < o->arity; ++k) {
+            double t3 = T[i * 4 + j * 2 + k] * sm.d[i] * sm.d[j] * sm.d[k];
+            e3 += t3;
+            s3 += fabs(t3);
+          }
+        }
+      }
+      if (s3 > 0) worst_an3 = fmax(worst_an3, fabs(r.d3 - e3) / s3);
+      CHECK_MSG(fabs(r.d3 - e3) <= TOL_AN * s3,
+                "%s third derivative at (%g, %g) p=%g: %.17g vs %.17g", o->name, sm.v[0],
+                sm.v[1], sm.p, r.d3, e3);
+      fd3_est f3 = fd3_estimate(op_along, &sm, 8.0);
+      if (f3.valid) {
+        nvalid3++;
+        worst_fd3 = fmax(worst_fd3, fabs(r.d3 - f3.d3) / f3.tol);
+        CHECK_MSG(fabs(r.d3 - f3.d3) <= f3.tol,
+                  "%s d3 vs FD at (%g, %g): %.17g vs %.17g (tol %g)", o->name, sm.v[0], sm.v[1],
+                  r.d3, f3.d3, f3.tol);
+      }
+    } else {
+      CHECK_MSG(isnan(r.d3), "%s: order-2 helper must leave d3 unknown (NaN), got %g", o->name,
+                r.d3);
+    }
+
     // finite differences along the curve (where their error bound is trustworthy)
     fd_est fd = fd_estimate(op_along, &sm, 8.0, 0.0);
     if (!fd.valid) continue;
@@ -456,8 +649,14 @@ static void test_op(const op *o) {
   if (o->jet == j_atan2)
     for (int qd = 0; qd < 4; ++qd)
       CHECK_MSG(quadrant[qd] > 20, "atan2 quadrant %d sampled %d times", qd, quadrant[qd]);
+  if (o->hand3)
+    CHECK_MSG(nvalid3 >= NSAMPLE * 8 / 10, "%s: third-derivative FD bound valid at only %d of %d",
+              o->name, nvalid3, NSAMPLE);
   printf("  %-36s worst hand rel %.1e, FD at %3d/%d points, worst |jet - FD| / bound %.2f%s\n",
          o->name, worst_an, nvalid, NSAMPLE, worst_fd, check_failures > fails0 ? "  FAILED" : "");
+  if (o->hand3)
+    printf("  %-36s   order 3: worst hand rel %.1e, FD at %3d/%d, worst |d3 - FD| / bound %.2f\n",
+           "", worst_an3, nvalid3, NSAMPLE, worst_fd3);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -593,6 +792,49 @@ static void test_chain_rule(void) {
          check_failures > fails0 ? "FAILED" : "ok");
 }
 
+// third derivatives through the same nested functions, against the FD oracle along the
+// cubic curve x(s) = x0 + d s + dd s^2 / 2 + c3 s^3
+typedef struct nested {
+  int which;
+  double x0, d, dd, c3;
+} nested;
+
+static dal_jet nested_eval(int which, dal_jet x) {
+  if (which == 0) return dal_log(dal_addc(dal_exp(dal_sin(dal_sq(x))), 1.0));
+  if (which == 1) return dal_atan(dal_sinh(dal_log(x)));
+  return dal_sqrt(dal_cosh(dal_tan(dal_scale(x, 0.5))));
+}
+
+static double nested_along(double s, const void *ctx) {
+  const nested *n = ctx;
+  return nested_eval(n->which, dal_const(n->x0 + n->d * s + 0.5 * n->dd * (s * s) +
+                                         n->c3 * (s * s * s)))
+      .v;
+}
+
+static void test_chain_rule3(void) {
+  int fails0 = check_failures, nvalid = 0, total = 0;
+  double worst = 0.0;
+  for (int it = 0; it < NSAMPLE; ++it)
+    for (int which = 0; which < 3; ++which) {
+      double lo[3] = {-2, 0.2, -2.5}, hi[3] = {2, 5, 2.5};
+      nested n = {which, fd_grid(check_rand(&seed, lo[which], hi[which]), 20),
+                  fd_grid(check_rand(&seed, -1, 1), 10), fd_grid(check_rand(&seed, -1, 1), 10),
+                  fd_grid(check_rand(&seed, -1, 1), 10) / 8.0};
+      dal_jet J = nested_eval(which, dal_jet_make3(n.x0, n.d, n.dd, 6.0 * n.c3));
+      fd3_est f3 = fd3_estimate(nested_along, &n, 16.0);
+      ++total;
+      if (!f3.valid) continue;
+      ++nvalid;
+      worst = fmax(worst, fabs(J.d3 - f3.d3) / f3.tol);
+      CHECK_MSG(fabs(J.d3 - f3.d3) <= f3.tol, "nested %d at %g: d3 %.17g vs FD %.17g (tol %g)",
+                which, n.x0, J.d3, f3.d3, f3.tol);
+    }
+  CHECK_MSG(nvalid >= total * 8 / 10, "nested d3: FD valid at only %d of %d", nvalid, total);
+  printf("  %-36s FD at %d/%d, worst |d3 - FD| / bound %.2f %s\n", "chain rule, order 3", nvalid,
+         total, worst, check_failures > fails0 ? "FAILED" : "ok");
+}
+
 // accuracy near the edges of the domains: asin/acos at 1 - 2^-k, tanh at large |x|
 static void test_edges(void) {
   int fails0 = check_failures;
@@ -652,10 +894,29 @@ static void test_domain_jets(void) {
   CHECK(!dal_jet_isfinite(dal_jet_make(0, INFINITY, 0)));
   CHECK(!dal_jet_isfinite(dal_jet_make(0, 0, -INFINITY)));
   CHECK(dal_jet_isfinite(dal_jet_make(1, 2, 3)));
-  // constructors
-  dal_jet c = dal_const(2.5), v = dal_var(1.5, -0.5);
-  CHECK(c.v == 2.5 && c.d == 0 && c.dd == 0);
-  CHECK(v.v == 1.5 && v.d == -0.5 && v.dd == 0);
+  // constructors: constants and variables are exact to order 3; the order-2 constructors
+  // leave d3 unknown (NaN), which dal_jet_isfinite ignores and dal_jet_isfinite3 reports
+  dal_jet c = dal_const(2.5), v = dal_var(1.5, -0.5), m2 = dal_jet_make(1, 2, 3);
+  dal_jet m3 = dal_jet_make3(1, 2, 3, 4);
+#if defined(__GNUC__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#endif
+  dal_jet lit = {1, 2, 3}; // a version-1 initializer still compiles (d3 = 0 by C's rules)
+#if defined(__GNUC__)
+#pragma GCC diagnostic pop
+#endif
+  CHECK(c.v == 2.5 && c.d == 0 && c.dd == 0 && c.d3 == 0);
+  CHECK(v.v == 1.5 && v.d == -0.5 && v.dd == 0 && v.d3 == 0);
+  CHECK(m2.v == 1 && m2.d == 2 && m2.dd == 3 && isnan(m2.d3));
+  CHECK(dal_jet_isfinite(m2) && !dal_jet_isfinite3(m2));
+  CHECK(m3.d3 == 4 && dal_jet_isfinite3(m3) && lit.d3 == 0);
+  CHECK(!dal_jet_isfinite3(dal_jet_make3(1, 2, 3, INFINITY)));
+  CHECK(isnan(dal_jet_chain(v, 1, 2, 3).d3) && dal_jet_chain3(v, 1, 2, 3, 4).d3 == 4 * -0.125);
+  // an unknown d3 stays unknown through every operation (never silently becomes a number)
+  dal_jet u = dal_jet_make(0.7, 0.3, -0.2);
+  CHECK(isnan(dal_mul(u, dal_const(0.0)).d3) && isnan(dal_sin(dal_add(u, v)).d3));
+  CHECK(isnan(dal_atan2(u, dal_const(1.0)).d3) && isnan(dal_hypot(dal_const(1.0), u).d3));
   printf("  %-36s %s\n", "domain errors give non-finite jets",
          check_failures > fails0 ? "FAILED" : "ok");
 }
@@ -779,6 +1040,7 @@ int main(void) {
   for (size_t i = 0; i < sizeof ops / sizeof ops[0]; ++i) test_op(&ops[i]);
   test_identities();
   test_chain_rule();
+  test_chain_rule3();
   test_edges();
   test_domain_jets();
   test_domain_reported();

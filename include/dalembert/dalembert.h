@@ -4,6 +4,7 @@
 #ifndef DAL_DALEMBERT_H
 #define DAL_DALEMBERT_H
 
+#include "dalembert/analysis.h"
 #include "dalembert/base.h"
 #include "dalembert/dae.h"
 #include "dalembert/jet.h"

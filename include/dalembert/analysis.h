@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Analysis: exact linearization, normal modes and stability, equilibria and their
+// continuation in one parameter, Lyapunov exponents (docs/analysis.md).
+//
+// The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
+// y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
+// the equations of motion are written R(t, q, qdot, qddot) = M qddot + c - Q = 0, and
+//   K = dR/dq,  C = dR/dqdot  (at fixed qddot),  M = dR/dqddot,
+// so a small variation obeys M dq'' + C dq' + K dq = 0 (with coefficients that depend on time
+// away from a steady state), and df/dy = [0, I; -M^-1 K, -M^-1 C]. No finite differences:
+// K and C come from jets. Their derivatives of M, Q and c need second derivatives of the maps
+// and potentials (by polarization of order-2 coefficients along sums of directions) and the
+// derivative of the curvature terms gamma, a third derivative D^3 r[dq, w, w] with
+// w = (qdot, 1) (by polarization of the order-3 coefficient d3 of dal_jet along the curves
+// s -> (q + s (qdot +- dq) + s^2/2 (qddot +- 2 dqdot), t + s (1 +- dt)); see jet.h).
+//
+// What the tangent covers: particle systems in minimal coordinates (no constraint rows,
+// m = 0) placed by primitives or a whole-system map, with gravity, springs, dampers and jet
+// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included. It refuses, with
+// DAL_E_UNSUPPORTED and a message naming the cause:
+//  - constraint rows (m > 0): use minimal coordinates for the analysis;
+//  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
+//    they have no exact derivative; write the force as a potential over jets if it has one;
+//  - Lagrangian systems (dal_builder_set_lagrangian): their tangent needs third partials of L,
+//    not implemented yet.
+// A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
+// third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
+//
+// Every function takes the system and a state; it evaluates the state (as dal_forward does)
+// and reports failures in dal_state_errmsg(st). Matrices are column-major; n = number of
+// coordinates.
+#ifndef DAL_ANALYSIS_H
+#define DAL_ANALYSIS_H
+
+#include "dalembert/base.h"
+#include "dalembert/solve.h"
+#include "dalembert/state.h"
+#include "dalembert/system.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+// ---------------------------------------------------------------------------------------------
+// linearization
+
+/// Linearize the equations of motion at the state's (t, q, qdot): with qddot the state's
+/// acceleration, a variation obeys M dq'' + C dq' + K dq = 0 to first order, where
+/// M = mass matrix, C = dR/dqdot (damping and gyroscopic terms), K = dR/dq (stiffness,
+/// including centrifugal terms and, away from an equilibrium, the derivative of M applied to
+/// qddot), R = M qddot + c - Q. Each output is n x n column-major, caller-owned, and may be
+/// NULL. At an equilibrium (qdot = qddot = 0) of a conservative scene K is the Hessian of the
+/// (effective) potential and C the gyroscopic matrix (antisymmetric).
+/// Returns DAL_OK; DAL_E_UNSUPPORTED (see the file comment); the statuses of dal_forward;
+/// DAL_E_DOMAIN when a jet function gives a non-finite or unknown third derivative;
+/// DAL_E_NOMEM.
+DAL_API int dal_linearize(const dal_system *sys, dal_state *st, double *M, double *C, double *K);
+
+/// Jacobian of the state derivative f(t, y) = (qdot, qddot), y = (q, qdot), at the state:
+/// A = df/dy (2n x 2n, column-major, caller-owned) and, if ft is not NULL, ft = df/dt (2n):
+/// the explicit time dependence (zero for an autonomous scene). Same statuses as
+/// dal_linearize.
+DAL_API int dal_flow_jacobian(const dal_system *sys, dal_state *st, double *A, double *ft);
+
+// ---------------------------------------------------------------------------------------------
+// normal modes and stability
+
+/// Stability verdict of a linearization, from the eigenvalues lambda of df/dy (LAPACK dgeev)
+/// with the tolerance tau = 1e-6 max(max |lambda|, ||M^-1 K||_F^1/2, ||M^-1 C||_F):
+typedef enum dal_stability {
+  DAL_UNSTABLE = -1,  ///< an eigenvalue with real part > tau: perturbations grow
+  DAL_MARGINAL = 0,   ///< no real part > tau but an eigenvalue |lambda| <= tau (a zero
+                      ///< frequency, e.g. at a bifurcation): the linearization cannot decide
+  DAL_NEUTRAL = 1,    ///< all real parts within tau of 0 or below -tau, no zero eigenvalue,
+                      ///< some on the imaginary axis: oscillations neither grow nor decay
+                      ///< (conservative scenes; nonlinear terms decide beyond)
+  DAL_ASYMPTOTIC = 2, ///< every real part < -tau: perturbations decay
+} dal_stability;
+
+/// Short name of a verdict ("unstable", "marginal", "neutral", "asymptotic", "unknown").
+DAL_API const char *dal_stability_name(dal_stability s);
+
+/// Normal modes and stability at the state (meant for an equilibrium, see dal_equilibrium).
+typedef struct dal_modes {
+  dal_stability verdict; ///< from the eigenvalues of the full df/dy (C and K as they are)
+  double max_real;       ///< largest real part of those eigenvalues (1/time)
+  double tau;            ///< the tolerance of the verdict (1/time)
+  double asymmetry;      ///< ||K - K'||_F / ||K||_F: 0 for a conservative equilibrium
+  double gyroscopic;     ///< ||C||_F / (||K||_F ||M||_F)^1/2: 0 without damping or Coriolis
+  double accel;          ///< max_i |qddot_i| at the state: 0 at an equilibrium
+} dal_modes;
+
+/// Normal modes at the state: the generalized symmetric eigenproblem
+/// K_s x = omega^2 M x with K_s = (K + K')/2 (LAPACK dsygv), and the eigenvalues of the
+/// first-order Jacobian df/dy for the verdict (which does account for C, gyroscopic
+/// stabilization included).
+///  omega2 (n, caller-owned, may be NULL): omega^2 ascending (1/time^2; negative = a direction
+///    of exponential growth when C = 0); the frequencies are sqrt(omega2) in rad/time.
+///  shapes (n x n, may be NULL): column i is the mode shape of omega2[i], M-orthonormal
+///    (x_i' M x_j = delta_ij), its largest component positive.
+///  lambda_re, lambda_im (2n each, may be NULL): eigenvalues of df/dy, sorted by decreasing
+///    real part, then by increasing imaginary part.
+///  out (may be NULL): verdict and diagnostics.
+/// The modes describe small oscillations only where accel ~ 0 and qdot = 0 (an equilibrium or
+/// a steady relative equilibrium); elsewhere they are those of the frozen linearization.
+/// Statuses of dal_linearize; DAL_E_SINGULAR if LAPACK fails (named in the message).
+DAL_API int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
+                             double *lambda_re, double *lambda_im, dal_modes *out);
+
+// ---------------------------------------------------------------------------------------------
+// equilibria
+
+/// Options of dal_equilibrium. Always start from dal_equilibrium_default_opts().
+typedef struct dal_equilibrium_opts {
+  int magic;       ///< set by dal_equilibrium_default_opts; do not touch
+  double xtol;     ///< converged when every Newton step |dq_i| <= xtol (1 + |q_i|); 1e-12
+  int max_iter;    ///< Newton iterations at most; 50
+  double max_step; ///< largest |dq_i| of one step (the step is scaled down to it); 0: none
+} dal_equilibrium_opts;
+
+/// Fill *o with the defaults (xtol 1e-12, 50 iterations, no step bound).
+DAL_API void dal_equilibrium_default_opts(dal_equilibrium_opts *o);
+
+/// What dal_equilibrium found.
+typedef struct dal_equilibrium_report {
+  int iterations;  ///< Newton iterations taken
+  double step;     ///< max |dq_i| of the last step
+  double accel;    ///< max |qddot_i| at the solution (1/time^2 x units of q)
+  double unsteady; ///< max |d qddot_i / dt| at the solution: 0 when it is an equilibrium at
+                   ///< every time (a static or a steady relative equilibrium), non-zero when
+                   ///< it only holds at the state's t (a driven scene)
+} dal_equilibrium_report;
+
+/// Find an equilibrium qddot(t, q, 0) = 0 by Newton's method on q with the exact Jacobian K
+/// (dq = K^-1 (Q - c), LAPACK dgesv), starting from the state's q at the state's time t with
+/// qdot set to 0. For a rheonomic scene steady in its coordinates (a bead on a ring turning at
+/// a constant rate, q measured in the ring) this is a relative equilibrium: the report's
+/// `unsteady` tells whether it holds at all times. On success the state holds (t, q*, 0),
+/// evaluated. `o` may be NULL (defaults); `rep` may be NULL.
+/// Returns DAL_OK; DAL_E_SINGULAR when K is singular (a bifurcation point or a neutral
+/// direction; the message names the coordinate); DAL_E_CONV after max_iter iterations or a
+/// non-finite step (the state then holds the last iterate); DAL_E_ARG for bad options; the
+/// statuses of dal_linearize.
+DAL_API int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
+                            dal_equilibrium_report *rep);
+
+/// Build the system for parameter value p (e.g. a ring's turning rate) into *out; the
+/// continuation destroys it with dal_system_destroy when done. Return 0, or non-zero to stop
+/// (the continuation then returns DAL_E_CALLBACK).
+typedef int dal_rebuild_fn(double p, dal_system **out, void *ctx);
+
+/// Kind of a point reported along a branch.
+typedef enum dal_branch_kind {
+  DAL_BRANCH_REGULAR = 0,  ///< a point of the parameter grid
+  DAL_BRANCH_CRITICAL = 1, ///< a located point where a real eigenvalue of K crosses zero
+                           ///< (det K changes sign: fold, pitchfork, transcritical), between
+                           ///< two grid points whose det K differ in sign
+} dal_branch_kind;
+
+/// Called at every converged point of a branch with the state at the equilibrium
+/// (t, q*, qdot = 0, evaluated), the verdict of dal_normal_modes there and the point's kind.
+/// sys and st are valid during the call only. Return 0 to continue, non-zero to stop.
+typedef int dal_branch_fn(double p, const dal_system *sys, const dal_state *st,
+                          dal_stability verdict, dal_branch_kind kind, void *ctx);
+
+/// Options of dal_continue. Always start from dal_continuation_default_opts().
+typedef struct dal_continuation_opts {
+  int magic;                   ///< set by dal_continuation_default_opts; do not touch
+  double p0;                   ///< first parameter value
+  double p1;                   ///< last parameter value (may be below p0)
+  int npoints;                 ///< grid points from p0 to p1, both included (>= 2); 41
+  double t;                    ///< time at which the equilibria are sought; 0
+  int locate;                  ///< locate the critical points (bisection on sign det K); 1
+  double ptol;                 ///< parameter tolerance of the located points; 1e-10 |p1 - p0|
+  dal_equilibrium_opts newton; ///< options of every Newton solve
+} dal_continuation_opts;
+
+/// Fill *o with the defaults (see the fields), p0 = 0, p1 = 1.
+DAL_API void dal_continuation_default_opts(dal_continuation_opts *o);
+
+/// Report of a continuation.
+typedef struct dal_continuation_report {
+  int npoints;    ///< grid points converged and reported
+  int ncritical;  ///< critical points located and reported
+  double p_end;   ///< last parameter value reached
+  char msg[512];  ///< why the branch ended early ("" when it reached p1)
+} dal_continuation_report;
+
+/// Natural-parameter continuation of one branch of equilibria: for p on the grid from p0 to p1
+/// build the system (rebuild), solve for the equilibrium by dal_equilibrium starting from the
+/// previous solution (from q0 (n values) at the first point; a secant predictor from the two
+/// previous ones after that), classify it by dal_normal_modes and report it to `point`.
+/// Between grid points where det K changes sign the critical parameter is located by
+/// bisection (every trial point an exact Newton solve) and reported as DAL_BRANCH_CRITICAL.
+/// A branch that folds back (a turning point in p) cannot be followed past the fold: the
+/// continuation then stops with DAL_E_CONV and says where. To follow another branch through a
+/// pitchfork, start a second continuation from a point on it.
+/// Returns DAL_OK when p1 was reached; DAL_E_CONV / DAL_E_SINGULAR (the branch ended, rep->msg
+/// says where and why, the points before were reported); DAL_E_CALLBACK (rebuild or point
+/// asked to stop or failed); DAL_E_ARG (bad options or sizes). rep may be NULL.
+DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0,
+                         const dal_continuation_opts *o, dal_branch_fn *point,
+                         dal_continuation_report *rep, void *ctx);
+
+// ---------------------------------------------------------------------------------------------
+// Lyapunov exponents
+
+/// Options of dal_lyapunov. Always start from dal_lyapunov_default_opts().
+typedef struct dal_lyapunov_opts {
+  int magic;         ///< set by dal_lyapunov_default_opts; do not touch
+  int nexp;          ///< exponents wanted, 1 .. 2n (the largest ones); 0 (default): all 2n
+  double t_end;      ///< integrate from the state's t to t_end (> t); required
+  double transient;  ///< time discarded before the averages start (the tangent vectors align
+                     ///< with the leading directions meanwhile); 0
+  double renorm;     ///< time between QR reorthonormalizations (> 0); 1
+  dal_method method; ///< DAL_METHOD_DOPRI5 (adaptive, default) or DAL_METHOD_RK4 (fixed
+                     ///< step `h`); the others are DAL_E_UNSUPPORTED here
+  double rtol;       ///< DOPRI5: relative tolerance on trajectory and tangent vectors; 1e-10
+  double atol;       ///< DOPRI5: absolute tolerance; 1e-10
+  double h;          ///< RK4 step (> 0; renorm is rounded to a whole number of steps); 1e-3
+  const double *y0;  ///< NULL (default): the tangent vectors start as the first nexp unit
+                     ///< vectors of y = (q, qdot); else nexp initial vectors (2n each,
+                     ///< column-major 2n x nexp), which must be linearly independent
+  int nblocks;       ///< blocks of the convergence estimate (>= 2); 10
+  long max_steps;    ///< steps at most; 10000000
+} dal_lyapunov_opts;
+
+/// Fill *o with the defaults (see the fields); t_end must still be set.
+DAL_API void dal_lyapunov_default_opts(dal_lyapunov_opts *o);
+
+/// Called after every reorthonormalization that lies past the transient: time t and the
+/// running estimates (nexp, largest first), valid during the call. Return 0 to continue,
+/// non-zero to stop (dal_lyapunov then returns DAL_OK with the estimates so far).
+typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *ctx);
+
+/// Lyapunov exponents by the method of Benettin, Galgani, Giorgilli and Strelcyn (Meccanica
+/// 15, 1980): the trajectory y(t) and nexp tangent vectors Y' = (df/dy) Y (the exact tangent,
+/// see dal_flow_jacobian) are integrated together; every `renorm` time units Y is
+/// reorthonormalized by a QR factorization (LAPACK dgeqrf) and log |R_ii| accumulated; after
+/// the transient, exponents[i] = (sum of log |R_ii|) / (elapsed time), largest first.
+///  exponents (nexp, caller-owned): the estimates (1/time).
+///  errors (nexp, may be NULL): convergence estimate of each, the standard error of the
+///    mean of the exponents over `nblocks` equal blocks of the averaging time
+///    (std / sqrt(nblocks)); it measures the scatter of finite-time exponents, not a bias
+///    that decays like 1/time (e.g. the initial alignment; raise `transient` for that).
+///  monitor (may be NULL): called after each reorthonormalization past the transient.
+/// On return the state holds the end of the trajectory (evaluated). Units: 1/time.
+/// Returns DAL_OK; DAL_E_ARG (options, nexp, a dependent y0); DAL_E_UNSUPPORTED (method, or
+/// see the file comment); DAL_E_STEP (DOPRI5 step size underflow) / DAL_E_MAXSTEPS; the
+/// statuses of dal_flow_jacobian at the failing time.
+DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
+                         double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
+
+#ifdef __cplusplus
+}
+#endif
+#endif
