@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "solve_internal.h"
+#include "symplectic.h"
 
 void dal_solve_default_opts(dal_solve_opts *o) {
   if (!o) return;
@@ -40,6 +41,18 @@ const char *dal_method_name(dal_method m) {
     return "adams";
   case DAL_METHOD_BDF:
     return "bdf";
+  case DAL_METHOD_VARIATIONAL:
+    return "variational";
+  case DAL_METHOD_VARIATIONAL4:
+    return "variational4";
+  case DAL_METHOD_VARIATIONAL6:
+    return "variational6";
+  case DAL_METHOD_RATTLE:
+    return "rattle";
+  case DAL_METHOD_RATTLE4:
+    return "rattle4";
+  case DAL_METHOD_RATTLE6:
+    return "rattle6";
   }
   return "unknown";
 }
@@ -292,7 +305,7 @@ static int check_opts(dal_state *st, const dal_solve_opts *o) {
     return DAL_FAIL(st, DAL_E_ARG,
                     "solve options were not initialized: call dal_solve_default_opts(&opts) "
                     "before setting fields");
-  if ((int)o->method < DAL_METHOD_AUTO || (int)o->method > DAL_METHOD_BDF)
+  if ((int)o->method < DAL_METHOD_AUTO || (int)o->method > DAL_METHOD_RATTLE6)
     return DAL_FAIL(st, DAL_E_ARG, "opts.method = %d is not a dal_method", (int)o->method);
   if ((int)o->form < DAL_FORM_AUTO || (int)o->form > DAL_FORM_INDEX3)
     return DAL_FAIL(st, DAL_E_ARG, "opts.form = %d is not a dal_formulation", (int)o->form);
@@ -365,6 +378,10 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
                    const dal_ode_problem **prob) {
   dal_formulation form = o->form;
   dal_method m = o->method;
+  if (dal__symplectic_method(m)) {
+    *meth = m;
+    return dal__symplectic_resolve(sys, st, o, m, prob);
+  }
   if (form == DAL_FORM_AUTO) form = sys->m ? DAL_FORM_GGL : DAL_FORM_ODE;
   if (form == DAL_FORM_INDEX1 && sys->m == 0) form = DAL_FORM_ODE;
   if (form == DAL_FORM_ODE && sys->m > 0)
@@ -447,6 +464,14 @@ static int ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts
     break;
   case DAL_METHOD_RK4:
     rc = dal__rk4_create(ig);
+    break;
+  case DAL_METHOD_VARIATIONAL:
+  case DAL_METHOD_VARIATIONAL4:
+  case DAL_METHOD_VARIATIONAL6:
+  case DAL_METHOD_RATTLE:
+  case DAL_METHOD_RATTLE4:
+  case DAL_METHOD_RATTLE6:
+    rc = dal__symplectic_create(ig);
     break;
   default:
     rc =
