@@ -35,13 +35,13 @@ extern "C" {
 /// 16 x rtol for rtol = 1e-4 ... 1e-12 (worst factors 12, 7, 6, 11, 15; tests allow 100).
 /// Ill-conditioned problems (chaos, near-separatrix motion) amplify local errors further.
 typedef enum dal_method {
-  DAL_METHOD_AUTO = 0,   ///< pick by formulation and tolerance (rule above)
-  DAL_METHOD_DOPRI5,     ///< Dormand-Prince 5(4), adaptive explicit RK (ARKODE ERKStep)
-  DAL_METHOD_FEHLBERG78, ///< Fehlberg 7(8), adaptive explicit RK of order 8 (ARKODE ERKStep)
-  DAL_METHOD_BS,         ///< Gragg-Bulirsch-Stoer extrapolation with order/step control
-  DAL_METHOD_RK4,        ///< classical RK4 at the fixed step opts.fixed_step
-  DAL_METHOD_ADAMS,      ///< variable-order Adams-Moulton (CVODE, fixed-point iteration)
-  DAL_METHOD_BDF,        ///< variable-order BDF (CVODE for ODEs, IDA for DAEs), stiff scenes
+  DAL_METHOD_AUTO = 0,     ///< pick by formulation and tolerance (rule above)
+  DAL_METHOD_DOPRI5,       ///< Dormand-Prince 5(4), adaptive explicit RK (ARKODE ERKStep)
+  DAL_METHOD_FEHLBERG78,   ///< Fehlberg 7(8), adaptive explicit RK of order 8 (ARKODE ERKStep)
+  DAL_METHOD_BS,           ///< Gragg-Bulirsch-Stoer extrapolation with order/step control
+  DAL_METHOD_RK4,          ///< classical RK4 at the fixed step opts.fixed_step
+  DAL_METHOD_ADAMS,        ///< variable-order Adams-Moulton (CVODE, fixed-point iteration)
+  DAL_METHOD_BDF,          ///< variable-order BDF (CVODE for ODEs, IDA for DAEs), stiff scenes
   DAL_METHOD_VARIATIONAL,  ///< variational midpoint integrator, minimal coordinates, order 2
                            ///< (symplectic, fixed step opts.fixed_step; see below)
   DAL_METHOD_VARIATIONAL4, ///< its symmetric composition of order 4 (Yoshida triple jump)
