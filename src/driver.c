@@ -8,6 +8,7 @@
 
 #include "dae_internal.h"
 #include "solve_internal.h"
+#include "symplectic.h"
 
 // ---------------------------------------------------------------------------------------------
 // integrator handle kept in the state
@@ -42,6 +43,10 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
                    const dal_ode_problem **prob) {
   dal_formulation form = o->form;
   dal_method m = o->method;
+  if (dal__symplectic_method(m)) {
+    *meth = m;
+    return dal__symplectic_resolve(sys, st, o, m, prob);
+  }
   if (form == DAL_FORM_AUTO) form = sys->m ? DAL_FORM_GGL : DAL_FORM_ODE;
   if (form == DAL_FORM_INDEX1 && sys->m == 0) form = DAL_FORM_ODE;
   if (form == DAL_FORM_ODE && sys->m > 0)

@@ -4,6 +4,7 @@
 #include <stddef.h>
 
 #include "solve_internal.h"
+#include "symplectic.h"
 
 static const dal_method_row rows[] = {
     {DAL_METHOD_AUTO, "auto", 1.0, NULL, 0},
@@ -13,6 +14,13 @@ static const dal_method_row rows[] = {
     {DAL_METHOD_RK4, "rk4", 1.0, dal__rk4_create, 0},
     {DAL_METHOD_ADAMS, "adams", 0.01, dal__cvode_create, 0},
     {DAL_METHOD_BDF, "bdf", 0.0005, dal__cvode_create, 1},
+    // fixed-step structure-preserving methods (ode_symplectic.c): no error control
+    {DAL_METHOD_VARIATIONAL, "variational", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_VARIATIONAL4, "variational4", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_VARIATIONAL6, "variational6", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_RATTLE, "rattle", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_RATTLE4, "rattle4", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_RATTLE6, "rattle6", 1.0, dal__symplectic_create, 0},
 };
 
 const dal_method_row *dal__method_row(dal_method m) {

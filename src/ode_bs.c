@@ -12,6 +12,9 @@
 // hope for convergence in line k+1"; the stability check of the first two columns and the
 // initial order k = 0.6 (-log10 rtol) + 1.5 follow the description of the code ODEX there.
 // No smoothing step. Written for this library from the book's description.
+// Round-off: the midpoint rule and the extrapolation run on increments z - y (whose rounding
+// is relative to the increment, not to y), and the accepted increment is added to y by
+// compensated (Kahan) summation, so that round-off does not accumulate linearly in the steps.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -27,12 +30,14 @@
 enum { BS_ACCEPT = 0, BS_REJECT = 2, BS_UNSTABLE = 3 };
 
 typedef struct bs_mem {
-  double *f0;      // f(t, y) at the start of the step (ny)
-  int f0_ok;       // f0 belongs to (ig->t, ig->y)
-  double *za, *zb; // midpoint rule iterates (ny)
-  double *fz;      // f at a midpoint iterate (ny)
-  double *T;       // extrapolation tableau, one row: T[(l-1) ny + i] (BS_KMAX x ny)
-  double *ynew;    // accepted value (ny)
+  double *f0;       // f(t, y) at the start of the step (ny)
+  int f0_ok;        // f0 belongs to (ig->t, ig->y)
+  double *za, *zb;  // midpoint rule iterates (ny)
+  double *fz;       // f at a midpoint iterate (ny)
+  double *T;        // extrapolation tableau, one row: T[(l-1) ny + i] (BS_KMAX x ny)
+  double *ynew;     // accepted value (ny)
+  double *c, *cnew; // compensation of ig->y and of ynew (ny each)
+  double *yz;       // y + increment, where f is evaluated (ny)
   int nseq[BS_KMAX + 2];
   double A[BS_KMAX + 2];    // work A_j (9.26)
   double hopt[BS_KMAX + 2]; // optimal step of column j (9.25)
@@ -53,6 +58,9 @@ static void bs_free(void *p) {
   free(m->fz);
   free(m->T);
   free(m->ynew);
+  free(m->c);
+  free(m->cnew);
+  free(m->yz);
   free(m);
 }
 
@@ -67,17 +75,20 @@ static double wnorm(const dal_ode_integ *ig, const double *v, const double *y) {
 }
 
 // column j: T_{j,1} by Gragg's midpoint rule with n_j sub-steps over [t, t + H], then the
-// extrapolated row T_{j,2..j}; returns 0, BS_UNSTABLE (stability check) or the rhs code
+// extrapolated row T_{j,2..j}, all as increments over y; returns 0, BS_UNSTABLE (stability
+// check) or the rhs code
 static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
   int ny = ig->ny, n = m->nseq[j], rc;
   double h = H / n, *z0 = m->za, *z1 = m->zb;
   const double *y = ig->y;
   for (int i = 0; i < ny; ++i) {
-    z0[i] = y[i];
-    z1[i] = y[i] + h * m->f0[i];
+    z0[i] = 0.0;
+    z1[i] = h * m->f0[i];
   }
   for (int s = 1; s < n; ++s) {
-    if ((rc = dal__ode_rhs(ig, t + s * h, z1, m->fz)) != 0) return rc;
+    for (int i = 0; i < ny; ++i)
+      m->yz[i] = y[i] + z1[i];
+    if ((rc = dal__ode_rhs(ig, t + s * h, m->yz, m->fz)) != 0) return rc;
     if (s == 1 && j <= 2) {
       // stability check: f must not change by more than twice its size over one sub-step
       double del1 = 0.0, del2 = 0.0;
@@ -120,7 +131,7 @@ static void bs_estimate(dal_ode_integ *ig, bs_mem *m, double H, int j) {
   const double *Tjj = m->T + (size_t)(j - 1) * ny, *Tj1 = m->T + (size_t)(j - 2) * ny;
   double s = 0.0;
   for (int i = 0; i < ny; ++i) {
-    double sc = ig->atol + ig->rtol * fmax(fabs(ig->y[i]), fabs(Tjj[i]));
+    double sc = ig->atol + ig->rtol * fmax(fabs(ig->y[i]), fabs(ig->y[i] + Tjj[i]));
     double e = (Tjj[i] - Tj1[i]) / sc;
     ig->ewt[i] = e; // kept to name the dominating variable
     s += e * e;
@@ -196,7 +207,13 @@ static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
       reject = !accept;
     }
     if (accept) {
-      memcpy(m->ynew, m->T + (size_t)(j - 1) * ig->ny, (size_t)ig->ny * sizeof(double));
+      // y + increment, compensated
+      const double *Tj = m->T + (size_t)(j - 1) * ig->ny;
+      for (int i = 0; i < ig->ny; ++i) {
+        double yv = Tj[i] - m->c[i], sum = ig->y[i] + yv;
+        m->cnew[i] = (sum - ig->y[i]) - yv;
+        m->ynew[i] = sum;
+      }
       *kc = j;
       return BS_ACCEPT;
     }
@@ -315,7 +332,13 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     m->rejected_last = 0;
     nrej = 0;
     m->f0_ok = 0;
-    if ((rc = dal__ode_accept(ig, last ? tout : ig->t + H, m->ynew, NULL)) != 0) return rc;
+    int projected = 0;
+    if ((rc = dal__ode_accept(ig, last ? tout : ig->t + H, m->ynew, &projected)) != 0) return rc;
+    // the compensation belongs to the accepted sum (a projection starts a new one)
+    double *sw = m->c;
+    m->c = m->cnew;
+    m->cnew = sw;
+    if (projected) memset(m->c, 0, (size_t)ig->ny * sizeof(double));
   }
   return DAL_OK;
 }
@@ -333,7 +356,10 @@ int dal__bs_create(dal_ode_integ *ig) {
   m->fz = calloc(ny, sizeof(double));
   m->ynew = calloc(ny, sizeof(double));
   m->T = calloc(BS_KMAX * ny, sizeof(double));
-  if (!m->f0 || !m->za || !m->zb || !m->fz || !m->ynew || !m->T)
+  m->c = calloc(ny, sizeof(double));
+  m->cnew = calloc(ny, sizeof(double));
+  m->yz = calloc(ny, sizeof(double));
+  if (!m->f0 || !m->za || !m->zb || !m->fz || !m->ynew || !m->T || !m->c || !m->cnew || !m->yz)
     return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
   // step numbers n_j = 2j and work A_1 = n_1 + 1, A_j = A_{j-1} + n_j
   for (int j = 1; j <= BS_KMAX + 1; ++j)

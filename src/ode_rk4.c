@@ -2,7 +2,9 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Classical fourth-order Runge-Kutta at the fixed step opts.fixed_step (Kutta 1901; Hairer-
 // Norsett-Wanner, Solving ODEs I, sec. II.1, Table 1.2 left). A step whose right-hand side
-// asks for a smaller step is redone as two halves, recursively.
+// asks for a smaller step is redone as two halves, recursively. The solution is updated by
+// compensated (Kahan) summation of the increments (Hairer-Norsett-Wanner I, sec. II.10,
+// "round-off error"), so that round-off does not accumulate linearly over many small steps.
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -14,7 +16,16 @@
 
 typedef struct rk4_mem {
   double *k1, *k2, *k3, *k4, *yt, *y1; // ny each
+  double *c, *c1; // compensation of ig->y and of the step's result y1 (ny each)
 } rk4_mem;
+
+// x + d by compensated summation (Kahan): c holds the negated rounding error of the running
+// sum x and is fed back into the next addition
+static inline void ksum(double *x, double *c, double d) {
+  double y = d - *c, s = *x + y;
+  *c = (s - *x) - y;
+  *x = s;
+}
 
 static void rk4_free(void *p) {
   rk4_mem *m = p;
@@ -25,6 +36,8 @@ static void rk4_free(void *p) {
   free(m->k4);
   free(m->yt);
   free(m->y1);
+  free(m->c);
+  free(m->c1);
   free(m);
 }
 
@@ -42,8 +55,11 @@ static int rk4_step(dal_ode_integ *ig, rk4_mem *m, double t, const double *y, do
   for (int i = 0; i < ny; ++i)
     m->yt[i] = y[i] + h * m->k3[i];
   if ((rc = dal__ode_rhs(ig, t + h, m->yt, m->k4)) != 0) return rc;
-  for (int i = 0; i < ny; ++i)
-    y1[i] = y[i] + h / 6.0 * (m->k1[i] + 2.0 * (m->k2[i] + m->k3[i]) + m->k4[i]);
+  for (int i = 0; i < ny; ++i) {
+    y1[i] = y[i];
+    m->c1[i] = m->c[i];
+    ksum(&y1[i], &m->c1[i], h / 6.0 * (m->k1[i] + 2.0 * (m->k2[i] + m->k3[i]) + m->k4[i]));
+  }
   return DAL_OK;
 }
 
@@ -78,7 +94,13 @@ static int rk4_advance(dal_ode_integ *ig, double tout) {
                            "%s; stopped at t=%.17g (last accepted step) before the target "
                            "t=%.17g",
                            ig->rhs_err, ig->t, tout);
-    if ((rc = dal__ode_accept(ig, tn, m->y1, NULL)) != 0) return rc;
+    int projected = 0;
+    if ((rc = dal__ode_accept(ig, tn, m->y1, &projected)) != 0) return rc;
+    // the compensation belongs to the accepted sum (a projection starts a new one)
+    double *sw = m->c;
+    m->c = m->c1;
+    m->c1 = sw;
+    if (projected) memset(m->c, 0, (size_t)ig->ny * sizeof(double));
   }
   return DAL_OK;
 }
@@ -96,7 +118,9 @@ int dal__rk4_create(dal_ode_integ *ig) {
   m->k4 = calloc(ny, sizeof(double));
   m->yt = calloc(ny, sizeof(double));
   m->y1 = calloc(ny, sizeof(double));
-  if (!m->k1 || !m->k2 || !m->k3 || !m->k4 || !m->yt || !m->y1)
+  m->c = calloc(ny, sizeof(double));
+  m->c1 = calloc(ny, sizeof(double));
+  if (!m->k1 || !m->k2 || !m->k3 || !m->k4 || !m->yt || !m->y1 || !m->c || !m->c1)
     return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the RK4 integrator");
   return DAL_OK;
 }

@@ -51,7 +51,7 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
     return DAL_FAIL(st, DAL_E_ARG,
                     "solve options were not initialized: call dal_solve_default_opts(&opts) "
                     "before setting fields");
-  if ((int)o->method < DAL_METHOD_AUTO || (int)o->method > DAL_METHOD_BDF)
+  if ((int)o->method < DAL_METHOD_AUTO || (int)o->method > DAL_METHOD_RATTLE6)
     return DAL_FAIL(st, DAL_E_ARG, "opts.method = %d is not a dal_method", (int)o->method);
   if ((int)o->form < DAL_FORM_AUTO || (int)o->form > DAL_FORM_INDEX3)
     return DAL_FAIL(st, DAL_E_ARG, "opts.form = %d is not a dal_formulation", (int)o->form);

@@ -35,13 +35,21 @@ extern "C" {
 /// 16 x rtol for rtol = 1e-4 ... 1e-12 (worst factors 12, 7, 6, 11, 15; tests allow 100).
 /// Ill-conditioned problems (chaos, near-separatrix motion) amplify local errors further.
 typedef enum dal_method {
-  DAL_METHOD_AUTO = 0,   ///< pick by formulation and tolerance (rule above)
-  DAL_METHOD_DOPRI5,     ///< Dormand-Prince 5(4), adaptive explicit RK (ARKODE ERKStep)
-  DAL_METHOD_FEHLBERG78, ///< Fehlberg 7(8), adaptive explicit RK of order 8 (ARKODE ERKStep)
-  DAL_METHOD_BS,         ///< Gragg-Bulirsch-Stoer extrapolation with order/step control
-  DAL_METHOD_RK4,        ///< classical RK4 at the fixed step opts.fixed_step
-  DAL_METHOD_ADAMS,      ///< variable-order Adams-Moulton (CVODE, fixed-point iteration)
-  DAL_METHOD_BDF,        ///< variable-order BDF (CVODE for ODEs, IDA for DAEs), stiff scenes
+  DAL_METHOD_AUTO = 0,     ///< pick by formulation and tolerance (rule above)
+  DAL_METHOD_DOPRI5,       ///< Dormand-Prince 5(4), adaptive explicit RK (ARKODE ERKStep)
+  DAL_METHOD_FEHLBERG78,   ///< Fehlberg 7(8), adaptive explicit RK of order 8 (ARKODE ERKStep)
+  DAL_METHOD_BS,           ///< Gragg-Bulirsch-Stoer extrapolation with order/step control
+  DAL_METHOD_RK4,          ///< classical RK4 at the fixed step opts.fixed_step
+  DAL_METHOD_ADAMS,        ///< variable-order Adams-Moulton (CVODE, fixed-point iteration)
+  DAL_METHOD_BDF,          ///< variable-order BDF (CVODE for ODEs, IDA for DAEs), stiff scenes
+  DAL_METHOD_VARIATIONAL,  ///< variational midpoint integrator, minimal coordinates, order 2
+                           ///< (symplectic, fixed step opts.fixed_step; see below)
+  DAL_METHOD_VARIATIONAL4, ///< its symmetric composition of order 4 (Yoshida triple jump)
+  DAL_METHOD_VARIATIONAL6, ///< its symmetric composition of order 6 (Kahan-Li, 9 stages)
+  DAL_METHOD_RATTLE,       ///< RATTLE, Cartesian particles with constraints, order 2
+                           ///< (symplectic, fixed step opts.fixed_step; see below)
+  DAL_METHOD_RATTLE4,      ///< RATTLE composed to order 4 (triple jump)
+  DAL_METHOD_RATTLE6,      ///< RATTLE composed to order 6 (Kahan-Li, 9 stages)
 } dal_method;
 
 /// Formulations of the equations of motion.
@@ -72,7 +80,8 @@ typedef struct dal_solve_opts {
   double h0;                  ///< initial step (0: automatic)
   double hmin;                ///< minimum step (0: none)
   double hmax;                ///< maximum step (0: none)
-  double fixed_step;          ///< step of DAL_METHOD_RK4 (> 0), default 1e-3
+  double fixed_step;          ///< step of DAL_METHOD_RK4 and of the symplectic methods (> 0),
+                              ///< default 1e-3
   long max_steps;             ///< maximum steps per advance call, default 1000000
   double baumgarte_alpha;     ///< INDEX1: damping of G v + dphi/dt (1/s), default 0 (off)
   double baumgarte_beta;      ///< INDEX1: frequency on phi (1/s; term beta^2 phi, dae.h), 0
@@ -86,7 +95,8 @@ typedef struct dal_solve_opts {
 /// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 1e-10.
 DAL_API void dal_solve_default_opts(dal_solve_opts *o);
 
-/// Short name of a method ("dopri5", "fehlberg78", "bs", "rk4", "adams", "bdf", "auto").
+/// Short name of a method ("dopri5", "fehlberg78", "bs", "rk4", "adams", "bdf", "variational",
+/// "variational4", "variational6", "rattle", "rattle4", "rattle6", "auto").
 DAL_API const char *dal_method_name(dal_method m);
 /// Short name of a formulation ("ode", "ggl", "index1", "index3", "auto").
 DAL_API const char *dal_formulation_name(dal_formulation f);
@@ -104,6 +114,10 @@ typedef struct dal_stats {
   double rtol_used;  ///< local relative tolerance the integrator runs at: the calibrated
                      ///< factor times opts.rtol, raised to the method's floor when the
                      ///< request is tighter than it can honour (the clamp is visible here)
+  double max_phi;    ///< RATTLE: largest position residual max |phi| at an accepted step
+                     ///< (length units; 0 for the other methods)
+  double max_phidot; ///< RATTLE: largest velocity residual max |G v + dphi/dt| at an accepted
+                     ///< step (length/time; 0 for the other methods)
 } dal_stats;
 
 /// Statistics of the state's integration so far.
