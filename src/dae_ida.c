@@ -140,6 +140,10 @@ static void load_y(ida_mem *w) {
   if (m) memcpy(y + w->off_l, st->lambda, (size_t)m * sizeof(double));
   memcpy(yp, st->qdot, (size_t)n * sizeof(double));
   memcpy(yp + n, st->qddot, (size_t)n * sizeof(double));
+  if (w->f.off_w >= 0) {
+    y[w->f.off_w] = st->W;
+    yp[w->f.off_w] = st->power; // the start is evaluated with DAL_P_ALL (power included)
+  }
 }
 
 #define IDA_CHECK(call)                                                                            \
@@ -178,7 +182,8 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   w->sys = sys;
   w->st = st;
   w->opts = *opts;
-  if (dal__dae_init(&w->f, sys, st, form, opts->baumgarte_alpha, opts->baumgarte_beta)) {
+  if (dal__dae_init(&w->f, sys, st, form, opts->baumgarte_alpha, opts->baumgarte_beta,
+                    opts->work)) {
     free(w);
     return DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory");
   }
@@ -301,6 +306,7 @@ static void update_stats(ida_mem *w, int flag) {
 // the state at (t, y) evaluated as after dal_forward
 static int finish_state(ida_mem *w, double t, const double *y) {
   dal_state *st = w->st;
+  if (w->f.off_w >= 0) st->W = y[w->f.off_w];
   st->t = t;
   memcpy(st->q, y, (size_t)w->n * sizeof(double));
   memcpy(st->qdot, y + w->n, (size_t)w->n * sizeof(double));

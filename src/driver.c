@@ -43,7 +43,16 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
                    const dal_ode_problem **prob) {
   dal_formulation form = o->form;
   dal_method m = o->method;
+  if (o->work && sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "opts.work: a Lagrangian-only system has no forces or constraints whose work "
+                    "could be tracked; its energy function is dal_energies.h (unset opts.work)");
   if (dal__symplectic_method(m)) {
+    if (o->work)
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "opts.work is not supported by the fixed-step method '%s' (its energy "
+                      "error is bounded by construction); use an adaptive method to track W",
+                      dal_method_name(m));
     *meth = m;
     return dal__symplectic_resolve(sys, st, o, m, prob);
   }
@@ -149,8 +158,8 @@ static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts
     rc = ig->advance(ig, t1);
     if (!rc) {
       // the state at t1, evaluated there
-      ig->prob->to_state(sys, st, ig->t, ig->y);
-      rc = dal__public_status(ig->prob->rhs(sys, st, &ig->opts, ig->t, ig->y, ig->ydot, DAL_P_ALL));
+      dal__ode_to_state(ig, ig->t, ig->y);
+      rc = dal__public_status(dal__ode_eval(ig, ig->t, ig->y, ig->ydot, DAL_P_ALL));
     }
   } else {
     rc = dal__public_status(dal__ida_advance(sys, st, h->ida, t1));

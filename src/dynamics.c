@@ -52,7 +52,9 @@ static int direction(const dal_system *sys, dal_state *st, const double *ra, con
 }
 
 // applied Cartesian forces F (N x d) and their potential energy
-static int applied_forces(const dal_system *sys, dal_state *st, double *U) {
+// pw (nullable): pw[0] += power of the non-conservative forces (dampers, force callbacks),
+// pw[1] += explicit time derivative of the potential energy (moving spring anchors, U(r,t))
+static int applied_forces(const dal_system *sys, dal_state *st, double *U, double *pw) {
   int d = sys->dim, N = sys->N, rc;
   memset(st->F, 0, (size_t)N * (size_t)d * sizeof(double));
   *U = 0.0;
@@ -78,14 +80,22 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U) {
     }
     // e points from the other end to particle a
     if ((rc = direction(sys, st, ra, rb, e, &len, l, kind)) != 0) return rc;
-    double f;
+    double f, ev = 0.0; // ev: e . (v_a - v_other)
+    for (int b = 0; b < d; ++b) ev += (vb[b] - vra[b]) * e[b];
     if (spring) {
       f = l->k * (len - l->L);
       *U += 0.5 * l->k * (len - l->L) * (len - l->L);
+      // a moving anchor changes U explicitly: dU/dt = -f e . xdot_anchor
+      if (pw && l->b < 0)
+        for (int b = 0; b < d; ++b) pw[1] -= f * e[b] * vra[b];
     } else {
-      double rel = 0.0;
-      for (int b = 0; b < d; ++b) rel += (vb[b] - vra[b]) * e[b];
-      f = l->k * rel;
+      f = l->k * ev;
+      // the damper's power on the particles (an anchor's motion is external)
+      if (pw) {
+        double s = 0.0;
+        for (int b = 0; b < d; ++b) s += e[b] * (vb[b] - (l->b >= 0 ? vra[b] : 0.0));
+        pw[0] -= f * s;
+      }
     }
     for (int b = 0; b < d; ++b) {
       st->F[l->a * d + b] -= f * e[b];
@@ -109,17 +119,23 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U) {
                         i, st->t, sys->part_names[j / d], j % d);
       st->F[j] -= Uj.d;
     }
-    if (Nd == 0) {
-      rc = sys->potr[i].fn.potr(st->jr, dal_const(st->t), &Uj, sys->potr[i].ctx);
+    if (Nd == 0 || pw) {
+      // the value, and its explicit time derivative when the power is asked for
+      rc = sys->potr[i].fn.potr(st->jr, dal_var(st->t, pw ? 1.0 : 0.0), &Uj, sys->potr[i].ctx);
       if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
+      if (pw) pw[1] += Uj.d;
     }
     *U += Uj.v;
   }
   // user Cartesian forces
+  double *F0 = st->cf; // scratch (Nd): forces before the callbacks, for their power
+  if (pw && sys->nforce) memcpy(F0, st->F, (size_t)Nd * sizeof(double));
   for (int i = 0; i < sys->nforce; ++i) {
     rc = sys->forces[i].fn.force(st->t, st->r, st->v, st->F, sys->forces[i].ctx);
     if (rc) return dal__cb_status(st, rc, "force callback");
   }
+  if (pw && sys->nforce)
+    for (int j = 0; j < Nd; ++j) pw[0] += (st->F[j] - F0[j]) * st->v[j];
   for (int j = 0; j < Nd; ++j)
     if (!isfinite(st->F[j]))
       return DAL_FAIL(st, DAL_E_NONFINITE,
@@ -129,8 +145,9 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U) {
   return DAL_OK;
 }
 
-// generalized terms from user callbacks over q: Q += Q_user - dU/dq, U += U(q)
-int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
+// generalized terms from user callbacks over q: Q += Q_user - dU/dq, U += U(q); pw as in
+// applied_forces (Q_user . qdot and dU(q,t)/dt)
+int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) {
   int n = sys->n, rc;
   for (int i = 0; i < sys->npotq; ++i) {
     dal_jet Uj = dal_const(0.0);
@@ -147,11 +164,24 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
                         i, st->t, sys->coord_names[j]);
       st->Q[j] -= Uj.d;
     }
+    if (pw || n == 0) {
+      for (int j = 0; j < n; ++j) st->jq[j] = dal_const(st->q[j]);
+      rc = sys->potq[i].fn.potq(st->jq, dal_var(st->t, 1.0), &Uj, sys->potq[i].ctx);
+      if (rc) return dal__cb_status(st, rc, "potential U(q,t)");
+      if (pw) pw[1] += Uj.d;
+    }
     *U += Uj.v;
   }
+  double qv0 = 0.0; // Q . qdot before the callbacks, for their power
+  for (int j = 0; j < n && pw && sys->ngenforce; ++j) qv0 += st->Q[j] * st->qdot[j];
   for (int i = 0; i < sys->ngenforce; ++i) {
     rc = sys->genforces[i].fn.gen(st->t, st->q, st->qdot, st->Q, sys->genforces[i].ctx);
     if (rc) return dal__cb_status(st, rc, "generalized force callback");
+  }
+  if (pw && sys->ngenforce) {
+    double qv = 0.0;
+    for (int j = 0; j < n; ++j) qv += st->Q[j] * st->qdot[j];
+    pw[0] += qv - qv0;
   }
   for (int j = 0; j < n; ++j)
     if (!isfinite(st->Q[j]))
@@ -234,7 +264,7 @@ static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
   }
 }
 
-int dal__dynamics(const dal_system *sys, dal_state *st, int want_M) {
+int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) {
   int d = sys->dim, n = sys->n, rc;
   DAL_NEED(st, DAL_P_KIN);
   want_M = sys->dense_M ? want_M : 0;
@@ -242,7 +272,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M) {
   memset(st->Q, 0, (size_t)n * sizeof(double));
   memset(st->c, 0, (size_t)n * sizeof(double));
   if (sys->N > 0) {
-    rc = applied_forces(sys, st, &U);
+    rc = applied_forces(sys, st, &U, pw);
     if (rc) return rc;
   }
   // Q = sum J_k' F_k, c = sum m_k J_k' gamma_k, M = sum m_k J_k' J_k (over dependencies)
@@ -284,7 +314,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M) {
       T0 += 0.5 * m * rt * rt;
     }
   }
-  rc = dal__genforces(sys, st, &U);
+  rc = dal__genforces(sys, st, &U, pw);
   if (rc) return rc;
   st->en.T = T;
   st->en.U = U;
@@ -347,7 +377,7 @@ int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
   return DAL_OK;
 }
 
-void dal__finish(const dal_system *sys, dal_state *st) {
+int dal__finish(const dal_system *sys, dal_state *st) {
   int d = sys->dim;
   DAL_NEED(st, DAL_P_KIN | DAL_P_DYN | DAL_P_ACC);
   for (int k = 0; k < sys->N; ++k) {
@@ -373,5 +403,19 @@ void dal__finish(const dal_system *sys, dal_state *st) {
       st->N[k * d + a] = sys->mass[k] * s - st->F[k * d + a];
     }
   }
+  // explicit time derivatives of the constraint rows, exactly (along t only); h is the
+  // Jacobi integral only when none depends on t (state.h)
+  int moving = 0;
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    int rc = dal__prim_eval(sys, st, -1 - ci, NULL, NULL, 1.0);
+    if (rc) return rc;
+    const dal_con *c = &sys->con[ci];
+    for (int r = 0; r < c->prim->nout; ++r) {
+      st->phit[c->row + r] = st->jout[r].d;
+      moving |= st->jout[r].d != 0.0;
+    }
+  }
+  if (moving) st->en.h = NAN;
   st->have |= DAL_P_OUT;
+  return DAL_OK;
 }

@@ -34,10 +34,22 @@ static int eval_lagrangian(const dal_system *sys, dal_state *st) {
   return DAL_OK;
 }
 
+void dal__power(const dal_system *sys, dal_state *st) {
+  DAL_NEED(st, DAL_P_OUT | DAL_P_PW);
+  // reactions of moving maps and multipliers of moving constraints do work; fixed ones do not
+  double p = st->pw[0] + st->pw[1];
+  for (int i = 0; i < sys->N * sys->dim; ++i) p += st->N[i] * st->drdt[i];
+  for (int r = 0; r < sys->m; ++r) p -= st->lambda[r] * st->phit[r];
+  st->power = p;
+  st->have |= DAL_P_POW;
+}
+
 int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   int m = sys->m, rc;
   st->have = 0;
   if (sys->lag) return eval_lagrangian(sys, st);
+  if (need & DAL_P_POW) need |= DAL_P_OUT | DAL_P_PW;
+  if (need & DAL_P_PW) need |= DAL_P_DYN;
   // what each product needs: outputs need accelerations; accelerations need forces and M
   // (Cholesky when m = 0, or the KKT system, whose dense form reads the lower M and whose
   // sparse form reads J); constraint rows need J
@@ -54,13 +66,16 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   if (need & DAL_P_CON) st->have |= DAL_P_CON;
   if (need & DAL_P_DYN) {
     int want_M = (need & DAL_P_M) ? 2 : (need & DAL_P_MLOW) ? 1 : 0;
-    if ((rc = dal__dynamics(sys, st, want_M)) != 0) return rc;
+    st->pw[0] = st->pw[1] = 0.0;
+    if ((rc = dal__dynamics(sys, st, want_M, (need & DAL_P_PW) ? st->pw : NULL)) != 0) return rc;
+    if (need & DAL_P_PW) st->have |= DAL_P_PW;
   }
   if (need & DAL_P_ACC) {
     rc = m ? dal__solve_kkt(sys, st) : dal__solve_unconstrained(sys, st);
     if (rc) return rc;
     st->have |= DAL_P_ACC;
   }
-  if (need & DAL_P_OUT) dal__finish(sys, st);
+  if ((need & DAL_P_OUT) && (rc = dal__finish(sys, st)) != 0) return rc;
+  if (need & DAL_P_POW) dal__power(sys, st);
   return DAL_OK;
 }

@@ -20,7 +20,7 @@
 #include <string.h>
 
 int dal__dae_init(dal_dae *f, const dal_system *sys, dal_state *st, dal_formulation form,
-                  double alpha, double beta) {
+                  double alpha, double beta, int work) {
   memset(f, 0, sizeof *f);
   f->sys = sys;
   f->st = st;
@@ -32,6 +32,7 @@ int dal__dae_init(dal_dae *f, const dal_system *sys, dal_state *st, dal_formulat
   f->off_l = 2 * f->n;
   f->off_mu = form == DAL_FORM_GGL ? 2 * f->n + f->m : -1;
   f->neq = 2 * f->n + (form == DAL_FORM_GGL ? 2 : 1) * f->m;
+  f->off_w = work ? f->neq++ : -1;
   int max_dep = 1;
   for (int ci = 0; ci < sys->ncon; ++ci)
     if (sys->con[ci].ndep > max_dep) max_dep = sys->con[ci].ndep;
@@ -65,7 +66,8 @@ int dal__dae_eval(dal_dae *f, double t, const double *y) {
   memcpy(st->qdot, y + f->n, (size_t)f->n * sizeof(double));
   dal__state_moved(st);
   // the residual applies M through the particle Jacobians: no dense assembly
-  return dal__eval(f->sys, st, DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN);
+  return dal__eval(f->sys, st,
+                   DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN | (f->off_w >= 0 ? DAL_P_PW : 0u));
 }
 
 int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, double *F) {
@@ -107,6 +109,15 @@ int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, d
     for (int r = 0; r < m; ++r)
       Fl[r] += st->gphi[r] + 2.0 * f->alpha * st->phidot[r] + f->beta * f->beta * st->phi[r];
   }
+  if (f->off_w >= 0) {
+    // W' = dE/dt with the accelerations v' and multipliers lambda of this iterate
+    memcpy(st->qddot, vd, (size_t)n * sizeof(double));
+    if (m) memcpy(st->lambda, lam, (size_t)m * sizeof(double));
+    st->have |= DAL_P_ACC;
+    if ((rc = dal__finish(sys, st)) != 0) return rc;
+    dal__power(sys, st);
+    F[f->off_w] = yp[f->off_w] - st->power;
+  }
   return DAL_OK;
 }
 
@@ -127,7 +138,7 @@ void dal__dae_mask(const dal_dae *f, double *id) {
   // index-3 keeps only q in the error test, the usual practice for the higher-index variables
   // of a BDF code (Brenan, Campbell and Petzold, sec. 5.4): with v in it the steps collapse
   int nerr = (f->form == DAL_FORM_INDEX3 ? 1 : 2) * f->n;
-  for (int i = 0; i < f->neq; ++i) id[i] = i < nerr ? 1.0 : 0.0;
+  for (int i = 0; i < f->neq; ++i) id[i] = i < nerr || i == f->off_w ? 1.0 : 0.0;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -258,6 +269,8 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
   dal_state *st = f->st;
   int n = f->n, d = sys->dim, rc, values = s->mode >= DAL_SINK_SPARSE;
   double al = f->alpha, be = f->beta;
+  // W' - P: cj on the diagonal (dP/dy is left out: a Newton approximation)
+  if (f->off_w >= 0) jadd(f, s, f->off_w, f->off_w, cj);
   // q' and v in the q rows; cj M in the v rows
   for (int i = 0; i < n; ++i) {
     jadd(f, s, i, i, cj);

@@ -9,7 +9,7 @@
 #include "sparse.h"
 
 /// A DAE formulation on a system and a state (the state is its workspace).
-/// Unknowns y = (q, v, lambda[, mu]).
+/// Unknowns y = (q, v, lambda[, mu][, W]).
 typedef struct dal_dae {
   const dal_system *sys;
   dal_state *st;
@@ -17,6 +17,7 @@ typedef struct dal_dae {
   double alpha, beta;   ///< index-1 Baumgarte terms
   int n, m, neq;
   int off_l, off_mu;    ///< offsets of lambda and mu in y (mu: -1 unless GGL)
+  int off_w;            ///< offset of the work W (last unknown; -1 unless opts.work)
   dal_csc pat;          ///< pattern of the Newton matrix (after dal__dae_pattern)
   // geometric-stiffness scratch (max_in, max_out, largest constraint dependency count)
   double *H, *hv, *Ju, *tmp, *Hq, *dir, *udot, *g0;
@@ -34,7 +35,7 @@ enum { DAL_SINK_COUNT, DAL_SINK_KEYS, DAL_SINK_SPARSE, DAL_SINK_DENSE };
 
 /// Set up form f (sizes, scratch). Returns 0 or DAL_E_NOMEM.
 int dal__dae_init(dal_dae *f, const dal_system *sys, dal_state *st, dal_formulation form,
-                  double alpha, double beta);
+                  double alpha, double beta, int work);
 void dal__dae_free(dal_dae *f);
 /// The Newton matrix's pattern (f->pat). Returns 0 or -1 (out of memory).
 int dal__dae_pattern(dal_dae *f);

@@ -38,7 +38,10 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
     rc = dal__eval(sys, st, need | DAL_P_ACC);
   } else {
     // G qddot = -(gamma_phi + 2 alpha (G v + dphi/dt) + beta^2 phi)
-    rc = dal__eval(sys, st, (need & ~(DAL_P_ACC | DAL_P_OUT)) | DAL_P_CON | DAL_P_DYN | DAL_P_MLOW);
+    unsigned late = DAL_P_ACC | DAL_P_OUT | DAL_P_POW; // formed here, after the KKT solve
+    rc = dal__eval(sys, st,
+                   (need & ~late) | ((need & DAL_P_POW) ? DAL_P_PW : 0u) | DAL_P_CON | DAL_P_DYN |
+                       DAL_P_MLOW);
     double al = opts->baumgarte_alpha, be = opts->baumgarte_beta;
     double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
     if (rc == 0) rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "index-1 right-hand side");
@@ -49,7 +52,8 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
         b[r] = -(st->gphi[r] + 2.0 * al * st->phidot[r] + be * be * st->phi[r]);
       dal__kkt_solve(sys, st, a, b, st->qddot, st->lambda);
       st->have |= DAL_P_ACC;
-      if (need & DAL_P_OUT) dal__finish(sys, st);
+      if (need & (DAL_P_OUT | DAL_P_POW)) rc = dal__finish(sys, st);
+      if (rc == 0 && (need & DAL_P_POW)) dal__power(sys, st);
     }
   }
   if (rc) return rc;

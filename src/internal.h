@@ -141,9 +141,14 @@ enum {
   DAL_P_MLOW = 1u << 4, ///< lower triangle of the dense M (dense_M systems)
   DAL_P_M = 1u << 5,    ///< the whole dense M (symmetric)
   DAL_P_ACC = 1u << 6,  ///< qddot, and lambda when m > 0
-  DAL_P_OUT = 1u << 7,  ///< particle accelerations a and reactions N
+  DAL_P_OUT = 1u << 7,  ///< particle accelerations a and reactions N; phit; h (NaN when a
+                        ///< constraint depends on t explicitly)
+  DAL_P_PW = 1u << 8,   ///< st->pw: the forces' share of dE/dt (non-conservative power,
+                        ///< explicit dU/dt), formed with DAL_P_DYN
+  DAL_P_POW = 1u << 9,  ///< st->power = dE/dt from the forces and the moving constraints
   /// what a user reads after dal_forward: everything the system has
-  DAL_P_ALL = DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN | DAL_P_M | DAL_P_ACC | DAL_P_OUT,
+  DAL_P_ALL = DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN | DAL_P_M | DAL_P_ACC | DAL_P_OUT |
+              DAL_P_PW | DAL_P_POW,
 };
 /// a consumer reads product bits `p`: they must be current (debug builds check)
 #define DAL_NEED(st, p) DAL_ASSERT(((st)->have & (p)) == (p))
@@ -160,6 +165,11 @@ struct dal_state {
   double *Q, *c;            // n
   double *lambda, *phi, *phidot, *gphi, *G; // constraint outputs (m, m, m, m, compact)
   double *Gl;               // local constraint Jacobians (nout x nin per constraint, con_loff)
+  double *phit;             // explicit time derivatives of the constraint rows (m)
+  double pw[2];             // (DAL_P_PW) non-conservative power, explicit dU/dt
+  double power;             // (DAL_P_POW) dE/dt = P_nc + dU/dt|explicit + sum N_k . drdt_k
+                            // - lambda . phi_t: the power of everything that makes E change
+  double W;                 // work of that power since dal_state_set (opts.work runs)
   dal_energies en;
   unsigned have;            // products current for (t, q, qdot): DAL_P_* bits
   int tree;                 // (DAL_P_KIN) every parent link is a translation at this point
@@ -231,14 +241,18 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J);
 /// constraint phi, phidot, gamma_phi, compact G and local Jacobians (requires KIN and J)
 int dal__constraints(const dal_system *sys, dal_state *st);
 /// applied forces F, energies, Q, c and, when want_M, the dense M (lower triangle; mirrored
-/// when want_M > 1) (requires KIN, and J unless st->tree)
-int dal__dynamics(const dal_system *sys, dal_state *st, int want_M);
-/// generalized terms from user callbacks over q: Q += Q_user - dU/dq, *U += U(q)
-int dal__genforces(const dal_system *sys, dal_state *st, double *U);
+/// when want_M > 1) (requires KIN, and J unless st->tree). pw (nullable, 2): pw[0] += power of
+/// the non-conservative forces, pw[1] += explicit time derivative of the potential energy
+int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw);
+/// generalized terms from user callbacks over q: Q += Q_user - dU/dq, *U += U(q); pw as above
+int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw);
 /// qddot from M qddot = Q - c by Cholesky (m = 0); names degenerate coordinates
 int dal__solve_unconstrained(const dal_system *sys, dal_state *st);
-/// particle accelerations and reactions from qddot (requires KIN, ACC; J unless a tree)
-void dal__finish(const dal_system *sys, dal_state *st);
+/// particle accelerations and reactions from qddot, and the constraints' explicit time
+/// derivatives phit (h becomes NaN when one is non-zero) (requires KIN, ACC; J unless a tree)
+int dal__finish(const dal_system *sys, dal_state *st);
+/// st->power = dE/dt = pw[0] + pw[1] + sum_k N_k . drdt_k - lambda . phit (requires OUT, PW)
+void dal__power(const dal_system *sys, dal_state *st);
 /// Lagrangian route: A = d2L/dqdot2 (n x n col-major into A), rhs = dL/dq - X + Q_nc
 int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
                           double *h_out);

@@ -84,7 +84,7 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
   // non-conservative generalized forces (and any U(q,t))
   memset(st->Q, 0, (size_t)n * sizeof(double));
   double U = 0.0;
-  rc = dal__genforces(sys, st, &U);
+  rc = dal__genforces(sys, st, &U, NULL);
   if (rc) return rc;
   *h_out += U;
   for (int i = 0; i < n; ++i) rhs[i] += st->Q[i];

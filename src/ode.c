@@ -10,13 +10,30 @@
 
 #include "solve_internal.h"
 
+int dal__ode_eval(dal_ode_integ *ig, double t, const double *y, double *ydot, unsigned need) {
+  dal_state *st = ig->st;
+  int work = ig->opts.work != 0;
+  int rc = ig->prob->rhs(ig->sys, st, &ig->opts, t, y, ydot, need | (work ? DAL_P_POW : 0u));
+  if (rc == 0 && work) {
+    // W' = dE/dt from the forces and moving constraints (the last component of y)
+    st->W = y[ig->ny - 1];
+    ydot[ig->ny - 1] = st->power;
+  }
+  return rc;
+}
+
+void dal__ode_to_state(dal_ode_integ *ig, double t, const double *y) {
+  ig->prob->to_state(ig->sys, ig->st, t, y);
+  if (ig->opts.work) ig->st->W = y[ig->ny - 1];
+}
+
 int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot) {
   dal_state *st = ig->st;
   // after an unrecoverable failure nothing more is evaluated in this call: the integrator
   // stops at its last accepted step (some retry a failing right-hand side)
   if (ig->rhs_fatal) return ig->rhs_rc = ig->rhs_fatal;
   st->stats.rhs_evals++;
-  int rc = ig->prob->rhs(ig->sys, st, &ig->opts, t, y, ydot, DAL_P_ACC);
+  int rc = dal__ode_eval(ig, t, y, ydot, DAL_P_ACC);
   ig->rhs_rc = rc;
   if (rc) memcpy(ig->rhs_err, st->err, sizeof ig->rhs_err);
   if (rc < 0) ig->rhs_fatal = rc;
@@ -79,7 +96,7 @@ int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected
     // the variable that limits the steps: the fastest-changing one relative to its
     // tolerance, |y_i'| / (atol + rtol |y_i|), at the last accepted step
     char var[128] = "(not evaluated)";
-    if (ig->prob->rhs(ig->sys, st, &ig->opts, ig->t, ig->y, ig->ydot, DAL_P_ACC) == 0) {
+    if (dal__ode_eval(ig, ig->t, ig->y, ig->ydot, DAL_P_ACC) == 0) {
       for (int i = 0; i < ig->ny; ++i)
         ig->ewt[i] = ig->ydot[i] / (ig->atol + ig->rtol * fabs(ig->y[i]));
       dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
@@ -102,8 +119,8 @@ int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...) {
   va_end(ap);
   dal_state *st = ig->st;
   // back to the last accepted step, evaluated there
-  ig->prob->to_state(ig->sys, st, ig->t, ig->y);
-  int rc = ig->prob->rhs(ig->sys, st, &ig->opts, ig->t, ig->y, ig->ydot, DAL_P_ALL);
+  dal__ode_to_state(ig, ig->t, ig->y);
+  int rc = dal__ode_eval(ig, ig->t, ig->y, ig->ydot, DAL_P_ALL);
   if (rc) {
     char again[DAL_ERRMSG_LEN];
     memcpy(again, st->err, sizeof again);
@@ -123,6 +140,8 @@ const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t 
     snprintf(buf, len, "coordinate '%s'", ig->sys->coord_names[i]);
   else if (i >= n && i < 2 * n)
     snprintf(buf, len, "velocity of '%s'", ig->sys->coord_names[i - n]);
+  else if (ig->opts.work && i == ig->ny - 1)
+    snprintf(buf, len, "the work W of the forces and moving constraints (opts.work)");
   else
     snprintf(buf, len, "component %d of the ODE state", i);
   return buf;
@@ -161,7 +180,9 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->st = st;
   ig->opts = *o;
   ig->method = meth;
-  ig->ny = prob->size(sys);
+  // with opts.work the work W of the forces and moving constraints is integrated as the last
+  // component of y, under the same error control
+  ig->ny = prob->size(sys) + (o->work ? 1 : 0);
   double c = dal__tol_factor(meth) * prob->tol_factor;
   ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
   ig->atol = c * o->atol;
@@ -175,6 +196,7 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   }
   prob->from_state(sys, st, ig->y);
+  if (o->work) ig->y[ig->ny - 1] = st->W;
   const dal_method_row *row = dal__method_row(meth);
   int rc = row && row->ode_create
                ? row->ode_create(ig)

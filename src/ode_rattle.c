@@ -131,7 +131,7 @@ static int rat_eval(const dal_system *sys, rat_mem *m, double t, const double *q
   st->stats.rhs_evals++;
   int rc = dal__kinematics(sys, st, 1);
   if (rc == 0 && m->m) rc = dal__constraints(sys, st);
-  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 0);
+  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 0, NULL);
   return rc;
 }
 
@@ -215,7 +215,7 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
       m->lam[r] += 2.0 * m->yk[r] / (h * h);
   }
   // forces at q1 (kinematics and constraint rows are current at (t1, q1, v_h))
-  if ((rc = dal__dynamics(sys, st, 0)) != 0) return rc;
+  if ((rc = dal__dynamics(sys, st, 0, NULL)) != 0) return rc;
   for (int i = 0; i < n; ++i)
     m->u[i] = 0.5 * h * m->minv[i] * st->Q[i];
   double resv = 0.0;

@@ -212,7 +212,7 @@ static int part_point(const dal_system *sys, dal_state *st, double t, const doub
   memcpy(st->qdot, v, (size_t)sys->n * sizeof(double));
   dal__state_moved(st);
   int rc = dal__kinematics(sys, st, 1);
-  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 0);
+  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 0, NULL);
   st->stats.rhs_evals++;
   return rc;
 }

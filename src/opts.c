@@ -105,10 +105,10 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
 #define DAL_OPTS_FIELDS(X)                                                                         \
   X(magic) X(method) X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step)       \
       X(max_steps) X(baumgarte_alpha) X(baumgarte_beta) X(project) X(sparse_threshold)           \
-          X(fixed_erk)
+          X(fixed_erk) X(work)
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)
 // a new field changes the size: add it to DAL_OPTS_FIELDS, then update this check
-_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) == 100 && sizeof(dal_solve_opts) == 104,
+_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) == 104 && sizeof(dal_solve_opts) == 104,
                "dal_solve_opts changed: list every field in DAL_OPTS_FIELDS");
 
 int dal__same_opts(const dal_solve_opts *a, const dal_solve_opts *b) {

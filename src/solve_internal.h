@@ -106,6 +106,11 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
                     dal_method meth, const dal_ode_problem *prob, dal_ode_integ **out);
 void dal__ode_destroy(void *ig);
 
+/// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the
+/// last component when opts.work is set (not counted; no failure bookkeeping)
+int dal__ode_eval(dal_ode_integ *ig, double t, const double *y, double *ydot, unsigned need);
+/// the state's (t, q, qdot) and W from y (does not evaluate)
+void dal__ode_to_state(dal_ode_integ *ig, double t, const double *y);
 /// y' = f(t, y) through the problem, counting evaluations and keeping the failure message;
 /// returns 0, DAL__RECOVERABLE or a negative status (solve.c)
 int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot);

@@ -44,6 +44,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     st->gphi = calloc(m, sizeof(double));
     st->G = calloc((size_t)sys->g_total + 1, sizeof(double));
     st->Gl = calloc((size_t)sys->con_loff[sys->ncon] + 1, sizeof(double));
+    st->phit = calloc(m, sizeof(double));
     st->kkt = dal__kkt_create(sys);
   }
   size_t jn = (size_t)sys->max_in, jo = (size_t)sys->max_out;
@@ -57,7 +58,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   if (!st->q || !st->qdot || !st->qddot || !st->Q || !st->c || !st->work || !st->r || !st->v ||
       !st->a || !st->drdt || !st->gamma || !st->F || !st->N || !st->J ||
       (sys->dense_M && (!st->M || !st->L)) ||
-      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->Gl ||
+      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->Gl || !st->phit ||
              !st->kkt)) ||
       !st->jin || !st->Lc || !st->Lp || !st->dir || !st->cf ||
       !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
@@ -75,7 +76,7 @@ void dal_state_destroy(dal_state *st) {
   double *d[] = {st->q,  st->qdot, st->qddot, st->Q,      st->c,      st->work, st->r,
                  st->v,  st->a,    st->drdt,  st->gamma,  st->F,      st->N,    st->J,
                  st->M,  st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
-                 st->loc, st->Lc, st->cf, st->Lp, st->Gl, st->dir};
+                 st->loc, st->Lc, st->cf, st->Lp, st->Gl, st->dir, st->phit};
   for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i) free(d[i]);
   free(st->jin);
   free(st->jout);
@@ -108,6 +109,7 @@ int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *
   st->t = t;
   memcpy(st->q, q, (size_t)sys->n * sizeof(double));
   memcpy(st->qdot, qdot, (size_t)sys->n * sizeof(double));
+  st->W = 0.0;
   dal__state_moved(st);
   st->err[0] = 0;
   return DAL_OK;
@@ -144,6 +146,7 @@ const double *dal_state_phidot(const dal_state *st) { return st ? st->phidot : N
 int dal_state_energies(const dal_state *st, dal_energies *out) {
   if (!st || !out) return DAL_E_ARG;
   *out = st->en;
+  out->W = st->W;
   return DAL_OK;
 }
 

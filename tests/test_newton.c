@@ -55,7 +55,7 @@ static void check_form(dal_system *sys, dal_formulation form, int sparse, unsign
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   dal_dae f;
-  CHECK(dal__dae_init(&f, sys, st, form, 0.7, 1.9) == 0);
+  CHECK(dal__dae_init(&f, sys, st, form, 0.7, 1.9, 0) == 0);
   CHECK(dal__dae_pattern(&f) == 0);
   int neq = f.neq, n = f.n;
   double *y = calloc((size_t)neq, sizeof(double)), *yp = calloc((size_t)neq, sizeof(double));

@@ -106,6 +106,11 @@ typedef struct dal_solve_opts {
   int project;                ///< INDEX1: project q and v onto the manifold after each step
                               ///< (ODE methods; with BDF/IDA: DAL_E_UNSUPPORTED)
   int sparse_threshold;       ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
+  int work;                   ///< if nonzero, integrate the work W done by non-conservative
+                              ///< forces, time-dependent potentials and moving constraints
+                              ///< with the motion (dal_energies.W; E - W is then conserved);
+                              ///< default 0. Adaptive methods and IDA; not the fixed-step
+                              ///< structure-preserving ones
   int fixed_erk;              ///< DOPRI5/FEHLBERG78: if nonzero, take fixed steps of
                               ///< opts.fixed_step without error control (order studies); 0
 } dal_solve_opts;

@@ -20,14 +20,32 @@ extern "C" {
 typedef struct dal_state dal_state;
 
 /// Energies of a state (after dal_forward).
+///
+/// What each field means for each kind of system:
+/// - particles placed in minimal coordinates: T, U, E = T + U; h = T2 - T0 + U is the energy
+///   function (Jacobi integral) qdot . dL/dqdot - L, conserved when L has no explicit t (a ring
+///   turning at a constant rate) and no non-conservative force acts, while E then is not.
+/// - redundant coordinates with constraints: the same, except that h is NaN when a constraint
+///   depends explicitly on t (a moving pivot, a turning circle): its time dependence is not in
+///   L, so h is not conserved there. Use E - W (below) instead.
+/// - a Lagrangian-only system (dal_builder_set_lagrangian): E = h = qdot . dL/dqdot - L; T, U
+///   and the split T2, T1, T0 do not exist for it and are NaN.
+///
+/// W is the work done on the system since the last dal_state_set by non-conservative forces
+/// (dampers, force callbacks), explicitly time-dependent potentials (moving spring anchors,
+/// U(r, t), U(q, t)) and moving constraints (the power sum_k N_k . dr_k/dt of the reactions of
+/// moving maps, and -lambda . dphi/dt of moving constraints), integrated with the motion when
+/// opts.work is set (0 otherwise). E - W is then an invariant to the tolerance in every
+/// formulation.
 typedef struct dal_energies {
   double T;  ///< kinetic energy, 1/2 sum m_k |v_k|^2
   double U;  ///< potential energy (gravity, springs, user potentials)
   double E;  ///< total energy T + U
-  double h;  ///< energy function (Jacobi integral) qdot . dL/dqdot - L = T2 - T0 + U
+  double h;  ///< energy function (Jacobi integral) qdot . dL/dqdot - L = T2 - T0 + U (see above)
   double T2; ///< 1/2 qdot' M qdot
   double T1; ///< b' qdot, b = sum m_k J_k' dr_k/dt
   double T0; ///< 1/2 sum m_k |dr_k/dt|^2
+  double W;  ///< work done on the system since dal_state_set (opts.work; see above)
 } dal_energies;
 
 /// Create a state for `sys` (borrowed; must outlive the state), at t = 0 with q = qdot = 0.
