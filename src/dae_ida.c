@@ -207,7 +207,7 @@ static int con_dir(ida_mem *w, const dal_con *c, const double *dir, double tdot)
   for (int i = 0; i < c->ncoord; ++i, ++k)
     st->jin[k] = dal_var(st->q[coords[i]], dir[k]);
   int rc =
-      c->prim->eval(st->jin, dal_var(st->t, tdot), sys->ppool + c->param_off, st->jout, c->ctx);
+      c->prim->eval(st->jin, dal_var(st->t, tdot), st->prm.ppool + c->param_off, st->jout, c->ctx);
   if (rc) {
     char what[160];
     snprintf(what, sizeof what, "constraint '%s' ('%s')", c->name, c->prim->name);
@@ -341,7 +341,7 @@ static int assemble(ida_mem *w, double cj, const double *y) {
         double s = 0.0;
         for (int c = 0; c < d; ++c)
           s += Jp[c * nd + a] * Jp[c * nd + b];
-        jadd(w, n + dp[a], n + dp[b], cj * sys->mass[p] * s);
+        jadd(w, n + dp[a], n + dp[b], cj * st->prm.mass[p] * s);
       }
   }
   for (int ci = 0; ci < sys->ncon; ++ci) {

@@ -128,9 +128,22 @@ struct dal_system {
   int dense_M;         // M is assembled densely (n x n)
 };
 
+/// per-trajectory parameters (params.c): read pointers that point at the system's arrays
+/// until the first override copies that array into the state (copy-on-write); the
+/// evaluation reads masses, primitive parameters, gravity and link constants through them
+typedef struct dal_params {
+  const double *mass, *mu, *ppool, *g; // N, N (subtree masses), the parameter pool, 3
+  const dal_link *springs, *dampers;   // nspring, ndamper
+  int has_gravity;
+  double *own_mass, *own_mu, *own_ppool; // owned copies (NULL until overridden)
+  dal_link *own_springs, *own_dampers;
+  double own_g[3];
+} dal_params;
+
 /// workspace and outputs of one trajectory
 struct dal_state {
   const dal_system *sys;
+  dal_params prm;           // per-trajectory parameters (params.c)
   double t;
   double *q, *qdot, *qddot; // n
   double *r, *v, *a, *drdt, *gamma, *F, *N; // N x d
@@ -211,5 +224,11 @@ int dal__forward(const dal_system *sys, dal_state *st);
 
 /// drop integrator memory (called by dal_state_set and dal_state_destroy)
 void dal__integ_reset(dal_state *st);
+
+/// per-trajectory parameters (params.c): point at the system's arrays / free owned copies
+void dal__params_init(dal_state *st);
+void dal__params_free(dal_state *st);
+/// restore the system's values into the state's owned copies (keeps the buffers: no allocation)
+void dal__params_rewind(dal_state *st);
 
 #endif

@@ -163,7 +163,7 @@ int dal__kinematics(const dal_system *sys, dal_state *st) {
       const dal_place *pl = &sys->place[k];
       const dal_primitive *prim = pl->prim;
       const int *coords = sys->ipool + pl->coord_off;
-      const double *param = sys->ppool + pl->param_off;
+      const double *param = st->prm.ppool + pl->param_off;
       int np = pl->parent >= 0 ? 1 : 0, nin = prim->nin, nc = pl->ncoord;
       // local Jacobian at the current values; a translating map's parent block is I
       int translates = np && (prim->flags & DAL_PRIM_TRANSLATES);
@@ -246,7 +246,7 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     const dal_primitive *prim = c->prim;
     const int *parts = sys->ipool + c->part_off;
     const int *coords = sys->ipool + c->coord_off;
-    const double *param = sys->ppool + c->param_off;
+    const double *param = st->prm.ppool + c->param_off;
     int nin = prim->nin, nout = prim->nout;
     load_inputs(sys, st, c->npart, parts, c->ncoord, coords, 0);
     rc = local_jacobian(sys, st, prim, param, c->ctx, -1 - ci, 0);

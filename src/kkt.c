@@ -295,7 +295,7 @@ static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const
           double s = 0.0;
           for (int c = 0; c < d; ++c)
             s += Jp[c * nd + a] * Jp[c * nd + b];
-          k->Kx[mp[a * nd + b]] += sys->mass[p] * s;
+          k->Kx[mp[a * nd + b]] += st->prm.mass[p] * s;
         }
     }
   } else {
@@ -388,7 +388,7 @@ int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
     const dal_primitive *prim = c->prim;
     const int *parts = sys->ipool + c->part_off;
     const int *coords = sys->ipool + c->coord_off;
-    const double *param = sys->ppool + c->param_off;
+    const double *param = st->prm.ppool + c->param_off;
     int kin = 0;
     for (int a = 0; a < c->npart; ++a)
       for (int b = 0; b < d; ++b)

@@ -6,7 +6,9 @@
 
 #include "dalembert/base.h"
 #include "dalembert/dae.h"
+#include "dalembert/ensemble.h"
 #include "dalembert/jet.h"
+#include "dalembert/params.h"
 #include "dalembert/primitives.h"
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
