@@ -89,8 +89,16 @@ static int make(setup *s) {
   dal_solve_default_opts(&s->so);
   s->so.method = DAL_METHOD_DOPRI5;
   s->so.rtol = 1e-8;
-  dal_sweep sw = {.ntraj = NT, .nparam = 2, .params = s->par, .values = s->values, .q0 = &s->q0,
-                  .qdot0 = &s->v0, .solve = &s->so, .t1 = 20.0, .nresult = 1, .reduce = keep};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 2,
+                  .params = s->par,
+                  .values = s->values,
+                  .q0 = &s->q0,
+                  .qdot0 = &s->v0,
+                  .solve = &s->so,
+                  .t1 = 20.0,
+                  .nresult = 1,
+                  .reduce = keep};
   s->sw = sw;
   return 0;
 }
@@ -126,7 +134,8 @@ static double time_loop(setup *s, dal_state *st, double t1) {
   double t0 = now();
   for (int i = 0; i < NT; ++i) {
     dal_state_reset_params(s->sys, st);
-    for (int j = 0; j < 2; ++j) dal_state_set_param(s->sys, st, &s->par[j], s->values[2 * i + j]);
+    for (int j = 0; j < 2; ++j)
+      dal_state_set_param(s->sys, st, &s->par[j], s->values[2 * i + j]);
     if (dal_state_set(s->sys, st, 0.0, &s->q0, &s->v0) || dal_advance(s->sys, st, &s->so, t1))
       return NAN;
     s->res[i] = dal_state_q(st)[0];
@@ -172,8 +181,9 @@ int main(int argc, char **argv) {
   qsort(b, (size_t)reps, sizeof(double), cmp_d);
   qsort(d, (size_t)reps, sizeof(double), cmp_d);
   printf("# overhead per trajectory (sweep - loop) / 256, min and median: t=20: %.2f us, %.2f us;"
-         " t=0.01: %.2f us, %.2f us\n", 1e6 * (b[0] - lm) / NT, 1e6 * (b[reps / 2] - lmed) / NT,
-         1e6 * (d[0] - sm) / NT, 1e6 * (d[reps / 2] - smed) / NT);
+         " t=0.01: %.2f us, %.2f us\n",
+         1e6 * (b[0] - lm) / NT, 1e6 * (b[reps / 2] - lmed) / NT, 1e6 * (d[0] - sm) / NT,
+         1e6 * (d[reps / 2] - smed) / NT);
   // 3. uneven costs: static blocks vs dynamic on 2 threads (and 1 thread as the base)
   dal_sweep un = s->sw;
   un.solve = NULL;

@@ -113,8 +113,10 @@ int main(int argc, char **argv) {
   int check = 0;
   const char *dir = ".";
   for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check")) check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc) dir = argv[++i];
+    if (!strcmp(argv[i], "--check"))
+      check = 1;
+    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
+      dir = argv[++i];
   }
   dal_system *sys = build();
   if (!sys) return 1;
@@ -143,8 +145,16 @@ int main(int argc, char **argv) {
   so.method = DAL_METHOD_DOPRI5;
   so.rtol = 1e-10;
   so.atol = 1e-12;
-  dal_sweep sw = {.ntraj = nt, .nparam = 1, .params = &rate, .values = rates, .q0 = q0,
-                  .qdot0 = v0, .state_stride = 1, .solve = &so, .t1 = T_END, .nresult = 2,
+  dal_sweep sw = {.ntraj = nt,
+                  .nparam = 1,
+                  .params = &rate,
+                  .values = rates,
+                  .q0 = q0,
+                  .qdot0 = v0,
+                  .state_stride = 1,
+                  .solve = &so,
+                  .t1 = T_END,
+                  .nresult = 2,
                   .reduce = settle};
   dal_sweep_out out = {res, status, msgs, 200, 0, 0};
   dal_sweep_opts o;
@@ -179,8 +189,8 @@ int main(int argc, char **argv) {
       bad = 1;
     }
   }
-  printf("bead sweep: %ld trajectories over w in [0, 2.5 w_c] (w_c = %.6f), %ld failed\n", nt,
-         wc, out.nfailed);
+  printf("bead sweep: %ld trajectories over w in [0, 2.5 w_c] (w_c = %.6f), %ld failed\n", nt, wc,
+         out.nfailed);
   printf("  settled theta vs closed form (|Omega^2| >= 0.5, %d trajectories): max error %.2e\n",
          checked, worst);
   // the sweep against a plain loop of dal_advance
@@ -221,8 +231,10 @@ int main(int argc, char **argv) {
                 res[2 * i + 1]);
       }
       fclose(fp);
-      if (chart(dir, csv2)) printf("  (gnuplot not available: no chart)\n");
-      else printf("  chart: %s/bead_bifurcation.png\n", dir);
+      if (chart(dir, csv2))
+        printf("  (gnuplot not available: no chart)\n");
+      else
+        printf("  chart: %s/bead_bifurcation.png\n", dir);
     }
   }
   free(rates);

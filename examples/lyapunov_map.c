@@ -128,13 +128,17 @@ static double lyap_reference(double a, double w, double T) {
     for (long i = 0; i < per; ++i) {
       double k1[4], k2[4], k3[4], k4[4], z[4];
       vf(t, y, a, w, k1);
-      for (int j = 0; j < 4; ++j) z[j] = y[j] + 0.5 * h * k1[j];
+      for (int j = 0; j < 4; ++j)
+        z[j] = y[j] + 0.5 * h * k1[j];
       vf(t + 0.5 * h, z, a, w, k2);
-      for (int j = 0; j < 4; ++j) z[j] = y[j] + 0.5 * h * k2[j];
+      for (int j = 0; j < 4; ++j)
+        z[j] = y[j] + 0.5 * h * k2[j];
       vf(t + 0.5 * h, z, a, w, k3);
-      for (int j = 0; j < 4; ++j) z[j] = y[j] + h * k3[j];
+      for (int j = 0; j < 4; ++j)
+        z[j] = y[j] + h * k3[j];
       vf(t + h, z, a, w, k4);
-      for (int j = 0; j < 4; ++j) y[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
+      for (int j = 0; j < 4; ++j)
+        y[j] += h / 6 * (k1[j] + 2 * k2[j] + 2 * k3[j] + k4[j]);
       t = (double)(k * per + i + 1) * h;
     }
     double d = hypot(y[2], y[3]);
@@ -176,9 +180,12 @@ int main(int argc, char **argv) {
   int check = 0, threads = 2;
   const char *dir = ".";
   for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check")) check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc) dir = argv[++i];
-    else if (!strcmp(argv[i], "--threads") && i + 1 < argc) threads = atoi(argv[++i]);
+    if (!strcmp(argv[i], "--check"))
+      check = 1;
+    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
+      dir = argv[++i];
+    else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
+      threads = atoi(argv[++i]);
   }
   dal_system *sys = build();
   if (!sys) return 1;
@@ -210,8 +217,15 @@ int main(int argc, char **argv) {
       dal_param_find(sys, "place:bob:5", &par[1], NULL, 0))
     return 1;
   double q0 = 0.1, v0 = 0.0;
-  dal_sweep sw = {.ntraj = nt, .nparam = 2, .params = par, .values = values, .q0 = &q0,
-                  .qdot0 = &v0, .nresult = 3, .reduce = lyapunov, .ctx = &cfg};
+  dal_sweep sw = {.ntraj = nt,
+                  .nparam = 2,
+                  .params = par,
+                  .values = values,
+                  .q0 = &q0,
+                  .qdot0 = &v0,
+                  .nresult = 3,
+                  .reduce = lyapunov,
+                  .ctx = &cfg};
   dal_sweep_out out = {res, status, msgs, 200, 0, 0};
   dal_sweep_opts o;
   dal_sweep_default_opts(&o);
@@ -230,7 +244,8 @@ int main(int argc, char **argv) {
     double ref_c = lyap_reference(2.7, 2.0 / 3.0, cfg.T), ref_p = lyap_reference(0.5, 0.8, cfg.T);
     printf("lyapunov: a = 0: lambda = %.5f (closed form -b/2 = %.5f)\n", res[0], -drag / 2);
     printf("  chaotic a = 2.7, w = 2/3: lambda = %.5f (halves %.4f, %.4f); variational RK4 "
-           "reference %.5f\n", res[3], res[4], res[5], ref_c);
+           "reference %.5f\n",
+           res[3], res[4], res[5], ref_c);
     printf("  periodic a = 0.5, w = 0.8: lambda = %.5f; variational RK4 reference %.5f\n", res[6],
            ref_p);
     bad |= !(fabs(res[0] + drag / 2) <= 0.01);
@@ -238,7 +253,8 @@ int main(int argc, char **argv) {
     bad |= !(res[6] < 0) || !(fabs(res[6] - ref_p) <= 0.01);
   } else {
     long pos = 0;
-    for (long i = 0; i < nt; ++i) pos += !status[i] && res[3 * i] > 0.01;
+    for (long i = 0; i < nt; ++i)
+      pos += !status[i] && res[3 * i] > 0.01;
     printf("lyapunov map: %ld trajectories, %ld failed, %ld with lambda > 0.01\n", nt, out.nfailed,
            pos);
     char csv[1024];
@@ -247,8 +263,10 @@ int main(int argc, char **argv) {
     const char *names[3] = {"lambda", "lambda_first_half", "lambda_second_half"};
     if (!fp || dal_sweep_write_csv(fp, sys, &sw, &out, names)) bad = 1;
     if (fp) fclose(fp);
-    if (chart(dir, csv, amax, wmin, wmax)) printf("  (gnuplot not available: no chart)\n");
-    else printf("  chart: %s/lyapunov_map.png\n", dir);
+    if (chart(dir, csv, amax, wmin, wmax))
+      printf("  (gnuplot not available: no chart)\n");
+    else
+      printf("  chart: %s/lyapunov_map.png\n", dir);
   }
   free(values);
   free(res);

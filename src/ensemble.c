@@ -60,7 +60,7 @@ typedef struct pool {
   const dal_sweep *sw;
   const dal_sweep_opts *o;
   dal_sweep_out *out;
-  long *idx, count;   // the trajectories of this part, in index order
+  long *idx, count; // the trajectories of this part, in index order
   int nthreads;
   pthread_mutex_t lock;
   long next, done, failed, since_report;
@@ -79,8 +79,9 @@ typedef struct worker {
 // record a trajectory's status and message
 static void record(pool *p, long i, int status, const char *msg) {
   p->out->status[i] = status;
-  if (p->out->msgs) snprintf(p->out->msgs + (size_t)i * (size_t)p->out->msg_len,
-                             (size_t)p->out->msg_len, "%s", status ? msg : "");
+  if (p->out->msgs)
+    snprintf(p->out->msgs + (size_t)i * (size_t)p->out->msg_len, (size_t)p->out->msg_len, "%s",
+             status ? msg : "");
 }
 
 // one trajectory from a rewound state; returns its status
@@ -90,7 +91,8 @@ static int run_one(pool *p, worker *w, long i, char *tmsg) {
   dal_state *st = w->st;
   int rc;
   double *slot = sw->nresult ? p->out->results + (size_t)i * (size_t)sw->nresult : NULL;
-  for (int k = 0; k < sw->nresult; ++k) slot[k] = NAN;
+  for (int k = 0; k < sw->nresult; ++k)
+    slot[k] = NAN;
   tmsg[0] = 0;
   // rewind: the system's parameters, the sticky Jacobian mode of a fresh state (state.c)
   dal__params_rewind(st);
@@ -115,8 +117,10 @@ static int run_one(pool *p, worker *w, long i, char *tmsg) {
   rc = sw->reduce(sys, st, &tr, sw->ctx);
   if (rc == 0) return DAL_OK;
   if (!tmsg[0]) {
-    if (st->err[0]) snprintf(tmsg, DAL_SWEEP_MSG_LEN, "%s", st->err);
-    else snprintf(tmsg, DAL_SWEEP_MSG_LEN, "reducer of trajectory %ld returned %d", i, rc);
+    if (st->err[0])
+      snprintf(tmsg, DAL_SWEEP_MSG_LEN, "%s", st->err);
+    else
+      snprintf(tmsg, DAL_SWEEP_MSG_LEN, "reducer of trajectory %ld returned %d", i, rc);
   }
   return rc < 0 ? rc : DAL_E_CALLBACK;
 }
@@ -191,7 +195,8 @@ static int sweep_fail(char *buf, size_t len, int code, const char *fmt, ...) {
 int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_opts *o,
                   dal_sweep_out *out, char *errmsg, size_t errlen) {
   if (errmsg && errlen) errmsg[0] = 0;
-  if (!sys || !sw || !o || !out) return SFAIL(DAL_E_ARG, "sweep: system, sweep, options or out is NULL");
+  if (!sys || !sw || !o || !out)
+    return SFAIL(DAL_E_ARG, "sweep: system, sweep, options or out is NULL");
   if (o->magic != DAL_SWEEP_MAGIC)
     return SFAIL(DAL_E_ARG, "sweep options were not initialized: call dal_sweep_default_opts(&o) "
                             "before setting fields");
@@ -200,8 +205,10 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
     return SFAIL(DAL_E_ARG, "sweep: %d parameters need params and values tables", sw->nparam);
   if (!sw->q0 || !sw->qdot0) return SFAIL(DAL_E_ARG, "sweep: q0 or qdot0 is NULL");
   if (sw->state_stride != 0 && sw->state_stride != sys->n)
-    return SFAIL(DAL_E_ARG, "sweep: state_stride is %d; use 0 (one initial state) or n = %d (one "
-                            "per trajectory)", sw->state_stride, sys->n);
+    return SFAIL(DAL_E_ARG,
+                 "sweep: state_stride is %d; use 0 (one initial state) or n = %d (one "
+                 "per trajectory)",
+                 sw->state_stride, sys->n);
   if (sw->nresult < 0 || (sw->nresult > 0 && !out->results))
     return SFAIL(DAL_E_ARG, "sweep: %d results per trajectory need out->results", sw->nresult);
   if (!out->status) return SFAIL(DAL_E_ARG, "sweep: out->status is NULL");
@@ -210,11 +217,12 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
                  out->msg_len);
   if (sw->solve && !isfinite(sw->t1))
     return SFAIL(DAL_E_NONFINITE, "sweep: target time t1 is %g", sw->t1);
-  if (o->nthreads < 0 || o->chunk < 1 || o->progress_every < 1 || o->nparts < 1 ||
-      o->part < 0 || o->part >= o->nparts || o->part_block < 1 ||
+  if (o->nthreads < 0 || o->chunk < 1 || o->progress_every < 1 || o->nparts < 1 || o->part < 0 ||
+      o->part >= o->nparts || o->part_block < 1 ||
       (o->schedule != DAL_SCHEDULE_DYNAMIC && o->schedule != DAL_SCHEDULE_STATIC))
-    return SFAIL(DAL_E_ARG, "sweep options: nthreads %d (>= 0), chunk %d (>= 1), progress_every "
-                            "%ld (>= 1), part %d of nparts %d, part_block %d (>= 1), schedule %d",
+    return SFAIL(DAL_E_ARG,
+                 "sweep options: nthreads %d (>= 0), chunk %d (>= 1), progress_every "
+                 "%ld (>= 1), part %d of nparts %d, part_block %d (>= 1), schedule %d",
                  o->nthreads, o->chunk, o->progress_every, o->part, o->nparts, o->part_block,
                  (int)o->schedule);
   for (int j = 0; j < sw->nparam; ++j) {
@@ -231,7 +239,8 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
   // the work list: this part's trajectories in index order
   pool p = {.sys = sys, .sw = sw, .o = o, .out = out};
   long count = 0;
-  for (long i = 0; i < sw->ntraj; ++i) count += dal_sweep_part_of(i, o->nparts, o->part_block) == o->part;
+  for (long i = 0; i < sw->ntraj; ++i)
+    count += dal_sweep_part_of(i, o->nparts, o->part_block) == o->part;
   p.idx = malloc((size_t)(count ? count : 1) * sizeof(long));
   if (!p.idx) return SFAIL(DAL_E_NOMEM, "sweep: out of memory");
   count = 0;
@@ -241,7 +250,8 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
   // until it runs, a trajectory reads as not run (what a cancelled sweep leaves)
   for (long pos = 0; pos < count; ++pos) {
     long i = p.idx[pos];
-    for (int k = 0; k < sw->nresult; ++k) out->results[(size_t)i * (size_t)sw->nresult + k] = NAN;
+    for (int k = 0; k < sw->nresult; ++k)
+      out->results[(size_t)i * (size_t)sw->nresult + k] = NAN;
     record(&p, i, DAL_E_CALLBACK, "not run: the sweep was cancelled");
   }
   if (nthreads > count) nthreads = count > 0 ? (int)count : 1;
@@ -263,8 +273,8 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
     }
     if (o->worker_create) {
       rc = o->worker_create(sys, w, o->worker_ctx, &ws[w].data);
-      if (rc) SFAIL(rc < 0 ? rc : DAL_E_CALLBACK, "sweep: worker_create of worker %d returned %d",
-                    w, rc);
+      if (rc)
+        SFAIL(rc < 0 ? rc : DAL_E_CALLBACK, "sweep: worker_create of worker %d returned %d", w, rc);
       if (rc > 0) rc = DAL_E_CALLBACK;
     }
   }

@@ -10,7 +10,8 @@
 // number of trajectories of part r
 static long part_count(const dal_sweep *sw, int r, int nparts, int block) {
   long c = 0;
-  for (long i = 0; i < sw->ntraj; ++i) c += dal_sweep_part_of(i, nparts, block) == r;
+  for (long i = 0; i < sw->ntraj; ++i)
+    c += dal_sweep_part_of(i, nparts, block) == r;
   return c;
 }
 
@@ -51,8 +52,10 @@ int dal_sweep_run_mpi(const dal_system *sys, const dal_sweep *sw, const dal_swee
   } else if (opts->nparts != 1 || opts->part != 0) {
     rc = DAL_E_ARG;
     if (errmsg && errlen)
-      snprintf(errmsg, errlen, "sweep over MPI: leave opts.part and opts.nparts at their defaults "
-               "(the %d ranks are the parts)", size);
+      snprintf(errmsg, errlen,
+               "sweep over MPI: leave opts.part and opts.nparts at their defaults "
+               "(the %d ranks are the parts)",
+               size);
   } else {
     o = *opts;
     o.part = rank;

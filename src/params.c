@@ -127,13 +127,16 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     if (ref->kind == DAL_PARAM_MASS) return DAL_OK;
     if (!sys->place) {
       if (msg && len)
-        snprintf(msg, len, "parameter of particle '%s': the particles are placed by a "
-                 "whole-system map, which has no parameters", sys->part_names[t]);
+        snprintf(msg, len,
+                 "parameter of particle '%s': the particles are placed by a "
+                 "whole-system map, which has no parameters",
+                 sys->part_names[t]);
       return DAL_E_ARG;
     }
     if (i < 0 || i >= sys->place[t].prim->nparam) {
       if (msg && len)
-        snprintf(msg, len, "placing particle '%s': primitive '%s' takes %d parameters; index %d "
+        snprintf(msg, len,
+                 "placing particle '%s': primitive '%s' takes %d parameters; index %d "
                  "is out of range (see the primitive's parameter list in primitives.h)",
                  sys->part_names[t], sys->place[t].prim->name, sys->place[t].prim->nparam, i);
       return DAL_E_ARG;
@@ -147,7 +150,8 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     }
     if (i < 0 || i >= sys->con[t].prim->nparam) {
       if (msg && len)
-        snprintf(msg, len, "constraint '%s': primitive '%s' takes %d parameters; index %d is "
+        snprintf(msg, len,
+                 "constraint '%s': primitive '%s' takes %d parameters; index %d is "
                  "out of range (see the primitive's parameter list in primitives.h)",
                  sys->con[t].name, sys->con[t].prim->name, sys->con[t].prim->nparam, i);
       return DAL_E_ARG;
@@ -155,8 +159,7 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     return DAL_OK;
   case DAL_PARAM_GRAVITY:
     if (i < 0 || i >= sys->dim) {
-      if (msg && len)
-        snprintf(msg, len, "gravity component %d out of range [0, %d)", i, sys->dim);
+      if (msg && len) snprintf(msg, len, "gravity component %d out of range [0, %d)", i, sys->dim);
       return DAL_E_ARG;
     }
     return DAL_OK;
@@ -185,22 +188,34 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
 // the value a parameter has in the arrays of p (system's or state's)
 static double read_param(const dal_system *sys, const dal_params *p, const dal_param_ref *r) {
   switch (r->kind) {
-  case DAL_PARAM_MASS: return p->mass[r->target];
-  case DAL_PARAM_PLACE: return p->ppool[sys->place[r->target].param_off + r->index];
-  case DAL_PARAM_CONSTRAINT: return p->ppool[sys->con[r->target].param_off + r->index];
-  case DAL_PARAM_GRAVITY: return p->has_gravity ? p->g[r->index] : 0.0;
-  case DAL_PARAM_SPRING_K: return p->springs[r->target].k;
-  case DAL_PARAM_SPRING_L: return p->springs[r->target].L;
-  case DAL_PARAM_DAMPER_C: return p->dampers[r->target].k;
-  case DAL_PARAM_NONE: break;
+  case DAL_PARAM_MASS:
+    return p->mass[r->target];
+  case DAL_PARAM_PLACE:
+    return p->ppool[sys->place[r->target].param_off + r->index];
+  case DAL_PARAM_CONSTRAINT:
+    return p->ppool[sys->con[r->target].param_off + r->index];
+  case DAL_PARAM_GRAVITY:
+    return p->has_gravity ? p->g[r->index] : 0.0;
+  case DAL_PARAM_SPRING_K:
+    return p->springs[r->target].k;
+  case DAL_PARAM_SPRING_L:
+    return p->springs[r->target].L;
+  case DAL_PARAM_DAMPER_C:
+    return p->dampers[r->target].k;
+  case DAL_PARAM_NONE:
+    break;
   }
   return NAN;
 }
 
 int dal_system_param(const dal_system *sys, const dal_param_ref *ref, double *value) {
   if (!value || dal_param_check(sys, ref, NULL, 0)) return DAL_E_ARG;
-  dal_params p = {.mass = sys->mass, .ppool = sys->ppool, .g = sys->g, .springs = sys->springs,
-                  .dampers = sys->dampers, .has_gravity = sys->has_gravity};
+  dal_params p = {.mass = sys->mass,
+                  .ppool = sys->ppool,
+                  .g = sys->g,
+                  .springs = sys->springs,
+                  .dampers = sys->dampers,
+                  .has_gravity = sys->has_gravity};
   *value = read_param(sys, &p, ref);
   return DAL_OK;
 }
@@ -218,14 +233,29 @@ int dal_param_name(const dal_system *sys, const dal_param_ref *ref, char *buf, s
   if (!buf || !len || dal_param_check(sys, ref, NULL, 0)) return DAL_E_ARG;
   int t = ref->target, i = ref->index;
   switch (ref->kind) {
-  case DAL_PARAM_MASS: snprintf(buf, len, "mass:%s", sys->part_names[t]); break;
-  case DAL_PARAM_PLACE: snprintf(buf, len, "place:%s:%d", sys->part_names[t], i); break;
-  case DAL_PARAM_CONSTRAINT: snprintf(buf, len, "con:%s:%d", sys->con[t].name, i); break;
-  case DAL_PARAM_GRAVITY: snprintf(buf, len, "gravity:%d", i); break;
-  case DAL_PARAM_SPRING_K: snprintf(buf, len, "spring:%d:k", t); break;
-  case DAL_PARAM_SPRING_L: snprintf(buf, len, "spring:%d:L", t); break;
-  case DAL_PARAM_DAMPER_C: snprintf(buf, len, "damper:%d:c", t); break;
-  case DAL_PARAM_NONE: return DAL_E_ARG;
+  case DAL_PARAM_MASS:
+    snprintf(buf, len, "mass:%s", sys->part_names[t]);
+    break;
+  case DAL_PARAM_PLACE:
+    snprintf(buf, len, "place:%s:%d", sys->part_names[t], i);
+    break;
+  case DAL_PARAM_CONSTRAINT:
+    snprintf(buf, len, "con:%s:%d", sys->con[t].name, i);
+    break;
+  case DAL_PARAM_GRAVITY:
+    snprintf(buf, len, "gravity:%d", i);
+    break;
+  case DAL_PARAM_SPRING_K:
+    snprintf(buf, len, "spring:%d:k", t);
+    break;
+  case DAL_PARAM_SPRING_L:
+    snprintf(buf, len, "spring:%d:L", t);
+    break;
+  case DAL_PARAM_DAMPER_C:
+    snprintf(buf, len, "damper:%d:c", t);
+    break;
+  case DAL_PARAM_NONE:
+    return DAL_E_ARG;
   }
   return DAL_OK;
 }
@@ -303,19 +333,20 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
     r.kind = DAL_PARAM_DAMPER_C;
     r.target = parse_index(f[1], fl[1]);
   } else {
-    if (msg && len)
-      snprintf(msg, len, "parameter '%s': unknown form; use one of %s", name, kinds);
+    if (msg && len) snprintf(msg, len, "parameter '%s': unknown form; use one of %s", name, kinds);
     return DAL_E_ARG;
   }
 #undef KIND_IS
   if (r.target < 0) {
-    const char *what = r.kind == DAL_PARAM_CONSTRAINT ? "constraint"
+    const char *what = r.kind == DAL_PARAM_CONSTRAINT                            ? "constraint"
                        : (r.kind == DAL_PARAM_MASS || r.kind == DAL_PARAM_PLACE) ? "particle"
-                       : r.kind == DAL_PARAM_DAMPER_C ? "damper"
-                                                      : "spring";
+                       : r.kind == DAL_PARAM_DAMPER_C                            ? "damper"
+                                                                                 : "spring";
     if (msg && len)
-      snprintf(msg, len, "parameter '%s': no %s named '%.*s' in the system (give a name used in "
-               "the builder or a 0-based index)", name, what, (int)fl[1], f[1]);
+      snprintf(msg, len,
+               "parameter '%s': no %s named '%.*s' in the system (give a name used in "
+               "the builder or a 0-based index)",
+               name, what, (int)fl[1], f[1]);
     return DAL_E_ARG;
   }
   if (r.index < 0) {
@@ -339,8 +370,10 @@ static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r
   case DAL_PARAM_MASS: {
     const char *nm = sys->part_names[t];
     if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE, "particle '%s': mass is %g; give a finite positive "
-                                           "mass", nm, v);
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "particle '%s': mass is %g; give a finite positive "
+                      "mass",
+                      nm, v);
     if (v <= 0)
       return DAL_FAIL(st, DAL_E_ARG,
                       "particle '%s': mass %g is not positive; a massless point belongs in a "
@@ -350,14 +383,17 @@ static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r
   }
   case DAL_PARAM_PLACE:
     if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE, "placing particle '%s': parameter %d of primitive "
-                                           "'%s' is %g", sys->part_names[t], i,
-                      sys->place[t].prim->name, v);
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "placing particle '%s': parameter %d of primitive "
+                      "'%s' is %g",
+                      sys->part_names[t], i, sys->place[t].prim->name, v);
     return DAL_OK;
   case DAL_PARAM_CONSTRAINT:
     if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE, "constraint '%s': parameter %d of primitive '%s' is "
-                                           "%g", sys->con[t].name, i, sys->con[t].prim->name, v);
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "constraint '%s': parameter %d of primitive '%s' is "
+                      "%g",
+                      sys->con[t].name, i, sys->con[t].prim->name, v);
     return DAL_OK;
   case DAL_PARAM_GRAVITY:
     if (!isfinite(v)) return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, v);
@@ -367,16 +403,20 @@ static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r
   case DAL_PARAM_DAMPER_C: {
     int damper = r->kind == DAL_PARAM_DAMPER_C;
     const dal_link *l = damper ? &st->prm.dampers[t] : &st->prm.springs[t];
-    const char *kind = damper ? (l->b < 0 ? "anchor damper" : "damper")
-                              : (l->b < 0 ? "anchor spring" : "spring");
+    const char *kind =
+        damper ? (l->b < 0 ? "anchor damper" : "damper") : (l->b < 0 ? "anchor spring" : "spring");
     double k = r->kind == DAL_PARAM_SPRING_L ? l->k : v;
     double L = r->kind == DAL_PARAM_SPRING_L ? v : l->L;
     if (!isfinite(k) || !isfinite(L))
-      return DAL_FAIL(st, DAL_E_NONFINITE, "%s on particle '%s': coefficient %g or length %g is "
-                                           "not finite", kind, sys->part_names[l->a], k, L);
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "%s on particle '%s': coefficient %g or length %g is "
+                      "not finite",
+                      kind, sys->part_names[l->a], k, L);
     if (k < 0 || L < 0)
-      return DAL_FAIL(st, DAL_E_ARG, "%s on particle '%s': coefficient %g and length %g must be "
-                                     ">= 0", kind, sys->part_names[l->a], k, L);
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "%s on particle '%s': coefficient %g and length %g must be "
+                      ">= 0",
+                      kind, sys->part_names[l->a], k, L);
     return DAL_OK;
   }
   case DAL_PARAM_NONE:
@@ -402,16 +442,27 @@ int dal_state_set_param(const dal_system *sys, dal_state *st, const dal_param_re
     p->own_mass[ref->target] = value;
     subtree_masses(sys, p->own_mass, p->own_mu);
     break;
-  case DAL_PARAM_PLACE: p->own_ppool[sys->place[ref->target].param_off + ref->index] = value; break;
-  case DAL_PARAM_CONSTRAINT: p->own_ppool[sys->con[ref->target].param_off + ref->index] = value; break;
+  case DAL_PARAM_PLACE:
+    p->own_ppool[sys->place[ref->target].param_off + ref->index] = value;
+    break;
+  case DAL_PARAM_CONSTRAINT:
+    p->own_ppool[sys->con[ref->target].param_off + ref->index] = value;
+    break;
   case DAL_PARAM_GRAVITY:
     p->own_g[ref->index] = value;
     p->has_gravity = 1;
     break;
-  case DAL_PARAM_SPRING_K: p->own_springs[ref->target].k = value; break;
-  case DAL_PARAM_SPRING_L: p->own_springs[ref->target].L = value; break;
-  case DAL_PARAM_DAMPER_C: p->own_dampers[ref->target].k = value; break;
-  case DAL_PARAM_NONE: break;
+  case DAL_PARAM_SPRING_K:
+    p->own_springs[ref->target].k = value;
+    break;
+  case DAL_PARAM_SPRING_L:
+    p->own_springs[ref->target].L = value;
+    break;
+  case DAL_PARAM_DAMPER_C:
+    p->own_dampers[ref->target].k = value;
+    break;
+  case DAL_PARAM_NONE:
+    break;
   }
   dal__integ_reset(st);
   st->evaluated = 0;
@@ -441,7 +492,8 @@ int dal_state_set_gravity(const dal_system *sys, dal_state *st, const double *g)
     return DAL_FAIL(st, DAL_E_STATE, "set_gravity: the state belongs to another system");
   if (!g) return DAL_FAIL(st, DAL_E_ARG, "set_gravity: g is NULL");
   for (int i = 0; i < sys->dim; ++i)
-    if (!isfinite(g[i])) return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
+    if (!isfinite(g[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
   for (int i = 0; i < sys->dim; ++i) {
     dal_param_ref r = {DAL_PARAM_GRAVITY, 0, i};
     int rc = dal_state_set_param(sys, st, &r, g[i]);

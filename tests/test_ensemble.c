@@ -56,7 +56,8 @@ static dal_system *loop(void) {
   dal_system *s = NULL;
   int q[4], p[2], rc = dal_builder_create(2, &b);
   double rod[3] = {1.0, 0.5, 0}, circ[3] = {1.0, 0, 0}, link = 0.8, g[2] = {0, -9.81};
-  for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(b, NULL, &q[i]);
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = dal_builder_add_coord(b, NULL, &q[i]);
   if (!rc) rc = dal_builder_add_particle(b, "p", 1.0, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "s", 1.0, &p[1]);
   if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
@@ -143,15 +144,25 @@ static void test_determinism(void) {
   dal_solve_opts so;
   dal_solve_default_opts(&so);
   so.method = DAL_METHOD_DOPRI5;
-  dal_sweep sw = {.ntraj = NT, .nparam = 2, .params = par, .values = values, .t0 = 0.0,
-                  .q0 = q0, .qdot0 = v0, .state_stride = 1, .solve = &so, .t1 = 3.0,
-                  .nresult = NR, .reduce = keep_final};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 2,
+                  .params = par,
+                  .values = values,
+                  .t0 = 0.0,
+                  .q0 = q0,
+                  .qdot0 = v0,
+                  .state_stride = 1,
+                  .solve = &so,
+                  .t1 = 3.0,
+                  .nresult = NR,
+                  .reduce = keep_final};
   // the plain loop: a fresh state per trajectory
   double ref[NT * NR];
   for (int i = 0; i < NT; ++i) {
     dal_state *st = NULL;
     CHECK_OK(dal_state_create(sys, &st));
-    for (int j = 0; j < 2; ++j) CHECK_OK(dal_state_set_param(sys, st, &par[j], values[2 * i + j]));
+    for (int j = 0; j < 2; ++j)
+      CHECK_OK(dal_state_set_param(sys, st, &par[j], values[2 * i + j]));
     CHECK_OK(dal_state_set(sys, st, 0.0, &q0[i], &v0[i]));
     CHECK_OK(dal_advance(sys, st, &so, 3.0));
     dal_traj tr = {i, values + 2 * i, ref + i * NR, NR, NULL, 0, NULL};
@@ -175,11 +186,14 @@ static void test_determinism(void) {
         char err[256];
         CHECK_OK(dal_sweep_run(sys, &sw, &o, &out, err, sizeof err));
         CHECK(out.nfailed == 0 && out.nrun == NT);
-        CHECK_MSG(memcmp(res, ref, sizeof res) == 0, "threads %d sched %d chunk %d: results differ "
-                  "from the plain loop", threads[ti], sched, chunk);
+        CHECK_MSG(memcmp(res, ref, sizeof res) == 0,
+                  "threads %d sched %d chunk %d: results differ "
+                  "from the plain loop",
+                  threads[ti], sched, chunk);
         char *csv = csv_of(sys, &sw, &out);
         CHECK(csv != NULL);
-        if (!first) first = csv;
+        if (!first)
+          first = csv;
         else {
           CHECK_MSG(csv && strcmp(csv, first) == 0, "threads %d sched %d chunk %d: CSV differs",
                     threads[ti], sched, chunk);
@@ -205,7 +219,8 @@ static void test_determinism(void) {
   CHECK(total == NT);
   char *csv = csv_of(sys, &sw, &out);
   CHECK(csv && first && strcmp(csv, first) == 0);
-  CHECK(first && strncmp(first, "index,place:bob:3,place:bob:5,status,r0,r1,r2,r3,message\n", 57) == 0);
+  CHECK(first &&
+        strncmp(first, "index,place:bob:3,place:bob:5,status,r0,r1,r2,r3,message\n", 57) == 0);
   free(csv);
   free(first);
   dal_system_destroy(sys);
@@ -235,8 +250,16 @@ static void test_closed_form(void) {
   dal_solve_default_opts(&so);
   so.rtol = 1e-11;
   so.atol = 1e-13;
-  dal_sweep sw = {.ntraj = NT, .nparam = 2, .params = par, .values = values, .q0 = q0,
-                  .qdot0 = v0, .solve = &so, .t1 = 2.0, .nresult = 1, .reduce = keep_x};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 2,
+                  .params = par,
+                  .values = values,
+                  .q0 = q0,
+                  .qdot0 = v0,
+                  .solve = &so,
+                  .t1 = 2.0,
+                  .nresult = 1,
+                  .reduce = keep_x};
   dal_sweep_out out = {res, status, NULL, 0, 0, 0};
   dal_sweep_opts o;
   dal_sweep_default_opts(&o);
@@ -270,10 +293,11 @@ static void test_failures(void) {
   if (!sys) return;
   enum { NT = 9 };
   // (rod length, mass of p): 3 bad masses, 2 rods that cannot close, 1 reducer failure
-  double values[NT * 2] = {1.0, 1.0, 1.1, -1.0, 0.9, 2.0, 5.0, 1.0, 1.2, NAN,
-                           4.0, 1.0, 1.05, 0.0, 1.0, 3.0, 0.95, 1.5};
-  int expect[NT] = {DAL_OK, DAL_E_ARG, DAL_OK, DAL_E_CONSTRAINT, DAL_E_NONFINITE,
-                    DAL_E_CONSTRAINT, DAL_E_ARG, DAL_E_CALLBACK, DAL_OK};
+  double values[NT * 2] = {1.0, 1.0, 1.1, -1.0, 0.9, 2.0, 5.0, 1.0,  1.2,
+                           NAN, 4.0, 1.0, 1.05, 0.0, 1.0, 3.0, 0.95, 1.5};
+  int expect[NT] = {DAL_OK,           DAL_E_ARG,       DAL_OK,
+                    DAL_E_CONSTRAINT, DAL_E_NONFINITE, DAL_E_CONSTRAINT,
+                    DAL_E_ARG,        DAL_E_CALLBACK,  DAL_OK};
   dal_param_ref par[2];
   CHECK_OK(dal_param_find(sys, "con:rod:0", &par[0], NULL, 0));
   CHECK_OK(dal_param_find(sys, "mass:p", &par[1], NULL, 0));
@@ -282,8 +306,16 @@ static void test_failures(void) {
   char msgs[NT * 512];
   dal_solve_opts so;
   dal_solve_default_opts(&so);
-  dal_sweep sw = {.ntraj = NT, .nparam = 2, .params = par, .values = values, .q0 = q0,
-                  .qdot0 = v0, .solve = &so, .t1 = 0.5, .nresult = 2, .reduce = failing_reducer};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 2,
+                  .params = par,
+                  .values = values,
+                  .q0 = q0,
+                  .qdot0 = v0,
+                  .solve = &so,
+                  .t1 = 0.5,
+                  .nresult = 2,
+                  .reduce = failing_reducer};
   dal_sweep_out out = {res, status, msgs, 512, 0, 0};
   dal_sweep_opts o;
   dal_sweep_default_opts(&o);
@@ -322,13 +354,22 @@ static void test_progress(void) {
   double values[NT], res[NT], q0[2] = {1, 0}, v0[2] = {0, 0};
   int status[NT];
   char msgs[NT * 128];
-  for (int i = 0; i < NT; ++i) values[i] = 1.0 + i;
+  for (int i = 0; i < NT; ++i)
+    values[i] = 1.0 + i;
   dal_param_ref par;
   CHECK_OK(dal_param_find(sys, "spring:0:k", &par, NULL, 0));
   dal_solve_opts so;
   dal_solve_default_opts(&so);
-  dal_sweep sw = {.ntraj = NT, .nparam = 1, .params = &par, .values = values, .q0 = q0,
-                  .qdot0 = v0, .solve = &so, .t1 = 1.0, .nresult = 1, .reduce = keep_x};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 1,
+                  .params = &par,
+                  .values = values,
+                  .q0 = q0,
+                  .qdot0 = v0,
+                  .solve = &so,
+                  .t1 = 1.0,
+                  .nresult = 1,
+                  .reduce = keep_x};
   dal_sweep_out out = {res, status, msgs, 128, 0, 0};
   for (int threads = 1; threads <= 4; threads *= 2) {
     progress_log lg = {0, 0, 0, 0};
@@ -411,10 +452,17 @@ static void test_workers(void) {
   enum { NT = 8 };
   double values[NT], res[NT], q0[2] = {1, 0}, v0[2] = {0, 0};
   int status[NT];
-  for (int i = 0; i < NT; ++i) values[i] = 0.5 + 0.7 * i;
+  for (int i = 0; i < NT; ++i)
+    values[i] = 0.5 + 0.7 * i;
   dal_param_ref par = {DAL_PARAM_SPRING_K, 0, 0};
-  dal_sweep sw = {.ntraj = NT, .nparam = 1, .params = &par, .values = values, .q0 = q0,
-                  .qdot0 = v0, .nresult = 1, .reduce = pair};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 1,
+                  .params = &par,
+                  .values = values,
+                  .q0 = q0,
+                  .qdot0 = v0,
+                  .nresult = 1,
+                  .reduce = pair};
   dal_sweep_out out = {res, status, NULL, 0, 0, 0};
   dal_sweep_opts o;
   dal_sweep_default_opts(&o);

@@ -73,8 +73,16 @@ int main(int argc, char **argv) {
   CHECK_OK(dal_param_find(sys, "mass:bob", &par[2], NULL, 0));
   dal_solve_opts so;
   dal_solve_default_opts(&so);
-  dal_sweep sw = {.ntraj = NT, .nparam = 3, .params = par, .values = values, .q0 = &q0,
-                  .qdot0 = &v0, .solve = &so, .t1 = 2.0, .nresult = NR, .reduce = keep_final};
+  dal_sweep sw = {.ntraj = NT,
+                  .nparam = 3,
+                  .params = par,
+                  .values = values,
+                  .q0 = &q0,
+                  .qdot0 = &v0,
+                  .solve = &so,
+                  .t1 = 2.0,
+                  .nresult = NR,
+                  .reduce = keep_final};
   double res[NT * NR];
   int status[NT];
   char msgs[NT * 200];

@@ -30,8 +30,10 @@ static dal_system *chain(const chain_par *P) {
   double pend[7] = {P->l0, 0, 0, P->ax, 0, P->w, 0}, h1 = P->l1, h2 = P->l2;
   double g[2] = {0, -P->g}, x0[2] = {0.5, -1.0};
   const char *names[3] = {"a", "b", "c"};
-  for (int i = 0; i < 3 && !rc; ++i) rc = dal_builder_add_coord(b, NULL, &q[i]);
-  for (int i = 0; i < 3 && !rc; ++i) rc = dal_builder_add_particle(b, names[i], P->m[i], &p[i]);
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(b, NULL, &q[i]);
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_particle(b, names[i], P->m[i], &p[i]);
   if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &q[0], 7, pend, NULL);
   if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &q[1], 1, &h1, NULL);
   if (!rc) rc = dal_builder_place(b, p[2], &dal_map_hanging, p[1], 1, &q[2], 1, &h2, NULL);
@@ -53,7 +55,8 @@ static dal_system *loop(double L, double x0, double R, double link, double m) {
   dal_system *s = NULL;
   int q[4], p[2], rc = dal_builder_create(2, &b);
   double rod[3] = {L, x0, 0}, circ[3] = {R, 0, 0}, g[2] = {0, -9.81};
-  for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(b, NULL, &q[i]);
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = dal_builder_add_coord(b, NULL, &q[i]);
   if (!rc) rc = dal_builder_add_particle(b, "p", m, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "s", 1.0, &p[1]);
   if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
@@ -194,7 +197,8 @@ static void test_dae(void) {
   CHECK_MSG(rc == DAL_E_INIT || rc == DAL_E_CONSTRAINT, "rod too long: %s (%s)",
             dal_status_name(rc), dal_state_errmsg(a));
   CHECK(strstr(dal_state_errmsg(a), "rod") || strstr(dal_state_errmsg(a), "link"));
-  if (getenv("DAL_VERBOSE")) printf("rod too long: %s: %s\n", dal_status_name(rc), dal_state_errmsg(a));
+  if (getenv("DAL_VERBOSE"))
+    printf("rod too long: %s: %s\n", dal_status_name(rc), dal_state_errmsg(a));
   dal_state_destroy(a);
   dal_state_destroy(ref);
 done:
@@ -225,12 +229,12 @@ static void test_validation(void) {
   // masses: the builder's words
   CHECK(dal_state_set_mass(s, st, 0, -1.0) == DAL_E_ARG);
   builder_msg(-1.0, want, sizeof want);
-  CHECK_MSG(strcmp(dal_state_errmsg(st), want) == 0, "'%s' vs builder '%s'",
-            dal_state_errmsg(st), want);
+  CHECK_MSG(strcmp(dal_state_errmsg(st), want) == 0, "'%s' vs builder '%s'", dal_state_errmsg(st),
+            want);
   CHECK(dal_state_set_mass(s, st, 0, NAN) == DAL_E_NONFINITE);
   builder_msg(NAN, want, sizeof want);
-  CHECK_MSG(strcmp(dal_state_errmsg(st), want) == 0, "'%s' vs builder '%s'",
-            dal_state_errmsg(st), want);
+  CHECK_MSG(strcmp(dal_state_errmsg(st), want) == 0, "'%s' vs builder '%s'", dal_state_errmsg(st),
+            want);
   CHECK(dal_state_set_mass(s, st, 0, 0.0) == DAL_E_ARG);
   CHECK(dal_state_set_mass(s, st, 3, 1.0) == DAL_E_ARG);
   CHECK(strstr(dal_state_errmsg(st), "particle index 3 out of range"));

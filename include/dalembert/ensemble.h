@@ -84,40 +84,40 @@ typedef enum dal_schedule {
 
 /// The trajectories of a sweep (borrowed arrays; must stay valid during dal_sweep_run).
 typedef struct dal_sweep {
-  long ntraj;                   ///< number of trajectories (>= 1)
-  int nparam;                   ///< parameters set per trajectory (>= 0)
-  const dal_param_ref *params;  ///< the parameters (nparam), see params.h / dal_param_find
-  const double *values;         ///< values (ntraj x nparam, row-major): row i for trajectory i
-  double t0;                    ///< initial time
-  const double *q0;             ///< initial coordinates: n values, or ntraj x n (see stride)
-  const double *qdot0;          ///< initial velocities: n values, or ntraj x n (see stride)
-  int state_stride;             ///< 0: the same q0, qdot0 for all; n: row i for trajectory i
-  const dal_solve_opts *solve;  ///< non-NULL: advance each trajectory to t1 before reducing;
-                                ///< NULL: the reducer drives the state itself
-  double t1;                    ///< target time with `solve`
-  int nresult;                  ///< doubles per result slot (>= 0)
-  dal_reduce_fn *reduce;        ///< the reducer (NULL: keep nothing beyond the status)
-  void *ctx;                    ///< passed to reduce (borrowed)
+  long ntraj;                  ///< number of trajectories (>= 1)
+  int nparam;                  ///< parameters set per trajectory (>= 0)
+  const dal_param_ref *params; ///< the parameters (nparam), see params.h / dal_param_find
+  const double *values;        ///< values (ntraj x nparam, row-major): row i for trajectory i
+  double t0;                   ///< initial time
+  const double *q0;            ///< initial coordinates: n values, or ntraj x n (see stride)
+  const double *qdot0;         ///< initial velocities: n values, or ntraj x n (see stride)
+  int state_stride;            ///< 0: the same q0, qdot0 for all; n: row i for trajectory i
+  const dal_solve_opts *solve; ///< non-NULL: advance each trajectory to t1 before reducing;
+                               ///< NULL: the reducer drives the state itself
+  double t1;                   ///< target time with `solve`
+  int nresult;                 ///< doubles per result slot (>= 0)
+  dal_reduce_fn *reduce;       ///< the reducer (NULL: keep nothing beyond the status)
+  void *ctx;                   ///< passed to reduce (borrowed)
 } dal_sweep;
 
 /// Sweep options. Always start from dal_sweep_default_opts().
 typedef struct dal_sweep_opts {
-  int magic;                            ///< set by dal_sweep_default_opts; do not touch
-  int nthreads;                         ///< worker threads incl. the caller (default 1;
-                                        ///< 0: the number of online processors)
-  dal_schedule schedule;                ///< default DAL_SCHEDULE_DYNAMIC
-  int chunk;                            ///< trajectories per grab (dynamic), default 1
-  dal_progress_fn *progress;            ///< nullable
-  void *progress_ctx;                   ///< passed to progress
-  long progress_every;                  ///< call progress every this many trajectories and
-                                        ///< at the end (default 1)
-  dal_worker_create_fn *worker_create;  ///< nullable: per-worker data
+  int magic;                             ///< set by dal_sweep_default_opts; do not touch
+  int nthreads;                          ///< worker threads incl. the caller (default 1;
+                                         ///< 0: the number of online processors)
+  dal_schedule schedule;                 ///< default DAL_SCHEDULE_DYNAMIC
+  int chunk;                             ///< trajectories per grab (dynamic), default 1
+  dal_progress_fn *progress;             ///< nullable
+  void *progress_ctx;                    ///< passed to progress
+  long progress_every;                   ///< call progress every this many trajectories and
+                                         ///< at the end (default 1)
+  dal_worker_create_fn *worker_create;   ///< nullable: per-worker data
   dal_worker_destroy_fn *worker_destroy; ///< nullable
-  void *worker_ctx;                     ///< passed to worker_create / worker_destroy
-  int part, nparts;                     ///< run only the trajectories of part `part` of
-                                        ///< `nparts` (default 0 of 1: all); see
-                                        ///< dal_sweep_part_of. For job arrays and MPI ranks
-  int part_block;                       ///< block size of the partition (default 1)
+  void *worker_ctx;                      ///< passed to worker_create / worker_destroy
+  int part, nparts;                      ///< run only the trajectories of part `part` of
+                                         ///< `nparts` (default 0 of 1: all); see
+                                         ///< dal_sweep_part_of. For job arrays and MPI ranks
+  int part_block;                        ///< block size of the partition (default 1)
 } dal_sweep_opts;
 
 /// Where results go (caller-owned arrays of ntraj entries each).

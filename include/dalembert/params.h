@@ -65,8 +65,8 @@ typedef struct dal_param_ref {
 /// Resolve a parameter name (syntax in the header comment) against `sys` into *out.
 /// `msg` (nullable, `msglen` bytes) receives an error message naming what was not found and
 /// the valid choices. Returns DAL_OK, DAL_E_ARG (unknown name, index out of range, syntax).
-DAL_API int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out,
-                           char *msg, size_t msglen);
+DAL_API int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, char *msg,
+                           size_t msglen);
 
 /// Check that `ref` points at an existing parameter of `sys`; `msg` as above.
 /// Returns DAL_OK or DAL_E_ARG.
@@ -75,16 +75,15 @@ DAL_API int dal_param_check(const dal_system *sys, const dal_param_ref *ref, cha
 
 /// Write the canonical name of `ref` ("mass:bob", "place:bob:5", ...) into buf (len bytes,
 /// truncated). Returns DAL_OK or DAL_E_ARG for an invalid reference.
-DAL_API int dal_param_name(const dal_system *sys, const dal_param_ref *ref, char *buf,
-                           size_t len);
+DAL_API int dal_param_name(const dal_system *sys, const dal_param_ref *ref, char *buf, size_t len);
 
 /// The compiled system's value of a parameter into *value. Returns DAL_OK or DAL_E_ARG.
 DAL_API int dal_system_param(const dal_system *sys, const dal_param_ref *ref, double *value);
 
 /// The state's value of a parameter (its override, or the system's value) into *value.
 /// Returns DAL_OK, DAL_E_ARG, DAL_E_STATE (state of another system).
-DAL_API int dal_state_param(const dal_system *sys, const dal_state *st,
-                            const dal_param_ref *ref, double *value);
+DAL_API int dal_state_param(const dal_system *sys, const dal_state *st, const dal_param_ref *ref,
+                            double *value);
 
 /// Override one parameter for this state. Validation as in the builder: masses finite and
 /// > 0, primitive parameters and gravity finite, spring and damper constants finite and >= 0.
