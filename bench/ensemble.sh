@@ -30,5 +30,14 @@ mkdir -p "$(dirname "$out")"
         printf "mpi,%s,%d,%.6f,%.6f,%.3f,%.3f\n", o, n[o], mn[o], md[o], mn[b] / mn[o], md[b] / md[o]
       }'
   fi
+  # machinery overhead in instructions (load-independent): one pass of 256 short
+  # trajectories as a plain loop and as a 1-thread sweep under callgrind
+  if command -v valgrind >/dev/null; then
+    for m in loop sweep; do
+      ir=$(valgrind --tool=callgrind --callgrind-out-file=/dev/null \
+             "$bdir/bench/dal_bench_ensemble" "$m" 0.01 2>&1 | awk '/refs:/ { gsub(",", "", $NF); print $NF }')
+      echo "callgrind,$m 256 traj t=0.01 instructions,1,$ir,$ir,,"
+    done
+  fi
   echo "# load average at end: $(cut -d' ' -f1-3 /proc/loadavg)"
 } | tee "$out"

@@ -16,7 +16,7 @@
 // Built with -DDAL_BENCH_MPI (target dal_bench_ensemble_mpi): the sweep over MPI ranks
 // (dal_sweep_run_mpi, 1 thread per rank), timed on rank 0 between barriers; run it under
 // mpirun -np 1 and -np 2 (bench/ensemble.sh).
-// Usage: dal_bench_ensemble [reps]
+// Usage: dal_bench_ensemble [reps] | dal_bench_ensemble loop|sweep <t1> (one pass, for callgrind)
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -148,6 +148,23 @@ int main(int argc, char **argv) {
   if (reps < 1 || reps > 100) reps = 7;
   setup *s = calloc(1, sizeof *s);
   if (!s || make(s)) return 1;
+  // one pass of the loop or the sweep (1 thread) to t1, for instruction counts under
+  // valgrind --tool=callgrind: dal_bench_ensemble loop|sweep <t1>
+  if (argc > 2 && (!strcmp(argv[1], "loop") || !strcmp(argv[1], "sweep"))) {
+    double t1 = atof(argv[2]);
+    dal_state *st1 = NULL;
+    dal_sweep sw1 = s->sw;
+    sw1.t1 = t1;
+    int rc = dal_state_create(s->sys, &st1);
+    double t = rc ? NAN
+                  : (!strcmp(argv[1], "loop") ? time_loop(s, st1, t1)
+                                              : time_sweep(s, &sw1, 1, DAL_SCHEDULE_DYNAMIC));
+    printf("%s t1=%g: %.6f s\n", argv[1], t1, t);
+    dal_state_destroy(st1);
+    dal_system_destroy(s->sys);
+    free(s);
+    return isnan(t);
+  }
   double *a = malloc((size_t)reps * 4 * sizeof(double));
   dal_state *st = NULL;
   if (!a || dal_state_create(s->sys, &st)) return 1;
