@@ -243,7 +243,8 @@ int main(int argc, char **argv) {
   for (long i = 0; i < nt; ++i)
     if (status[i]) printf("trajectory %ld failed: %s\n", i, msgs + i * 200);
   if (check) {
-    double ref_c = lyap_reference(values[2], values[3], cfg.T), ref_p = lyap_reference(0.5, 0.8, cfg.T);
+    double ref_c = lyap_reference(values[2], values[3], cfg.T),
+           ref_p = lyap_reference(0.5, 0.8, cfg.T);
     printf("lyapunov: a = 0: lambda = %.5f (closed form -b/2 = %.5f)\n", res[0], -drag / 2);
     printf("  chaotic a = 2.625, w = 1.1923: lambda = %.5f (halves %.4f, %.4f); variational RK4 "
            "reference %.5f\n",
