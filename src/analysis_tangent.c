@@ -146,7 +146,7 @@ static int curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet 
     if (pl->parent >= 0)
       for (int b = 0; b < d; ++b) tg->jin[m++] = tg->jr[pl->parent * d + b];
     for (int i = 0; i < pl->ncoord; ++i) tg->jin[m++] = tg->jq[coords[i]];
-    int rc = prim->eval(tg->jin, tj, sys->ppool + pl->param_off, tg->jout, pl->ctx);
+    int rc = prim->eval(tg->jin, tj, st->prm.ppool + pl->param_off, tg->jout, pl->ctx);
     if (rc) {
       snprintf(what, sizeof what, "coordinate map '%s' of particle '%s'", prim->name,
                sys->part_names[k]);
@@ -187,12 +187,12 @@ static int potential(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_
                      dal_jet *V) {
   int d = sys->dim, rc;
   dal_jet s = dal_const(0.0);
-  if (sys->has_gravity)
+  if (st->prm.has_gravity)
     for (int k = 0; k < sys->N; ++k)
       for (int b = 0; b < d; ++b)
-        s = dal_sub(s, dal_scale(tg->jr[k * d + b], sys->mass[k] * sys->g[b]));
+        s = dal_sub(s, dal_scale(tg->jr[k * d + b], st->prm.mass[k] * st->prm.g[b]));
   for (int i = 0; i < sys->nspring; ++i) {
-    const dal_link *l = &sys->springs[i];
+    const dal_link *l = &st->prm.springs[i];
     dal_jet x[3], diff[3];
     if (l->b >= 0) {
       for (int b = 0; b < d; ++b) x[b] = tg->jr[l->b * d + b];
@@ -304,7 +304,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
   // anchors of springs and dampers: x, x', x'' at t
   for (int i = 0; i < sys->nspring + sys->ndamper; ++i) {
     int spring = i < sys->nspring;
-    const dal_link *l = spring ? &sys->springs[i] : &sys->dampers[i - sys->nspring];
+    const dal_link *l = spring ? &st->prm.springs[i] : &st->prm.dampers[i - sys->nspring];
     if (l->b >= 0) continue;
     dal_jet x[3];
     if ((rc = anchor_jets(sys, st, l, dal_var(t, 1.0), x, spring ? "spring" : "damper")) != 0)
@@ -325,7 +325,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     tg->A[c] = tg->jr[c].dd;
   }
   dampers(sys, tg, NULL, NULL, 0.0, tg->Fd, NULL);
-  for (int c = 0; c < nd; ++c) tg->w[c] = sys->mass[c / d] * tg->A[c] - tg->Fd[c];
+  for (int c = 0; c < nd; ++c) tg->w[c] = st->prm.mass[c / d] * tg->A[c] - tg->Fd[c];
 
   // second derivatives of W in (q, t): diagonal along e_i (also J, dR at the state and the
   // third derivatives of the particles along e_i), then e_i + e_j by polarization
@@ -354,7 +354,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     for (int j = 0; j <= i; ++j) {
       double s = 0.0;
       const double *Ji = tg->J + (size_t)i * nd, *Jj = tg->J + (size_t)j * nd;
-      for (int c = 0; c < nd; ++c) s += sys->mass[c / d] * Ji[c] * Jj[c];
+      for (int c = 0; c < nd; ++c) s += st->prm.mass[c / d] * Ji[c] * Jj[c];
       tg->M[(size_t)j * n + i] = tg->M[(size_t)i * n + j] = s;
     }
 
@@ -383,7 +383,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     for (int j = 0; j < n; ++j) {
       const double *Jj = tg->J + (size_t)j * nd;
       double s = udir ? 0.0 : H[i * ldh + j];
-      for (int c = 0; c < nd; ++c) s += Jj[c] * (sys->mass[c / d] * tg->da[c] - tg->dF[c]);
+      for (int c = 0; c < nd; ++c) s += Jj[c] * (st->prm.mass[c / d] * tg->da[c] - tg->dF[c]);
       col[j] = s;
     }
   }

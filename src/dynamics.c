@@ -58,15 +58,15 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
   int d = sys->dim, N = sys->N, rc;
   memset(st->F, 0, (size_t)N * (size_t)d * sizeof(double));
   *U = 0.0;
-  if (sys->has_gravity)
+  if (st->prm.has_gravity)
     for (int k = 0; k < N; ++k)
       for (int b = 0; b < d; ++b) {
-        st->F[k * d + b] += sys->mass[k] * sys->g[b];
-        *U -= sys->mass[k] * sys->g[b] * st->r[k * d + b];
+        st->F[k * d + b] += st->prm.mass[k] * st->prm.g[b];
+        *U -= st->prm.mass[k] * st->prm.g[b] * st->r[k * d + b];
       }
   for (int i = 0; i < sys->nspring + sys->ndamper; ++i) {
     int spring = i < sys->nspring;
-    const dal_link *l = spring ? &sys->springs[i] : &sys->dampers[i - sys->nspring];
+    const dal_link *l = spring ? &st->prm.springs[i] : &st->prm.dampers[i - sys->nspring];
     const char *kind = spring ? "spring" : "damper";
     double xa[3], va[3], e[3], len;
     const double *rb = st->r + l->a * d, *vb = st->v + l->a * d;
@@ -204,7 +204,7 @@ static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
   for (int k = 0; k < N; ++k)
     for (int a = 0; a < d; ++a) {
       cf[k * d + a] = st->F[k * d + a];
-      cg[k * d + a] = sys->mass[k] * st->gamma[k * d + a];
+      cg[k * d + a] = st->prm.mass[k] * st->gamma[k * d + a];
     }
   for (int k = N - 1; k >= 0; --k) {
     int p = sys->place[k].parent;
@@ -232,7 +232,7 @@ static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
     // lower triangle only (M[col * n + row], row >= col); a pair and its transpose are
     // one entry there, a coordinate paired with itself counts twice
     double *restrict M = st->M;
-    const double muk = sys->mu[k];
+    const double muk = st->prm.mu[k];
     for (int b = k; b >= 0; b = sys->place[b].parent) {
       const dal_place *pb = &sys->place[b];
       const int *cb = sys->ipool + pb->coord_off;
@@ -285,7 +285,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) 
       const int *dk = sys->pdep + sys->pdep_off[k];
       int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
       const double *Jk = st->J + sys->pj_off[k];
-      double m = sys->mass[k];
+      double m = st->prm.mass[k];
       for (int a = 0; a < d; ++a) {
         const double *row = Jk + a * ndk;
         double f = st->F[k * d + a], g = m * st->gamma[k * d + a];
@@ -305,7 +305,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) 
   // energies: T from v, and its split by powers of qdot through J qdot = v - dr/dt
   double T = 0.0, T2 = 0.0, T1 = 0.0, T0 = 0.0;
   for (int k = 0; k < sys->N; ++k) {
-    double m = sys->mass[k];
+    double m = st->prm.mass[k];
     for (int a = 0; a < d; ++a) {
       double v = st->v[k * d + a], rt = st->drdt[k * d + a], jq = v - rt;
       T += 0.5 * m * v * v;
@@ -352,7 +352,7 @@ void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x
     for (int a = 0; a < d; ++a) {
       double s = 0.0;
       for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * x[dk[c]];
-      s *= sys->mass[k];
+      s *= st->prm.mass[k];
       for (int c = 0; c < ndk; ++c) y[dk[c]] += Jk[a * ndk + c] * s;
     }
   }
@@ -400,7 +400,7 @@ int dal__finish(const dal_system *sys, dal_state *st) {
         for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qddot[dk[c]];
       }
       st->a[k * d + a] = s;
-      st->N[k * d + a] = sys->mass[k] * s - st->F[k * d + a];
+      st->N[k * d + a] = st->prm.mass[k] * s - st->F[k * d + a];
     }
   }
   // explicit time derivatives of the constraint rows, exactly (along t only); h is the

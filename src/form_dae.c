@@ -284,7 +284,7 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
       for (int b = 0; b < nd; ++b) {
         double v = 0.0;
         for (int c = 0; c < d && values; ++c) v += Jp[c * nd + a] * Jp[c * nd + b];
-        jadd(f, s, n + dp[a], n + dp[b], cj * sys->mass[p] * v);
+        jadd(f, s, n + dp[a], n + dp[b], cj * st->prm.mass[p] * v);
       }
   }
   for (int ci = 0; ci < sys->ncon; ++ci) {

@@ -152,10 +152,22 @@ enum {
 };
 /// a consumer reads product bits `p`: they must be current (debug builds check)
 #define DAL_NEED(st, p) DAL_ASSERT(((st)->have & (p)) == (p))
+/// per-trajectory parameters (params.c): read pointers that point at the system's arrays
+/// until the first override copies that array into the state (copy-on-write); the
+/// evaluation reads masses, primitive parameters, gravity and link constants through them
+typedef struct dal_params {
+  const double *mass, *mu, *ppool, *g; // N, N (subtree masses), the parameter pool, 3
+  const dal_link *springs, *dampers;   // nspring, ndamper
+  int has_gravity;
+  double *own_mass, *own_mu, *own_ppool; // owned copies (NULL until overridden)
+  dal_link *own_springs, *own_dampers;
+  double own_g[3];
+} dal_params;
 
 /// workspace and outputs of one trajectory
 struct dal_state {
   const dal_system *sys;
+  dal_params prm;           // per-trajectory parameters (params.c)
   double t;
   double *q, *qdot, *qddot; // n
   double *r, *v, *a, *drdt, *gamma, *F, *N; // N x d
@@ -227,8 +239,8 @@ typedef struct dal_inst {
   int npart, ncoord;
   const int *parts, *coords;
 } dal_inst;
-/// the instance of an owner (particle k >= 0, constraint -1 - c)
-dal_inst dal__inst(const dal_system *sys, int owner);
+/// the instance of an owner (particle k >= 0, constraint -1 - c), with the state's parameters
+dal_inst dal__inst(const dal_system *sys, const dal_state *st, int owner);
 /// Evaluate a primitive instance with its inputs u (particle positions, then coordinates) at
 /// their values plus the curve s -> u + s d1 + s^2/2 d2 (d1, d2 local (nin); NULL = 0) and
 /// time t + s tdot: st->jout receives value, first and second derivative along it. Checks the
@@ -270,5 +282,11 @@ void dal__kkt_free(struct dal_kkt *k);
 
 /// drop integrator memory (called by dal_state_set and dal_state_destroy)
 void dal__integ_reset(dal_state *st);
+
+/// per-trajectory parameters (params.c): point at the system's arrays / free owned copies
+void dal__params_init(dal_state *st);
+void dal__params_free(dal_state *st);
+/// restore the system's values into the state's owned copies (keeps the buffers: no allocation)
+void dal__params_rewind(dal_state *st);
 
 #endif

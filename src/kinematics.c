@@ -25,12 +25,12 @@ static int find_sorted(const int *list, int n, int j) {
   return -1;
 }
 
-dal_inst dal__inst(const dal_system *sys, int owner) {
+dal_inst dal__inst(const dal_system *sys, const dal_state *st, int owner) {
   dal_inst in;
   if (owner >= 0) {
     const dal_place *pl = &sys->place[owner];
     in.prim = pl->prim;
-    in.param = sys->ppool + pl->param_off;
+    in.param = st->prm.ppool + pl->param_off;
     in.ctx = pl->ctx;
     in.npart = pl->parent >= 0 ? 1 : 0;
     in.parts = &pl->parent;
@@ -39,7 +39,7 @@ dal_inst dal__inst(const dal_system *sys, int owner) {
   } else {
     const dal_con *c = &sys->con[-1 - owner];
     in.prim = c->prim;
-    in.param = sys->ppool + c->param_off;
+    in.param = st->prm.ppool + c->param_off;
     in.ctx = c->ctx;
     in.npart = c->npart;
     in.parts = sys->ipool + c->part_off;
@@ -98,7 +98,7 @@ static void load_inputs(const dal_system *sys, dal_state *st, const dal_inst *in
 
 int dal__prim_eval(const dal_system *sys, dal_state *st, int owner, const double *d1,
                    const double *d2, double tdot) {
-  dal_inst in = dal__inst(sys, owner);
+  dal_inst in = dal__inst(sys, st, owner);
   load_inputs(sys, st, &in, d1, d2);
   return eval_checked(sys, st, &in, dal_var(st->t, tdot), owner);
 }
@@ -234,7 +234,7 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   if (sys->map) return kinematics_map(sys, st);
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
-    dal_inst in = dal__inst(sys, k);
+    dal_inst in = dal__inst(sys, st, k);
     int np = in.npart, nin = in.prim->nin, nc = pl->ncoord, p = pl->parent;
     // local Jacobian at the current values; a translating map's parent block is I
     int translates = np && (in.prim->flags & DAL_PRIM_TRANSLATES);
@@ -281,7 +281,7 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
   DAL_NEED(st, DAL_P_KIN | DAL_P_J);
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
-    dal_inst in = dal__inst(sys, -1 - ci);
+    dal_inst in = dal__inst(sys, st, -1 - ci);
     int nin = in.prim->nin, nout = in.prim->nout;
     rc = local_jacobian(sys, st, &in, -1 - ci, 0);
     if (rc) return rc;

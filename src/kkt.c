@@ -262,7 +262,7 @@ static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const
           double s = 0.0;
           for (int c = 0; c < d; ++c)
             s += Jp[c * nd + a] * Jp[c * nd + b];
-          k->Kx[mp[a * nd + b]] += sys->mass[p] * s;
+          k->Kx[mp[a * nd + b]] += st->prm.mass[p] * s;
         }
     }
   } else {

@@ -308,7 +308,7 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
     for (int i = 0; i < pl->ncoord; ++i)
-      m->minv[sys->ipool[pl->coord_off + i]] += sys->mass[k];
+      m->minv[sys->ipool[pl->coord_off + i]] += st->prm.mass[k];
   }
   for (int i = 0; i < m->n; ++i) {
     if (!(m->minv[i] > 0.0))

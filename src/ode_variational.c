@@ -197,7 +197,7 @@ static void jt_mass_apply(const dal_system *sys, const dal_state *st, const doub
     int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
     const double *Jk = st->J + sys->pj_off[k];
     for (int a = 0; a < d; ++a) {
-      double f = sys->mass[k] * w[k * d + a];
+      double f = st->prm.mass[k] * w[k * d + a];
       for (int c = 0; c < ndk; ++c)
         out[dk[c]] += Jk[a * ndk + c] * f;
     }
@@ -245,7 +245,7 @@ static int part_terms(const dal_system *sys, var_mem *m, double t, const double 
     for (int e = 0; e < Nd; ++e) {
       double w = (m->gp[e] - st->gamma[e]) / (4.0 * s);
       m->gp[e] = w;
-      tq += sys->mass[e / d] * m->vk[e] * w;
+      tq += st->prm.mass[e / d] * m->vk[e] * w;
     }
     m->F[j] += tq;
     if (want_S) jt_mass_apply(sys, st, m->gp, m->S + (size_t)j * n);

@@ -16,6 +16,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   if (!st) return DAL_E_NOMEM;
   size_t n = (size_t)sys->n, Nd = (size_t)sys->N * (size_t)sys->dim, m = (size_t)sys->m;
   st->sys = sys;
+  dal__params_init(st);
   st->q = calloc(n, sizeof(double));
   st->qdot = calloc(n, sizeof(double));
   st->qddot = calloc(n, sizeof(double));
@@ -73,6 +74,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
 void dal_state_destroy(dal_state *st) {
   if (!st) return;
   dal__integ_reset(st);
+  dal__params_free(st);
   double *d[] = {st->q,  st->qdot, st->qddot, st->Q,      st->c,      st->work, st->r,
                  st->v,  st->a,    st->drdt,  st->gamma,  st->F,      st->N,    st->J,
                  st->M,  st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
