@@ -212,4 +212,10 @@ int dal__forward(const dal_system *sys, dal_state *st);
 /// drop integrator memory (called by dal_state_set and dal_state_destroy)
 void dal__integ_reset(dal_state *st);
 
+// primitives' table versions and parameter names (builder.c)
+/// name of parameter i of prim: its param_names entry, else "p<i>" written into buf
+const char *dal__param_name(const dal_primitive *prim, int i, char *buf, size_t len);
+/// DAL_OK when prim->version is one this library reads, else DAL_E_ARG with a message in err
+int dal__prim_version_ok(const dal_primitive *prim, char *err, const char *what);
+
 #endif

@@ -1096,8 +1096,14 @@ static int scaled_child(const dal_jet *in, dal_jet t, const double *p, dal_jet *
   out[1] = dal_sub(dal_scale(in[1], 1.5), dal_scale(dal_cos(in[2]), p[0]));
   return 0;
 }
-static const dal_primitive scaled_prim = {"scaled_child", 1, 3, 2, 1, scaled_child,
-                                          "1.5 parent + l (sin th, -cos th)", 0};
+static const dal_primitive scaled_prim = {.name = "scaled_child",
+                                          .version = 1,
+                                          .nin = 3,
+                                          .nout = 2,
+                                          .nparam = 1,
+                                          .eval = scaled_child,
+                                          .doc = "1.5 parent + l (sin th, -cos th)",
+                                          .flags = 0};
 
 static int scaled_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
   (void)t;
