@@ -161,6 +161,8 @@ struct dal_state {
   void (*integ_free)(void *);
   dal_solve_opts integ_opts;
   dal_stats stats;
+  dal_init_report init_rep; // the last consistent start's report (init.c)
+  int init_rep_valid;       // init_rep holds a report
   char err[DAL_ERRMSG_LEN];
 };
 

@@ -378,10 +378,18 @@ int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double 
   return DAL_OK;
 }
 
-int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
+int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F) {
   if (!sys || !st || !F || st->sys != sys) return DAL_E_ARG;
   int d = sys->dim;
   memset(F, 0, (size_t)sys->N * (size_t)d * sizeof(double));
+  // jets of its own: the state is read-only here (monitors call this)
+  dal_jet sin_[64], sout[64], *jin = sin_, *jout = sout;
+  if (sys->max_in > 64 || sys->max_out > 64) {
+    jin = malloc((size_t)(sys->max_in + sys->max_out) * sizeof(dal_jet));
+    if (!jin) return DAL_E_NOMEM;
+    jout = jin + sys->max_in;
+  }
+  int status = DAL_OK;
   // local Jacobians dphi/dr_k of each constraint at the current positions, times lambda
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
@@ -392,24 +400,22 @@ int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
     int kin = 0;
     for (int a = 0; a < c->npart; ++a)
       for (int b = 0; b < d; ++b)
-        st->jin[kin++] = dal_const(st->r[parts[a] * d + b]);
+        jin[kin++] = dal_const(st->r[parts[a] * d + b]);
     for (int i = 0; i < c->ncoord; ++i)
-      st->jin[kin++] = dal_const(st->q[coords[i]]);
-    for (int i = 0; i < c->npart * d; ++i) {
-      st->jin[i].d = 1.0;
-      int rc = prim->eval(st->jin, dal_const(st->t), param, st->jout, c->ctx);
-      st->jin[i].d = 0.0;
-      if (rc) {
-        char what[160];
-        snprintf(what, sizeof what, "constraint '%s' ('%s')", c->name, prim->name);
-        rc = dal__cb_status(st, rc, what);
-        return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
-      }
+      jin[kin++] = dal_const(st->q[coords[i]]);
+    for (int i = 0; i < c->npart * d && !status; ++i) {
+      jin[i].d = 1.0;
+      int rc = prim->eval(jin, dal_const(st->t), param, jout, c->ctx);
+      jin[i].d = 0.0;
       double f = 0.0;
-      for (int r = 0; r < prim->nout; ++r)
-        f += st->jout[r].d * st->lambda[c->row + r];
-      F[parts[i / d] * d + i % d] += f;
+      for (int r = 0; r < prim->nout && !rc; ++r) {
+        if (!dal_jet_isfinite(jout[r])) rc = DAL_E_DOMAIN;
+        f += jout[r].d * st->lambda[c->row + r];
+      }
+      if (rc) status = rc == DAL_E_DOMAIN ? DAL_E_DOMAIN : DAL_E_CALLBACK;
+      else F[parts[i / d] * d + i % d] += f;
     }
   }
-  return DAL_OK;
+  if (jin != sin_) free(jin);
+  return status;
 }

@@ -17,7 +17,8 @@ void dal_solve_default_opts(dal_solve_opts *o) {
   o->form = DAL_FORM_AUTO;
   o->linsol = DAL_LINSOL_AUTO;
   o->rtol = 1e-8;
-  o->atol = 1e-10;
+  o->atol = 0.0; // follows rtol: DAL_ATOL_PER_RTOL * rtol
+  o->init_max_move = 0.0;
   o->fixed_step = 1e-3;
   o->max_steps = 1000000;
   o->sparse_threshold = 200;
@@ -210,6 +211,9 @@ int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...) {
   // back to the last accepted step, evaluated there
   ig->prob->to_state(ig->sys, st, ig->t, ig->y);
   int rc = ig->prob->rhs(ig->sys, st, &ig->opts, ig->t, ig->y, ig->ydot);
+  // the same failure again (e.g. a singular start, where the last accepted step is the start
+  // itself): one message, not the cause twice
+  if (rc && strncmp(msg, st->err, strlen(st->err)) == 0) rc = 0;
   if (rc) {
     char again[DAL_ERRMSG_LEN];
     memcpy(again, st->err, sizeof again);
@@ -314,11 +318,16 @@ static int check_opts(dal_state *st, const dal_solve_opts *o) {
     return DAL_FAIL(st, DAL_E_ARG,
                     "opts.rtol = %g is below what double precision can deliver; use >= 1e-15",
                     o->rtol);
-  if (!(o->atol > 0) || !isfinite(o->atol))
-    return DAL_FAIL(st, DAL_E_ARG, "opts.atol = %g must be positive and finite (e.g. 1e-10)",
+  if (!(o->atol >= 0) || !isfinite(o->atol))
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "opts.atol = %g must be positive and finite (e.g. 1e-10), or 0 to follow "
+                    "rtol",
                     o->atol);
+  if (!(o->init_max_move >= 0) || !isfinite(o->init_max_move))
+    return DAL_FAIL(st, DAL_E_ARG, "opts.init_max_move = %g must be >= 0 and finite (0: no limit)",
+                    o->init_max_move);
   // the integrators weight errors by 1 / (atol + rtol |y|): it must stay finite
-  if (o->atol < 1e-300)
+  if (o->atol > 0 && o->atol < 1e-300)
     return DAL_FAIL(st, DAL_E_ARG,
                     "opts.atol = %g is too small for double precision (its error weights "
                     "overflow); use >= 1e-300, e.g. 1e-10",
@@ -586,17 +595,30 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
   return DAL_OK;
 }
 
+// the options as the integrators read them: atol = 0 follows rtol (solve.h)
+static dal_solve_opts effective_opts(const dal_solve_opts *o) {
+  dal_solve_opts e = *o;
+  if (e.atol == 0.0) e.atol = DAL_ATOL_PER_RTOL * e.rtol;
+  return e;
+}
+
 int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1) {
   int rc = check_call(sys, st, opts, t1, "advance");
   if (rc) return rc;
-  return advance_to(sys, st, opts, t1);
+  dal_solve_opts eff = effective_opts(opts);
+  return advance_to(sys, st, &eff, t1);
 }
 
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
 static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
   if (!monitor) return 0;
   int mr = monitor(sys, st, ctx);
-  if (mr > 0) return 1;
+  if (mr > 0) {
+    // not a failure; the message says where and why the run ended
+    DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,
+             st->t);
+    return 1;
+  }
   if (mr < 0)
     return DAL_FAIL(st, DAL_E_CALLBACK,
                     "monitor returned %d (%s) at t=%.17g; evolve stopped there (the state holds "
@@ -624,6 +646,8 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
                     t0, t1, dt);
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
+  dal_solve_opts eff = effective_opts(opts);
+  opts = &eff;
   long K = (long)floor(span);
   while (K > 0 && t0 + (double)K * dt > t1)
     --K;
@@ -634,11 +658,11 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
     if (k == K && t1 - tk <= 1e-9 * dt) tk = t1;
     if ((rc = advance_to(sys, st, opts, tk)) != 0) return rc;
-    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_OK : rc;
+    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_STOPPED : rc;
   }
   if (st->t < t1) {
     if ((rc = advance_to(sys, st, opts, t1)) != 0) return rc;
-    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_OK : rc;
+    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_STOPPED : rc;
   }
   return DAL_OK;
 }

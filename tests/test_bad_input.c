@@ -719,11 +719,11 @@ static int row_path_domain(char *msg) {
   dal_state *st = NULL;
   CHECK_OK(pendulum(&b, &sys, &st));
   double res = -1.0;
-  int rc = dal_lagrange_residual(sys, st, path_sqrt, NULL, 0.5, &res);
+  int rc = dal_lagrange_residual(sys, st, path_sqrt, 0.5, &res, NULL);
   copy_msg(msg, dal_state_errmsg(st));
   CHECK(res == -1.0);
   // in the domain: the residual of theta = sqrt(t - 1) at t = 2 is M qddot + c - Q
-  CHECK_OK(dal_lagrange_residual(sys, st, path_sqrt, NULL, 2.0, &res));
+  CHECK_OK(dal_lagrange_residual(sys, st, path_sqrt, 2.0, &res, NULL));
   double th = 1.0, thdd = -0.25; // d2/dt2 sqrt(t - 1) at t = 2
   CHECK_CLOSE(res, thdd + 9.81 * sin(th), 1e-12);
   destroy_all(b, sys, st);

@@ -102,9 +102,9 @@ typedef int dal_path_q_fn(dal_jet t, dal_jet *q, void *ctx);
 /// Lagrange-equation residual of a proposed path at time t:
 /// res = d/dt dL/dqdot - dL/dq - Q_nc (n), equal to M qddot + c - Q for particle systems.
 /// Zero (to rounding) exactly when the path is realizable. Uses st as workspace: its
-/// (t, q, qdot) become the path's values at t.
+/// (t, q, qdot) become the path's values at t. `ctx` is passed to path.
 DAL_API int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path,
-                                  void *ctx, double t, double *res);
+                                  double t, double *res, void *ctx);
 
 #ifdef __cplusplus
 }

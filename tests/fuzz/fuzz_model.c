@@ -79,7 +79,10 @@ static void fz_die(const char *what, int rc, const char *msg) {
 }
 
 static void fz_status(const char *call, int rc) {
-  if (rc > 0 || strcmp(dal_status_name(rc), "DAL_UNKNOWN") == 0) fz_die(call, rc, NULL);
+  // DAL_STOPPED (> 0) is evolve's status for a monitor that asked to stop
+  if ((rc > 0 && (rc != DAL_STOPPED || strcmp(call, "evolve") != 0)) ||
+      strcmp(dal_status_name(rc), "DAL_UNKNOWN") == 0)
+    fz_die(call, rc, NULL);
 }
 
 static int fz_b(const dal_builder *b, const char *call, int rc) {
@@ -675,7 +678,7 @@ static void fz_run(fz *f, const dal_system *sys, fz_model *m) {
     fz_path_ctx pc = {.n = n, .w = fz_num(f)};
     for (int i = 0; i < n; ++i) pc.a[i] = q[i];
     double res[FZ_MAX_COORDS];
-    fz_s(st, "lagrange_residual", dal_lagrange_residual(sys, st, fz_qpath, &pc, fz_num(f), res));
+    fz_s(st, "lagrange_residual", dal_lagrange_residual(sys, st, fz_qpath, fz_num(f), res, &pc));
     fz_s(st, "state_set", dal_state_set(sys, st, t0, q, qd));
   }
 
@@ -692,6 +695,7 @@ static void fz_run(fz *f, const dal_system *sys, fz_model *m) {
       double dt = fz_u8(f) < 230 ? hz / (1 + fz_pick(f, 8)) : fz_num(f);
       rc = fz_s(st, "evolve", dal_evolve(sys, st, &o, t1, dt, fz_monitor, &mo));
       fz_trace("evolve", rc, dal_state_errmsg(st));
+      if (rc == DAL_STOPPED && !mo.stopped) fz_die("DAL_STOPPED without a monitor stop", rc, NULL);
       // a monitor that stopped the run early leaves the state before t1
       fz_check_state(sys, st, ta, mo.stopped ? NAN : t1, rc, "evolve");
       if (rc == DAL_OK && mo.calls < 1 && isfinite(t1) && t1 >= ta)
