@@ -18,6 +18,8 @@
 #ifndef DAL_SYSTEM_H
 #define DAL_SYSTEM_H
 
+#include <stdio.h>
+
 #include "dalembert/base.h"
 #include "dalembert/jet.h"
 
@@ -314,6 +316,13 @@ DAL_API const char *dal_system_particle_name(const dal_system *sys, int k);
 DAL_API const char *dal_system_constraint_name(const dal_system *sys, int i);
 /// Mass of particle k (NaN if out of range).
 DAL_API double dal_system_mass(const dal_system *sys, int k);
+
+/// Print the model to fp (like MuJoCo's mj_printModel): coordinates, particles with their
+/// masses and how each is placed (primitive, parent, coordinates, named parameters),
+/// constraints (rows, primitive, inputs, named parameters) and forces (gravity, springs and
+/// dampers with their anchors, counts of callbacks). Numbers are printed with %.17g, so they
+/// read back exactly. Returns DAL_OK, DAL_E_ARG (NULL argument) or DAL_E_IO.
+DAL_API int dal_system_print(const dal_system *sys, FILE *fp);
 
 #ifdef __cplusplus
 }
