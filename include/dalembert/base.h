@@ -51,7 +51,8 @@ extern "C" {
   X(DAL_E_TIME, -13, "target time lies behind the current time")                                  \
   X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                       \
   X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                          \
-  X(DAL_E_IO, -16, "file input/output failed")
+  X(DAL_E_IO, -16, "file input/output failed")                                                   \
+  X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")
 
 /// Status codes returned by every fallible dalembert call.
 typedef enum dal_status {
