@@ -30,10 +30,12 @@ extern "C" {
 /// Options of the jet checks. Start from dal_verify_default_opts().
 typedef struct dal_verify_opts {
   int nsamples;            ///< sample points (default 16)
-  double lo, hi;           ///< range of every input (default -1, 1), used when in_lo/in_hi are NULL
+  double lo;               ///< lower end of every input's range (default -1; see in_lo)
+  double hi;               ///< upper end of every input's range (default 1; see in_hi)
   const double *in_lo;     ///< per-input lower bounds (nin values; borrowed; nullable)
   const double *in_hi;     ///< per-input upper bounds (nin values; borrowed; nullable)
-  double t_lo, t_hi;       ///< range of t (default 0, 1)
+  double t_lo;             ///< lower end of the range of t (default 0)
+  double t_hi;             ///< upper end of the range of t (default 1)
   double h;                ///< finite-difference step relative to max(1, |x|) (default 1e-3)
   double tol_factor;       ///< multiple of the derived bound that still passes (default 10)
   unsigned long long seed; ///< random seed (default 1): the same seed gives the same points
@@ -44,15 +46,17 @@ DAL_API void dal_verify_default_opts(dal_verify_opts *o);
 
 /// What a jet check found. The worst entry is the one with the largest error / bound ratio.
 typedef struct dal_verify_report {
-  int samples;      ///< sample points evaluated
-  int checks;       ///< derivative entries compared
-  int failures;     ///< entries beyond tol_factor * bound, plus non-finite outputs
-  double worst;     ///< largest |jet - fd| / bound over all entries (<= tol_factor passes)
-  int worst_output; ///< output index of the worst entry
-  int worst_order;  ///< 1 (first derivative) or 2 (second) of the worst entry
-  double worst_jet, worst_fd, worst_bound; ///< its jet value, difference estimate, bound
-  double worst_t;                          ///< t of the worst sample
-  char msg[320]; ///< one line naming the function, the worst entry and the verdict
+  int samples;        ///< sample points evaluated
+  int checks;         ///< derivative entries compared
+  int failures;       ///< entries beyond tol_factor * bound, plus non-finite outputs
+  double worst;       ///< largest |jet - fd| / bound over all entries (<= tol_factor passes)
+  int worst_output;   ///< output index of the worst entry
+  int worst_order;    ///< 1 (first derivative) or 2 (second) of the worst entry
+  double worst_jet;   ///< the worst entry's jet derivative
+  double worst_fd;    ///< its central-difference estimate (step h/2)
+  double worst_bound; ///< its derived error bound
+  double worst_t;     ///< t of the worst sample
+  char msg[320];      ///< one line naming the function, the worst entry and the verdict
 } dal_verify_report;
 
 /// Check a primitive's jets: out = prim->eval(in, t; param, ctx), nin inputs, nout outputs.
