@@ -108,7 +108,7 @@ typedef struct dal_model_report {
 /// applied forces all come from potentials (gravity, springs, U(r, t), U(q, t)), Q against
 /// -dU/dq by central differences of U with the derived bound above; the Lagrange residual
 /// d/dt dL/dqdot - dL/dq - Q (dal_lagrange_residual) along a path integrated from the state for
-/// 20 output intervals of 1e-3 (path derivatives by central differences, pass below 1e-5
+/// 12 output intervals of 2e-3 (path derivatives by 4th-order central differences, pass below 1e-5
 /// relative), which for a constrained system must equal G' lambda; the rank of the
 /// constraints (dal_check_constraints). The state is left evaluated at its (t, q, qdot).
 /// `o` nullable (only tol_factor is used); `rep` nullable. Returns DAL_OK when all pass,
