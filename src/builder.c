@@ -210,7 +210,7 @@ static int resolve_params(dal_builder *b, const char *what, const dal_primitive 
       if (isnan(dflt))
         return BFAIL(DAL_E_ARG,
                      "%s: parameter '%s' of '%s' (index %d) is required and was not set; "
-                     "give it a value (see primitives.h)",
+                     "give it a value (see the primitive's documentation)",
                      what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i);
       x = dflt;
     }
