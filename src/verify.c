@@ -315,9 +315,10 @@ static int path_at(dal_jet t, dal_jet *q, void *ctx) {
   return 0;
 }
 
-#define PATH_K 12    // output intervals of the integrated path
-#define PATH_DT 2e-3 // their length: 4th-order differences of q stay below 1e-8 relative for
-                     // frequencies up to ~20 rad/s, above the integration noise (rtol 1e-12)
+#define PATH_K 12 // output intervals of the integrated path
+#define PATH_DT                                                                                    \
+  2e-3 // their length: 4th-order differences of q stay below 1e-8 relative for
+       // frequencies up to ~20 rad/s, above the integration noise (rtol 1e-12)
 #define PATH_TOL 1e-5
 
 // the Lagrange residual of an integrated path, by 4th-order central differences of q(t)

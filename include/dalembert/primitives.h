@@ -24,11 +24,11 @@ extern "C" {
 
 /// dal_map_fixed2/3: the point. Defaults: origin.
 enum dal_fixed_param {
-  DAL_FIXED_X,            ///< x (length), default 0
-  DAL_FIXED_Y,            ///< y (length), default 0
-  DAL_FIXED_Z,            ///< z (length, 3D only), default 0
-  DAL_FIXED2_NPARAM = 2,  ///< parameter count of dal_map_fixed2
-  DAL_FIXED3_NPARAM = 3,  ///< parameter count of dal_map_fixed3
+  DAL_FIXED_X,           ///< x (length), default 0
+  DAL_FIXED_Y,           ///< y (length), default 0
+  DAL_FIXED_Z,           ///< z (length, 3D only), default 0
+  DAL_FIXED2_NPARAM = 2, ///< parameter count of dal_map_fixed2
+  DAL_FIXED3_NPARAM = 3, ///< parameter count of dal_map_fixed3
 };
 /// dal_map_pendulum: length and pivot motion p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t +
 /// ph)). Defaults: pivot fixed at the origin (no drive); l required.

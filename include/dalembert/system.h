@@ -139,8 +139,8 @@ DAL_API int dal_builder_add_particle(dal_builder *b, const char *name, double ma
 typedef struct dal_place_def {
   const dal_primitive *prim; ///< a dal_map_* (nout == d); borrowed, must outlive the system.
                              ///< Required (default NULL).
-  int parent; ///< particle whose position feeds the first d inputs, added and placed before
-              ///< this one; -1 (default) for none
+  int parent;        ///< particle whose position feeds the first d inputs, added and placed before
+                     ///< this one; -1 (default) for none
   const int *coords; ///< the ncoords coordinate indices feeding the remaining inputs, in order
                      ///< (copied); NULL (default) when ncoords is 0
   int ncoords;       ///< number of coordinate inputs, default 0
@@ -154,12 +154,12 @@ typedef struct dal_place_def {
 /// A constraint phi(u, t) = 0 of prim->nout rows; inputs: positions of parts (d values each),
 /// then coordinates.
 typedef struct dal_constraint_def {
-  const char *name;          ///< copied; NULL (default) gives "c<i>"
-  const dal_primitive *prim; ///< a dal_con_* or user primitive; borrowed. Required.
-  const int *parts;          ///< the nparts particle indices (copied); NULL when nparts is 0
-  int nparts;                ///< number of particle inputs, default 0
-  const int *coords;         ///< the ncoords coordinate indices (copied); NULL when 0
-  int ncoords;               ///< number of coordinate inputs, default 0
+  const char *name;            ///< copied; NULL (default) gives "c<i>"
+  const dal_primitive *prim;   ///< a dal_con_* or user primitive; borrowed. Required.
+  const int *parts;            ///< the nparts particle indices (copied); NULL when nparts is 0
+  int nparts;                  ///< number of particle inputs, default 0
+  const int *coords;           ///< the ncoords coordinate indices (copied); NULL when 0
+  int ncoords;                 ///< number of coordinate inputs, default 0
   double param[DAL_MAX_PARAM]; ///< as in dal_place_def (unset entries take the defaults)
   void *ctx;                   ///< passed to prim->eval (borrowed), default NULL
   int cookie;                  ///< set by dal_default_constraint_def; do not touch
@@ -168,14 +168,14 @@ typedef struct dal_constraint_def {
 /// A linear spring U = k/2 (|r_a - x_b| - length)^2 between particle a and either particle b
 /// or an anchor point x_b = anchor + path(t) (the moving-point convention x0 + x(t)).
 typedef struct dal_spring_def {
-  int a;              ///< first particle. Required (default -1).
-  int b;              ///< second particle; -1 (default): the anchor point
-  double k;           ///< stiffness (>= 0, force/length), default 0
-  double length;      ///< rest length (>= 0, length), default 0
-  double anchor[3];   ///< fixed part x0 of the anchor point (d values used), default origin
-  dal_path_fn *path;  ///< motion x(t) added to anchor (d jets in t); NULL (default): none
-  void *ctx;          ///< passed to path (borrowed), default NULL
-  int cookie;         ///< set by dal_default_spring_def; do not touch
+  int a;             ///< first particle. Required (default -1).
+  int b;             ///< second particle; -1 (default): the anchor point
+  double k;          ///< stiffness (>= 0, force/length), default 0
+  double length;     ///< rest length (>= 0, length), default 0
+  double anchor[3];  ///< fixed part x0 of the anchor point (d values used), default origin
+  dal_path_fn *path; ///< motion x(t) added to anchor (d jets in t); NULL (default): none
+  void *ctx;         ///< passed to path (borrowed), default NULL
+  int cookie;        ///< set by dal_default_spring_def; do not touch
 } dal_spring_def;
 
 /// A linear damper F_a = -c ((v_a - v_b) . e) e, e the unit vector from x_b to r_a, between
