@@ -2,14 +2,14 @@
 # SPDX-License-Identifier: MIT
 # SPDX-FileCopyrightText: 2026 dalembert engineers
 # Headline figures of the benchmark, computed from the CSV files only: writes
-# bench/results/summary.md and copies it into README.md between <!-- bench:begin/end -->.
-# Usage: bench/report.sh [results-dir] [README]
+# bench/results/summary.md and copies it into docs/performance.md between <!-- bench:begin/end -->.
+# Usage: bench/report.sh [results-dir] [target markdown file]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 dir=${1:-$root/bench/results}
-readme=${2:-$root/README.md}
+readme=${2:-$root/docs/performance.md}
 out=$dir/summary.md
-rel=bench/results # image paths as seen from the README
+rel=../bench/results # image paths as seen from docs/performance.md
 
 meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/machine.txt"; }
 

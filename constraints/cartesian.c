@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Identity maps r = (x, y[, z]): Cartesian (redundant) coordinates.
+#include <math.h>
+
 #include "dalembert/primitives.h"
 
 static int cartesian(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, int d) {
@@ -20,7 +22,23 @@ static int cartesian3(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
   return cartesian(in, t, p, out, 3);
 }
 
-const dal_primitive dal_map_cartesian2 = {"cartesian2", 1, 2, 2, 0, cartesian2,
-                                          "in (x, y); out (x, y)", 0};
-const dal_primitive dal_map_cartesian3 = {"cartesian3", 1, 3, 3, 0, cartesian3,
-                                          "in (x, y, z); out (x, y, z)", 0};
+const dal_primitive dal_map_cartesian2 = {
+    .name = "cartesian2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 2,
+    .nout = 2,
+    .nparam = 0,
+    .eval = cartesian2,
+    .doc = "in (x, y); out (x, y)",
+    .flags = 0,
+};
+const dal_primitive dal_map_cartesian3 = {
+    .name = "cartesian3",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 3,
+    .nparam = 0,
+    .eval = cartesian3,
+    .doc = "in (x, y, z); out (x, y, z)",
+    .flags = 0,
+};

@@ -45,22 +45,46 @@ static int turning_circle(const dal_jet *in, dal_jet t, const double *p, dal_jet
   return 0;
 }
 
+static const char *const circle2_names[] = {"R", "cx", "cy"};
+static const double circle2_defaults[] = {NAN, 0.0, 0.0};
 const dal_primitive dal_con_circle2 = {
-    "on_circle2", 1, 2, 1, 3, circle2, "in (x, y); param (R, cx, cy); out |r - c| - R", 0};
+    .name = "on_circle2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 2,
+    .nout = 1,
+    .nparam = 3,
+    .eval = circle2,
+    .doc = "in (x, y); param (R, cx, cy); out |r - c| - R",
+    .flags = 0,
+    .param_names = circle2_names,
+    .param_defaults = circle2_defaults,
+};
+static const char *const circle3_names[] = {"R", "cx", "cy", "cz", "nx", "ny", "nz"};
+static const double circle3_defaults[] = {NAN, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
 const dal_primitive dal_con_circle3 = {
-    "on_circle3",
-    1,
-    3,
-    2,
-    7,
-    circle3,
-    "in (x, y, z); param (R, cx, cy, cz, nx, ny, nz); out (n.(r - c), |(r - c)_plane| - R)", 0};
+    .name = "on_circle3",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 2,
+    .nparam = 7,
+    .eval = circle3,
+    .doc = "in (x, y, z); param (R, cx, cy, cz, nx, ny, nz); out (n.(r - c), |(r - c)_plane| - R)",
+    .flags = 0,
+    .param_names = circle3_names,
+    .param_defaults = circle3_defaults,
+};
+static const char *const turning_circle_names[] = {"R", "w", "phi0", "cx", "cy", "cz"};
+static const double turning_circle_defaults[] = {NAN, 0.0, 0.0, 0.0, 0.0, 0.0};
 const dal_primitive dal_con_turning_circle = {
-    "turning_circle",
-    1,
-    3,
-    2,
-    6,
-    turning_circle,
-    "in (x, y, z); param (R, w, phi0, cx, cy, cz); out (n(t).(r - c), |r - c| - R), "
-    "n(t) = (-sin(w t + phi0), cos(w t + phi0), 0)", 0};
+    .name = "turning_circle",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 2,
+    .nparam = 6,
+    .eval = turning_circle,
+    .doc = "in (x, y, z); param (R, w, phi0, cx, cy, cz); out (n(t).(r - c), |r - c| - R), "
+    "n(t) = (-sin(w t + phi0), cos(w t + phi0), 0)",
+    .flags = 0,
+    .param_names = turning_circle_names,
+    .param_defaults = turning_circle_defaults,
+};

@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Distance (rod) constraints: between two particles, and from a particle to a fixed or moving
 // point.
+#include <math.h>
 #include <stddef.h>
 
 #include "dalembert/primitives.h"
@@ -58,24 +59,60 @@ static int anchor3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
   return anchor(in, t, p, out, ctx, 3);
 }
 
+static const char *const distance2_names[] = {"L"};
+static const double distance2_defaults[] = {NAN};
 const dal_primitive dal_con_distance2 = {
-    "distance2", 1, 4, 1, 1, distance2, "in (xa, ya, xb, yb); param (L); out |b - a| - L", 0};
+    .name = "distance2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 4,
+    .nout = 1,
+    .nparam = 1,
+    .eval = distance2,
+    .doc = "in (xa, ya, xb, yb); param (L); out |b - a| - L",
+    .flags = 0,
+    .param_names = distance2_names,
+    .param_defaults = distance2_defaults,
+};
+static const char *const distance3_names[] = {"L"};
+static const double distance3_defaults[] = {NAN};
 const dal_primitive dal_con_distance3 = {
-    "distance3", 1, 6, 1, 1, distance3, "in (xa, ya, za, xb, yb, zb); param (L); out |b - a| - L", 0};
+    .name = "distance3",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 6,
+    .nout = 1,
+    .nparam = 1,
+    .eval = distance3,
+    .doc = "in (xa, ya, za, xb, yb, zb); param (L); out |b - a| - L",
+    .flags = 0,
+    .param_names = distance3_names,
+    .param_defaults = distance3_defaults,
+};
+static const char *const anchor2_names[] = {"L", "x0", "y0"};
+static const double anchor2_defaults[] = {NAN, 0.0, 0.0};
 const dal_primitive dal_con_anchor2 = {
-    "anchor2",
-    1,
-    2,
-    1,
-    3,
-    anchor2,
-    "in (x, y); param (L, x0, y0); ctx NULL or dal_moving_point; out |r - (x0 + x(t))| - L", 0};
+    .name = "anchor2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 2,
+    .nout = 1,
+    .nparam = 3,
+    .eval = anchor2,
+    .doc = "in (x, y); param (L, x0, y0); ctx NULL or dal_moving_point; out |r - (x0 + x(t))| - L",
+    .flags = 0,
+    .param_names = anchor2_names,
+    .param_defaults = anchor2_defaults,
+};
+static const char *const anchor3_names[] = {"L", "x0", "y0", "z0"};
+static const double anchor3_defaults[] = {NAN, 0.0, 0.0, 0.0};
 const dal_primitive dal_con_anchor3 = {
-    "anchor3",
-    1,
-    3,
-    1,
-    4,
-    anchor3,
-    "in (x, y, z); param (L, x0, y0, z0); ctx NULL or dal_moving_point; "
-    "out |r - (x0 + x(t))| - L", 0};
+    .name = "anchor3",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 1,
+    .nparam = 4,
+    .eval = anchor3,
+    .doc = "in (x, y, z); param (L, x0, y0, z0); ctx NULL or dal_moving_point; "
+    "out |r - (x0 + x(t))| - L",
+    .flags = 0,
+    .param_names = anchor3_names,
+    .param_defaults = anchor3_defaults,
+};

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Fixed points: a particle held at a given position (no inputs).
+#include <math.h>
+
 #include "dalembert/primitives.h"
 
 static int fixed(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, int d) {
@@ -20,6 +22,31 @@ static int fixed3(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, v
   return fixed(in, t, p, out, 3);
 }
 
-const dal_primitive dal_map_fixed2 = {"fixed2", 1, 0, 2, 2, fixed2, "param (x, y); out (x, y)", 0};
-const dal_primitive dal_map_fixed3 = {"fixed3", 1, 0, 3, 3, fixed3,
-                                      "param (x, y, z); out (x, y, z)", 0};
+static const char *const fixed2_names[] = {"x", "y"};
+static const double fixed2_defaults[] = {0.0, 0.0};
+const dal_primitive dal_map_fixed2 = {
+    .name = "fixed2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 0,
+    .nout = 2,
+    .nparam = 2,
+    .eval = fixed2,
+    .doc = "param (x, y); out (x, y)",
+    .flags = 0,
+    .param_names = fixed2_names,
+    .param_defaults = fixed2_defaults,
+};
+static const char *const fixed3_names[] = {"x", "y", "z"};
+static const double fixed3_defaults[] = {0.0, 0.0, 0.0};
+const dal_primitive dal_map_fixed3 = {
+    .name = "fixed3",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 0,
+    .nout = 3,
+    .nparam = 3,
+    .eval = fixed3,
+    .doc = "param (x, y, z); out (x, y, z)",
+    .flags = 0,
+    .param_names = fixed3_names,
+    .param_defaults = fixed3_defaults,
+};

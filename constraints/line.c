@@ -54,29 +54,47 @@ static int turning_line2(const dal_jet *in, dal_jet t, const double *p, dal_jet 
   return 0;
 }
 
+static const char *const line2_names[] = {"cx", "cy", "ax", "ay"};
+static const double line2_defaults[] = {0.0, 0.0, 1.0, 0.0};
 const dal_primitive dal_con_line2 = {
-    "on_line2",
-    1,
-    2,
-    1,
-    4,
-    line2,
-    "in (x, y); param (cx, cy, ax, ay); out signed distance from the line c + s a", 0};
+    .name = "on_line2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 2,
+    .nout = 1,
+    .nparam = 4,
+    .eval = line2,
+    .doc = "in (x, y); param (cx, cy, ax, ay); out signed distance from the line c + s a",
+    .flags = 0,
+    .param_names = line2_names,
+    .param_defaults = line2_defaults,
+};
+static const char *const line3_names[] = {"cx", "cy", "cz", "ax", "ay", "az"};
+static const double line3_defaults[] = {0.0, 0.0, 0.0, 1.0, 0.0, 0.0};
 const dal_primitive dal_con_line3 = {
-    "on_line3",
-    1,
-    3,
-    2,
-    6,
-    line3,
-    "in (x, y, z); param (cx, cy, cz, ax, ay, az); out (e1.(r - c), e2.(r - c)), e1, e2 "
-    "orthonormal and normal to a", 0};
+    .name = "on_line3",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 2,
+    .nparam = 6,
+    .eval = line3,
+    .doc = "in (x, y, z); param (cx, cy, cz, ax, ay, az); out (e1.(r - c), e2.(r - c)), e1, e2 "
+    "orthonormal and normal to a",
+    .flags = 0,
+    .param_names = line3_names,
+    .param_defaults = line3_defaults,
+};
+static const char *const turning_line2_names[] = {"cx", "cy", "w", "phi0"};
+static const double turning_line2_defaults[] = {0.0, 0.0, 0.0, 0.0};
 const dal_primitive dal_con_turning_line2 = {
-    "turning_line2",
-    1,
-    2,
-    1,
-    4,
-    turning_line2,
-    "in (x, y); param (cx, cy, w, phi0); out -(x - cx) sin a + (y - cy) cos a, "
-    "a = w t + phi0", 0};
+    .name = "turning_line2",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 2,
+    .nout = 1,
+    .nparam = 4,
+    .eval = turning_line2,
+    .doc = "in (x, y); param (cx, cy, w, phi0); out -(x - cx) sin a + (y - cy) cos a, "
+    "a = w t + phi0",
+    .flags = 0,
+    .param_names = turning_line2_names,
+    .param_defaults = turning_line2_defaults,
+};

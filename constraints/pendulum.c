@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Planar pendulums: about a (possibly oscillating) pivot, and hanging from another particle.
+#include <math.h>
+
 #include "dalembert/primitives.h"
 
 // r = p(t) + l (sin th, -cos th), p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph))
@@ -25,10 +27,31 @@ static int hanging(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, 
   return 0;
 }
 
+static const char *const pendulum_names[] = {"l", "x0", "y0", "ax", "ay", "w", "ph"};
+static const double pendulum_defaults[] = {NAN, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
 const dal_primitive dal_map_pendulum = {
-    "pendulum", 1, 1, 2, 7, pendulum,
-    "in (theta); param (l, x0, y0, ax, ay, w, ph); out p(t) + l (sin th, -cos th)", 0};
+    .name = "pendulum",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 1,
+    .nout = 2,
+    .nparam = 7,
+    .eval = pendulum,
+    .doc = "in (theta); param (l, x0, y0, ax, ay, w, ph); out p(t) + l (sin th, -cos th)",
+    .flags = 0,
+    .param_names = pendulum_names,
+    .param_defaults = pendulum_defaults,
+};
+static const char *const hanging_names[] = {"l"};
+static const double hanging_defaults[] = {NAN};
 const dal_primitive dal_map_hanging = {
-    "hanging", 1, 3, 2, 1, hanging,
-    "in (x_parent, y_parent, theta); param (l); out parent + l (sin th, -cos th)",
-    DAL_PRIM_TRANSLATES};
+    .name = "hanging",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 2,
+    .nparam = 1,
+    .eval = hanging,
+    .doc = "in (x_parent, y_parent, theta); param (l); out parent + l (sin th, -cos th)",
+    .flags = DAL_PRIM_TRANSLATES,
+    .param_names = hanging_names,
+    .param_defaults = hanging_defaults,
+};

@@ -16,11 +16,18 @@ static int on_plane(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
   return 0;
 }
 
-const dal_primitive dal_con_plane = {"on_plane",
-                                     1,
-                                     3,
-                                     1,
-                                     6,
-                                     on_plane,
-                                     "in (x, y, z); param (cx, cy, cz, nx, ny, nz); "
-                                     "out n.(r - c) / |n|", 0};
+static const char *const plane_names[] = {"cx", "cy", "cz", "nx", "ny", "nz"};
+static const double plane_defaults[] = {0.0, 0.0, 0.0, 0.0, 0.0, 1.0};
+const dal_primitive dal_con_plane = {
+    .name = "on_plane",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 3,
+    .nout = 1,
+    .nparam = 6,
+    .eval = on_plane,
+    .doc = "in (x, y, z); param (cx, cy, cz, nx, ny, nz); "
+                                     "out n.(r - c) / |n|",
+    .flags = 0,
+    .param_names = plane_names,
+    .param_defaults = plane_defaults,
+};

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // A prescribed coordinate q_i = q0 + f(t), f a user jet function of time (rheonomic driving).
+#include <math.h>
 #include <stddef.h>
 
 #include "dalembert/primitives.h"
@@ -16,11 +17,17 @@ static int prescribed(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
   return 0;
 }
 
+static const char *const prescribed_names[] = {"q0"};
+static const double prescribed_defaults[] = {0.0};
 const dal_primitive dal_con_prescribed = {
-    "prescribed",
-    1,
-    1,
-    1,
-    1,
-    prescribed,
-    "in (q); param (q0); ctx NULL or dal_prescribed; out q - (q0 + f(t))", 0};
+    .name = "prescribed",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 1,
+    .nout = 1,
+    .nparam = 1,
+    .eval = prescribed,
+    .doc = "in (q); param (q0); ctx NULL or dal_prescribed; out q - (q0 + f(t))",
+    .flags = 0,
+    .param_names = prescribed_names,
+    .param_defaults = prescribed_defaults,
+};

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Spherical pendulum about a fixed pivot (polar angle from the downward vertical).
+#include <math.h>
+
 #include "dalembert/primitives.h"
 
 static int spherical(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
@@ -14,6 +16,17 @@ static int spherical(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
   return 0;
 }
 
+static const char *const spherical_names[] = {"l", "x0", "y0", "z0"};
+static const double spherical_defaults[] = {NAN, 0.0, 0.0, 0.0};
 const dal_primitive dal_map_spherical = {
-    "spherical", 1, 2, 3, 4, spherical,
-    "in (theta, phi); param (l, x0, y0, z0); out pivot + l (s cos ph, s sin ph, -cos th)", 0};
+    .name = "spherical",
+    .version = DAL_PRIMITIVE_VERSION,
+    .nin = 2,
+    .nout = 3,
+    .nparam = 4,
+    .eval = spherical,
+    .doc = "in (theta, phi); param (l, x0, y0, z0); out pivot + l (s cos ph, s sin ph, -cos th)",
+    .flags = 0,
+    .param_names = spherical_names,
+    .param_defaults = spherical_defaults,
+};

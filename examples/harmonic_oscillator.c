@@ -131,9 +131,9 @@ int main(int argc, char **argv) {
     double res[2], worst = 0, wrong = 1.05 * w, worst_wrong = 0;
     for (int i = 0; i <= 20; ++i) {
       double t = 0.5 * i;
-      if (dal_lagrange_residual(sys[r], st[r], path, &w, t, res)) bad = 1;
+      if (dal_lagrange_residual(sys[r], st[r], path, t, res, &w)) bad = 1;
       worst = fmax(worst, fmax(fabs(res[0]), fabs(res[1])));
-      if (dal_lagrange_residual(sys[r], st[r], path, &wrong, t, res)) bad = 1;
+      if (dal_lagrange_residual(sys[r], st[r], path, t, res, &wrong)) bad = 1;
       double f = k - mass * wrong * wrong;
       for (int j = 0; j < 2; ++j) {
         double qj = q0[j] * cos(wrong * t) + v0[j] / wrong * sin(wrong * t);

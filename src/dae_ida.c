@@ -175,7 +175,7 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
                     "a Lagrangian system has no particles or constraints for the DAE "
                     "integrator; use an ODE method");
   // consistent start: rank check, projections, KKT accelerations and multipliers
-  int rc = dal__dae_start(sys, st, NULL);
+  int rc = dal__dae_start(sys, st, opts->init_max_move, NULL);
   if (rc) return rc;
   ida_mem *w = calloc(1, sizeof *w);
   if (!w) return DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory");

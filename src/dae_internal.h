@@ -48,6 +48,6 @@ int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report 
 
 /// Start of a DAE run (init.c): rank check, then the consistent initialization (positions,
 /// velocities, KKT accelerations and multipliers) at the state's time; rep is nullable.
-int dal__dae_start(const dal_system *sys, dal_state *st, dal_init_report *rep);
+int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep);
 
 #endif

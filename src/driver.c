@@ -204,14 +204,20 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
 int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1) {
   int rc = check_call(sys, st, opts, t1, "advance");
   if (rc) return rc;
-  return advance_to(sys, st, opts, t1);
+  dal_solve_opts eff = dal__effective_opts(opts);
+  return advance_to(sys, st, &eff, t1);
 }
 
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
 static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
   if (!monitor) return 0;
   int mr = monitor(sys, st, ctx);
-  if (mr > 0) return 1;
+  if (mr > 0) {
+    // not a failure; the message says where and why the run ended
+    DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,
+             st->t);
+    return 1;
+  }
   if (mr < 0)
     return DAL_FAIL(st, DAL_E_CALLBACK,
                     "monitor returned %d (%s) at t=%.17g; evolve stopped there (the state holds "
@@ -238,6 +244,8 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
     return DAL_FAIL(st, DAL_E_ARG,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
                     t0, t1, dt);
+  dal_solve_opts eff = dal__effective_opts(opts);
+  opts = &eff;
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
   long K = (long)floor(span);
   while (K > 0 && t0 + (double)K * dt > t1)
@@ -249,11 +257,11 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
     if (k == K && t1 - tk <= 1e-9 * dt) tk = t1;
     if ((rc = advance_to(sys, st, opts, tk)) != 0) return rc;
-    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_OK : rc;
+    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_STOPPED : rc;
   }
   if (st->t < t1) {
     if ((rc = advance_to(sys, st, opts, t1)) != 0) return rc;
-    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_OK : rc;
+    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_STOPPED : rc;
   }
   return DAL_OK;
 }

@@ -9,7 +9,7 @@
 #include "internal.h"
 #include "linalg.h"
 
-// position and velocity of a link's anchor (fixed x0 or the path x(t))
+// position and velocity of a link's anchor, x0 + x(t) (the moving-point convention)
 static int anchor(const dal_system *sys, dal_state *st, const dal_link *l, double *x,
                   double *xd, const char *kind) {
   int d = sys->dim;
@@ -18,7 +18,7 @@ static int anchor(const dal_system *sys, dal_state *st, const dal_link *l, doubl
     memset(xd, 0, (size_t)d * sizeof(double));
     return DAL_OK;
   }
-  dal_jet jx[3];
+  dal_jet jx[3] = {dal_const(0.0), dal_const(0.0), dal_const(0.0)};
   char what[160];
   snprintf(what, sizeof what, "%s anchor path of particle '%s'", kind, sys->part_names[l->a]);
   int rc = l->fn(dal_var(st->t, 1.0), jx, l->ctx);
@@ -26,7 +26,7 @@ static int anchor(const dal_system *sys, dal_state *st, const dal_link *l, doubl
   for (int b = 0; b < d; ++b) {
     if (!isfinite(jx[b].v) || !isfinite(jx[b].d))
       return DAL_FAIL(st, DAL_E_DOMAIN, "%s is not finite at t=%.17g", what, st->t);
-    x[b] = jx[b].v;
+    x[b] = l->x0[b] + jx[b].v;
     xd[b] = jx[b].d;
   }
   return DAL_OK;

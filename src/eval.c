@@ -28,8 +28,9 @@ static int eval_lagrangian(const dal_system *sys, dal_state *st) {
                     "'%s' is degenerate; use another chart",
                     st->t, qs, sys->coord_names[bad]);
   }
-  st->en.T = st->en.U = st->en.T2 = st->en.T1 = st->en.T0 = NAN;
-  st->en.E = st->en.h = h;
+  // T, U, T2, T1, T0 come from dal__lagrangian_terms (read off L, system.h)
+  st->en.E = st->en.T + st->en.U;
+  st->en.h = h;
   st->have |= DAL_P_ACC | DAL_P_OUT | DAL_P_KIN | DAL_P_J | DAL_P_CON;
   return DAL_OK;
 }

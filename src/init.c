@@ -151,7 +151,8 @@ int dal__project_state(const dal_system *sys, dal_state *st, double tol, int max
 }
 
 // the consistent initialization without touching integrator memory
-static int make_consistent(const dal_system *sys, dal_state *st, double tol, dal_init_report *rep) {
+static int make_consistent(const dal_system *sys, dal_state *st, double tol, double max_move,
+                           dal_init_report *rep) {
   int n = sys->n, m = sys->m, rc;
   memset(rep, 0, sizeof *rep);
   rep->phi_row = rep->phidot_row = rep->dq_coord = rep->dqdot_coord = -1;
@@ -198,6 +199,26 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dal
       rep->dqdot_coord = j;
     }
   }
+  // keep the report in the state; a move beyond the caller's limit is refused
+  st->init_rep = *rep;
+  st->init_rep_valid = 1;
+  if (max_move > 0 && rep->dq_max > max_move) {
+    int j = rep->dq_coord;
+    double qnew = st->q[j];
+    memcpy(st->q, save, (size_t)n * sizeof(double));
+    memcpy(st->qdot, save + n, (size_t)n * sizeof(double));
+    dal__state_moved(st);
+    rc = DAL_FAIL(st, DAL_E_INIT,
+                    "consistent start at t=%.17g would move coordinate '%s' by %.3g (from %.9g to "
+                    "%.9g), more than opts.init_max_move = %g; the largest constraint residual "
+                    "was %.3g on '%s'. Start closer to the constraints or raise the limit; the "
+                    "state is unchanged (dal_state_init_report has the full report)",
+                    st->t, sys->coord_names[j], rep->dq_max, save[j], qnew, max_move,
+                    rep->phi_before,
+                    rep->phi_row >= 0 ? sys->con[sys->row_con[rep->phi_row]].name : "-");
+    free(save);
+    return rc;
+  }
   free(save);
   return DAL_OK;
 }
@@ -210,14 +231,14 @@ int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_in
     return DAL_FAIL(st, DAL_E_ARG, "make_consistent: tolerance %g is not finite", tol);
   dal_init_report local;
   dal__integ_reset(st);
-  return make_consistent(sys, st, tol, rep ? rep : &local);
+  return make_consistent(sys, st, tol, 0.0, rep ? rep : &local);
 }
 
 // used by the IDA driver: rank check, then the consistent initialization
-int dal__dae_start(const dal_system *sys, dal_state *st, dal_init_report *rep) {
+int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep) {
   dal_init_report local;
   int rc = dal__eval_constraints(sys, st);
   if (rc == 0) rc = dal__check_rank(sys, st, NULL);
-  if (rc == 0) rc = make_consistent(sys, st, 0.0, rep ? rep : &local);
+  if (rc == 0) rc = make_consistent(sys, st, 0.0, max_move, rep ? rep : &local);
   return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
 }

@@ -201,6 +201,8 @@ struct dal_state {
   void (*integ_free)(void *);
   dal_solve_opts integ_opts;
   dal_stats stats;
+  dal_init_report init_rep; // the last consistent start's report (init.c)
+  int init_rep_valid;       // init_rep holds a report
   char err[DAL_ERRMSG_LEN];
 };
 
@@ -288,5 +290,10 @@ void dal__params_init(dal_state *st);
 void dal__params_free(dal_state *st);
 /// restore the system's values into the state's owned copies (keeps the buffers: no allocation)
 void dal__params_rewind(dal_state *st);
+// primitives' table versions and parameter names (builder.c)
+/// name of parameter i of prim: its param_names entry, else "p<i>" written into buf
+const char *dal__param_name(const dal_primitive *prim, int i, char *buf, size_t len);
+/// DAL_OK when prim->version is one this library reads, else DAL_E_ARG with a message in err
+int dal__prim_version_ok(const dal_primitive *prim, char *err, const char *what);
 
 #endif

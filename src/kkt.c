@@ -347,15 +347,13 @@ int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double 
   return DAL_OK;
 }
 
-int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F) {
+int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F) {
   if (!sys || !st || !F || st->sys != sys) return DAL_E_ARG;
   int d = sys->dim;
   memset(F, 0, (size_t)sys->N * (size_t)d * sizeof(double));
   if (sys->m == 0) return DAL_OK;
-  if ((st->have & (DAL_P_CON | DAL_P_ACC)) != (DAL_P_CON | DAL_P_ACC))
-    return DAL_FAIL(st, DAL_E_STATE,
-                    "constraint_forces: the state holds no evaluated multipliers; call "
-                    "dal_forward or integrate first");
+  // a state never evaluated has no multipliers (read-only here: no message)
+  if ((st->have & (DAL_P_CON | DAL_P_ACC)) != (DAL_P_CON | DAL_P_ACC)) return DAL_E_STATE;
   // F_k = (dphi/dr_k)' lambda from each constraint's local Jacobian at the evaluated point
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];

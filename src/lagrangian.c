@@ -76,11 +76,21 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
     if (rc) return rc;
     rhs[i] += L.d;
   }
-  // energy function h = qdot . dL/dqdot - L in one evaluation along dv = qdot
+  // energy function h = qdot . dL/dqdot - L in one evaluation along dv = qdot; the second
+  // derivative along the same direction is qdot' A qdot = 2 T2
   for (int i = 0; i < n; ++i) st->jv[i].d = st->qdot[i];
   rc = lag_eval(sys, st, t0, &L);
   if (rc) return rc;
   *h_out = L.d - L.v;
+  double L1 = L.v, T2 = 0.5 * L.dd, L0 = NAN;
+  {
+    // energies read off L (system.h): L(t, q, 0) in one more evaluation
+    for (int i = 0; i < n; ++i) st->jv[i] = dal_const(0.0);
+    rc = lag_eval(sys, st, t0, &L);
+    for (int i = 0; i < n; ++i) st->jv[i] = dal_const(st->qdot[i]);
+    if (rc) return rc;
+    L0 = L.v;
+  }
   // non-conservative generalized forces (and any U(q,t))
   memset(st->Q, 0, (size_t)n * sizeof(double));
   double U = 0.0;
@@ -88,11 +98,16 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
   if (rc) return rc;
   *h_out += U;
   for (int i = 0; i < n; ++i) rhs[i] += st->Q[i];
+  st->en.T = L1 - L0;
+  st->en.U = U - L0;
+  st->en.T2 = T2;
+  st->en.T1 = st->en.T - T2;
+  st->en.T0 = 0.0;
   return DAL_OK;
 }
 
-int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path, void *ctx,
-                          double t, double *res) {
+int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path, double t,
+                          double *res, void *ctx) {
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "lagrange_residual: the state belongs to another system");

@@ -121,6 +121,9 @@ int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...) {
   // back to the last accepted step, evaluated there
   dal__ode_to_state(ig, ig->t, ig->y);
   int rc = dal__ode_eval(ig, ig->t, ig->y, ig->ydot, DAL_P_ALL);
+  // the same failure again (e.g. a singular start, where the last accepted step is the start
+  // itself): one message, not the cause twice
+  if (rc && strncmp(msg, st->err, strlen(st->err)) == 0) rc = 0;
   if (rc) {
     char again[DAL_ERRMSG_LEN];
     memcpy(again, st->err, sizeof again);

@@ -321,7 +321,7 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
   if (m->m == 0) return DAL_OK;
   // a consistent start (rank check, positions and velocities onto the constraints, KKT
   // multipliers), then positions to the level of rounding for the first step
-  int rc = dal__dae_start(sys, st, NULL);
+  int rc = dal__dae_start(sys, st, ig->opts.init_max_move, NULL);
   if (rc) return rc;
   memcpy(m->lam, st->lambda, (size_t)m->m * sizeof(double));
   double qmax = 1.0;

@@ -14,7 +14,8 @@ void dal_solve_default_opts(dal_solve_opts *o) {
   o->form = DAL_FORM_AUTO;
   o->linsol = DAL_LINSOL_AUTO;
   o->rtol = 1e-8;
-  o->atol = 1e-10;
+  o->atol = 0.0; // follows rtol: DAL_ATOL_PER_RTOL * rtol
+  o->init_max_move = 0.0;
   o->fixed_step = 1e-3;
   o->max_steps = 1000000;
   o->sparse_threshold = DAL_SPARSE_THRESHOLD;
@@ -73,11 +74,16 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
     return DAL_FAIL(st, DAL_E_ARG,
                     "opts.rtol = %g is below what double precision can deliver; use >= 1e-15",
                     o->rtol);
-  if (!(o->atol > 0) || !isfinite(o->atol))
-    return DAL_FAIL(st, DAL_E_ARG, "opts.atol = %g must be positive and finite (e.g. 1e-10)",
+  if (!(o->atol >= 0) || !isfinite(o->atol))
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "opts.atol = %g must be positive and finite (e.g. 1e-10), or 0 to follow "
+                    "rtol",
                     o->atol);
+  if (!(o->init_max_move >= 0) || !isfinite(o->init_max_move))
+    return DAL_FAIL(st, DAL_E_ARG, "opts.init_max_move = %g must be >= 0 and finite (0: no limit)",
+                    o->init_max_move);
   // the integrators weight errors by 1 / (atol + rtol |y|): it must stay finite
-  if (o->atol < 1e-300)
+  if (o->atol > 0 && o->atol < 1e-300)
     return DAL_FAIL(st, DAL_E_ARG,
                     "opts.atol = %g is too small for double precision (its error weights "
                     "overflow); use >= 1e-300, e.g. 1e-10",
@@ -105,11 +111,17 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
 #define DAL_OPTS_FIELDS(X)                                                                         \
   X(magic) X(method) X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step)       \
       X(max_steps) X(baumgarte_alpha) X(baumgarte_beta) X(project) X(sparse_threshold)           \
-          X(fixed_erk) X(work)
+          X(fixed_erk) X(work) X(init_max_move)
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)
 // a new field changes the size: add it to DAL_OPTS_FIELDS, then update this check
-_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) == 104 && sizeof(dal_solve_opts) == 104,
+_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) == 112 && sizeof(dal_solve_opts) == 112,
                "dal_solve_opts changed: list every field in DAL_OPTS_FIELDS");
+
+dal_solve_opts dal__effective_opts(const dal_solve_opts *o) {
+  dal_solve_opts e = *o;
+  if (e.atol == 0.0) e.atol = DAL_ATOL_PER_RTOL * e.rtol;
+  return e;
+}
 
 int dal__same_opts(const dal_solve_opts *a, const dal_solve_opts *b) {
 #define DAL_OPTS_EQ(f) &&a->f == b->f

@@ -98,6 +98,8 @@ double dal__tol_factor(dal_method m);
 dal_method dal__auto_method(double rtol);
 /// validate options; the state's message names the field and the remedy (opts.c)
 int dal__check_opts(dal_state *st, const dal_solve_opts *o);
+/// the options as the integrators read them: atol = 0 follows rtol (solve.h) (opts.c)
+dal_solve_opts dal__effective_opts(const dal_solve_opts *o);
 /// every option is the same in a and b (opts.c; a new field cannot be forgotten)
 int dal__same_opts(const dal_solve_opts *a, const dal_solve_opts *b);
 /// a fresh ODE integrator for method meth on problem prob at the state's (t, q, qdot), and

@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Compiling a builder into an immutable system: copies, dependency lists, storage offsets.
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -95,6 +96,17 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
         return BFAIL(DAL_E_ARG, "particle '%s' has no position: place it with a primitive "
                                 "(dal_builder_place) or set a whole-system map",
                      ((char **)b->parts.data)[k]);
+  // a primitive table must still be one this library reads (it may have changed since)
+  for (int k = 0; k < N && !b->map; ++k) {
+    char what[96];
+    snprintf(what, sizeof what, "particle '%s'", ((char **)b->parts.data)[k]);
+    if (dal__prim_version_ok(places[k].prim, b->err, what)) return DAL_E_ARG;
+  }
+  for (int i = 0; i < b->cons.len; ++i) {
+    char what[96];
+    snprintf(what, sizeof what, "constraint '%s'", cons[i].name);
+    if (dal__prim_version_ok(cons[i].prim, b->err, what)) return DAL_E_ARG;
+  }
   if (b->lag && b->cons.len)
     return BFAIL(DAL_E_ARG, "constraint '%s': constraints need particles or coordinates of a "
                             "particle system, not a Lagrangian system", cons[0].name);

@@ -30,10 +30,22 @@ static inline int rel_rod_pair(const dal_jet *in, dal_jet t, const double *p,
   return 0;
 }
 
-static const dal_primitive rel_prim_rod_fixed = {"rel_rod_fixed", 1, 2, 1, 3, rel_rod_fixed,
-                                                 "|r - a| - L", 0};
-static const dal_primitive rel_prim_rod_pair = {"rel_rod_pair", 1, 4, 1, 1, rel_rod_pair,
-                                                "|r_b - r_a| - L", 0};
+static const dal_primitive rel_prim_rod_fixed = {.name = "rel_rod_fixed",
+                                                 .version = 1,
+                                                 .nin = 2,
+                                                 .nout = 1,
+                                                 .nparam = 3,
+                                                 .eval = rel_rod_fixed,
+                                                 .doc = "|r - a| - L",
+                                                 .flags = 0};
+static const dal_primitive rel_prim_rod_pair = {.name = "rel_rod_pair",
+                                                .version = 1,
+                                                .nin = 4,
+                                                .nout = 1,
+                                                .nparam = 1,
+                                                .eval = rel_rod_pair,
+                                                .doc = "|r_b - r_a| - L",
+                                                .flags = 0};
 
 /// a weak velocity-dependent force read from a const context (shared read-only by threads)
 typedef struct rel_drag {

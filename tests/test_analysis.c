@@ -175,8 +175,13 @@ static int rotating(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
   out[1] = dal_add(dal_mul(in[0], s), dal_mul(in[1], c));
   return 0;
 }
-static const dal_primitive prim_rotating = {"rotating", 1, 2, 2, 1, rotating,
-                                            "in (x, y); param (w); out Rot(w t) (x, y)", 0};
+static const dal_primitive prim_rotating = {.name = "rotating",
+                                            .version = 1,
+                                            .nin = 2,
+                                            .nout = 2,
+                                            .nparam = 1,
+                                            .eval = rotating,
+                                            .doc = "in (x, y); param (w); out Rot(w t) (x, y)"};
 
 // an anisotropic trap U = (k1 x'^2 + k2 y'^2)/2 turning with the frame (x', y' the rotating
 // components of r)

@@ -148,7 +148,7 @@ static int row_place_ninputs(char *msg) {
   return place_row(msg, (place_case){0, 2, 0, 7, 1.0, &dal_map_pendulum});
 }
 static int row_place_nparams(char *msg) {
-  return place_row(msg, (place_case){0, 1, 0, 3, 1.0, &dal_map_pendulum});
+  return place_row(msg, (place_case){0, 1, 0, 8, 1.0, &dal_map_pendulum});
 }
 static int row_place_nan_param(char *msg) {
   return place_row(msg, (place_case){0, 1, 0, 7, NAN, &dal_map_pendulum});
@@ -189,7 +189,14 @@ static int rod2(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
   out[0] = dal_addc(dal_hypot(dal_sub(in[2], in[0]), dal_sub(in[3], in[1])), -p[0]);
   return 0;
 }
-static const dal_primitive user_rod2 = {"user_rod2", 1, 4, 1, 1, rod2, "|b - a| - L (2D)", 0};
+static const dal_primitive user_rod2 = {.name = "user_rod2",
+                                        .version = 1,
+                                        .nin = 4,
+                                        .nout = 1,
+                                        .nparam = 1,
+                                        .eval = rod2,
+                                        .doc = "|b - a| - L (2D)",
+                                        .flags = 0};
 
 // two free particles 'a' and 'b' in the plane (coordinates xa, ya, xb, yb)
 static int two_free(dal_builder **b, int *pa, int *pb) {
@@ -572,7 +579,14 @@ static int sqrt_map(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
   out[1] = dal_const(0.0);
   return 0;
 }
-static const dal_primitive user_sqrt = {"sqrtmap", 1, 1, 2, 0, sqrt_map, "(sqrt s, 0)", 0};
+static const dal_primitive user_sqrt = {.name = "sqrtmap",
+                                        .version = 1,
+                                        .nin = 1,
+                                        .nout = 2,
+                                        .nparam = 0,
+                                        .eval = sqrt_map,
+                                        .doc = "(sqrt s, 0)",
+                                        .flags = 0};
 
 static int row_map_domain(char *msg) {
   dal_builder *b = NULL;
@@ -705,11 +719,11 @@ static int row_path_domain(char *msg) {
   dal_state *st = NULL;
   CHECK_OK(pendulum(&b, &sys, &st));
   double res = -1.0;
-  int rc = dal_lagrange_residual(sys, st, path_sqrt, NULL, 0.5, &res);
+  int rc = dal_lagrange_residual(sys, st, path_sqrt, 0.5, &res, NULL);
   copy_msg(msg, dal_state_errmsg(st));
   CHECK(res == -1.0);
   // in the domain: the residual of theta = sqrt(t - 1) at t = 2 is M qddot + c - Q
-  CHECK_OK(dal_lagrange_residual(sys, st, path_sqrt, NULL, 2.0, &res));
+  CHECK_OK(dal_lagrange_residual(sys, st, path_sqrt, 2.0, &res, NULL));
   double th = 1.0, thdd = -0.25; // d2/dt2 sqrt(t - 1) at t = 2
   CHECK_CLOSE(res, thdd + 9.81 * sin(th), 1e-12);
   destroy_all(b, sys, st);
@@ -1208,7 +1222,14 @@ static int never(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, vo
   out[0] = dal_addc(dal_exp(in[0]), 1.0);
   return 0;
 }
-static const dal_primitive user_never = {"never", 1, 1, 1, 0, never, "exp(x) + 1", 0};
+static const dal_primitive user_never = {.name = "never",
+                                         .version = 1,
+                                         .nin = 1,
+                                         .nout = 1,
+                                         .nparam = 0,
+                                         .eval = never,
+                                         .doc = "exp(x) + 1",
+                                         .flags = 0};
 
 static int row_init_unassemblable(char *msg) {
   dal_builder *b = NULL;
@@ -1242,7 +1263,14 @@ static int cusp(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
   out[0] = dal_sub(dal_sq(in[1]), dal_mul(in[0], dal_sq(in[0])));
   return 0;
 }
-static const dal_primitive user_cusp = {"cusp", 1, 2, 1, 0, cusp, "y^2 - x^3", 0};
+static const dal_primitive user_cusp = {.name = "cusp",
+                                        .version = 1,
+                                        .nin = 2,
+                                        .nout = 1,
+                                        .nparam = 0,
+                                        .eval = cusp,
+                                        .doc = "y^2 - x^3",
+                                        .flags = 0};
 
 static int cusp_scene(dal_builder **b, dal_system **sys, dal_state **st) {
   int bob;
@@ -1353,9 +1381,9 @@ static const bad_row rows[] = {
      row_place_ninputs},
     {"place: wrong number of parameters", DAL_E_ARG, "'bob'", "takes 7 parameters",
      row_place_nparams},
-    {"place: NaN parameter", DAL_E_NONFINITE, "'bob'", "parameter 0 of primitive 'pendulum'",
+    {"place: NaN parameter", DAL_E_NONFINITE, "'bob'", "parameter 'l' of 'pendulum'",
      row_place_nan_param},
-    {"place: inf parameter", DAL_E_NONFINITE, "'bob'", "parameter 0", row_place_inf_param},
+    {"place: inf parameter", DAL_E_NONFINITE, "'bob'", "parameter 'l'", row_place_inf_param},
     {"place: 3D primitive in 2D", DAL_E_ARG, "'bob'", "'spherical'", row_place_wrong_dim},
     {"place: NULL primitive", DAL_E_ARG, "'bob'", "primitive", row_place_null_prim},
     {"place: parent not placed", DAL_E_ARG, "'lower'", "'upper'", row_place_parent_order},
@@ -1363,9 +1391,9 @@ static const bad_row rows[] = {
      row_con_particle_index},
     {"constraint: wrong number of inputs", DAL_E_ARG, "'rod'", "'user_rod2' takes 4 inputs",
      row_con_ninputs},
-    {"constraint: wrong number of parameters", DAL_E_ARG, "'rod'", "takes 1 parameters",
+    {"constraint: wrong number of parameters", DAL_E_ARG, "'rod'", "required and was not set",
      row_con_nparams},
-    {"constraint: NaN parameter", DAL_E_NONFINITE, "'rod'", "parameter 0", row_con_nan_param},
+    {"constraint: NaN parameter", DAL_E_NONFINITE, "'rod'", "parameter 'p0'", row_con_nan_param},
     {"gravity NaN", DAL_E_NONFINITE, "gravity", "component 1", row_gravity_nan},
     {"spring: negative stiffness", DAL_E_ARG, "spring", "'a'", row_spring_negative_k},
     {"spring: NaN rest length", DAL_E_NONFINITE, "spring", "'a'", row_spring_nan_length},

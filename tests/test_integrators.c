@@ -413,11 +413,11 @@ static void test_evolve(void) {
                 k, m.t[k]);
     CHECK(m.n < 9 || m.t[8] == 1.05);
     CHECK_MSG(m.err < 1e-7, "%s monitor error %.3g", dal_method_name(o.method), m.err);
-    // a positive monitor return stops evolve with success where it stood
+    // a positive monitor return stops evolve where it stood, with DAL_STOPPED (not an error)
     CHECK_OK(dal_state_set(osc, st, 0.0, osc_q0, osc_v0));
     memset(&m, 0, sizeof m);
     m.stop_at = 4;
-    CHECK_OK(dal_evolve(osc, st, &o, 5.0, 0.25, record, &m));
+    CHECK(dal_evolve(osc, st, &o, 5.0, 0.25, record, &m) == DAL_STOPPED);
     CHECK(m.n == 4 && dal_state_time(st) == 0.75);
   }
   // a negative monitor return is a callback failure naming the time

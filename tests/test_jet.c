@@ -931,7 +931,14 @@ static int root_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
   out[1] = in[0];
   return 0;
 }
-static const dal_primitive prim_root = {"root", 1, 1, 2, 0, root_eval, "in (u); out (sqrt u, u)", 0};
+static const dal_primitive prim_root = {.name = "root",
+                                        .version = 1,
+                                        .nin = 1,
+                                        .nout = 2,
+                                        .nparam = 0,
+                                        .eval = root_eval,
+                                        .doc = "in (u); out (sqrt u, u)",
+                                        .flags = 0};
 
 // whole-system map: particle 'bead' at (sqrt(1 - q0^2), q0) (unit circle arc)
 static int arc_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {

@@ -269,13 +269,13 @@ static void test_harmonic_oscillator(void) {
     for (int k = 0; k < 3; ++k) {
       c[4] = w;
       c[5] = 0.0;
-      CHECK_OK(dal_lagrange_residual(ss[k]->sys, ss[k]->st, ho_path, c, t, res));
+      CHECK_OK(dal_lagrange_residual(ss[k]->sys, ss[k]->st, ho_path, t, res, c));
       CHECK_MSG(fabs(res[0]) <= TOL * exact_scale && fabs(res[1]) <= TOL * exact_scale,
                 "HO residual (%s) on the exact path: (%g, %g)", nm[k], res[0], res[1]);
       // wrong frequency: res = (k - m w'^2) q(t)
       double w2 = 1.1 * w, ph0 = w2 * t + c[1], ph1 = w2 * t + c[3];
       c[4] = w2;
-      CHECK_OK(dal_lagrange_residual(ss[k]->sys, ss[k]->st, ho_path, c, t, res));
+      CHECK_OK(dal_lagrange_residual(ss[k]->sys, ss[k]->st, ho_path, t, res, c));
       double f = par.k - par.m * w2 * w2;
       near("HO residual, wrong frequency", 0, res[0], f * c[0] * cos(ph0), TOL, exact_scale);
       near("HO residual, wrong frequency", 1, res[1], f * c[2] * sin(ph1), TOL, exact_scale);
@@ -286,7 +286,7 @@ static void test_harmonic_oscillator(void) {
       // added eps t^3 on x: res_x = m 6 eps t + k eps t^3
       c[4] = w;
       c[5] = 0.01;
-      CHECK_OK(dal_lagrange_residual(ss[k]->sys, ss[k]->st, ho_path, c, t, res));
+      CHECK_OK(dal_lagrange_residual(ss[k]->sys, ss[k]->st, ho_path, t, res, c));
       near("HO residual, eps t^3", 0, res[0], par.m * 6 * c[5] * t + par.k * c[5] * t * t * t, TOL,
            exact_scale);
       near("HO residual, eps t^3", 1, res[1], 0.0, TOL, exact_scale);
@@ -517,9 +517,9 @@ static void test_pendulum(int driven) {
         double hand =
             P.m * P.l * P.l * thdd + P.m * P.l * (pdd[0] * cos(th0) + (P.g + pdd[1]) * sin(th0));
         double sc = P.m * P.l * (P.l + P.g + P.w * P.w);
-        CHECK_OK(dal_lagrange_residual(s.sys, s.st, pend_path, NULL, t, res));
+        CHECK_OK(dal_lagrange_residual(s.sys, s.st, pend_path, t, res, NULL));
         near("pendulum residual (particle)", 0, res[0], hand, TOL, sc);
-        CHECK_OK(dal_lagrange_residual(sl.sys, sl.st, pend_path, NULL, t, res));
+        CHECK_OK(dal_lagrange_residual(sl.sys, sl.st, pend_path, t, res, NULL));
         near("pendulum residual (Lagrangian)", 0, res[0], hand, TOL, sc);
       }
     }
@@ -1096,8 +1096,14 @@ static int scaled_child(const dal_jet *in, dal_jet t, const double *p, dal_jet *
   out[1] = dal_sub(dal_scale(in[1], 1.5), dal_scale(dal_cos(in[2]), p[0]));
   return 0;
 }
-static const dal_primitive scaled_prim = {"scaled_child", 1, 3, 2, 1, scaled_child,
-                                          "1.5 parent + l (sin th, -cos th)", 0};
+static const dal_primitive scaled_prim = {.name = "scaled_child",
+                                          .version = 1,
+                                          .nin = 3,
+                                          .nout = 2,
+                                          .nparam = 1,
+                                          .eval = scaled_child,
+                                          .doc = "1.5 parent + l (sin th, -cos th)",
+                                          .flags = 0};
 
 static int scaled_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
   (void)t;

@@ -221,8 +221,22 @@ static int slider_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *o
   out[1] = out[2] = dal_const(0.0);
   return 0;
 }
-static const dal_primitive slider2 = {"slider2", 1, 1, 2, 0, slider_eval, "test helper", 0};
-static const dal_primitive slider3 = {"slider3", 1, 1, 3, 0, slider_eval, "test helper", 0};
+static const dal_primitive slider2 = {.name = "slider2",
+                                      .version = 1,
+                                      .nin = 1,
+                                      .nout = 2,
+                                      .nparam = 0,
+                                      .eval = slider_eval,
+                                      .doc = "test helper",
+                                      .flags = 0};
+static const dal_primitive slider3 = {.name = "slider3",
+                                      .version = 1,
+                                      .nin = 1,
+                                      .nout = 3,
+                                      .nparam = 0,
+                                      .eval = slider_eval,
+                                      .doc = "test helper",
+                                      .flags = 0};
 
 // test map "warp": a curved particle position from d coordinates (a parent with gamma != 0)
 static int warp_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
@@ -234,8 +248,22 @@ static int warp_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *out
   return 0;
 }
 static int dim2 = 2, dim3 = 3;
-static const dal_primitive warp2 = {"warp2", 1, 2, 2, 0, warp_eval, "test helper", 0};
-static const dal_primitive warp3 = {"warp3", 1, 3, 3, 0, warp_eval, "test helper", 0};
+static const dal_primitive warp2 = {.name = "warp2",
+                                    .version = 1,
+                                    .nin = 2,
+                                    .nout = 2,
+                                    .nparam = 0,
+                                    .eval = warp_eval,
+                                    .doc = "test helper",
+                                    .flags = 0};
+static const dal_primitive warp3 = {.name = "warp3",
+                                    .version = 1,
+                                    .nin = 3,
+                                    .nout = 3,
+                                    .nparam = 0,
+                                    .eval = warp_eval,
+                                    .doc = "test helper",
+                                    .flags = 0};
 
 // the scene under test: coordinates q (n), `npart` warp particles on the first npart * d
 // coordinates, then the primitive's remaining inputs on the following coordinates

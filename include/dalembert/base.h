@@ -20,11 +20,22 @@
 extern "C" {
 #endif
 
+/// Major version of the headers being compiled against (incompatible API changes).
+#define DAL_VERSION_MAJOR 0
+/// Minor version of the headers (additions that keep the API compatible).
+#define DAL_VERSION_MINOR 2
+/// Patch version of the headers (fixes only).
+#define DAL_VERSION_PATCH 0
+/// The version as one comparable integer, e.g. `#if DAL_VERSION_NUMBER >= 200` for 0.2.0.
+#define DAL_VERSION_NUMBER (DAL_VERSION_MAJOR * 10000 + DAL_VERSION_MINOR * 100 + DAL_VERSION_PATCH)
+
 /// The one list of status codes: X(name, value, description).
-/// 0 is success; every failure is negative. A detailed message naming the culprit and a
+/// 0 is success; every failure is negative. The one positive code, DAL_STOPPED, is not a
+/// failure: dal_evolve returns it when a monitor asked to stop before the end time. A detailed message naming the culprit and a
 /// remedy is kept by the object that failed (dal_builder_errmsg, dal_state_errmsg).
 #define DAL_STATUS_LIST(X)                                                                        \
   X(DAL_OK, 0, "ok")                                                                              \
+  X(DAL_STOPPED, 1, "stopped early by a monitor (not an error)")                                  \
   X(DAL_E_ARG, -1, "invalid argument (index, dimension, count or option)")                        \
   X(DAL_E_NOMEM, -2, "out of memory")                                                             \
   X(DAL_E_NONFINITE, -3, "non-finite input (NaN or inf)")                                         \
@@ -40,7 +51,8 @@ extern "C" {
   X(DAL_E_TIME, -13, "target time lies behind the current time")                                  \
   X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                       \
   X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                          \
-  X(DAL_E_IO, -16, "file input/output failed")
+  X(DAL_E_IO, -16, "file input/output failed")                                                   \
+  X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")
 
 /// Status codes returned by every fallible dalembert call.
 typedef enum dal_status {
@@ -55,7 +67,8 @@ DAL_API const char *dal_status_string(int status);
 /// Symbolic name of a status code, e.g. "DAL_E_SINGULAR" ("DAL_UNKNOWN" for other values).
 DAL_API const char *dal_status_name(int status);
 
-/// Library version as "major.minor.patch" (static string).
+/// Version of the library actually linked, as "major.minor.patch" (static string); compare
+/// with DAL_VERSION_MAJOR/MINOR/PATCH to detect a header/library mismatch.
 DAL_API const char *dal_version(void);
 
 #ifdef __cplusplus

@@ -86,6 +86,14 @@ typedef struct dal_init_report {
 DAL_API int dal_make_consistent(const dal_system *sys, dal_state *st, double tol,
                                 dal_init_report *rep);
 
+/// The report of the last consistent start on this state (dal_make_consistent, or the one
+/// dal_advance / dal_evolve run before a DAE integration, including one refused because it
+/// moved more than opts.init_max_move) into *out. Read it to see whether the library moved
+/// your initial state onto the constraints, and by how much. Returns DAL_OK, DAL_E_ARG for
+/// NULL arguments, DAL_E_STATE when no consistent start has run on this state (*out is then
+/// zeroed with rows and coordinates -1).
+DAL_API int dal_state_init_report(const dal_state *st, dal_init_report *out);
+
 /// Result of a constraint check.
 typedef struct dal_constraint_report {
   int m;          ///< constraint rows
@@ -109,9 +117,12 @@ DAL_API int dal_check_constraints(const dal_system *sys, dal_state *st, dal_cons
 /// caller-owned) receives F_k = sum over the rows touching particle k of
 /// (dphi_row / dr_k)' lambda_row, world frame, force units. Rows on coordinates (e.g.
 /// dal_con_prescribed) act on coordinates, not on particles, and are left out; see
-/// dal_constraint_genforces for the whole generalized force. Returns DAL_E_ARG for bad
-/// arguments, or the status of a failing constraint evaluation.
-DAL_API int dal_constraint_forces(const dal_system *sys, dal_state *st, double *F);
+/// dal_constraint_genforces for the whole generalized force. The state is only read, so a
+/// monitor (which sees a const state) may call it. Returns DAL_E_ARG for bad arguments,
+/// DAL_E_NOMEM (a primitive with more than 64 inputs or outputs needs a heap buffer), or
+/// DAL_E_CALLBACK / DAL_E_DOMAIN for a failing constraint evaluation (no message is kept, the
+/// state being const).
+DAL_API int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F);
 
 /// Generalized constraint force G' lambda (n, caller-owned) at the state's current G and
 /// lambda. Returns DAL_E_ARG for bad arguments.

@@ -14,5 +14,6 @@
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
 #include "dalembert/system.h"
+#include "dalembert/verify.h"
 
 #endif

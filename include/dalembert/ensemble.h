@@ -114,9 +114,10 @@ typedef struct dal_sweep_opts {
   dal_worker_create_fn *worker_create;   ///< nullable: per-worker data
   dal_worker_destroy_fn *worker_destroy; ///< nullable
   void *worker_ctx;                      ///< passed to worker_create / worker_destroy
-  int part, nparts;                      ///< run only the trajectories of part `part` of
+  int part;                              ///< run only the trajectories of part `part` of
                                          ///< `nparts` (default 0 of 1: all); see
                                          ///< dal_sweep_part_of. For job arrays and MPI ranks
+  int nparts;                            ///< number of parts (default 1)
   int part_block;                        ///< block size of the partition (default 1)
 } dal_sweep_opts;
 

@@ -14,6 +14,142 @@
 extern "C" {
 #endif
 
+// Parameter indices. Each built-in primitive's parameters have names (prim->param_names, used
+// in error messages) and an index enum, so a def reads as what it means:
+//   d.param[DAL_PENDULUM_L] = 1.0;
+// A parameter left unset in a def (or omitted at the end of a positional list) takes its
+// default, listed here; "required" ones have none and must be given.
+// Moving points follow one convention everywhere: the point is x0 + x(t), a fixed part x0 (a
+// parameter or def field, default the origin) plus an optional motion x(t) from a callback.
+
+/// dal_map_fixed2/3: the point. Defaults: origin.
+enum dal_fixed_param {
+  DAL_FIXED_X,           ///< x (length), default 0
+  DAL_FIXED_Y,           ///< y (length), default 0
+  DAL_FIXED_Z,           ///< z (length, 3D only), default 0
+  DAL_FIXED2_NPARAM = 2, ///< parameter count of dal_map_fixed2
+  DAL_FIXED3_NPARAM = 3, ///< parameter count of dal_map_fixed3
+};
+/// dal_map_pendulum: length and pivot motion p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t +
+/// ph)). Defaults: pivot fixed at the origin (no drive); l required.
+enum dal_pendulum_param {
+  DAL_PENDULUM_L,      ///< rod length l (> 0, length), required
+  DAL_PENDULUM_X0,     ///< pivot x0 (length), default 0
+  DAL_PENDULUM_Y0,     ///< pivot y0 (length), default 0
+  DAL_PENDULUM_AX,     ///< drive amplitude along x (length), default 0
+  DAL_PENDULUM_AY,     ///< drive amplitude along y (length), default 0
+  DAL_PENDULUM_W,      ///< drive angular frequency w (rad/s), default 0
+  DAL_PENDULUM_PH,     ///< drive phase ph (rad), default 0
+  DAL_PENDULUM_NPARAM, ///< parameter count (7)
+};
+/// dal_map_hanging: rod length (required).
+enum dal_hanging_param {
+  DAL_HANGING_L,      ///< rod length l (> 0, length), required
+  DAL_HANGING_NPARAM, ///< parameter count (1)
+};
+/// dal_map_spherical: length and fixed pivot. Defaults: pivot at the origin; l required.
+enum dal_spherical_param {
+  DAL_SPHERICAL_L,      ///< rod length l (> 0, length), required
+  DAL_SPHERICAL_X0,     ///< pivot x (length), default 0
+  DAL_SPHERICAL_Y0,     ///< pivot y (length), default 0
+  DAL_SPHERICAL_Z0,     ///< pivot z (length), default 0
+  DAL_SPHERICAL_NPARAM, ///< parameter count (4)
+};
+/// dal_map_ring: radius (required), turning rate and initial angle (default 0: a still ring).
+enum dal_ring_param {
+  DAL_RING_R,      ///< radius R (> 0, length), required
+  DAL_RING_W,      ///< turning rate w (rad/s), default 0
+  DAL_RING_PHI0,   ///< angle of the ring's plane at t = 0 (rad), default 0
+  DAL_RING_NPARAM, ///< parameter count (3)
+};
+/// dal_map_sphere and dal_con_sphere: radius (required) and centre (default origin).
+enum dal_sphere_param {
+  DAL_SPHERE_R,      ///< radius R (> 0, length), required
+  DAL_SPHERE_CX,     ///< centre x (length), default 0
+  DAL_SPHERE_CY,     ///< centre y (length), default 0
+  DAL_SPHERE_CZ,     ///< centre z (length), default 0
+  DAL_SPHERE_NPARAM, ///< parameter count (4)
+};
+/// dal_con_distance2/3: rod length (required).
+enum dal_distance_param {
+  DAL_DISTANCE_L,      ///< rod length L (> 0, length), required
+  DAL_DISTANCE_NPARAM, ///< parameter count (1)
+};
+/// dal_con_anchor2/3: rod length (required) and the fixed part x0 of the anchor point
+/// x0 + x(t) (default origin; x(t) from a dal_moving_point context, else 0).
+enum dal_anchor_param {
+  DAL_ANCHOR_L,           ///< rod length L (> 0, length), required
+  DAL_ANCHOR_X0,          ///< anchor x0 (length), default 0
+  DAL_ANCHOR_Y0,          ///< anchor y0 (length), default 0
+  DAL_ANCHOR_Z0,          ///< anchor z0 (length, 3D only), default 0
+  DAL_ANCHOR2_NPARAM = 3, ///< parameter count of dal_con_anchor2
+  DAL_ANCHOR3_NPARAM = 4, ///< parameter count of dal_con_anchor3
+};
+/// dal_con_circle2/3: radius (required), centre (default origin), plane normal (3D, default
+/// +z).
+enum dal_circle_param {
+  DAL_CIRCLE_R,           ///< radius R (> 0, length), required
+  DAL_CIRCLE_CX,          ///< centre x (length), default 0
+  DAL_CIRCLE_CY,          ///< centre y (length), default 0
+  DAL_CIRCLE_CZ,          ///< centre z (length, 3D only), default 0
+  DAL_CIRCLE_NX,          ///< plane normal x (3D only), default 0
+  DAL_CIRCLE_NY,          ///< plane normal y (3D only), default 0
+  DAL_CIRCLE_NZ,          ///< plane normal z (3D only), default 1
+  DAL_CIRCLE2_NPARAM = 3, ///< parameter count of dal_con_circle2
+  DAL_CIRCLE3_NPARAM = 7, ///< parameter count of dal_con_circle3
+};
+/// dal_con_turning_circle: radius (required), turning rate, initial angle, centre.
+enum dal_turning_circle_param {
+  DAL_TURNING_CIRCLE_R,      ///< radius R (> 0, length), required
+  DAL_TURNING_CIRCLE_W,      ///< turning rate w (rad/s), default 0
+  DAL_TURNING_CIRCLE_PHI0,   ///< angle of the plane at t = 0 (rad), default 0
+  DAL_TURNING_CIRCLE_CX,     ///< centre x (length), default 0
+  DAL_TURNING_CIRCLE_CY,     ///< centre y (length), default 0
+  DAL_TURNING_CIRCLE_CZ,     ///< centre z (length), default 0
+  DAL_TURNING_CIRCLE_NPARAM, ///< parameter count (6)
+};
+/// dal_con_plane: a point on the plane (default origin) and its normal (default +z).
+enum dal_plane_param {
+  DAL_PLANE_CX,     ///< point x (length), default 0
+  DAL_PLANE_CY,     ///< point y (length), default 0
+  DAL_PLANE_CZ,     ///< point z (length), default 0
+  DAL_PLANE_NX,     ///< normal x, default 0
+  DAL_PLANE_NY,     ///< normal y, default 0
+  DAL_PLANE_NZ,     ///< normal z, default 1
+  DAL_PLANE_NPARAM, ///< parameter count (6)
+};
+/// dal_con_line2: a point on the line (default origin) and its direction (default +x).
+enum dal_line2_param {
+  DAL_LINE2_CX,     ///< point x (length), default 0
+  DAL_LINE2_CY,     ///< point y (length), default 0
+  DAL_LINE2_AX,     ///< direction x, default 1
+  DAL_LINE2_AY,     ///< direction y, default 0
+  DAL_LINE2_NPARAM, ///< parameter count (4)
+};
+/// dal_con_line3: a point on the line (default origin) and its direction (default +x).
+enum dal_line3_param {
+  DAL_LINE3_CX,     ///< point x (length), default 0
+  DAL_LINE3_CY,     ///< point y (length), default 0
+  DAL_LINE3_CZ,     ///< point z (length), default 0
+  DAL_LINE3_AX,     ///< direction x, default 1
+  DAL_LINE3_AY,     ///< direction y, default 0
+  DAL_LINE3_AZ,     ///< direction z, default 0
+  DAL_LINE3_NPARAM, ///< parameter count (6)
+};
+/// dal_con_turning_line2: centre of rotation (default origin), rate and initial angle.
+enum dal_turning_line2_param {
+  DAL_TURNING_LINE2_CX,     ///< centre x (length), default 0
+  DAL_TURNING_LINE2_CY,     ///< centre y (length), default 0
+  DAL_TURNING_LINE2_W,      ///< turning rate w (rad/s), default 0
+  DAL_TURNING_LINE2_PHI0,   ///< line angle at t = 0 (rad), default 0
+  DAL_TURNING_LINE2_NPARAM, ///< parameter count (4)
+};
+/// dal_con_prescribed: the fixed part q0 of q = q0 + f(t) (default 0).
+enum dal_prescribed_param {
+  DAL_PRESCRIBED_Q0,     ///< q0 (units of the coordinate), default 0
+  DAL_PRESCRIBED_NPARAM, ///< parameter count (1)
+};
+
 /// 2D identity map. in: (x, y). param: none. out: (x, y).
 DAL_API extern const dal_primitive dal_map_cartesian2;
 /// 3D identity map. in: (x, y, z). param: none. out: (x, y, z).

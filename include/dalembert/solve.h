@@ -94,7 +94,10 @@ typedef struct dal_solve_opts {
   dal_formulation form;       ///< formulation
   dal_linsol linsol;          ///< linear solver for implicit methods
   double rtol;                ///< relative tolerance (> 0), default 1e-8
-  double atol;                ///< absolute tolerance (> 0, units of q), default 1e-10
+  double atol;                ///< absolute tolerance (> 0, units of q); 0 (default) follows
+                              ///< rtol: atol = DAL_ATOL_PER_RTOL * rtol (1e-10 at the default
+                              ///< rtol), so setting only rtol tightens both. Set it yourself
+                              ///< when coordinates are far from unit scale.
   double h0;                  ///< initial step (0: automatic)
   double hmin;                ///< minimum step (0: none)
   double hmax;                ///< maximum step (0: none)
@@ -113,9 +116,18 @@ typedef struct dal_solve_opts {
                               ///< structure-preserving ones
   int fixed_erk;              ///< DOPRI5/FEHLBERG78: if nonzero, take fixed steps of
                               ///< opts.fixed_step without error control (order studies); 0
+  double init_max_move;       ///< DAE start: the largest change |delta q_i| (units of q) the
+                              ///< consistent initialization may apply; a larger one fails with
+                              ///< DAL_E_INIT naming the coordinate and the state is unchanged.
+                              ///< 0 (default): no limit. Either way the report of the move is
+                              ///< kept (dal_state_init_report in dae.h).
 } dal_solve_opts;
 
-/// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 1e-10.
+/// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default).
+#define DAL_ATOL_PER_RTOL 1e-2
+
+/// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 0 (follows rtol:
+/// 1e-10), no limit on the consistent start's move.
 DAL_API void dal_solve_default_opts(dal_solve_opts *o);
 
 /// Short name of a method ("dopri5", "fehlberg78", "bs", "rk4", "adams", "bdf", "variational",
@@ -154,13 +166,16 @@ DAL_API int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_op
                         double t1);
 
 /// Monitor called by dal_evolve at every output time with the state evaluated there
-/// (dal_forward outputs valid). Return 0 to continue, non-zero to stop (evolve returns it
-/// as DAL_E_CALLBACK if negative, DAL_OK if positive).
+/// (dal_forward outputs valid). Return 0 to continue, > 0 to stop early (dal_evolve then
+/// returns DAL_STOPPED, a positive status that is not an error: the state holds that time
+/// and dal_state_errmsg says where it stopped),
+/// < 0 to report a failure (dal_evolve returns DAL_E_CALLBACK).
 typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx);
 
 /// Evolve from the current time t0 to t1, calling `monitor` (may be NULL) at t0 and at
 /// every t0 + k dt <= t1 (dt > 0), and at t1. The monitor sees the state at exactly those
-/// times (the integrator steps to each output time).
+/// times (the integrator steps to each output time). Returns DAL_OK when it reached t1,
+/// DAL_STOPPED when the monitor stopped it before t1 (not an error), or a negative status.
 DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                        double t1, double dt, dal_monitor_fn *monitor, void *ctx);
 

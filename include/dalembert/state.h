@@ -113,6 +113,12 @@ DAL_API const double *dal_state_phidot(const dal_state *st);
 /// Energies of the state (after dal_forward).
 DAL_API int dal_state_energies(const dal_state *st, dal_energies *out);
 
+/// Print the state to fp (like MuJoCo's mj_printData): t; per coordinate q, qdot, qddot, Q, c;
+/// the mass matrix M; per constraint row lambda, phi and phidot; particle positions;
+/// energies; the last consistent start's report. Quantities that need dal_forward are printed
+/// only when the state is evaluated. %.17g throughout. Returns DAL_OK, DAL_E_ARG or DAL_E_IO.
+DAL_API int dal_state_print(const dal_system *sys, const dal_state *st, FILE *fp);
+
 /// A proposed path q(t) over jets: write q[0..n-1] as jets in t (its first and second
 /// derivatives are the path's velocity and acceleration).
 typedef int dal_path_q_fn(dal_jet t, dal_jet *q, void *ctx);
@@ -120,9 +126,9 @@ typedef int dal_path_q_fn(dal_jet t, dal_jet *q, void *ctx);
 /// Lagrange-equation residual of a proposed path at time t:
 /// res = d/dt dL/dqdot - dL/dq - Q_nc (n), equal to M qddot + c - Q for particle systems.
 /// Zero (to rounding) exactly when the path is realizable. Uses st as workspace: its
-/// (t, q, qdot) become the path's values at t.
+/// (t, q, qdot) become the path's values at t. `ctx` is passed to path.
 DAL_API int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path,
-                                  void *ctx, double t, double *res);
+                                  double t, double *res, void *ctx);
 
 #ifdef __cplusplus
 }

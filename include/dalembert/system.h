@@ -18,6 +18,8 @@
 #ifndef DAL_SYSTEM_H
 #define DAL_SYSTEM_H
 
+#include <stdio.h>
+
 #include "dalembert/base.h"
 #include "dalembert/jet.h"
 
@@ -32,18 +34,32 @@ extern "C" {
 typedef int dal_jet_fn(const dal_jet *in, dal_jet t, const double *param, dal_jet *out,
                        void *ctx);
 
+/// Newest layout of the dal_primitive table this library knows. A table declares the layout it
+/// was written for in `version`; the library reads only the fields that layout has, so a
+/// primitive written for version 1 keeps working, and a table newer than the library is
+/// refused by name at placement (DAL_E_ARG) instead of being misread.
+#define DAL_PRIMITIVE_VERSION 2
+
 /// A primitive: a coordinate map r = f(u, t) (`dal_map_*`) or a constraint phi = f(u, t)
 /// (`dal_con_*`). Both are the same object, a smooth vector function over jets.
 /// The library derives Jacobians, time derivatives and curvature terms from `eval`.
+/// Fields are only ever appended (SQLite-style): write the table with designated initializers
+/// and set `version` to the layout you filled (DAL_PRIMITIVE_VERSION for all fields).
 typedef struct dal_primitive {
   const char *name; ///< short name, e.g. "pendulum"
-  int version;      ///< ops are only ever appended; 1 for the first version
+  int version;      ///< table layout: 1 (fields up to `flags`) or 2 (parameter names, defaults)
   int nin;          ///< number of local inputs
   int nout;         ///< number of outputs (d for a map, 1.. for a constraint)
   int nparam;       ///< number of real parameters
   dal_jet_fn *eval; ///< the function
   const char *doc;  ///< one line: inputs, parameters, outputs
   unsigned flags;   ///< DAL_PRIM_* hints (0 if none); added in version 1 of the table
+  /// Version 2: names of the nparam parameters, e.g. {"l", "x0", ...} (borrowed; NULL: the
+  /// library calls them "p0", "p1", ...). Error messages and dal_system_print use them.
+  const char *const *param_names;
+  /// Version 2: defaults (nparam values, borrowed) taken by parameters a def leaves unset or a
+  /// positional call omits at the end; NaN marks a required parameter. NULL: all required.
+  const double *param_defaults;
 } dal_primitive;
 
 /// Primitive hint: a map whose first d inputs are a parent's position p and whose output is
@@ -90,8 +106,9 @@ typedef struct dal_builder dal_builder;
 /// Immutable compiled model; thread-safe to share read-only between states.
 typedef struct dal_system dal_system;
 
-/// Create a builder for spatial dimension `dim` (2 or 3). *out is NULL on failure.
-/// Returns DAL_OK, DAL_E_ARG (dim not 2 or 3), DAL_E_NOMEM.
+/// Create a builder for spatial dimension `dim`: 2 or 3 for particles, or 0 for a system given
+/// only by a Lagrangian (dal_builder_set_lagrangian; a Lagrangian system also accepts 2 or
+/// 3). *out is NULL on failure. Returns DAL_OK, DAL_E_ARG (dim not 0, 2 or 3), DAL_E_NOMEM.
 DAL_API int dal_builder_create(int dim, dal_builder **out);
 
 /// Free a builder (NULL is a no-op). A compiled system does not depend on its builder.
@@ -108,12 +125,113 @@ DAL_API int dal_builder_add_coord(dal_builder *b, const char *name, int *index);
 /// Its position must be given by dal_builder_place or a whole-system map.
 DAL_API int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index);
 
+// ---------------------------------------------------------------------------------------
+// Element definitions (Box2D v3 style): start from dal_default_*_def(), set the fields the
+// scene needs, pass the def to dal_builder_*_def. The def is read during the call only (its
+// arrays are copied). A def that did not come from its dal_default_*_def() constructor is
+// refused (DAL_E_ARG) by its cookie.
+
+/// Largest number of parameters a def holds inline; primitives with more parameters are
+/// placed with the positional dal_builder_place / dal_builder_add_constraint.
+#define DAL_MAX_PARAM 16
+
+/// How a particle is placed: r = prim(parent position, q[coords], t; param).
+typedef struct dal_place_def {
+  const dal_primitive *prim; ///< a dal_map_* (nout == d); borrowed, must outlive the system.
+                             ///< Required (default NULL).
+  int parent;        ///< particle whose position feeds the first d inputs, added and placed before
+                     ///< this one; -1 (default) for none
+  const int *coords; ///< the ncoords coordinate indices feeding the remaining inputs, in order
+                     ///< (copied); NULL (default) when ncoords is 0
+  int ncoords;       ///< number of coordinate inputs, default 0
+  /// Parameters by the primitive's index enum, e.g. param[DAL_PENDULUM_L]. Entries left as
+  /// set by the constructor take prim->param_defaults; a required one must be set.
+  double param[DAL_MAX_PARAM];
+  void *ctx;  ///< passed to prim->eval (borrowed), default NULL
+  int cookie; ///< set by dal_default_place_def; do not touch
+} dal_place_def;
+
+/// A constraint phi(u, t) = 0 of prim->nout rows; inputs: positions of parts (d values each),
+/// then coordinates.
+typedef struct dal_constraint_def {
+  const char *name;            ///< copied; NULL (default) gives "c<i>"
+  const dal_primitive *prim;   ///< a dal_con_* or user primitive; borrowed. Required.
+  const int *parts;            ///< the nparts particle indices (copied); NULL when nparts is 0
+  int nparts;                  ///< number of particle inputs, default 0
+  const int *coords;           ///< the ncoords coordinate indices (copied); NULL when 0
+  int ncoords;                 ///< number of coordinate inputs, default 0
+  double param[DAL_MAX_PARAM]; ///< as in dal_place_def (unset entries take the defaults)
+  void *ctx;                   ///< passed to prim->eval (borrowed), default NULL
+  int cookie;                  ///< set by dal_default_constraint_def; do not touch
+} dal_constraint_def;
+
+/// A linear spring U = k/2 (|r_a - x_b| - length)^2 between particle a and either particle b
+/// or an anchor point x_b = anchor + path(t) (the moving-point convention x0 + x(t)).
+typedef struct dal_spring_def {
+  int a;             ///< first particle. Required (default -1).
+  int b;             ///< second particle; -1 (default): the anchor point
+  double k;          ///< stiffness (>= 0, force/length), default 0
+  double length;     ///< rest length (>= 0, length), default 0
+  double anchor[3];  ///< fixed part x0 of the anchor point (d values used), default origin
+  dal_path_fn *path; ///< motion x(t) added to anchor (d jets in t); NULL (default): none
+  void *ctx;         ///< passed to path (borrowed), default NULL
+  int cookie;        ///< set by dal_default_spring_def; do not touch
+} dal_spring_def;
+
+/// A linear damper F_a = -c ((v_a - v_b) . e) e, e the unit vector from x_b to r_a, between
+/// particle a and either particle b or the anchor point x_b = anchor + path(t).
+typedef struct dal_damper_def {
+  int a;             ///< first particle. Required (default -1).
+  int b;             ///< second particle; -1 (default): the anchor point
+  double c;          ///< damping coefficient (>= 0, force/velocity), default 0
+  double anchor[3];  ///< fixed part x0 of the anchor point, default origin
+  dal_path_fn *path; ///< motion x(t) added to anchor; NULL (default): none
+  void *ctx;         ///< passed to path (borrowed), default NULL
+  int cookie;        ///< set by dal_default_damper_def; do not touch
+} dal_damper_def;
+
+/// A place def with the defaults: no primitive (must be set), no parent, no coordinates,
+/// every parameter unset (taking the primitive's defaults), no context.
+DAL_API dal_place_def dal_default_place_def(void);
+/// A constraint def with the defaults: no name, no primitive, no inputs, parameters unset.
+DAL_API dal_constraint_def dal_default_constraint_def(void);
+/// A spring def with the defaults: a = -1 (must be set), anchored (b = -1) at the origin, no
+/// path, k = 0, length = 0.
+DAL_API dal_spring_def dal_default_spring_def(void);
+/// A damper def with the defaults: a = -1 (must be set), anchored at the origin, c = 0.
+DAL_API dal_damper_def dal_default_damper_def(void);
+
+/// Place particle `particle` as `def` says. Checks, each by name: the cookie, the particle
+/// and parent indices, the primitive's table version (1 ... DAL_PRIMITIVE_VERSION), its input
+/// count against (parent ? d : 0) + ncoords, its output count against d, coordinate indices,
+/// every parameter finite and every required parameter set ("parameter 'l' of 'pendulum'
+/// ..."). Returns DAL_OK, DAL_E_ARG, DAL_E_NONFINITE or DAL_E_NOMEM; on failure nothing
+/// changes and dal_builder_errmsg says why.
+DAL_API int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def);
+
+/// Add the constraint `def`; *index (nullable) receives the index of its first row. Checks as
+/// dal_builder_place_def, with particle indices for the inputs.
+DAL_API int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def,
+                                           int *index);
+
+/// Add the spring `def`. DAL_E_ARG for a bad particle index or a negative k or length,
+/// DAL_E_NONFINITE for a non-finite k, length or anchor component.
+DAL_API int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def);
+
+/// Add the damper `def`. Errors as dal_builder_add_spring_def.
+DAL_API int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def);
+
+// ---------------------------------------------------------------------------------------
+// Positional forms (the first API; thin wrappers over the same code as the defs). New code
+// should use the defs above, whose contexts sit inside the def.
+
 /// Place particle `particle` by primitive `prim` (a dal_map_*, nout == d; borrowed, must
 /// outlive the system). Local inputs are, in order: the position of particle `parent`
 /// (d values; parent < 0 for none; the parent must have been added (parent < particle) and
 /// placed first), then the coordinates coords[0..ncoords-1]. Hence
-/// prim->nin == (parent >= 0 ? d : 0) + ncoords. `param` (nparam values, copied) must match
-/// prim->nparam; `ctx` is passed to prim->eval (borrowed). Each particle is placed once.
+/// prim->nin == (parent >= 0 ? d : 0) + ncoords. `param` (nparam values, copied): at most
+/// prim->nparam; parameters omitted at the end take prim->param_defaults (an error names a
+/// required one). `ctx` is passed to prim->eval (borrowed). Each particle is placed once.
 DAL_API int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim,
                               int parent, int ncoords, const int *coords, int nparam,
                               const double *param, void *ctx);
@@ -124,12 +242,17 @@ DAL_API int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx);
 
 /// Describe the system by a Lagrangian L(t, q, qdot) instead of particles (SICM's
 /// Lagrangian->state-derivative). Exclusive with particles. Generalized forces may be added.
+/// Energies of such a system (dal_state_energies) are read off L itself: U = -L(t, q, 0) plus
+/// any U(q, t) potentials, T = L(t, q, qdot) - L(t, q, 0), E = T + U, T2 = 1/2 qdot' (d2L /
+/// dqdot2) qdot, T1 = T - T2, T0 = 0 (a velocity-free term of L counts in U), and h the exact
+/// Jacobi integral. For L = T - V with T quadratic in qdot these are the usual T and V.
 DAL_API int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx);
 
 /// Add the holonomic constraint phi(u, t) = 0 named `name` (copied; NULL gives "c<i>").
 /// Local inputs: positions of particles parts[0..nparts-1] (d values each), then coordinates
 /// coords[0..ncoords-1]; prim->nin must equal nparts * d + ncoords. prim->nout rows are
-/// added. Residuals should be in length units (built-ins are). *index receives the index of
+/// added. Parameters as in dal_builder_place. (The context is not last here, for
+/// compatibility; dal_builder_add_constraint_def holds it in the def.) Residuals should be in length units (built-ins are). *index receives the index of
 /// the first row (may be NULL).
 DAL_API int dal_builder_add_constraint(dal_builder *b, const char *name,
                                        const dal_primitive *prim, int nparts, const int *parts,
@@ -143,8 +266,9 @@ DAL_API int dal_builder_set_gravity(dal_builder *b, const double *g);
 /// U = k/2 (|r_b - r_a| - L)^2.
 DAL_API int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L);
 
-/// Linear spring from particle p to an anchor x(t) (fn may be NULL: fixed anchor at x0,
-/// d values copied). U = k/2 (|r_p - x(t)| - L)^2.
+/// Linear spring from particle p to the anchor point x0 + x(t): x0 (d values, copied; NULL:
+/// the origin), x(t) from fn (NULL: none). U = k/2 (|r_p - (x0 + x(t))| - L)^2. Same as
+/// dal_builder_add_spring_def with b = -1.
 DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0,
                                           dal_path_fn *fn, void *ctx, double k, double L);
 
@@ -152,7 +276,8 @@ DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x
 /// from a to b; F_a = -F_b. c >= 0.
 DAL_API int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c);
 
-/// Linear damper from particle p to an anchor x(t) (fn NULL: fixed at x0), as above.
+/// Linear damper from particle p to the anchor point x0 + x(t) (x0 NULL: the origin; fn NULL:
+/// fixed), as above.
 DAL_API int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0,
                                           dal_path_fn *fn, void *ctx, double c);
 
@@ -191,6 +316,13 @@ DAL_API const char *dal_system_particle_name(const dal_system *sys, int k);
 DAL_API const char *dal_system_constraint_name(const dal_system *sys, int i);
 /// Mass of particle k (NaN if out of range).
 DAL_API double dal_system_mass(const dal_system *sys, int k);
+
+/// Print the model to fp (like MuJoCo's mj_printModel): coordinates, particles with their
+/// masses and how each is placed (primitive, parent, coordinates, named parameters),
+/// constraints (rows, primitive, inputs, named parameters) and forces (gravity, springs and
+/// dampers with their anchors, counts of callbacks). Numbers are printed with %.17g, so they
+/// read back exactly. Returns DAL_OK, DAL_E_ARG (NULL argument) or DAL_E_IO.
+DAL_API int dal_system_print(const dal_system *sys, FILE *fp);
 
 #ifdef __cplusplus
 }

@@ -33,6 +33,7 @@ case "$mode" in
       -DCMAKE_BUILD_TYPE=Release
     cmake --build "$work"
     "$work/consumer"
+    ctest --test-dir "$work" -L dalembert_verify --output-on-failure --no-tests=error
     ;;
   pkgconfig)
     export PKG_CONFIG_PATH="$prefix/$libdir/pkgconfig"

@@ -79,7 +79,10 @@ static void fz_die(const char *what, int rc, const char *msg) {
 }
 
 static void fz_status(const char *call, int rc) {
-  if (rc > 0 || strcmp(dal_status_name(rc), "DAL_UNKNOWN") == 0) fz_die(call, rc, NULL);
+  // DAL_STOPPED (> 0) is evolve's status for a monitor that asked to stop
+  if ((rc > 0 && (rc != DAL_STOPPED || strcmp(call, "evolve") != 0)) ||
+      strcmp(dal_status_name(rc), "DAL_UNKNOWN") == 0)
+    fz_die(call, rc, NULL);
 }
 
 static int fz_b(const dal_builder *b, const char *call, int rc) {
@@ -259,13 +262,20 @@ static int u_callback(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
 }
 
 static const dal_primitive u_prims[] = {
-    {"u_circle2", 1, 2, 1, 1, u_circle2, "x^2 + y^2 - R^2", 0},
-    {"u_dist2", 1, 4, 1, 1, u_dist2, "|b - a| - L (2D)", 0},
-    {"u_dist3", 1, 6, 1, 1, u_dist3, "|b - a| - L (3D)", 0},
-    {"u_lin", 1, 1, 1, 2, u_lin, "a u - b sin t", 0},
-    {"u_pair", 1, 2, 2, 0, u_pair, "(u0 - u1, u0 + sin u1)", 0},
-    {"u_callback", 1, 1, 2, 0, u_callback, "(u^2 + ct, sin u), may fail", 0},
-    {"u_broken", 1, 1, 2, 0, NULL, "no eval function", 0},
+    {.name = "u_circle2", .version = 1, .nin = 2, .nout = 1, .nparam = 1, .eval = u_circle2,
+     .doc = "x^2 + y^2 - R^2", .flags = 0},
+    {.name = "u_dist2", .version = 1, .nin = 4, .nout = 1, .nparam = 1, .eval = u_dist2,
+     .doc = "|b - a| - L (2D)", .flags = 0},
+    {.name = "u_dist3", .version = 1, .nin = 6, .nout = 1, .nparam = 1, .eval = u_dist3,
+     .doc = "|b - a| - L (3D)", .flags = 0},
+    {.name = "u_lin", .version = 1, .nin = 1, .nout = 1, .nparam = 2, .eval = u_lin,
+     .doc = "a u - b sin t", .flags = 0},
+    {.name = "u_pair", .version = 1, .nin = 2, .nout = 2, .nparam = 0, .eval = u_pair,
+     .doc = "(u0 - u1, u0 + sin u1)", .flags = 0},
+    {.name = "u_callback", .version = 1, .nin = 1, .nout = 2, .nparam = 0, .eval = u_callback,
+     .doc = "(u^2 + ct, sin u), may fail", .flags = 0},
+    {.name = "u_broken", .version = 1, .nin = 1, .nout = 2, .nparam = 0, .eval = NULL,
+     .doc = "no eval function", .flags = 0},
 };
 #define FZ_NUPRIM ((int)(sizeof u_prims / sizeof u_prims[0]))
 
@@ -449,6 +459,13 @@ static dal_system *fz_build(fz *f, fz_model *m, dal_builder **bout) {
   fz_status("builder_create", rc);
   if (rc) {
     if (b) fz_die("builder_create returned an object on failure", rc, NULL);
+    return NULL;
+  }
+  if (dim == 0) {
+    // dim 0 is a Lagrangian-only builder: particles are refused by name
+    if (dal_builder_add_particle(b, "p", 1.0, NULL) != DAL_E_ARG)
+      fz_die("a dim-0 builder accepted a particle", 0, NULL);
+    dal_builder_destroy(b);
     return NULL;
   }
   *bout = b;
@@ -661,7 +678,7 @@ static void fz_run(fz *f, const dal_system *sys, fz_model *m) {
     fz_path_ctx pc = {.n = n, .w = fz_num(f)};
     for (int i = 0; i < n; ++i) pc.a[i] = q[i];
     double res[FZ_MAX_COORDS];
-    fz_s(st, "lagrange_residual", dal_lagrange_residual(sys, st, fz_qpath, &pc, fz_num(f), res));
+    fz_s(st, "lagrange_residual", dal_lagrange_residual(sys, st, fz_qpath, fz_num(f), res, &pc));
     fz_s(st, "state_set", dal_state_set(sys, st, t0, q, qd));
   }
 
@@ -678,6 +695,7 @@ static void fz_run(fz *f, const dal_system *sys, fz_model *m) {
       double dt = fz_u8(f) < 230 ? hz / (1 + fz_pick(f, 8)) : fz_num(f);
       rc = fz_s(st, "evolve", dal_evolve(sys, st, &o, t1, dt, fz_monitor, &mo));
       fz_trace("evolve", rc, dal_state_errmsg(st));
+      if (rc == DAL_STOPPED && !mo.stopped) fz_die("DAL_STOPPED without a monitor stop", rc, NULL);
       // a monitor that stopped the run early leaves the state before t1
       fz_check_state(sys, st, ta, mo.stopped ? NAN : t1, rc, "evolve");
       if (rc == DAL_OK && mo.calls < 1 && isfinite(t1) && t1 >= ta)

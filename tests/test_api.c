@@ -1,0 +1,571 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The user-facing API: element defs and their defaults, named parameters, table versions, the
+// moving-point convention, and each papercut of issue 11 against an independent reference.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "dalembert/dalembert.h"
+
+#define G 9.81
+
+static int has(const char *msg, const char *what) { return msg && strstr(msg, what) != NULL; }
+
+// a planar pendulum by a def: only l set; pivot at the origin and no drive by default
+static dal_system *pendulum_def(double l, double m) {
+  dal_builder *b = NULL;
+  int th, bob;
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &th));
+  CHECK_OK(dal_builder_add_particle(b, "bob", m, &bob));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_pendulum;
+  d.coords = &th;
+  d.ncoords = 1;
+  d.param[DAL_PENDULUM_L] = l;
+  CHECK_OK(dal_builder_place_def(b, bob, &d));
+  double g[2] = {0, -G};
+  CHECK_OK(dal_builder_set_gravity(b, g));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_builder_destroy(b);
+  return sys;
+}
+
+static void test_place_def(void) {
+  // theta'' = -g/l sin theta (closed form of the pendulum equation)
+  dal_system *sys = pendulum_def(0.7, 2.0);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q = 0.9, v = 0.4;
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &v));
+  CHECK_OK(dal_forward(sys, st));
+  CHECK_CLOSE(dal_state_qddot(st)[0], -G / 0.7 * sin(0.9), 1e-14);
+  // pivot at the origin by default: the bob is at l (sin th, -cos th)
+  CHECK_CLOSE(dal_state_positions(st)[0], 0.7 * sin(0.9), 1e-15);
+  CHECK_CLOSE(dal_state_positions(st)[1], -0.7 * cos(0.9), 1e-15);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+static void test_def_errors(void) {
+  dal_builder *b = NULL;
+  int th, bob, c2[2];
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &th));
+  CHECK_OK(dal_builder_add_coord(b, "x", &c2[0]));
+  CHECK_OK(dal_builder_add_coord(b, "y", &c2[1]));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
+  // an uninitialized def (not from dal_default_place_def) is caught by its cookie
+  dal_place_def raw;
+  memset(&raw, 0, sizeof raw);
+  raw.prim = &dal_map_pendulum;
+  raw.coords = &th;
+  raw.ncoords = 1;
+  raw.param[DAL_PENDULUM_L] = 1.0;
+  CHECK(dal_builder_place_def(b, bob, &raw) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "dal_default_place_def"));
+  CHECK(dal_builder_place_def(b, bob, NULL) == DAL_E_ARG);
+  // a required parameter left unset is named
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_pendulum;
+  d.coords = &th;
+  d.ncoords = 1;
+  CHECK(dal_builder_place_def(b, bob, &d) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "parameter 'l' of 'pendulum'"));
+  CHECK(has(dal_builder_errmsg(b), "'bob'"));
+  // a non-finite parameter is named
+  d.param[DAL_PENDULUM_L] = 1.0;
+  d.param[DAL_PENDULUM_W] = NAN;
+  CHECK(dal_builder_place_def(b, bob, &d) == DAL_E_NONFINITE);
+  CHECK(has(dal_builder_errmsg(b), "parameter 'w' of 'pendulum'"));
+  // an index beyond the primitive's parameters (a wrong enum) is caught
+  d = dal_default_place_def();
+  d.prim = &dal_map_hanging;
+  d.param[DAL_PENDULUM_W] = 2.0;
+  CHECK(dal_builder_place_def(b, bob, &d) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "param[5]"));
+  // constraint, spring, damper defs: cookie and required fields
+  dal_constraint_def cd;
+  memset(&cd, 0, sizeof cd);
+  CHECK(dal_builder_add_constraint_def(b, &cd, NULL) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "dal_default_constraint_def"));
+  cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_circle2;
+  cd.coords = c2;
+  cd.ncoords = 2; // coordinates of nobody: inputs must be particle positions here
+  cd.parts = &bob;
+  cd.nparts = 1;
+  CHECK(dal_builder_add_constraint_def(b, &cd, NULL) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "inputs"));
+  cd.ncoords = 0;
+  CHECK(dal_builder_add_constraint_def(b, &cd, NULL) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "parameter 'R' of 'on_circle2'"));
+  CHECK(has(dal_builder_errmsg(b), "'ring'"));
+  dal_spring_def sd = dal_default_spring_def();
+  CHECK(dal_builder_add_spring_def(b, &sd) == DAL_E_ARG); // a not set
+  sd.a = bob;
+  sd.k = -1.0;
+  CHECK(dal_builder_add_spring_def(b, &sd) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "'bob'"));
+  dal_damper_def dd;
+  memset(&dd, 0, sizeof dd);
+  CHECK(dal_builder_add_damper_def(b, &dd) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "dal_default_damper_def"));
+  dal_builder_destroy(b);
+}
+
+// positional form with omitted trailing parameters = def with the defaults (bit-identical)
+static void test_positional_defaults(void) {
+  dal_builder *b = NULL;
+  int th, bob;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &th));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
+  double l = 1.3, g[2] = {0, -G};
+  CHECK_OK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 1, &l, NULL));
+  CHECK_OK(dal_builder_set_gravity(b, g));
+  dal_system *s1 = NULL, *s2 = pendulum_def(1.3, 1.0);
+  CHECK_OK(dal_builder_compile(b, &s1));
+  dal_state *a = NULL, *c = NULL;
+  CHECK_OK(dal_state_create(s1, &a));
+  CHECK_OK(dal_state_create(s2, &c));
+  double q = 2.0, v = -1.0;
+  CHECK_OK(dal_state_set(s1, a, 0.0, &q, &v));
+  CHECK_OK(dal_state_set(s2, c, 0.0, &q, &v));
+  dal_solve_opts o;
+  dal_solve_default_opts(&o);
+  CHECK_OK(dal_advance(s1, a, &o, 1.0));
+  CHECK_OK(dal_advance(s2, c, &o, 1.0));
+  CHECK(dal_state_q(a)[0] == dal_state_q(c)[0]);
+  // too many parameters is still an error
+  double many[8] = {1, 0, 0, 0, 0, 0, 0, 0};
+  dal_builder_destroy(b);
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &th));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
+  CHECK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 8, many, NULL) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "takes 7 parameters"));
+  dal_state_destroy(a);
+  dal_state_destroy(c);
+  dal_system_destroy(s1);
+  dal_system_destroy(s2);
+  dal_builder_destroy(b);
+}
+
+// every built-in names all its parameters; defaults are NaN (required) or finite
+static void test_registry_names(void) {
+  for (int i = 0; i < dal_primitive_count(); ++i) {
+    const dal_primitive *p = dal_primitive_get(i);
+    CHECK_MSG(p->version == DAL_PRIMITIVE_VERSION, "'%s' version %d", p->name, p->version);
+    CHECK_MSG(p->nparam == 0 || (p->param_names && p->param_defaults), "'%s' unnamed", p->name);
+    for (int k = 0; k < p->nparam && p->param_names; ++k) {
+      CHECK_MSG(p->param_names[k] && p->param_names[k][0], "'%s' param %d", p->name, k);
+      for (int j = 0; j < k; ++j)
+        CHECK_MSG(strcmp(p->param_names[j], p->param_names[k]), "'%s' duplicate", p->name);
+    }
+  }
+  // the enums agree with the tables
+  CHECK(dal_map_pendulum.nparam == DAL_PENDULUM_NPARAM);
+  CHECK(strcmp(dal_map_pendulum.param_names[DAL_PENDULUM_PH], "ph") == 0);
+  CHECK(dal_con_anchor2.nparam == DAL_ANCHOR2_NPARAM && dal_con_anchor3.nparam == 4);
+  CHECK(dal_con_circle3.nparam == DAL_CIRCLE3_NPARAM && dal_con_circle2.nparam == 3);
+  CHECK(dal_con_circle3.param_defaults[DAL_CIRCLE_NZ] == 1.0);
+  CHECK(dal_con_plane.nparam == DAL_PLANE_NPARAM && dal_con_line3.nparam == DAL_LINE3_NPARAM);
+  CHECK(dal_con_line2.nparam == DAL_LINE2_NPARAM && dal_map_ring.nparam == DAL_RING_NPARAM);
+  CHECK(dal_con_turning_circle.nparam == DAL_TURNING_CIRCLE_NPARAM);
+  CHECK(dal_con_turning_line2.nparam == DAL_TURNING_LINE2_NPARAM);
+  CHECK(dal_con_prescribed.nparam == DAL_PRESCRIBED_NPARAM);
+  CHECK(dal_map_sphere.nparam == DAL_SPHERE_NPARAM && dal_con_sphere.nparam == DAL_SPHERE_NPARAM);
+  CHECK(dal_map_spherical.nparam == DAL_SPHERICAL_NPARAM);
+  CHECK(dal_map_fixed3.nparam == DAL_FIXED3_NPARAM && dal_map_hanging.nparam == 1);
+  CHECK(dal_con_distance3.nparam == DAL_DISTANCE_NPARAM);
+}
+
+static int lin_eval(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)t;
+  (void)ctx;
+  out[0] = dal_scale(in[0], p[0]);
+  out[1] = dal_const(0.0);
+  return 0;
+}
+
+// table versions: 1 still works (no names), 0 and newer-than-library are refused by name
+static void test_versions(void) {
+  dal_primitive v1 = {.name = "lin1",
+                      .version = 1,
+                      .nin = 1,
+                      .nout = 2,
+                      .nparam = 1,
+                      .eval = lin_eval,
+                      .doc = "(a x, 0)",
+                      .flags = 0};
+  dal_builder *b = NULL;
+  int x, p;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x", &x));
+  CHECK_OK(dal_builder_add_particle(b, "p", 1.0, &p));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &v1;
+  d.coords = &x;
+  d.ncoords = 1;
+  CHECK(dal_builder_place_def(b, p, &d) == DAL_E_ARG); // version 1: no defaults, p0 required
+  CHECK(has(dal_builder_errmsg(b), "parameter 'p0' of 'lin1'"));
+  v1.version = 0;
+  d.param[0] = 2.0;
+  CHECK(dal_builder_place_def(b, p, &d) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "table version 0"));
+  v1.version = DAL_PRIMITIVE_VERSION + 1;
+  CHECK(dal_builder_place_def(b, p, &d) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "newer than this library"));
+  v1.version = 1;
+  CHECK_OK(dal_builder_place_def(b, p, &d));
+  // a table changed after placement is caught at compile
+  v1.version = 7;
+  dal_system *sys = NULL;
+  CHECK(dal_builder_compile(b, &sys) == DAL_E_ARG && sys == NULL);
+  CHECK(has(dal_builder_errmsg(b), "'lin1'"));
+  v1.version = 1;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+}
+
+// a moving anchor point x0 + x(t): the spring and damper force against the hand formula
+static int anchor_path(dal_jet t, dal_jet *x, void *ctx) {
+  (void)ctx;
+  x[0] = dal_scale(dal_sin(t), 0.5);
+  x[1] = dal_scale(t, 0.25);
+  return 0;
+}
+
+static void test_anchor_convention(void) {
+  dal_builder *b = NULL;
+  int c[2], p;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x", &c[0]));
+  CHECK_OK(dal_builder_add_coord(b, "y", &c[1]));
+  CHECK_OK(dal_builder_add_particle(b, "p", 2.0, &p));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_cartesian2;
+  d.coords = c;
+  d.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(b, p, &d));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = 3.0;
+  sd.length = 0.4;
+  sd.anchor[0] = 1.0;
+  sd.anchor[1] = -2.0;
+  sd.path = anchor_path;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.c = 0.7;
+  dd.anchor[0] = 1.0;
+  dd.anchor[1] = -2.0;
+  dd.path = anchor_path;
+  CHECK_OK(dal_builder_add_damper_def(b, &dd));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double t = 0.8, q[2] = {0.3, 0.9}, v[2] = {-0.2, 0.5};
+  CHECK_OK(dal_state_set(sys, st, t, q, v));
+  CHECK_OK(dal_forward(sys, st));
+  // hand formula: anchor X = x0 + x(t), Xdot = x'(t); spring -k (|r - X| - L) e, damper
+  // -c ((v - Xdot) . e) e with e = (r - X)/|r - X|
+  double X[2] = {1.0 + 0.5 * sin(t), -2.0 + 0.25 * t}, Xd[2] = {0.5 * cos(t), 0.25};
+  double e[2] = {q[0] - X[0], q[1] - X[1]}, len = hypot(e[0], e[1]);
+  e[0] /= len;
+  e[1] /= len;
+  double vr = (v[0] - Xd[0]) * e[0] + (v[1] - Xd[1]) * e[1];
+  for (int i = 0; i < 2; ++i)
+    CHECK_CLOSE(dal_state_forces(st)[i], -3.0 * (len - 0.4) * e[i] - 0.7 * vr * e[i], 1e-14);
+  dal_energies en;
+  CHECK_OK(dal_state_energies(st, &en));
+  CHECK_CLOSE(en.U, 1.5 * (len - 0.4) * (len - 0.4), 1e-14);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+}
+
+// Cartesian pendulum (x, y) with a rod to the origin: a DAE system
+static dal_system *cart_pendulum(double l) {
+  dal_builder *b = NULL;
+  int c[2], p;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x", &c[0]));
+  CHECK_OK(dal_builder_add_coord(b, "y", &c[1]));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 1.5, &p));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_cartesian2;
+  d.coords = c;
+  d.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(b, p, &d));
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = l; // anchored at the origin by default
+  CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
+  double g[2] = {0, -G};
+  CHECK_OK(dal_builder_set_gravity(b, g));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_builder_destroy(b);
+  return sys;
+}
+
+typedef struct mon_ctx {
+  int calls, stop_at, bad;
+  double maxdiff;
+} mon_ctx;
+
+// from a monitor (const state): rod force = reaction m a - F, an independent route
+static int rod_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
+  mon_ctx *m = ctx;
+  double F[2];
+  if (dal_constraint_forces(sys, st, F)) m->bad = 1;
+  const double *N = dal_state_reactions(st);
+  for (int i = 0; i < 2; ++i)
+    m->maxdiff = fmax(m->maxdiff, fabs(F[i] - N[i]));
+  return ++m->calls == m->stop_at;
+}
+
+static void test_monitor_papercuts(void) {
+  dal_system *sys = cart_pendulum(1.0);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {sin(1.0), -cos(1.0)}, v[2] = {0, 0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  dal_solve_opts o;
+  dal_solve_default_opts(&o);
+  mon_ctx m = {0, 5, 0, 0.0};
+  int rc = dal_evolve(sys, st, &o, 2.0, 0.1, rod_monitor, &m);
+  // stopped early: a distinct, non-error status, the state at the 5th output time
+  CHECK(rc == DAL_STOPPED && rc > 0);
+  CHECK(m.calls == 5 && fabs(dal_state_time(st) - 0.4) < 1e-12);
+  CHECK(has(dal_state_errmsg(st), "stopped"));
+  CHECK(strcmp(dal_status_name(DAL_STOPPED), "DAL_STOPPED") == 0);
+  CHECK(m.bad == 0);
+  CHECK_MSG(m.maxdiff < 1e-9, "rod force vs reaction: %.3g", m.maxdiff);
+  // completing the run is DAL_OK
+  m.stop_at = -1;
+  CHECK(dal_evolve(sys, st, &o, 1.0, 0.1, rod_monitor, &m) == DAL_OK);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// setting only rtol: atol follows (= rtol / 100), same steps as setting both explicitly, and
+// the error against the closed form tracks rtol
+static void test_atol_follows(void) {
+  // 2D oscillator x'' = -x, y'' = -y: an anchor spring k = 1 to the origin, m = 1
+  dal_builder *b = NULL;
+  int xy[2], p;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x", &xy[0]));
+  CHECK_OK(dal_builder_add_coord(b, "y", &xy[1]));
+  CHECK_OK(dal_builder_add_particle(b, "p", 1.0, &p));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_cartesian2;
+  d.coords = xy;
+  d.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(b, p, &d));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = 1.0;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_state *s1 = NULL, *s2 = NULL, *s3 = NULL;
+  CHECK_OK(dal_state_create(sys, &s1));
+  CHECK_OK(dal_state_create(sys, &s2));
+  CHECK_OK(dal_state_create(sys, &s3));
+  double q0[2] = {1e-3, 0}, v0[2] = {0, 1e-3}; // small amplitude: atol matters
+  dal_solve_opts o1, o2, o3;
+  dal_solve_default_opts(&o1);
+  o1.rtol = 1e-11; // only rtol
+  o2 = o1;
+  o2.atol = DAL_ATOL_PER_RTOL * o1.rtol; // the documented rule, explicit
+  o3 = o1;
+  o3.atol = 1e-10; // the old fixed default
+  CHECK(o1.atol == 0.0);
+  CHECK_OK(dal_state_set(sys, s1, 0, q0, v0));
+  CHECK_OK(dal_state_set(sys, s2, 0, q0, v0));
+  CHECK_OK(dal_state_set(sys, s3, 0, q0, v0));
+  CHECK_OK(dal_advance(sys, s1, &o1, 10.0));
+  CHECK_OK(dal_advance(sys, s2, &o2, 10.0));
+  CHECK_OK(dal_advance(sys, s3, &o3, 10.0));
+  CHECK(dal_state_q(s1)[0] == dal_state_q(s2)[0] && dal_state_q(s1)[1] == dal_state_q(s2)[1]);
+  double e1 = hypot(dal_state_q(s1)[0] - 1e-3 * cos(10.0), dal_state_q(s1)[1] - 1e-3 * sin(10.0));
+  double e3 = hypot(dal_state_q(s3)[0] - 1e-3 * cos(10.0), dal_state_q(s3)[1] - 1e-3 * sin(10.0));
+  CHECK_MSG(e1 < 100 * 1e-11 * 1e-3 + 1e-13 * 100, "error %.3g with only rtol", e1);
+  CHECK_MSG(e3 > 10 * e1, "fixed atol 1e-10 %.3g vs following %.3g", e3, e1);
+  dal_state_destroy(s1);
+  dal_state_destroy(s2);
+  dal_state_destroy(s3);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+}
+
+// the consistent start: its report is kept; a move beyond the limit is refused by name
+static void test_init_report(void) {
+  dal_system *sys = cart_pendulum(1.0);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  dal_init_report rep;
+  CHECK(dal_state_init_report(st, &rep) == DAL_E_STATE && rep.dq_coord == -1);
+  // 5 % off the rod length: the projection moves the bob radially by 0.05
+  double q[2] = {0.0, -1.05}, v[2] = {0.3, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  dal_solve_opts o;
+  dal_solve_default_opts(&o);
+  o.init_max_move = 0.01;
+  int rc = dal_advance(sys, st, &o, 0.5);
+  CHECK(rc == DAL_E_INIT);
+  CHECK(has(dal_state_errmsg(st), "coordinate 'y'") && has(dal_state_errmsg(st), "init_max_move"));
+  CHECK(dal_state_q(st)[1] == -1.05 && dal_state_time(st) == 0.0); // unchanged
+  CHECK_OK(dal_state_init_report(st, &rep));
+  CHECK_CLOSE(rep.dq_max, 0.05, 1e-12);
+  CHECK(rep.dq_coord == 1);
+  CHECK_CLOSE(rep.phi_before, 0.05, 1e-12);
+  // without a limit the run goes on, and the report says what was moved
+  o.init_max_move = 0.0;
+  CHECK_OK(dal_advance(sys, st, &o, 0.5));
+  CHECK_OK(dal_state_init_report(st, &rep));
+  CHECK_CLOSE(rep.dq_max, 0.05, 1e-12);
+  CHECK(rep.phi_after <= rep.tol);
+  o.init_max_move = -1.0;
+  CHECK(dal_advance(sys, st, &o, 1.0) == DAL_E_ARG);
+  CHECK(has(dal_state_errmsg(st), "init_max_move"));
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// count occurrences of needle in s
+static int count(const char *s, const char *needle) {
+  int n = 0;
+  for (const char *p = strstr(s, needle); p; p = strstr(p + 1, needle))
+    ++n;
+  return n;
+}
+
+// a singular start: one message, whole, not the cause twice and truncated
+static void test_singular_start_message(void) {
+  dal_builder *b = NULL;
+  int c[2], p;
+  CHECK_OK(dal_builder_create(3, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &c[0]));
+  CHECK_OK(dal_builder_add_coord(b, "phi", &c[1]));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &p));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_spherical;
+  d.coords = c;
+  d.ncoords = 2;
+  d.param[DAL_SPHERICAL_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, p, &d));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {0, 0}, v[2] = {0, 0};
+  const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_BS, DAL_METHOD_ADAMS, DAL_METHOD_RK4};
+  for (int i = 0; i < 4; ++i) {
+    dal_solve_opts o;
+    dal_solve_default_opts(&o);
+    o.method = ms[i];
+    CHECK_OK(dal_state_set(sys, st, 0, q, v));
+    CHECK(dal_advance(sys, st, &o, 1.0) == DAL_E_SINGULAR);
+    const char *msg = dal_state_errmsg(st);
+    CHECK_MSG(count(msg, "mass matrix singular") == 1 && !has(msg, "failed too"), "%s: %s",
+              dal_method_name(ms[i]), msg);
+    CHECK_MSG(has(msg, "'phi'") && has(msg, "redundant coordinates"), "%s", msg);
+  }
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+}
+
+// L = 1/2 m l^2 thd^2 + m g l cos th: energies read off L match the particle pendulum's
+static int pend_lag(dal_jet t, const dal_jet *q, const dal_jet *qd, dal_jet *L, void *ctx) {
+  (void)t;
+  (void)ctx;
+  const double m = 2.0, l = 0.7;
+  *L = dal_add(dal_scale(dal_mul(qd[0], qd[0]), 0.5 * m * l * l),
+               dal_scale(dal_cos(q[0]), m * G * l));
+  return 0;
+}
+
+static void test_lagrangian_energies(void) {
+  dal_builder *b = NULL;
+  CHECK_OK(dal_builder_create(0, &b)); // dim is optional for a Lagrangian system
+  int th, p;
+  CHECK_OK(dal_builder_add_coord(b, "theta", &th));
+  CHECK(dal_builder_add_particle(b, "p", 1.0, &p) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "dim 0"));
+  CHECK_OK(dal_builder_set_lagrangian(b, pend_lag, NULL));
+  dal_system *sl = NULL, *sp = pendulum_def(0.7, 2.0);
+  CHECK_OK(dal_builder_compile(b, &sl));
+  CHECK(dal_system_dim(sl) == 0);
+  dal_state *a = NULL, *c = NULL;
+  CHECK_OK(dal_state_create(sl, &a));
+  CHECK_OK(dal_state_create(sp, &c));
+  double q = 0.6, v = 1.1;
+  CHECK_OK(dal_state_set(sl, a, 0, &q, &v));
+  CHECK_OK(dal_state_set(sp, c, 0, &q, &v));
+  CHECK_OK(dal_forward(sl, a));
+  CHECK_OK(dal_forward(sp, c));
+  dal_energies ea, ec;
+  CHECK_OK(dal_state_energies(a, &ea));
+  CHECK_OK(dal_state_energies(c, &ec));
+  // particle pendulum: T = 1/2 m l^2 v^2, U = -m g l cos q (closed form)
+  CHECK_CLOSE(ec.T, 0.5 * 2.0 * 0.49 * v * v, 1e-14);
+  CHECK_CLOSE(ea.T, ec.T, 1e-14);
+  CHECK_CLOSE(ea.U, ec.U, 1e-14);
+  CHECK_CLOSE(ea.E, ec.E, 1e-14);
+  CHECK_CLOSE(ea.h, ec.h, 1e-14);
+  CHECK_CLOSE(ea.T2, ec.T, 1e-14);
+  CHECK(isfinite(ea.T1) && fabs(ea.T1) < 1e-14 && ea.T0 == 0.0);
+  // after integration too (the state is evaluated where it stops)
+  dal_solve_opts o;
+  dal_solve_default_opts(&o);
+  CHECK_OK(dal_advance(sl, a, &o, 1.0));
+  CHECK_OK(dal_state_energies(a, &ea));
+  CHECK(isfinite(ea.T) && isfinite(ea.U));
+  CHECK_CLOSE(ea.E, ec.E, 1e-7);
+  dal_state_destroy(a);
+  dal_state_destroy(c);
+  dal_system_destroy(sl);
+  dal_system_destroy(sp);
+  dal_builder_destroy(b);
+}
+
+static void test_version(void) {
+  char v[32];
+  snprintf(v, sizeof v, "%d.%d.%d", DAL_VERSION_MAJOR, DAL_VERSION_MINOR, DAL_VERSION_PATCH);
+  CHECK(strcmp(v, dal_version()) == 0);
+  CHECK(DAL_VERSION_NUMBER ==
+        DAL_VERSION_MAJOR * 10000 + DAL_VERSION_MINOR * 100 + DAL_VERSION_PATCH);
+}
+
+int main(void) {
+  test_place_def();
+  test_def_errors();
+  test_positional_defaults();
+  test_registry_names();
+  test_versions();
+  test_anchor_convention();
+  test_monitor_papercuts();
+  test_atol_follows();
+  test_init_report();
+  test_singular_start_message();
+  test_lagrangian_energies();
+  test_version();
+  return check_summary("test_api");
+}

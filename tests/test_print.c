@@ -1,0 +1,158 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The model and state printers name every element and print the values the accessors give.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "dalembert/dalembert.h"
+
+// print into a buffer through a temporary file
+static char *capture(const dal_system *sys, const dal_state *st) {
+  FILE *fp = tmpfile();
+  if (!fp) return NULL;
+  int rc = st ? dal_state_print(sys, st, fp) : dal_system_print(sys, fp);
+  CHECK_OK(rc);
+  long len = ftell(fp);
+  char *buf = calloc((size_t)len + 1, 1);
+  rewind(fp);
+  if (buf && fread(buf, 1, (size_t)len, fp) != (size_t)len) buf[0] = 0;
+  fclose(fp);
+  return buf;
+}
+
+static int has(const char *s, const char *what) { return s && strstr(s, what) != NULL; }
+
+// the printout holds "label=<value as %.17g>"
+static int has_value(const char *s, const char *label, double x) {
+  char want[96];
+  snprintf(want, sizeof want, "%s=%.17g", label, x);
+  return has(s, want);
+}
+
+int main(void) {
+  // a double pendulum hanging from a spring-mounted cart, plus a rod to a wall point
+  dal_builder *b = NULL;
+  int xc, th1, th2, cart, b1, b2;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x_cart", &xc));
+  CHECK_OK(dal_builder_add_coord(b, "theta1", &th1));
+  CHECK_OK(dal_builder_add_coord(b, "theta2", &th2));
+  CHECK_OK(dal_builder_add_particle(b, "cart", 3.0, &cart));
+  CHECK_OK(dal_builder_add_particle(b, "bob1", 1.25, &b1));
+  CHECK_OK(dal_builder_add_particle(b, "bob2", 0.75, &b2));
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_pendulum;
+  d.coords = &xc;
+  d.ncoords = 1;
+  d.param[DAL_PENDULUM_L] = 0.5; // the cart swings on a short pendulum from (0, 1)
+  d.param[DAL_PENDULUM_Y0] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, cart, &d));
+  d = dal_default_place_def();
+  d.prim = &dal_map_hanging;
+  d.parent = cart;
+  d.coords = &th1;
+  d.ncoords = 1;
+  d.param[DAL_HANGING_L] = 0.8;
+  CHECK_OK(dal_builder_place_def(b, b1, &d));
+  d.parent = b1;
+  d.coords = &th2;
+  d.param[DAL_HANGING_L] = 0.6;
+  CHECK_OK(dal_builder_place_def(b, b2, &d));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = b2;
+  sd.k = 12.5;
+  sd.length = 0.3;
+  sd.anchor[0] = 1.5;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
+  double g[2] = {0, -9.81};
+  CHECK_OK(dal_builder_set_gravity(b, g));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  char *txt = capture(sys, NULL);
+  CHECK(txt != NULL);
+  for (int i = 0; i < dal_system_ncoords(sys); ++i)
+    CHECK(has(txt, dal_system_coord_name(sys, i)));
+  for (int k = 0; k < dal_system_nparticles(sys); ++k) {
+    CHECK(has(txt, dal_system_particle_name(sys, k)));
+    CHECK(has_value(txt, "mass", dal_system_mass(sys, k)));
+  }
+  CHECK(has(txt, "'pendulum'") && has(txt, "'hanging'") && has(txt, "on parent 'bob1'"));
+  CHECK(has_value(txt, "l", 0.5) && has_value(txt, "y0", 1.0) && has_value(txt, "l", 0.6));
+  CHECK(has_value(txt, "k", 12.5) && has_value(txt, "length", 0.3) && has(txt, "gravity"));
+  free(txt);
+
+  // the state: values equal the accessors'
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[3] = {0.2, -0.4, 0.9}, v[3] = {0.1, 0.3, -0.2};
+  CHECK_OK(dal_state_set(sys, st, 0.5, q, v));
+  txt = capture(sys, st);
+  CHECK(has(txt, "not evaluated"));
+  free(txt);
+  CHECK_OK(dal_forward(sys, st));
+  txt = capture(sys, st);
+  int n = dal_system_ncoords(sys);
+  for (int i = 0; i < n; ++i) {
+    CHECK(has_value(txt, "q", dal_state_q(st)[i]));
+    CHECK(has_value(txt, "qddot", dal_state_qddot(st)[i]));
+    CHECK(has_value(txt, "Q", dal_state_genforces(st)[i]));
+    CHECK(has_value(txt, "c", dal_state_bias(st)[i]));
+    for (int j = 0; j < n; ++j) {
+      char want[64];
+      snprintf(want, sizeof want, " %.17g", dal_state_mass_matrix(st)[j * n + i]);
+      CHECK(has(txt, want));
+    }
+  }
+  dal_energies en;
+  CHECK_OK(dal_state_energies(st, &en));
+  CHECK(has_value(txt, "T", en.T) && has_value(txt, "U", en.U) && has_value(txt, "h", en.h));
+  free(txt);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+
+  // a constrained system prints its rows, multipliers and residuals
+  CHECK_OK(dal_builder_create(2, &b));
+  int c[2], p;
+  CHECK_OK(dal_builder_add_coord(b, "x", &c[0]));
+  CHECK_OK(dal_builder_add_coord(b, "y", &c[1]));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 2.0, &p));
+  d = dal_default_place_def();
+  d.prim = &dal_map_cartesian2;
+  d.coords = c;
+  d.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(b, p, &d));
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.5;
+  cd.param[DAL_ANCHOR_Y0] = 0.25;
+  CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
+  CHECK_OK(dal_builder_set_gravity(b, g));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  txt = capture(sys, NULL);
+  CHECK(has(txt, "'rod' by 'anchor2' on particles ('bob')"));
+  CHECK(has_value(txt, "L", 1.5) && has_value(txt, "y0", 0.25) && has_value(txt, "x0", 0.0));
+  free(txt);
+  CHECK_OK(dal_state_create(sys, &st));
+  double qc[2] = {1.5 * sin(0.3), 0.25 - 1.5 * cos(0.3)}, vc[2] = {0, 0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, qc, vc));
+  CHECK_OK(dal_make_consistent(sys, st, 0.0, NULL));
+  txt = capture(sys, st);
+  CHECK(has(txt, "'rod'"));
+  CHECK(has_value(txt, "lambda", dal_state_lambda(st)[0]));
+  CHECK(has_value(txt, "phi", dal_state_phi(st)[0]));
+  CHECK(has(txt, "last consistent start"));
+  free(txt);
+  CHECK(dal_system_print(NULL, stdout) == DAL_E_ARG &&
+        dal_state_print(sys, NULL, stdout) == DAL_E_ARG);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+  return check_summary("test_print");
+}
