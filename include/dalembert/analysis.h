@@ -181,10 +181,10 @@ DAL_API void dal_continuation_default_opts(dal_continuation_opts *o);
 
 /// Report of a continuation.
 typedef struct dal_continuation_report {
-  int npoints;    ///< grid points converged and reported
-  int ncritical;  ///< critical points located and reported
-  double p_end;   ///< last parameter value reached
-  char msg[512];  ///< why the branch ended early ("" when it reached p1)
+  int npoints;   ///< grid points converged and reported
+  int ncritical; ///< critical points located and reported
+  double p_end;  ///< last parameter value reached
+  char msg[512]; ///< why the branch ended early ("" when it reached p1)
 } dal_continuation_report;
 
 /// Natural-parameter continuation of one branch of equilibria: for p on the grid from p0 to p1
@@ -199,9 +199,8 @@ typedef struct dal_continuation_report {
 /// Returns DAL_OK when p1 was reached; DAL_E_CONV / DAL_E_SINGULAR (the branch ended, rep->msg
 /// says where and why, the points before were reported); DAL_E_CALLBACK (rebuild or point
 /// asked to stop or failed); DAL_E_ARG (bad options or sizes). rep may be NULL.
-DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0,
-                         const dal_continuation_opts *o, dal_branch_fn *point,
-                         dal_continuation_report *rep, void *ctx);
+DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuation_opts *o,
+                         dal_branch_fn *point, dal_continuation_report *rep, void *ctx);
 
 // ---------------------------------------------------------------------------------------------
 // Lyapunov exponents
