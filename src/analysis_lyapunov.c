@@ -360,6 +360,18 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
       errors[j] = nfull > 1 ? sqrt(var / (nfull - 1) / nfull) : INFINITY;
     }
   }
+  // largest first (decoupled invariant subspaces keep the QR columns in their initial order)
+  for (int i = 1; i < p; ++i)
+    for (int j = i; j > 0 && exponents[j] > exponents[j - 1]; --j) {
+      double x = exponents[j];
+      exponents[j] = exponents[j - 1];
+      exponents[j - 1] = x;
+      if (errors) {
+        x = errors[j];
+        errors[j] = errors[j - 1];
+        errors[j - 1] = x;
+      }
+    }
   // leave the user's state at the end of the trajectory, evaluated
   rc = dal__analysis_eval(sys, st, t, L.Y, L.Y + L.n);
 done:
