@@ -26,6 +26,9 @@ typedef struct dal_tangent {
   double *M;       // n x n mass matrix, from the particle Jacobians
   double *Rq, *Ru; // n x n: K = dR/dq, C = dR/dqdot
   double *Rt;      // n: dR/dt
+  double *Habs;    // (n + 1)^2: sums of the magnitudes behind H (rounding scale)
+  double *Kabs;    // n x n: sums of the magnitudes of the terms of K (rounding scale)
+  double *Cabs;    // n x n: the same for C
   double *L;       // n x n Cholesky factor of M
   double *link;    // per spring and damper: anchor x, x', x'' (3 x 3)
 } dal_tangent;

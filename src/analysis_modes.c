@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Normal modes (K x = omega^2 M x by LAPACK dsygv) and the stability verdict (eigenvalues of
 // the first-order Jacobian by LAPACK dgeev).
+#include <float.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdlib.h>
@@ -86,10 +87,12 @@ int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, doubl
   if ((rc = dal__tangent_factor(sys, st, tg)) != 0) goto done;
 
   // diagnostics: asymmetry of K, size of C, acceleration at the state
-  double kn = 0.0, ka = 0.0, cn = 0.0, mn = 0.0, acc = 0.0;
+  double kn = 0.0, ka = 0.0, cn = 0.0, mn = 0.0, acc = 0.0, kabs = 0.0, cabs = 0.0;
   for (int j = 0; j < n; ++j) {
     acc = fmax(acc, fabs(st->qddot[j]));
     for (int i = 0; i < n; ++i) {
+      kabs += tg->Kabs[(size_t)j * n + i] * tg->Kabs[(size_t)j * n + i];
+      cabs += tg->Cabs[(size_t)j * n + i] * tg->Cabs[(size_t)j * n + i];
       double k = tg->Rq[(size_t)j * n + i], kt = tg->Rq[(size_t)i * n + j];
       kn += k * k;
       ka += (k - kt) * (k - kt);
@@ -136,7 +139,11 @@ int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, doubl
   double lmax = 0.0;
   for (int i = 0; i < n2; ++i)
     lmax = fmax(lmax, hypot(wr[i], wi[i]));
-  double tau = 1e-6 * fmax(lmax, scale) + 1e-300, mr;
+  // relative tolerance, and the rounding floor of K and C: a perturbation dK of K moves a
+  // zero eigenvalue by sqrt(|dK| / |M|), dC by |dC| / |M| (64 ulps of the terms' magnitudes)
+  double mf = sqrt(mn), ek = 64 * DBL_EPSILON * sqrt(kabs) / mf;
+  double ec = 64 * DBL_EPSILON * sqrt(cabs) / mf;
+  double tau = fmax(1e-6 * fmax(lmax, scale), fmax(sqrt(ek), ec)) + 1e-300, mr;
   dal_stability v = classify(n2, wr, wi, tau, &mr);
   if (lambda_re) memcpy(lambda_re, wr, (size_t)n2 * sizeof(double));
   if (lambda_im) memcpy(lambda_im, wi, (size_t)n2 * sizeof(double));

@@ -49,10 +49,14 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   tg->Rq = calloc(sn * sn + 1, sizeof(double));
   tg->Ru = calloc(sn * sn + 1, sizeof(double));
   tg->Rt = calloc(sn + 1, sizeof(double));
+  tg->Habs = calloc(nt * nt, sizeof(double));
+  tg->Kabs = calloc(sn * sn + 1, sizeof(double));
+  tg->Cabs = calloc(sn * sn + 1, sizeof(double));
   tg->L = calloc(sn * sn + 1, sizeof(double));
   tg->link = calloc(9 * (size_t)nlink + 1, sizeof(double));
   int ok = tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
-           tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link;
+           tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link &&
+           tg->Habs && tg->Kabs && tg->Cabs;
   for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i)
     ok = ok && *nds[i];
   if (!ok) {
@@ -65,9 +69,10 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
 
 void dal__tangent_free(dal_tangent *tg) {
   if (!tg) return;
-  void *p[] = {tg->jq,  tg->jr, tg->jin, tg->jout, tg->cp, tg->cm, tg->d3diag, tg->J,  tg->r,
-               tg->v,   tg->A,  tg->w,   tg->Fd,   tg->dr, tg->dv, tg->da,     tg->dF, tg->H,
-               tg->res, tg->M,  tg->Rq,  tg->Ru,   tg->Rt, tg->L,  tg->link};
+  void *p[] = {tg->jq, tg->jr, tg->jin, tg->jout, tg->cp,   tg->cm,   tg->d3diag,
+               tg->J,  tg->r,  tg->v,   tg->A,    tg->w,    tg->Fd,   tg->dr,
+               tg->dv, tg->da, tg->dF,  tg->H,    tg->res,  tg->M,    tg->Rq,
+               tg->Ru, tg->Rt, tg->L,   tg->link, tg->Habs, tg->Kabs, tg->Cabs};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(tg);
@@ -277,18 +282,21 @@ static void dampers(const dal_system *sys, dal_tangent *tg, const double *dr, co
   }
 }
 
-// W = sum r . w + V along the current curve: its second derivative (and first in *W1)
+// W = sum r . w + V along the current curve: its second derivative (and first in *W1), and in
+// *Wabs the sum of the magnitudes of its terms (the scale of its rounding)
 static int weighted(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj, double *W2,
-                    double *W1) {
+                    double *W1, double *Wabs) {
   dal_jet V;
   int rc = potential(sys, st, tg, tj, &V);
   if (rc) return rc;
-  double s2 = V.dd, s1 = V.d;
+  double s2 = V.dd, s1 = V.d, sa = fabs(V.dd);
   for (int c = 0; c < tg->nd; ++c) {
     s2 += tg->jr[c].dd * tg->w[c];
     s1 += tg->jr[c].d * tg->w[c];
+    sa += fabs(tg->jr[c].dd * tg->w[c]);
   }
   *W2 = s2;
+  *Wabs = sa;
   if (W1) *W1 = s1;
   return DAL_OK;
 }
@@ -343,7 +351,8 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     dal_jet tj = line(tg, q, t, i, -1);
     if ((rc = curve(sys, st, tg, tj, 1)) != 0) return rc;
     double W1;
-    if ((rc = weighted(sys, st, tg, tj, &H[i * ldh + i], &W1)) != 0) return rc;
+    rc = weighted(sys, st, tg, tj, &H[i * ldh + i], &W1, &tg->Habs[i * ldh + i]);
+    if (rc) return rc;
     if (i < n) {
       tg->res[i] = W1;
       for (int c = 0; c < nd; ++c)
@@ -355,10 +364,12 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
   for (int i = 0; i < nt; ++i)
     for (int j = i + 1; j < nt; ++j) {
       dal_jet tj = line(tg, q, t, i, j);
-      double W2;
+      double W2, Wa;
       if ((rc = curve(sys, st, tg, tj, 0)) != 0) return rc;
-      if ((rc = weighted(sys, st, tg, tj, &W2, NULL)) != 0) return rc;
+      if ((rc = weighted(sys, st, tg, tj, &W2, NULL, &Wa)) != 0) return rc;
       H[j * ldh + i] = H[i * ldh + j] = 0.5 * (W2 - H[i * ldh + i] - H[j * ldh + j]);
+      tg->Habs[j * ldh + i] = tg->Habs[i * ldh + j] =
+          0.5 * (Wa + tg->Habs[i * ldh + i] + tg->Habs[j * ldh + j]);
     }
 
   // M = sum_k m_k J_k' J_k from the particle Jacobian columns
@@ -393,12 +404,17 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     }
     dampers(sys, tg, tg->dr, tg->dv, udir || qdir ? 0.0 : 1.0, NULL, tg->dF);
     double *col = qdir ? tg->Rq + (size_t)i * n : udir ? tg->Ru + (size_t)i * n : tg->Rt;
+    double *cabs = qdir ? tg->Kabs + (size_t)i * n : udir ? tg->Cabs + (size_t)i * n : NULL;
     for (int j = 0; j < n; ++j) {
       const double *Jj = tg->J + (size_t)j * nd;
-      double s = udir ? 0.0 : H[i * ldh + j];
-      for (int c = 0; c < nd; ++c)
-        s += Jj[c] * (sys->mass[c / d] * tg->da[c] - tg->dF[c]);
+      double s = udir ? 0.0 : H[i * ldh + j], sa = udir ? 0.0 : tg->Habs[i * ldh + j];
+      for (int c = 0; c < nd; ++c) {
+        double x = Jj[c] * (sys->mass[c / d] * tg->da[c] - tg->dF[c]);
+        s += x;
+        sa += fabs(x);
+      }
       col[j] = s;
+      if (cabs) cabs[j] = sa;
     }
   }
   return DAL_OK;

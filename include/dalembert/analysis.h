@@ -67,7 +67,9 @@ DAL_API int dal_flow_jacobian(const dal_system *sys, dal_state *st, double *A, d
 // normal modes and stability
 
 /// Stability verdict of a linearization, from the eigenvalues lambda of df/dy (LAPACK dgeev)
-/// with the tolerance tau = 1e-6 max(max |lambda|, ||M^-1 K||_F^1/2, ||M^-1 C||_F):
+/// with the tolerance tau = max(1e-6 max(max |lambda|, ||M^-1 K||_F^1/2, ||M^-1 C||_F),
+/// (e_K / ||M||_F)^1/2, e_C / ||M||_F), where e_K, e_C are 64 ulps of the summed magnitudes of
+/// the terms that make up K and C (their rounding: a zero eigenvalue moves by sqrt(dK / M)):
 typedef enum dal_stability {
   DAL_UNSTABLE = -1,  ///< an eigenvalue with real part > tau: perturbations grow
   DAL_MARGINAL = 0,   ///< no real part > tau but an eigenvalue |lambda| <= tau (a zero
