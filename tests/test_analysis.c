@@ -337,6 +337,118 @@ static void test_flow_fd(void) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// every registered primitive: the third derivative along a cubic curve of inputs and time
+// against the third-difference oracle (fd3_estimate), so the tangent has exact d3 to work with
+
+static int reg_curve2(dal_jet s, dal_jet t, dal_jet *p, void *ctx) {
+  (void)ctx;
+  p[0] = dal_add(dal_cos(s), dal_scale(dal_mul(dal_sin(t), s), 0.3));
+  p[1] = dal_add(dal_sin(dal_scale(s, 2.0)), dal_scale(dal_mul(t, dal_sq(s)), 0.2));
+  return 0;
+}
+static int reg_curve3(dal_jet s, dal_jet t, dal_jet *p, void *ctx) {
+  reg_curve2(s, t, p, ctx);
+  p[2] = dal_scale(dal_mul(s, dal_cos(t)), 0.5);
+  return 0;
+}
+static int reg_motion2(dal_jet t, dal_jet *x, void *ctx) {
+  (void)ctx;
+  x[0] = dal_scale(dal_cos(dal_scale(t, 1.3)), 0.3);
+  x[1] = dal_scale(dal_sin(dal_scale(t, 0.7)), 0.2);
+  return 0;
+}
+static int reg_motion3(dal_jet t, dal_jet *x, void *ctx) {
+  reg_motion2(t, x, ctx);
+  x[2] = dal_scale(dal_sq(t), 0.1);
+  return 0;
+}
+static int reg_drive(dal_jet t, dal_jet *f, void *ctx) {
+  (void)ctx;
+  *f = dal_add(dal_scale(dal_sin(dal_scale(t, 1.1)), 0.4), dal_scale(dal_powi(t, 3), 0.05));
+  return 0;
+}
+static dal_curve reg_c2 = {reg_curve2, NULL}, reg_c3 = {reg_curve3, NULL};
+static dal_moving_point reg_m2 = {reg_motion2, NULL}, reg_m3 = {reg_motion3, NULL};
+static dal_prescribed reg_dr = {reg_drive, NULL};
+
+static void *reg_ctx(const dal_primitive *p) {
+  if (!strcmp(p->name, "curve2")) return &reg_c2;
+  if (!strcmp(p->name, "curve3")) return &reg_c3;
+  if (!strcmp(p->name, "anchor2")) return &reg_m2;
+  if (!strcmp(p->name, "anchor3")) return &reg_m3;
+  if (!strcmp(p->name, "prescribed")) return &reg_dr;
+  return NULL;
+}
+
+// a primitive at inputs u + s w + s^2/2 z + s^3 c3 and time t + s dt (exact in double)
+typedef struct reg_point {
+  const dal_primitive *prim;
+  void *ctx;
+  double u[16], w[16], z[16], c3[16], param[16], t, dt;
+  int out;
+} reg_point;
+
+static double reg_along(double s, const void *ctx) {
+  const reg_point *P = ctx;
+  dal_jet in[16], out[16];
+  for (int i = 0; i < P->prim->nin; ++i)
+    in[i] = dal_const(P->u[i] + P->w[i] * s + 0.5 * P->z[i] * (s * s) + P->c3[i] * (s * s * s));
+  if (P->prim->eval(in, dal_const(P->t + P->dt * s), P->param, out, P->ctx)) return NAN;
+  return out[P->out].v;
+}
+
+static void test_registry_d3(void) {
+  int fails0 = check_failures, total = 0, valid = 0;
+  double worst = 0.0;
+  unsigned long long seed = 0x2545f4914f6cdd1dULL;
+  for (int r = 0; r < dal_primitive_count(); ++r) {
+    const dal_primitive *p = dal_primitive_get(r);
+    reg_point P;
+    memset(&P, 0, sizeof P);
+    P.prim = p;
+    P.ctx = reg_ctx(p);
+    int done = 0;
+    for (int tries = 0; tries < 200 && done < 6; ++tries) {
+      for (int i = 0; i < p->nin; ++i) {
+        P.u[i] = fd_grid(check_rand(&seed, -1.5, 1.5), 20);
+        P.w[i] = fd_grid(check_rand(&seed, -1, 1), 10);
+        P.z[i] = fd_grid(check_rand(&seed, -1, 1), 10);
+        P.c3[i] = fd_grid(check_rand(&seed, -1, 1), 10) / 8.0;
+      }
+      for (int i = 0; i < p->nparam; ++i)
+        P.param[i] = fd_grid(check_rand(&seed, 0.5, 1.5), 10);
+      P.t = fd_grid(check_rand(&seed, -2, 2), 20);
+      P.dt = 1.0;
+      dal_jet in[16], out[16];
+      for (int i = 0; i < p->nin; ++i)
+        in[i] = dal_jet_make3(P.u[i], P.w[i], P.z[i], 6 * P.c3[i]);
+      if (p->eval(in, dal_jet_make3(P.t, P.dt, 0.0, 0.0), P.param, out, P.ctx)) continue;
+      int finite = 1;
+      for (int a = 0; a < p->nout; ++a)
+        finite &= dal_jet_isfinite3(out[a]);
+      if (!finite) continue;
+      ++done;
+      for (int a = 0; a < p->nout; ++a) {
+        P.out = a;
+        fd3_est e = fd3_estimate(reg_along, &P, 64.0, 10.0);
+        ++total;
+        if (!e.valid) continue;
+        ++valid;
+        worst = fmax(worst, fabs(out[a].d3 - e.d3) / e.tol);
+        CHECK_MSG(fabs(out[a].d3 - e.d3) <= e.tol,
+                  "'%s' output %d: d3 %.15g vs FD %.15g (tol %.2g)", p->name, a, out[a].d3, e.d3,
+                  e.tol);
+      }
+    }
+    CHECK_MSG(done == 6, "'%s': only %d evaluable points", p->name, done);
+  }
+  CHECK_MSG(valid >= total * 9 / 10, "registry d3: FD oracle valid at %d of %d", valid, total);
+  printf("  %-22s %d primitives, d3 vs FD at %d/%d outputs, worst |d3 - FD| / bound %.3f%s\n",
+         "registry", dal_primitive_count(), valid, total, worst,
+         check_failures > fails0 ? "  FAILED" : "");
+}
+
+// ---------------------------------------------------------------------------------------------
 // hand-derived linearizations and normal modes
 
 static void check_mat(const char *what, const double *A, const double *B, int n, double tol) {
@@ -698,6 +810,7 @@ static void test_refusals(void) {
 
 int main(void) {
   test_flow_fd();
+  test_registry_d3();
   printf("hand-derived linearizations and modes:\n");
   test_double_pendulum_modes();
   test_spring_damper();
