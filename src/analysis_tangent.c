@@ -29,10 +29,15 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   dal_tangent *tg = calloc(1, sizeof *tg);
   if (!tg) return DAL_E_NOMEM;
   int n = sys->n, nd = sys->N * sys->dim, nlink = sys->nspring + sys->ndamper;
-  size_t sn = (size_t)n, snd = (size_t)nd + 1, nt = sn + 1;
+  // particle-sized scratch doubles as (2n + 1)-sized scratch for Lagrangian systems
+  size_t sn = (size_t)n, snd = (size_t)(nd > 2 * n + 1 ? nd : 2 * n + 1) + 1, nt = sn + 1;
+  size_t np = 2 * sn + 1;
   tg->n = n;
   tg->nd = nd;
   tg->jq = calloc(sn + 1, sizeof(dal_jet));
+  tg->jv = calloc(sn + 1, sizeof(dal_jet));
+  tg->HL = calloc(np * np, sizeof(double));
+  tg->HLabs = calloc(np * np, sizeof(double));
   tg->jr = calloc(snd, sizeof(dal_jet));
   tg->jin = calloc((size_t)sys->max_in + 1, sizeof(dal_jet));
   tg->jout = calloc((size_t)sys->max_out + 1, sizeof(dal_jet));
@@ -56,7 +61,7 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   tg->link = calloc(9 * (size_t)nlink + 1, sizeof(double));
   int ok = tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
            tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link &&
-           tg->Habs && tg->Kabs && tg->Cabs;
+           tg->Habs && tg->Kabs && tg->Cabs && tg->jv && tg->HL && tg->HLabs;
   for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i)
     ok = ok && *nds[i];
   if (!ok) {
@@ -69,22 +74,16 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
 
 void dal__tangent_free(dal_tangent *tg) {
   if (!tg) return;
-  void *p[] = {tg->jq, tg->jr, tg->jin, tg->jout, tg->cp,   tg->cm,   tg->d3diag,
-               tg->J,  tg->r,  tg->v,   tg->A,    tg->w,    tg->Fd,   tg->dr,
-               tg->dv, tg->da, tg->dF,  tg->H,    tg->res,  tg->M,    tg->Rq,
-               tg->Ru, tg->Rt, tg->L,   tg->link, tg->Habs, tg->Kabs, tg->Cabs};
+  void *p[] = {tg->jq,   tg->jr,   tg->jin,  tg->jout, tg->cp, tg->cm, tg->d3diag, tg->J,
+               tg->r,    tg->v,    tg->A,    tg->w,    tg->Fd, tg->dr, tg->dv,     tg->da,
+               tg->dF,   tg->H,    tg->res,  tg->M,    tg->Rq, tg->Ru, tg->Rt,     tg->L,
+               tg->link, tg->Habs, tg->Kabs, tg->Cabs, tg->jv, tg->HL, tg->HLabs};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(tg);
 }
 
 int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *what) {
-  if (sys->lag)
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "%s: the system is given by a Lagrangian; its exact tangent needs third "
-                    "partial derivatives of L, which are not implemented: describe the scene by "
-                    "particles and coordinate maps",
-                    what);
   if (sys->m > 0)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "%s: the system has %d constraint row(s) (first: '%s'); the exact tangent "
@@ -316,6 +315,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
   const double t = st->t, *q = st->q, *u = st->qdot, *a = st->qddot;
   double *H = tg->H;
   size_t ldh = (size_t)n + 1;
+  if (sys->lag) return dal__tangent_lagrangian(sys, st, tg, want_t);
 
   // anchors of springs and dampers: x, x', x'' at t
   for (int i = 0; i < sys->nspring + sys->ndamper; ++i) {

@@ -300,6 +300,57 @@ done:
   dal_state_destroy(aux);
 }
 
+// the double pendulum by its Lagrangian (masses m1, m2, lengths l1, l2)
+static const double lg_m1 = 1.0, lg_m2 = 0.5, lg_l1 = 1.0, lg_l2 = 0.7;
+static int lag_double(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
+  (void)t;
+  (void)ctx;
+  dal_jet T = dal_scale(dal_sq(v[0]), 0.5 * (lg_m1 + lg_m2) * lg_l1 * lg_l1);
+  T = dal_add(T, dal_scale(dal_sq(v[1]), 0.5 * lg_m2 * lg_l2 * lg_l2));
+  T = dal_add(T, dal_scale(dal_mul(dal_mul(v[0], v[1]), dal_cos(dal_sub(q[0], q[1]))),
+                           lg_m2 * lg_l1 * lg_l2));
+  dal_jet V = dal_add(dal_scale(dal_cos(q[0]), (lg_m1 + lg_m2) * grav * lg_l1),
+                      dal_scale(dal_cos(q[1]), lg_m2 * grav * lg_l2));
+  *L = dal_add(T, V);
+  return 0;
+}
+
+// SICM's driven pendulum by its Lagrangian: pivot y_s = a cos(w t), m = l = 1, g = 9.8
+static int lag_driven(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
+  (void)ctx;
+  const double a = 0.1, w = 2 * sqrt(9.8);
+  dal_jet s, c, ys = dal_scale(dal_cos(dal_scale(t, w)), a);
+  dal_jet yd = dal_scale(dal_sin(dal_scale(t, w)), -a * w);
+  dal_sincos(q[0], &s, &c);
+  dal_jet T = dal_scale(
+      dal_add(dal_add(dal_sq(v[0]), dal_sq(yd)), dal_scale(dal_mul(dal_mul(s, v[0]), yd), 2.0)),
+      0.5);
+  *L = dal_sub(T, dal_scale(dal_sub(ys, c), 9.8));
+  return 0;
+}
+
+// a velocity-dependent Lagrangian (charge in a magnetic field B z, harmonic trap) plus U(q, t)
+static int lag_magnetic(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
+  (void)t;
+  (void)ctx;
+  const double B = 0.7;
+  dal_jet T = dal_scale(dal_add(dal_sq(v[0]), dal_sq(v[1])), 0.5);
+  dal_jet A = dal_scale(dal_sub(dal_mul(q[0], v[1]), dal_mul(q[1], v[0])), 0.5 * B);
+  dal_jet U = dal_scale(dal_add(dal_sq(q[0]), dal_scale(dal_sq(q[1]), 2.0)), 0.5);
+  *L = dal_sub(dal_add(T, A), U);
+  return 0;
+}
+
+static dal_system *lagrangian_system(dal_lagrangian_fn *fn, int n, int with_potq) {
+  dal_builder *b = NULL;
+  int rc = dal_builder_create(2, &b);
+  for (int i = 0; i < n && !rc; ++i)
+    rc = dal_builder_add_coord(b, NULL, NULL);
+  if (!rc) rc = dal_builder_set_lagrangian(b, fn, NULL);
+  if (!rc && with_potq) rc = dal_builder_add_potential_q(b, pot_q, NULL);
+  return compile(b, rc);
+}
+
 static void test_flow_fd(void) {
   printf("flow Jacobian df/dy, df/dt against central differences (oracle):\n");
   dal_system *s;
@@ -333,6 +384,18 @@ static void test_flow_fd(void) {
   s = rotating_trap(&tr, 1.0);
   q[0] = 0.4, q[1] = -0.7, qd[0] = 0.3, qd[1] = 0.1;
   check_flow_fd("rotating trap", s, 0.6, q, qd);
+  dal_system_destroy(s);
+  s = lagrangian_system(lag_double, 2, 0);
+  q[0] = 0.7, q[1] = -0.4, qd[0] = 0.3, qd[1] = 1.1;
+  check_flow_fd("Lagrangian dbl pend.", s, 0.0, q, qd);
+  dal_system_destroy(s);
+  s = lagrangian_system(lag_driven, 1, 0);
+  q[0] = 1.0, qd[0] = 0.5;
+  check_flow_fd("Lagrangian driven", s, 0.37, q, qd);
+  dal_system_destroy(s);
+  s = lagrangian_system(lag_magnetic, 2, 1);
+  q[0] = 0.4, q[1] = -0.3, qd[0] = 0.8, qd[1] = 0.2;
+  check_flow_fd("Lagrangian + U(q,t)", s, 0.9, q, qd);
   dal_system_destroy(s);
 }
 
@@ -695,6 +758,37 @@ static void test_rotating_trap(void) {
          check_failures > fails0 ? "FAILED" : "ok");
 }
 
+// the same double pendulum by particles and by its Lagrangian: the same M, C, K
+static void test_lagrangian_vs_particles(void) {
+  int fails0 = check_failures;
+  dal_system *sp = double_pendulum(lg_m1, lg_m2, lg_l1, lg_l2);
+  dal_system *sl = lagrangian_system(lag_double, 2, 0);
+  dal_state *a = NULL, *b = NULL;
+  CHECK_OK(dal_state_create(sp, &a));
+  CHECK_OK(dal_state_create(sl, &b));
+  unsigned long long seed = 0x9e3779b97f4a7c15ULL;
+  for (int it = 0; it < 20; ++it) {
+    double q[2], qd[2], M1[4], C1[4], K1[4], M2[4], C2[4], K2[4];
+    for (int i = 0; i < 2; ++i) {
+      q[i] = check_rand(&seed, -3, 3);
+      qd[i] = check_rand(&seed, -2, 2);
+    }
+    CHECK_OK(dal_state_set(sp, a, 0.0, q, qd));
+    CHECK_OK(dal_state_set(sl, b, 0.0, q, qd));
+    CHECK_OK(dal_linearize(sp, a, M1, C1, K1));
+    CHECK_OK(dal_linearize(sl, b, M2, C2, K2));
+    check_mat("Lagrangian M", M2, M1, 2, 1e-14);
+    check_mat("Lagrangian C", C2, C1, 2, 1e-13);
+    check_mat("Lagrangian K", K2, K1, 2, 1e-13);
+  }
+  dal_state_destroy(a);
+  dal_state_destroy(b);
+  dal_system_destroy(sp);
+  dal_system_destroy(sl);
+  printf("  %-40s %s\n", "Lagrangian = particles (M, C, K)",
+         check_failures > fails0 ? "FAILED" : "ok");
+}
+
 // ---------------------------------------------------------------------------------------------
 // refusals
 
@@ -752,11 +846,13 @@ static void test_refusals(void) {
   int fails0 = check_failures;
   dal_builder *b = NULL;
   int q, p, rc;
-  // a Lagrangian system
+  // a Lagrangian system with a generalized force callback
   rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "x", &q);
   if (!rc) rc = dal_builder_set_lagrangian(b, lag_osc, NULL);
-  expect_refusal("Lagrangian", compile(b, rc), DAL_E_UNSUPPORTED, "Lagrangian");
+  if (!rc) rc = dal_builder_add_genforce(b, gdrag, NULL);
+  expect_refusal("Lagrangian with a callback", compile(b, rc), DAL_E_UNSUPPORTED,
+                 "no exact derivative");
   // constraints
   int c[2];
   double rod[3] = {1.0, 0.0, 0.0};
@@ -816,6 +912,7 @@ int main(void) {
   test_spring_damper();
   test_ring_modes();
   test_rotating_trap();
+  test_lagrangian_vs_particles();
   test_refusals();
   return check_summary("test_analysis");
 }

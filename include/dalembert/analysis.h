@@ -17,13 +17,13 @@
 //
 // What the tangent covers: particle systems in minimal coordinates (no constraint rows,
 // m = 0) placed by primitives or a whole-system map, with gravity, springs, dampers and jet
-// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included. It refuses, with
+// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included; and systems given
+// by a Lagrangian L(t, q, qdot) (with U(q, t)), whose tangent needs third partials of L, taken
+// the same way (polarization of d3 along curves in (q, qdot, t)). It refuses, with
 // DAL_E_UNSUPPORTED and a message naming the cause:
 //  - constraint rows (m > 0): use minimal coordinates for the analysis;
 //  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
-//    they have no exact derivative; write the force as a potential over jets if it has one;
-//  - Lagrangian systems (dal_builder_set_lagrangian): their tangent needs third partials of L,
-//    not implemented yet.
+//    they have no exact derivative; write the force as a potential over jets if it has one.
 // A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
 // third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
 //
