@@ -242,6 +242,11 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
       (!(o->rtol > 0) || !(o->atol > 0) || !isfinite(o->rtol) || !isfinite(o->atol)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: rtol = %g and atol = %g must be finite and > 0",
                     o->rtol, o->atol);
+  if (o->y0)
+    for (int i = 0; i < ny * (o->nexp ? o->nexp : ny); ++i)
+      if (!isfinite(o->y0[i]))
+        return DAL_FAIL(st, DAL_E_NONFINITE, "lyapunov: y0[%d] (vector %d, component %d) is %g", i,
+                        i / ny, i % ny, o->y0[i]);
   return DAL_OK;
 }
 

@@ -379,6 +379,9 @@ static void test_errors(void) {
   o.y0 = dep;
   CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG);
   CHECK(strstr(dal_state_errmsg(st), "independent") != NULL);
+  dep[2] = NAN;
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_NONFINITE);
+  CHECK(strstr(dal_state_errmsg(st), "y0[2]") != NULL);
   o.y0 = NULL;
   o.transient = 2.0;
   CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG);

@@ -245,11 +245,14 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 ///    mean of the exponents over `nblocks` equal blocks of the averaging time
 ///    (std / sqrt(nblocks)); it measures the scatter of finite-time exponents, not a bias
 ///    that decays like 1/time (e.g. the initial alignment; raise `transient` for that).
-///  monitor (may be NULL): called after each reorthonormalization past the transient.
-/// On return the state holds the end of the trajectory (evaluated). Units: 1/time.
-/// Returns DAL_OK; DAL_E_ARG (options, nexp, a dependent y0); DAL_E_UNSUPPORTED (method, or
-/// see the file comment); DAL_E_STEP (DOPRI5 step size underflow) / DAL_E_MAXSTEPS; the
-/// statuses of dal_flow_jacobian at the failing time.
+///  monitor (may be NULL): called after each reorthonormalization past the transient with
+///    the running estimates in the order of the QR columns (decreasing once converged).
+/// On success the state holds the end of the trajectory (evaluated; its integrator history is
+/// dropped); on failure it is unchanged and its message says what failed and when.
+/// The integration allocates nothing per step. Units: 1/time.
+/// Returns DAL_OK; DAL_E_ARG (options, nexp, a dependent y0); DAL_E_NONFINITE (y0);
+/// DAL_E_UNSUPPORTED (method, or see the file comment); DAL_E_STEP (DOPRI5 step size
+/// underflow) / DAL_E_MAXSTEPS; the statuses of dal_flow_jacobian at the failing time.
 DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
                          double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
 
