@@ -1,249 +1,210 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Sweep: the bead on a rotating ring, equilibria over the ring's rate (pitchfork at w_c).
+// Bifurcation diagram of a bead on a turning ring: the pitchfork at w = sqrt(g/R).
 //
-// Problem: a bead (m = 1) on a ring of radius R = 1 turning about its vertical diameter at the
-// rate w, gravity g = 9.81, with a light viscous drag Q = -b theta' (b = 1) so that every
-// trajectory settles on a stable equilibrium. Coordinate: theta from the ring's bottom
-// (dal_map_ring). Equation: theta'' = sin(theta) (w^2 cos(theta) - g/R) - b theta'.
-// Closed form (Goldstein 2.7): below w_c = sqrt(g/R) the bottom theta = 0 is the only stable
-// equilibrium; above it the bottom is unstable and the bead settles at cos(theta*) = g/(R w^2)
-// on either side (a supercritical pitchfork at w = w_c). Linearized frequency squared:
-// Omega^2 = g/R - w^2 at the bottom, w^2 sin^2(theta*) on the side branches (> 0: stable).
-// Method: ONE compiled system; the sweep (dal_sweep_run, 2 threads) overrides the ring's rate
-// (parameter 1 of dal_map_ring, "place:bead:1") per trajectory, starts each rate from
-// theta = +0.05 and -0.05 (just off the bottom), advances to t = 60 (DOPRI5, rtol 1e-10) and
-// keeps the final theta, theta' as the reducer's result: the long damped run finds the stable
-// equilibrium the closed form predicts. (The analysis API's equilibria and their stability
-// will replace the long runs; the closed form stays the check.)
-// Checks (--check: 16 rates; full mode: 161 rates, CSV + PNG chart into the output dir):
-//  1. every trajectory settles (|theta'| < 1e-8) on the closed-form stable equilibrium within
-//     1e-7 wherever |Omega^2| >= 0.5 (away from the critical slowing-down at w_c);
-//  2. the pitchfork: below w_c both starts end at 0; above it they split to +theta*, -theta*;
-//  3. the sweep's results are identical to a plain loop of dal_advance (bit for bit).
-// Usage: bead_bifurcation [--check] [--out DIR]   (full mode writes DIR/bead_bifurcation.csv
-// and, when gnuplot is installed, DIR/bead_bifurcation.png)
+// Problem: a bead of mass m = 0.1 on a ring of radius R = 0.5 turning about the vertical at a
+// constant rate w; g = 9.81. Coordinate: theta, the polar angle from the ring's bottom measured
+// in the turning ring (dal_map_ring), so the equilibria are relative equilibria, steady in the
+// ring's frame. Analysis: dal_continue follows a branch of equilibria in the parameter w
+// (every point a Newton solve with the exact stiffness, rebuilt system per w) and classifies
+// each by the eigenvalues of the exact flow Jacobian; det K changing sign between grid points
+// is bisected to the critical rate.
+// Closed form (Likharev, Essential Graduate Physics, CM sec. 2.1): theta = 0 for all w, stable
+// below w_c = sqrt(g/R) with frequency sqrt(g/R - w^2), unstable above; for w > w_c the pair
+// cos(theta0) = g/(R w^2), stable, frequency w sin(theta0).
+//
+// Full mode (default; --out DIR, default ./demo-output): writes bead_bifurcation.csv
+// (branch, w, theta, verdict, small-oscillation frequency) and draws bead_bifurcation.png
+// (stable branches solid, unstable dashed, the located fork marked) with gnuplot.
+// --check (ctest): every point against the closed form (theta to 1e-12, frequency to 1e-10,
+// verdict neutral/unstable as above) and the located fork against sqrt(g/R) to 1e-9.
+#define _POSIX_C_SOURCE 200809L
+#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
 
-static const double R = 1.0, grav = 9.81, drag = 1.0, T_END = 60.0;
+static const double g = 9.81, R = 0.5, mass = 0.1;
 
-static int damping(double t, const double *q, const double *qdot, double *Q, void *ctx) {
-  (void)t;
-  (void)q;
-  Q[0] -= *(const double *)ctx * qdot[0];
-  return 0;
-}
-
-static dal_system *build(void) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int th, p, rc = dal_builder_create(3, &b);
-  double par[3] = {R, 0.0, 0.0}, g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &th, 3, par, NULL);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_add_genforce(b, damping, (void *)&drag);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
-
-// reducer: the settled state
-static int settle(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
-  (void)sys;
+static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
-  tr->result[0] = dal_state_q(st)[0];
-  tr->result[1] = dal_state_qdot(st)[0];
+  dal_builder *b = NULL;
+  int th, bead, rc = dal_builder_create(3, &b);
+  double par[3] = {R, w, 0.0}, grav[3] = {0, 0, -g};
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
+  if (!rc) rc = dal_builder_place(b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  if (!rc) rc = dal_builder_set_gravity(b, grav);
+  if (!rc) rc = dal_builder_compile(b, out);
+  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
+  dal_builder_destroy(b);
+  return rc;
+}
+
+// what each reported point is checked against and written as
+typedef struct diagram {
+  FILE *csv;          // may be NULL
+  const char *branch; // "trivial", "upper", "lower"
+  int bad, points;    // failed checks, points seen
+  double fork;        // located critical rate (NAN if none)
+  double worst_theta; // largest |theta - closed form|
+  double worst_freq;  // largest relative frequency error
+} diagram;
+
+static int on_point(double w, const dal_system *sys, const dal_state *st, dal_stability v,
+                    dal_branch_kind kind, void *ctx) {
+  diagram *dg = ctx;
+  const double wc = sqrt(g / R), th = dal_state_q(st)[0];
+  if (kind == DAL_BRANCH_CRITICAL) {
+    dg->fork = w;
+    printf("  %-8s critical point (det K = 0) at w = %.12f, sqrt(g/R) = %.12f\n", dg->branch, w,
+           wc);
+    return 0;
+  }
+  // the small-oscillation frequency from the normal modes at this equilibrium
+  double w2;
+  dal_state *tmp = NULL;
+  int rc = dal_state_create(sys, &tmp);
+  double z = 0.0;
+  if (!rc) rc = dal_state_set(sys, tmp, dal_state_time(st), &th, &z);
+  if (!rc) rc = dal_normal_modes(sys, tmp, &w2, NULL, NULL, NULL, NULL);
+  dal_state_destroy(tmp);
+  if (rc) return 1;
+  double freq = w2 >= 0 ? sqrt(w2) : -sqrt(-w2); // negative: growth rate of an unstable point
+  // the closed form
+  int trivial = strcmp(dg->branch, "trivial") == 0;
+  double th_ref = trivial ? 0.0 : (th > 0 ? 1 : -1) * acos(g / (R * w * w));
+  double f_ref =
+      trivial ? (w < wc ? sqrt(g / R - w * w) : -sqrt(w * w - g / R)) : w * sin(fabs(th_ref));
+  dal_stability v_ref = trivial && w > wc ? DAL_UNSTABLE : DAL_NEUTRAL;
+  double et = fabs(th - th_ref), ef = fabs(freq - f_ref) / fabs(f_ref);
+  dg->worst_theta = fmax(dg->worst_theta, et);
+  dg->worst_freq = fmax(dg->worst_freq, ef);
+  if (et > 1e-12 || ef > 1e-10 || v != v_ref) {
+    fprintf(stderr, "%s branch at w = %.6f: theta %.15f (%.15f), frequency %.12f (%.12f), %s\n",
+            dg->branch, w, th, th_ref, freq, f_ref, dal_stability_name(v));
+    dg->bad++;
+  }
+  dg->points++;
+  if (dg->csv)
+    fprintf(dg->csv, "%s,%.12g,%.15g,%s,%.12g\n", dg->branch, w, th, dal_stability_name(v), freq);
   return 0;
 }
 
-// closed-form stable equilibrium on the side of theta0, and Omega^2 there
-static double stable_eq(double w, double th0, double *Om2) {
-  double wc2 = grav / R;
-  if (w * w <= wc2) {
-    *Om2 = wc2 - w * w;
-    return 0.0;
+static int run_branches(FILE *csv, int npoints, int *bad) {
+  const double wc = sqrt(g / R);
+  dal_continuation_opts o;
+  dal_continuation_default_opts(&o);
+  dal_continuation_report rep;
+  struct {
+    const char *name;
+    double q0, p0, p1;
+  } br[3] = {{"trivial", 0.0, 0.2 * wc, 2.5 * wc},
+             {"upper", 1.2, 2.5 * wc, 1.005 * wc},
+             {"lower", -1.2, 2.5 * wc, 1.005 * wc}};
+  double fork = NAN;
+  for (int i = 0; i < 3; ++i) {
+    diagram dg = {csv, br[i].name, 0, 0, NAN, 0.0, 0.0};
+    o.p0 = br[i].p0;
+    o.p1 = br[i].p1;
+    o.npoints = npoints;
+    int rc = dal_continue(build_ring, &br[i].q0, &o, on_point, &rep, &dg);
+    if (rc) {
+      fprintf(stderr, "%s branch: %s (%s)\n", br[i].name, dal_status_name(rc), rep.msg);
+      return 1;
+    }
+    printf("  %-8s %d points from w = %.4f to %.4f, %d critical; worst |theta - closed form| "
+           "%.1e, frequency rel. error %.1e\n",
+           br[i].name, rep.npoints, o.p0, o.p1, rep.ncritical, dg.worst_theta, dg.worst_freq);
+    *bad += dg.bad;
+    if (i == 0) fork = dg.fork;
+    // only the trivial branch crosses the fork; the others stay on one side of it
+    if ((i == 0) != (rep.ncritical == 1) || (i > 0 && rep.ncritical != 0)) *bad += 1;
   }
-  double ts = acos(wc2 / (w * w));
-  *Om2 = w * w * sin(ts) * sin(ts);
-  return th0 > 0 ? ts : -ts;
+  if (!(fabs(fork - wc) <= 1e-9 * wc)) {
+    fprintf(stderr, "fork located at %.15g, expected %.15g\n", fork, wc);
+    *bad += 1;
+  }
+  return 0;
 }
 
-static int chart(const char *dir, const char *csv) {
+static int make_dir(const char *dir) {
+  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
+  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
+  return 1;
+}
+
+static void chart(const char *dir, const char *csvpath) {
   char gp[1024], png[1024];
   snprintf(gp, sizeof gp, "%s/bead_bifurcation.gp", dir);
   snprintf(png, sizeof png, "%s/bead_bifurcation.png", dir);
-  FILE *fp = fopen(gp, "w");
-  if (!fp) return 1;
-  double wc = sqrt(grav / R);
-  fprintf(fp,
-          "set terminal pngcairo size 900,600 font ',11'\nset output '%s'\n"
-          "set datafile separator ','\nset key top left\nset grid\n"
-          "set title 'Bead on a rotating ring: equilibria over the rate (one compiled system, "
-          "sweep of long damped runs)'\n"
-          "set xlabel 'w / w_c   (w_c = sqrt(g/R))'\nset ylabel 'settled theta (rad)'\n"
-          "set xrange [0:2.5]\nset yrange [-1.7:1.7]\nset samples 4000\nwc = %.17g\n"
-          "th(x) = acos(1.0 / (x * x))\n"
-          "set arrow from 1, graph 0 to 1, graph 1 nohead dt 3 lc rgb 'gray50'\n"
-          "plot (x > 1 ? th(x) : 1/0) w l lw 2 lc rgb '#1f77b4' t 'closed form cos(theta*) = "
-          "g/(R w^2), stable', \\\n"
-          "     (x > 1 ? -th(x) : 1/0) w l lw 2 lc rgb '#1f77b4' notitle, \\\n"
-          "     (x <= 1 ? 0 : 1/0) w l lw 2 lc rgb '#2ca02c' t 'theta = 0, stable (w < w_c)', \\\n"
-          "     (x > 1 ? 0 : 1/0) w l lw 2 dt 2 lc rgb '#d62728' t 'theta = 0, unstable "
-          "(w > w_c)', \\\n"
-          "     '%s' u ($3 > 0 ? $2 / wc : 1/0):5 every ::1 w p pt 7 ps 0.7 lc rgb 'black' "
-          "t 'sweep, start theta = +0.05', \\\n"
-          "     '%s' u ($3 < 0 ? $2 / wc : 1/0):5 every ::1 w p pt 6 ps 1.0 lc rgb '#ff7f0e' "
-          "t 'sweep, start theta = -0.05'\n",
-          png, wc, csv, csv);
-  fclose(fp);
-  char cmd[2200];
-  snprintf(cmd, sizeof cmd, "gnuplot '%s' 2>/dev/null", gp);
-  return system(cmd) != 0;
+  FILE *f = fopen(gp, "w");
+  if (!f) return;
+  double wc = sqrt(g / R);
+  fprintf(
+      f,
+      "set terminal pngcairo size 1000,650\nset output '%s'\nset datafile separator ','\n"
+      "set xlabel 'ring rate w (rad/s)'\nset ylabel 'equilibrium theta (rad, from the bottom)'\n"
+      "set title 'Bead on a turning ring: pitchfork at w = sqrt(g/R) = %.4f rad/s'\n"
+      "set key top left\nset grid\nset samples 2000\n"
+      "set arrow from %g,-pi/2 to %g,pi/2 nohead dt 3 lc rgb 'gray50'\n"
+      "stable(s) = (s eq 'neutral' || s eq 'asymptotic') ? 1 : 0\n"
+      "plot '%s' using ($2):((stable(strcol(4)) && strcol(1) eq 'trivial') ? $3 : 1/0) "
+      "with lines lw 3 lc rgb '#1f77b4' title 'theta = 0, stable', "
+      "'' using ($2):((!stable(strcol(4)) && strcol(1) eq 'trivial') ? $3 : 1/0) with lines "
+      "lw 3 dt 2 lc rgb '#d62728' title 'theta = 0, unstable', "
+      "'' using ($2):((strcol(1) ne 'trivial') ? $3 : 1/0) with points pt 7 ps 0.6 lc rgb "
+      "'#2ca02c' title 'cos theta = g/(R w^2) (stable, computed)', "
+      "acos(%g/(%g*x*x)) * (x > %g ? 1 : 1/0) with lines lc rgb 'black' title 'closed form', "
+      "-acos(%g/(%g*x*x)) * (x > %g ? 1 : 1/0) with lines lc rgb 'black' notitle\n",
+      png, wc, wc, wc, csvpath, g, R, wc, g, R, wc);
+  fclose(f);
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
+    return;
+  }
+  char cmd[1200];
+  snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
+  if (system(cmd) == 0)
+    printf("chart: %s\n", png);
+  else
+    printf("gnuplot failed: chart skipped (script in %s)\n", gp);
 }
 
 int main(int argc, char **argv) {
   int check = 0;
-  const char *dir = ".";
+  const char *dir = "demo-output";
   for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check"))
+    if (strcmp(argv[i], "--check") == 0)
       check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
+    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
       dir = argv[++i];
   }
-  dal_system *sys = build();
-  if (!sys) return 1;
-  int nw = check ? 16 : 161;
-  long nt = 2L * nw;
-  double wc = sqrt(grav / R), wmax = 2.5 * wc;
-  // trajectory i: rate w_(i/2), started from theta = +0.05 (even i) or -0.05 (odd i)
-  double *rates = malloc((size_t)nt * sizeof(double));
-  double *q0 = malloc((size_t)nt * sizeof(double)), *v0 = calloc((size_t)nt, sizeof(double));
-  double *res = malloc((size_t)nt * 2 * sizeof(double));
-  int *status = malloc((size_t)nt * sizeof(int));
-  char *msgs = malloc((size_t)nt * 200);
-  if (!rates || !q0 || !v0 || !res || !status || !msgs) return 1;
-  for (long i = 0; i < nt; ++i) {
-    rates[i] = wmax * (double)(i / 2) / (nw - 1);
-    q0[i] = i % 2 ? -0.05 : 0.05;
+  printf("bead on a turning ring: m=%g R=%g g=%g, w_c = sqrt(g/R) = %.6f\n", mass, R, g,
+         sqrt(g / R));
+  int bad = 0;
+  if (check) {
+    if (run_branches(NULL, 31, &bad)) bad++;
+    printf("%s\n", bad ? "FAILED" : "ok");
+    return bad != 0;
   }
-  dal_param_ref rate;
-  char err[256];
-  if (dal_param_find(sys, "place:bead:1", &rate, err, sizeof err)) {
-    fprintf(stderr, "%s\n", err);
+  if (make_dir(dir)) return 1;
+  char csvpath[1024];
+  snprintf(csvpath, sizeof csvpath, "%s/bead_bifurcation.csv", dir);
+  FILE *csv = fopen(csvpath, "w");
+  if (!csv) {
+    fprintf(stderr, "cannot write %s\n", csvpath);
     return 1;
   }
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
-  so.method = DAL_METHOD_DOPRI5;
-  so.rtol = 1e-10;
-  so.atol = 1e-12;
-  dal_sweep sw = {.ntraj = nt,
-                  .nparam = 1,
-                  .params = &rate,
-                  .values = rates,
-                  .q0 = q0,
-                  .qdot0 = v0,
-                  .state_stride = 1,
-                  .solve = &so,
-                  .t1 = T_END,
-                  .nresult = 2,
-                  .reduce = settle};
-  dal_sweep_out out = {res, status, msgs, 200, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
-  o.nthreads = 2;
-  int rc = dal_sweep_run(sys, &sw, &o, &out, err, sizeof err);
-  if (rc) {
-    fprintf(stderr, "sweep: %s\n", err);
-    return 1;
-  }
-  // checks against the closed form
-  int bad = out.nfailed != 0, checked = 0;
-  double worst = 0;
-  for (long i = 0; i < nt; ++i) {
-    double Om2, eq = stable_eq(rates[i], q0[i], &Om2);
-    if (status[i]) {
-      printf("trajectory %ld failed: %s\n", i, msgs + i * 200);
-      continue;
-    }
-    if (fabs(Om2) >= 0.5) {
-      worst = fmax(worst, fabs(res[2 * i] - eq));
-      bad |= !(fabs(res[2 * i] - eq) <= 1e-7) || !(fabs(res[2 * i + 1]) <= 1e-8);
-      ++checked;
-    }
-    // the pitchfork: each start keeps its side above w_c and returns to 0 below
-    if (rates[i] > 1.05 * wc && !(res[2 * i] * copysign(1.0, q0[i]) > 0.5 * fabs(eq))) {
-      printf("  w = %g start %g: settled at %g, expected %g\n", rates[i], q0[i], res[2 * i], eq);
-      bad = 1;
-    }
-    if (rates[i] < 0.95 * wc && !(fabs(res[2 * i]) < 1e-6)) {
-      printf("  w = %g start %g: settled at %g, expected 0\n", rates[i], q0[i], res[2 * i]);
-      bad = 1;
-    }
-  }
-  printf("bead sweep: %ld trajectories over w in [0, 2.5 w_c] (w_c = %.6f), %ld failed\n", nt, wc,
-         out.nfailed);
-  printf("  settled theta vs closed form (|Omega^2| >= 0.5, %d trajectories): max error %.2e\n",
-         checked, worst);
-  // the sweep against a plain loop of dal_advance
-  double maxdiff = 0;
-  dal_state *st = NULL;
-  if (dal_state_create(sys, &st)) return 1;
-  for (long i = 0; i < nt; i += check ? 1 : 7) {
-    double v = 0.0;
-    if (dal_state_set_param(sys, st, &rate, rates[i]) || dal_state_set(sys, st, 0.0, &q0[i], &v) ||
-        dal_advance(sys, st, &so, T_END)) {
-      bad = 1;
-      continue;
-    }
-    if (memcmp(dal_state_q(st), &res[2 * i], sizeof(double)) ||
-        memcmp(dal_state_qdot(st), &res[2 * i + 1], sizeof(double)))
-      maxdiff = 1;
-  }
-  dal_state_destroy(st);
-  printf("  sweep vs plain loop of dal_advance: %s\n", maxdiff ? "DIFFERENT" : "bit-identical");
-  bad |= maxdiff != 0;
-  if (!check) {
-    char csv[1024];
-    snprintf(csv, sizeof csv, "%s/bead_bifurcation.csv", dir);
-    FILE *fp = fopen(csv, "w");
-    const char *names[2] = {"theta", "thetadot"};
-    // the sweep's own CSV: index, place:bead:1 (= w), status, theta, thetadot, message
-    if (!fp || dal_sweep_write_csv(fp, sys, &sw, &out, names)) bad = 1;
-    if (fp) fclose(fp);
-    // the chart's table: w, the start theta0 and the closed-form equilibrium beside theta
-    char csv2[1024];
-    snprintf(csv2, sizeof csv2, "%s/bead_bifurcation_chart.csv", dir);
-    fp = fopen(csv2, "w");
-    if (fp) {
-      fprintf(fp, "index,w,theta0,closed_form,theta,thetadot\n");
-      for (long i = 0; i < nt; ++i) {
-        double Om2, eq = stable_eq(rates[i], q0[i], &Om2);
-        fprintf(fp, "%ld,%.17g,%.17g,%.17g,%.17g,%.17g\n", i, rates[i], q0[i], eq, res[2 * i],
-                res[2 * i + 1]);
-      }
-      fclose(fp);
-      if (chart(dir, csv2))
-        printf("  (gnuplot not available: no chart)\n");
-      else
-        printf("  chart: %s/bead_bifurcation.png\n", dir);
-    }
-  }
-  free(rates);
-  free(q0);
-  free(v0);
-  free(res);
-  free(status);
-  free(msgs);
-  dal_system_destroy(sys);
-  printf("%s\n", bad ? "FAILED" : "OK");
-  return bad;
+  fprintf(csv, "branch,w,theta,verdict,frequency\n");
+  int rc = run_branches(csv, 121, &bad);
+  fclose(csv);
+  if (rc) return 1;
+  printf("wrote %s%s\n", csvpath, bad ? " (some points disagree with the closed form)" : "");
+  chart(dir, csvpath);
+  return bad != 0;
 }

@@ -11,23 +11,28 @@
 /// nothing is allocated by an evaluation). n coordinates, nd = N d particle components.
 typedef struct dal_tangent {
   int n, nd;
-  dal_jet *jq;      // n: coordinate jets of the current curve
-  dal_jet *jr;      // nd: particle jets along the current curve
-  dal_jet *jin;     // max_in: inputs of one primitive instance
-  dal_jet *jout;    // max_out
-  dal_jet *cp, *cm; // nd: particle jets along the curves lambda = +1 and -1
-  double *d3diag;   // (n + 1) x nd: third derivatives along e_i (i = n: the time direction)
-  double *J;        // n x nd: J[i * nd + c] = d r_c / d q_i
+  dal_jet *jq;           // n: coordinate jets of the current curve
+  dal_jet *jv;           // n: velocity jets (Lagrangian systems)
+  dal_jet *jr;           // nd: particle jets along the current curve
+  dal_jet *jin;          // max_in: inputs of one primitive instance
+  dal_jet *jout;         // max_out
+  dal_jet *cp, *cm;      // nd: particle jets along the curves lambda = +1 and -1
+  double *d3diag;        // (n + 1) x nd: third derivatives along e_i (i = n: the time direction)
+  double *J;             // n x nd: J[i * nd + c] = d r_c / d q_i
   double *r, *v, *A, *w; // nd: positions, velocities, accelerations, frozen weights m A - F_d
   double *Fd;            // nd: damper forces at the state
   double *dr, *dv, *da, *dF; // nd: derivatives along one tangent direction
-  double *H;        // (n + 1)^2, column-major: second derivatives of W = sum r . w + V in (q, t)
-  double *res;      // n: R = dW/dq at the state (zero up to rounding when qddot is current)
-  double *M;        // n x n mass matrix, from the particle Jacobians
-  double *Rq, *Ru;  // n x n: K = dR/dq, C = dR/dqdot
-  double *Rt;       // n: dR/dt
-  double *L;        // n x n Cholesky factor of M
-  double *link;     // per spring and damper: anchor x, x', x'' (3 x 3)
+  double *H;          // (n + 1)^2, column-major: second derivatives of W = sum r . w + V in (q, t)
+  double *res;        // n: R = dW/dq at the state (zero up to rounding when qddot is current)
+  double *M;          // n x n mass matrix, from the particle Jacobians
+  double *Rq, *Ru;    // n x n: K = dR/dq, C = dR/dqdot
+  double *Rt;         // n: dR/dt
+  double *Habs;       // (n + 1)^2: sums of the magnitudes behind H (rounding scale)
+  double *Kabs;       // n x n: sums of the magnitudes of the terms of K (rounding scale)
+  double *Cabs;       // n x n: the same for C
+  double *HL, *HLabs; // (2n + 1)^2: Hessian of L in (q, qdot, t) (Lagrangian systems)
+  double *L;          // n x n Cholesky factor of M
+  double *link;       // per spring and damper: anchor x, x', x'' (3 x 3)
 } dal_tangent;
 
 /// Allocate the workspace of sys. Returns DAL_OK or DAL_E_NOMEM (*out NULL then).
@@ -40,6 +45,8 @@ int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *wha
 /// The tangent at the state's (t, q, qdot) with its current qddot (call dal_forward first):
 /// tg->M, Rq, Ru, and Rt when want_t. Returns DAL_OK, DAL_E_DOMAIN, DAL_E_CALLBACK.
 int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t);
+/// The same for a system given by a Lagrangian (analysis_lagrangian.c).
+int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t);
 /// Factor tg->M into tg->L (Cholesky). Returns DAL_OK or DAL_E_SINGULAR (message set).
 int dal__tangent_factor(const dal_system *sys, dal_state *st, dal_tangent *tg);
 /// B (n x k, column-major) = M^-1 B with the factor of dal__tangent_factor.

@@ -29,10 +29,15 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   dal_tangent *tg = calloc(1, sizeof *tg);
   if (!tg) return DAL_E_NOMEM;
   int n = sys->n, nd = sys->N * sys->dim, nlink = sys->nspring + sys->ndamper;
-  size_t sn = (size_t)n, snd = (size_t)nd + 1, nt = sn + 1;
+  // particle-sized scratch doubles as (2n + 1)-sized scratch for Lagrangian systems
+  size_t sn = (size_t)n, snd = (size_t)(nd > 2 * n + 1 ? nd : 2 * n + 1) + 1, nt = sn + 1;
+  size_t np = 2 * sn + 1;
   tg->n = n;
   tg->nd = nd;
   tg->jq = calloc(sn + 1, sizeof(dal_jet));
+  tg->jv = calloc(sn + 1, sizeof(dal_jet));
+  tg->HL = calloc(np * np, sizeof(double));
+  tg->HLabs = calloc(np * np, sizeof(double));
   tg->jr = calloc(snd, sizeof(dal_jet));
   tg->jin = calloc((size_t)sys->max_in + 1, sizeof(dal_jet));
   tg->jout = calloc((size_t)sys->max_out + 1, sizeof(dal_jet));
@@ -41,18 +46,24 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   tg->d3diag = calloc(nt * snd, sizeof(double));
   tg->J = calloc(sn * snd + 1, sizeof(double));
   double **nds[] = {&tg->r, &tg->v, &tg->A, &tg->w, &tg->Fd, &tg->dr, &tg->dv, &tg->da, &tg->dF};
-  for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i) *nds[i] = calloc(snd, sizeof(double));
+  for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i)
+    *nds[i] = calloc(snd, sizeof(double));
   tg->H = calloc(nt * nt, sizeof(double));
   tg->res = calloc(sn + 1, sizeof(double));
   tg->M = calloc(sn * sn + 1, sizeof(double));
   tg->Rq = calloc(sn * sn + 1, sizeof(double));
   tg->Ru = calloc(sn * sn + 1, sizeof(double));
   tg->Rt = calloc(sn + 1, sizeof(double));
+  tg->Habs = calloc(nt * nt, sizeof(double));
+  tg->Kabs = calloc(sn * sn + 1, sizeof(double));
+  tg->Cabs = calloc(sn * sn + 1, sizeof(double));
   tg->L = calloc(sn * sn + 1, sizeof(double));
   tg->link = calloc(9 * (size_t)nlink + 1, sizeof(double));
   int ok = tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
-           tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link;
-  for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i) ok = ok && *nds[i];
+           tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link &&
+           tg->Habs && tg->Kabs && tg->Cabs && tg->jv && tg->HL && tg->HLabs;
+  for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i)
+    ok = ok && *nds[i];
   if (!ok) {
     dal__tangent_free(tg);
     return DAL_E_NOMEM;
@@ -63,21 +74,16 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
 
 void dal__tangent_free(dal_tangent *tg) {
   if (!tg) return;
-  void *p[] = {tg->jq, tg->jr, tg->jin, tg->jout, tg->cp, tg->cm, tg->d3diag, tg->J,
-               tg->r,  tg->v,  tg->A,   tg->w,    tg->Fd, tg->dr, tg->dv,     tg->da,
-               tg->dF, tg->H,  tg->res, tg->M,    tg->Rq, tg->Ru, tg->Rt,     tg->L,
-               tg->link};
-  for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i) free(p[i]);
+  void *p[] = {tg->jq,   tg->jr,   tg->jin,  tg->jout, tg->cp, tg->cm, tg->d3diag, tg->J,
+               tg->r,    tg->v,    tg->A,    tg->w,    tg->Fd, tg->dr, tg->dv,     tg->da,
+               tg->dF,   tg->H,    tg->res,  tg->M,    tg->Rq, tg->Ru, tg->Rt,     tg->L,
+               tg->link, tg->Habs, tg->Kabs, tg->Cabs, tg->jv, tg->HL, tg->HLabs};
+  for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
+    free(p[i]);
   free(tg);
 }
 
 int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *what) {
-  if (sys->lag)
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "%s: the system is given by a Lagrangian; its exact tangent needs third "
-                    "partial derivatives of L, which are not implemented: describe the scene by "
-                    "particles and coordinate maps",
-                    what);
   if (sys->m > 0)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "%s: the system has %d constraint row(s) (first: '%s'); the exact tangent "
@@ -144,8 +150,10 @@ static int curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet 
     const int *coords = sys->ipool + pl->coord_off;
     int m = 0;
     if (pl->parent >= 0)
-      for (int b = 0; b < d; ++b) tg->jin[m++] = tg->jr[pl->parent * d + b];
-    for (int i = 0; i < pl->ncoord; ++i) tg->jin[m++] = tg->jq[coords[i]];
+      for (int b = 0; b < d; ++b)
+        tg->jin[m++] = tg->jr[pl->parent * d + b];
+    for (int i = 0; i < pl->ncoord; ++i)
+      tg->jin[m++] = tg->jq[coords[i]];
     int rc = prim->eval(tg->jin, tj, st->prm.ppool + pl->param_off, tg->jout, pl->ctx);
     if (rc) {
       snprintf(what, sizeof what, "coordinate map '%s' of particle '%s'", prim->name,
@@ -170,7 +178,8 @@ static int anchor_jets(const dal_system *sys, dal_state *st, const dal_link *l, 
                        dal_jet *x, const char *kind) {
   int d = sys->dim;
   if (!l->fn) {
-    for (int b = 0; b < d; ++b) x[b] = dal_const(l->x0[b]);
+    for (int b = 0; b < d; ++b)
+      x[b] = dal_const(l->x0[b]);
     return DAL_OK;
   }
   char what[160];
@@ -195,17 +204,18 @@ static int potential(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_
     const dal_link *l = &st->prm.springs[i];
     dal_jet x[3], diff[3];
     if (l->b >= 0) {
-      for (int b = 0; b < d; ++b) x[b] = tg->jr[l->b * d + b];
+      for (int b = 0; b < d; ++b)
+        x[b] = tg->jr[l->b * d + b];
     } else if ((rc = anchor_jets(sys, st, l, tj, x, "spring")) != 0) {
       return rc;
     }
-    for (int b = 0; b < d; ++b) diff[b] = dal_sub(tg->jr[l->a * d + b], x[b]);
+    for (int b = 0; b < d; ++b)
+      diff[b] = dal_sub(tg->jr[l->a * d + b], x[b]);
     dal_jet ext = dal_addc(dal_norm(diff, d), -l->L);
     dal_jet e = dal_scale(dal_sq(ext), 0.5 * l->k);
     if (!dal_jet_isfinite(e)) {
       char what[160];
-      snprintf(what, sizeof what, "spring on particle '%s' (zero length?)",
-               sys->part_names[l->a]);
+      snprintf(what, sizeof what, "spring on particle '%s' (zero length?)", sys->part_names[l->a]);
       return jet_fail(sys, st, e, what);
     }
     s = dal_add(s, e);
@@ -228,8 +238,8 @@ static int potential(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_
   return DAL_OK;
 }
 
-// damper forces at the state into F (nd; may be NULL) and, when dF is not NULL, their derivatives along a
-// direction with particle derivatives dr, dv (nd) and time component dt; anchors move with
+// damper forces at the state into F (nd; may be NULL) and, when dF is not NULL, their derivatives
+// along a direction with particle derivatives dr, dv (nd) and time component dt; anchors move with
 // x(t): derivative x' dt of the position and x'' dt of the velocity (tg->link)
 static void dampers(const dal_system *sys, dal_tangent *tg, const double *dr, const double *dv,
                     double dt, double *F, double *dF) {
@@ -256,7 +266,8 @@ static void dampers(const dal_system *sys, dal_tangent *tg, const double *dr, co
     }
     // f e with e = diff / |diff|, f = c (v_a - v_b) . e: f e = c rel diff / |diff|^2
     dal_jet len2 = dal_const(0.0);
-    for (int b = 0; b < d; ++b) len2 = dal_add(len2, dal_sq(diff[b]));
+    for (int b = 0; b < d; ++b)
+      len2 = dal_add(len2, dal_sq(diff[b]));
     dal_jet coef = dal_scale(dal_div(rel, len2), l->k);
     for (int b = 0; b < d; ++b) {
       dal_jet fb = dal_mul(coef, diff[b]);
@@ -270,18 +281,21 @@ static void dampers(const dal_system *sys, dal_tangent *tg, const double *dr, co
   }
 }
 
-// W = sum r . w + V along the current curve: its second derivative (and first in *W1)
-static int weighted(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj,
-                    double *W2, double *W1) {
+// W = sum r . w + V along the current curve: its second derivative (and first in *W1), and in
+// *Wabs the sum of the magnitudes of its terms (the scale of its rounding)
+static int weighted(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj, double *W2,
+                    double *W1, double *Wabs) {
   dal_jet V;
   int rc = potential(sys, st, tg, tj, &V);
   if (rc) return rc;
-  double s2 = V.dd, s1 = V.d;
+  double s2 = V.dd, s1 = V.d, sa = fabs(V.dd);
   for (int c = 0; c < tg->nd; ++c) {
     s2 += tg->jr[c].dd * tg->w[c];
     s1 += tg->jr[c].d * tg->w[c];
+    sa += fabs(tg->jr[c].dd * tg->w[c]);
   }
   *W2 = s2;
+  *Wabs = sa;
   if (W1) *W1 = s1;
   return DAL_OK;
 }
@@ -289,7 +303,8 @@ static int weighted(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_j
 // coordinate jets of the straight line (q + s e_i + s e_j, t + s [i or j is the time index n])
 static dal_jet line(dal_tangent *tg, const double *q, double t, int i, int j) {
   int n = tg->n;
-  for (int c = 0; c < n; ++c) tg->jq[c] = dal_const(q[c]);
+  for (int c = 0; c < n; ++c)
+    tg->jq[c] = dal_const(q[c]);
   if (i < n) tg->jq[i].d += 1.0;
   if (j >= 0 && j < n) tg->jq[j].d += 1.0;
   return dal_var(t, (i == n) + (j == n));
@@ -300,6 +315,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
   const double t = st->t, *q = st->q, *u = st->qdot, *a = st->qddot;
   double *H = tg->H;
   size_t ldh = (size_t)n + 1;
+  if (sys->lag) return dal__tangent_lagrangian(sys, st, tg, want_t);
 
   // anchors of springs and dampers: x, x', x'' at t
   for (int i = 0; i < sys->nspring + sys->ndamper; ++i) {
@@ -317,7 +333,8 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
   }
 
   // the state's curve (q + s qdot + s^2/2 qddot, t + s): positions, velocities, accelerations
-  for (int c = 0; c < n; ++c) tg->jq[c] = dal_jet_make3(q[c], u[c], a[c], 0.0);
+  for (int c = 0; c < n; ++c)
+    tg->jq[c] = dal_jet_make3(q[c], u[c], a[c], 0.0);
   if ((rc = curve(sys, st, tg, dal_var(t, 1.0), 0)) != 0) return rc;
   for (int c = 0; c < nd; ++c) {
     tg->r[c] = tg->jr[c].v;
@@ -325,7 +342,8 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     tg->A[c] = tg->jr[c].dd;
   }
   dampers(sys, tg, NULL, NULL, 0.0, tg->Fd, NULL);
-  for (int c = 0; c < nd; ++c) tg->w[c] = st->prm.mass[c / d] * tg->A[c] - tg->Fd[c];
+  for (int c = 0; c < nd; ++c)
+    tg->w[c] = st->prm.mass[c / d] * tg->A[c] - tg->Fd[c];
 
   // second derivatives of W in (q, t): diagonal along e_i (also J, dR at the state and the
   // third derivatives of the particles along e_i), then e_i + e_j by polarization
@@ -333,20 +351,25 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     dal_jet tj = line(tg, q, t, i, -1);
     if ((rc = curve(sys, st, tg, tj, 1)) != 0) return rc;
     double W1;
-    if ((rc = weighted(sys, st, tg, tj, &H[i * ldh + i], &W1)) != 0) return rc;
+    rc = weighted(sys, st, tg, tj, &H[i * ldh + i], &W1, &tg->Habs[i * ldh + i]);
+    if (rc) return rc;
     if (i < n) {
       tg->res[i] = W1;
-      for (int c = 0; c < nd; ++c) tg->J[(size_t)i * nd + c] = tg->jr[c].d;
+      for (int c = 0; c < nd; ++c)
+        tg->J[(size_t)i * nd + c] = tg->jr[c].d;
     }
-    for (int c = 0; c < nd; ++c) tg->d3diag[(size_t)i * nd + c] = tg->jr[c].d3;
+    for (int c = 0; c < nd; ++c)
+      tg->d3diag[(size_t)i * nd + c] = tg->jr[c].d3;
   }
   for (int i = 0; i < nt; ++i)
     for (int j = i + 1; j < nt; ++j) {
       dal_jet tj = line(tg, q, t, i, j);
-      double W2;
+      double W2, Wa;
       if ((rc = curve(sys, st, tg, tj, 0)) != 0) return rc;
-      if ((rc = weighted(sys, st, tg, tj, &W2, NULL)) != 0) return rc;
+      if ((rc = weighted(sys, st, tg, tj, &W2, NULL, &Wa)) != 0) return rc;
       H[j * ldh + i] = H[i * ldh + j] = 0.5 * (W2 - H[i * ldh + i] - H[j * ldh + j]);
+      tg->Habs[j * ldh + i] = tg->Habs[i * ldh + j] =
+          0.5 * (Wa + tg->Habs[i * ldh + i] + tg->Habs[j * ldh + j]);
     }
 
   // M = sum_k m_k J_k' J_k from the particle Jacobian columns
@@ -354,7 +377,8 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     for (int j = 0; j <= i; ++j) {
       double s = 0.0;
       const double *Ji = tg->J + (size_t)i * nd, *Jj = tg->J + (size_t)j * nd;
-      for (int c = 0; c < nd; ++c) s += st->prm.mass[c / d] * Ji[c] * Jj[c];
+      for (int c = 0; c < nd; ++c)
+        s += st->prm.mass[c / d] * Ji[c] * Jj[c];
       tg->M[(size_t)j * n + i] = tg->M[(size_t)i * n + j] = s;
     }
 
@@ -380,11 +404,17 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     }
     dampers(sys, tg, tg->dr, tg->dv, udir || qdir ? 0.0 : 1.0, NULL, tg->dF);
     double *col = qdir ? tg->Rq + (size_t)i * n : udir ? tg->Ru + (size_t)i * n : tg->Rt;
+    double *cabs = qdir ? tg->Kabs + (size_t)i * n : udir ? tg->Cabs + (size_t)i * n : NULL;
     for (int j = 0; j < n; ++j) {
       const double *Jj = tg->J + (size_t)j * nd;
-      double s = udir ? 0.0 : H[i * ldh + j];
-      for (int c = 0; c < nd; ++c) s += Jj[c] * (st->prm.mass[c / d] * tg->da[c] - tg->dF[c]);
+      double s = udir ? 0.0 : H[i * ldh + j], sa = udir ? 0.0 : tg->Habs[i * ldh + j];
+      for (int c = 0; c < nd; ++c) {
+        double x = Jj[c] * (st->prm.mass[c / d] * tg->da[c] - tg->dF[c]);
+        s += x;
+        sa += fabs(x);
+      }
       col[j] = s;
+      if (cabs) cabs[j] = sa;
     }
   }
   return DAL_OK;
@@ -415,12 +445,14 @@ void dal__tangent_flow(dal_tangent *tg, double *A, double *ft) {
   int n = tg->n;
   size_t n2 = 2 * (size_t)n;
   memset(A, 0, n2 * n2 * sizeof(double));
-  for (int i = 0; i < n; ++i) A[((size_t)n + i) * n2 + i] = 1.0; // dq' / dqdot = I
+  for (int i = 0; i < n; ++i)
+    A[((size_t)n + i) * n2 + i] = 1.0; // dq' / dqdot = I
   // lower block rows: -M^-1 [K C], solved column by column in place
   for (int c = 0; c < 2 * n; ++c) {
     double *col = A + (size_t)c * n2 + n;
     const double *src = c < n ? tg->Rq + (size_t)c * n : tg->Ru + (size_t)(c - n) * n;
-    for (int j = 0; j < n; ++j) col[j] = -src[j];
+    for (int j = 0; j < n; ++j)
+      col[j] = -src[j];
     // columns of A are not contiguous in n-blocks of one matrix: solve one at a time
     dal__tangent_msolve(tg, 1, col);
   }

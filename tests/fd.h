@@ -66,6 +66,40 @@ static inline fd_est fd_estimate(fd_fn *g, const void *ctx, double ulps, double 
   return e;
 }
 
+/// third derivative of g at 0 by the central stencil D(h) = (g(2h) - 2 g(h) + 2 g(-h) -
+/// g(-2h)) / (2 h^3) = g3 + h^2/4 g5 + ... (gk: k-th derivative), Richardson-extrapolated from
+/// h/2 and h/4. The estimate is trusted when D(h) - D(h/2) and D(h/2) - D(h/4) shrink like
+/// h^2 (ratio 1/4 +- 0.1, or at the rounding level); its error bound is then twice
+/// |D(h/2) - D(h/4)| (3 times the error of D(h/4) alone, far above the extrapolated error) plus
+/// four times the rounding (ulps of max |g| + scale, as in fd_estimate).
+typedef struct fd3_est {
+  double d3, tol;
+  int valid;
+} fd3_est;
+
+static inline fd3_est fd3_estimate(fd_fn *g, const void *ctx, double ulps, double scale) {
+  fd3_est e = {NAN, INFINITY, 0};
+  for (int k = 4; k <= 9 && !e.valid; ++k) {
+    double D[3], G = 0.0;
+    int ok = 1;
+    for (int j = 0; j < 3; ++j) {
+      double h = ldexp(1.0, -k - j);
+      double g1 = g(h, ctx), gm1 = g(-h, ctx), g2 = g(2.0 * h, ctx), gm2 = g(-2.0 * h, ctx);
+      if (!isfinite(g1) || !isfinite(gm1) || !isfinite(g2) || !isfinite(gm2)) ok = 0;
+      G = fmax(G, fmax(fmax(fabs(g1), fabs(gm1)), fmax(fabs(g2), fabs(gm2))));
+      D[j] = (g2 - 2.0 * g1 + 2.0 * gm1 - gm2) / (2.0 * h * h * h);
+    }
+    if (!ok) continue;
+    double hs = ldexp(1.0, -k - 2), r = 3.0 * ulps * DBL_EPSILON * (G + scale) / (hs * hs * hs);
+    double d01 = fabs(D[0] - D[1]), d12 = fabs(D[1] - D[2]);
+    if (fabs(d12 - 0.25 * d01) > 0.1 * d01 + 4.0 * r) continue; // not yet in the h^2 regime
+    e.d3 = D[2] + (D[2] - D[1]) / 3.0;
+    e.tol = 2.0 * (d12 + 2.0 * r) + 1e-300;
+    e.valid = 1;
+  }
+  return e;
+}
+
 /// a random number in [lo, hi) rounded to the grid 2^-bits (exact sums along test curves)
 static inline double fd_grid(double x, int bits) { return ldexp(nearbyint(ldexp(x, bits)), -bits); }
 

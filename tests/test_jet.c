@@ -9,7 +9,8 @@
 //    sum f_ijk d_i d_j d_k) to ~1e-14 relative to its terms;
 //  - central finite differences of the value along the curve, to their estimated truncation
 //    and rounding error (fd.h for the first two derivatives; a Richardson-extrapolated third
-//    difference with its own bound for the third; curve arguments are exact in double);
+//    difference with its own bound for the third, fd3_estimate; curve arguments are exact in
+//    double);
 //  - the lower coefficients never read d3 (bit-identical with d3 = NaN), and the order-2
 //    constructors dal_jet_make / dal_jet_chain mark d3 unknown (NaN);
 //  - identities (sin^2 + cos^2 = 1 with zero derivatives, exp(log x) = x, ...) and chain
@@ -488,39 +489,6 @@ static double curve_arg(const sample *sm, int i, double s) {
   return sm->v[i] + sm->d[i] * s + 0.5 * sm->dd[i] * (s * s) + sm->c3[i] * (s * s * s);
 }
 
-/// third derivative of g at 0 by the central stencil D(h) = (g(2h) - 2 g(h) + 2 g(-h) -
-/// g(-2h)) / (2 h^3) = g3 + h^2/4 g5 + ... (gk: k-th derivative), Richardson-extrapolated from
-/// h/2 and h/4. The estimate is trusted when D(h) - D(h/2) and D(h/2) - D(h/4) shrink like
-/// h^2 (ratio 1/4 +- 0.1, or at the rounding level); its error bound is then twice
-/// |D(h/2) - D(h/4)| (3 times the error of D(h/4) alone, far above the extrapolated error) plus
-/// four times the rounding.
-typedef struct fd3_est {
-  double d3, tol;
-  int valid;
-} fd3_est;
-
-static fd3_est fd3_estimate(fd_fn *g, const void *ctx, double ulps) {
-  fd3_est e = {NAN, INFINITY, 0};
-  for (int k = 4; k <= 9 && !e.valid; ++k) {
-    double D[3], G = 0.0;
-    int ok = 1;
-    for (int j = 0; j < 3; ++j) {
-      double h = ldexp(1.0, -k - j);
-      double g1 = g(h, ctx), gm1 = g(-h, ctx), g2 = g(2.0 * h, ctx), gm2 = g(-2.0 * h, ctx);
-      if (!isfinite(g1) || !isfinite(gm1) || !isfinite(g2) || !isfinite(gm2)) ok = 0;
-      G = fmax(G, fmax(fmax(fabs(g1), fabs(gm1)), fmax(fabs(g2), fabs(gm2))));
-      D[j] = (g2 - 2.0 * g1 + 2.0 * gm1 - gm2) / (2.0 * h * h * h);
-    }
-    if (!ok) continue;
-    double hs = ldexp(1.0, -k - 2), r = 3.0 * ulps * DBL_EPSILON * G / (hs * hs * hs);
-    double d01 = fabs(D[0] - D[1]), d12 = fabs(D[1] - D[2]);
-    if (fabs(d12 - 0.25 * d01) > 0.1 * d01 + 4.0 * r) continue; // not yet in the h^2 regime
-    e.d3 = D[2] + (D[2] - D[1]) / 3.0;
-    e.tol = 2.0 * (d12 + 2.0 * r) + 1e-300;
-    e.valid = 1;
-  }
-  return e;
-}
 
 // value of the operation along the curve, through the jet's own value path
 static double op_along(double s, const void *ctx) {
@@ -620,7 +588,7 @@ static void test_op(const op *o) {
       CHECK_MSG(fabs(r.d3 - e3) <= TOL_AN * s3,
                 "%s third derivative at (%g, %g) p=%g: %.17g vs %.17g", o->name, sm.v[0],
                 sm.v[1], sm.p, r.d3, e3);
-      fd3_est f3 = fd3_estimate(op_along, &sm, 8.0);
+      fd3_est f3 = fd3_estimate(op_along, &sm, 8.0, 0.0);
       if (f3.valid) {
         nvalid3++;
         worst_fd3 = fmax(worst_fd3, fabs(r.d3 - f3.d3) / f3.tol);
@@ -822,7 +790,7 @@ static void test_chain_rule3(void) {
                   fd_grid(check_rand(&seed, -1, 1), 10), fd_grid(check_rand(&seed, -1, 1), 10),
                   fd_grid(check_rand(&seed, -1, 1), 10) / 8.0};
       dal_jet J = nested_eval(which, dal_jet_make3(n.x0, n.d, n.dd, 6.0 * n.c3));
-      fd3_est f3 = fd3_estimate(nested_along, &n, 16.0);
+      fd3_est f3 = fd3_estimate(nested_along, &n, 16.0, 0.0);
       ++total;
       if (!f3.valid) continue;
       ++nvalid;

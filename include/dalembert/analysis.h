@@ -17,13 +17,13 @@
 //
 // What the tangent covers: particle systems in minimal coordinates (no constraint rows,
 // m = 0) placed by primitives or a whole-system map, with gravity, springs, dampers and jet
-// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included. It refuses, with
+// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included; and systems given
+// by a Lagrangian L(t, q, qdot) (with U(q, t)), whose tangent needs third partials of L, taken
+// the same way (polarization of d3 along curves in (q, qdot, t)). It refuses, with
 // DAL_E_UNSUPPORTED and a message naming the cause:
 //  - constraint rows (m > 0): use minimal coordinates for the analysis;
 //  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
-//    they have no exact derivative; write the force as a potential over jets if it has one;
-//  - Lagrangian systems (dal_builder_set_lagrangian): their tangent needs third partials of L,
-//    not implemented yet.
+//    they have no exact derivative; write the force as a potential over jets if it has one.
 // A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
 // third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
 //
@@ -67,7 +67,9 @@ DAL_API int dal_flow_jacobian(const dal_system *sys, dal_state *st, double *A, d
 // normal modes and stability
 
 /// Stability verdict of a linearization, from the eigenvalues lambda of df/dy (LAPACK dgeev)
-/// with the tolerance tau = 1e-6 max(max |lambda|, ||M^-1 K||_F^1/2, ||M^-1 C||_F):
+/// with the tolerance tau = max(1e-6 max(max |lambda|, ||M^-1 K||_F^1/2, ||M^-1 C||_F),
+/// (e_K / ||M||_F)^1/2, e_C / ||M||_F), where e_K, e_C are 64 ulps of the summed magnitudes of
+/// the terms that make up K and C (their rounding: a zero eigenvalue moves by sqrt(dK / M)):
 typedef enum dal_stability {
   DAL_UNSTABLE = -1,  ///< an eigenvalue with real part > tau: perturbations grow
   DAL_MARGINAL = 0,   ///< no real part > tau but an eigenvalue |lambda| <= tau (a zero
@@ -181,10 +183,10 @@ DAL_API void dal_continuation_default_opts(dal_continuation_opts *o);
 
 /// Report of a continuation.
 typedef struct dal_continuation_report {
-  int npoints;    ///< grid points converged and reported
-  int ncritical;  ///< critical points located and reported
-  double p_end;   ///< last parameter value reached
-  char msg[512];  ///< why the branch ended early ("" when it reached p1)
+  int npoints;   ///< grid points converged and reported
+  int ncritical; ///< critical points located and reported
+  double p_end;  ///< last parameter value reached
+  char msg[512]; ///< why the branch ended early ("" when it reached p1)
 } dal_continuation_report;
 
 /// Natural-parameter continuation of one branch of equilibria: for p on the grid from p0 to p1
@@ -199,9 +201,8 @@ typedef struct dal_continuation_report {
 /// Returns DAL_OK when p1 was reached; DAL_E_CONV / DAL_E_SINGULAR (the branch ended, rep->msg
 /// says where and why, the points before were reported); DAL_E_CALLBACK (rebuild or point
 /// asked to stop or failed); DAL_E_ARG (bad options or sizes). rep may be NULL.
-DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0,
-                         const dal_continuation_opts *o, dal_branch_fn *point,
-                         dal_continuation_report *rep, void *ctx);
+DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuation_opts *o,
+                         dal_branch_fn *point, dal_continuation_report *rep, void *ctx);
 
 // ---------------------------------------------------------------------------------------------
 // Lyapunov exponents
@@ -244,11 +245,14 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 ///    mean of the exponents over `nblocks` equal blocks of the averaging time
 ///    (std / sqrt(nblocks)); it measures the scatter of finite-time exponents, not a bias
 ///    that decays like 1/time (e.g. the initial alignment; raise `transient` for that).
-///  monitor (may be NULL): called after each reorthonormalization past the transient.
-/// On return the state holds the end of the trajectory (evaluated). Units: 1/time.
-/// Returns DAL_OK; DAL_E_ARG (options, nexp, a dependent y0); DAL_E_UNSUPPORTED (method, or
-/// see the file comment); DAL_E_STEP (DOPRI5 step size underflow) / DAL_E_MAXSTEPS; the
-/// statuses of dal_flow_jacobian at the failing time.
+///  monitor (may be NULL): called after each reorthonormalization past the transient with
+///    the running estimates in the order of the QR columns (decreasing once converged).
+/// On success the state holds the end of the trajectory (evaluated; its integrator history is
+/// dropped); on failure it is unchanged and its message says what failed and when.
+/// The integration allocates nothing per step. Units: 1/time.
+/// Returns DAL_OK; DAL_E_ARG (options, nexp, a dependent y0); DAL_E_NONFINITE (y0);
+/// DAL_E_UNSUPPORTED (method, or see the file comment); DAL_E_STEP (DOPRI5 step size
+/// underflow) / DAL_E_MAXSTEPS; the statuses of dal_flow_jacobian at the failing time.
 DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
                          double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
 

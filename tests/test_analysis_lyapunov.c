@@ -1,0 +1,409 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Lyapunov exponents against exact and independent references.
+//
+//  1. Linear dynamics (a trajectory resting at an equilibrium, whose tangent dynamics is the
+//     linearization): the exponents are the real parts of the eigenvalues, known in closed
+//     form (a rotating saddle: lambda^4 + (a + b + 4 w^2) lambda^2 + a b = 0; a damped
+//     spring: -c/2m twice and 0 twice). Finite-time estimates carry a bias bounded by
+//     (log of the eigenvector condition) / T, a few units over T.
+//  2. The sum of all exponents is the time average of div f = -tr(M^-1 C): exactly -c/m for
+//     the damped spring, and for a conservative scene in minimal coordinates
+//     -(log det M(t_end) - log det M(t_a)) / (t_end - t_a) (Liouville: tr(M^-1 C) =
+//     d/dt log det M). Both hold to the integration tolerance at any T.
+//  3. A Hamiltonian (chaotic double pendulum): pairs +-lambda and a zero exponent (autonomous
+//     flow direction), within the estimates' block errors plus a 2/T bias.
+//  4. SICM's driven pendulum: the tangent vector equals the difference of two orbits started
+//     1e-8 apart divided by 1e-8, both integrated by the library's RK4 at the same fixed step
+//     (the RK step applied to the variational equations is the exact derivative of the
+//     numerical flow), to the rounding of the difference and the orbits' O(|dy|)
+//     nonlinearity; and the exponent over the time before the orbits separate equals the slope
+//     of log |dtheta| of two Bulirsch-Stoer orbits (least squares) within 0.05, the
+//     oscillation of log |dtheta| about its trend.
+//  5. A quasi-periodic small-amplitude driven pendulum (drive off the parametric resonances):
+//     lambda_1 <= (1 + log T) / T, and it decreases between T = 100 and 400 (a chaotic orbit's
+//     does not).
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "dalembert/dalembert.h"
+
+static dal_system *compile(dal_builder *b, int rc) {
+  dal_system *sys = NULL;
+  if (!rc) rc = dal_builder_compile(b, &sys);
+  CHECK_MSG(rc == 0, "build: %s", dal_builder_errmsg(b));
+  dal_builder_destroy(b);
+  return sys;
+}
+
+// vertically driven pendulum (l = 1, m = 1, g = 9.8), pivot y = a cos(w t)
+static dal_system *driven(double a, double w) {
+  dal_builder *b = NULL;
+  int th, bob, rc = dal_builder_create(2, &b);
+  double par[7] = {1.0, 0, 0, 0, a, w, 0}, g[2] = {0, -9.8};
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
+  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return compile(b, rc);
+}
+
+static dal_system *double_pendulum(void) {
+  dal_builder *b = NULL;
+  int q[2], p[2], rc = dal_builder_create(2, &b);
+  double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, l2 = 1.0, g[2] = {0, -9.81};
+  if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
+  if (!rc) rc = dal_builder_add_particle(b, "bob2", 1.0, &p[1]);
+  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &q[0], 7, par, NULL);
+  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &q[1], 1, &l2, NULL);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return compile(b, rc);
+}
+
+// rotating frame r = Rot(w t) (x, y) and a trap U = (k1 x'^2 + k2 y'^2)/2 turning with it
+static int rotating(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)ctx;
+  dal_jet s, c;
+  dal_sincos(dal_scale(t, p[0]), &s, &c);
+  out[0] = dal_sub(dal_mul(in[0], c), dal_mul(in[1], s));
+  out[1] = dal_add(dal_mul(in[0], s), dal_mul(in[1], c));
+  return 0;
+}
+static const dal_primitive prim_rotating = {.name = "rotating",
+                                            .version = 1,
+                                            .nin = 2,
+                                            .nout = 2,
+                                            .nparam = 1,
+                                            .eval = rotating,
+                                            .doc = "Rot(w t) (x, y)"};
+typedef struct trap {
+  double w, k1, k2;
+} trap;
+static int trap_pot(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
+  const trap *tr = ctx;
+  dal_jet s, c;
+  dal_sincos(dal_scale(t, tr->w), &s, &c);
+  dal_jet xp = dal_add(dal_mul(r[0], c), dal_mul(r[1], s));
+  dal_jet yp = dal_sub(dal_mul(r[1], c), dal_mul(r[0], s));
+  *U = dal_add(dal_scale(dal_sq(xp), 0.5 * tr->k1), dal_scale(dal_sq(yp), 0.5 * tr->k2));
+  return 0;
+}
+static dal_system *rotating_trap(const trap *tr) {
+  dal_builder *b = NULL;
+  int q[2], p, rc = dal_builder_create(2, &b);
+  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "ion", 1.0, &p);
+  if (!rc) rc = dal_builder_place(b, p, &prim_rotating, -1, 2, q, 1, &tr->w, NULL);
+  if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
+  return compile(b, rc);
+}
+
+static dal_system *hanging_spring(double m, double k, double L, double c) {
+  dal_builder *b = NULL;
+  int q[2], p, rc = dal_builder_create(2, &b);
+  double o[2] = {0, 0}, g[2] = {0, -9.81};
+  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "mass", m, &p);
+  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
+  if (!rc) rc = dal_builder_add_anchor_spring(b, p, o, NULL, NULL, k, L);
+  if (!rc) rc = dal_builder_add_anchor_damper(b, p, o, NULL, NULL, c);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return compile(b, rc);
+}
+
+// run dal_lyapunov from (t0, q, qdot); returns its status
+static int run(const dal_system *sys, dal_state *st, double t0, const double *q, const double *qd,
+               dal_lyapunov_opts *o, double *ex, double *er) {
+  CHECK_OK(dal_state_set(sys, st, t0, q, qd));
+  int rc = dal_lyapunov(sys, st, o, ex, er, NULL, NULL);
+  CHECK_MSG(rc == 0, "lyapunov: %s (%s)", dal_status_name(rc), dal_state_errmsg(st));
+  return rc;
+}
+
+static void test_linear(void) {
+  int fails0 = check_failures;
+  double z[2] = {0, 0}, ex[4], er[4];
+  dal_lyapunov_opts o;
+  dal_lyapunov_default_opts(&o);
+  const double T = 200.0;
+  o.t_end = T;
+  // rotating saddle a b < 0: real pair +-sqrt(mu1) and an imaginary pair
+  trap tr = {1.0, 3.0, 0.5};
+  dal_system *sys = rotating_trap(&tr);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double a = tr.k1 - tr.w * tr.w, b = tr.k2 - tr.w * tr.w, B = a + b + 4 * tr.w * tr.w;
+  double mu1 = (-B + sqrt(B * B - 4 * a * b)) / 2, l1 = sqrt(mu1);
+  double ref[4] = {l1, 0, 0, -l1};
+  if (!run(sys, st, 0.0, z, z, &o, ex, er)) {
+    for (int i = 0; i < 4; ++i)
+      CHECK_MSG(fabs(ex[i] - ref[i]) <= 4.0 / T, "saddle exponent %d: %.6f vs %.6f", i, ex[i],
+                ref[i]);
+    double s = ex[0] + ex[1] + ex[2] + ex[3];
+    CHECK_MSG(fabs(s) <= 1e-8, "saddle: sum of exponents %.3g (div f = 0)", s);
+    printf("  %-34s %.5f %.5f %.5f %.5f (exact %.5f 0 0 %.5f)\n", "rotating saddle", ex[0], ex[1],
+           ex[2], ex[3], l1, -l1);
+  }
+  CHECK(dal_state_time(st) == T && dal_state_q(st)[0] == 0.0); // the state ends at t_end
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  // damped spring at rest: real parts 0, 0, -c/2m, -c/2m; the sum is exactly -c/m
+  const double m = 0.7, k = 40.0, L = 0.5, c = 0.3, ell = L + m * 9.81 / k;
+  sys = hanging_spring(m, k, L, c);
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {0, -ell};
+  if (!run(sys, st, 0.0, q, z, &o, ex, er)) {
+    double r2[4] = {0, 0, -c / (2 * m), -c / (2 * m)};
+    for (int i = 0; i < 4; ++i)
+      CHECK_MSG(fabs(ex[i] - r2[i]) <= 4.0 / T, "damped spring exponent %d: %.6f vs %.6f", i, ex[i],
+                r2[i]);
+    double s = ex[0] + ex[1] + ex[2] + ex[3];
+    CHECK_MSG(fabs(s + c / m) <= 1e-8, "damped spring: sum %.12f vs -c/m = %.12f", s, -c / m);
+    printf("  %-34s %.5f %.5f %.5f %.5f (exact 0 0 %.5f %.5f)\n", "damped spring", ex[0], ex[1],
+           ex[2], ex[3], -c / (2 * m), -c / (2 * m));
+  }
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  printf("  %-34s %s\n", "linear: exponents = Re(eigenvalues)",
+         check_failures > fails0 ? "FAILED" : "ok");
+}
+
+// log det M of a 2 x 2 mass matrix at the state (after dal_forward)
+static double logdetM(const dal_state *st) {
+  const double *M = dal_state_mass_matrix(st);
+  return log(M[0] * M[3] - M[1] * M[2]);
+}
+
+static void test_hamiltonian(void) {
+  int fails0 = check_failures;
+  dal_system *sys = double_pendulum();
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {2.0, 2.0}, z[2] = {0, 0}, ex[4], er[4];
+  dal_lyapunov_opts o;
+  dal_lyapunov_default_opts(&o);
+  o.t_end = 200.0;
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, z));
+  CHECK_OK(dal_forward(sys, st));
+  double ld0 = logdetM(st);
+  if (!run(sys, st, 0.0, q, z, &o, ex, er)) {
+    double T = o.t_end - o.transient, ld1 = logdetM(st), sum = ex[0] + ex[1] + ex[2] + ex[3];
+    double liouville = -(ld1 - ld0) / T;
+    printf("  %-34s %.4f(%.4f) %.4f(%.4f) %.4f(%.4f) %.4f(%.4f)\n", "double pendulum", ex[0], er[0],
+           ex[1], er[1], ex[2], er[2], ex[3], er[3]);
+    printf("  %-34s sum %.3e, Liouville -d(log det M)/T %.3e\n", "", sum, liouville);
+    CHECK_MSG(fabs(sum - liouville) <= 1e-6, "sum %.9g vs Liouville %.9g", sum, liouville);
+    CHECK(ex[0] > 1.0 && er[0] < 0.1 * ex[0]);
+    CHECK_MSG(fabs(ex[0] + ex[3]) <= 3 * hypot(er[0], er[3]) + 2.0 / T, "pair 1: %.4f %.4f", ex[0],
+              ex[3]);
+    CHECK_MSG(fabs(ex[1] + ex[2]) <= 3 * hypot(er[1], er[2]) + 2.0 / T, "pair 2: %.4f %.4f", ex[1],
+              ex[2]);
+    CHECK_MSG(fabs(ex[1]) <= 3 * er[1] + 2.0 / T, "zero exponent: %.4f +- %.4f", ex[1], er[1]);
+  }
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  printf("  %-34s %s\n", "Hamiltonian: +-pairs, zero, sum",
+         check_failures > fails0 ? "FAILED" : "ok");
+}
+
+// ---------------------------------------------------------------------------------------------
+// SICM's driven pendulum: the tangent against two orbits
+
+typedef struct track {
+  int n;
+  double t[4096], lg[4096];
+} track;
+
+// monitor: log |V(t)| = exponent * (t - t_a) for one vector started as a unit vector
+static int record(double t, const double *ex, int nexp, void *ctx) {
+  track *tk = ctx;
+  (void)nexp;
+  if (tk->n < 4096) {
+    tk->t[tk->n] = t;
+    tk->lg[tk->n] = ex[0] * t;
+    tk->n++;
+  }
+  return 0;
+}
+
+// least-squares slope of y(x) over n points
+static double slope(const double *x, const double *y, int n) {
+  double mx = 0, my = 0, sxy = 0, sxx = 0;
+  for (int i = 0; i < n; ++i)
+    mx += x[i] / n, my += y[i] / n;
+  for (int i = 0; i < n; ++i)
+    sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+  return sxy / sxx;
+}
+
+static void test_driven(void) {
+  int fails0 = check_failures;
+  const double delta = 1e-10, w = 2 * sqrt(9.8);
+  dal_system *sys = driven(0.1, w);
+  dal_state *st = NULL, *s1 = NULL, *s2 = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  CHECK_OK(dal_state_create(sys, &s1));
+  CHECK_OK(dal_state_create(sys, &s2));
+  double q = 1.0, z = 0.0, dz = delta, ex[2], y0[2] = {0.0, 1.0};
+  static track tk;
+
+  // (a) RK4 at h = 2^-8: tangent vector = (orbit 2 - orbit 1) / delta
+  dal_lyapunov_opts o;
+  dal_lyapunov_default_opts(&o);
+  o.method = DAL_METHOD_RK4;
+  o.h = ldexp(1.0, -8);
+  o.nexp = 1;
+  o.y0 = y0;
+  o.renorm = 1.0;
+  o.t_end = 40.0;
+  tk.n = 0;
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &z));
+  int rc = dal_lyapunov(sys, st, &o, ex, NULL, record, &tk);
+  CHECK_MSG(rc == 0, "driven RK4: %s", dal_state_errmsg(st));
+  dal_solve_opts so;
+  dal_solve_default_opts(&so);
+  so.method = DAL_METHOD_RK4;
+  so.fixed_step = o.h;
+  const double d8 = 1e-8; // a larger offset than the demo's: rounding matters less
+  double dz8 = d8, ymax = 0.0, dmin = d8;
+  CHECK_OK(dal_state_set(sys, s1, 0.0, &q, &z));
+  CHECK_OK(dal_state_set(sys, s2, 0.0, &q, &dz8));
+  double worst = 0.0;
+  int compared = 0;
+  for (int i = 0; i < tk.n; ++i) {
+    CHECK_OK(dal_advance(sys, s1, &so, tk.t[i]));
+    CHECK_OK(dal_advance(sys, s2, &so, tk.t[i]));
+    double dq = dal_state_q(s2)[0] - dal_state_q(s1)[0];
+    double dv = dal_state_qdot(s2)[0] - dal_state_qdot(s1)[0], dy = hypot(dq, dv);
+    if (dy > 1e-5) break;
+    // the two orbits' rounding (a few ulps of |y| per step, independent, amplified like dy:
+    // relative to dy at most sqrt(steps) ulps of |y| over the smallest |dy| so far) and the
+    // O(|dy|) nonlinearity of the difference
+    ymax = fmax(ymax, fabs(dal_state_q(s1)[0]) + fabs(dal_state_qdot(s1)[0]));
+    dmin = fmin(dmin, dy);
+    double tol = 4 * 2.2e-16 * ymax * sqrt(tk.t[i] / o.h) / dmin + 100 * dy;
+    double err = fabs(tk.lg[i] - log(dy / d8));
+    worst = fmax(worst, err / tol);
+    CHECK_MSG(err <= tol, "t=%g: log|V| %.12f vs log(|dy|/d) %.12f (tol %.2g)", tk.t[i], tk.lg[i],
+              log(dy / d8), tol);
+    ++compared;
+  }
+  CHECK_MSG(compared >= 20, "only %d times compared", compared);
+  printf("  %-34s %d times, worst error / bound %.3f (bound at the end %.1e)\n",
+         "RK4 tangent = orbit difference", compared, worst,
+         4 * 2.2e-16 * ymax * sqrt(o.t_end / o.h) / dmin);
+
+  // (b) Bulirsch-Stoer orbits 1e-10 apart: slope of log |dtheta| until they separate
+  dal_solve_opts bs;
+  dal_solve_default_opts(&bs);
+  bs.method = DAL_METHOD_BS;
+  bs.rtol = bs.atol = 1e-12;
+  CHECK_OK(dal_state_set(sys, s1, 0.0, &q, &z));
+  CHECK_OK(dal_state_set(sys, s2, 0.0, &q, &dz));
+  static double ts[4096], ldth[4096];
+  int np = 0;
+  double tsep = 0.0;
+  for (int i = 1; i < 4096; ++i) {
+    double t = 0.25 * i;
+    CHECK_OK(dal_advance(sys, s1, &bs, t));
+    CHECK_OK(dal_advance(sys, s2, &bs, t));
+    double dth = fabs(dal_state_q(s2)[0] - dal_state_q(s1)[0]);
+    if (dth > 0.1) {
+      tsep = t;
+      break;
+    }
+    ts[np] = t;
+    ldth[np++] = log(dth);
+  }
+  CHECK_MSG(tsep > 30, "orbits separate at t = %g", tsep);
+  double sl = slope(ts, ldth, np);
+  // the finite-time exponent of the same window from the same perturbation direction
+  o.method = DAL_METHOD_DOPRI5;
+  o.rtol = o.atol = 1e-12;
+  o.t_end = ts[np - 1];
+  o.renorm = 0.25;
+  tk.n = 0;
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &z));
+  rc = dal_lyapunov(sys, st, &o, ex, NULL, record, &tk);
+  CHECK_MSG(rc == 0, "driven DOPRI5: %s", dal_state_errmsg(st));
+  double slv = slope(tk.t, tk.lg, tk.n);
+  CHECK_MSG(fabs(ex[0] - sl) <= 0.05, "finite-time exponent %.4f vs slope of log|dtheta| %.4f",
+            ex[0], sl);
+  CHECK_MSG(fabs(slv - sl) <= 0.05, "slope of log|V| %.4f vs slope of log|dtheta| %.4f", slv, sl);
+  printf("  %-34s separate at t=%g: slope log|dtheta| %.4f, exponent over [0, %g] %.4f\n",
+         "BS orbits 1e-10 apart", tsep, sl, o.t_end, ex[0]);
+  dal_state_destroy(st);
+  dal_state_destroy(s1);
+  dal_state_destroy(s2);
+  dal_system_destroy(sys);
+
+  // (c) small amplitude, drive off the parametric resonances: quasi-periodic, lambda -> 0
+  sys = driven(0.1, 2.5 * sqrt(9.8));
+  CHECK_OK(dal_state_create(sys, &st));
+  double q0 = 0.05, e100[2], e400[2];
+  dal_lyapunov_default_opts(&o);
+  o.t_end = 100.0;
+  run(sys, st, 0.0, &q0, &z, &o, e100, NULL);
+  o.t_end = 400.0;
+  run(sys, st, 0.0, &q0, &z, &o, e400, NULL);
+  CHECK_MSG(e400[0] <= (1 + log(400.0)) / 400.0, "quasi-periodic lambda %.5f", e400[0]);
+  CHECK_MSG(e400[0] < 0.7 * e100[0], "quasi-periodic lambda does not decay: %.5f -> %.5f", e100[0],
+            e400[0]);
+  CHECK(fabs(e400[0] + e400[1]) <= 1e-8);
+  printf("  %-34s lambda_1(100) %.5f, lambda_1(400) %.5f (bound %.5f)\n", "quasi-periodic", e100[0],
+         e400[0], (1 + log(400.0)) / 400.0);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  printf("  %-34s %s\n", "driven pendulum", check_failures > fails0 ? "FAILED" : "ok");
+}
+
+static void test_errors(void) {
+  dal_system *sys = driven(0.1, 1.0);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q = 0.3, z = 0.0, ex[2];
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &z));
+  dal_lyapunov_opts o;
+  dal_lyapunov_default_opts(&o);
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG); // t_end unset
+  CHECK(strstr(dal_state_errmsg(st), "t_end") != NULL);
+  o.t_end = 1.0;
+  o.method = DAL_METHOD_BS;
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_UNSUPPORTED);
+  o.method = DAL_METHOD_DOPRI5;
+  o.nexp = 3;
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG);
+  o.nexp = 2;
+  double dep[4] = {1, 0, 2, 0};
+  o.y0 = dep;
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG);
+  CHECK(strstr(dal_state_errmsg(st), "independent") != NULL);
+  dep[2] = NAN;
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_NONFINITE);
+  CHECK(strstr(dal_state_errmsg(st), "y0[2]") != NULL);
+  o.y0 = NULL;
+  o.transient = 2.0;
+  CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG);
+  dal_lyapunov_opts bad = o;
+  bad.magic = 0;
+  CHECK(dal_lyapunov(sys, st, &bad, ex, NULL, NULL, NULL) == DAL_E_ARG);
+  CHECK(dal_state_time(st) == 0.0 && dal_state_q(st)[0] == q); // untouched by refusals
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+int main(void) {
+  printf("Lyapunov exponents:\n");
+  test_linear();
+  test_hamiltonian();
+  test_driven();
+  test_errors();
+  return check_summary("test_analysis_lyapunov");
+}
