@@ -162,8 +162,9 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
   return DAL_OK;
 }
 
-// Composite-mass assembly for a tree whose parent links are translations (r_k = r_p + f):
-// then J_k = sum of L_a over the ancestors a of k (L_a: a's local coordinate columns), so
+// Q and c for any tree of placements by subtree sums (carried to a parent through Lp_k'; the
+// chain rule J_k = Lp_k J_p + Lc_k), and M by composite masses when every parent link is a
+// translation (r_k = r_p + f): then J_k = sum of L_a over the ancestors a of k (L_a: a's local coordinate columns), so
 //   M = sum_a sum_{b ancestor-or-self of a} mu_a (L_a' L_b + L_b' L_a for b != a),
 //   Q = sum_a L_a' (sum of F over a's subtree),  c = sum_a L_a' (sum of m gamma over it),
 // with mu_a the subtree mass: O(N depth) work instead of O(N n^2) (Featherstone's composite
@@ -178,11 +179,21 @@ static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
     }
   for (int k = N - 1; k >= 0; --k) {
     int p = sys->place[k].parent;
-    if (p >= 0)
+    if (p >= 0 && st->tree)
       for (int a = 0; a < d; ++a) {
         cf[p * d + a] += cf[k * d + a];
         cg[p * d + a] += cg[k * d + a];
       }
+    else if (p >= 0) {
+      // a link that is not a translation: the subtree's sums reach the parent through
+      // dr_k/dr_p, as Lp_k' (the same chain rule as J_k = Lp_k J_p + Lc_k)
+      const double *Lp = st->Lp + (size_t)k * d * d;
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) {
+          cf[p * d + a] += Lp[b * d + a] * cf[k * d + b];
+          cg[p * d + a] += Lp[b * d + a] * cg[k * d + b];
+        }
+    }
   }
   for (int k = 0; k < N; ++k) {
     const dal_place *pk = &sys->place[k];
@@ -247,7 +258,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M) {
   }
   // Q = sum J_k' F_k, c = sum m_k J_k' gamma_k, M = sum m_k J_k' J_k (over dependencies)
   if (want_M) memset(st->M, 0, (size_t)n * (size_t)n * sizeof(double));
-  if (st->tree) {
+  if (st->tree || (sys->place && !want_M)) {
     tree_assembly(sys, st, want_M);
   } else {
     DAL_NEED(st, DAL_P_J);
@@ -309,6 +320,11 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M) {
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y) {
   int n = sys->n, d = sys->dim;
   memset(y, 0, (size_t)n * sizeof(double));
+  if (!(st->have & (DAL_P_J | DAL_P_M))) {
+    // neither J nor M stored (large recursive trees): through the local blocks
+    dal__tree_mass_apply(sys, st, x, y);
+    return;
+  }
   if (!(st->have & DAL_P_J)) {
     DAL_NEED(st, DAL_P_M);
     for (int j = 0; j < n; ++j)

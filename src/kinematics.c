@@ -204,7 +204,9 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
 }
 
 // J_k = Lp_k J_parent + Lc_k over k's dependency columns (parents first)
-static void form_jacobians(const dal_system *sys, dal_state *st) {
+void dal__jacobians(const dal_system *sys, dal_state *st) {
+  DAL_NEED(st, DAL_P_KIN);
+  DAL_ASSERT(sys->store_J);
   int d = sys->dim;
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
@@ -270,15 +272,47 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
     }
   }
   st->have |= DAL_P_KIN;
-  // global Jacobians: asked for, or needed by the general assembly (a link that is not a
-  // translation); a tree of translations assembles M, Q, c from the local columns
-  if (want_J || !st->tree) form_jacobians(sys, st);
+  // global Jacobians only when asked for (the caller asks when the assembly of M for a link
+  // that is not a translation needs them; Q and c come from the local blocks)
+  if (want_J) dal__jacobians(sys, st);
   return DAL_OK;
+}
+
+// out (nrow x ndep_out) += loc[:, col0 .. col0+d) * J_p without J: the row w = loc[r, col0..]
+// walks from p to its root, adding w Lc_b to b's coordinate columns and turning into w Lp_b
+// (O(depth) per row; the recursion's systems keep no global Jacobians on their fast path)
+static void chain_local(const dal_system *sys, const dal_state *st, int p, const double *loc,
+                        int nin, int col0, int nrow, const int *dep_out, int ndep_out,
+                        double *out) {
+  int d = sys->dim;
+  for (int r = 0; r < nrow; ++r) {
+    double w[3], t[3];
+    for (int a = 0; a < d; ++a) w[a] = loc[r * nin + col0 + a];
+    for (int b = p; b >= 0; b = sys->place[b].parent) {
+      const dal_place *pb = &sys->place[b];
+      const int *cb = sys->ipool + pb->coord_off;
+      const double *Lc = st->Lc + sys->ploc_off[b], *Lp = st->Lp + (size_t)b * d * d;
+      for (int i = 0; i < pb->ncoord; ++i) {
+        double s = 0.0;
+        for (int a = 0; a < d; ++a) s += w[a] * Lc[a * pb->ncoord + i];
+        out[r * ndep_out + find_sorted(dep_out, ndep_out, cb[i])] += s;
+      }
+      if (pb->parent < 0) break;
+      for (int a = 0; a < d; ++a) {
+        t[a] = 0.0;
+        for (int c = 0; c < d; ++c) t[a] += w[c] * Lp[c * d + a];
+      }
+      for (int a = 0; a < d; ++a) w[a] = t[a];
+    }
+  }
 }
 
 int dal__constraints(const dal_system *sys, dal_state *st) {
   int d = sys->dim, rc;
-  DAL_NEED(st, DAL_P_KIN | DAL_P_J);
+  // compact G through the global Jacobians, or (recursive systems) through the local blocks
+  int have_J = (st->have & DAL_P_J) != 0;
+  DAL_NEED(st, DAL_P_KIN);
+  DAL_ASSERT(have_J || sys->aba);
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
     dal_inst in = dal__inst(sys, -1 - ci);
@@ -299,7 +333,8 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     double *G = st->G + c->g_off;
     memset(G, 0, (size_t)nout * (size_t)c->ndep * sizeof(double));
     for (int a = 0; a < c->npart; ++a)
-      chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      if (have_J) chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      else chain_local(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
     for (int i = 0; i < c->ncoord; ++i) {
       int col = find_sorted(dc, c->ndep, in.coords[i]);
       for (int r = 0; r < nout; ++r)

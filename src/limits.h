@@ -11,6 +11,15 @@
 /// residual). Systems without constraints always keep a dense M (Cholesky).
 #define DAL_DENSE_M_MAX 512
 
+/// The articulated-body recursion (aba.c) factors, per placement, an ncoord x ncoord block by
+/// an unblocked Cholesky; above this many coordinates in one placement the automatic route
+/// assembles M and factors it by LAPACK instead (measured, see solve.h).
+#define DAL_ABA_NCOORD_MAX 16
+/// Most constraint rows solved by the m x m loop system on top of the recursion (m recursion
+/// solves and an unblocked m x m Cholesky); more rows go to the KKT matrix (measured, see
+/// solve.h).
+#define DAL_LOOP_ROWS_MAX 32
+
 /// Smallest KKT order factored sparse (KLU) when a dense M exists, and the largest fill
 /// (non-zeros / order^2) for it: measured on the chain, KLU wins from ~200 unknowns when the
 /// matrix is sparse (N = 256: 0.22 s dense -> 0.09 s KLU).
