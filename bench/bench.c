@@ -966,8 +966,8 @@ static int exp_smoke(void) {
 // the measured region of `dal_bench ir ...`: callgrind counts instructions only in here
 // (valgrind --tool=callgrind --toggle-collect=ir_region)
 static BENCH_NOINLINE int ir_region(bench_model *m, const dal_solve_opts *o, hand_chain *ch,
-                                    const double *y0, double *y, dal_method meth, double rtol,
-                                    double t1) {
+                                    int tri, const double *y0, double *y, dal_method meth,
+                                    double rtol, double t1) {
   if (m) {
     int rc = scene_model_reset(m);
     return rc ? rc : dal_advance(m->sys, m->st, o, t1);
@@ -975,16 +975,20 @@ static BENCH_NOINLINE int ir_region(bench_model *m, const dal_solve_opts *o, han
   int n = 2 * ch->N;
   double tol = hand_tol(meth, rtol);
   memcpy(y, y0, (size_t)n * sizeof(double));
-  return hand_integrate(hand_chain_rhs_dense, ch, n, y, 0.0, t1, meth, tol, tol, 5000000, NULL);
+  return hand_integrate(tri ? hand_chain_rhs_tridiag : hand_chain_rhs_dense, ch, n, y, 0.0, t1,
+                        meth, tol, tol, 5000000, NULL);
 }
 
-// dal_bench ir lib|hand N method rtol t1: one run of the chain, for instruction counting
+// dal_bench ir lib|dense|hand|tridiag N method rtol t1: one run of the chain, for instruction
+// counting (lib: the library's automatic route; dense: the library forced to assemble and
+// factor M; hand: the lean hand-written dense chain; tridiag: the hand-written O(N) chain)
 static int exp_ir(int argc, char **argv) {
   if (argc != 5) {
-    fprintf(stderr, "usage: dal_bench ir lib|hand N method rtol t1\n");
+    fprintf(stderr, "usage: dal_bench ir lib|dense|hand|tridiag N method rtol t1\n");
     return 2;
   }
-  int lib = strcmp(argv[0], "lib") == 0, N = atoi(argv[1]);
+  int dense = strcmp(argv[0], "dense") == 0, lib = dense || strcmp(argv[0], "lib") == 0;
+  int tri = strcmp(argv[0], "tridiag") == 0, N = atoi(argv[1]);
   double rtol = atof(argv[3]), t1 = atof(argv[4]);
   dal_method meth = DAL_METHOD_AUTO;
   for (int k = DAL_METHOD_DOPRI5; k <= DAL_METHOD_BDF; ++k)
@@ -997,10 +1001,12 @@ static int exp_ir(int argc, char **argv) {
   double *y0 = malloc(2 * (size_t)N * sizeof(double)), *y = malloc(2 * (size_t)N * sizeof(double));
   hand_chain *ch = y0 ? scene_hand_chain(&sc, y0) : NULL;
   int rc = ch && y ? DAL_OK : DAL_E_NOMEM;
-  if (!rc && lib) rc = scene_model(&sc, 0, &m, err, sizeof err);
+  if (!rc && lib)
+    rc = scene_model_route(&sc, 0, dense ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_AUTO, &m, err,
+                           sizeof err);
   dal_solve_opts o;
   bench_opts(&o, BF_ODE, meth, rtol);
-  if (!rc) rc = ir_region(lib ? &m : NULL, &o, ch, y0, y, meth, rtol, t1);
+  if (!rc) rc = ir_region(lib ? &m : NULL, &o, ch, tri, y0, y, meth, rtol, t1);
   if (lib && ch && y) {
     dal_stats s;
     dal_state_stats(m.st, &s);

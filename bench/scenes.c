@@ -268,11 +268,17 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
 }
 
 int scene_model(const bench_scene *sc, int redundant, bench_model *m, char *err, size_t len) {
+  return scene_model_route(sc, redundant, DAL_DYNAMICS_AUTO, m, err, len);
+}
+
+int scene_model_route(const bench_scene *sc, int redundant, dal_dynamics how, bench_model *m,
+                      char *err, size_t len) {
   memset(m, 0, sizeof *m);
   err[0] = 0;
   dal_builder *b = NULL;
   int rc = dal_builder_create(scene_dim(sc), &b);
   if (!rc) rc = redundant ? build_redundant(sc, b, m) : build_minimal(sc, b, m);
+  if (!rc) rc = dal_builder_set_dynamics(b, how);
   if (!rc) rc = dal_builder_compile(b, &m->sys);
   if (rc && rc != DAL_E_UNSUPPORTED && b)
     snprintf(err, len, "%s: %s", sc->name, dal_builder_errmsg(b));

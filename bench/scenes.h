@@ -49,6 +49,9 @@ typedef struct bench_model {
 /// constraints (redundant = 1). Returns DAL_OK, a library status (message in err), or
 /// DAL_E_UNSUPPORTED when the scene has no such form.
 int scene_model(const bench_scene *sc, int redundant, bench_model *m, char *err, size_t len);
+/// The same with a chosen dynamics route (dal_builder_set_dynamics).
+int scene_model_route(const bench_scene *sc, int redundant, dal_dynamics how, bench_model *m,
+                      char *err, size_t len);
 void scene_model_free(bench_model *m);
 
 /// Set the model's state to its initial value (t = 0).

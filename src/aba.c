@@ -33,16 +33,27 @@
 #include "dae_internal.h"
 #include "linalg.h"
 
+// one placement as the recursion reads it
+typedef struct aba_node {
+  int parent;    // -1 for a root
+  int nc;        // its coordinates
+  int tr;        // the parent link is a translation (Lp = I)
+  int j;         // its first coordinate
+  const int *ck; // its coordinates (the system's index pool)
+  int lc;        // offset of its columns Lc in st->Lc
+  int fo, wo;    // offsets of its factor in Lf and of W
+} aba_node;
+
 struct dal_aba {
-  int *doff, *woff;  // per particle: offsets of its factor L (nc x nc) and W (d x nc); [N] total
-  unsigned char *tr; // per particle: the parent link is a translation (Lp = I)
-  double *IA;        // articulated inertias (N x d x d, row-major)
-  double *Lf;        // Cholesky factors of D_k (row-major lower; the diagonal holds 1 / L_ii)
-  double *W;         // W_k = IA_k Lc_k L_k^-T (d x nc, row-major)
-  double *piv;       // pivot of each coordinate (n)
-  double *pA, *acc;  // bias forces and accelerations (N x d)
-  double *z;         // L_k^-1 (tau_k - Lc_k' pA_k) per coordinate (n)
-  double pmax;       // largest pivot of the last factorization (the scale of M)
+  aba_node *node;   // the N placements
+  double *IA;       // articulated inertias (N x d x d, row-major)
+  double *Lf;       // Cholesky factors of D_k (row-major lower, the diagonal holds 1 / L_ii);
+                    // one coordinate: 1 / D_k (an LDL' step, no square root)
+  double *W;        // W_k = IA_k Lc_k L_k^-T (d x nc, row-major); one coordinate: IA_k Lc_k
+  double *piv;      // pivot of each coordinate (n)
+  double *pA, *acc; // bias forces and accelerations (N x d)
+  double *z;        // L_k^-1 (tau_k - Lc_k' pA_k) per coordinate (n)
+  double pmax;      // largest pivot of the last factorization (the scale of M)
   // the loop system (m > 0)
   int metric;     // factorization held: -1 none, DAL_KKT_IDENTITY or DAL_KKT_MASS
   double *Y;      // A^-1 G' (n x m, column r contiguous)
@@ -55,22 +66,29 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
   size_t n = (size_t)sys->n, m = (size_t)sys->m, Nd = (size_t)N * (size_t)d;
   struct dal_aba *w = calloc(1, sizeof *w);
   if (!w) return NULL;
-  w->doff = calloc((size_t)N + 1, sizeof(int));
-  w->woff = calloc((size_t)N + 1, sizeof(int));
-  w->tr = calloc((size_t)N + 1, 1);
-  if (!w->doff || !w->woff || !w->tr) {
+  w->node = calloc((size_t)N + 1, sizeof(aba_node));
+  if (!w->node) {
     dal__aba_free(w);
     return NULL;
   }
+  int fo = 0, wo = 0;
   for (int k = 0; k < N; ++k) {
     const dal_place *pl = &sys->place[k];
-    w->doff[k + 1] = w->doff[k] + pl->ncoord * pl->ncoord;
-    w->woff[k + 1] = w->woff[k] + d * pl->ncoord;
-    w->tr[k] = pl->parent >= 0 && (pl->prim->flags & DAL_PRIM_TRANSLATES);
+    aba_node *nd = &w->node[k];
+    nd->parent = pl->parent;
+    nd->nc = pl->ncoord;
+    nd->tr = pl->parent >= 0 && (pl->prim->flags & DAL_PRIM_TRANSLATES);
+    nd->ck = sys->ipool + pl->coord_off;
+    nd->j = pl->ncoord ? nd->ck[0] : -1;
+    nd->lc = sys->ploc_off[k];
+    nd->fo = fo;
+    nd->wo = wo;
+    fo += pl->ncoord * pl->ncoord;
+    wo += d * pl->ncoord;
   }
   w->IA = calloc(Nd * (size_t)d + 1, sizeof(double));
-  w->Lf = calloc((size_t)w->doff[N] + 1, sizeof(double));
-  w->W = calloc((size_t)w->woff[N] + 1, sizeof(double));
+  w->Lf = calloc((size_t)fo + 1, sizeof(double));
+  w->W = calloc((size_t)wo + 1, sizeof(double));
   w->piv = calloc(n + 1, sizeof(double));
   w->pA = calloc(Nd + 1, sizeof(double));
   w->acc = calloc(Nd + 1, sizeof(double));
@@ -92,9 +110,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
 
 void dal__aba_free(struct dal_aba *w) {
   if (!w) return;
-  free(w->doff);
-  free(w->woff);
-  free(w->tr);
+  free(w->node);
   double *p[] = {w->IA, w->Lf, w->W, w->piv, w->pA, w->acc, w->z, w->Y, w->S, w->x0, w->r};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
@@ -135,77 +151,132 @@ static void chol_small(double *A, int n, double *piv, const int *idx) {
   }
 }
 
-// the articulated inertias; a degenerate pivot names its coordinate (what: caller, nullable)
-static int factor(const dal_system *sys, dal_state *st, const char *what) {
-  struct dal_aba *w = st->aba;
-  int d = sys->dim, dd = d * d, N = sys->N, n = sys->n;
-  DAL_NEED(st, DAL_P_KIN);
-  // every articulated inertia starts as its particle's mass
-  memset(w->IA, 0, (size_t)N * (size_t)dd * sizeof(double));
-  for (int k = 0; k < N; ++k)
+// several coordinates in one placement: U = IA Lc into W, D = Lc' U into L, D = L L', then
+// W = U L^-T row by row
+static void node_factor_multi(const aba_node *nd, int d, const double *I, const double *Lc,
+                              double *L, double *W, double *piv) {
+  int nc = nd->nc;
+  for (int a = 0; a < d; ++a)
+    for (int i = 0; i < nc; ++i) {
+      double s = 0.0;
+      for (int b = 0; b < d; ++b)
+        s += I[a * d + b] * Lc[b * nc + i];
+      W[a * nc + i] = s;
+    }
+  for (int i = 0; i < nc; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double s = 0.0;
+      for (int a = 0; a < d; ++a)
+        s += Lc[a * nc + i] * W[a * nc + j];
+      L[i * nc + j] = s;
+    }
+  chol_small(L, nc, piv, nd->ck);
+  for (int a = 0; a < d; ++a)
+    for (int i = 0; i < nc; ++i) {
+      double s = W[a * nc + i];
+      for (int l = 0; l < i; ++l)
+        s -= W[a * nc + l] * L[i * nc + l];
+      W[a * nc + i] = s * L[i * nc + i];
+    }
+}
+
+// the bias step of placement k for the load tau: z_k = L^-1 (tau_k - Lc' f) and, unless it
+// is a root, f += W z (the load its parent sees before Lp)
+static inline void node_bias(const aba_node *nd, const int d, const double *Lc, const double *W,
+                             const double *L, const double *tau, double *f, double *z) {
+  int nc = nd->nc;
+  if (nc == 1) {
+    double u = tau[nd->j];
     for (int a = 0; a < d; ++a)
-      w->IA[k * dd + a * d + a] = sys->mass[k];
+      u -= Lc[a] * f[a];
+    z[nd->j] = u;
+    if (nd->parent < 0) return;
+    u *= L[0];
+    for (int a = 0; a < d; ++a)
+      f[a] += W[a] * u;
+    return;
+  }
+  const int *ck = nd->ck;
+  for (int i = 0; i < nc; ++i) {
+    double s = tau[ck[i]];
+    for (int a = 0; a < d; ++a)
+      s -= Lc[a * nc + i] * f[a];
+    for (int l = 0; l < i; ++l)
+      s -= L[i * nc + l] * z[ck[l]];
+    z[ck[i]] = s * L[i * nc + i];
+  }
+  if (nd->parent < 0) return;
+  for (int a = 0; a < d; ++a)
+    for (int i = 0; i < nc; ++i)
+      f[a] += W[a * nc + i] * z[ck[i]];
+}
+
+// a d-vector passed to the parent: fp += Lp' f (f itself for a translation)
+static inline void pass_up(const aba_node *nd, const int d, const double *Lp, const double *f,
+                           double *fp) {
+  if (nd->tr) {
+    for (int a = 0; a < d; ++a)
+      fp[a] += f[a];
+    return;
+  }
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b)
+      fp[a] += Lp[b * d + a] * f[b];
+}
+
+// The backward pass for d = 2 or 3 (a constant once inlined): articulated inertias and, for a
+// load tau (nullable), the bias forces in the same sweep.
+static inline void factor_pass(struct dal_aba *w, const dal_state *st, const double *mass, int N,
+                               const int d, const double *tau) {
+  const int dd = d * d;
+  double *restrict IA = w->IA, *restrict pA = w->pA;
+  // every articulated inertia starts as its particle's mass, every bias force at 0
+  for (int k = 0; k < N; ++k)
+    for (int a = 0; a < d; ++a) {
+      for (int b = 0; b < d; ++b)
+        IA[k * dd + a * d + b] = a == b ? mass[k] : 0.0;
+      pA[k * d + a] = 0.0;
+    }
   for (int k = N - 1; k >= 0; --k) {
-    const dal_place *pl = &sys->place[k];
-    int nc = pl->ncoord, p = pl->parent;
-    const double *Lc = st->Lc + sys->ploc_off[k];
-    double *I = w->IA + k * dd, *L = w->Lf + w->doff[k], *W = w->W + w->woff[k];
-    if (nc == 1) {
-      // one coordinate (chains, pendulums): D is a number
-      double u[3], D = 0.0;
+    const aba_node *nd = &w->node[k];
+    const double *restrict Lc = st->Lc + nd->lc, *Lp = st->Lp + (size_t)k * dd;
+    double *restrict I = IA + k * dd, *restrict W = w->W + nd->wo, *L = w->Lf + nd->fo;
+    int p = nd->parent;
+    if (nd->nc == 1) {
+      // one coordinate (chains, pendulums): an LDL' step, D = Lc' IA Lc a number
+      double D = 0.0;
       for (int a = 0; a < d; ++a) {
         double s = 0.0;
         for (int b = 0; b < d; ++b)
           s += I[a * d + b] * Lc[b];
-        u[a] = s;
+        W[a] = s;
         D += Lc[a] * s;
       }
-      int j = sys->ipool[pl->coord_off];
-      w->piv[j] = D;
-      double inv = D > 0.0 && isfinite(D) ? 1.0 / sqrt(D) : 0.0;
-      L[0] = inv;
-      for (int a = 0; a < d; ++a)
-        W[a] = u[a] * inv;
-    } else if (nc > 1) {
-      // U = IA Lc into W, D = Lc' U into L, D = L L', then W = U L^-T row by row
-      for (int a = 0; a < d; ++a)
-        for (int i = 0; i < nc; ++i) {
-          double s = 0.0;
+      w->piv[nd->j] = D;
+      L[0] = D > 0.0 && D < INFINITY ? 1.0 / D : 0.0;
+      if (p >= 0)
+        for (int a = 0; a < d; ++a)
           for (int b = 0; b < d; ++b)
-            s += I[a * d + b] * Lc[b * nc + i];
-          W[a * nc + i] = s;
-        }
-      for (int i = 0; i < nc; ++i)
-        for (int j = 0; j <= i; ++j) {
+            I[a * d + b] -= W[a] * W[b] * L[0];
+    } else {
+      if (nd->nc > 1) node_factor_multi(nd, d, I, Lc, L, W, w->piv);
+      for (int a = 0; a < d && p >= 0; ++a)
+        for (int b = 0; b < d; ++b) {
           double s = 0.0;
-          for (int a = 0; a < d; ++a)
-            s += Lc[a * nc + i] * W[a * nc + j];
-          L[i * nc + j] = s;
-        }
-      chol_small(L, nc, w->piv, sys->ipool + pl->coord_off);
-      for (int a = 0; a < d; ++a)
-        for (int i = 0; i < nc; ++i) {
-          double s = W[a * nc + i];
-          for (int l = 0; l < i; ++l)
-            s -= W[a * nc + l] * L[i * nc + l];
-          W[a * nc + i] = s * L[i * nc + i];
+          for (int i = 0; i < nd->nc; ++i)
+            s += W[a * nd->nc + i] * W[b * nd->nc + i];
+          I[a * d + b] -= s;
         }
     }
+    if (tau) node_bias(nd, d, Lc, W, L, tau, pA + k * d, w->z);
     if (p < 0) continue;
-    // what the parent sees: IA - W W' through Lp
-    for (int a = 0; a < d; ++a)
-      for (int b = 0; b < d; ++b) {
-        double s = 0.0;
-        for (int i = 0; i < nc; ++i)
-          s -= W[a * nc + i] * W[b * nc + i];
-        I[a * d + b] += s;
-      }
-    double *Ip = w->IA + p * dd;
-    if (w->tr[k]) {
+    // what the parent sees: Lp' (IA - W W') Lp, and Lp' (pA + W z)
+    if (tau) pass_up(nd, d, Lp, pA + k * d, pA + p * d);
+    double *restrict Ip = IA + p * dd;
+    if (nd->tr) {
       for (int e = 0; e < dd; ++e)
         Ip[e] += I[e];
     } else {
-      const double *Lp = st->Lp + (size_t)k * dd;
       double T[9];
       for (int a = 0; a < d; ++a)
         for (int b = 0; b < d; ++b) {
@@ -223,7 +294,13 @@ static int factor(const dal_system *sys, dal_state *st, const char *what) {
         }
     }
   }
-  // the dense Cholesky's test: a pivot at most DAL_CHOL_RTOL times the largest is degenerate
+}
+
+// the dense Cholesky's test on the pivots: at most DAL_CHOL_RTOL times the largest is
+// degenerate (what: caller, nullable)
+static int check_pivots(const dal_system *sys, dal_state *st, const char *what) {
+  struct dal_aba *w = st->aba;
+  int n = sys->n;
   double pmax = 0.0;
   for (int j = 0; j < n; ++j)
     if (w->piv[j] > pmax) pmax = w->piv[j];
@@ -233,56 +310,31 @@ static int factor(const dal_system *sys, dal_state *st, const char *what) {
   return DAL_OK;
 }
 
+// the articulated inertias; a degenerate pivot names its coordinate (what: caller, nullable)
+static int factor(const dal_system *sys, dal_state *st, const char *what) {
+  DAL_NEED(st, DAL_P_KIN);
+  if (sys->dim == 2)
+    factor_pass(st->aba, st, sys->mass, sys->N, 2, NULL);
+  else
+    factor_pass(st->aba, st, sys->mass, sys->N, 3, NULL);
+  return check_pivots(sys, st, what);
+}
+
 int dal__aba_factor(const dal_system *sys, dal_state *st) { return factor(sys, st, NULL); }
 
-void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, double *x) {
-  struct dal_aba *w = st->aba;
-  int d = sys->dim, dd = d * d, N = sys->N;
-  double *pA = w->pA, *acc = w->acc, *z = w->z;
-  memset(pA, 0, (size_t)N * (size_t)d * sizeof(double));
-  // backward: the loads the subtrees pass to their parents
-  for (int k = N - 1; k >= 0; --k) {
-    const dal_place *pl = &sys->place[k];
-    int nc = pl->ncoord, p = pl->parent;
-    const int *ck = sys->ipool + pl->coord_off;
-    const double *Lc = st->Lc + sys->ploc_off[k], *L = w->Lf + w->doff[k];
-    const double *W = w->W + w->woff[k];
-    double *f = pA + k * d;
-    for (int i = 0; i < nc; ++i) {
-      double s = tau[ck[i]];
-      for (int a = 0; a < d; ++a)
-        s -= Lc[a * nc + i] * f[a];
-      for (int l = 0; l < i; ++l)
-        s -= L[i * nc + l] * z[ck[l]];
-      z[ck[i]] = s * L[i * nc + i];
-    }
-    if (p < 0) continue;
-    for (int a = 0; a < d; ++a) {
-      double s = 0.0;
-      for (int i = 0; i < nc; ++i)
-        s += W[a * nc + i] * z[ck[i]];
-      f[a] += s;
-    }
-    double *fp = pA + p * d;
-    if (w->tr[k]) {
-      for (int a = 0; a < d; ++a)
-        fp[a] += f[a];
-    } else {
-      const double *Lp = st->Lp + (size_t)k * dd;
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b)
-          fp[a] += Lp[b * d + a] * f[b];
-    }
-  }
-  // forward: coordinates and accelerations from the roots out
+// the forward pass for d = 2 or 3: coordinates x and accelerations from the roots out
+static inline void forward_pass(struct dal_aba *w, const dal_state *st, int N, const int d,
+                                double *x) {
+  const int dd = d * d;
+  double *restrict acc = w->acc;
+  const double *restrict z = w->z;
   for (int k = 0; k < N; ++k) {
-    const dal_place *pl = &sys->place[k];
-    int nc = pl->ncoord, p = pl->parent;
-    const int *ck = sys->ipool + pl->coord_off;
-    const double *Lc = st->Lc + sys->ploc_off[k], *L = w->Lf + w->doff[k];
-    const double *W = w->W + w->woff[k];
-    double ap[3] = {0.0, 0.0, 0.0}, *a = acc + k * d;
-    if (p >= 0 && w->tr[k]) {
+    const aba_node *nd = &w->node[k];
+    const double *restrict Lc = st->Lc + nd->lc, *restrict W = w->W + nd->wo;
+    const double *L = w->Lf + nd->fo;
+    double ap[3] = {0.0, 0.0, 0.0}, *restrict a = acc + k * d;
+    int p = nd->parent, nc = nd->nc;
+    if (p >= 0 && nd->tr) {
       for (int b = 0; b < d; ++b)
         ap[b] = acc[p * d + b];
     } else if (p >= 0) {
@@ -291,7 +343,19 @@ void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, dou
         for (int c = 0; c < d; ++c)
           ap[b] += Lp[b * d + c] * acc[p * d + c];
     }
+    if (nc == 1) {
+      // x = (z - U' ap) / D
+      double y = z[nd->j];
+      for (int b = 0; b < d; ++b)
+        y -= W[b] * ap[b];
+      y *= L[0];
+      x[nd->j] = y;
+      for (int b = 0; b < d; ++b)
+        a[b] = ap[b] + Lc[b] * y;
+      continue;
+    }
     // y = z - W' ap in x, then x = L^-T y from the last coordinate back
+    const int *ck = nd->ck;
     for (int i = 0; i < nc; ++i) {
       double s = z[ck[i]];
       for (int b = 0; b < d; ++b)
@@ -313,13 +377,45 @@ void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, dou
   }
 }
 
+// x = M^-1 tau with the articulated inertias held, for d = 2 or 3; x may alias tau
+static inline void solve_pass(struct dal_aba *w, const dal_state *st, int N, const int d,
+                              const double *tau, double *x) {
+  double *restrict pA = w->pA;
+  for (int e = 0; e < N * d; ++e)
+    pA[e] = 0.0;
+  // backward: the loads the subtrees pass to their parents
+  for (int k = N - 1; k >= 0; --k) {
+    const aba_node *nd = &w->node[k];
+    node_bias(nd, d, st->Lc + nd->lc, w->W + nd->wo, w->Lf + nd->fo, tau, pA + k * d, w->z);
+    if (nd->parent >= 0)
+      pass_up(nd, d, st->Lp + (size_t)k * d * d, pA + k * d, pA + nd->parent * d);
+  }
+  forward_pass(w, st, N, d, x);
+}
+
+void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, double *x) {
+  if (sys->dim == 2)
+    solve_pass(st->aba, st, sys->N, 2, tau, x);
+  else
+    solve_pass(st->aba, st, sys->N, 3, tau, x);
+}
+
 int dal__aba_accel(const dal_system *sys, dal_state *st) {
   DAL_NEED(st, DAL_P_KIN | DAL_P_DYN);
-  int rc = factor(sys, st, NULL);
-  if (rc) return rc;
+  int N = sys->N;
+  // tau = Q - c, then one backward sweep (inertias and biases) and one forward sweep
   for (int j = 0; j < sys->n; ++j)
     st->qddot[j] = st->Q[j] - st->c[j];
-  dal__aba_solve(sys, st, st->qddot, st->qddot);
+  if (sys->dim == 2)
+    factor_pass(st->aba, st, sys->mass, N, 2, st->qddot);
+  else
+    factor_pass(st->aba, st, sys->mass, N, 3, st->qddot);
+  int rc = check_pivots(sys, st, NULL);
+  if (rc) return rc;
+  if (sys->dim == 2)
+    forward_pass(st->aba, st, N, 2, st->qddot);
+  else
+    forward_pass(st->aba, st, N, 3, st->qddot);
   return DAL_OK;
 }
 

@@ -169,47 +169,57 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U) {
 //   Q = sum_a L_a' (sum of F over a's subtree),  c = sum_a L_a' (sum of m gamma over it),
 // with mu_a the subtree mass: O(N depth) work instead of O(N n^2) (Featherstone's composite
 // rigid body idea for point masses).
-static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
-  int d = sys->dim, n = sys->n, N = sys->N, Nd = N * d;
-  double *cf = st->cf, *cg = st->cf + Nd;
+// Q and c by subtree sums for d = 2 or 3 (a constant once inlined): cf and cg start as F and
+// m gamma; leaves first, a placement's sums are complete when it is reached
+static inline void subtree_sums(const dal_system *sys, dal_state *st, const int d) {
+  int N = sys->N;
+  double *restrict cf = st->cf, *restrict cg = st->cf + N * d;
+  for (int e = 0; e < N * d; ++e) cf[e] = st->F[e];
   for (int k = 0; k < N; ++k)
-    for (int a = 0; a < d; ++a) {
-      cf[k * d + a] = st->F[k * d + a];
-      cg[k * d + a] = sys->mass[k] * st->gamma[k * d + a];
-    }
+    for (int a = 0; a < d; ++a) cg[k * d + a] = sys->mass[k] * st->gamma[k * d + a];
   for (int k = N - 1; k >= 0; --k) {
-    int p = sys->place[k].parent;
-    if (p >= 0 && st->tree)
+    const dal_place *pk = &sys->place[k];
+    const int *ck = sys->ipool + pk->coord_off;
+    const double *Lk = st->Lc + sys->ploc_off[k], *fk = cf + k * d, *gk = cg + k * d;
+    int nk = pk->ncoord, p = pk->parent;
+    for (int i = 0; i < nk; ++i) {
+      double q = 0.0, c = 0.0;
       for (int a = 0; a < d; ++a) {
-        cf[p * d + a] += cf[k * d + a];
-        cg[p * d + a] += cg[k * d + a];
+        q += Lk[a * nk + i] * fk[a];
+        c += Lk[a * nk + i] * gk[a];
       }
-    else if (p >= 0) {
+      st->Q[ck[i]] += q;
+      st->c[ck[i]] += c;
+    }
+    if (p < 0) continue;
+    double *fp = cf + p * d, *gp = cg + p * d;
+    if (st->tree) {
+      for (int a = 0; a < d; ++a) {
+        fp[a] += fk[a];
+        gp[a] += gk[a];
+      }
+    } else {
       // a link that is not a translation: the subtree's sums reach the parent through
       // dr_k/dr_p, as Lp_k' (the same chain rule as J_k = Lp_k J_p + Lc_k)
       const double *Lp = st->Lp + (size_t)k * d * d;
       for (int a = 0; a < d; ++a)
         for (int b = 0; b < d; ++b) {
-          cf[p * d + a] += Lp[b * d + a] * cf[k * d + b];
-          cg[p * d + a] += Lp[b * d + a] * cg[k * d + b];
+          fp[a] += Lp[b * d + a] * fk[b];
+          gp[a] += Lp[b * d + a] * gk[b];
         }
     }
   }
-  for (int k = 0; k < N; ++k) {
+}
+
+static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
+  int d = sys->dim, n = sys->n, N = sys->N;
+  if (d == 2) subtree_sums(sys, st, 2);
+  else subtree_sums(sys, st, 3);
+  for (int k = 0; k < N && want_M; ++k) {
     const dal_place *pk = &sys->place[k];
     const int *ck = sys->ipool + pk->coord_off;
     const double *Lk = st->Lc + sys->ploc_off[k];
     int nk = pk->ncoord;
-    for (int i = 0; i < nk; ++i) {
-      double q = 0.0, c = 0.0;
-      for (int a = 0; a < d; ++a) {
-        q += Lk[a * nk + i] * cf[k * d + a];
-        c += Lk[a * nk + i] * cg[k * d + a];
-      }
-      st->Q[ck[i]] += q;
-      st->c[ck[i]] += c;
-    }
-    if (!want_M) continue;
     // lower triangle only (M[col * n + row], row >= col); a pair and its transpose are
     // one entry there, a coordinate paired with itself counts twice
     double *restrict M = st->M;

@@ -55,13 +55,11 @@ static void owner_name(const dal_system *sys, int owner, char *buf, size_t len) 
   else snprintf(buf, len, "constraint '%s'", sys->con[-1 - owner].name);
 }
 
-// call a jet function on st->jin and check that every output is finite; names the culprit
-// (the name is only formatted on failure: this runs on every evaluation)
-static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
-                        int owner) {
+// the failure of a jet function call (cold path of eval_checked): names the culprit
+static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in, int owner,
+                       int rc) {
   const char *kind = owner >= 0 ? "coordinate map" : "constraint";
   char name[160];
-  int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
   if (rc) {
     char what[240];
     owner_name(sys, owner, name, sizeof name);
@@ -81,6 +79,19 @@ static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in
                       kind, in->prim->name, name, i, st->jout[i].v, st->jout[i].d,
                       st->jout[i].dd, st->t, qs);
     }
+  return DAL_OK;
+}
+
+// call a jet function on st->jin and check that every output is finite; names the culprit
+// (this runs twice per placement on every evaluation: one test for all outputs, x * 0 being
+// 0 for finite x and NaN otherwise; the message is formatted only on failure)
+static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
+                        int owner) {
+  int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
+  double z = 0.0;
+  for (int i = 0; i < in->prim->nout; ++i)
+    z += st->jout[i].v * 0.0 + st->jout[i].d * 0.0 + st->jout[i].dd * 0.0;
+  if (rc || z != 0.0) return eval_failed(sys, st, in, owner, rc);
   return DAL_OK;
 }
 
@@ -123,9 +134,14 @@ static void local_motion(const dal_system *sys, dal_state *st, const dal_inst *i
 // (directions before `first` are skipped: the caller fills those columns)
 static int local_jacobian(const dal_system *sys, dal_state *st, const dal_inst *in, int owner,
                           int first) {
-  int nin = in->prim->nin, nout = in->prim->nout;
+  int nin = in->prim->nin, nout = in->prim->nout, d = sys->dim, k = 0;
   dal_jet t = dal_const(st->t);
-  load_inputs(sys, st, in, NULL, NULL);
+  // the inputs' values (particle positions, then coordinates) with no direction yet
+  for (int a = 0; a < in->npart; ++a) {
+    const double *r = st->r + in->parts[a] * d;
+    for (int b = 0; b < d; ++b) st->jin[k++] = dal_const(r[b]);
+  }
+  for (int i = 0; i < in->ncoord; ++i) st->jin[k++] = dal_const(st->q[in->coords[i]]);
   for (int i = first; i < nin; ++i) {
     if (i > first) st->jin[i - 1].d = 0.0;
     st->jin[i].d = 1.0;
@@ -243,32 +259,45 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
     rc = local_jacobian(sys, st, &in, k, translates ? d : 0);
     if (rc) return rc;
     double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
-    int identity = 1;
-    for (int a = 0; a < d && np; ++a)
-      for (int b = 0; b < d; ++b) {
-        Lp[a * d + b] = translates ? (a == b) : st->loc[a * nin + b];
-        identity &= Lp[a * d + b] == (a == b);
-      }
-    st->tree &= identity;
+    const double *vp = st->v + (np ? p * d : 0), *rtp = st->drdt + (np ? p * d : 0);
+    if (translates) {
+      static const double eye[2][9] = {{1, 0, 0, 1}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+      memcpy(Lp, eye[d - 2], (size_t)(d * d) * sizeof(double));
+    } else if (np) {
+      int identity = 1;
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) {
+          Lp[a * d + b] = st->loc[a * nin + b];
+          identity &= Lp[a * d + b] == (a == b);
+        }
+      st->tree &= identity;
+    }
     for (int a = 0; a < d; ++a)
       for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
-    // along the state's motion: r, v, gamma
-    local_motion(sys, st, &in);
-    load_inputs(sys, st, &in, st->dir, st->dir + nin);
+    // along the state's motion: the inputs keep their values and move along (v, gamma) of the
+    // parent and (qdot, 0) of the coordinates; r, v, gamma
+    dal_jet *jin = st->jin;
+    for (int b = 0; b < d && np; ++b) {
+      jin[b].d = vp[b];
+      jin[b].dd = st->gamma[p * d + b];
+    }
+    for (int i = 0; i < nc; ++i) {
+      jin[np * d + i].d = st->qdot[in.coords[i]];
+      jin[np * d + i].dd = 0.0;
+    }
     rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k);
     if (rc) return rc;
-    for (int a = 0; a < d; ++a) {
-      st->r[k * d + a] = st->jout[a].v;
-      st->v[k * d + a] = st->jout[a].d;
-      st->gamma[k * d + a] = st->jout[a].dd;
-    }
     // dr/dt = v - J_k qdot, with J_k qdot = Lp_k (v_p - drdt_p) + Lc_k qdot_local
     for (int a = 0; a < d; ++a) {
-      double s = 0.0;
-      for (int b = 0; b < d && np; ++b)
-        s += Lp[a * d + b] * (st->v[p * d + b] - st->drdt[p * d + b]);
-      for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * st->qdot[in.coords[i]];
-      st->drdt[k * d + a] = st->v[k * d + a] - s;
+      double s = 0.0, v = st->jout[a].d;
+      if (translates) s = vp[a] - rtp[a];
+      else
+        for (int b = 0; b < d && np; ++b) s += Lp[a * d + b] * (vp[b] - rtp[b]);
+      for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * jin[np * d + i].d;
+      st->r[k * d + a] = st->jout[a].v;
+      st->v[k * d + a] = v;
+      st->gamma[k * d + a] = st->jout[a].dd;
+      st->drdt[k * d + a] = v - s;
     }
   }
   st->have |= DAL_P_KIN;
