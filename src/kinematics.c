@@ -83,15 +83,15 @@ static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in,
 }
 
 // call a jet function on st->jin and check that every output is finite; names the culprit
-// (this runs twice per placement on every evaluation: one test for all outputs, x * 0 being
-// 0 for finite x and NaN otherwise; the message is formatted only on failure)
+// (this runs twice per placement on every evaluation: one test of the outputs' sum, which is
+// finite when they all are; an overflowing sum of finite outputs only costs the exact check
+// of the cold path, which then finds nothing; the message is formatted only on failure)
 static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
                         int owner) {
   int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
   double z = 0.0;
-  for (int i = 0; i < in->prim->nout; ++i)
-    z += st->jout[i].v * 0.0 + st->jout[i].d * 0.0 + st->jout[i].dd * 0.0;
-  if (rc || z != 0.0) return eval_failed(sys, st, in, owner, rc);
+  for (int i = 0; i < in->prim->nout; ++i) z += st->jout[i].v + st->jout[i].d + st->jout[i].dd;
+  if (rc || !isfinite(z)) return eval_failed(sys, st, in, owner, rc);
   return DAL_OK;
 }
 
@@ -272,8 +272,11 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
         }
       st->tree &= identity;
     }
-    for (int a = 0; a < d; ++a)
-      for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
+    if (nc == 1)
+      for (int a = 0; a < d; ++a) Lk[a] = st->loc[a * nin + np * d];
+    else
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
     // along the state's motion: the inputs keep their values and move along (v, gamma) of the
     // parent and (qdot, 0) of the coordinates; r, v, gamma
     dal_jet *jin = st->jin;
@@ -293,7 +296,9 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
       if (translates) s = vp[a] - rtp[a];
       else
         for (int b = 0; b < d && np; ++b) s += Lp[a * d + b] * (vp[b] - rtp[b]);
-      for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * jin[np * d + i].d;
+      if (nc == 1) s += Lk[a] * jin[np * d].d;
+      else
+        for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * jin[np * d + i].d;
       st->r[k * d + a] = st->jout[a].v;
       st->v[k * d + a] = v;
       st->gamma[k * d + a] = st->jout[a].dd;
