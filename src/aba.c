@@ -241,7 +241,7 @@ static inline void factor_pass(struct dal_aba *w, const dal_state *st, const dou
     const aba_node *nd = &w->node[k];
     const double *restrict Lc = st->Lc + nd->lc, *Lp = st->Lp + (size_t)k * dd;
     double *restrict I = IA + k * dd, *restrict W = w->W + nd->wo, *L = w->Lf + nd->fo;
-    int p = nd->parent;
+    int p = nd->parent, tau_done = 0;
     if (nd->nc == 1) {
       // one coordinate (chains, pendulums): an LDL' step, D = Lc' IA Lc a number
       double D = 0.0;
@@ -253,11 +253,28 @@ static inline void factor_pass(struct dal_aba *w, const dal_state *st, const dou
         D += Lc[a] * s;
       }
       w->piv[nd->j] = D;
-      L[0] = D > 0.0 && D < INFINITY ? 1.0 / D : 0.0;
+      double inv = D > 0.0 && D < INFINITY ? 1.0 / D : 0.0;
+      L[0] = inv;
+      if (tau) node_bias(nd, d, Lc, W, L, tau, pA + k * d, w->z);
+      if (p >= 0 && nd->tr) {
+        // a translating link (chains): the parent adds IA - U U' / D and pA + U z / D
+        double *restrict Ip = IA + p * dd;
+        for (int a = 0; a < d; ++a)
+          for (int b = 0; b < d; ++b)
+            Ip[a * d + b] += I[a * d + b] - W[a] * W[b] * inv;
+        if (tau)
+          for (int a = 0; a < d; ++a)
+            pA[p * d + a] += pA[k * d + a];
+        continue;
+      }
       if (p >= 0)
         for (int a = 0; a < d; ++a)
           for (int b = 0; b < d; ++b)
-            I[a * d + b] -= W[a] * W[b] * L[0];
+            I[a * d + b] -= W[a] * W[b] * inv;
+      if (tau) {
+        if (p >= 0) pass_up(nd, d, Lp, pA + k * d, pA + p * d);
+        tau_done = 1;
+      }
     } else {
       if (nd->nc > 1) node_factor_multi(nd, d, I, Lc, L, W, w->piv);
       for (int a = 0; a < d && p >= 0; ++a)
@@ -268,10 +285,12 @@ static inline void factor_pass(struct dal_aba *w, const dal_state *st, const dou
           I[a * d + b] -= s;
         }
     }
-    if (tau) node_bias(nd, d, Lc, W, L, tau, pA + k * d, w->z);
+    if (tau && !tau_done) {
+      node_bias(nd, d, Lc, W, L, tau, pA + k * d, w->z);
+      if (p >= 0) pass_up(nd, d, Lp, pA + k * d, pA + p * d);
+    }
     if (p < 0) continue;
     // what the parent sees: Lp' (IA - W W') Lp, and Lp' (pA + W z)
-    if (tau) pass_up(nd, d, Lp, pA + k * d, pA + p * d);
     double *restrict Ip = IA + p * dd;
     if (nd->tr) {
       for (int e = 0; e < dd; ++e)

@@ -242,6 +242,39 @@ void dal__jacobians(const dal_system *sys, dal_state *st) {
   st->have |= DAL_P_J;
 }
 
+// The common placement, a translating map of one coordinate (chains, pendulums hanging from a
+// particle), for d = 2 or 3 (a constant once inlined): the same two evaluations as the general
+// loop below (the column along the coordinate, then the motion) without its bookkeeping.
+static inline int place_translating1(const dal_system *sys, dal_state *st, int k, const int d) {
+  const dal_place *pl = &sys->place[k];
+  dal_inst in = dal__inst(sys, k);
+  int p = pl->parent, j = in.coords[0], rc;
+  const double *rp = st->r + p * d, *vp = st->v + p * d, *gp = st->gamma + p * d;
+  const double *rtp = st->drdt + p * d;
+  double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
+  dal_jet *jin = st->jin, *jout = st->jout;
+  for (int b = 0; b < d; ++b) jin[b] = dal_const(rp[b]);
+  jin[d] = dal_var(st->q[j], 1.0);
+  if ((rc = eval_checked(sys, st, &in, dal_const(st->t), k)) != 0) return rc;
+  for (int a = 0; a < d; ++a) {
+    Lk[a] = jout[a].d;
+    for (int b = 0; b < d; ++b) Lp[a * d + b] = a == b;
+  }
+  for (int b = 0; b < d; ++b) jin[b] = dal_jet_make(rp[b], vp[b], gp[b]);
+  double qd = st->qdot[j];
+  jin[d] = dal_var(st->q[j], qd);
+  if ((rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k)) != 0) return rc;
+  // dr/dt = v - (v_p - drdt_p) - Lc qdot
+  for (int a = 0; a < d; ++a) {
+    double v = jout[a].d;
+    st->r[k * d + a] = jout[a].v;
+    st->v[k * d + a] = v;
+    st->gamma[k * d + a] = jout[a].dd;
+    st->drdt[k * d + a] = v - (vp[a] - rtp[a]) - Lk[a] * qd;
+  }
+  return DAL_OK;
+}
+
 int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   int d = sys->dim, rc;
   st->tree = sys->place != NULL;
@@ -252,6 +285,12 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   if (sys->map) return kinematics_map(sys, st);
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
+    if (pl->ncoord == 1 && pl->parent >= 0 && (pl->prim->flags & DAL_PRIM_TRANSLATES) &&
+        pl->prim->nin == d + 1) {
+      rc = d == 2 ? place_translating1(sys, st, k, 2) : place_translating1(sys, st, k, 3);
+      if (rc) return rc;
+      continue;
+    }
     dal_inst in = dal__inst(sys, k);
     int np = in.npart, nin = in.prim->nin, nc = pl->ncoord, p = pl->parent;
     // local Jacobian at the current values; a translating map's parent block is I
