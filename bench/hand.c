@@ -209,7 +209,8 @@ int hand_chain_rhs_dense(double t, const double *y, double *ydot, void *ctx) {
   // lower triangle of M: M_ij = mu_i l_i l_j cos(th_i - th_j) for i >= j
   for (int j = 0; j < N; ++j) {
     double *col = M + (size_t)j * N;
-    for (int i = j; i < N; ++i) col[i] = mu[i] * (lc[i] * lc[j] + ls[i] * ls[j]);
+    for (int i = j; i < N; ++i)
+      col[i] = mu[i] * (lc[i] * lc[j] + ls[i] * ls[j]);
   }
   // c_i = l_i sum_j mu_max(i,j) l_j sin(th_i - th_j) w_j^2 = ls_i X_i - lc_i Y_i with
   // X_i = sum_j mu_max(i,j) lc_j w_j^2, Y_i likewise with ls_j: a prefix sum (j <= i, weight

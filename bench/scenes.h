@@ -72,4 +72,17 @@ int scene_has_hand(const bench_scene *sc);
 /// The hand-written twin: a chain and its initial state y0 (2N), allocated here.
 hand_chain *scene_hand_chain(const bench_scene *sc, double *y0);
 
+/// Closed loops on a tree: the four-bar linkage and a chain held at both ends.
+enum { LOOP_FOURBAR = 0, LOOP_HELD = 1 };
+
+/// Compared particles of a loop scene (the first ones of either form): 2 for the four-bar,
+/// NL - 1 for the held chain of NL links.
+int loop_np(int which, int NL);
+
+/// Build a loop scene as a tree of placements plus loop-closure rows (cart = 0; route `how`)
+/// or in Cartesian coordinates with every link a constraint (cart = 1), with its consistent
+/// initial state. Returns DAL_OK or a library status (message in err).
+int loop_model(int which, int NL, int cart, dal_dynamics how, bench_model *m, char *err,
+               size_t len);
+
 #endif

@@ -269,15 +269,12 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   if (!s->springs || !s->dampers || !s->potr || !s->potq || !s->forces || !s->genforces)
     goto nomem;
 
-  // the route (solve.h, "Dynamics routes"): the recursion where it applies, unless a
-  // placement moves so many coordinates, or there are so many constraint rows, that the dense
-  // factorizations are cheaper (limits.h)
-  int ncmax = 0;
-  for (int k = 0; k < N && s->place; ++k)
-    if (s->place[k].ncoord > ncmax) ncmax = s->place[k].ncoord;
+  // the route (solve.h, "Dynamics routes"): the recursion where it applies, unless there are
+  // so many constraint rows that the KKT matrix is cheaper than the m x m loop system
+  // (limits.h). (A placement moving more than d coordinates leaves M singular whatever the
+  // route: its subtree moves only through its particle's position.)
   s->aba = recursive && (b->dynamics == DAL_DYNAMICS_RECURSIVE ||
-                         (b->dynamics == DAL_DYNAMICS_AUTO && ncmax <= DAL_ABA_NCOORD_MAX &&
-                          m <= DAL_LOOP_ROWS_MAX));
+                         (b->dynamics == DAL_DYNAMICS_AUTO && m <= DAL_LOOP_ROWS_MAX));
   // dense mass matrix unless the system is large and needs none (a redundant system applies M
   // through J; the recursion needs no M); large recursive trees without constraints keep no
   // global Jacobians either (dal_state_jacobian forms them from the local blocks)
