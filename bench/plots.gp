@@ -131,7 +131,8 @@ if (exists_file(cg)) {
   set format y "10^{%L}"
   set xlabel "chain links N"
   set ylabel "wall time per simulated second (s)"
-  set title "Cost growth of the N-link chain (fit over N >= 16; sparse DAE cheaper than the ODE from N = ".cross.")"
+  crosstxt = (cross eq "nan" || cross eq "-nan") ? "never cheaper than the ODE" : "cheaper than the ODE from N = ".cross
+  set title "Cost growth of the N-link chain (fit over N >= 16; sparse DAE ".crosstxt.")"
   do for [k = 1:2] {
     if (k == 1) { eval png("cost_growth") } else { eval svg("cost_growth") }
     plot for [f in cgf] rows("$1==\"".f."\"", cg) using 3:5 with linespoints lw 1.5 ps 0.8 \
