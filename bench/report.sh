@@ -255,7 +255,7 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
   if [[ -s $dir/routes_ir.csv ]]; then
     awk -F, 'NR > 1 { line = line sprintf("%sm = %d: %.2f", line == "" ? "" : ", ", $2, $5) }
       END {
-        printf "Loop system against the KKT matrix on the Cartesian chain (\`routes_ir.csv\`," \
+        printf "Loop system against the KKT matrix on the Cartesian chain (`routes_ir.csv`," \
                " instructions, index-1 with projection; the KKT matrix is factored by KLU from" \
                " order 200): %s; hence DAL_LOOP_ROWS_MAX.\n\n", line
       }' "$dir/routes_ir.csv"
