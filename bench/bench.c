@@ -3,9 +3,10 @@
 // dal_bench: work-precision, library overhead, cost growth and failure studies -> CSV files.
 //
 // Usage: dal_bench [--quick | --full] [--out DIR] [experiment ...]
-// Experiments: smoke wp overhead cost drift energy daetol stiff singular (default: all but
-// smoke). Every CSV goes to DIR (default bench/results). Wall times are medians of repeated
-// runs on the monotonic clock; each run starts from a fresh integrator (state reset).
+// Experiments: smoke wp overhead cost loops drift energy daetol stiff singular (default: all
+// but smoke); and single runs for instruction counting: ir, irloop, irroute (see below).
+// Every CSV goes to DIR (default bench/results). Wall times are medians of repeated runs on
+// the monotonic clock; each run starts from a fresh integrator (state reset).
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -441,13 +442,16 @@ static void exp_cost(const bench_cfg *cfg) {
   }
   int nmax_dense = cfg->quick ? 128 : 1024, nmax_sparse = cfg->quick ? 1024 : 8192;
   int nmax_tri = cfg->quick ? 4096 : 16384;
-  enum { C_ODE, C_GGL, C_HAND, C_TRI, C_NUM };
-  const char *fname[C_NUM] = {"ode", "ggl", "handwritten", "handwritten-tridiag"};
-  dal_method fmeth[C_NUM] = {DAL_METHOD_ADAMS, DAL_METHOD_BDF, DAL_METHOD_ADAMS, DAL_METHOD_ADAMS};
-  double frtol[C_NUM] = {1e-6, 1e-8, 1e-6, 1e-6};
-  int fmax[C_NUM] = {nmax_dense, nmax_sparse, nmax_dense, nmax_tri};
+  // ode: the library's automatic route (the articulated-body recursion for the chain);
+  // ode-dense: the same system forced to assemble M and factor it (the route before)
+  enum { C_ODE, C_ODED, C_GGL, C_HAND, C_TRI, C_NUM };
+  const char *fname[C_NUM] = {"ode", "ode-dense", "ggl", "handwritten", "handwritten-tridiag"};
+  dal_method fmeth[C_NUM] = {DAL_METHOD_ADAMS, DAL_METHOD_ADAMS, DAL_METHOD_BDF, DAL_METHOD_ADAMS,
+                             DAL_METHOD_ADAMS};
+  double frtol[C_NUM] = {1e-6, 1e-6, 1e-8, 1e-6, 1e-6};
+  int fmax[C_NUM] = {nmax_tri, nmax_dense, nmax_sparse, nmax_dense, nmax_tri};
   cost_pt pts[C_NUM][20];
-  int npts[C_NUM] = {0, 0, 0, 0};
+  int npts[C_NUM] = {0, 0, 0, 0, 0};
   for (int N = 1; N <= nmax_tri; N *= 2) {
     bench_scene sc;
     double t1 = cost_t1(N);
@@ -466,9 +470,11 @@ static void exp_cost(const bench_cfg *cfg) {
       if (N > fmax[f]) continue;
       run_res r;
       memset(&r, 0, sizeof r);
-      if (f == C_ODE || f == C_GGL) {
+      if (f == C_ODE || f == C_ODED || f == C_GGL) {
         bench_model m;
-        int brc = scene_model(&sc, f == C_GGL, &m, err, sizeof err);
+        int brc =
+            scene_model_route(&sc, f == C_GGL, f == C_ODED ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_AUTO,
+                              &m, err, sizeof err);
         if (brc) {
           if (brc != DAL_E_UNSUPPORTED) fprintf(stderr, "  cannot build: %s\n", err);
           continue;
@@ -535,33 +541,42 @@ static void exp_cost(const bench_cfg *cfg) {
     }
     free(ref);
   }
-  // fitted exponents over the asymptotic range (N >= 16) and the dense/sparse crossover
-  for (int f = 0; f < C_NUM; ++f) {
-    int used;
-    double e = fit_exponent(pts[f], npts[f], 16, &used);
-    fprintf(fit, "%s,%s,%.0e,%.3f,%d,%d,%d\n", fname[f], dal_method_name(fmeth[f]), frtol[f], e,
-            used, 16, npts[f] ? pts[f][npts[f] - 1].N : 0);
+  // fitted exponents over N >= 16 and over N >= 128 (the range of the O(N) target)
+  for (int f = 0; f < C_NUM; ++f)
+    for (int r = 0; r < 2; ++r) {
+      int used, nmin = r ? 128 : 16;
+      double e = fit_exponent(pts[f], npts[f], nmin, &used);
+      if (r && used < 2) continue;
+      fprintf(fit, "%s,%s,%.0e,%.3f,%d,%d,%d\n", fname[f], dal_method_name(fmeth[f]), frtol[f], e,
+              used, nmin, npts[f] ? pts[f][npts[f] - 1].N : 0);
+    }
+  // crossovers (log interpolation): the first N from which the first of a pair is cheaper than
+  // the second: the sparse DAE than the library's ODE, the recursion than the dense assembly
+  // (NaN: not in the measured range)
+  int pairs[2][2] = {{C_GGL, C_ODE}, {C_ODE, C_ODED}};
+  const char *pname[2] = {"ggl-vs-ode", "ode-vs-ode-dense"};
+  for (int q = 0; q < 2; ++q) {
+    int a = pairs[q][0], b = pairs[q][1];
+    double cross = NAN;
+    for (int i = 1; i < npts[b]; ++i) {
+      int N0 = pts[b][i - 1].N, N1 = pts[b][i].N;
+      double d0 = NAN, d1 = NAN;
+      for (int j = 0; j < npts[a]; ++j) {
+        if (pts[a][j].N == N0) d0 = log(pts[a][j].w / pts[b][i - 1].w);
+        if (pts[a][j].N == N1) d1 = log(pts[a][j].w / pts[b][i].w);
+      }
+      if (i == 1 && d0 <= 0) {
+        cross = N0;
+        break;
+      }
+      if (d0 > 0 && d1 <= 0) {
+        double x = log((double)N0) + (log((double)N1) - log((double)N0)) * d0 / (d0 - d1);
+        cross = exp(x);
+        break;
+      }
+    }
+    fprintf(fit, "crossover,%s,0,%.1f,0,0,0\n", pname[q], cross);
   }
-  // crossover: first N where the sparse DAE is cheaper than the dense ODE (log interpolation)
-  double cross = NAN;
-  for (int i = 1; i < npts[C_ODE]; ++i) {
-    int N0 = pts[C_ODE][i - 1].N, N1 = pts[C_ODE][i].N;
-    double d0 = NAN, d1 = NAN;
-    for (int j = 0; j < npts[C_GGL]; ++j) {
-      if (pts[C_GGL][j].N == N0) d0 = log(pts[C_GGL][j].w / pts[C_ODE][i - 1].w);
-      if (pts[C_GGL][j].N == N1) d1 = log(pts[C_GGL][j].w / pts[C_ODE][i].w);
-    }
-    if (i == 1 && d0 <= 0) {
-      cross = N0;
-      break;
-    }
-    if (d0 > 0 && d1 <= 0) {
-      double x = log((double)N0) + (log((double)N1) - log((double)N0)) * d0 / (d0 - d1);
-      cross = exp(x);
-      break;
-    }
-  }
-  fprintf(fit, "crossover,ggl-vs-ode,0,%.1f,0,0,0\n", cross);
   fclose(fp);
   fclose(fit);
 }
@@ -756,8 +771,8 @@ static void exp_stiff(const bench_cfg *cfg) {
         lib_measure(cfg, &m, &o, t1, ref, 2, &r);
         if (r.status)
           log_failure(cfg, "stiff", "spring", "ode", dal_method_name(meths[mi]), rtol, &r);
-        fprintf(fp, "%.0e,%s,%.0e,%s,%.6e,%ld,%ld,%.6e\n", ks[ki], dal_method_name(meths[mi]),
-                rtol, dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err);
+        fprintf(fp, "%.0e,%s,%.0e,%s,%.6e,%ld,%ld,%.6e\n", ks[ki], dal_method_name(meths[mi]), rtol,
+                dal_status_name(r.status), r.wall, r.rhs, r.steps, r.err);
         fflush(fp);
         fprintf(stderr, "stiff k=%.0e %s rtol %.0e: %s %.3g s, %ld rhs\n", ks[ki],
                 dal_method_name(meths[mi]), rtol, dal_status_name(r.status), r.wall, r.rhs);
@@ -955,6 +970,100 @@ static int exp_smoke(void) {
   return bad;
 }
 
+// ---------------------------------------------------------------- closed loops on a tree
+
+// the forms a loop scene runs in: the tree of placements plus loop rows through the recursion
+// and the m x m loop system (index-1 with projection), the same tree forced through the KKT
+// matrix, and the Cartesian scene (every link a constraint) in GGL and index-1 with projection
+typedef struct loop_form {
+  const char *name;
+  int cart;
+  dal_dynamics how;
+  bench_form form;
+} loop_form;
+static const loop_form loop_forms[] = {{"tree", 0, DAL_DYNAMICS_AUTO, BF_INDEX1_PROJ},
+                                       {"tree-dense", 0, DAL_DYNAMICS_DENSE, BF_INDEX1_PROJ},
+                                       {"cart-ggl", 1, DAL_DYNAMICS_AUTO, BF_GGL},
+                                       {"cart-index1", 1, DAL_DYNAMICS_AUTO, BF_INDEX1_PROJ}};
+
+static const loop_form *loop_form_find(const char *name) {
+  for (int i = 0; i < COUNT(loop_forms); ++i)
+    if (strcmp(loop_forms[i].name, name) == 0) return &loop_forms[i];
+  return NULL;
+}
+
+// library options of a loop form (GGL with KLU: the dense default takes difference quotients)
+static void loop_opts(dal_solve_opts *o, const loop_form *lf, dal_method meth, double rtol) {
+  bench_opts(o, lf->form, meth, rtol);
+  if (lf->form == BF_GGL) o->linsol = DAL_LINSOL_KLU;
+}
+
+// the four-bar linkage and a 64-link chain held at both ends in every form: wall time,
+// evaluations and error against a reference computed twice (tree and Cartesian forms,
+// Fehlberg 7(8) with projection at rtol 1e-12)
+static void exp_loops(const bench_cfg *cfg) {
+  FILE *fp = bench_csv_open(cfg->out, "loops.csv",
+                            "scene,form,method,rtol,wall_s,rhs_evals,steps,err,ref_agreement");
+  if (!fp) return;
+  struct {
+    const char *name;
+    int which, NL;
+    double t1;
+  } scenes[] = {{"fourbar", LOOP_FOURBAR, 0, 2.0}, {"held64", LOOP_HELD, 64, 1.0}};
+  for (int si = 0; si < COUNT(scenes); ++si) {
+    int np = loop_np(scenes[si].which, scenes[si].NL), npd = 2 * np;
+    double *ref = malloc((size_t)npd * sizeof(double)), *r2 = malloc((size_t)npd * sizeof(double));
+    char err[400];
+    bench_model m;
+    double agree = NAN;
+    int rc = ref && r2 ? DAL_OK : DAL_E_NOMEM;
+    // the reference in two forms
+    for (int c = 0; c < 2 && !rc; ++c) {
+      rc = loop_model(scenes[si].which, scenes[si].NL, c, DAL_DYNAMICS_AUTO, &m, err, sizeof err);
+      if (rc) break;
+      dal_solve_opts o;
+      bench_opts(&o, BF_INDEX1_PROJ, DAL_METHOD_FEHLBERG78, 1e-12);
+      o.max_steps = 10000000;
+      run_res rr;
+      rc = lib_once(&m, &o, scenes[si].t1, c ? r2 : ref, npd, &rr);
+      if (rc) fprintf(stderr, "loops %s: reference failed: %s\n", scenes[si].name, rr.msg);
+      scene_model_free(&m);
+    }
+    if (!rc) agree = bench_maxdiff(ref, r2, npd);
+    fprintf(stderr, "loops %s: reference agreement (tree vs Cartesian, rtol 1e-12) %.2e\n",
+            scenes[si].name, agree);
+    static const double tols[] = {1e-6, 1e-8};
+    for (int fi = 0; !rc && fi < COUNT(loop_forms); ++fi) {
+      const loop_form *lf = &loop_forms[fi];
+      if (loop_model(scenes[si].which, scenes[si].NL, lf->cart, lf->how, &m, err, sizeof err)) {
+        fprintf(stderr, "  cannot build: %s\n", err);
+        continue;
+      }
+      dal_method meth = lf->form == BF_GGL ? DAL_METHOD_BDF : DAL_METHOD_DOPRI5;
+      for (int ti = 0; ti < COUNT(tols); ++ti) {
+        // GGL's error is 100-1000x its tolerance: ask it for two more digits
+        double rtol = lf->form == BF_GGL ? 1e-2 * tols[ti] : tols[ti];
+        dal_solve_opts o;
+        loop_opts(&o, lf, meth, rtol);
+        o.max_steps = cfg->max_steps;
+        run_res r;
+        lib_measure(cfg, &m, &o, scenes[si].t1, ref, npd, &r);
+        if (r.status)
+          log_failure(cfg, "loops", scenes[si].name, lf->name, dal_method_name(meth), rtol, &r);
+        fprintf(fp, "%s,%s,%s,%.0e,%.6e,%ld,%ld,%.6e,%.3e\n", scenes[si].name, lf->name,
+                dal_method_name(meth), rtol, r.wall, r.rhs, r.steps, r.err, agree);
+        fflush(fp);
+        fprintf(stderr, "  %-12s %-7s rtol %.0e: %.3g s, %ld rhs, err %.2e\n", lf->name,
+                dal_method_name(meth), rtol, r.wall, r.rhs, r.err);
+      }
+      scene_model_free(&m);
+    }
+    free(ref);
+    free(r2);
+  }
+  fclose(fp);
+}
+
 // ---------------------------------------------------------------- instruction counts
 
 #if defined(__GNUC__)
@@ -966,8 +1075,8 @@ static int exp_smoke(void) {
 // the measured region of `dal_bench ir ...`: callgrind counts instructions only in here
 // (valgrind --tool=callgrind --toggle-collect=ir_region)
 static BENCH_NOINLINE int ir_region(bench_model *m, const dal_solve_opts *o, hand_chain *ch,
-                                    const double *y0, double *y, dal_method meth, double rtol,
-                                    double t1) {
+                                    int tri, const double *y0, double *y, dal_method meth,
+                                    double rtol, double t1) {
   if (m) {
     int rc = scene_model_reset(m);
     return rc ? rc : dal_advance(m->sys, m->st, o, t1);
@@ -975,16 +1084,20 @@ static BENCH_NOINLINE int ir_region(bench_model *m, const dal_solve_opts *o, han
   int n = 2 * ch->N;
   double tol = hand_tol(meth, rtol);
   memcpy(y, y0, (size_t)n * sizeof(double));
-  return hand_integrate(hand_chain_rhs_dense, ch, n, y, 0.0, t1, meth, tol, tol, 5000000, NULL);
+  return hand_integrate(tri ? hand_chain_rhs_tridiag : hand_chain_rhs_dense, ch, n, y, 0.0, t1,
+                        meth, tol, tol, 5000000, NULL);
 }
 
-// dal_bench ir lib|hand N method rtol t1: one run of the chain, for instruction counting
+// dal_bench ir lib|dense|hand|tridiag N method rtol t1: one run of the chain, for instruction
+// counting (lib: the library's automatic route; dense: the library forced to assemble and
+// factor M; hand: the lean hand-written dense chain; tridiag: the hand-written O(N) chain)
 static int exp_ir(int argc, char **argv) {
   if (argc != 5) {
-    fprintf(stderr, "usage: dal_bench ir lib|hand N method rtol t1\n");
+    fprintf(stderr, "usage: dal_bench ir lib|dense|hand|tridiag N method rtol t1\n");
     return 2;
   }
-  int lib = strcmp(argv[0], "lib") == 0, N = atoi(argv[1]);
+  int dense = strcmp(argv[0], "dense") == 0, lib = dense || strcmp(argv[0], "lib") == 0;
+  int tri = strcmp(argv[0], "tridiag") == 0, N = atoi(argv[1]);
   double rtol = atof(argv[3]), t1 = atof(argv[4]);
   dal_method meth = DAL_METHOD_AUTO;
   for (int k = DAL_METHOD_DOPRI5; k <= DAL_METHOD_BDF; ++k)
@@ -997,10 +1110,12 @@ static int exp_ir(int argc, char **argv) {
   double *y0 = malloc(2 * (size_t)N * sizeof(double)), *y = malloc(2 * (size_t)N * sizeof(double));
   hand_chain *ch = y0 ? scene_hand_chain(&sc, y0) : NULL;
   int rc = ch && y ? DAL_OK : DAL_E_NOMEM;
-  if (!rc && lib) rc = scene_model(&sc, 0, &m, err, sizeof err);
+  if (!rc && lib)
+    rc = scene_model_route(&sc, 0, dense ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_AUTO, &m, err,
+                           sizeof err);
   dal_solve_opts o;
   bench_opts(&o, BF_ODE, meth, rtol);
-  if (!rc) rc = ir_region(lib ? &m : NULL, &o, ch, y0, y, meth, rtol, t1);
+  if (!rc) rc = ir_region(lib ? &m : NULL, &o, ch, tri, y0, y, meth, rtol, t1);
   if (lib && ch && y) {
     dal_stats s;
     dal_state_stats(m.st, &s);
@@ -1012,6 +1127,71 @@ static int exp_ir(int argc, char **argv) {
   hand_chain_destroy(ch);
   free(y0);
   free(y);
+  return rc ? 1 : 0;
+}
+
+// dal_bench irloop fourbar|held<NL> tree|tree-dense|cart-ggl|cart-index1 method rtol t1: one
+// run of a loop scene, for instruction counting
+static int exp_irloop(int argc, char **argv) {
+  if (argc != 5) {
+    fprintf(stderr, "usage: dal_bench irloop fourbar|held<NL> form method rtol t1\n");
+    return 2;
+  }
+  int which = strncmp(argv[0], "held", 4) == 0 ? LOOP_HELD : LOOP_FOURBAR;
+  int NL = which == LOOP_HELD ? atoi(argv[0] + 4) : 0;
+  const loop_form *lf = loop_form_find(argv[1]);
+  double rtol = atof(argv[3]), t1 = atof(argv[4]);
+  dal_method meth = DAL_METHOD_AUTO;
+  for (int k = DAL_METHOD_DOPRI5; k <= DAL_METHOD_BDF; ++k)
+    if (strcmp(argv[2], dal_method_name((dal_method)k)) == 0) meth = (dal_method)k;
+  if (!lf || meth == DAL_METHOD_AUTO || (which == LOOP_HELD && NL < 2) || !(rtol > 0) || !(t1 > 0))
+    return 2;
+  bench_model m;
+  char err[400];
+  int rc = loop_model(which, NL, lf->cart, lf->how, &m, err, sizeof err);
+  if (rc) {
+    fprintf(stderr, "%s\n", err);
+    return 1;
+  }
+  dal_solve_opts o;
+  loop_opts(&o, lf, meth, rtol);
+  rc = ir_region(&m, &o, NULL, 0, NULL, NULL, meth, rtol, t1);
+  dal_stats st;
+  dal_state_stats(m.st, &st);
+  printf("rhs_evals=%ld steps=%ld status=%d\n", st.rhs_evals, st.steps, rc);
+  scene_model_free(&m);
+  return rc ? 1 : 0;
+}
+
+// dal_bench irroute N recursive|dense rtol t1: the N-link chain in Cartesian coordinates (N
+// rods) as an index-1 ODE with projection (DOPRI5), through the m x m loop system or the KKT
+// matrix: the measurement behind DAL_LOOP_ROWS_MAX
+static int exp_irroute(int argc, char **argv) {
+  if (argc != 4) {
+    fprintf(stderr, "usage: dal_bench irroute N recursive|dense rtol t1\n");
+    return 2;
+  }
+  int N = atoi(argv[0]);
+  int dense = strcmp(argv[1], "dense") == 0;
+  double rtol = atof(argv[2]), t1 = atof(argv[3]);
+  if (N < 1 || !(rtol > 0) || !(t1 > 0)) return 2;
+  bench_scene sc;
+  scene_init(&sc, SC_CHAIN, N, t1);
+  bench_model m;
+  char err[400];
+  int rc = scene_model_route(&sc, 1, dense ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_RECURSIVE, &m, err,
+                             sizeof err);
+  if (rc) {
+    fprintf(stderr, "%s\n", err);
+    return 1;
+  }
+  dal_solve_opts o;
+  bench_opts(&o, BF_INDEX1_PROJ, DAL_METHOD_DOPRI5, rtol);
+  rc = ir_region(&m, &o, NULL, 0, NULL, NULL, DAL_METHOD_DOPRI5, rtol, t1);
+  dal_stats st;
+  dal_state_stats(m.st, &st);
+  printf("rhs_evals=%ld steps=%ld status=%d\n", st.rhs_evals, st.steps, rc);
+  scene_model_free(&m);
   return rc ? 1 : 0;
 }
 
@@ -1032,7 +1212,7 @@ int main(int argc, char **argv) {
       exps[nexp++] = argv[i];
     else {
       fprintf(stderr, "usage: dal_bench [--quick|--full] [--out DIR] [smoke wp overhead cost "
-                      "drift energy daetol stiff singular]\n");
+                      "loops drift energy daetol stiff singular]\n");
       return 2;
     }
   }
@@ -1045,8 +1225,10 @@ int main(int argc, char **argv) {
     cfg.slow_run = 10.0;
   }
   if (argc > 1 && strcmp(argv[1], "ir") == 0) return exp_ir(argc - 2, argv + 2);
+  if (argc > 1 && strcmp(argv[1], "irloop") == 0) return exp_irloop(argc - 2, argv + 2);
+  if (argc > 1 && strcmp(argv[1], "irroute") == 0) return exp_irroute(argc - 2, argv + 2);
   if (nexp == 1 && strcmp(exps[0], "smoke") == 0) return exp_smoke();
-  static const char *all[] = {"wp",     "overhead", "cost",  "drift",
+  static const char *all[] = {"wp",     "overhead", "cost",  "loops",   "drift",
                               "energy", "daetol",   "stiff", "singular"};
   if (nexp == 0) {
     for (int i = 0; i < COUNT(all); ++i)
@@ -1064,6 +1246,8 @@ int main(int argc, char **argv) {
       exp_overhead(&cfg);
     else if (strcmp(exps[i], "cost") == 0)
       exp_cost(&cfg);
+    else if (strcmp(exps[i], "loops") == 0)
+      exp_loops(&cfg);
     else if (strcmp(exps[i], "drift") == 0)
       exp_drift(&cfg);
     else if (strcmp(exps[i], "energy") == 0)

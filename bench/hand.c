@@ -197,25 +197,42 @@ int hand_chain_rhs_dense(double t, const double *y, double *ydot, void *ctx) {
   hand_chain *ch = ctx;
   int N = ch->N;
   const double *th = y, *w = y + N;
-  double *M = ch->M, *b = ch->b, *s = ch->s, *c = ch->c, *l = ch->l, *mu = ch->mu;
+  double *M = ch->M, *b = ch->b, *lc = ch->c, *ls = ch->s, *l = ch->l, *mu = ch->mu;
+  double *A = ch->ax, *B = ch->ay; // scratch: prefix sums of the velocity terms
   ch->nevals++;
+  // sin and cos once per link, scaled by the link length
   for (int i = 0; i < N; ++i) {
-    s[i] = sin(th[i]);
-    c[i] = cos(th[i]);
+    double si = sin(th[i]), ci = cos(th[i]);
+    lc[i] = l[i] * ci;
+    ls[i] = l[i] * si;
   }
-  // lower triangle of M and the right-hand side Q - c
+  // lower triangle of M: M_ij = mu_i l_i l_j cos(th_i - th_j) for i >= j
   for (int j = 0; j < N; ++j) {
-    b[j] = -ch->g * l[j] * mu[j] * s[j];
+    double *col = M + (size_t)j * N;
     for (int i = j; i < N; ++i)
-      M[(size_t)j * N + i] = mu[i] * l[i] * l[j] * (c[i] * c[j] + s[i] * s[j]);
+      col[i] = mu[i] * (lc[i] * lc[j] + ls[i] * ls[j]);
   }
-  for (int i = 0; i < N; ++i)
-    for (int j = 0; j < N; ++j) {
-      double mm = mu[i > j ? i : j];
-      b[i] -= mm * l[i] * l[j] * (s[i] * c[j] - c[i] * s[j]) * w[j] * w[j];
-    }
-  if (LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', N, M, N)) return -1;
-  if (LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', N, 1, M, N, b, N)) return -1;
+  // c_i = l_i sum_j mu_max(i,j) l_j sin(th_i - th_j) w_j^2 = ls_i X_i - lc_i Y_i with
+  // X_i = sum_j mu_max(i,j) lc_j w_j^2, Y_i likewise with ls_j: a prefix sum (j <= i, weight
+  // mu_i) plus a suffix sum (j > i, weight mu_j), O(N) instead of O(N^2)
+  double px = 0.0, py = 0.0;
+  for (int i = 0; i < N; ++i) {
+    double w2 = w[i] * w[i];
+    px += lc[i] * w2;
+    py += ls[i] * w2;
+    A[i] = mu[i] * px;
+    B[i] = mu[i] * py;
+  }
+  double sx = 0.0, sy = 0.0;
+  for (int i = N - 1; i >= 0; --i) {
+    b[i] = -ch->g * mu[i] * ls[i] - (ls[i] * (A[i] + sx) - lc[i] * (B[i] + sy));
+    double w2 = w[i] * w[i];
+    sx += mu[i] * lc[i] * w2;
+    sy += mu[i] * ls[i] * w2;
+  }
+  // the same LAPACK calls as the library (the _work variants skip the NaN scans)
+  if (LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', N, M, N)) return -1;
+  if (LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', N, 1, M, N, b, N)) return -1;
   memcpy(ydot, w, (size_t)N * sizeof(double));
   memcpy(ydot + N, b, (size_t)N * sizeof(double));
   return 0;

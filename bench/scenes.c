@@ -268,11 +268,17 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
 }
 
 int scene_model(const bench_scene *sc, int redundant, bench_model *m, char *err, size_t len) {
+  return scene_model_route(sc, redundant, DAL_DYNAMICS_AUTO, m, err, len);
+}
+
+int scene_model_route(const bench_scene *sc, int redundant, dal_dynamics how, bench_model *m,
+                      char *err, size_t len) {
   memset(m, 0, sizeof *m);
   err[0] = 0;
   dal_builder *b = NULL;
   int rc = dal_builder_create(scene_dim(sc), &b);
   if (!rc) rc = redundant ? build_redundant(sc, b, m) : build_minimal(sc, b, m);
+  if (!rc) rc = dal_builder_set_dynamics(b, how);
   if (!rc) rc = dal_builder_compile(b, &m->sys);
   if (rc && rc != DAL_E_UNSUPPORTED && b)
     snprintf(err, len, "%s: %s", sc->name, dal_builder_errmsg(b));
@@ -391,5 +397,130 @@ int scene_reference_fast(const bench_scene *sc, double *r) {
   }
   hand_chain_destroy(ch);
   free(y);
+  return rc;
+}
+
+// ---------------------------------------------------------------- closed loops on a tree
+
+int loop_np(int which, int NL) { return which == LOOP_FOURBAR ? 2 : NL - 1; }
+
+// four-bar linkage: ground pivots A = (0, 0), D = (3, 0); crank AB = 1, coupler BC = 3.5,
+// rocker CD = 2, massless links, masses 1 at B and 2 at C, started with the crank at 0.4 rad
+// turning at 3 rad/s (the coupler's rate from the closure). Tree: B pendulum about A, C
+// hanging from B, loop row CD; Cartesian: B, C with rods AB, BC, CD.
+static int build_fourbar(dal_builder *b, int cart, bench_model *m) {
+  const double a = 1.0, bl = 3.5, c = 2.0, Dx = 3.0, th1 = 0.4, w1 = 3.0;
+  double B[2] = {a * sin(th1), -a * cos(th1)};
+  double dx = Dx - B[0], dy = -B[1], dd = sqrt(dx * dx + dy * dy);
+  double al = (bl * bl - c * c + dd * dd) / (2 * dd), h = sqrt(bl * bl - al * al);
+  double C[2] = {B[0] + al * dx / dd + h * dy / dd, B[1] + al * dy / dd - h * dx / dd};
+  double th2 = atan2(C[0] - B[0], -(C[1] - B[1]));
+  double e1[2] = {cos(th1), sin(th1)}, e2[2] = {cos(th2), sin(th2)}, CD[2] = {C[0] - Dx, C[1]};
+  double w2 = -a * w1 * (CD[0] * e1[0] + CD[1] * e1[1]) / (bl * (CD[0] * e2[0] + CD[1] * e2[1]));
+  double Bd[2] = {a * w1 * e1[0], a * w1 * e1[1]};
+  double Cd[2] = {Bd[0] + bl * w2 * e2[0], Bd[1] + bl * w2 * e2[1]};
+  double pend[7] = {a, 0, 0, 0, 0, 0, 0}, rodA[3] = {a, 0, 0}, rodD[3] = {c, Dx, 0};
+  int p[2], cs[4], rc = model_alloc(m, cart ? 4 : 2);
+  if (!rc) rc = dal_builder_add_particle(b, "B", 1.0, &p[0]);
+  if (!rc) rc = dal_builder_add_particle(b, "C", 2.0, &p[1]);
+  if (!rc && !cart) {
+    rc = dal_builder_add_coord(b, "crank", &cs[0]);
+    if (!rc) rc = dal_builder_add_coord(b, "coupler", &cs[1]);
+    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &cs[0], 7, pend, NULL);
+    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &cs[1], 1, &bl, NULL);
+    if (!rc) {
+      m->q0[0] = th1, m->q0[1] = th2, m->qd0[0] = w1, m->qd0[1] = w2;
+    }
+  } else if (!rc) {
+    const char *nm[4] = {"xB", "yB", "xC", "yC"};
+    for (int i = 0; i < 4 && !rc; ++i)
+      rc = dal_builder_add_coord(b, nm[i], &cs[i]);
+    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, cs, 0, NULL, NULL);
+    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, cs + 2, 0, NULL, NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "AB", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rodA, NULL,
+                                      NULL);
+    if (!rc)
+      rc = dal_builder_add_constraint(b, "BC", &dal_con_distance2, 2, p, 0, NULL, 1, &bl, NULL,
+                                      NULL);
+    if (!rc) {
+      double q[4] = {B[0], B[1], C[0], C[1]}, qd[4] = {Bd[0], Bd[1], Cd[0], Cd[1]};
+      memcpy(m->q0, q, sizeof q);
+      memcpy(m->qd0, qd, sizeof qd);
+    }
+  }
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "CD", &dal_con_anchor2, 1, &p[1], 0, NULL, 3, rodD, NULL,
+                                    NULL);
+  double g[2] = {0.0, -G_STD};
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return rc;
+}
+
+// a chain of NL unit links and unit masses between A = (0, 0) and B = (NL sin 60deg, 0),
+// released from rest as a V. Tree: NL - 1 particles (a pendulum, then hanging), loop row: the
+// last rod to B; Cartesian: NL - 1 particles and NL rods.
+static int build_held(dal_builder *b, int NL, int cart, bench_model *m) {
+  const double al = PI / 3.0;
+  double span = NL * sin(al), x = 0.0, y = 0.0, pend[7] = {1, 0, 0, 0, 0, 0, 0}, l = 1.0;
+  double rodA[3] = {1.0, 0.0, 0.0}, rodB[3] = {1.0, span, 0.0};
+  int rc = model_alloc(m, cart ? 2 * (NL - 1) : NL - 1), prev = -1;
+  for (int k = 0; k < NL - 1 && !rc; ++k) {
+    double th = k < NL / 2 ? al : PI - al;
+    int p, c[2], pair[2];
+    char name[32];
+    x += sin(th);
+    y -= cos(th);
+    snprintf(name, sizeof name, "p%d", k);
+    rc = dal_builder_add_particle(b, name, 1.0, &p);
+    pair[0] = prev;
+    pair[1] = p;
+    if (!rc && !cart) {
+      snprintf(name, sizeof name, "th%d", k);
+      rc = dal_builder_add_coord(b, name, &c[0]);
+      if (!rc && k == 0)
+        rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, c, 7, pend, NULL);
+      else if (!rc)
+        rc = dal_builder_place(b, p, &dal_map_hanging, prev, 1, c, 1, &l, NULL);
+      m->q0[k] = th;
+    } else if (!rc) {
+      snprintf(name, sizeof name, "x%d", k);
+      rc = dal_builder_add_coord(b, name, &c[0]);
+      snprintf(name, sizeof name, "y%d", k);
+      if (!rc) rc = dal_builder_add_coord(b, name, &c[1]);
+      if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+      if (!rc && k == 0)
+        rc = dal_builder_add_constraint(b, NULL, &dal_con_anchor2, 1, &p, 0, NULL, 3, rodA, NULL,
+                                        NULL);
+      else if (!rc)
+        rc = dal_builder_add_constraint(b, NULL, &dal_con_distance2, 2, pair, 0, NULL, 1, &l, NULL,
+                                        NULL);
+      m->q0[2 * k] = x;
+      m->q0[2 * k + 1] = y;
+    }
+    prev = p;
+  }
+  if (!rc)
+    rc = dal_builder_add_constraint(b, "held", &dal_con_anchor2, 1, &prev, 0, NULL, 3, rodB, NULL,
+                                    NULL);
+  double g[2] = {0.0, -G_STD};
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return rc;
+}
+
+int loop_model(int which, int NL, int cart, dal_dynamics how, bench_model *m, char *err,
+               size_t len) {
+  memset(m, 0, sizeof *m);
+  err[0] = 0;
+  dal_builder *b = NULL;
+  int rc = dal_builder_create(2, &b);
+  if (!rc) rc = which == LOOP_FOURBAR ? build_fourbar(b, cart, m) : build_held(b, NL, cart, m);
+  if (!rc) rc = dal_builder_set_dynamics(b, how);
+  if (!rc) rc = dal_builder_compile(b, &m->sys);
+  if (rc && b) snprintf(err, len, "loop scene %d: %s", which, dal_builder_errmsg(b));
+  if (!rc) rc = dal_state_create(m->sys, &m->st);
+  if (!rc) rc = scene_model_reset(m);
+  dal_builder_destroy(b);
+  if (rc) scene_model_free(m);
   return rc;
 }

@@ -49,6 +49,9 @@ typedef struct bench_model {
 /// constraints (redundant = 1). Returns DAL_OK, a library status (message in err), or
 /// DAL_E_UNSUPPORTED when the scene has no such form.
 int scene_model(const bench_scene *sc, int redundant, bench_model *m, char *err, size_t len);
+/// The same with a chosen dynamics route (dal_builder_set_dynamics).
+int scene_model_route(const bench_scene *sc, int redundant, dal_dynamics how, bench_model *m,
+                      char *err, size_t len);
 void scene_model_free(bench_model *m);
 
 /// Set the model's state to its initial value (t = 0).
@@ -68,5 +71,18 @@ int scene_has_hand(const bench_scene *sc);
 
 /// The hand-written twin: a chain and its initial state y0 (2N), allocated here.
 hand_chain *scene_hand_chain(const bench_scene *sc, double *y0);
+
+/// Closed loops on a tree: the four-bar linkage and a chain held at both ends.
+enum { LOOP_FOURBAR = 0, LOOP_HELD = 1 };
+
+/// Compared particles of a loop scene (the first ones of either form): 2 for the four-bar,
+/// NL - 1 for the held chain of NL links.
+int loop_np(int which, int NL);
+
+/// Build a loop scene as a tree of placements plus loop-closure rows (cart = 0; route `how`)
+/// or in Cartesian coordinates with every link a constraint (cart = 1), with its consistent
+/// initial state. Returns DAL_OK or a library status (message in err).
+int loop_model(int which, int NL, int cart, dal_dynamics how, bench_model *m, char *err,
+               size_t len);
 
 #endif

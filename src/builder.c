@@ -488,8 +488,17 @@ int dal_builder_set_gravity(dal_builder *b, const double *g) {
   return DAL_OK;
 }
 
-static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb, const double *x0,
-                    dal_path_fn *fn, void *ctx, double k, double L) {
+int dal_builder_set_dynamics(dal_builder *b, dal_dynamics how) {
+  if (!b) return DAL_E_ARG;
+  if (how != DAL_DYNAMICS_AUTO && how != DAL_DYNAMICS_DENSE && how != DAL_DYNAMICS_RECURSIVE)
+    return BFAIL(DAL_E_ARG, "set_dynamics: unknown route %d (DAL_DYNAMICS_AUTO, _DENSE or "
+                            "_RECURSIVE)", (int)how);
+  b->dynamics = how;
+  return DAL_OK;
+}
+
+static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb,
+                    const double *x0, dal_path_fn *fn, void *ctx, double k, double L) {
   if (pa < 0 || pa >= b->parts.len)
     return BFAIL(DAL_E_ARG, "%s: particle index %d out of range [0, %d)", kind, pa, b->parts.len);
   if (pb >= b->parts.len || pb == pa || (pb < -1))

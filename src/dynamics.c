@@ -192,43 +192,64 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) 
   return DAL_OK;
 }
 
-// Composite-mass assembly for a tree whose parent links are translations (r_k = r_p + f):
-// then J_k = sum of L_a over the ancestors a of k (L_a: a's local coordinate columns), so
+// Q and c for any tree of placements by subtree sums (carried to a parent through Lp_k'; the
+// chain rule J_k = Lp_k J_p + Lc_k), and M by composite masses when every parent link is a
+// translation (r_k = r_p + f): then J_k = sum of L_a over the ancestors a of k (L_a: a's local coordinate columns), so
 //   M = sum_a sum_{b ancestor-or-self of a} mu_a (L_a' L_b + L_b' L_a for b != a),
 //   Q = sum_a L_a' (sum of F over a's subtree),  c = sum_a L_a' (sum of m gamma over it),
 // with mu_a the subtree mass: O(N depth) work instead of O(N n^2) (Featherstone's composite
 // rigid body idea for point masses).
-static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
-  int d = sys->dim, n = sys->n, N = sys->N, Nd = N * d;
-  double *cf = st->cf, *cg = st->cf + Nd;
+// Q and c by subtree sums for d = 2 or 3 (a constant once inlined): cf and cg start as F and
+// m gamma; leaves first, a placement's sums are complete when it is reached
+static inline void subtree_sums(const dal_system *sys, dal_state *st, const int d) {
+  int N = sys->N;
+  double *restrict cf = st->cf, *restrict cg = st->cf + N * d;
+  for (int e = 0; e < N * d; ++e) cf[e] = st->F[e];
   for (int k = 0; k < N; ++k)
-    for (int a = 0; a < d; ++a) {
-      cf[k * d + a] = st->F[k * d + a];
-      cg[k * d + a] = st->prm.mass[k] * st->gamma[k * d + a];
-    }
+    for (int a = 0; a < d; ++a) cg[k * d + a] = st->prm.mass[k] * st->gamma[k * d + a];
   for (int k = N - 1; k >= 0; --k) {
-    int p = sys->place[k].parent;
-    if (p >= 0)
-      for (int a = 0; a < d; ++a) {
-        cf[p * d + a] += cf[k * d + a];
-        cg[p * d + a] += cg[k * d + a];
-      }
-  }
-  for (int k = 0; k < N; ++k) {
     const dal_place *pk = &sys->place[k];
     const int *ck = sys->ipool + pk->coord_off;
-    const double *Lk = st->Lc + sys->ploc_off[k];
-    int nk = pk->ncoord;
+    const double *Lk = st->Lc + sys->ploc_off[k], *fk = cf + k * d, *gk = cg + k * d;
+    int nk = pk->ncoord, p = pk->parent;
     for (int i = 0; i < nk; ++i) {
       double q = 0.0, c = 0.0;
       for (int a = 0; a < d; ++a) {
-        q += Lk[a * nk + i] * cf[k * d + a];
-        c += Lk[a * nk + i] * cg[k * d + a];
+        q += Lk[a * nk + i] * fk[a];
+        c += Lk[a * nk + i] * gk[a];
       }
       st->Q[ck[i]] += q;
       st->c[ck[i]] += c;
     }
-    if (!want_M) continue;
+    if (p < 0) continue;
+    double *fp = cf + p * d, *gp = cg + p * d;
+    if (st->tree) {
+      for (int a = 0; a < d; ++a) {
+        fp[a] += fk[a];
+        gp[a] += gk[a];
+      }
+    } else {
+      // a link that is not a translation: the subtree's sums reach the parent through
+      // dr_k/dr_p, as Lp_k' (the same chain rule as J_k = Lp_k J_p + Lc_k)
+      const double *Lp = st->Lp + (size_t)k * d * d;
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) {
+          fp[a] += Lp[b * d + a] * fk[b];
+          gp[a] += Lp[b * d + a] * gk[b];
+        }
+    }
+  }
+}
+
+static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
+  int d = sys->dim, n = sys->n, N = sys->N;
+  if (d == 2) subtree_sums(sys, st, 2);
+  else subtree_sums(sys, st, 3);
+  for (int k = 0; k < N && want_M; ++k) {
+    const dal_place *pk = &sys->place[k];
+    const int *ck = sys->ipool + pk->coord_off;
+    const double *Lk = st->Lc + sys->ploc_off[k];
+    int nk = pk->ncoord;
     // lower triangle only (M[col * n + row], row >= col); a pair and its transpose are
     // one entry there, a coordinate paired with itself counts twice
     double *restrict M = st->M;
@@ -277,7 +298,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) 
   }
   // Q = sum J_k' F_k, c = sum m_k J_k' gamma_k, M = sum m_k J_k' J_k (over dependencies)
   if (want_M) memset(st->M, 0, (size_t)n * (size_t)n * sizeof(double));
-  if (st->tree) {
+  if (st->tree || (sys->place && !want_M)) {
     tree_assembly(sys, st, want_M);
   } else {
     DAL_NEED(st, DAL_P_J);
@@ -339,6 +360,11 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) 
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y) {
   int n = sys->n, d = sys->dim;
   memset(y, 0, (size_t)n * sizeof(double));
+  if (!(st->have & (DAL_P_J | DAL_P_M))) {
+    // neither J nor M stored (large recursive trees): through the local blocks
+    dal__tree_mass_apply(sys, st, x, y);
+    return;
+  }
   if (!(st->have & DAL_P_J)) {
     DAL_NEED(st, DAL_P_M);
     for (int j = 0; j < n; ++j)

@@ -5,7 +5,8 @@
 //
 // Stages: kinematics (r, v, gamma, drdt; J when asked or needed) -> constraint rows ->
 // forces, Q, c and energies (and M when asked or needed) -> accelerations (Cholesky of M, or
-// the KKT system with multipliers) -> outputs (particle accelerations and reactions).
+// the KKT system with multipliers; for trees the articulated-body recursion of aba.c, with
+// the m x m loop system for multipliers) -> outputs (particle accelerations and reactions).
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -54,15 +55,21 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   // what each product needs: outputs need accelerations; accelerations need forces and M
   // (Cholesky when m = 0, or the KKT system, whose dense form reads the lower M and whose
   // sparse form reads J); constraint rows need J
+  // (the recursion needs neither M nor J: its constraint rows come from the local blocks);
+  // large recursive trees store no J at all
   if (need & DAL_P_OUT) need |= DAL_P_ACC;
   if (need & DAL_P_ACC) {
     need |= DAL_P_DYN | (m ? DAL_P_CON : 0u);
-    if (sys->dense_M) need |= DAL_P_MLOW;
+    if (sys->dense_M && !sys->aba) need |= DAL_P_MLOW;
   }
-  if (need & DAL_P_CON) need |= DAL_P_J;
+  if ((need & DAL_P_CON) && !sys->aba) need |= DAL_P_J;
   if (need & DAL_P_M) need |= DAL_P_MLOW;
   if (need & DAL_P_MLOW) need |= DAL_P_DYN;
+  if (!sys->store_J) need &= ~DAL_P_J;
   if ((rc = dal__kinematics(sys, st, (need & DAL_P_J) != 0)) != 0) return rc;
+  // M of a tree with a link that is not a translation is assembled through J
+  if ((need & DAL_P_MLOW) && sys->dense_M && !st->tree && !(st->have & DAL_P_J))
+    dal__jacobians(sys, st);
   if ((need & DAL_P_CON) && m && (rc = dal__constraints(sys, st)) != 0) return rc;
   if (need & DAL_P_CON) st->have |= DAL_P_CON;
   if (need & DAL_P_DYN) {
@@ -72,7 +79,9 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
     if (need & DAL_P_PW) st->have |= DAL_P_PW;
   }
   if (need & DAL_P_ACC) {
-    rc = m ? dal__solve_kkt(sys, st) : dal__solve_unconstrained(sys, st);
+    rc = m          ? dal__solve_kkt(sys, st)
+         : sys->aba ? dal__aba_accel(sys, st)
+                    : dal__solve_unconstrained(sys, st);
     if (rc) return rc;
     st->have |= DAL_P_ACC;
   }

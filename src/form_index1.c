@@ -38,10 +38,12 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
     rc = dal__eval(sys, st, need | DAL_P_ACC);
   } else {
     // G qddot = -(gamma_phi + 2 alpha (G v + dphi/dt) + beta^2 phi)
+    // (the KKT matrix reads the lower M; the loop system of aba.c needs none)
     unsigned late = DAL_P_ACC | DAL_P_OUT | DAL_P_POW; // formed here, after the KKT solve
+    unsigned mass = sys->aba ? 0u : DAL_P_MLOW;
     rc = dal__eval(sys, st,
                    (need & ~late) | ((need & DAL_P_POW) ? DAL_P_PW : 0u) | DAL_P_CON | DAL_P_DYN |
-                       DAL_P_MLOW);
+                       mass);
     double al = opts->baumgarte_alpha, be = opts->baumgarte_beta;
     double *a = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
     if (rc == 0) rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "index-1 right-hand side");

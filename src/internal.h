@@ -92,6 +92,7 @@ struct dal_builder {
   void *lag_ctx;
   int has_gravity;
   double g[3];
+  dal_dynamics dynamics; // dal_builder_set_dynamics
   char err[DAL_ERRMSG_LEN];
 };
 
@@ -128,6 +129,10 @@ struct dal_system {
   double *mu;   // mu[k] = sum of the masses of particle k and all particles it carries
   int *ploc_off; // offset of particle k's local coordinate columns (d x ncoord) in st->Lc
   int dense_M;         // M is assembled densely (n x n)
+  // the articulated-body recursion (aba.c): accelerations without M, and with constraints the
+  // m x m loop system instead of the KKT matrix; chosen at compile time (system.c)
+  int aba;
+  int store_J; // compact particle Jacobians are stored (all but large recursive trees)
 };
 
 /// Products of an evaluation at the state's (t, q, qdot). A caller asks dal__eval for the set
@@ -196,6 +201,7 @@ struct dal_state {
   double *Lp;           // local parent block of each placement (d x d per particle)
   double *cf;           // subtree sums of F and m gamma (2 x N x d)
   struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
+  struct dal_aba *aba;  // recursion workspace (aba.c), NULL unless sys->aba
   // integrator (owned by the driver)
   void *integ;
   void (*integ_free)(void *);
@@ -281,6 +287,31 @@ int dal__solve_kkt(const dal_system *sys, dal_state *st);
 /// KKT workspace of a constrained system (kkt.c): create (NULL on failure) and free
 struct dal_kkt *dal__kkt_create(const dal_system *sys);
 void dal__kkt_free(struct dal_kkt *k);
+
+// the articulated-body recursion for trees of placements (aba.c)
+/// recursion workspace of a system with sys->aba: create (NULL on failure) and free
+struct dal_aba *dal__aba_create(const dal_system *sys);
+void dal__aba_free(struct dal_aba *w);
+/// Articulated inertias at the state's kinematics (the q- and t-dependent part: a leaf-first
+/// factorization of M). DAL_E_SINGULAR names a degenerate coordinate (requires DAL_P_KIN).
+int dal__aba_factor(const dal_system *sys, dal_state *st);
+/// x (n) = M^-1 tau (n) with the last dal__aba_factor, in O(N); x may alias tau.
+void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, double *x);
+/// qddot from M qddot = Q - c by the recursion (requires DAL_P_KIN | DAL_P_DYN)
+int dal__aba_accel(const dal_system *sys, dal_state *st);
+/// y (n) = M x from the local blocks in O(N) (requires DAL_P_KIN; no J, no M)
+void dal__tree_mass_apply(const dal_system *sys, const dal_state *st, const double *x,
+                          double *y);
+/// The KKT solves of a recursive system with constraints through the m x m loop system:
+/// factor A = I or M (metric as in dae_internal.h) and S = G A^-1 G'; then solve
+/// A x = a + G' y, G x = b (x may alias a, y may alias b). Same contract as dal__kkt_factor
+/// and dal__kkt_solve, which dispatch here.
+int dal__loop_factor(const dal_system *sys, dal_state *st, int metric, const char *what);
+void dal__loop_solve(const dal_system *sys, dal_state *st, const double *a, const double *b,
+                     double *x, double *y);
+
+/// global compact Jacobians J_k = Lp_k J_parent + Lc_k from the local blocks (DAL_P_J)
+void dal__jacobians(const dal_system *sys, dal_state *st);
 
 /// drop integrator memory (called by dal_state_set and dal_state_destroy)
 void dal__integ_reset(dal_state *st);

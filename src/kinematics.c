@@ -55,13 +55,11 @@ static void owner_name(const dal_system *sys, int owner, char *buf, size_t len) 
   else snprintf(buf, len, "constraint '%s'", sys->con[-1 - owner].name);
 }
 
-// call a jet function on st->jin and check that every output is finite; names the culprit
-// (the name is only formatted on failure: this runs on every evaluation)
-static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
-                        int owner) {
+// the failure of a jet function call (cold path of eval_checked): names the culprit
+static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in, int owner,
+                       int rc) {
   const char *kind = owner >= 0 ? "coordinate map" : "constraint";
   char name[160];
-  int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
   if (rc) {
     char what[240];
     owner_name(sys, owner, name, sizeof name);
@@ -81,6 +79,19 @@ static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in
                       kind, in->prim->name, name, i, st->jout[i].v, st->jout[i].d,
                       st->jout[i].dd, st->t, qs);
     }
+  return DAL_OK;
+}
+
+// call a jet function on st->jin and check that every output is finite; names the culprit
+// (this runs twice per placement on every evaluation: one test of the outputs' sum, which is
+// finite when they all are; an overflowing sum of finite outputs only costs the exact check
+// of the cold path, which then finds nothing; the message is formatted only on failure)
+static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
+                        int owner) {
+  int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
+  double z = 0.0;
+  for (int i = 0; i < in->prim->nout; ++i) z += st->jout[i].v + st->jout[i].d + st->jout[i].dd;
+  if (rc || !isfinite(z)) return eval_failed(sys, st, in, owner, rc);
   return DAL_OK;
 }
 
@@ -123,9 +134,14 @@ static void local_motion(const dal_system *sys, dal_state *st, const dal_inst *i
 // (directions before `first` are skipped: the caller fills those columns)
 static int local_jacobian(const dal_system *sys, dal_state *st, const dal_inst *in, int owner,
                           int first) {
-  int nin = in->prim->nin, nout = in->prim->nout;
+  int nin = in->prim->nin, nout = in->prim->nout, d = sys->dim, k = 0;
   dal_jet t = dal_const(st->t);
-  load_inputs(sys, st, in, NULL, NULL);
+  // the inputs' values (particle positions, then coordinates) with no direction yet
+  for (int a = 0; a < in->npart; ++a) {
+    const double *r = st->r + in->parts[a] * d;
+    for (int b = 0; b < d; ++b) st->jin[k++] = dal_const(r[b]);
+  }
+  for (int i = 0; i < in->ncoord; ++i) st->jin[k++] = dal_const(st->q[in->coords[i]]);
   for (int i = first; i < nin; ++i) {
     if (i > first) st->jin[i - 1].d = 0.0;
     st->jin[i].d = 1.0;
@@ -204,7 +220,9 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
 }
 
 // J_k = Lp_k J_parent + Lc_k over k's dependency columns (parents first)
-static void form_jacobians(const dal_system *sys, dal_state *st) {
+void dal__jacobians(const dal_system *sys, dal_state *st) {
+  DAL_NEED(st, DAL_P_KIN);
+  DAL_ASSERT(sys->store_J);
   int d = sys->dim;
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
@@ -224,6 +242,39 @@ static void form_jacobians(const dal_system *sys, dal_state *st) {
   st->have |= DAL_P_J;
 }
 
+// The common placement, a translating map of one coordinate (chains, pendulums hanging from a
+// particle), for d = 2 or 3 (a constant once inlined): the same two evaluations as the general
+// loop below (the column along the coordinate, then the motion) without its bookkeeping.
+static inline int place_translating1(const dal_system *sys, dal_state *st, int k, const int d) {
+  const dal_place *pl = &sys->place[k];
+  dal_inst in = dal__inst(sys, st, k);
+  int p = pl->parent, j = in.coords[0], rc;
+  const double *rp = st->r + p * d, *vp = st->v + p * d, *gp = st->gamma + p * d;
+  const double *rtp = st->drdt + p * d;
+  double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
+  dal_jet *jin = st->jin, *jout = st->jout;
+  for (int b = 0; b < d; ++b) jin[b] = dal_const(rp[b]);
+  jin[d] = dal_var(st->q[j], 1.0);
+  if ((rc = eval_checked(sys, st, &in, dal_const(st->t), k)) != 0) return rc;
+  for (int a = 0; a < d; ++a) {
+    Lk[a] = jout[a].d;
+    for (int b = 0; b < d; ++b) Lp[a * d + b] = a == b;
+  }
+  for (int b = 0; b < d; ++b) jin[b] = dal_jet_make(rp[b], vp[b], gp[b]);
+  double qd = st->qdot[j];
+  jin[d] = dal_var(st->q[j], qd);
+  if ((rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k)) != 0) return rc;
+  // dr/dt = v - (v_p - drdt_p) - Lc qdot
+  for (int a = 0; a < d; ++a) {
+    double v = jout[a].d;
+    st->r[k * d + a] = jout[a].v;
+    st->v[k * d + a] = v;
+    st->gamma[k * d + a] = jout[a].dd;
+    st->drdt[k * d + a] = v - (vp[a] - rtp[a]) - Lk[a] * qd;
+  }
+  return DAL_OK;
+}
+
 int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   int d = sys->dim, rc;
   st->tree = sys->place != NULL;
@@ -234,6 +285,12 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   if (sys->map) return kinematics_map(sys, st);
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
+    if (pl->ncoord == 1 && pl->parent >= 0 && (pl->prim->flags & DAL_PRIM_TRANSLATES) &&
+        pl->prim->nin == d + 1) {
+      rc = d == 2 ? place_translating1(sys, st, k, 2) : place_translating1(sys, st, k, 3);
+      if (rc) return rc;
+      continue;
+    }
     dal_inst in = dal__inst(sys, st, k);
     int np = in.npart, nin = in.prim->nin, nc = pl->ncoord, p = pl->parent;
     // local Jacobian at the current values; a translating map's parent block is I
@@ -241,44 +298,94 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
     rc = local_jacobian(sys, st, &in, k, translates ? d : 0);
     if (rc) return rc;
     double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
-    int identity = 1;
-    for (int a = 0; a < d && np; ++a)
-      for (int b = 0; b < d; ++b) {
-        Lp[a * d + b] = translates ? (a == b) : st->loc[a * nin + b];
-        identity &= Lp[a * d + b] == (a == b);
-      }
-    st->tree &= identity;
-    for (int a = 0; a < d; ++a)
-      for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
-    // along the state's motion: r, v, gamma
-    local_motion(sys, st, &in);
-    load_inputs(sys, st, &in, st->dir, st->dir + nin);
+    const double *vp = st->v + (np ? p * d : 0), *rtp = st->drdt + (np ? p * d : 0);
+    if (translates) {
+      static const double eye[2][9] = {{1, 0, 0, 1}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+      memcpy(Lp, eye[d - 2], (size_t)(d * d) * sizeof(double));
+    } else if (np) {
+      int identity = 1;
+      for (int a = 0; a < d; ++a)
+        for (int b = 0; b < d; ++b) {
+          Lp[a * d + b] = st->loc[a * nin + b];
+          identity &= Lp[a * d + b] == (a == b);
+        }
+      st->tree &= identity;
+    }
+    if (nc == 1)
+      for (int a = 0; a < d; ++a) Lk[a] = st->loc[a * nin + np * d];
+    else
+      for (int a = 0; a < d; ++a)
+        for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
+    // along the state's motion: the inputs keep their values and move along (v, gamma) of the
+    // parent and (qdot, 0) of the coordinates; r, v, gamma
+    dal_jet *jin = st->jin;
+    for (int b = 0; b < d && np; ++b) {
+      jin[b].d = vp[b];
+      jin[b].dd = st->gamma[p * d + b];
+    }
+    for (int i = 0; i < nc; ++i) {
+      jin[np * d + i].d = st->qdot[in.coords[i]];
+      jin[np * d + i].dd = 0.0;
+    }
     rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k);
     if (rc) return rc;
-    for (int a = 0; a < d; ++a) {
-      st->r[k * d + a] = st->jout[a].v;
-      st->v[k * d + a] = st->jout[a].d;
-      st->gamma[k * d + a] = st->jout[a].dd;
-    }
     // dr/dt = v - J_k qdot, with J_k qdot = Lp_k (v_p - drdt_p) + Lc_k qdot_local
     for (int a = 0; a < d; ++a) {
-      double s = 0.0;
-      for (int b = 0; b < d && np; ++b)
-        s += Lp[a * d + b] * (st->v[p * d + b] - st->drdt[p * d + b]);
-      for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * st->qdot[in.coords[i]];
-      st->drdt[k * d + a] = st->v[k * d + a] - s;
+      double s = 0.0, v = st->jout[a].d;
+      if (translates) s = vp[a] - rtp[a];
+      else
+        for (int b = 0; b < d && np; ++b) s += Lp[a * d + b] * (vp[b] - rtp[b]);
+      if (nc == 1) s += Lk[a] * jin[np * d].d;
+      else
+        for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * jin[np * d + i].d;
+      st->r[k * d + a] = st->jout[a].v;
+      st->v[k * d + a] = v;
+      st->gamma[k * d + a] = st->jout[a].dd;
+      st->drdt[k * d + a] = v - s;
     }
   }
   st->have |= DAL_P_KIN;
-  // global Jacobians: asked for, or needed by the general assembly (a link that is not a
-  // translation); a tree of translations assembles M, Q, c from the local columns
-  if (want_J || !st->tree) form_jacobians(sys, st);
+  // global Jacobians only when asked for (the caller asks when the assembly of M for a link
+  // that is not a translation needs them; Q and c come from the local blocks)
+  if (want_J) dal__jacobians(sys, st);
   return DAL_OK;
+}
+
+// out (nrow x ndep_out) += loc[:, col0 .. col0+d) * J_p without J: the row w = loc[r, col0..]
+// walks from p to its root, adding w Lc_b to b's coordinate columns and turning into w Lp_b
+// (O(depth) per row; the recursion's systems keep no global Jacobians on their fast path)
+static void chain_local(const dal_system *sys, const dal_state *st, int p, const double *loc,
+                        int nin, int col0, int nrow, const int *dep_out, int ndep_out,
+                        double *out) {
+  int d = sys->dim;
+  for (int r = 0; r < nrow; ++r) {
+    double w[3], t[3];
+    for (int a = 0; a < d; ++a) w[a] = loc[r * nin + col0 + a];
+    for (int b = p; b >= 0; b = sys->place[b].parent) {
+      const dal_place *pb = &sys->place[b];
+      const int *cb = sys->ipool + pb->coord_off;
+      const double *Lc = st->Lc + sys->ploc_off[b], *Lp = st->Lp + (size_t)b * d * d;
+      for (int i = 0; i < pb->ncoord; ++i) {
+        double s = 0.0;
+        for (int a = 0; a < d; ++a) s += w[a] * Lc[a * pb->ncoord + i];
+        out[r * ndep_out + find_sorted(dep_out, ndep_out, cb[i])] += s;
+      }
+      if (pb->parent < 0) break;
+      for (int a = 0; a < d; ++a) {
+        t[a] = 0.0;
+        for (int c = 0; c < d; ++c) t[a] += w[c] * Lp[c * d + a];
+      }
+      for (int a = 0; a < d; ++a) w[a] = t[a];
+    }
+  }
 }
 
 int dal__constraints(const dal_system *sys, dal_state *st) {
   int d = sys->dim, rc;
-  DAL_NEED(st, DAL_P_KIN | DAL_P_J);
+  // compact G through the global Jacobians, or (recursive systems) through the local blocks
+  int have_J = (st->have & DAL_P_J) != 0;
+  DAL_NEED(st, DAL_P_KIN);
+  DAL_ASSERT(have_J || sys->aba);
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
     dal_inst in = dal__inst(sys, st, -1 - ci);
@@ -299,7 +406,8 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     double *G = st->G + c->g_off;
     memset(G, 0, (size_t)nout * (size_t)c->ndep * sizeof(double));
     for (int a = 0; a < c->npart; ++a)
-      chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      if (have_J) chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      else chain_local(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
     for (int i = 0; i < c->ncoord; ++i) {
       int col = find_sorted(dc, c->ndep, in.coords[i]);
       for (int r = 0; r < nout; ++r)

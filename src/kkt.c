@@ -137,7 +137,9 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
   k->scratch = calloc(4 * nk + 1, sizeof(double));
   k->rhs = calloc(nk + 1, sizeof(double));
   int ok = k->scratch && k->rhs;
-  if (ok && !k->sparse) {
+  if (sys->aba) {
+    // a recursive system solves through the m x m loop system (aba.c): scratch only
+  } else if (ok && !k->sparse) {
     k->lwork = (lapack_int)(64 * nk + 64);
     k->K = malloc(nk * nk * sizeof(double));
     k->ipiv = malloc(nk * sizeof(lapack_int));
@@ -298,6 +300,7 @@ static int factor_sparse(const dal_system *sys, dal_state *st, int metric, const
 int dal__kkt_factor(const dal_system *sys, dal_state *st, int metric, const char *what) {
   struct dal_kkt *k = st->kkt;
   DAL_ASSERT(k && (metric == DAL_KKT_IDENTITY || metric == DAL_KKT_MASS));
+  if (sys->aba) return dal__loop_factor(sys, st, metric, what);
   DAL_NEED(st, DAL_P_CON | DAL_P_J);
   k->cur = -1;
   int rc = k->sparse ? factor_sparse(sys, st, metric, what) : factor_dense(sys, st, metric, what);
@@ -309,7 +312,10 @@ void dal__kkt_solve(const dal_system *sys, dal_state *st, const double *a, const
                     double *x, double *y) {
   struct dal_kkt *k = st->kkt;
   int n = k->n, m = k->m, nk = k->nk;
-  (void)sys;
+  if (sys->aba) {
+    dal__loop_solve(sys, st, a, b, x, y);
+    return;
+  }
   memcpy(k->rhs, a, (size_t)n * sizeof(double));
   memcpy(k->rhs + n, b, (size_t)m * sizeof(double));
   if (k->sparse) {

@@ -11,6 +11,18 @@
 /// residual). Systems without constraints always keep a dense M (Cholesky).
 #define DAL_DENSE_M_MAX 512
 
+/// Most constraint rows solved by the m x m loop system on top of the recursion (aba.c: m
+/// recursion solves with unit loads, the m x m matrix G M^-1 G' and its unblocked Cholesky,
+/// O(m N + m^2 + m^3)); with more rows the KKT matrix in all coordinates is used (dense, or
+/// KLU from order DAL_KKT_SPARSE_MIN). Measured in instructions on the Cartesian chain (N
+/// particles with their own coordinates, N rods, index-1 with projection, bench/overhead_ir.sh
+/// routes_ir.csv): loop system / KKT matrix 0.35 at m = 4, 0.45 at 16, 0.47 at 32 and 0.49 at
+/// 64 (dense KKT), 3.7 at 72 and 5.6 at 128 (KKT by KLU): the loop system wins while the
+/// KKT matrix is dense and loses to KLU's O(N) once it is sparse. 32 keeps every system of up
+/// to 32 rows on the loop system and hands larger Cartesian systems to KLU; a tree with a few
+/// loops (the held 64-link chain, m = 1) runs 9.7x faster than through the dense KKT matrix.
+#define DAL_LOOP_ROWS_MAX 32
+
 /// Smallest KKT order factored sparse (KLU) when a dense M exists, and the largest fill
 /// (non-zeros / order^2) for it: measured on the chain, KLU wins from ~200 unknowns when the
 /// matrix is sparse (N = 256: 0.22 s dense -> 0.09 s KLU).

@@ -12,7 +12,7 @@ static const dal_method_row rows[] = {
     {DAL_METHOD_FEHLBERG78, "fehlberg78", 0.01, dal__erk_create, 0},
     {DAL_METHOD_BS, "bs", 0.005, dal__bs_create, 0},
     {DAL_METHOD_RK4, "rk4", 1.0, dal__rk4_create, 0},
-    {DAL_METHOD_ADAMS, "adams", 0.01, dal__cvode_create, 0},
+    {DAL_METHOD_ADAMS, "adams", 0.005, dal__cvode_create, 0},
     {DAL_METHOD_BDF, "bdf", 0.0005, dal__cvode_create, 1},
     // fixed-step structure-preserving methods (ode_symplectic.c): no error control
     {DAL_METHOD_VARIATIONAL, "variational", 1.0, dal__symplectic_create, 0},

@@ -32,7 +32,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   st->gamma = calloc(Nd + 1, sizeof(double));
   st->F = calloc(Nd + 1, sizeof(double));
   st->N = calloc(Nd + 1, sizeof(double));
-  st->J = calloc((size_t)sys->pj_off[sys->N] + 1, sizeof(double));
+  st->J = calloc(sys->store_J ? (size_t)sys->pj_off[sys->N] + 1 : 1, sizeof(double));
   st->Lp = calloc(Nd * (size_t)sys->dim + 1, sizeof(double));
   if (sys->dense_M) {
     st->M = calloc(n * n, sizeof(double));
@@ -48,6 +48,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     st->phit = calloc(m, sizeof(double));
     st->kkt = dal__kkt_create(sys);
   }
+  if (sys->aba) st->aba = dal__aba_create(sys);
   size_t jn = (size_t)sys->max_in, jo = (size_t)sys->max_out;
   st->jin = calloc(jn + 1, sizeof(dal_jet));
   st->jout = calloc(jo + 1, sizeof(dal_jet));
@@ -61,7 +62,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
       (sys->dense_M && (!st->M || !st->L)) ||
       (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->Gl || !st->phit ||
              !st->kkt)) ||
-      !st->jin || !st->Lc || !st->Lp || !st->dir || !st->cf ||
+      !st->jin || !st->Lc || !st->Lp || !st->dir || !st->cf || (sys->aba && !st->aba) ||
       !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
     dal_state_destroy(st);
     return DAL_E_NOMEM;
@@ -86,6 +87,7 @@ void dal_state_destroy(dal_state *st) {
   free(st->jv);
   free(st->jr);
   dal__kkt_free(st->kkt);
+  dal__aba_free(st->aba);
   free(st);
 }
 

@@ -77,6 +77,49 @@ static int sorted_unique(const int *list, int n, int *out) {
   return k;
 }
 
+// Whether the articulated-body recursion (aba.c) applies: a tree of placements in which every
+// coordinate is moved by exactly one placement and listed there once. A coordinate shared
+// between placements couples branches the recursion treats as independent, and one that moves
+// no particle leaves M singular (the KKT matrix may still be regular). Returns 1, or 0 with
+// the reason in why.
+static int recursion_applies(const dal_builder *b, const int *ip, char *why, size_t len) {
+  int n = b->coords.len, N = b->parts.len;
+  const dal_place *places = b->places.data;
+  char **cn = b->coords.data, **pn = b->parts.data;
+  if (b->lag || N == 0) {
+    snprintf(why, len, "a Lagrangian system has no tree of particle placements");
+    return 0;
+  }
+  if (b->map) {
+    snprintf(why, len, "a whole-system map has no tree of particle placements");
+    return 0;
+  }
+  int *owner = malloc(((size_t)n + 1) * sizeof(int));
+  if (!owner) {
+    snprintf(why, len, "out of memory");
+    return 0;
+  }
+  for (int j = 0; j < n; ++j) owner[j] = -1;
+  int ok = 1;
+  for (int k = 0; k < N && ok; ++k)
+    for (int i = 0; i < places[k].ncoord && ok; ++i) {
+      int j = ip[places[k].coord_off + i];
+      if (owner[j] >= 0) {
+        snprintf(why, len, "coordinate '%s' moves both particle '%s' and particle '%s'", cn[j],
+                 pn[owner[j]], pn[k]);
+        ok = 0;
+      }
+      owner[j] = k;
+    }
+  for (int j = 0; j < n && ok; ++j)
+    if (owner[j] < 0) {
+      snprintf(why, len, "coordinate '%s' moves no particle (M is singular there)", cn[j]);
+      ok = 0;
+    }
+  free(owner);
+  return ok;
+}
+
 int dal_builder_compile(dal_builder *b, dal_system **out) {
   if (!b || !out) return DAL_E_ARG;
   *out = NULL;
@@ -110,6 +153,13 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   if (b->lag && b->cons.len)
     return BFAIL(DAL_E_ARG, "constraint '%s': constraints need particles or coordinates of a "
                             "particle system, not a Lagrangian system", cons[0].name);
+
+  char why[DAL_ERRMSG_LEN / 2];
+  int recursive = recursion_applies(b, ip, why, sizeof why);
+  if (b->dynamics == DAL_DYNAMICS_RECURSIVE && !recursive)
+    return BFAIL(DAL_E_UNSUPPORTED,
+                 "DAL_DYNAMICS_RECURSIVE does not apply: %s; use DAL_DYNAMICS_AUTO or _DENSE",
+                 why);
 
   dal_system *s = calloc(1, sizeof *s);
   if (!s) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
@@ -230,8 +280,17 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   if (!s->springs || !s->dampers || !s->potr || !s->potq || !s->forces || !s->genforces)
     goto nomem;
 
-  // dense mass matrix unless the redundant system is large (then M is applied through J)
-  s->dense_M = (m == 0 || n <= DAL_DENSE_M_MAX);
+  // the route (solve.h, "Dynamics routes"): the recursion where it applies, unless there are
+  // so many constraint rows that the KKT matrix is cheaper than the m x m loop system
+  // (limits.h). (A placement moving more than d coordinates leaves M singular whatever the
+  // route: its subtree moves only through its particle's position.)
+  s->aba = recursive && (b->dynamics == DAL_DYNAMICS_RECURSIVE ||
+                         (b->dynamics == DAL_DYNAMICS_AUTO && m <= DAL_LOOP_ROWS_MAX));
+  // dense mass matrix unless the system is large and needs none (a redundant system applies M
+  // through J; the recursion needs no M); large recursive trees without constraints keep no
+  // global Jacobians either (dal_state_jacobian forms them from the local blocks)
+  s->dense_M = (m == 0 && !s->aba) || n <= DAL_DENSE_M_MAX;
+  s->store_J = !(s->aba && m == 0 && n > DAL_DENSE_M_MAX);
 
   // tree assembly data: subtree masses (parents precede children) and local column offsets
   s->mu = dup_mem(s->mass, (size_t)N * sizeof(double));
@@ -288,6 +347,9 @@ void dal_system_destroy(dal_system *s) {
 }
 
 int dal_system_dim(const dal_system *s) { return s ? s->dim : 0; }
+dal_dynamics dal_system_dynamics(const dal_system *s) {
+  return !s ? DAL_DYNAMICS_AUTO : s->aba ? DAL_DYNAMICS_RECURSIVE : DAL_DYNAMICS_DENSE;
+}
 int dal_system_ncoords(const dal_system *s) { return s ? s->n : 0; }
 int dal_system_nparticles(const dal_system *s) { return s ? s->N : 0; }
 int dal_system_nconstraints(const dal_system *s) { return s ? s->m : 0; }

@@ -80,6 +80,42 @@ typedef enum dal_formulation {
                      ///< global error measured 1e4-1e6 x rtol on a pendulum)
 } dal_formulation;
 
+// Dynamics routes (dal_builder_set_dynamics in system.h). Accelerations come from
+// M qddot = Q - c, and with constraints from the KKT system [M G'; G 0] [qddot; -lambda] =
+// [Q - c; -gamma_phi]. Two routes solve them:
+//
+// - DAL_DYNAMICS_RECURSIVE, the articulated-body recursion (Featherstone's, for point masses:
+//   a d x d articulated inertia and a bias force per particle, one sweep from the leaves and
+//   one from the roots), O(N) per evaluation. It applies to any tree of placements in which
+//   every coordinate moves exactly one placement: translating parents (r_k = r_parent +
+//   f(q_k, t), the composite-mass case) and others (through the local parent block dr_k /
+//   dr_parent), several coordinates per placement, rheonomic maps, every force. With
+//   constraints (loops closed on the tree, a few Cartesian rods) the multipliers come from
+//   the m x m system G M^-1 G' lambda = ..., built from m recursion solves with unit loads;
+//   the dense or sparse KKT matrix in all coordinates is not formed. M is assembled only when
+//   asked for (dal_forward, dal_state_mass_matrix), and not at all above 512 coordinates, where
+//   the global Jacobians are not stored either (dal_state_jacobian forms them from the local
+//   blocks).
+// - DAL_DYNAMICS_DENSE: M assembled (composite masses for translating trees, J'MJ otherwise)
+//   and factored by LAPACK Cholesky; the KKT matrix dense (dsytrf) or sparse (KLU).
+//
+// DAL_DYNAMICS_AUTO takes the recursion wherever it applies and the system has at most
+// DAL_LOOP_ROWS_MAX = 32 constraint rows; otherwise the dense route. Measured in callgrind
+// instructions (bench/overhead_ir.sh; README): the planar chain at N = 1 ... 32 costs 0.41 ...
+// 0.80 of the dense route with DOPRI5 and Adams at rtol 1e-8, already at N = 1 (no LAPACK
+// call), and from N = 128 to 4096 one evaluation costs N^0.99 (the dense route's wall time grows
+// as N^2.4 from 16 to 128). The four-bar linkage and a 64-link chain held at both ends, a tree
+// plus one loop row each, run 2.5x and 9.7x cheaper than the same trees through the KKT matrix
+// and 7.1x and 8.4x cheaper than the Cartesian scenes in GGL (DOPRI5 with projection at rtol
+// 1e-6 against GGL at 1e-8, similar errors). With more rows the KKT matrix wins once KLU
+// factors it (the Cartesian chain: the loop system costs 0.47 of the dense KKT matrix at m =
+// 32, 3.7x KLU at m = 72). The recursion needs a regular M: where M is singular but the KKT
+// matrix is not (a coordinate at a chart singularity held by a constraint), DAL_E_SINGULAR
+// names the coordinate and DAL_DYNAMICS_DENSE is the remedy. Both routes give the same
+// accelerations, multipliers and reactions to rounding (tests/test_aba.c: below 1e-13 relative
+// on random trees of up to 200 particles) and the same DAL_E_SINGULAR message for a degenerate
+// coordinate.
+
 /// Linear solver for implicit methods.
 typedef enum dal_linsol {
   DAL_LINSOL_AUTO = 0, ///< dense below opts.sparse_threshold unknowns, KLU above

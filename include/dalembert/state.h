@@ -92,7 +92,8 @@ DAL_API const double *dal_state_gamma(const dal_state *st);
 /// caller-owned). Returns DAL_E_ARG for a bad k.
 DAL_API int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double *J);
 /// Mass matrix M (n x n, column-major, symmetric), after dal_forward; NULL when the system
-/// stores M only implicitly (large redundant systems; use dal_state_jacobian).
+/// stores M only implicitly (more than 512 coordinates with constraints or on the recursive
+/// route, solve.h; use dal_state_jacobian).
 DAL_API const double *dal_state_mass_matrix(const dal_state *st);
 /// Generalized applied forces Q = sum_k J_k' F_k + Q_user - dU(q)/dq (n).
 DAL_API const double *dal_state_genforces(const dal_state *st);

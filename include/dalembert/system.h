@@ -262,6 +262,24 @@ DAL_API int dal_builder_add_constraint(dal_builder *b, const char *name,
 /// Uniform gravity: acceleration vector g (d values, copied), force m_k g on every particle.
 DAL_API int dal_builder_set_gravity(dal_builder *b, const double *g);
 
+/// How a compiled system computes accelerations (and, with constraints, multipliers); where
+/// each applies and what it costs is in solve.h ("Dynamics routes").
+typedef enum dal_dynamics {
+  DAL_DYNAMICS_AUTO = 0,  ///< the recursion where it applies (the default), else dense
+  DAL_DYNAMICS_DENSE,     ///< assemble M and factor it (Cholesky; the KKT matrix with
+                          ///< constraints)
+  DAL_DYNAMICS_RECURSIVE, ///< the O(N) articulated-body recursion over the tree of placements
+                          ///< (with constraints: the m x m loop system); dal_builder_compile
+                          ///< fails with DAL_E_UNSUPPORTED naming the reason where it cannot
+                          ///< apply
+} dal_dynamics;
+
+/// Choose the dynamics route (default DAL_DYNAMICS_AUTO). Both routes give the same
+/// accelerations, multipliers and reactions to rounding; DENSE is there for comparisons and
+/// for trees whose mass matrix is singular where constraints make the KKT matrix regular.
+/// Returns DAL_E_ARG for an unknown value.
+DAL_API int dal_builder_set_dynamics(dal_builder *b, dal_dynamics how);
+
 /// Linear spring between particles a and b: stiffness k (>= 0), rest length L (>= 0),
 /// U = k/2 (|r_b - r_a| - L)^2.
 DAL_API int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L);
@@ -300,6 +318,9 @@ DAL_API int dal_builder_compile(dal_builder *b, dal_system **out);
 /// Free a system (NULL is a no-op). All states of the system must be destroyed first.
 DAL_API void dal_system_destroy(dal_system *sys);
 
+/// The dynamics route the system uses (DAL_DYNAMICS_DENSE or DAL_DYNAMICS_RECURSIVE; AUTO
+/// resolved at compile time). DAL_DYNAMICS_AUTO for NULL.
+DAL_API dal_dynamics dal_system_dynamics(const dal_system *sys);
 /// Spatial dimension d (2 or 3).
 DAL_API int dal_system_dim(const dal_system *sys);
 /// Number of generalized coordinates n.
