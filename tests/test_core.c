@@ -158,6 +158,7 @@ static void test_tolerance_table(void) {
               {"bdf (cvode)", DAL_FORM_ODE, DAL_METHOD_BDF, 0},
               {"ggl (ida)", DAL_FORM_GGL, DAL_METHOD_BDF, 0},
               {"index1+proj bs", DAL_FORM_INDEX1, DAL_METHOD_BS, 1},
+              {"auto (constrained)", DAL_FORM_AUTO, DAL_METHOD_AUTO, 0},
               {"index1+proj dopri5", DAL_FORM_INDEX1, DAL_METHOD_DOPRI5, 1}};
   double th0s[3] = {PI / 3, 2 * PI / 3, 170 * PI / 180}, T = 10.0;
   printf("  worst error at t = 10 / rtol (pendulum 60/120/170 deg vs elliptic, oscillator vs "
@@ -166,7 +167,7 @@ static void test_tolerance_table(void) {
   printf("\n");
   for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
     printf("  %-20s", rows[r].name);
-    int dae = rows[r].f != DAL_FORM_ODE;
+    int dae = rows[r].f != DAL_FORM_ODE; // AUTO runs the Cartesian pendulum (constrained)
     for (int k = 4; k <= 12; ++k) {
       double tol = pow(10.0, -k), worst = 0.0;
       int bad = 0;

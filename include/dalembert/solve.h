@@ -49,8 +49,10 @@ extern "C" {
 ///
 /// IDA is run at no less than 1e-12 (its corrector stalls on rounding below: limits.h); a
 /// tighter request is clamped, atol scaled alike, and the clamp shows in dal_stats.rtol_used
-/// (GGL then measures 98 x rtol at 1e-11 and 980 x at 1e-12: for such tolerances use the
-/// index-1 form with projection and Bulirsch-Stoer). Ill-conditioned problems (chaos,
+/// (GGL then measures 98 x rtol at 1e-11 and 980 x at 1e-12). So with DAL_FORM_AUTO and
+/// DAL_METHOD_AUTO, a constrained system asked for rtol < 1e-9 runs the index-1 form with
+/// projection and Bulirsch-Stoer instead (from a consistent start), which honours it (row
+/// "auto (constrained)" of the table in tests/test_core.c). Ill-conditioned problems (chaos,
 /// near-separatrix motion) amplify local errors further.
 typedef enum dal_method {
   DAL_METHOD_AUTO = 0,     ///< pick by formulation and tolerance (rule above)
