@@ -21,7 +21,7 @@ rows(cond, f) = "< awk -F, 'NR>1 && ".cond."' ".f
 
 do for [fmt in "png svg"] {
   ext = fmt eq "png" ? ".png" : ".svg"
-  if (fmt eq "png") { set terminal pngcairo size 1200,900 font ",10" } else { set terminal svg size 1200,900 font ",10" }
+  if (fmt eq "png") { set terminal pngcairo size 1200,900 font ",10" noenhanced } else { set terminal svg size 1200,900 font ",10" noenhanced }
 
   # 1. invariant error (running maximum) against time, four scenes
   f = dir."/sym_longrun.csv"
@@ -32,7 +32,7 @@ do for [fmt in "png svg"] {
   set xlabel "time (periods)"
   set ylabel "max |invariant error| / (m g l)"
   do for [sc in "pendulum ring ring_cartesian double_cartesian"] {
-    set title sc.(sc eq "ring" ? " (Jacobi integral h)" : sc eq "ring_cartesian" ? " (E - w L_z, RATTLE)" : " (energy)")
+    set title sc.(sc eq "ring" ? " (Jacobi integral h)" : sc eq "ring_cartesian" ? " (E - w Lz, RATTLE)" : " (energy)")
     ms = distinct("($1==\"".sc."\" ? $2 : \"\")", f)
     plot for [m in ms] rows("$1==\"".sc."\" && $2==\"".m."\"", f) u 5:7 w l lw 1.6 lc rgb mcolor(m) \
          t sprintf("%s %s", m, system("awk -F, 'NR>1 && $1==\"".sc."\" && $2==\"".m."\" {p=$3} END {print p}' ".f))
@@ -69,12 +69,13 @@ do for [fmt in "png svg"] {
   set output dir."/sym_failures".ext
   set multiplot layout 2,2 title "where the symplectic methods fail"
   s = dir."/sym_stiff.csv"
-  set title "stiff spring (w_fast = 100): error of the slow mass at t = 20 (crosses: blew up)"
+  set title "stiff spring (w_fast = 100): error of the slow mass at t = 20 (crosses at 1e2: blew up)"
   set xlabel "CPU seconds"
   set ylabel "|x1 error|"
   ms = distinct("$1", s)
-  plot for [m in ms] rows("$1==\"".m."\" && $6==\"ok\"", s) u 3:5 w lp pt 7 ps 0.8 lw 1.2 lc rgb mcolor(m) t m, \
-       for [m in ms] rows("$1==\"".m."\" && $6!=\"ok\"", s) u 3:(1e2) w p pt 2 ps 1.5 lc rgb mcolor(m) notitle
+  scol(m) = m eq "rattle" ? 0xd62728 : m eq "variational" ? 0xff7f0e : mcolor(m)
+  plot for [m in ms] rows("$1==\"".m."\" && $6==\"ok\"", s) u 3:5 w p pt 7 ps 1.0 lc rgb scol(m) t m, \
+       for [m in ms] rows("$1==\"".m."\" && $6!=\"ok\"", s) u 3:(1e2) w p pt 2 ps 1.5 lc rgb scol(m) notitle
   d = dir."/sym_drive.csv"
   set title "driven pendulum (energy input): |theta error| against t"
   set xlabel "t (s)"
