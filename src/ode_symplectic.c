@@ -138,6 +138,14 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
   for (;;) {
     double tk = grid_time(m, m->k), tn = grid_time(m, m->k + 1);
     if (near_time(tk, tout) || (tn > tout && !near_time(tn, tout))) break;
+    if (!(tn > tk)) {
+      back_to_grid(ig, m);
+      return dal__ode_fail(ig, DAL_E_ARG,
+                           "opts.fixed_step = %.3g is below the floating-point resolution of t "
+                           "near t=%.17g: the grid does not advance; use a larger step or "
+                           "restart the clock near 0",
+                           m->H, tk);
+    }
     if (ig->ncall >= ig->opts.max_steps) {
       back_to_grid(ig, m);
       return dal__ode_fail(ig, DAL_E_MAXSTEPS,

@@ -468,7 +468,10 @@ static int var_to_y(dal_ode_integ *ig, void *mem, double t, const double *x, dou
       double nrm = 0.0, vmax = 0.0;
       for (int i = 0; i < n; ++i) {
         qd[i] += m->dlt[i];
-        nrm = fmax(nrm, fabs(m->dlt[i]));
+        if (!(fabs(m->dlt[i]) <= nrm)) {
+          nrm = fabs(m->dlt[i]);
+          bad = i;
+        }
         vmax = fmax(vmax, fabs(qd[i]));
       }
       if (nrm <= 4.0 * EPS * vmax || (it >= 1 && nrm >= 0.5 * nprev && nrm <= 1e-8 * vmax)) break;
@@ -477,7 +480,7 @@ static int var_to_y(dal_ode_integ *ig, void *mem, double t, const double *x, dou
                         "variational method: the velocities for the momenta at t=%.17g "
                         "(dL/dqdot = p) do not converge (correction %.3g of '%s'); "
                         "d2L/dqdot2 is nearly singular there",
-                        t, nrm, sys->coord_names[0]);
+                        t, nrm, sys->coord_names[bad]);
       nprev = nrm;
     }
   }

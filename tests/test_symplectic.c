@@ -929,6 +929,18 @@ static void test_stiff(void) {
   CHECK_CLOSE(dal_state_time(st), 0.01, 1e-15);
   dal_state_destroy(st);
   dal_system_destroy(sys);
+  // a step below the floating-point resolution of t cannot advance the grid
+  dal_system *ps2 = make_pendulum(0);
+  dal_state *st2 = NULL;
+  CHECK_OK(dal_state_create(ps2, &st2));
+  double th2 = 1.0, thd2 = 0.0;
+  op = fixed(DAL_METHOD_VARIATIONAL, 1e-12);
+  CHECK_OK(dal_state_set(ps2, st2, 1e6, &th2, &thd2));
+  CHECK(dal_advance(ps2, st2, &op, 1e6 + 1.0) == DAL_E_ARG);
+  CHECK_MSG(strstr(dal_state_errmsg(st2), "fixed_step") != NULL, "%s", dal_state_errmsg(st2));
+  CHECK(dal_state_time(st2) == 1e6);
+  dal_state_destroy(st2);
+  dal_system_destroy(ps2);
   CHECK(strcmp(dal_method_name(DAL_METHOD_RATTLE6), "rattle6") == 0);
   CHECK(strcmp(dal_method_name(DAL_METHOD_VARIATIONAL4), "variational4") == 0);
 }
