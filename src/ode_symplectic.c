@@ -115,7 +115,7 @@ static void back_to_grid(dal_ode_integ *ig, symp_mem *m) {
   }
 }
 
-static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc, double t, double h) {
+static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc) {
   char msg[DAL_ERRMSG_LEN];
   memcpy(msg, ig->st->err, sizeof msg);
   m->base.invalidate(m->base.mem);
@@ -125,8 +125,6 @@ static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc, double t, double h)
                          "%s; a fixed-step %s step cannot shrink: reduce opts.fixed_step (%.3g); "
                          "stopped at t=%.17g (last accepted step)",
                          msg, dal_method_name(ig->method), m->H, ig->t);
-  (void)t;
-  (void)h;
   return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g (last accepted step) before t=%.17g", msg,
                        ig->t, ig->tout);
 }
@@ -158,7 +156,7 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     memcpy(m->xw, m->x, bytes);
     memcpy(m->cw, m->c, bytes);
     rc = composed_step(ig, m, tk, m->H, m->xw, m->cw);
-    if (rc) return fail_step(ig, m, rc, tk, m->H);
+    if (rc) return fail_step(ig, m, rc);
     double *sw = m->x;
     m->x = m->xw;
     m->xw = sw;
@@ -179,10 +177,10 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     memcpy(m->cw, m->c, bytes);
     rc = composed_step(ig, m, tk, tout - tk, m->xw, m->cw);
     m->base.invalidate(m->base.mem);
-    if (rc) return fail_step(ig, m, rc, tk, tout - tk);
+    if (rc) return fail_step(ig, m, rc);
     rc = m->base.to_y(ig, m->base.mem, tout, m->xw, ig->ydot);
   }
-  if (rc) return fail_step(ig, m, rc, tk, 0.0);
+  if (rc) return fail_step(ig, m, rc);
   memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
   ig->t = tout;
   return DAL_OK;
