@@ -42,6 +42,9 @@
 
 #define EPS DBL_EPSILON
 
+// The method's state x = (q (n), v (n), lambda (m)): lambda, the multipliers of the last
+// position solve, is the next one's guess; kept in x so that a step from a copy (an off-grid
+// output, a failed attempt) leaves the trajectory bit for bit.
 typedef struct rat_mem {
   dal_state *st;
   int n, m;
@@ -49,7 +52,7 @@ typedef struct rat_mem {
   double *minv; // inverse mass of each coordinate (n)
   double *F0;   // generalized forces at the start point (n)
   double *G0;   // compact G at the start point
-  double *lam;  // multipliers of the last position solve: the next one's guess (m)
+  double *lam0; // multipliers at the start (KKT), the first position solve's guess (m)
   double *E, *qt, *ct, *vh, *u, *zero, *xk; // n
   double *yk, *b, *gu;                      // m
 } rat_mem;
@@ -131,7 +134,7 @@ static int rat_eval(const dal_system *sys, rat_mem *m, double t, const double *q
   st->stats.rhs_evals++;
   int rc = dal__kinematics(sys, st, 1);
   if (rc == 0 && m->m) rc = dal__constraints(sys, st);
-  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 0, NULL);
+  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 1, NULL);
   return rc;
 }
 
@@ -165,13 +168,13 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
   const dal_system *sys = ig->sys;
   dal_state *st = m->st;
   int n = m->n, nc = m->m, rc, grow = 0, worst = 0;
-  double *q0 = x, *v0 = x + n, t1 = t + h, res = 0.0, rprev = INFINITY;
+  double *q0 = x, *v0 = x + n, *lam = x + 2 * n, t1 = t + h, res = 0.0, rprev = INFINITY;
   if (h == 0.0) return DAL_OK;
   if (!m->cache_ok && (rc = rat_start(sys, m, t, q0, v0)) != 0) return rc;
   m->cache_ok = 0;
   // kick with the forces and the multipliers' guess: E = h^2/2 M^-1 (F0 + G0' lambda)
   if (nc)
-    gt_apply(sys, m->G0, m->lam, m->u);
+    gt_apply(sys, m->G0, lam, m->u);
   else
     memset(m->u, 0, (size_t)n * sizeof(double));
   for (int i = 0; i < n; ++i)
@@ -196,11 +199,11 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
       char qs[256];
       dal__fmt_q(sys, q0, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_CONV,
-                      "RATTLE step: the position constraints do not converge from t=%.17g, %s "
-                      "(h=%.3g): after %d iterations constraint '%s' (row %d) has residual "
-                      "%.3g (%s); the step is too long for the motion (or the constraints "
-                      "become dependent there): reduce opts.fixed_step",
-                      t, qs, h, it, sys->con[sys->row_con[worst]].name, worst, res,
+                      "RATTLE step from t=%.17g, %s (h=%.3g): the position constraints do not "
+                      "converge (constraint '%s', row %d, residual %.3g after %d iterations, %s); "
+                      "the step is too long for the motion or the constraints become dependent: "
+                      "reduce opts.fixed_step",
+                      t, qs, h, sys->con[sys->row_con[worst]].name, worst, res, it,
                       isfinite(res) ? (grow >= RAT_MAXGROW ? "growing" : "converging too slowly")
                                     : "not finite");
     }
@@ -212,10 +215,10 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
     for (int i = 0; i < n; ++i)
       m->E[i] += m->xk[i];
     for (int r = 0; r < nc; ++r)
-      m->lam[r] += 2.0 * m->yk[r] / (h * h);
+      lam[r] += 2.0 * m->yk[r] / (h * h);
   }
   // forces at q1 (kinematics and constraint rows are current at (t1, q1, v_h))
-  if ((rc = dal__dynamics(sys, st, 0, NULL)) != 0) return rc;
+  if ((rc = dal__dynamics(sys, st, 1, NULL)) != 0) return rc;
   for (int i = 0; i < n; ++i)
     m->u[i] = 0.5 * h * m->minv[i] * st->Q[i];
   double resv = 0.0;
@@ -254,6 +257,7 @@ static int rat_from_y(dal_ode_integ *ig, void *mem, double t, const double *y, d
   (void)t;
   rat_mem *m = mem;
   memcpy(x, y, 2 * (size_t)m->n * sizeof(double));
+  memcpy(x + 2 * m->n, m->lam0, (size_t)m->m * sizeof(double));
   m->cache_ok = 0;
   return DAL_OK;
 }
@@ -271,8 +275,8 @@ static void rat_invalidate(void *mem) { ((rat_mem *)mem)->cache_ok = 0; }
 static void rat_free(void *mem) {
   rat_mem *m = mem;
   if (!m) return;
-  double *bufs[] = {m->minv, m->F0, m->G0,   m->lam, m->E,  m->qt, m->ct,
-                    m->vh,   m->u,  m->zero, m->xk,  m->yk, m->b,  m->gu};
+  double *bufs[] = {m->minv, m->F0, m->G0,   m->lam0, m->E,  m->qt, m->ct,
+                    m->vh,   m->u,  m->zero, m->xk,   m->yk, m->b,  m->gu};
   for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
     free(bufs[i]);
   free(m);
@@ -286,7 +290,7 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
   m->st = st;
   m->n = sys->n;
   m->m = sys->m;
-  b->nx = 2 * m->n;
+  b->nx = 2 * m->n + m->m;
   b->mem = m;
   b->from_y = rat_from_y;
   b->to_y = rat_to_y;
@@ -295,7 +299,7 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
   b->free = rat_free;
   size_t n = (size_t)m->n + 1, mm = (size_t)m->m + 1;
   double **vn[] = {&m->minv, &m->F0, &m->E, &m->qt, &m->ct, &m->vh, &m->u, &m->zero, &m->xk};
-  double **vm[] = {&m->lam, &m->yk, &m->b, &m->gu};
+  double **vm[] = {&m->lam0, &m->yk, &m->b, &m->gu};
   int ok = 1;
   for (size_t i = 0; i < sizeof vn / sizeof vn[0]; ++i)
     ok &= (*vn[i] = calloc(n, sizeof(double))) != NULL;
@@ -323,7 +327,7 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
   // multipliers), then positions to the level of rounding for the first step
   int rc = dal__dae_start(sys, st, ig->opts.init_max_move, NULL);
   if (rc) return rc;
-  memcpy(m->lam, st->lambda, (size_t)m->m * sizeof(double));
+  memcpy(m->lam0, st->lambda, (size_t)m->m * sizeof(double));
   double qmax = 1.0;
   for (int i = 0; i < m->n; ++i)
     qmax = fmax(qmax, fabs(st->q[i]));

@@ -115,7 +115,7 @@ static void back_to_grid(dal_ode_integ *ig, symp_mem *m) {
   }
 }
 
-static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc, double t, double h) {
+static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc) {
   char msg[DAL_ERRMSG_LEN];
   memcpy(msg, ig->st->err, sizeof msg);
   m->base.invalidate(m->base.mem);
@@ -125,10 +125,8 @@ static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc, double t, double h)
                          "%s; a fixed-step %s step cannot shrink: reduce opts.fixed_step (%.3g); "
                          "stopped at t=%.17g (last accepted step)",
                          msg, dal_method_name(ig->method), m->H, ig->t);
-  return dal__ode_fail(ig, rc,
-                       "%s (%s step from t=%.17g, h=%.3g); stopped at t=%.17g (last accepted "
-                       "step) before the target t=%.17g",
-                       msg, dal_method_name(ig->method), t, h, ig->t, ig->tout);
+  return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g (last accepted step) before t=%.17g", msg,
+                       ig->t, ig->tout);
 }
 
 static int symp_advance(dal_ode_integ *ig, double tout) {
@@ -138,6 +136,14 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
   for (;;) {
     double tk = grid_time(m, m->k), tn = grid_time(m, m->k + 1);
     if (near_time(tk, tout) || (tn > tout && !near_time(tn, tout))) break;
+    if (!(tn > tk)) {
+      back_to_grid(ig, m);
+      return dal__ode_fail(ig, DAL_E_ARG,
+                           "opts.fixed_step = %.3g is below the floating-point resolution of t "
+                           "near t=%.17g: the grid does not advance; use a larger step or "
+                           "restart the clock near 0",
+                           m->H, tk);
+    }
     if (ig->ncall >= ig->opts.max_steps) {
       back_to_grid(ig, m);
       return dal__ode_fail(ig, DAL_E_MAXSTEPS,
@@ -150,7 +156,7 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     memcpy(m->xw, m->x, bytes);
     memcpy(m->cw, m->c, bytes);
     rc = composed_step(ig, m, tk, m->H, m->xw, m->cw);
-    if (rc) return fail_step(ig, m, rc, tk, m->H);
+    if (rc) return fail_step(ig, m, rc);
     double *sw = m->x;
     m->x = m->xw;
     m->xw = sw;
@@ -171,10 +177,10 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     memcpy(m->cw, m->c, bytes);
     rc = composed_step(ig, m, tk, tout - tk, m->xw, m->cw);
     m->base.invalidate(m->base.mem);
-    if (rc) return fail_step(ig, m, rc, tk, tout - tk);
+    if (rc) return fail_step(ig, m, rc);
     rc = m->base.to_y(ig, m->base.mem, tout, m->xw, ig->ydot);
   }
-  if (rc) return fail_step(ig, m, rc, tk, 0.0);
+  if (rc) return fail_step(ig, m, rc);
   memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
   ig->t = tout;
   return DAL_OK;

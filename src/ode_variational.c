@@ -57,15 +57,18 @@
 
 #define EPS DBL_EPSILON
 
+// The method's state x: besides (q, p) it carries what the next step starts from, so that a
+// step from a copy (an off-grid output, a failed attempt) leaves the trajectory bit for bit:
+//   x = (q (n), p (n), vg1 (n), vg2 (n), tg1, tg2, ng, C (n x n, particle route only))
+// vg1, vg2: midpoint velocities of the last two steps at times tg1, tg2 (ng of them known),
+// the Newton predictor; C: the secant estimate of -L_qq / 4 (see secant()).
+enum { X_VG1 = 2, X_VG2 = 3, X_HIST = 4 };
+
 typedef struct var_mem {
   dal_state *st;
-  int n, Nd, lag;
+  int n, Nd, lag, nx;
   double *D, *dlt, *qm, *v, *Lv, *F, *R, *Qg, *qdot; // n each
-  double *vg1, *vg2; // midpoint velocities of the last two steps, at times tg1, tg2 (predictor)
-  double tg1, tg2;
-  int ng;               // how many of them are known (0, 1, 2)
-  double *B, *S, *L;    // n x n
-  double *C;            // particle route: secant estimate of -L_qq / 4 (n x n), see var_step
+  double *B, *S, *L;                                 // n x n
   double *sk, *Rk, *yk; // the last Newton correction, residual, and the secant's y (n)
   double *Hz;           // (2n) x (2n), Lagrangian
   double *vk, *gp;      // N x d
@@ -81,6 +84,11 @@ int dal__variational_check(const dal_system *sys, dal_state *st, const char *nam
                     name, sys->m, sys->con[0].name);
   if (sys->n == 0)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED, "method '%s': the system has no coordinates", name);
+  if (!sys->dense_M && !sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "method '%s' solves with the dense mass matrix, which a system of %d "
+                    "coordinates does not store; use an adaptive method",
+                    name, sys->n);
   return DAL_OK;
 }
 
@@ -212,7 +220,7 @@ static int part_point(const dal_system *sys, dal_state *st, double t, const doub
   memcpy(st->qdot, v, (size_t)sys->n * sizeof(double));
   dal__state_moved(st);
   int rc = dal__kinematics(sys, st, 1);
-  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 0, NULL);
+  if (rc == 0 && dyn) rc = dal__dynamics(sys, st, 2, NULL); // with the whole M (Newton)
   st->stats.rhs_evals++;
   return rc;
 }
@@ -292,7 +300,7 @@ static int newton_terms(dal_ode_integ *ig, var_mem *m, double t, double h, const
 // (B + h^2 C) s = y with y = h (R_new - R_old), and carried from step to step (L_qq changes
 // slowly along the motion), which brings the iteration close to quadratic convergence. The
 // update is skipped when s is too small for y to rise above the rounding of R.
-static void secant(var_mem *m, double h, int have_s) {
+static void secant(var_mem *m, double *C, double h, int have_s) {
   int n = m->n;
   if (have_s) {
     double ss = 0.0, smax = 0.0, dmax = 0.0;
@@ -306,16 +314,16 @@ static void secant(var_mem *m, double h, int have_s) {
       for (int i = 0; i < n; ++i) {
         double r = h * (m->R[i] - m->Rk[i]);
         for (int j = 0; j < n; ++j)
-          r -= (m->B[(size_t)j * n + i] + h * h * m->C[(size_t)j * n + i]) * m->sk[j];
+          r -= (m->B[(size_t)j * n + i] + h * h * C[(size_t)j * n + i]) * m->sk[j];
         m->yk[i] = r / (h * h * ss);
       }
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
-          m->C[(size_t)j * n + i] += m->yk[i] * m->sk[j];
+          C[(size_t)j * n + i] += m->yk[i] * m->sk[j];
     }
   }
   for (int k = 0; k < n * n; ++k)
-    m->B[k] += h * h * m->C[k];
+    m->B[k] += h * h * C[k];
   memcpy(m->Rk, m->R, (size_t)n * sizeof(double));
 }
 
@@ -343,19 +351,20 @@ static int var_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
   dal_state *st = m->st;
   int n = m->n, rc, grow = 0;
   double *q0 = x, *p0 = x + n, tm = t + 0.5 * h, nprev = INFINITY;
+  double *vg1 = x + X_VG1 * n, *vg2 = x + X_VG2 * n, *hist = x + X_HIST * n, *C = hist + 3;
   if (h == 0.0) return DAL_OK;
   // predictor: the midpoint velocity extrapolated linearly in time from the last two steps
-  double w = m->ng >= 2 && m->tg1 != m->tg2 ? (tm - m->tg1) / (m->tg1 - m->tg2) : 0.0;
+  double w = hist[2] >= 2 && hist[0] != hist[1] ? (tm - hist[0]) / (hist[0] - hist[1]) : 0.0;
   if (!(fabs(w) <= 4.0)) w = 0.0;
   for (int i = 0; i < n; ++i)
-    m->D[i] = h * (m->vg1[i] + w * (m->vg1[i] - m->vg2[i]));
+    m->D[i] = h * (vg1[i] + w * (vg1[i] - vg2[i]));
   for (int it = 1;; ++it) {
     for (int i = 0; i < n; ++i) {
       m->qm[i] = q0[i] + 0.5 * m->D[i];
       m->v[i] = m->D[i] / h;
     }
     if ((rc = newton_terms(ig, m, tm, h, p0)) != 0) return rc;
-    if (!m->lag) secant(m, h, it > 1);
+    if (!m->lag) secant(m, C, h, it > 1);
     for (int i = 0; i < n; ++i)
       m->dlt[i] = -h * m->R[i];
     if ((rc = newton_solve(ig, m, tm, m->dlt)) != 0) return rc;
@@ -378,34 +387,31 @@ static int var_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
     if (it >= 2 && nrm >= 0.5 * nprev && nrm <= 1e-8 * dmax) break;
     grow = nrm > nprev ? grow + 1 : 0;
     // a growing correction: the carried secant estimate does not fit here, start it afresh
-    if (grow && !m->lag) memset(m->C, 0, (size_t)n * n * sizeof(double));
+    if (grow && !m->lag) memset(C, 0, (size_t)n * n * sizeof(double));
     if (!isfinite(nrm) || grow >= VAR_MAXGROW || it >= VAR_MAXIT) {
       char qs[256];
       dal__fmt_q(ig->sys, q0, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_CONV,
-                      "variational step: the discrete Euler-Lagrange equations do not converge "
-                      "from t=%.17g, %s (h=%.3g): after %d Newton iterations the correction of "
-                      "coordinate '%s' is %.3g (%s); the step is too long for the fastest "
-                      "motion of the scene (h omega beyond ~1 for its highest frequency "
-                      "omega) or the motion nears a degenerate configuration: reduce "
+                      "variational step from t=%.17g, %s (h=%.3g): the discrete "
+                      "Euler-Lagrange equations do not converge (Newton correction of '%s' "
+                      "%.3g after %d iterations, %s); the step is too long for the fastest "
+                      "motion (h omega > ~1) or nears a degenerate configuration: reduce "
                       "opts.fixed_step",
-                      t, qs, h, it, ig->sys->coord_names[worst], nrm,
+                      t, qs, h, ig->sys->coord_names[worst], nrm, it,
                       isfinite(nrm) ? (grow >= VAR_MAXGROW ? "growing" : "not yet converged")
                                     : "not finite");
     }
     nprev = nrm;
   }
   // q1 = q0 + D, p1 = p0 + h (L_q + Q), summed with compensation
-  double *sw = m->vg2;
-  m->vg2 = m->vg1;
-  m->vg1 = sw;
-  m->tg2 = m->tg1;
-  m->tg1 = tm;
-  m->ng = m->ng < 2 ? m->ng + 1 : 2;
+  memcpy(vg2, vg1, (size_t)n * sizeof(double));
+  hist[1] = hist[0];
+  hist[0] = tm;
+  hist[2] = hist[2] < 2 ? hist[2] + 1 : 2;
   for (int i = 0; i < n; ++i) {
     dal__ksum(&q0[i], &c[i], m->D[i]);
     dal__ksum(&p0[i], &c[n + i], h * m->F[i]);
-    m->vg1[i] = m->D[i] / h;
+    vg1[i] = m->D[i] / h;
   }
   return DAL_OK;
 }
@@ -420,8 +426,10 @@ static int var_from_y(dal_ode_integ *ig, void *mem, double t, const double *y, d
   const double *q = y, *qd = y + n;
   memcpy(x, q, (size_t)n * sizeof(double));
   memcpy(m->qdot, qd, (size_t)n * sizeof(double));
-  memcpy(m->vg1, qd, (size_t)n * sizeof(double));
-  m->ng = 1;
+  // the predictor starts from qdot; no secant estimate yet
+  memset(x + 2 * n, 0, (size_t)(m->nx - 2 * n) * sizeof(double));
+  memcpy(x + X_VG1 * n, qd, (size_t)n * sizeof(double));
+  x[X_HIST * n + 2] = 1;
   if (m->lag) {
     lag_base(m->st, n, t, q, qd);
     return lag_terms(sys, m, t, n, m->F, x + n, 0);
@@ -464,7 +472,10 @@ static int var_to_y(dal_ode_integ *ig, void *mem, double t, const double *x, dou
       double nrm = 0.0, vmax = 0.0;
       for (int i = 0; i < n; ++i) {
         qd[i] += m->dlt[i];
-        nrm = fmax(nrm, fabs(m->dlt[i]));
+        if (!(fabs(m->dlt[i]) <= nrm)) {
+          nrm = fabs(m->dlt[i]);
+          bad = i;
+        }
         vmax = fmax(vmax, fabs(qd[i]));
       }
       if (nrm <= 4.0 * EPS * vmax || (it >= 1 && nrm >= 0.5 * nprev && nrm <= 1e-8 * vmax)) break;
@@ -473,7 +484,7 @@ static int var_to_y(dal_ode_integ *ig, void *mem, double t, const double *x, dou
                         "variational method: the velocities for the momenta at t=%.17g "
                         "(dL/dqdot = p) do not converge (correction %.3g of '%s'); "
                         "d2L/dqdot2 is nearly singular there",
-                        t, nrm, sys->coord_names[0]);
+                        t, nrm, sys->coord_names[bad]);
       nprev = nrm;
     }
   }
@@ -494,8 +505,8 @@ static void var_invalidate(void *mem) { (void)mem; }
 static void var_free(void *mem) {
   var_mem *m = mem;
   if (!m) return;
-  double *bufs[] = {m->D, m->dlt, m->qm, m->v,  m->Lv, m->F,  m->R, m->Qg, m->vg1, m->vg2, m->qdot,
-                    m->B, m->S,   m->L,  m->Hz, m->vk, m->gp, m->C, m->sk, m->Rk,  m->yk};
+  double *bufs[] = {m->D, m->dlt, m->qm, m->v,  m->Lv, m->F,  m->R,  m->Qg, m->qdot,
+                    m->B, m->S,   m->L,  m->Hz, m->vk, m->gp, m->sk, m->Rk, m->yk};
   for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
     free(bufs[i]);
   free(m->ipiv);
@@ -512,7 +523,8 @@ int dal__variational_base(dal_ode_integ *ig, dal_symp_base *b) {
   m->Nd = sys->N * sys->dim;
   m->lag = sys->lag != NULL;
   // the particle route reads the particle Jacobians: form them on every evaluation
-  b->nx = 2 * m->n;
+  m->nx = X_HIST * m->n + 3 + (m->lag ? 0 : m->n * m->n);
+  b->nx = m->nx;
   b->mem = m;
   b->from_y = var_from_y;
   b->to_y = var_to_y;
@@ -520,20 +532,19 @@ int dal__variational_base(dal_ode_integ *ig, dal_symp_base *b) {
   b->invalidate = var_invalidate;
   b->free = var_free;
   size_t n = (size_t)m->n + 1, nn = n * n, nd = (size_t)m->Nd + 1;
-  double **vecs[] = {&m->D,  &m->dlt, &m->qm,  &m->v,    &m->Lv, &m->F,  &m->R,
-                     &m->Qg, &m->vg1, &m->vg2, &m->qdot, &m->sk, &m->Rk, &m->yk};
+  double **vecs[] = {&m->D, &m->dlt, &m->qm,   &m->v,  &m->Lv, &m->F,
+                     &m->R, &m->Qg,  &m->qdot, &m->sk, &m->Rk, &m->yk};
   int ok = 1;
   for (size_t i = 0; i < sizeof vecs / sizeof vecs[0]; ++i)
     ok &= (*vecs[i] = calloc(n, sizeof(double))) != NULL;
   m->B = calloc(nn, sizeof(double));
   m->S = calloc(nn, sizeof(double));
   m->L = calloc(nn, sizeof(double));
-  m->C = calloc(nn, sizeof(double));
   m->Hz = calloc(4 * nn, sizeof(double));
   m->vk = calloc(nd, sizeof(double));
   m->gp = calloc(nd, sizeof(double));
   m->ipiv = calloc(n, sizeof(lapack_int));
-  if (!ok || !m->B || !m->S || !m->L || !m->C || !m->Hz || !m->vk || !m->gp || !m->ipiv)
+  if (!ok || !m->B || !m->S || !m->L || !m->Hz || !m->vk || !m->gp || !m->ipiv)
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the variational integrator");
   return DAL_OK;
 }

@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: MIT
+# SPDX-FileCopyrightText: 2026 dalembert engineers
+# Long runs of the symplectic methods against the adaptive ones: Release build,
+# dal_bench_symplectic -> bench/results/sym_*.csv and sym_summary.md, gnuplot charts.
+# Usage: scripts/bench_symplectic.sh [--quick | --full] [OUTDIR]
+#   quick (default): 1e4 pendulum periods, a few minutes; full: 1e5 periods, ~15-20 minutes.
+set -euo pipefail
+mode=--quick
+case "${1:-}" in
+  --quick | "") mode=--quick ;;
+  --full) mode=--full ;;
+  *) echo "usage: scripts/bench_symplectic.sh [--quick | --full] [OUTDIR]" >&2; exit 2 ;;
+esac
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+out=${2:-$root/bench/results}
+bdir=${DAL_BENCH_BUILD_DIR:-$root/build-release}
+"$root/scripts/deps.sh"
+cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=Release -DDAL_BUILD_TESTS=OFF \
+  -DDAL_BUILD_EXAMPLES=OFF -DDAL_BUILD_BENCH=ON >/dev/null
+cmake --build "$bdir" -j 2 --target dal_bench_symplectic
+mkdir -p "$out"
+"$bdir/bench/dal_bench_symplectic" "$mode" --out "$out"
+rm -f "$out"/sym_*.png "$out"/sym_*.svg
+gnuplot -e "dir='$out'" "$root/bench/symplectic.gp" 2>&1 | { grep -v "Skipping data file" || true; } >&2
+echo "bench_symplectic: $out/sym_summary.md and charts sym_*.png"
