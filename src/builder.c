@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The mutable model builder: validates every addition and names the culprit on error.
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -63,8 +64,16 @@ const char *dal_builder_errmsg(const dal_builder *b) { return b ? b->err : ""; }
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
 
+// a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits: masses,
+// stiffnesses and lengths made of one give inexact results, so the builder refuses them
+static int subnormal(double x) { return x != 0.0 && fabs(x) < DBL_MIN; }
+#define SUBNORMAL_REMEDY                                                                          \
+  "a subnormal number (|x| < 2.2e-308) carries fewer than 53 significant bits, so results "      \
+  "computed from it are inexact; rescale the units, or give 0 if 0 is meant"
+
 int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   char **slot = vec_push(&b->coords, sizeof(char *));
   if (!slot) return BFAIL(DAL_E_NOMEM, "out of memory adding a coordinate");
   *slot = dup_name(name, 'q', b->coords.len - 1);
@@ -78,6 +87,7 @@ int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
 
 int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   const char *nm = name ? name : "(unnamed)";
   if (!isfinite(mass))
     return BFAIL(DAL_E_NONFINITE, "particle '%s': mass is %g; give a finite positive mass", nm,
@@ -87,6 +97,8 @@ int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int 
                  "particle '%s': mass %g is not positive; a massless point belongs in a "
                  "constraint or a coordinate map, not a particle",
                  nm, mass);
+  if (subnormal(mass))
+    return BFAIL(DAL_E_ARG, "particle '%s': mass %g is subnormal; " SUBNORMAL_REMEDY, nm, mass);
   if (b->lag)
     return BFAIL(DAL_E_ARG, "particle '%s': the system is given by a Lagrangian; it has no "
                             "particles", nm);
@@ -146,6 +158,13 @@ static int check_instance(dal_builder *b, const char *what, const dal_primitive 
                           const double *param) {
   if (!prim || !prim->eval)
     return BFAIL(DAL_E_ARG, "%s: primitive is NULL or has no eval function", what);
+  // the primitive's own definition (a user primitive may be malformed)
+  if (!prim->name || prim->nin < 0 || prim->nout < 1 || prim->nparam < 0)
+    return BFAIL(DAL_E_ARG,
+                 "%s: primitive '%s' is malformed (nin = %d, nout = %d, nparam = %d): it needs a "
+                 "name, nin >= 0, nout >= 1 and nparam >= 0",
+                 what, prim->name ? prim->name : "(no name)", prim->nin, prim->nout,
+                 prim->nparam);
   if (ncoords < 0 || (ncoords > 0 && !coords))
     return BFAIL(DAL_E_ARG, "%s: %d coordinates given with a %s list", what, ncoords,
                  coords ? "non-NULL" : "NULL");
@@ -161,10 +180,19 @@ static int check_instance(dal_builder *b, const char *what, const dal_primitive 
     if (coords[i] < 0 || coords[i] >= b->coords.len)
       return BFAIL(DAL_E_ARG, "%s: coordinate index %d (input %d) out of range [0, %d)", what,
                    coords[i], i, b->coords.len);
-  for (int i = 0; i < nparam; ++i)
+  for (int i = 0; i < nparam; ++i) {
     if (!isfinite(param[i]))
       return BFAIL(DAL_E_NONFINITE, "%s: parameter %d of primitive '%s' is %g", what, i,
                    prim->name, param[i]);
+    if (subnormal(param[i]))
+      return BFAIL(DAL_E_ARG, "%s: parameter %d of primitive '%s' is %g, subnormal; " SUBNORMAL_REMEDY,
+                   what, i, prim->name, param[i]);
+  }
+  int bad = 0;
+  const char *rule = NULL, *quantity = dal__builtin_param_check(prim, param, &bad, &rule);
+  if (quantity)
+    return BFAIL(DAL_E_ARG, "%s: parameter %d of primitive '%s' (%s) is %g; the %s %s", what, bad,
+                 prim->name, quantity, param[bad], quantity, rule);
   return DAL_OK;
 }
 
@@ -172,6 +200,7 @@ int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, i
                       int ncoords, const int *coords, int nparam, const double *param,
                       void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (particle < 0 || particle >= b->parts.len)
     return BFAIL(DAL_E_ARG, "place: particle index %d out of range [0, %d)", particle,
                  b->parts.len);
@@ -216,6 +245,7 @@ int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, i
 
 int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (!fn) return BFAIL(DAL_E_ARG, "set_map: map function is NULL");
   for (int k = 0; k < b->places.len; ++k)
     if (((dal_place *)b->places.data)[k].prim)
@@ -228,6 +258,7 @@ int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
 
 int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (!fn) return BFAIL(DAL_E_ARG, "set_lagrangian: Lagrangian function is NULL");
   if (b->parts.len)
     return BFAIL(DAL_E_ARG, "set_lagrangian: the system already has %d particles; a "
@@ -241,6 +272,7 @@ int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primi
                                int nparts, const int *parts, int ncoords, const int *coords,
                                int nparam, const double *param, void *ctx, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   char what[96];
   snprintf(what, sizeof what, "constraint '%s'", name ? name : "(unnamed)");
   if (nparts < 0 || (nparts > 0 && !parts))
@@ -280,9 +312,13 @@ int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primi
 
 int dal_builder_set_gravity(dal_builder *b, const double *g) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (!g) return BFAIL(DAL_E_ARG, "set_gravity: g is NULL");
-  for (int i = 0; i < b->dim; ++i)
+  for (int i = 0; i < b->dim; ++i) {
     if (!isfinite(g[i])) return BFAIL(DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
+    if (subnormal(g[i]))
+      return BFAIL(DAL_E_ARG, "gravity component %d is %g, subnormal; " SUBNORMAL_REMEDY, i, g[i]);
+  }
   memcpy(b->g, g, (size_t)b->dim * sizeof(double));
   b->has_gravity = 1;
   return DAL_OK;
@@ -301,14 +337,20 @@ static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb
   if (k < 0 || L < 0)
     return BFAIL(DAL_E_ARG, "%s on particle '%s': coefficient %g and length %g must be >= 0",
                  kind, ((char **)b->parts.data)[pa], k, L);
+  if (subnormal(k) || subnormal(L))
+    return BFAIL(DAL_E_ARG, "%s on particle '%s': %s %g is subnormal; " SUBNORMAL_REMEDY, kind,
+                 ((char **)b->parts.data)[pa], subnormal(k) ? "coefficient" : "length",
+                 subnormal(k) ? k : L);
   if (pb < 0 && !fn && !x0)
     return BFAIL(DAL_E_ARG, "%s on particle '%s': anchor needs x0 or a path function", kind,
                  ((char **)b->parts.data)[pa]);
   if (pb < 0 && x0)
     for (int i = 0; i < b->dim; ++i)
-      if (!isfinite(x0[i]))
-        return BFAIL(DAL_E_NONFINITE, "%s on particle '%s': anchor component %d is %g", kind,
-                     ((char **)b->parts.data)[pa], i, x0[i]);
+      if (!isfinite(x0[i]) || subnormal(x0[i]))
+        return BFAIL(isfinite(x0[i]) ? DAL_E_ARG : DAL_E_NONFINITE,
+                     "%s on particle '%s': anchor component %d is %g%s", kind,
+                     ((char **)b->parts.data)[pa], i, x0[i],
+                     isfinite(x0[i]) ? ", subnormal; " SUBNORMAL_REMEDY : "");
   dal_link *l = vec_push(v, sizeof(dal_link));
   if (!l) return BFAIL(DAL_E_NOMEM, "%s: out of memory", kind);
   l->a = pa;
@@ -323,6 +365,7 @@ static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb
 
 int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (pb < 0) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", pb);
   return add_link(b, &b->springs, "spring", pa, pb, NULL, NULL, NULL, k, L);
 }
@@ -330,11 +373,13 @@ int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
 int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
                                   void *ctx, double k, double L) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   return add_link(b, &b->springs, "anchor spring", p, -1, x0, fn, ctx, k, L);
 }
 
 int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (pb < 0) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", pb);
   return add_link(b, &b->dampers, "damper", pa, pb, NULL, NULL, NULL, c, 0.0);
 }
@@ -342,6 +387,7 @@ int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
 int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
                                   void *ctx, double c) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   return add_link(b, &b->dampers, "anchor damper", p, -1, x0, fn, ctx, c, 0.0);
 }
 
@@ -355,24 +401,28 @@ static int add_cb(dal_builder *b, dal_vec *v, const char *kind, int isnull, dal_
 
 int dal_builder_add_potential_r(dal_builder *b, dal_potential_r_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.potr = fn, .ctx = ctx};
   return add_cb(b, &b->potr, "potential U(r,t)", fn == NULL, cb);
 }
 
 int dal_builder_add_potential_q(dal_builder *b, dal_potential_q_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.potq = fn, .ctx = ctx};
   return add_cb(b, &b->potq, "potential U(q,t)", fn == NULL, cb);
 }
 
 int dal_builder_add_force(dal_builder *b, dal_force_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.force = fn, .ctx = ctx};
   return add_cb(b, &b->forces, "force callback", fn == NULL, cb);
 }
 
 int dal_builder_add_genforce(dal_builder *b, dal_genforce_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.gen = fn, .ctx = ctx};
   return add_cb(b, &b->genforces, "generalized force callback", fn == NULL, cb);
 }

@@ -34,9 +34,29 @@ static int eval_lagrangian(const dal_system *sys, dal_state *st) {
   return DAL_OK;
 }
 
+// A non-finite point is never handed to the model: it comes from an integrator whose trial
+// step overflowed (or whose step size did), so it is a retry for that integrator, not a
+// domain error of the first map that would see it.
+static int check_point(const dal_system *sys, dal_state *st) {
+  int bad = -1, vel = 0;
+  for (int i = 0; i < sys->n && bad < 0; ++i)
+    if (!isfinite(st->q[i])) bad = i;
+    else if (!isfinite(st->qdot[i])) bad = i, vel = 1;
+  if (isfinite(st->t) && bad < 0) return DAL_OK;
+  double x = bad < 0 ? st->t : vel ? st->qdot[bad] : st->q[bad];
+  DAL_FAIL(st, DAL__RETRY_NONFINITE,
+           "the integrator's trial point is not finite (%s%s%s = %g at t=%g): a step overflowed, "
+           "or its step size did (velocities or accelerations too large for its error control); "
+           "rescale the model's units, or bound the step with opts.h0/opts.hmax",
+           bad < 0 ? "time" : vel ? "velocity of '" : "coordinate '",
+           bad < 0 ? "" : sys->coord_names[bad], bad < 0 ? "" : "'", x, st->t);
+  return DAL__RETRY_NONFINITE;
+}
+
 int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   int m = sys->m, rc;
   st->have = 0;
+  if ((rc = check_point(sys, st)) != 0) return rc;
   if (sys->lag) return eval_lagrangian(sys, st);
   // what each product needs: outputs need accelerations; accelerations need forces and M
   // (Cholesky when m = 0, or the KKT system, whose dense form reads the lower M and whose
@@ -54,7 +74,9 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   if (need & DAL_P_CON) st->have |= DAL_P_CON;
   if (need & DAL_P_DYN) {
     int want_M = (need & DAL_P_M) ? 2 : (need & DAL_P_MLOW) ? 1 : 0;
-    if ((rc = dal__dynamics(sys, st, want_M)) != 0) return rc;
+    // a non-finite force sum: name the built-in force that overflowed (blame.c)
+    if ((rc = dal__dynamics(sys, st, want_M)) != 0)
+      return rc == DAL_E_NONFINITE ? dal__blame_forces(sys, st) : rc;
   }
   if (need & DAL_P_ACC) {
     rc = m ? dal__solve_kkt(sys, st) : dal__solve_unconstrained(sys, st);

@@ -2,8 +2,9 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Classical fourth-order Runge-Kutta at the fixed step opts.fixed_step (Kutta 1901; Hairer-
 // Norsett-Wanner, Solving ODEs I, sec. II.1, Table 1.2 left). A step whose right-hand side
-// asks for a smaller step is redone as two halves, recursively.
+// asks for a smaller step, or whose result overflows, is redone as two halves, recursively.
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -42,8 +43,25 @@ static int rk4_step(dal_ode_integ *ig, rk4_mem *m, double t, const double *y, do
   for (int i = 0; i < ny; ++i)
     m->yt[i] = y[i] + h * m->k3[i];
   if ((rc = dal__ode_rhs(ig, t + h, m->yt, m->k4)) != 0) return rc;
-  for (int i = 0; i < ny; ++i)
-    y1[i] = y[i] + h / 6.0 * (m->k1[i] + 2.0 * (m->k2[i] + m->k3[i]) + m->k4[i]);
+  // each stage scaled before the sum: a sum of large stages must not overflow where the
+  // result itself is representable
+  double h6 = h / 6.0, h3 = h / 3.0;
+  int bad = -1;
+  for (int i = 0; i < ny; ++i) {
+    y1[i] = y[i] + (h6 * m->k1[i] + h3 * m->k2[i] + h3 * m->k3[i] + h6 * m->k4[i]);
+    if (bad < 0 && !isfinite(y1[i])) bad = i;
+  }
+  if (bad >= 0) {
+    // the result overflowed: a retry (a shorter step may stay in range)
+    char var[128];
+    snprintf(ig->rhs_err, sizeof ig->rhs_err,
+             "the RK4 step from t=%.17g (h=%.3g) overflows: %s becomes %g", t, h,
+             dal__ode_var_name(ig, bad, var, sizeof var), y1[bad]);
+    ig->nrecov++;
+    ig->recov_t = t + h;
+    ig->recov_rc = DAL__RETRY_NONFINITE;
+    return DAL__RETRY_NONFINITE;
+  }
   return DAL_OK;
 }
 
@@ -62,17 +80,14 @@ static int rk4_advance(dal_ode_integ *ig, double tout) {
     double h = ldexp(full, -depth);
     double tn = h >= tend - ig->t ? tend : ig->t + h;
     int rc = rk4_step(ig, m, ig->t, ig->y, tn - ig->t, m->y1);
-    if (rc == DAL__RECOVERABLE && depth < RK4_MAX_HALVINGS) {
-      // the right-hand side asked for a smaller step: halve it and retry
+    if (dal__is_retry(rc) && depth < RK4_MAX_HALVINGS) {
+      // the right-hand side asked for a smaller step, or the step overflowed: halve it
       ig->st->stats.rejected++;
       ++depth;
       continue;
     }
-    if (rc == DAL__RECOVERABLE)
-      return dal__ode_fail(ig, DAL_E_CALLBACK,
-                           "%s; still after %d halvings of the step (h=%.3g); stopped at "
-                           "t=%.17g (last accepted step)",
-                           ig->rhs_err, depth, tn - ig->t, ig->t);
+    // still failing after the last halving: the status of the cause
+    if (dal__is_retry(rc)) return dal__ode_recov_fail(ig, tn - ig->t);
     if (rc)
       return dal__ode_fail(ig, rc,
                            "%s; stopped at t=%.17g (last accepted step) before the target "
