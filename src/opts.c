@@ -38,7 +38,8 @@ const char *dal_formulation_name(dal_formulation f) {
 }
 
 int dal_state_stats(const dal_state *st, dal_stats *out) {
-  if (!st || !out) return DAL_E_ARG;
+  if (!st) return DAL_E_ARG;
+  if (!out) return DAL_FAIL_C(st, DAL_E_ARG, "state_stats: out is NULL");
   *out = st->stats;
   return DAL_OK;
 }
