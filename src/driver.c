@@ -35,6 +35,7 @@ void dal__integ_reset(dal_state *st) {
   if (st->integ && st->integ_free) st->integ_free(st->integ);
   st->integ = NULL;
   st->integ_free = NULL;
+  dal__kkt_reset(st->kkt); // the KKT factorization's history goes with it
 }
 
 // resolve formulation and method; *prob is NULL for the IDA route

@@ -296,6 +296,10 @@ int dal__solve_kkt(const dal_system *sys, dal_state *st);
 /// KKT workspace of a constrained system (kkt.c): create (NULL on failure) and free
 struct dal_kkt *dal__kkt_create(const dal_system *sys);
 void dal__kkt_free(struct dal_kkt *k);
+/// forget the reusable numeric factorizations (KLU refactors with the pivots of an earlier
+/// factorization, so results would depend on the state's history): called wherever integrator
+/// history is discarded, so that the same inputs give bit-identical outputs
+void dal__kkt_reset(struct dal_kkt *k);
 
 /// drop integrator memory (called by dal_state_set and dal_state_destroy)
 void dal__integ_reset(dal_state *st);

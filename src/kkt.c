@@ -183,6 +183,13 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
   return k;
 }
 
+void dal__kkt_reset(struct dal_kkt *k) {
+  if (!k) return;
+  for (int i = 0; i < 2; ++i)
+    if (k->num[i]) klu_free_numeric(&k->num[i], &k->common);
+  k->cur = -1;
+}
+
 void dal__kkt_free(struct dal_kkt *k) {
   if (!k) return;
   for (int i = 0; i < 2; ++i)

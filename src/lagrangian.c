@@ -98,6 +98,19 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
   return DAL_OK;
 }
 
+// never DAL_OK with a non-finite residual: a path whose accelerations or speeds are too large
+// for double precision makes M qddot + c - Q overflow
+static int residual_finite(const dal_system *sys, dal_state *st, const double *res, double t) {
+  for (int i = 0; i < sys->n; ++i)
+    if (!isfinite(res[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "lagrange_residual: the residual of coordinate '%s' overflows (%g) at "
+                      "t=%.17g: the path's velocities or accelerations are too large for double "
+                      "precision",
+                      sys->coord_names[i], res[i], t);
+  return DAL_OK;
+}
+
 int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path, void *ctx,
                           double t, double *res) {
   int pair = dal__check_pair(sys, st, "lagrange_residual");
@@ -131,11 +144,11 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
       for (int j = 0; j < n; ++j) s += st->M[(size_t)j * n + i] * qdd[j];
       res[i] = s;
     }
-    return DAL_OK;
+    return residual_finite(sys, st, res, t);
   }
   if ((rc = dal__eval(sys, st, DAL_P_J | DAL_P_DYN)) != 0)
     return dal__public_status(rc);
   dal__mass_apply(sys, st, qdd, res);
   for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];
-  return DAL_OK;
+  return residual_finite(sys, st, res, t);
 }

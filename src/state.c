@@ -182,6 +182,17 @@ int dal_state_energies(const dal_state *st, dal_energies *out) {
     return DAL_FAIL_C(st, DAL_E_STATE,
                       "state_energies: the state is not evaluated at its (t, q, qdot); call "
                       "dal_forward (or integrate) first");
+  // never DAL_OK with a non-finite answer (a Lagrangian system has only E = h; the split
+  // T, U, T2, T1, T0 does not exist there and is NaN by definition)
+  const dal_energies *e = &st->en;
+  int lag = st->sys->lag != NULL;
+  if (!isfinite(e->E) || !isfinite(e->h) ||
+      (!lag && !(isfinite(e->T) && isfinite(e->U) && isfinite(e->T2) && isfinite(e->T1) &&
+                 isfinite(e->T0))))
+    return DAL_FAIL_C(st, DAL_E_NONFINITE,
+                      "state_energies: the energies overflow at t=%.17g (T = %g, U = %g): the "
+                      "velocities or positions are too large for double precision",
+                      st->t, e->T, e->U);
   *out = st->en;
   return DAL_OK;
 }
