@@ -92,9 +92,9 @@ int dal__ode_stall(dal_ode_integ *ig, double h, const char *what) {
   return dal__ode_fail(ig, DAL_E_STEP,
                        "step size collapse at t=%.17g (%s): %s (h=%.3g); the fastest-changing "
                        "variable (relative to its tolerance) is %s; the solution may be "
-                       "singular there, or the tolerances too tight, or the step too small for "
-                       "t's precision: loosen rtol/atol, check the model near this time, or "
-                       "restart the clock near 0",
+                       "singular there, or the tolerances too tight for its scale (atol is "
+                       "absolute), or the step too small for t's precision: loosen rtol/atol, "
+                       "give opts.h0, check the model near this time, or restart the clock near 0",
                        ig->t, dal_method_name(ig->method), what, h, var);
 }
 

@@ -268,7 +268,7 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     // step size control driven down) stops at once with its cause
     double hfloor = fmax(o->hmin, DAL_TINY_STEP(ig->t));
     if (H < hfloor && !last)
-      return dal__ode_stall(ig, H, "the step size fell below the resolution of t");
+      return dal__ode_stall(ig, H, "the step size fell to a few ulps of t");
     // a shortened step uses the order that sufficed for the last shortened one: with outputs
     // denser than the natural steps a low order is cheapest; the natural order and step are
     // kept for the next full step
