@@ -769,7 +769,8 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   // progress guard: no step below a few ulps of t (IDA would otherwise creep towards a point
   // it cannot pass, e.g. a callback that keeps returning > 0 or a constraint that becomes
   // unsatisfiable, with a million steps that do not move t); opts.hmin when larger
-  IDASetMinStep(w->ida, fmax(w->opts.hmin, DAL_TINY_STEP(fmax(fabs(t0), fabs(tout)))));
+  double hmin = fmax(w->opts.hmin, DAL_TINY_STEP(fmax(fabs(t0), fabs(tout))));
+  IDASetMinStep(w->ida, w->opts.hmax > 0 ? fmin(hmin, w->opts.hmax) : hmin);
   IDASetStopTime(w->ida, tout);
   double tret = t0;
   int flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_NORMAL);
