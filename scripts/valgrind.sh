@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # SPDX-License-Identifier: MIT
 # SPDX-FileCopyrightText: 2026 dalembert engineers
-# Valgrind memcheck of every example's --check run, the bad-input suite and the fuzz corpus
-# (plus 200 pseudo-random fuzz inputs).
+# Valgrind memcheck of every example's --check run, the bad-input, reliability and API-sweep
+# suites and the fuzz corpus (plus 200 pseudo-random fuzz inputs).
 #
 # usage: scripts/valgrind.sh        (DAL_VALGRIND_BUILD_DIR: build directory, default
 #                                    build-valgrind; a plain build, no sanitizers; an existing
@@ -29,6 +29,8 @@ for name in $(sed -n 's/^ *dal_example(\([A-Za-z0-9_]*\)).*/\1/p' "$root/example
   runs+=("$bdir/examples/$name --check")
 done
 runs+=("$bdir/tests/test_bad_input")
+runs+=("$bdir/tests/test_reliability")
+runs+=("$bdir/tests/test_api_sweep $root/include/dalembert")
 runs+=("$bdir/tests/fuzz_replay $root/tests/fuzz/corpus --random 200 7")
 fail=0
 for run in "${runs[@]}"; do

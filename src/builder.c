@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The mutable model builder: validates every addition and names the culprit on error.
+#include <float.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -68,8 +69,16 @@ const char *dal_builder_errmsg(const dal_builder *b) { return b ? b->err : ""; }
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
 
+// a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits: masses,
+// stiffnesses and lengths made of one give inexact results, so the builder refuses them
+static int subnormal(double x) { return x != 0.0 && fabs(x) < DBL_MIN; }
+#define SUBNORMAL_REMEDY                                                                          \
+  "a subnormal number (|x| < 2.2e-308) carries fewer than 53 significant bits, so results "      \
+  "computed from it are inexact; rescale the units, or give 0 if 0 is meant"
+
 int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   char **slot = vec_push(&b->coords, sizeof(char *));
   if (!slot) return BFAIL(DAL_E_NOMEM, "out of memory adding a coordinate");
   *slot = dup_name(name, 'q', b->coords.len - 1);
@@ -83,6 +92,7 @@ int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
 
 int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   const char *nm = name ? name : "(unnamed)";
   if (!isfinite(mass))
     return BFAIL(DAL_E_NONFINITE, "particle '%s': mass is %g; give a finite positive mass", nm,
@@ -92,6 +102,8 @@ int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int 
                  "particle '%s': mass %g is not positive; a massless point belongs in a "
                  "constraint or a coordinate map, not a particle",
                  nm, mass);
+  if (subnormal(mass))
+    return BFAIL(DAL_E_ARG, "particle '%s': mass %g is subnormal; " SUBNORMAL_REMEDY, nm, mass);
   if (b->lag)
     return BFAIL(DAL_E_ARG,
                  "particle '%s': the system is given by a Lagrangian; it has no "
@@ -211,8 +223,18 @@ static int resolve_params(dal_builder *b, const char *what, const dal_primitive 
                    "%s: parameter '%s' of '%s' (index %d) is %g; give a finite "
                    "value",
                    what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i, x);
+    if (subnormal(x))
+      return BFAIL(DAL_E_ARG, "%s: parameter '%s' of '%s' (index %d) is %g, subnormal; " SUBNORMAL_REMEDY,
+                   what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i, x);
     out[i] = x;
   }
+  // a built-in's parameters must lie in their domain (a rod of length 0, a zero normal)
+  int bad = 0;
+  const char *rule = NULL, *quantity = dal__builtin_param_check(prim, out, &bad, &rule);
+  if (quantity)
+    return BFAIL(DAL_E_ARG, "%s: parameter '%s' of '%s' (index %d, %s) is %g; the %s %s", what,
+                 dal__param_name(prim, bad, nb, sizeof nb), prim->name, bad, quantity, out[bad],
+                 quantity, rule);
   return DAL_OK;
 }
 
@@ -221,6 +243,13 @@ static int check_instance(dal_builder *b, const char *what, const dal_primitive 
                           int ncoords, const int *coords, int nparam, const double *param) {
   if (!prim || !prim->eval)
     return BFAIL(DAL_E_ARG, "%s: primitive is NULL or has no eval function", what);
+  // the primitive's own definition (a user primitive may be malformed)
+  if (!prim->name || prim->nin < 0 || prim->nout < 1 || prim->nparam < 0)
+    return BFAIL(DAL_E_ARG,
+                 "%s: primitive '%s' is malformed (nin = %d, nout = %d, nparam = %d): it needs a "
+                 "name, nin >= 0, nout >= 1 and nparam >= 0",
+                 what, prim->name ? prim->name : "(no name)", prim->nin, prim->nout,
+                 prim->nparam);
   int rc = dal__prim_version_ok(prim, b->err, what);
   if (rc) return rc;
   if (ncoords < 0 || (ncoords > 0 && !coords))
@@ -295,11 +324,13 @@ static int place(dal_builder *b, int particle, const dal_primitive *prim, int pa
 int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, int parent,
                       int ncoords, const int *coords, int nparam, const double *param, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   return place(b, particle, prim, parent, ncoords, coords, nparam, param, ctx);
 }
 
 int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (!fn) return BFAIL(DAL_E_ARG, "set_map: map function is NULL");
   for (int k = 0; k < b->places.len; ++k)
     if (((dal_place *)b->places.data)[k].prim)
@@ -312,6 +343,7 @@ int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
 
 int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (!fn) return BFAIL(DAL_E_ARG, "set_lagrangian: Lagrangian function is NULL");
   if (b->parts.len)
     return BFAIL(DAL_E_ARG,
@@ -376,6 +408,7 @@ int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primi
                                int nparts, const int *parts, int ncoords, const int *coords,
                                int nparam, const double *param, void *ctx, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   return add_constraint(b, name, prim, nparts, parts, ncoords, coords, nparam, param, ctx, index);
 }
 
@@ -451,6 +484,7 @@ static int check_def_params(dal_builder *b, const char *what, const dal_primitiv
 
 int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   DEF_CHECK(def, "place_def");
   char what[96];
   snprintf(what, sizeof what, "placing particle %d", particle);
@@ -465,6 +499,7 @@ int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def
 
 int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def, int *index) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   DEF_CHECK(def, "constraint_def");
   char what[96];
   snprintf(what, sizeof what, "constraint '%s'", def->name ? def->name : "(unnamed)");
@@ -477,12 +512,16 @@ int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def
 
 int dal_builder_set_gravity(dal_builder *b, const double *g) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (!g) return BFAIL(DAL_E_ARG, "set_gravity: g is NULL");
   if (b->dim == 0)
     return BFAIL(DAL_E_ARG, "set_gravity: the builder has dim 0 (a Lagrangian system has no "
                             "space); put gravity into the Lagrangian");
-  for (int i = 0; i < b->dim; ++i)
+  for (int i = 0; i < b->dim; ++i) {
     if (!isfinite(g[i])) return BFAIL(DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
+    if (subnormal(g[i]))
+      return BFAIL(DAL_E_ARG, "gravity component %d is %g, subnormal; " SUBNORMAL_REMEDY, i, g[i]);
+  }
   memcpy(b->g, g, (size_t)b->dim * sizeof(double));
   b->has_gravity = 1;
   return DAL_OK;
@@ -511,11 +550,17 @@ static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb
   if (k < 0 || L < 0)
     return BFAIL(DAL_E_ARG, "%s on particle '%s': coefficient %g and length %g must be >= 0", kind,
                  ((char **)b->parts.data)[pa], k, L);
+  if (subnormal(k) || subnormal(L))
+    return BFAIL(DAL_E_ARG, "%s on particle '%s': %s %g is subnormal; " SUBNORMAL_REMEDY, kind,
+                 ((char **)b->parts.data)[pa], subnormal(k) ? "coefficient" : "length",
+                 subnormal(k) ? k : L);
   if (pb < 0 && x0)
     for (int i = 0; i < b->dim; ++i)
-      if (!isfinite(x0[i]))
-        return BFAIL(DAL_E_NONFINITE, "%s on particle '%s': anchor component %d is %g", kind,
-                     ((char **)b->parts.data)[pa], i, x0[i]);
+      if (!isfinite(x0[i]) || subnormal(x0[i]))
+        return BFAIL(isfinite(x0[i]) ? DAL_E_ARG : DAL_E_NONFINITE,
+                     "%s on particle '%s': anchor component %d is %g%s", kind,
+                     ((char **)b->parts.data)[pa], i, x0[i],
+                     isfinite(x0[i]) ? ", subnormal; " SUBNORMAL_REMEDY : "");
   dal_link *l = vec_push(v, sizeof(dal_link));
   if (!l) return BFAIL(DAL_E_NOMEM, "%s: out of memory", kind);
   l->a = pa;
@@ -530,6 +575,7 @@ static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb
 
 int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   DEF_CHECK(def, "spring_def");
   int anchored = def->b < 0;
   if (def->b < -1) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", def->b);
@@ -539,6 +585,7 @@ int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def) {
 
 int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   DEF_CHECK(def, "damper_def");
   int anchored = def->b < 0;
   if (def->b < -1) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", def->b);
@@ -548,6 +595,7 @@ int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def) {
 
 int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (pb < 0) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", pb);
   return add_link(b, &b->springs, "spring", pa, pb, NULL, NULL, NULL, k, L);
 }
@@ -555,11 +603,13 @@ int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
 int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
                                   void *ctx, double k, double L) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   return add_link(b, &b->springs, "anchor spring", p, -1, x0, fn, ctx, k, L);
 }
 
 int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   if (pb < 0) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", pb);
   return add_link(b, &b->dampers, "damper", pa, pb, NULL, NULL, NULL, c, 0.0);
 }
@@ -567,6 +617,7 @@ int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
 int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
                                   void *ctx, double c) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   return add_link(b, &b->dampers, "anchor damper", p, -1, x0, fn, ctx, c, 0.0);
 }
 
@@ -580,24 +631,28 @@ static int add_cb(dal_builder *b, dal_vec *v, const char *kind, int isnull, dal_
 
 int dal_builder_add_potential_r(dal_builder *b, dal_potential_r_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.potr = fn, .ctx = ctx};
   return add_cb(b, &b->potr, "potential U(r,t)", fn == NULL, cb);
 }
 
 int dal_builder_add_potential_q(dal_builder *b, dal_potential_q_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.potq = fn, .ctx = ctx};
   return add_cb(b, &b->potq, "potential U(q,t)", fn == NULL, cb);
 }
 
 int dal_builder_add_force(dal_builder *b, dal_force_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.force = fn, .ctx = ctx};
   return add_cb(b, &b->forces, "force callback", fn == NULL, cb);
 }
 
 int dal_builder_add_genforce(dal_builder *b, dal_genforce_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
+  b->err[0] = 0; // the message is always that of the last call
   dal_cb cb = {.fn.gen = fn, .ctx = ctx};
   return add_cb(b, &b->genforces, "generalized force callback", fn == NULL, cb);
 }

@@ -17,7 +17,16 @@ static double wrap_pi(double x) {
 
 int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   dal_csv *c = ctx;
-  if (!sys || !st || !c || !c->fp) return DAL_E_ARG;
+  int pair = dal__check_pair(sys, st, "csv_monitor");
+  if (pair) return pair;
+  if (!c || !c->fp)
+    return DAL_FAIL_C(st, DAL_E_ARG, "csv_monitor: ctx must be a dal_csv with an open stream");
+  // a row holds the state's energies: they must be current at its (t, q, qdot)
+  if (!(st->have & DAL_P_DYN))
+    return DAL_FAIL_C(st, DAL_E_STATE,
+                      "csv_monitor: the state is not evaluated at t=%.17g; call dal_forward "
+                      "first (dal_evolve calls monitors with evaluated states)",
+                      st->t);
   int n = sys->n;
   if (!c->header_done) {
     fputs("t", c->fp);
@@ -34,5 +43,8 @@ int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   for (int i = 0; i < n; ++i)
     fprintf(c->fp, ",%.17g", st->qdot[i]);
   fprintf(c->fp, ",%.17g,%.17g\n", st->en.E, st->en.h);
-  return ferror(c->fp) ? DAL_E_IO : DAL_OK;
+  if (ferror(c->fp))
+    return DAL_FAIL_C(st, DAL_E_IO, "csv_monitor: writing the row at t=%.17g failed; check the "
+                                    "stream (disk full, closed file, permissions)", st->t);
+  return DAL_OK;
 }

@@ -417,12 +417,21 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   }
   w->cb_status = 0;
   w->ida_msg[0] = 0;
+  // progress guard: no step below a few ulps of t (IDA would otherwise creep towards a point
+  // it cannot pass, e.g. a callback that keeps returning > 0 or a constraint that becomes
+  // unsatisfiable, with a million steps that do not move t); opts.hmin when larger
+  double hmin = fmax(w->opts.hmin, DAL_TINY_STEP(fmax(fabs(t0), fabs(tout))));
+  IDASetMinStep(w->ida, w->opts.hmax > 0 ? fmin(hmin, w->opts.hmax) : hmin);
   IDASetStopTime(w->ida, tout);
   double tret = t0;
   int flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_NORMAL);
   update_stats(w, flag);
   if (flag >= 0) return finish_state(w, tret, N_VGetArrayPointer(w->y));
-  // failure: the last accepted step, then the message naming time and variable
+  // failure: the last accepted step, then the message naming time and variable (and, for
+  // repeated recoverable residual failures, the callback that asked last: its message is
+  // still the state's)
+  char recov[DAL_ERRMSG_LEN] = "";
+  if (flag == IDA_REP_RES_ERR) memcpy(recov, st->err, sizeof recov);
   double tcur = t0;
   IDAGetCurrentTime(w->ida, &tcur);
   if (IDAGetDky(w->ida, tcur, 0, w->w1) == IDA_SUCCESS) {
@@ -432,5 +441,12 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   }
   double hcur = 0.0;
   IDAGetCurrentStep(w->ida, &hcur);
-  return map_failure(w, flag, tcur + hcur);
+  int rc = map_failure(w, flag, tcur + hcur);
+  if (recov[0]) {
+    char msg[DAL_ERRMSG_LEN];
+    snprintf(msg, sizeof msg, "%.200s; it kept asking while IDA shrank the step: %.260s", recov,
+             st->err);
+    memcpy(st->err, msg, sizeof msg);
+  }
+  return rc;
 }

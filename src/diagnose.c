@@ -137,9 +137,8 @@ done:
 }
 
 int dal_check_constraints(const dal_system *sys, dal_state *st, dal_constraint_report *rep) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "check_constraints: the state belongs to another system");
+  int pair = dal__check_pair(sys, st, "check_constraints");
+  if (pair) return pair;
   if (rep) {
     memset(rep, 0, sizeof *rep);
     rep->m = sys->m;
@@ -148,7 +147,7 @@ int dal_check_constraints(const dal_system *sys, dal_state *st, dal_constraint_r
   }
   if (sys->m == 0) return DAL_OK;
   int rc = dal__eval_constraints(sys, st);
-  if (rc == DAL__RECOVERABLE) rc = DAL_E_CALLBACK;
+  rc = dal__public_status(rc);
   if (rc) return rc;
   return dal__check_rank(sys, st, rep);
 }

@@ -37,6 +37,7 @@ void dal__integ_reset(dal_state *st) {
   if (st->integ && st->integ_free) st->integ_free(st->integ);
   st->integ = NULL;
   st->integ_free = NULL;
+  dal__kkt_reset(st->kkt); // the KKT factorization's history goes with it
 }
 
 // resolve formulation and method; *prob is NULL for the IDA route; *tight is set when AUTO
@@ -199,17 +200,19 @@ static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts
 // common argument checks of advance and evolve
 static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts *o, double t1,
                       const char *what) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "%s: the state belongs to another system", what);
+  int pair = dal__check_pair(sys, st, what);
+  if (pair) return pair;
   int rc = dal__check_opts(st, o);
   if (rc) return rc;
   if (!isfinite(t1))
     return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
-  // a step bound below the spacing of doubles at t cannot move t
-  const double hs[3] = {o->h0, o->hmin, o->hmax};
-  const char *hn[3] = {"h0", "hmin", "hmax"};
-  for (int i = 0; i < 3; ++i)
+  // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
+  // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
+  int fixed = o->method == DAL_METHOD_RK4 ||
+              (o->fixed_erk && (o->method == DAL_METHOD_DOPRI5 || o->method == DAL_METHOD_FEHLBERG78));
+  const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
+  const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
+  for (int i = 0; i < 4; ++i)
     if (hs[i] > 0 && (st->t + hs[i] == st->t || t1 + hs[i] == t1))
       return DAL_FAIL(st, DAL_E_ARG,
                       "%s: opts.%s = %g is below the floating-point resolution of t between %g "
@@ -233,6 +236,7 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
 static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
   if (!monitor) return 0;
+  st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
   int mr = monitor(sys, st, ctx);
   if (mr > 0) {
     // not a failure; the message says where and why the run ended
@@ -240,11 +244,14 @@ static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *mo
              st->t);
     return 1;
   }
-  if (mr < 0)
+  if (mr < 0) {
+    char why[DAL_ERRMSG_LEN];
+    memcpy(why, st->err, sizeof why);
     return DAL_FAIL(st, DAL_E_CALLBACK,
-                    "monitor returned %d (%s) at t=%.17g; evolve stopped there (the state holds "
-                    "that time)",
-                    mr, dal_status_name(mr), st->t);
+                    "monitor returned %d (%s) at t=%.17g%s%.300s; evolve stopped there (the state "
+                    "holds that time)",
+                    mr, dal_status_name(mr), st->t, why[0] ? ": " : "", why);
+  }
   return 0;
 }
 
@@ -252,9 +259,11 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                double dt, dal_monitor_fn *monitor, void *ctx) {
   int rc = check_call(sys, st, opts, t1, "evolve");
   if (rc) return rc;
-  if (!(dt > 0) || !isfinite(dt))
-    return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive and finite",
-                    dt);
+  if (!isfinite(dt))
+    return DAL_FAIL(st, DAL_E_NONFINITE,
+                    "evolve: output interval dt = %g is not finite; give a positive finite dt", dt);
+  if (!(dt > 0))
+    return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive", dt);
   double t0 = st->t, span = (t1 - t0) / dt;
   // a dt below the floating-point spacing of t would give output times that never advance
   if (t0 + dt == t0 || t1 + dt == t1)

@@ -63,6 +63,22 @@ int dal__cb_status(dal_state *st, int rc, const char *what) {
 }
 
 int dal__public_status(int rc) {
-  if (rc == DAL__RECOVERABLE) return DAL_E_CALLBACK;
-  return rc > 0 ? DAL_E_SOLVER : rc;
+  switch (rc) {
+  case DAL__RECOVERABLE:
+    return DAL_E_CALLBACK;
+  case DAL__RETRY_NONFINITE:
+    return DAL_E_NONFINITE;
+  case DAL__RETRY_SINGULAR:
+    return DAL_E_SINGULAR;
+  default:
+    return rc > 0 ? DAL_E_SOLVER : rc;
+  }
+}
+
+int dal__check_pair(const dal_system *sys, const dal_state *st, const char *what) {
+  if (!st) return DAL_E_ARG;
+  if (sys && st->sys == sys) return DAL_OK;
+  return DAL_FAIL_C(st, DAL_E_STATE,
+                    "%s: %s; create the state from the system you pass (dal_state_create)", what,
+                    sys ? "the state belongs to another system" : "the system is NULL");
 }

@@ -30,6 +30,34 @@ static void index1_from_state(const dal_system *sys, const dal_state *st, double
   memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
 }
 
+// The acceleration of coordinate i is not finite at a trial point: name what overflowed, the
+// Baumgarte terms or the forces (or, both finite, the accelerations themselves). A retry.
+static int index1_nonfinite(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                            int i, double t) {
+  double al = opts->baumgarte_alpha, be = opts->baumgarte_beta;
+  int forces_ok = 1, baum_ok = 1;
+  for (int j = 0; j < sys->n; ++j) forces_ok &= isfinite(st->Q[j] - st->c[j]);
+  for (int r = 0; r < sys->m; ++r) {
+    double bt = 2.0 * al * st->phidot[r] + be * be * st->phi[r];
+    baum_ok &= isfinite(bt) && isfinite(st->gphi[r] + bt);
+  }
+  char qs[256];
+  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  if (!baum_ok)
+    return DAL_FAIL(st, DAL__RETRY_NONFINITE,
+                    "index-1: the Baumgarte terms 2 alpha (G v + dphi/dt) + beta^2 phi overflow at "
+                    "t=%.17g, %s (opts.baumgarte_alpha = %g, opts.baumgarte_beta = %g): the "
+                    "acceleration of coordinate '%s' is %g; use rates near the motion's own "
+                    "frequencies",
+                    t, qs, al, be, sys->coord_names[i], st->qddot[i]);
+  return DAL_FAIL(st, DAL__RETRY_NONFINITE,
+                  "index-1: acceleration of coordinate '%s' is %g at t=%.17g, %s: %s",
+                  sys->coord_names[i], st->qddot[i], t, qs,
+                  forces_ok ? "the forces are too large for the masses they move, or the KKT "
+                              "matrix is nearly singular there (near-redundant constraints)"
+                            : "the generalized forces overflow there");
+}
+
 static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
                       const double *y, double *ydot, unsigned need) {
   int n = sys->n, m = sys->m, rc;
@@ -60,13 +88,7 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
   }
   if (rc) return rc;
   for (int i = 0; i < n; ++i)
-    if (!isfinite(st->qddot[i])) {
-      DAL_FAIL(st, DAL__RECOVERABLE,
-               "index-1: acceleration of coordinate '%s' is %g at t=%.17g; the state may have "
-               "left the model's domain",
-               sys->coord_names[i], st->qddot[i], t);
-      return DAL__RECOVERABLE;
-    }
+    if (!isfinite(st->qddot[i])) return index1_nonfinite(sys, st, opts, i, t);
   memcpy(ydot, st->qdot, (size_t)n * sizeof(double));
   memcpy(ydot + n, st->qddot, (size_t)n * sizeof(double));
   return DAL_OK;

@@ -162,7 +162,7 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dou
   rep->tol = tol;
   if (m == 0) {
     rc = dal__eval(sys, st, DAL_P_ALL);
-    return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+    return dal__public_status(rc);
   }
   double *save = malloc(2 * (size_t)n * sizeof(double));
   if (!save) return DAL_FAIL(st, DAL_E_NOMEM, "consistent initialization: out of memory");
@@ -188,7 +188,7 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dou
     memcpy(st->qdot, save + n, (size_t)n * sizeof(double));
     dal__state_moved(st);
     free(save);
-    return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+    return dal__public_status(rc);
   }
   for (int j = 0; j < n; ++j) {
     double dq = fabs(st->q[j] - save[j]), dv = fabs(st->qdot[j] - save[n + j]);
@@ -226,11 +226,13 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dou
 }
 
 int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_init_report *rep) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "make_consistent: the state belongs to another system");
+  int pair = dal__check_pair(sys, st, "make_consistent");
+  if (pair) return pair;
   if (!isfinite(tol))
-    return DAL_FAIL(st, DAL_E_ARG, "make_consistent: tolerance %g is not finite", tol);
+    return DAL_FAIL(st, DAL_E_NONFINITE,
+                    "make_consistent: tolerance %g is not finite; give a finite tolerance (<= 0: "
+                    "automatic)",
+                    tol);
   dal_init_report local;
   dal__integ_reset(st);
   return make_consistent(sys, st, tol, 0.0, rep ? rep : &local);
@@ -242,5 +244,5 @@ int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_in
   int rc = dal__eval_constraints(sys, st);
   if (rc == 0) rc = dal__check_rank(sys, st, NULL);
   if (rc == 0) rc = make_consistent(sys, st, 0.0, max_move, rep ? rep : &local);
-  return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+  return dal__public_status(rc);
 }

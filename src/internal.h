@@ -4,6 +4,7 @@
 #ifndef DAL_INTERNAL_H
 #define DAL_INTERNAL_H
 
+#include <math.h>
 #include <stddef.h>
 
 #include "dalembert/dalembert.h"
@@ -11,8 +12,17 @@
 
 #define DAL_ERRMSG_LEN 512
 #define DAL_OPTS_MAGIC 0x0da1e3b7
-/// internal: a user callback asked for a smaller step (never returned to the user)
+/// Internal codes > 0 (never returned to the user): a trial point failed in a way that a
+/// smaller step may avoid. Each carries the public status it becomes when no smaller step
+/// helps or there is no step to shrink (dal__public_status):
+/// a user callback asked for a smaller step (-> DAL_E_CALLBACK)
 #define DAL__RECOVERABLE 1
+/// a trial value is not finite: t, q, qdot handed to the model, or accelerations or jets that
+/// overflowed at a trial point reached by too long a step (-> DAL_E_NONFINITE)
+#define DAL__RETRY_NONFINITE 2
+/// the mass or KKT matrix is nearly singular at the trial point: accelerations overflow
+/// although the forces are finite (-> DAL_E_SINGULAR)
+#define DAL__RETRY_SINGULAR 3
 
 /// programmer bugs only (broken invariants); never physics failures
 #ifdef NDEBUG
@@ -219,6 +229,13 @@ int dal__set_err(char *buf, int status, const char *fmt, ...)
 #endif
     ;
 #define DAL_FAIL(st, code, ...) dal__set_err((st)->err, (code), __VA_ARGS__)
+/// DAL_FAIL for a state passed as const (an accessor): the error text is not part of the
+/// state's value (as sqlite3_errmsg), and no state is a const object (dal_state_create)
+#define DAL_FAIL_C(st, code, ...) dal__set_err(((dal_state *)(st))->err, (code), __VA_ARGS__)
+/// The checks of every (system, state) call: a NULL state is DAL_E_ARG (no message can be
+/// kept); a NULL system or a state of another system is DAL_E_STATE with the message
+/// "<what>: the state belongs to another system ...". Returns 0 when they match.
+int dal__check_pair(const dal_system *sys, const dal_state *st, const char *what);
 
 /// format "(q0=..., q1=...)" of the state's coordinates into buf
 void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len);
@@ -226,10 +243,20 @@ void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len);
 /// check a user callback's return: 0 ok, >0 recoverable, <0 stop; name the culprit
 int dal__cb_status(dal_state *st, int rc, const char *what);
 
-/// The one conversion of an internal code to a public status: DAL__RECOVERABLE (a callback
-/// asked for a smaller step where there is none to shrink) becomes DAL_E_CALLBACK, any other
-/// positive (foreign) code DAL_E_SOLVER; statuses pass through.
+/// The one conversion of an internal code to a public status: a retry code (a trial point
+/// failed where there is no step left to shrink) becomes the status of its cause
+/// (DAL__RECOVERABLE: DAL_E_CALLBACK, DAL__RETRY_NONFINITE: DAL_E_NONFINITE,
+/// DAL__RETRY_SINGULAR: DAL_E_SINGULAR), any other positive (foreign) code DAL_E_SOLVER;
+/// statuses pass through.
 int dal__public_status(int rc);
+/// true for the internal retry codes (a smaller step may help)
+static inline int dal__is_retry(int rc) { return rc >= DAL__RECOVERABLE && rc <= DAL__RETRY_SINGULAR; }
+
+/// Domain check of a built-in primitive's parameters (constraints/registry.c): NULL when they
+/// are fine (or prim is not a built-in), else the name of the offending quantity ("rod length
+/// L", "normal n") with *bad its first parameter index and *rule what it must be.
+const char *dal__builtin_param_check(const dal_primitive *prim, const double *param, int *bad,
+                                     const char **rule);
 
 // evaluation pipeline (eval.c -> kinematics.c, dynamics.c, lagrangian.c, kkt.c)
 /// Evaluate at the state's (t, q, qdot) what `need` (DAL_P_* bits) asks for, and what that
@@ -247,6 +274,18 @@ typedef struct dal_inst {
   int npart, ncoord;
   const int *parts, *coords;
 } dal_inst;
+/// largest |v|, |d|, |dd| over n jets (to tell an overflow from a domain error)
+static inline double dal__jets_max(const dal_jet *x, int n) {
+  double m = 0.0;
+  for (int i = 0; i < n; ++i) {
+    double a = fabs(x[i].v), b = fabs(x[i].d), c = fabs(x[i].dd);
+    m = a > m ? a : m;
+    m = b > m ? b : m;
+    m = c > m ? c : m;
+  }
+  return m;
+}
+
 /// the instance of an owner (particle k >= 0, constraint -1 - c), with the state's parameters
 dal_inst dal__inst(const dal_system *sys, const dal_state *st, int owner);
 /// Evaluate a primitive instance with its inputs u (particle positions, then coordinates) at
@@ -266,6 +305,10 @@ int dal__constraints(const dal_system *sys, dal_state *st);
 int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw);
 /// generalized terms from user callbacks over q: Q += Q_user - dU/dq, *U += U(q); pw as above
 int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw);
+/// After dal__dynamics failed with DAL_E_NONFINITE: when a built-in force (gravity, a spring, a
+/// damper) or the sum of finite ones overflowed rather than a force callback, rewrite the
+/// message to name it (blame.c). Returns DAL_E_NONFINITE.
+int dal__blame_forces(const dal_system *sys, dal_state *st);
 /// qddot from M qddot = Q - c by Cholesky (m = 0); names degenerate coordinates
 int dal__solve_unconstrained(const dal_system *sys, dal_state *st);
 /// particle accelerations and reactions from qddot, and the constraints' explicit time
@@ -287,6 +330,10 @@ int dal__solve_kkt(const dal_system *sys, dal_state *st);
 /// KKT workspace of a constrained system (kkt.c): create (NULL on failure) and free
 struct dal_kkt *dal__kkt_create(const dal_system *sys);
 void dal__kkt_free(struct dal_kkt *k);
+/// forget the reusable numeric factorizations (KLU refactors with the pivots of an earlier
+/// factorization, so results would depend on the state's history): called wherever integrator
+/// history is discarded, so that the same inputs give bit-identical outputs
+void dal__kkt_reset(struct dal_kkt *k);
 
 // the articulated-body recursion for trees of placements (aba.c)
 /// recursion workspace of a system with sys->aba: create (NULL on failure) and free

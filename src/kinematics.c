@@ -56,8 +56,8 @@ static void owner_name(const dal_system *sys, int owner, char *buf, size_t len) 
 }
 
 // the failure of a jet function call (cold path of eval_checked): names the culprit
-static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in, int owner,
-                       int rc) {
+static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in, dal_jet t,
+                       int owner, int rc) {
   const char *kind = owner >= 0 ? "coordinate map" : "constraint";
   char name[160];
   if (rc) {
@@ -71,6 +71,16 @@ static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in,
       char qs[256];
       owner_name(sys, owner, name, sizeof name);
       dal__fmt_q(sys, st->q, qs, sizeof qs);
+      // huge inputs: the arithmetic overflowed (a trial step too long, or velocities whose
+      // squares exceed double range), not a domain error of the function
+      double big = fmax(dal__jets_max(st->jin, in->prim->nin), fmax(fabs(t.d), fabs(t.dd)));
+      if (big > DAL_JET_OVERFLOW)
+        return DAL_FAIL(st, DAL__RETRY_NONFINITE,
+                        "%s '%s' of %s overflows at t=%.17g, %s: its inputs along the motion "
+                        "reach %g (positions, velocities or accelerations whose products exceed "
+                        "double range), output %d is (%g, %g, %g)",
+                        kind, in->prim->name, name, st->t, qs, big, i, st->jout[i].v,
+                        st->jout[i].d, st->jout[i].dd);
       return DAL_FAIL(st, DAL_E_DOMAIN,
                       "%s '%s' of %s produced a non-finite value or derivative (output %d: "
                       "%g, %g, %g) at t=%.17g, %s; an input is outside the primitive's domain "
@@ -91,7 +101,7 @@ static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in
   int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
   double z = 0.0;
   for (int i = 0; i < in->prim->nout; ++i) z += st->jout[i].v + st->jout[i].d + st->jout[i].dd;
-  if (rc || !isfinite(z)) return eval_failed(sys, st, in, owner, rc);
+  if (rc || !isfinite(z)) return eval_failed(sys, st, in, t, owner, rc);
   return DAL_OK;
 }
 
@@ -172,6 +182,23 @@ static void chain_particle(const dal_system *sys, const dal_state *st, int p, co
   }
 }
 
+// the whole-system map gave a non-finite output i (along coordinate direction `dir`, or the
+// motion when NULL): an overflow of huge inputs (a retry) or a domain error
+static int map_nonfinite(const dal_system *sys, dal_state *st, int i, const char *dir) {
+  double big = dal__jets_max(st->jq, sys->n);
+  if (big > DAL_JET_OVERFLOW)
+    return DAL_FAIL(st, DAL__RETRY_NONFINITE,
+                    "whole-system coordinate map overflows for particle '%s' at t=%.17g: its "
+                    "inputs along the motion reach %g (coordinates, velocities whose products "
+                    "exceed double range)",
+                    sys->part_names[i / sys->dim], st->t, big);
+  return DAL_FAIL(st, DAL_E_DOMAIN,
+                  "whole-system coordinate map produced a non-finite value for particle '%s' at "
+                  "t=%.17g%s%s%s",
+                  sys->part_names[i / sys->dim], st->t, dir ? " (coordinate direction '" : "",
+                  dir ? dir : "", dir ? "')" : "");
+}
+
 // whole-system user map: all particles from r(q, t), with J (all n columns per particle)
 static int kinematics_map(const dal_system *sys, dal_state *st) {
   int n = sys->n, Nd = sys->N * sys->dim;
@@ -184,10 +211,7 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
     if (rc) return dal__cb_status(st, rc, "whole-system coordinate map");
     for (int i = 0; i < Nd; ++i) {
       if (!dal_jet_isfinite(st->jr[i]))
-        return DAL_FAIL(st, DAL_E_DOMAIN,
-                        "whole-system coordinate map produced a non-finite value for particle "
-                        "'%s' at t=%.17g (coordinate direction '%s')",
-                        sys->part_names[i / sys->dim], st->t, sys->coord_names[j]);
+        return map_nonfinite(sys, st, i, sys->coord_names[j]);
       st->J[(size_t)(i / sys->dim) * sys->dim * n + (size_t)(i % sys->dim) * n + j] =
           st->jr[i].d;
     }
@@ -197,10 +221,7 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
   if (rc) return dal__cb_status(st, rc, "whole-system coordinate map");
   for (int i = 0; i < Nd; ++i) {
     if (!dal_jet_isfinite(st->jr[i]))
-      return DAL_FAIL(st, DAL_E_DOMAIN,
-                      "whole-system coordinate map produced a non-finite value for particle "
-                      "'%s' at t=%.17g",
-                      sys->part_names[i / sys->dim], st->t);
+      return map_nonfinite(sys, st, i, NULL);
     st->r[i] = st->jr[i].v;
     st->v[i] = st->jr[i].d;
     st->gamma[i] = st->jr[i].dd;

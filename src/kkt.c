@@ -156,6 +156,13 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
   return k;
 }
 
+void dal__kkt_reset(struct dal_kkt *k) {
+  if (!k) return;
+  for (int i = 0; i < 2; ++i)
+    if (k->num[i]) klu_free_numeric(&k->num[i], &k->common);
+  k->cur = -1;
+}
+
 void dal__kkt_free(struct dal_kkt *k) {
   if (!k) return;
   for (int i = 0; i < 2; ++i)
@@ -342,24 +349,38 @@ int dal__solve_kkt(const dal_system *sys, dal_state *st) {
   return DAL_OK;
 }
 
+// the multipliers and constraint rows are current at the state's (t, q, qdot)
+static int multipliers_current(const dal_state *st, const char *what) {
+  if ((st->have & (DAL_P_CON | DAL_P_ACC)) == (DAL_P_CON | DAL_P_ACC)) return DAL_OK;
+  return DAL_FAIL_C(st, DAL_E_STATE,
+                    "%s: the state holds no evaluated multipliers at its (t, q, qdot); call "
+                    "dal_forward or integrate first",
+                    what);
+}
+
 int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double *Qc) {
-  if (!sys || !st || !Qc || st->sys != sys) return DAL_E_ARG;
+  int pair = dal__check_pair(sys, st, "constraint_genforces");
+  if (pair) return pair;
+  if (!Qc) return DAL_FAIL_C(st, DAL_E_ARG, "constraint_genforces: Qc is NULL");
+  int rc = multipliers_current(st, "constraint_genforces");
+  if (rc) return rc;
   if (sys->m == 0) {
     memset(Qc, 0, (size_t)sys->n * sizeof(double));
     return DAL_OK;
   }
-  if ((st->have & (DAL_P_CON | DAL_P_ACC)) != (DAL_P_CON | DAL_P_ACC)) return DAL_E_STATE;
   dal__gt_apply(sys, st, st->lambda, Qc);
   return DAL_OK;
 }
 
 int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F) {
-  if (!sys || !st || !F || st->sys != sys) return DAL_E_ARG;
+  int pair = dal__check_pair(sys, st, "constraint_forces");
+  if (pair) return pair;
+  if (!F) return DAL_FAIL_C(st, DAL_E_ARG, "constraint_forces: F is NULL");
+  int rc = multipliers_current(st, "constraint_forces");
+  if (rc) return rc;
   int d = sys->dim;
   memset(F, 0, (size_t)sys->N * (size_t)d * sizeof(double));
   if (sys->m == 0) return DAL_OK;
-  // a state never evaluated has no multipliers (read-only here: no message)
-  if ((st->have & (DAL_P_CON | DAL_P_ACC)) != (DAL_P_CON | DAL_P_ACC)) return DAL_E_STATE;
   // F_k = (dphi/dr_k)' lambda from each constraint's local Jacobian at the evaluated point
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];

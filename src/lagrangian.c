@@ -18,6 +18,13 @@ static int lag_eval(const dal_system *sys, dal_state *st, dal_jet t, dal_jet *L)
   if (!dal_jet_isfinite(*L)) {
     char qs[256];
     dal__fmt_q(sys, st->q, qs, sizeof qs);
+    // huge inputs: an overflow (a trial step too long), not a domain error of L
+    double big = fmax(dal__jets_max(st->jq, sys->n), dal__jets_max(st->jv, sys->n));
+    if (big > DAL_JET_OVERFLOW)
+      return DAL_FAIL(st, DAL__RETRY_NONFINITE,
+                      "Lagrangian overflows at t=%.17g, %s: its inputs reach %g (coordinates "
+                      "or velocities whose products exceed double range)",
+                      st->t, qs, big);
     return DAL_FAIL(st, DAL_E_DOMAIN,
                     "Lagrangian produced a non-finite value or derivative at t=%.17g, %s",
                     st->t, qs);
@@ -106,11 +113,23 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
   return DAL_OK;
 }
 
+// never DAL_OK with a non-finite residual: a path whose accelerations or speeds are too large
+// for double precision makes M qddot + c - Q overflow
+static int residual_finite(const dal_system *sys, dal_state *st, const double *res, double t) {
+  for (int i = 0; i < sys->n; ++i)
+    if (!isfinite(res[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "lagrange_residual: the residual of coordinate '%s' overflows (%g) at "
+                      "t=%.17g: the path's velocities or accelerations are too large for double "
+                      "precision",
+                      sys->coord_names[i], res[i], t);
+  return DAL_OK;
+}
+
 int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path, double t,
                           double *res, void *ctx) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "lagrange_residual: the state belongs to another system");
+  int pair = dal__check_pair(sys, st, "lagrange_residual");
+  if (pair) return pair;
   if (!path || !res) return DAL_FAIL(st, DAL_E_ARG, "lagrange_residual: path or res is NULL");
   if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "lagrange_residual: t is %g", t);
   int n = sys->n, rc;
@@ -134,17 +153,17 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
     double h, *rhs = st->work + n;
     rc = dal__lagrangian_terms(sys, st, st->M, rhs, &h);
     st->have |= DAL_P_M | DAL_P_MLOW;
-    if (rc) return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+    if (rc) return dal__public_status(rc);
     for (int i = 0; i < n; ++i) {
       double s = -rhs[i];
       for (int j = 0; j < n; ++j) s += st->M[(size_t)j * n + i] * qdd[j];
       res[i] = s;
     }
-    return DAL_OK;
+    return residual_finite(sys, st, res, t);
   }
   if ((rc = dal__eval(sys, st, DAL_P_J | DAL_P_DYN)) != 0)
-    return rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc;
+    return dal__public_status(rc);
   dal__mass_apply(sys, st, qdd, res);
   for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];
-  return DAL_OK;
+  return residual_finite(sys, st, res, t);
 }

@@ -52,8 +52,21 @@
 /// fails there).
 #define DAL_IDA_H0_FACTOR 0.1
 
-/// A step that advances t by at most this many ulps of max(1, |t|) makes no progress.
+/// A step that advances t by at most this many ulps of max(1, |t|) makes no progress; this
+/// many such steps in a row are a step size collapse (every method's progress guard).
 #define DAL_TINY_STEP_ULPS 8.0
+#define DAL_TINY_STEP_COUNT 5
 #define DAL_TINY_STEP(t) (DAL_TINY_STEP_ULPS * DBL_EPSILON * ((t) > 1.0 || (t) < -1.0 ? ((t) < 0 ? -(t) : (t)) : 1.0))
+
+/// Pivot ratio (smallest / largest squared Cholesky pivot of M) below which a non-finite
+/// acceleration is blamed on a nearly singular mass matrix (a chart singularity) rather than on
+/// forces too large for the masses; the factorization itself refuses ratios below 2.2e-13.
+#define DAL_NEAR_SINGULAR 1e-8
+
+/// A jet function whose inputs (values or directions) exceed this size and whose outputs are
+/// not finite has overflowed (a product of two such numbers nears double range), which is a
+/// trial step too long or a motion beyond double range (DAL__RETRY_NONFINITE), not a domain
+/// error of the function (DAL_E_DOMAIN).
+#define DAL_JET_OVERFLOW 1e100
 
 #endif

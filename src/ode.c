@@ -37,9 +37,10 @@ int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot) {
   ig->rhs_rc = rc;
   if (rc) memcpy(ig->rhs_err, st->err, sizeof ig->rhs_err);
   if (rc < 0) ig->rhs_fatal = rc;
-  if (rc == DAL__RECOVERABLE) {
+  if (dal__is_retry(rc)) {
     ig->nrecov++;
     ig->recov_t = t;
+    ig->recov_rc = rc;
   }
   return rc;
 }
@@ -51,29 +52,78 @@ int dal__ode_recov_blocked(const dal_ode_integ *ig) {
 int dal__ode_recov_fail(dal_ode_integ *ig, double h) {
   char cause[DAL_ERRMSG_LEN];
   memcpy(cause, ig->rhs_err, sizeof cause);
-  return dal__ode_fail(ig, DAL_E_CALLBACK,
+  int code = ig->recov_rc ? ig->recov_rc : DAL__RECOVERABLE;
+  const char *remedy = code == DAL__RECOVERABLE
+                           ? "a failure that persists is not recoverable; fix the callback, or "
+                             "return < 0 from it to stop at once"
+                           : "no smaller step avoids it";
+  return dal__ode_fail(ig, code,
                        "%s; the step was shrunk to h=%.3g and it still fails (%d times in this "
-                       "call): a failure that persists is not recoverable; fix the callback, or "
-                       "return < 0 from it to stop at once; stopped at t=%.17g (last accepted "
-                       "step) before the target t=%.17g",
-                       cause, h, ig->nrecov, ig->t, ig->tout);
+                       "call): %s; stopped at t=%.17g (last accepted step) before the target "
+                       "t=%.17g",
+                       cause, h, ig->nrecov, remedy, ig->t, ig->tout);
 }
 
 int dal__ode_collapsed(dal_ode_integ *ig, double t) {
+  if (ig->ntiny > 0 && t == ig->tiny_t) return ig->ntiny >= DAL_TINY_STEP_COUNT;
+  ig->tiny_t = t;
   if (t - ig->t > DAL_TINY_STEP(t)) {
     ig->ntiny = 0;
     return 0;
   }
-  return ++ig->ntiny >= 5;
+  return ++ig->ntiny >= DAL_TINY_STEP_COUNT;
+}
+
+// The progress guard: the step from ig->t to t (result y) must advance t, not be one of a
+// run of steps of a few ulps, and hold finite values. Otherwise fail with the cause: a retry
+// that kept failing there, else a step size collapse (DAL_E_STEP) or an overflow.
+static int ode_progress(dal_ode_integ *ig, double t, const double *y) {
+  char var[128];
+  int bad = -1;
+  for (int i = 0; i < ig->ny && bad < 0; ++i)
+    if (!isfinite(y[i])) bad = i;
+  if (bad >= 0)
+    return dal__ode_fail(ig, DAL_E_NONFINITE,
+                         "the step from t=%.17g to t=%.17g (%s) overflowed: %s is %g; the state "
+                         "holds the step before; the solution leaves the range of doubles there, "
+                         "or the step is too long for the method (a smaller opts.fixed_step or "
+                         "opts.hmax)",
+                         ig->t, t, dal_method_name(ig->method),
+                         dal__ode_var_name(ig, bad, var, sizeof var), y[bad]);
+  int stalled = !(t > ig->t);
+  if (!stalled && !dal__ode_collapsed(ig, t)) return DAL_OK;
+  return dal__ode_stall(ig, t - ig->t,
+                        stalled ? "the step does not advance t" : "steps of a few ulps of t");
+}
+
+int dal__ode_stall(dal_ode_integ *ig, double h, const char *what) {
+  char var[128];
+  if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
+  // the variable that changes fastest relative to its tolerance at the last accepted step
+  snprintf(var, sizeof var, "(not evaluated)");
+  if (ig->prob->rhs(ig->sys, ig->st, &ig->opts, ig->t, ig->y, ig->ydot, DAL_P_ACC) == 0) {
+    for (int i = 0; i < ig->ny; ++i)
+      ig->ewt[i] = ig->ydot[i] / (ig->atol + ig->rtol * fabs(ig->y[i]));
+    dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
+  }
+  return dal__ode_fail(ig, DAL_E_STEP,
+                       "step size collapse at t=%.17g (%s): %s (h=%.3g); the fastest-changing "
+                       "variable (relative to its tolerance) is %s; the solution may be "
+                       "singular there, or the tolerances too tight for its scale (atol is "
+                       "absolute), or the step too small for t's precision: loosen rtol/atol, "
+                       "give opts.h0, check the model near this time, or restart the clock near 0",
+                       ig->t, dal_method_name(ig->method), what, h, var);
 }
 
 int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected) {
   dal_state *st = ig->st;
   if (projected) *projected = 0;
+  int rc = ode_progress(ig, t, y);
+  if (rc) return rc;
   if (ig->prob->project && ig->opts.project) {
     // project a copy so that the last accepted step survives a failing projection
     memcpy(ig->ydot, y, (size_t)ig->ny * sizeof(double));
-    int rc = ig->prob->project(ig->sys, st, &ig->opts, t, ig->ydot);
+    rc = ig->prob->project(ig->sys, st, &ig->opts, t, ig->ydot);
     if (rc) {
       char msg[DAL_ERRMSG_LEN];
       memcpy(msg, st->err, sizeof msg);

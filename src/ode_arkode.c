@@ -76,7 +76,8 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
   case ARK_FIRST_RHSFUNC_ERR:
   case ARK_REPTD_RHSFUNC_ERR:
   case ARK_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal : DAL_E_CALLBACK,
+    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal
+                                           : ig->recov_rc ? ig->recov_rc : DAL__RECOVERABLE,
                          "%s; stopped at t=%.17g (last accepted step) before the target "
                          "t=%.17g",
                          ig->rhs_err, ig->t, ig->tout);
@@ -160,7 +161,7 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     if (flag < 0) {
       // ERKStep treats any right-hand-side failure as final: a recoverable one restarts
       // here from the last accepted step with a quarter of the step that failed
-      if (!ig->rhs_fatal && ig->rhs_rc == DAL__RECOVERABLE && recover < ERK_MAX_RECOVER) {
+      if (!ig->rhs_fatal && dal__is_retry(ig->rhs_rc) && recover < ERK_MAX_RECOVER) {
         double h = 0;
         ERKStepGetCurrentStep(m->ark, &h);
         if (!(h > 0)) h = ig->st->stats.last_h;

@@ -27,7 +27,8 @@
 /// halvings tolerated for one step (recoverable failures, stability check) before giving up
 #define BS_MAX_REJECT 60
 
-enum { BS_ACCEPT = 0, BS_REJECT = 2, BS_UNSTABLE = 3 };
+// outcomes of an attempt, apart from the internal retry codes (DAL__RECOVERABLE ...)
+enum { BS_ACCEPT = 0, BS_REJECT = 100, BS_UNSTABLE = 101 };
 
 typedef struct bs_mem {
   double *f0;       // f(t, y) at the start of the step (ny)
@@ -115,11 +116,15 @@ static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
     }
     m->T[(size_t)(j - 1) * ny + i] = cur;
     if (!isfinite(cur)) {
+      // the step overflowed: a retry with a shorter one
       char var[128];
       snprintf(ig->rhs_err, sizeof ig->rhs_err,
-               "extrapolated value of %s is not finite at t=%.17g (H=%.3g)",
+               "extrapolated value of %s is not finite at t=%.17g (H=%.3g): the step overflows",
                dal__ode_var_name(ig, i, var, sizeof var), t, H);
-      return DAL__RECOVERABLE;
+      ig->nrecov++;
+      ig->recov_t = t + H;
+      ig->recov_rc = DAL__RETRY_NONFINITE;
+      return DAL__RETRY_NONFINITE;
     }
   }
   return DAL_OK;
@@ -182,7 +187,7 @@ static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
   double t = ig->t, n1 = m->nseq[1];
   for (int j = 1; j <= k + 1; ++j) {
     rc = bs_column(ig, m, t, H, j);
-    if (rc == DAL__RECOVERABLE || rc == BS_UNSTABLE) {
+    if (dal__is_retry(rc) || rc == BS_UNSTABLE) {
       m->H = 0.5 * H;
       return rc;
     }
@@ -251,7 +256,7 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     if (!m->f0_ok) {
       rc = dal__ode_rhs(ig, ig->t, ig->y, m->f0);
       if (rc)
-        return dal__ode_fail(ig, rc == DAL__RECOVERABLE ? DAL_E_CALLBACK : rc,
+        return dal__ode_fail(ig, rc,
                              "%s; at an accepted step, where no smaller step can help; stopped "
                              "at t=%.17g before the target t=%.17g",
                              ig->rhs_err, ig->t, tout);
@@ -260,7 +265,7 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     if (!(m->H > 0)) {
       double H0 = o->h0;
       if (!(H0 > 0) && (rc = bs_initial_step(ig, m, tout, &H0)) != 0) {
-        if (rc == DAL__RECOVERABLE) {
+        if (dal__is_retry(rc)) {
           H0 = 1e-6 * fmax(1.0, tout - ig->t);
         } else {
           return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g before the target t=%.17g",
@@ -276,30 +281,22 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
       H = tout - ig->t;
       last = 1;
     }
-    double hfloor = fmax(o->hmin, 16 * DBL_EPSILON * fabs(ig->t));
+    // the progress guard: a step of a few ulps of t (a collapsed first-step estimate, or a
+    // step size control driven down) stops at once with its cause
+    double hfloor = fmax(o->hmin, DAL_TINY_STEP(ig->t));
     if (H < hfloor && !last)
-      return dal__ode_fail(
-          ig, DAL_E_STEP,
-          "step size underflow at t=%.17g (H=%.3g, bs order column %d): error "
-          "dominated by %s; the solution may be singular there, or the "
-          "tolerances too tight: loosen rtol/atol or check the model near "
-          "this time",
-          ig->t, H, m->k, dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var));
+      return dal__ode_stall(ig, H, "the step size fell to a few ulps of t");
     // a shortened step uses the order that sufficed for the last shortened one: with outputs
     // denser than the natural steps a low order is cheapest; the natural order and step are
     // kept for the next full step
     int shortened = last && H < Hprop, kc = 0;
     rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, &kc);
-    if (rc == DAL__RECOVERABLE || rc == BS_REJECT || rc == BS_UNSTABLE) {
+    if (dal__is_retry(rc) || rc == BS_REJECT || rc == BS_UNSTABLE) {
       // rejected: bs_attempt has set the order and step of the retry
       m->rejected_last = 1;
       ig->st->stats.rejected++;
       if (++nrej > BS_MAX_REJECT) {
-        if (rc == DAL__RECOVERABLE)
-          return dal__ode_fail(ig, DAL_E_CALLBACK,
-                               "%s; still after %d step reductions (H=%.3g); stopped at "
-                               "t=%.17g (last accepted step)",
-                               ig->rhs_err, nrej, H, ig->t);
+        if (dal__is_retry(rc)) return dal__ode_recov_fail(ig, H);
         return dal__ode_fail(
             ig, DAL_E_STEP,
             "step size underflow at t=%.17g (H=%.3g after %d rejections): "

@@ -131,7 +131,8 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   case CV_FIRST_RHSFUNC_ERR:
   case CV_REPTD_RHSFUNC_ERR:
   case CV_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal : DAL_E_CALLBACK,
+    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal
+                                           : ig->recov_rc ? ig->recov_rc : DAL__RECOVERABLE,
                          "%s; stopped at t=%.17g (last accepted step) before the target "
                          "t=%.17g",
                          ig->rhs_err, ig->t, ig->tout);

@@ -2,13 +2,14 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Classical fourth-order Runge-Kutta at the fixed step opts.fixed_step (Kutta 1901; Hairer-
 // Norsett-Wanner, Solving ODEs I, sec. II.1, Table 1.2 left). A step whose right-hand side
-// asks for a smaller step is redone as two halves, recursively. The solution is updated by
-// compensated (Kahan) summation of the increments (Hairer-Norsett-Wanner I, sec. II.10,
-// "round-off error"), so that round-off does not accumulate linearly over many small steps.
-// The increment is h * (k1 + 2 (k2 + k3) + k4) / 6, not (h / 6) * (...): a rounded
-// coefficient h / 6 is the same in every step, a systematic bias that grows linearly (2.4e-13
-// after 1e6 steps of 1e-3 on q'' = -q, against 7e-16 this way; bench/symplectic.c).
+// asks for a smaller step, or whose result overflows, is redone as two halves, recursively.
+// The solution is updated by compensated (Kahan) summation of the increments (Hairer-Norsett-
+// Wanner I, sec. II.10, "round-off error"), so that round-off does not accumulate linearly
+// over many small steps. The increment is h * (k1 + 2 (k2 + k3) + k4) / 6, not (h / 6) * (...):
+// a rounded coefficient h / 6 is the same in every step, a systematic bias that grows linearly
+// (2.4e-13 after 1e6 steps of 1e-3 on q'' = -q, against 7e-16 this way; bench/symplectic.c).
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -58,10 +59,22 @@ static int rk4_step(dal_ode_integ *ig, rk4_mem *m, double t, const double *y, do
   for (int i = 0; i < ny; ++i)
     m->yt[i] = y[i] + h * m->k3[i];
   if ((rc = dal__ode_rhs(ig, t + h, m->yt, m->k4)) != 0) return rc;
+  int bad = -1;
   for (int i = 0; i < ny; ++i) {
     y1[i] = y[i];
     m->c1[i] = m->c[i];
     ksum(&y1[i], &m->c1[i], h * (m->k1[i] + 2.0 * (m->k2[i] + m->k3[i]) + m->k4[i]) / 6.0);
+    if (bad < 0 && !isfinite(y1[i])) bad = i;
+  }
+  if (bad >= 0) {
+    char var[128];
+    snprintf(ig->rhs_err, sizeof ig->rhs_err,
+             "the RK4 step from t=%.17g (h=%.3g) overflows: %s becomes %g", t, h,
+             dal__ode_var_name(ig, bad, var, sizeof var), y1[bad]);
+    ig->nrecov++;
+    ig->recov_t = t + h;
+    ig->recov_rc = DAL__RETRY_NONFINITE;
+    return DAL__RETRY_NONFINITE;
   }
   return DAL_OK;
 }
@@ -81,17 +94,14 @@ static int rk4_advance(dal_ode_integ *ig, double tout) {
     double h = ldexp(full, -depth);
     double tn = h >= tend - ig->t ? tend : ig->t + h;
     int rc = rk4_step(ig, m, ig->t, ig->y, tn - ig->t, m->y1);
-    if (rc == DAL__RECOVERABLE && depth < RK4_MAX_HALVINGS) {
-      // the right-hand side asked for a smaller step: halve it and retry
+    if (dal__is_retry(rc) && depth < RK4_MAX_HALVINGS) {
+      // the right-hand side asked for a smaller step, or the step overflowed: halve it
       ig->st->stats.rejected++;
       ++depth;
       continue;
     }
-    if (rc == DAL__RECOVERABLE)
-      return dal__ode_fail(ig, DAL_E_CALLBACK,
-                           "%s; still after %d halvings of the step (h=%.3g); stopped at "
-                           "t=%.17g (last accepted step)",
-                           ig->rhs_err, depth, tn - ig->t, ig->t);
+    // still failing after the last halving: the status of the cause
+    if (dal__is_retry(rc)) return dal__ode_recov_fail(ig, tn - ig->t);
     if (rc)
       return dal__ode_fail(ig, rc,
                            "%s; stopped at t=%.17g (last accepted step) before the target "

@@ -39,7 +39,8 @@ const char *dal_formulation_name(dal_formulation f) {
 }
 
 int dal_state_stats(const dal_state *st, dal_stats *out) {
-  if (!st || !out) return DAL_E_ARG;
+  if (!st) return DAL_E_ARG;
+  if (!out) return DAL_FAIL_C(st, DAL_E_ARG, "state_stats: out is NULL");
   *out = st->stats;
   return DAL_OK;
 }
@@ -69,6 +70,11 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
                       rnames[i], *reals[i]);
   if (!(o->rtol > 0) || !isfinite(o->rtol))
     return DAL_FAIL(st, DAL_E_ARG, "opts.rtol = %g must be positive and finite (e.g. 1e-8)",
+                    o->rtol);
+  if (o->rtol >= 1.0)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "opts.rtol = %g asks for no accuracy (a relative error of 100%% or more); use "
+                    "a value below 1, e.g. 1e-6",
                     o->rtol);
   if (o->rtol < 1e-15)
     return DAL_FAIL(st, DAL_E_ARG,
@@ -101,9 +107,18 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
     return DAL_FAIL(st, DAL_E_ARG, "opts.hmin = %g exceeds opts.hmax = %g", o->hmin, o->hmax);
   if (o->max_steps <= 0)
     return DAL_FAIL(st, DAL_E_ARG, "opts.max_steps = %ld must be positive", o->max_steps);
-  if (!isfinite(o->baumgarte_alpha) || !isfinite(o->baumgarte_beta) || o->baumgarte_alpha < 0 ||
-      o->baumgarte_beta < 0)
-    return DAL_FAIL(st, DAL_E_ARG, "opts.baumgarte_alpha/beta must be >= 0 and finite");
+  if (o->baumgarte_alpha < 0 || o->baumgarte_beta < 0)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "opts.baumgarte_alpha = %g and opts.baumgarte_beta = %g must be >= 0 (0: off)",
+                    o->baumgarte_alpha, o->baumgarte_beta);
+  // the terms 2 alpha phidot and beta^2 phi must be representable for residuals of order 1
+  if (!isfinite(2.0 * o->baumgarte_alpha) || !isfinite(o->baumgarte_beta * o->baumgarte_beta))
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "opts.baumgarte_%s = %g overflows its term (%s); use rates near the motion's "
+                    "own frequencies (1/s)",
+                    isfinite(2.0 * o->baumgarte_alpha) ? "beta" : "alpha",
+                    isfinite(2.0 * o->baumgarte_alpha) ? o->baumgarte_beta : o->baumgarte_alpha,
+                    isfinite(2.0 * o->baumgarte_alpha) ? "beta^2 phi" : "2 alpha phidot");
   return DAL_OK;
 }
 

@@ -15,7 +15,8 @@ typedef struct dal_ode_problem {
   int (*size)(const dal_system *sys);
   /// ydot = f(t, y); uses st as workspace (its q, qdot, t are overwritten) and evaluates at
   /// least the products `need` (DAL_P_ACC inside an integrator, DAL_P_ALL where the state
-  /// stops). Returns 0, DAL__RECOVERABLE, or a negative status with the state's message set.
+  /// stops). Returns 0, a retry code (DAL__RECOVERABLE, DAL__RETRY_*), or a negative status
+  /// with the state's message set.
   int (*rhs)(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
              const double *y, double *ydot, unsigned need);
   /// project y (in place) onto the invariant manifold at t; NULL if none
@@ -66,8 +67,10 @@ struct dal_ode_integ {
   int rhs_rc;          ///< return code of the last right-hand-side call
   int rhs_fatal;       ///< first negative right-hand-side code of this advance call (0: none)
   int ntiny;           ///< consecutive accepted steps of a few ulps of t (step size collapse)
+  double tiny_t;       ///< time of the last step dal__ode_collapsed counted
   int nrecov;          ///< recoverable right-hand-side failures in this advance call
   double recov_t;      ///< time of the last of them
+  int recov_rc;        ///< its retry code (DAL__RECOVERABLE, DAL__RETRY_*): the cause
   char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
   char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
   void *impl;                   ///< method memory
@@ -114,15 +117,18 @@ int dal__ode_eval(dal_ode_integ *ig, double t, const double *y, double *ydot, un
 /// the state's (t, q, qdot) and W from y (does not evaluate)
 void dal__ode_to_state(dal_ode_integ *ig, double t, const double *y);
 /// y' = f(t, y) through the problem, counting evaluations and keeping the failure message;
-/// returns 0, DAL__RECOVERABLE or a negative status (solve.c)
+/// returns 0, a retry code (DAL__RECOVERABLE, DAL__RETRY_*) or a negative status (ode.c)
 int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot);
 /// true when the step just taken from ig->t to t is a few ulps of t, several times in a row:
-/// the integrator makes no progress (step size collapse)
+/// the integrator makes no progress (step size collapse). Counts each step once (asking again
+/// about the same t gives the same answer).
 int dal__ode_collapsed(dal_ode_integ *ig, double t);
 /// record an accepted step (t, y): copies y into ig->y, counts the step and, when the problem
 /// has a projection and opts.project is set, projects ig->y in place (*projected = 1 then;
-/// projected may be NULL). Returns 0 or a negative status (the projection failed; the state
-/// then holds the step before).
+/// projected may be NULL). The progress guard of every ODE method: a step that does not
+/// advance t, a step size collapse (dal__ode_collapsed) or a non-finite y is a failure with
+/// the status of its cause (a retry that kept failing, else DAL_E_STEP or DAL_E_NONFINITE).
+/// Returns 0 or a negative status (the state then holds the step before).
 int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected);
 /// stop with the state at the last accepted step (ig->t, ig->y), re-evaluated there, and the
 /// message fmt... (prefixed to nothing; name time and culprit in it). Returns status.
@@ -141,8 +147,13 @@ void dal__ode_sun_err(int code, const char *module, const char *function, char *
 /// true when recoverable right-hand-side failures after the last accepted step are what
 /// keeps the integrator from advancing (a step collapse is then the callback's doing)
 int dal__ode_recov_blocked(const dal_ode_integ *ig);
-/// the status and message of a step collapse caused by a callback that keeps asking for a
-/// smaller step (see dal__ode_recov_blocked); h is the last step size tried
+/// A step size collapse at ig->t (h the step that does not make progress, `what` says how):
+/// the status of a retry that kept failing there (dal__ode_recov_fail), else DAL_E_STEP naming
+/// the fastest-changing variable. The state goes back to the last accepted step.
+int dal__ode_stall(dal_ode_integ *ig, double h, const char *what);
+/// the status and message of a step collapse caused by a retry that kept failing (a callback
+/// that keeps asking for a smaller step, an overflow, a near-singular matrix; see
+/// dal__ode_recov_blocked): the status of that cause; h is the last step size tried
 int dal__ode_recov_fail(dal_ode_integ *ig, double h);
 
 /// method constructors: fill ig->impl, ig->advance, ig->free_impl from ig->y at ig->t

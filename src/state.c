@@ -95,9 +95,8 @@ const char *dal_state_errmsg(const dal_state *st) { return st ? st->err : ""; }
 
 int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *q,
                   const double *qdot) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "state_set: the state belongs to another system");
+  int pair = dal__check_pair(sys, st, "state_set");
+  if (pair) return pair;
   if (!q || !qdot) return DAL_FAIL(st, DAL_E_ARG, "state_set: q or qdot is NULL");
   if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: time is %g", t);
   for (int i = 0; i < sys->n; ++i) {
@@ -120,44 +119,104 @@ int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *
 }
 
 int dal_forward(const dal_system *sys, dal_state *st) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "forward: the state belongs to another system");
+  int pair = dal__check_pair(sys, st, "forward");
+  if (pair) return pair;
   int rc = dal__eval(sys, st, DAL_P_ALL);
   // a recoverable callback request has no step to shrink here: report it as a failure
-  if (rc == DAL__RECOVERABLE) rc = DAL_E_CALLBACK;
+  rc = dal__public_status(rc);
   return rc;
+}
+
+// Accessors: a product is handed out only while it is current for the state's (t, q, qdot)
+// (st->have); before an evaluation, after dal_state_set and after a failed evaluation the
+// pointer is NULL, never a view of stale or unset values.
+static const double *current(const dal_state *st, unsigned p, const double *x) {
+  return st && (st->have & p) == p ? x : NULL;
 }
 
 double dal_state_time(const dal_state *st) { return st ? st->t : NAN; }
 const double *dal_state_q(const dal_state *st) { return st ? st->q : NULL; }
 const double *dal_state_qdot(const dal_state *st) { return st ? st->qdot : NULL; }
-const double *dal_state_qddot(const dal_state *st) { return st ? st->qddot : NULL; }
-const double *dal_state_positions(const dal_state *st) { return st ? st->r : NULL; }
-const double *dal_state_velocities(const dal_state *st) { return st ? st->v : NULL; }
-const double *dal_state_accelerations(const dal_state *st) { return st ? st->a : NULL; }
-const double *dal_state_drdt(const dal_state *st) { return st ? st->drdt : NULL; }
-const double *dal_state_gamma(const dal_state *st) { return st ? st->gamma : NULL; }
-const double *dal_state_mass_matrix(const dal_state *st) { return st ? st->M : NULL; }
-const double *dal_state_genforces(const dal_state *st) { return st ? st->Q : NULL; }
-const double *dal_state_bias(const dal_state *st) { return st ? st->c : NULL; }
-const double *dal_state_forces(const dal_state *st) { return st ? st->F : NULL; }
-const double *dal_state_reactions(const dal_state *st) { return st ? st->N : NULL; }
-const double *dal_state_lambda(const dal_state *st) { return st ? st->lambda : NULL; }
-const double *dal_state_phi(const dal_state *st) { return st ? st->phi : NULL; }
-const double *dal_state_phidot(const dal_state *st) { return st ? st->phidot : NULL; }
+const double *dal_state_qddot(const dal_state *st) {
+  return current(st, DAL_P_ACC, st ? st->qddot : NULL);
+}
+const double *dal_state_positions(const dal_state *st) {
+  return current(st, DAL_P_KIN, st ? st->r : NULL);
+}
+const double *dal_state_velocities(const dal_state *st) {
+  return current(st, DAL_P_KIN, st ? st->v : NULL);
+}
+const double *dal_state_accelerations(const dal_state *st) {
+  return current(st, DAL_P_OUT, st ? st->a : NULL);
+}
+const double *dal_state_drdt(const dal_state *st) {
+  return current(st, DAL_P_KIN, st ? st->drdt : NULL);
+}
+const double *dal_state_gamma(const dal_state *st) {
+  return current(st, DAL_P_KIN, st ? st->gamma : NULL);
+}
+const double *dal_state_mass_matrix(const dal_state *st) {
+  return current(st, DAL_P_M, st ? st->M : NULL);
+}
+const double *dal_state_genforces(const dal_state *st) {
+  return current(st, DAL_P_DYN, st ? st->Q : NULL);
+}
+const double *dal_state_bias(const dal_state *st) {
+  // a Lagrangian system has no velocity-product terms of its own (they are inside L)
+  return st && st->sys->lag ? NULL : current(st, DAL_P_DYN, st ? st->c : NULL);
+}
+const double *dal_state_forces(const dal_state *st) {
+  return current(st, DAL_P_DYN, st ? st->F : NULL);
+}
+const double *dal_state_reactions(const dal_state *st) {
+  return current(st, DAL_P_OUT, st ? st->N : NULL);
+}
+const double *dal_state_lambda(const dal_state *st) {
+  return current(st, DAL_P_ACC, st ? st->lambda : NULL);
+}
+const double *dal_state_phi(const dal_state *st) {
+  return current(st, DAL_P_CON, st ? st->phi : NULL);
+}
+const double *dal_state_phidot(const dal_state *st) {
+  return current(st, DAL_P_CON, st ? st->phidot : NULL);
+}
 
 int dal_state_energies(const dal_state *st, dal_energies *out) {
-  if (!st || !out) return DAL_E_ARG;
+  if (!st) return DAL_E_ARG;
+  if (!out) return DAL_FAIL_C(st, DAL_E_ARG, "state_energies: out is NULL");
+  if (!(st->have & DAL_P_DYN))
+    return DAL_FAIL_C(st, DAL_E_STATE,
+                      "state_energies: the state is not evaluated at its (t, q, qdot); call "
+                      "dal_forward (or integrate) first");
+  // never DAL_OK with a non-finite answer (a Lagrangian system has only E = h; the split
+  // T, U, T2, T1, T0 does not exist there and is NaN by definition)
+  const dal_energies *e = &st->en;
+  int lag = st->sys->lag != NULL;
+  // h is NaN by definition where a constraint depends on t (state.h); an overflow is inf
+  int h_ok = isfinite(e->h) || (isnan(e->h) && st->sys->m > 0);
+  if (!isfinite(e->E) || !h_ok ||
+      (!lag && !(isfinite(e->T) && isfinite(e->U) && isfinite(e->T2) && isfinite(e->T1) &&
+                 isfinite(e->T0))))
+    return DAL_FAIL_C(st, DAL_E_NONFINITE,
+                      "state_energies: the energies overflow at t=%.17g (T = %g, U = %g): the "
+                      "velocities or positions are too large for double precision",
+                      st->t, e->T, e->U);
   *out = st->en;
   out->W = st->W;
   return DAL_OK;
 }
 
 int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double *J) {
-  if (!sys || !st || !J || st->sys != sys) return DAL_E_ARG;
-  if (k < 0 || k >= sys->N) return DAL_E_ARG;
-  if (!(st->have & DAL_P_KIN)) return DAL_E_STATE;
+  int pair = dal__check_pair(sys, st, "state_jacobian");
+  if (pair) return pair;
+  if (!J) return DAL_FAIL_C(st, DAL_E_ARG, "state_jacobian: J is NULL");
+  if (k < 0 || k >= sys->N)
+    return DAL_FAIL_C(st, DAL_E_ARG, "state_jacobian: particle index %d out of range [0, %d)", k,
+                      sys->N);
+  if (!(st->have & DAL_P_KIN))
+    return DAL_FAIL_C(st, DAL_E_STATE,
+                      "state_jacobian: the state is not evaluated at its (t, q, qdot); call "
+                      "dal_forward (or integrate) first");
   int d = sys->dim, n = sys->n;
   memset(J, 0, (size_t)d * (size_t)n * sizeof(double));
   if (!(st->have & DAL_P_J)) {

@@ -121,7 +121,8 @@ static int recursion_applies(const dal_builder *b, const int *ip, char *why, siz
 }
 
 int dal_builder_compile(dal_builder *b, dal_system **out) {
-  if (!b || !out) return DAL_E_ARG;
+  if (!b) return DAL_E_ARG;
+  if (!out) return BFAIL(DAL_E_ARG, "compile: the output pointer is NULL");
   *out = NULL;
   int n = b->coords.len, N = b->parts.len, d = b->dim;
   dal_place *places = b->places.data;

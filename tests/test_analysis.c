@@ -277,9 +277,10 @@ static void check_flow_fd(const char *name, const dal_system *sys, double t, con
     CHECK_MSG(fabs(M[i] - Mf[i]) <= 1e-14 * Mn, "%s: M[%d] = %.17g, forward %.17g", name, i, M[i],
               Mf[i]);
   double scale = 0.0;
+  const double *bias = dal_state_bias(st); // NULL for a Lagrangian system (no particles)
   for (int j = 0; j < n; ++j)
     scale += fabs(dal_state_qddot(st)[j]) + fabs(dal_state_genforces(st)[j]) +
-             fabs(dal_state_bias(st)[j]);
+             (bias ? fabs(bias[j]) : 0.0);
   probe pr = {sys, aux, t, {0}, 0, 0, n};
   memcpy(pr.y, q, (size_t)n * sizeof(double));
   memcpy(pr.y + n, qd, (size_t)n * sizeof(double));

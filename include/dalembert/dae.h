@@ -75,7 +75,8 @@ typedef struct dal_init_report {
 ///    constraint;
 /// 3. accelerations and multipliers from the KKT system (the state is left evaluated, as
 ///    after dal_forward).
-/// `tol` is the position tolerance in length units; tol <= 0 selects 1e-12 max(1, max|q_i|).
+/// `tol` is the position tolerance in length units; tol <= 0 selects 1e-12 max(1, max|q_i|);
+/// a NaN or infinite tol is DAL_E_NONFINITE.
 /// `rep` (nullable) receives the report. A system without constraints is only evaluated.
 /// Any integrator history is discarded. Errors: DAL_E_INIT when the positions cannot be
 /// brought onto phi = 0 (a guess too far away; the message names the constraint with the
@@ -118,14 +119,14 @@ DAL_API int dal_check_constraints(const dal_system *sys, dal_state *st, dal_cons
 /// (dphi_row / dr_k)' lambda_row, world frame, force units. Rows on coordinates (e.g.
 /// dal_con_prescribed) act on coordinates, not on particles, and are left out; see
 /// dal_constraint_genforces for the whole generalized force. The state is only read, so a
-/// monitor (which sees a const state) may call it. Returns DAL_E_ARG for bad arguments,
-/// DAL_E_NOMEM (a primitive with more than 64 inputs or outputs needs a heap buffer), or
-/// DAL_E_CALLBACK / DAL_E_DOMAIN for a failing constraint evaluation (no message is kept, the
-/// state being const).
+/// monitor (which sees a const state) may call it. Returns DAL_E_ARG for bad arguments and
+/// DAL_E_STATE for a state of another system or one whose multipliers are not evaluated at its
+/// (t, q, qdot) (before dal_forward, after dal_state_set, after a failed evaluation; no message
+/// is kept, the state being const); a system without constraints gives zero forces.
 DAL_API int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F);
 
 /// Generalized constraint force G' lambda (n, caller-owned) at the state's current G and
-/// lambda. Returns DAL_E_ARG for bad arguments.
+/// lambda. Returns DAL_E_ARG for a NULL Qc, DAL_E_STATE as dal_constraint_forces does.
 DAL_API int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double *Qc);
 
 #ifdef __cplusplus

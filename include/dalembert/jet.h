@@ -173,16 +173,17 @@ static inline dal_jet dal_pow(dal_jet a, double p) {
   return dal_jet_chain3(a, f0, f1, f2, f3);
 }
 
-/// a^n for an integer n (any sign of a; a = 0 with n < 0 gives inf).
+/// a^n for an integer n (any sign of a; a = 0 with n < 0 gives inf). Defined for every int n,
+/// INT_MIN included (|n| is formed in unsigned arithmetic).
 static inline dal_jet dal_powi(dal_jet a, int n) {
   if (n == 0) return dal_const(1.0);
   if (n == 1) return a;
   double f0 = 1.0, f1, f2, f3;
-  int m = n < 0 ? -n : n;
+  unsigned m = n < 0 ? 0u - (unsigned)n : (unsigned)n; // |n| without overflow at INT_MIN
   double pm2 = 1.0; // a^(m-2) by repeated squaring when m >= 2
   if (m >= 2) {
     double base = a.v;
-    int e = m - 2;
+    unsigned e = m - 2;
     while (e) {
       if (e & 1) pm2 *= base;
       base *= base;
@@ -192,23 +193,23 @@ static inline dal_jet dal_powi(dal_jet a, int n) {
   if (n > 0) {
     double pm1 = m >= 2 ? pm2 * a.v : 1.0;
     f0 = pm1 * a.v;
-    f1 = n * pm1;
-    f2 = m >= 2 ? n * (n - 1.0) * pm2 : 0.0;
+    f1 = (double)n * pm1;
+    f2 = m >= 2 ? (double)n * ((double)n - 1.0) * pm2 : 0.0;
     f3 = 0.0;
     if (m >= 3) {
       double pm3 = 1.0, base = a.v; // a^(m-3), also by squaring (finite at a = 0)
-      for (int e = m - 3; e; e >>= 1) {
+      for (unsigned e = m - 3; e; e >>= 1) {
         if (e & 1) pm3 *= base;
         base *= base;
       }
-      f3 = n * (n - 1.0) * (n - 2.0) * pm3;
+      f3 = (double)n * ((double)n - 1.0) * ((double)n - 2.0) * pm3;
     }
   } else {
     double pm = (m >= 2 ? pm2 * a.v * a.v : a.v); // a^m
     f0 = 1.0 / pm;
-    f1 = n * f0 / a.v;
-    f2 = n * (n - 1.0) * f0 / (a.v * a.v);
-    f3 = n * (n - 1.0) * (n - 2.0) * f0 / (a.v * a.v * a.v);
+    f1 = (double)n * f0 / a.v;
+    f2 = (double)n * ((double)n - 1.0) * f0 / (a.v * a.v);
+    f3 = (double)n * ((double)n - 1.0) * ((double)n - 2.0) * f0 / (a.v * a.v * a.v);
   }
   return dal_jet_chain3(a, f0, f1, f2, f3);
 }

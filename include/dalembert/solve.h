@@ -187,7 +187,7 @@ typedef struct dal_solve_opts {
   dal_method method;          ///< integration method
   dal_formulation form;       ///< formulation
   dal_linsol linsol;          ///< linear solver for implicit methods
-  double rtol;                ///< relative tolerance (> 0), default 1e-8
+  double rtol;                ///< relative tolerance, 1e-15 <= rtol < 1, default 1e-8
   double atol;                ///< absolute tolerance (> 0, units of q); 0 (default) follows
                               ///< rtol: atol = DAL_ATOL_PER_RTOL * rtol (1e-10 at the default
                               ///< rtol), so setting only rtol tightens both. Set it yourself
@@ -195,11 +195,13 @@ typedef struct dal_solve_opts {
   double h0;                  ///< initial step (0: automatic)
   double hmin;                ///< minimum step (0: none)
   double hmax;                ///< maximum step (0: none)
-  double fixed_step;          ///< step of DAL_METHOD_RK4 and of the symplectic methods (> 0),
-                              ///< default 1e-3
+  double fixed_step;          ///< step of DAL_METHOD_RK4 and of the symplectic methods (> 0,
+                              ///< and it must move t: a step below the resolution of t is
+                              ///< DAL_E_ARG), default 1e-3
   long max_steps;             ///< maximum steps per advance call, default 1000000
   double baumgarte_alpha;     ///< INDEX1: damping of G v + dphi/dt (1/s), default 0 (off)
   double baumgarte_beta;      ///< INDEX1: frequency on phi (1/s; term beta^2 phi, dae.h), 0
+                              ///< (both >= 0, with 2 alpha and beta^2 finite)
   int project;                ///< INDEX1: project q and v onto the manifold after each step
                               ///< (ODE methods; with BDF/IDA: DAL_E_UNSUPPORTED)
   int sparse_threshold;       ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
@@ -256,6 +258,11 @@ DAL_API int dal_state_stats(const dal_state *st, dal_stats *out);
 /// state-advancer). On success the state holds the exact-to-tolerance solution at t1,
 /// with dal_forward outputs evaluated there. On failure it holds the last accepted step.
 /// Changing opts between calls restarts the integrator from the current state.
+/// Every method has a progress guard: a step that does not advance t (or a run of steps of a
+/// few ulps of t) stops the run at once with the status of its cause (a callback that keeps
+/// asking for a smaller step: DAL_E_CALLBACK; an overflow: DAL_E_NONFINITE; a chart
+/// singularity: DAL_E_SINGULAR; otherwise DAL_E_STEP), never a million-step loop; a step whose
+/// result is not finite is never accepted.
 DAL_API int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                         double t1);
 
@@ -270,6 +277,9 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 /// every t0 + k dt <= t1 (dt > 0), and at t1. The monitor sees the state at exactly those
 /// times (the integrator steps to each output time). Returns DAL_OK when it reached t1,
 /// DAL_STOPPED when the monitor stopped it before t1 (not an error), or a negative status.
+/// times (the integrator steps to each output time). dt NaN or inf is DAL_E_NONFINITE, dt <= 0
+/// or below the resolution of t DAL_E_ARG. A monitor returning < 0 stops evolve with
+/// DAL_E_CALLBACK; a message the monitor left in the state (dal_csv_monitor does) is quoted.
 DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                        double t1, double dt, dal_monitor_fn *monitor, void *ctx);
 
@@ -280,7 +290,11 @@ typedef struct dal_csv {
   int wrap_angles;  ///< if nonzero, write q wrapped to [-pi, pi) (principal value)
 } dal_csv;
 
-/// Monitor that writes one CSV row (and the header first); ctx is a dal_csv *.
+/// Monitor that writes one CSV row (and the header first); ctx is a dal_csv *. Returns
+/// DAL_E_ARG (ctx NULL or without a stream), DAL_E_STATE (a state of another system, or one
+/// not evaluated at its (t, q, qdot): its energies would be stale; dal_evolve always passes
+/// evaluated states), DAL_E_IO (the stream failed), each with a message in the state; nothing
+/// is written on failure.
 DAL_API int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx);
 
 #ifdef __cplusplus

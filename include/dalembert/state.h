@@ -4,7 +4,14 @@
 //
 // A state belongs to one system and is used by one thread at a time; the system may be
 // shared. Pointers returned by accessors are borrowed views into the state, valid until the
-// next call that changes the state, and NULL when the quantity does not exist for the system.
+// next call that changes the state, and NULL when the quantity does not exist for the system
+// or is not current: a product is handed out only while it was evaluated at the state's
+// (t, q, qdot), so it is NULL before the first dal_forward (or integration), after
+// dal_state_set, and after an evaluation that failed before producing it. The status calls
+// (dal_state_energies, dal_state_jacobian, dal_constraint_forces ...) answer DAL_E_STATE with a
+// message then. Every (system, state) call refuses a state of another system (or a NULL
+// system) with DAL_E_STATE and a message; the state keeps its message, which a const accessor
+// may update too (the text is not part of the state's value).
 #ifndef DAL_STATE_H
 #define DAL_STATE_H
 
@@ -28,8 +35,8 @@ typedef struct dal_state dal_state;
 /// - redundant coordinates with constraints: the same, except that h is NaN when a constraint
 ///   depends explicitly on t (a moving pivot, a turning circle): its time dependence is not in
 ///   L, so h is not conserved there. Use E - W (below) instead.
-/// - a Lagrangian-only system (dal_builder_set_lagrangian): E = h = qdot . dL/dqdot - L; T, U
-///   and the split T2, T1, T0 do not exist for it and are NaN.
+/// - a Lagrangian-only system (dal_builder_set_lagrangian): h = qdot . dL/dqdot - L, and T, U,
+///   T2, T1, T0 read off L (system.h).
 ///
 /// W is the work done on the system since the last dal_state_set by non-conservative forces
 /// (dampers, force callbacks), explicitly time-dependent potentials (moving spring anchors,
@@ -67,7 +74,10 @@ DAL_API int dal_state_set(const dal_system *sys, dal_state *st, double t, const 
 /// curvature terms, M, Q, c, accelerations qddot (Cholesky of M; for constrained systems the
 /// KKT system, which also gives the multipliers), energies and reaction forces.
 /// Errors: DAL_E_SINGULAR names the degenerate coordinate(s), t and q; DAL_E_DOMAIN names
-/// the primitive that produced NaN/inf; DAL_E_CALLBACK for a user callback failure.
+/// the primitive that produced NaN/inf; DAL_E_CALLBACK for a user callback failure (also one
+/// that returns > 0: there is no step to shrink here); DAL_E_NONFINITE when a product
+/// overflows (forces, accelerations, velocity terms: the state lies beyond double range);
+/// DAL_E_STATE for a state of another system. No product is handed out non-finite.
 DAL_API int dal_forward(const dal_system *sys, dal_state *st);
 
 /// Current time.
@@ -89,7 +99,8 @@ DAL_API const double *dal_state_drdt(const dal_state *st);
 /// Curvature terms gamma_k (N x d): the acceleration at qddot = 0, after dal_forward.
 DAL_API const double *dal_state_gamma(const dal_state *st);
 /// Jacobian of particle k, J_k = dr_k/dq, written densely into J (d x n, row-major,
-/// caller-owned). Returns DAL_E_ARG for a bad k.
+/// caller-owned). Returns DAL_E_ARG for a bad k or a NULL J (message in the state),
+/// DAL_E_STATE for a state of another system or one not evaluated at its (t, q, qdot).
 DAL_API int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double *J);
 /// Mass matrix M (n x n, column-major, symmetric), after dal_forward; NULL when the system
 /// stores M only implicitly (more than 512 coordinates with constraints or on the recursive
@@ -97,7 +108,8 @@ DAL_API int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k
 DAL_API const double *dal_state_mass_matrix(const dal_state *st);
 /// Generalized applied forces Q = sum_k J_k' F_k + Q_user - dU(q)/dq (n).
 DAL_API const double *dal_state_genforces(const dal_state *st);
-/// Velocity-product (Coriolis, centrifugal, moving-frame) terms c = sum_k m_k J_k' gamma_k (n).
+/// Velocity-product (Coriolis, centrifugal, moving-frame) terms c = sum_k m_k J_k' gamma_k (n);
+/// NULL for a Lagrangian system (the terms are inside L).
 DAL_API const double *dal_state_bias(const dal_state *st);
 /// Applied Cartesian forces F_k (N x d), after dal_forward.
 DAL_API const double *dal_state_forces(const dal_state *st);
@@ -111,7 +123,9 @@ DAL_API const double *dal_state_lambda(const dal_state *st);
 DAL_API const double *dal_state_phi(const dal_state *st);
 /// Constraint residuals G qdot + dphi/dt (m) at velocity level (NULL when m = 0).
 DAL_API const double *dal_state_phidot(const dal_state *st);
-/// Energies of the state (after dal_forward).
+/// Energies of the state (after dal_forward). Returns DAL_E_ARG for a NULL argument,
+/// DAL_E_STATE when the state is not evaluated at its (t, q, qdot) (before dal_forward, after
+/// dal_state_set), DAL_E_NONFINITE when they overflow; *out is written only on DAL_OK.
 DAL_API int dal_state_energies(const dal_state *st, dal_energies *out);
 
 /// Print the state to fp (like MuJoCo's mj_printData): t; per coordinate q, qdot, qddot, Q, c;
@@ -127,7 +141,9 @@ typedef int dal_path_q_fn(dal_jet t, dal_jet *q, void *ctx);
 /// Lagrange-equation residual of a proposed path at time t:
 /// res = d/dt dL/dqdot - dL/dq - Q_nc (n), equal to M qddot + c - Q for particle systems.
 /// Zero (to rounding) exactly when the path is realizable. Uses st as workspace: its
-/// (t, q, qdot) become the path's values at t. `ctx` is passed to path.
+/// (t, q, qdot) become the path's values at t. `ctx` is passed to path. DAL_E_NONFINITE when
+/// t is not finite or the residual overflows (a path too fast for double precision);
+/// DAL_E_DOMAIN when the path leaves its own domain.
 DAL_API int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path,
                                   double t, double *res, void *ctx);
 

@@ -114,14 +114,20 @@ DAL_API int dal_builder_create(int dim, dal_builder **out);
 /// Free a builder (NULL is a no-op). A compiled system does not depend on its builder.
 DAL_API void dal_builder_destroy(dal_builder *b);
 
-/// The builder's last error message (static empty string if none). Valid until the next call.
+/// The message of the builder's last call: empty after a successful call (no stale text),
+/// naming the culprit after a failure. Valid until the next call.
+///
+/// Every real input of the builder is refused when NaN or infinite (DAL_E_NONFINITE) or when
+/// subnormal and nonzero (|x| < 2.2e-308: it carries fewer than 53 bits, so results made from
+/// it are inexact; DAL_E_ARG): masses, stiffnesses, lengths, gravity, anchors, parameters.
 DAL_API const char *dal_builder_errmsg(const dal_builder *b);
 
 /// Add a generalized coordinate named `name` (copied; NULL gives "q<i>"). *index receives its
 /// 0-based index (index may be NULL).
 DAL_API int dal_builder_add_coord(dal_builder *b, const char *name, int *index);
 
-/// Add a particle of mass `mass` (> 0, finite) named `name` (copied; NULL gives "p<k>").
+/// Add a particle of mass `mass` (> 0, finite, not subnormal) named `name` (copied; NULL gives
+/// "p<k>").
 /// Its position must be given by dal_builder_place or a whole-system map.
 DAL_API int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index);
 
@@ -232,6 +238,10 @@ DAL_API int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def
 /// prim->nin == (parent >= 0 ? d : 0) + ncoords. `param` (nparam values, copied): at most
 /// prim->nparam; parameters omitted at the end take prim->param_defaults (an error names a
 /// required one). `ctx` is passed to prim->eval (borrowed). Each particle is placed once.
+/// A primitive must be well formed (a name, nin >= 0, nout >= 1, nparam >= 0, an eval), and a
+/// built-in's parameters must lie in their domain (lengths and radii of constraints > 0, those
+/// of maps nonzero, normals and directions of representable nonzero length; primitives.h):
+/// DAL_E_ARG naming the parameter otherwise.
 DAL_API int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim,
                               int parent, int ncoords, const int *coords, int nparam,
                               const double *param, void *ctx);

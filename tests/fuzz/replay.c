@@ -30,6 +30,11 @@ static double now(void) {
 
 // run one input, timing it
 static void run_one(const uint8_t *data, size_t len, const char *what) {
+  // with FZ_DIGEST set the target prints a digest line per input: name it
+  if (getenv("FZ_DIGEST")) {
+    const char *base = strrchr(what, '/');
+    printf("%s ", base ? base + 1 : what);
+  }
   double t0 = now();
   LLVMFuzzerTestOneInput(data, len);
   double dt = now() - t0;
