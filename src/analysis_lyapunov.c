@@ -104,7 +104,7 @@ static int rk4_segment(lyap *L, double *t, double t1) {
       yt[i] = y[i] + h * k[2][i];
     if ((rc = aug_rhs(L, *t + h, yt, k[3])) != 0) return rc;
     for (int i = 0; i < m; ++i) {
-      double d = h * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]) / 6.0;
+      double d = h * (k[0][i] / 6.0 + k[1][i] / 3.0 + k[2][i] / 3.0 + k[3][i] / 6.0);
       if (i < L->ny) {
         // the trajectory by compensated summation, like ode_rk4.c
         double u = d - L->kc[i], s = y[i] + u;

@@ -76,7 +76,7 @@ static int accel_nonfinite(const dal_system *sys, dal_state *st, int i, int mult
   int n = sys->n;
   char qs[256];
   dal__fmt_q(sys, st->q, qs, sizeof qs);
-  if (!sys->m && st->L) {
+  if (!sys->m && st->L && !sys->aba) { // the Cholesky route's pivots (the recursion has none)
     double pmin = INFINITY, pmax = 0.0;
     for (int j = 0; j < n; ++j) {
       double p = st->L[(size_t)j * n + j] * st->L[(size_t)j * n + j];

@@ -81,7 +81,7 @@ static int sorted_unique(const int *list, int n, int *out) {
 // coordinate is moved by exactly one placement and listed there once. A coordinate shared
 // between placements couples branches the recursion treats as independent, and one that moves
 // no particle leaves M singular (the KKT matrix may still be regular). Returns 1, or 0 with
-// the reason in why.
+// the reason in why, or -1 when out of memory.
 static int recursion_applies(const dal_builder *b, const int *ip, char *why, size_t len) {
   int n = b->coords.len, N = b->parts.len;
   const dal_place *places = b->places.data;
@@ -97,7 +97,7 @@ static int recursion_applies(const dal_builder *b, const int *ip, char *why, siz
   int *owner = malloc(((size_t)n + 1) * sizeof(int));
   if (!owner) {
     snprintf(why, len, "out of memory");
-    return 0;
+    return -1;
   }
   for (int j = 0; j < n; ++j) owner[j] = -1;
   int ok = 1;
@@ -157,6 +157,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
 
   char why[DAL_ERRMSG_LEN / 2];
   int recursive = recursion_applies(b, ip, why, sizeof why);
+  if (recursive < 0) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
   if (b->dynamics == DAL_DYNAMICS_RECURSIVE && !recursive)
     return BFAIL(DAL_E_UNSUPPORTED,
                  "DAL_DYNAMICS_RECURSIVE does not apply: %s; use DAL_DYNAMICS_AUTO or _DENSE",

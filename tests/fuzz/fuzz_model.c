@@ -825,7 +825,9 @@ static void fz_products(fz *f, const fz_run_ctx *r, dal_state *st, const char *c
   int rc = dal_state_energies(st, &e);
   fz_s(f, st, "state_energies", rc);
   if (rc != DAL_OK && rc != DAL_E_NONFINITE) fz_die(call, rc, "energies of an evaluated state");
-  if (rc == DAL_OK && (!isfinite(e.E) || !isfinite(e.h) || (!r->lag && !isfinite(e.T))))
+  // h is NaN by definition where a constraint depends on t (state.h), never inf
+  int h_ok = isfinite(e.h) || (isnan(e.h) && r->mc > 0);
+  if (rc == DAL_OK && (!isfinite(e.E) || !h_ok || (!r->lag && !isfinite(e.T))))
     fz_die(call, rc, "energies not finite after DAL_OK");
   static double buf[3 * FZ_NQ];
   for (int k = 0; k < r->N && k < 2; ++k) {
