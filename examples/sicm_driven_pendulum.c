@@ -192,22 +192,63 @@ static int full_mode(const dal_system *sys, const char *dir) {
   free_orbit(&a1);
   free_orbit(&a2);
   printf("wrote %s and %s\n", p1, p2);
-  // the chart
+  // |delta theta|(t) of the two orbits, and the slope of log |delta theta| fitted by least
+  // squares while they are close (t in [5, tsep - 5]): the rate at which they diverge
+  char p3[1024];
+  snprintf(p3, sizeof p3, "%s/driven_pendulum_delta.csv", dir);
+  FILE *f3 = fopen(p3, "w");
+  double sx = 0, sy = 0, sxx = 0, sxy = 0, slope = NAN, icpt = NAN;
+  long nfit = 0, np = o1.n < o2.n ? o1.n : o2.n;
+  double tfit1 = tsep >= 0 ? tsep - 5.0 : T;
+  if (f3) fprintf(f3, "t,abs_dtheta\n");
+  for (long k = 0; k < np; ++k) {
+    double t = k * dt, d = fabs(o2.theta[k] - o1.theta[k]);
+    if (f3 && d > 0) fprintf(f3, "%.17g,%.17g\n", t, d);
+    if (d > 0 && t >= 5.0 && t <= tfit1) {
+      double y = log(d);
+      sx += t, sy += y, sxx += t * t, sxy += t * y, ++nfit;
+    }
+  }
+  if (f3) fclose(f3);
+  if (nfit > 2) {
+    slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
+    icpt = (sy - slope * sx) / nfit;
+    printf("slope of log|dtheta| on [5, %.1f]: %.4f 1/s (the finite-time divergence rate)\n",
+           tfit1, slope);
+  }
+  // the chart: the orbits, then log |delta theta| with its fitted line
   FILE *gf = fopen(gp, "w");
   if (gf) {
     fprintf(gf,
-            "set terminal pngcairo size 1200,600\nset output '%s'\nset datafile separator ','\n"
-            "set key autotitle columnhead outside\nset xlabel 't (s)'\n"
+            "set terminal pngcairo size 1200,900\nset output '%s'\nset datafile separator ','\n"
+            "set multiplot layout 2,1\nset key outside\nset grid\nset xlabel 't (s)'\n"
             "set ylabel 'theta (rad, principal value)'\nset yrange [-pi:pi]\n"
-            "set title 'SICM driven pendulum: two orbits 1e-10 apart%s'\n",
-            png, tsep >= 0 ? " (they separate at the dashed line)" : "");
+            "set title 'SICM driven pendulum, l = 1 m, pivot 0.1 cos(2 sqrt(g) t) m: two orbits "
+            "from theta = 1 rad, thetadot = 0 and 1e-10 rad/s'\n",
+            png);
     if (tsep >= 0)
-      fprintf(gf, "set arrow from %g,-pi to %g,pi nohead dt 2 lc rgb 'gray40'\n", tsep, tsep);
+      fprintf(gf, "set arrow 1 from %g,-pi to %g,pi nohead dt 2 lc rgb 'gray40'\n", tsep, tsep);
     fprintf(gf,
-            "plot '%s' using 1:2 with points pt 7 ps 0.15 lc rgb '#1f77b4' title "
-            "'thetadot0 = 0', '%s' using 1:2 with points pt 7 ps 0.15 lc rgb '#d62728' title "
-            "'thetadot0 = 1e-10'\n",
-            p1, p2);
+            "plot '%s' using 1:2 every ::1 with points pt 7 ps 0.25 lc rgb '#1f77b4' title "
+            "'thetadot0 = 0', '%s' using 1:2 every ::1 with points pt 6 ps 0.35 lc rgb '#d62728' "
+            "title 'thetadot0 = 1e-10'\n"
+            "unset arrow 1\nset autoscale y\nset logscale y\nset format y '10^{%%L}'\n"
+            "set ylabel '|delta theta| (rad)'\n"
+            "set title 'log |delta theta| grows as a line of slope %.3f 1/s until the orbits "
+            "part%s'\n",
+            p1, p2, slope, tsep >= 0 ? " (dashed: 0.1 rad apart)" : "");
+    if (tsep >= 0)
+      fprintf(gf, "set arrow 2 from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb 'gray40'\n",
+              tsep, tsep);
+    fprintf(gf,
+            "plot '%s' using 1:2 every ::1 with linespoints pt 7 ps 0.5 pi 200 lw 1 lc rgb "
+            "'#9467bd' title '|theta_b - theta_a|'",
+            p3);
+    if (isfinite(slope))
+      fprintf(gf, ", (x >= 5 && x <= %g) ? exp(%.17g + %.17g * x) : 1/0 with lines lw 3 dt 2 lc "
+                  "rgb 'black' title 'fit: slope %.3f 1/s'",
+              tfit1, icpt, slope, slope);
+    fprintf(gf, "\nunset multiplot\n");
     fclose(gf);
   }
   if (system("command -v gnuplot >/dev/null 2>&1") != 0) {

@@ -89,7 +89,7 @@ static int advance_and_compare(const dal_system *sys, dal_method m) {
   return bad;
 }
 
-// one period of the orbit to CSV and a chart against the closed-form ellipse
+// ten periods of the orbit to CSV and a chart of the error against the closed form over time
 static int full_mode(const dal_system *sys, const char *dir) {
   if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
     fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
@@ -113,7 +113,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
   o.rtol = o.atol = 1e-12;
   dal_csv csv = {fp, 0, 0};
   double period = 2 * 3.14159265358979323846 * sqrt(mass / k);
-  if (!rc) rc = dal_evolve(sys, st, &o, period, period / 200, dal_csv_monitor, &csv);
+  if (!rc) rc = dal_evolve(sys, st, &o, 10 * period, period / 50, dal_csv_monitor, &csv);
   fclose(fp);
   dal_state_destroy(st);
   if (rc) return 1;
@@ -122,12 +122,19 @@ static int full_mode(const dal_system *sys, const char *dir) {
   if (gf) {
     double w = sqrt(k / mass);
     fprintf(gf,
-            "set terminal pngcairo size 700,700\nset output '%s'\nset datafile separator ','\n"
-            "set size ratio -1\nset xlabel 'x'\nset ylabel 'y'\nset parametric\n"
-            "set title 'SICM oscillator: one period by Bulirsch-Stoer vs the closed form'\n"
-            "plot [0:2*pi] %g*cos(t)+%g*sin(t), %g*cos(t)+%g*sin(t) lw 3 lc rgb 'gray70' "
-            "title 'closed form', '%s' using 2:3 with points pt 7 ps 0.5 title 'dalembert'\n",
-            png, q0[0], v0[0] / w, q0[1], v0[1] / w, path);
+            "set terminal pngcairo size 1000,600\nset output '%s'\nset datafile separator ','\n"
+            "set logscale y\nset format y '10^{%%L}'\nset grid\nset key outside\n"
+            "set xlabel 't (s)'\nset ylabel 'position error (m)'\n"
+            "set title 'SICM oscillator, m = %g kg, k = %g N/m: Bulirsch-Stoer at rtol 1e-12 vs "
+            "the closed form'\n"
+            "w = %.17g\n"
+            "ex(t, a, b) = a * cos(w * t) + b / w * sin(w * t)\n"
+            "err(t, x, y) = sqrt((x - ex(t, %g, %g))**2 + (y - ex(t, %g, %g))**2)\n"
+            "plot '%s' using 1:(e = err($1, $2, $3), e > 0 ? e : 1e-18) every ::1 with linespoints "
+            "pt 7 ps 0.5 pi 10 lc rgb '#1f77b4' title '|q - q_{exact}|', 1e-12 with lines dt 2 "
+            "lc rgb 'black' title 'rtol', 16e-12 with lines dt 3 lc rgb 'gray40' title "
+            "'16 x rtol'\n",
+            png, mass, k, w, q0[0], v0[0], q0[1], v0[1], path);
     fclose(gf);
   }
   if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
