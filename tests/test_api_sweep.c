@@ -181,6 +181,8 @@ static void b_expect(const char *call, int rc, int want, const dal_builder *b) {
     b_expect(#call, (call), (want), (b));                                                          \
   } while (0)
 
+static dal_builder *scratch(int placed); // a builder for calls that succeed (below)
+
 // a state survived a refused call: still at its point, still evaluated
 static void st_intact(void) {
   CHECK(dal_state_time(F.stA) == 0.0 && dal_state_q(F.stA)[0] == 0.6);
@@ -194,7 +196,8 @@ static void sw_dal_status_string(void) {
   CHECK(strcmp(dal_status_string(DAL_OK), "ok") == 0);
 }
 static void sw_dal_status_name(void) {
-  CHECK(strcmp(dal_status_name(1), "DAL_UNKNOWN") == 0);
+  CHECK(strcmp(dal_status_name(2), "DAL_UNKNOWN") == 0);
+  CHECK(strcmp(dal_status_name(1), "DAL_STOPPED") == 0); // the one positive status
   CHECK(strcmp(dal_status_name(INT_MAX), "DAL_UNKNOWN") == 0);
   CHECK(strcmp(dal_status_name(DAL_E_STATE), "DAL_E_STATE") == 0);
 }
@@ -472,8 +475,10 @@ static void sw_dal_builder_add_constraint(void) {
      F.bld);
   BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 0, c, 3, nan3, NULL, NULL), DAL_E_NONFINITE,
      F.bld);
-  BL(dal_builder_add_constraint(F.bld, NULL, a2, 1, p, 0, NULL, 2, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
+  // a NULL name is documented to give "c<i>": accepted (on a scratch builder, F.bld stays bare)
+  dal_builder *b = scratch(1);
+  BL(dal_builder_add_constraint(b, NULL, a2, 1, p, 0, NULL, 2, par, NULL, NULL), DAL_OK, b);
+  dal_builder_destroy(b);
 }
 static void sw_dal_builder_set_gravity(void) {
   double g[3] = {0.0, -9.81, 0.0}, gn[3] = {0.0, NAN, 0.0};
@@ -491,10 +496,13 @@ static void sw_dal_builder_add_spring(void) {
 static void sw_dal_builder_add_anchor_spring(void) {
   double x0[2] = {0.0, 0.0};
   BL(dal_builder_add_anchor_spring(NULL, 0, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_anchor_spring(F.bld, 0, NULL, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
+  BL(dal_builder_add_anchor_spring(F.bld, 1, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
   BL(dal_builder_add_anchor_spring(F.bld, 9, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
   BL(dal_builder_add_anchor_spring(F.bld, 0, x0, NULL, NULL, NAN, 1.0), DAL_E_NONFINITE, F.bld);
   BL(dal_builder_add_anchor_spring(F.bld, 0, x0, NULL, NULL, -1.0, 1.0), DAL_E_ARG, F.bld);
+  dal_builder *b = scratch(1); // x0 NULL is documented as the origin
+  BL(dal_builder_add_anchor_spring(b, 0, NULL, NULL, NULL, 1.0, 1.0), DAL_OK, b);
+  dal_builder_destroy(b);
 }
 static void sw_dal_builder_add_damper(void) {
   BL(dal_builder_add_damper(NULL, 0, 0, 1.0), DAL_E_ARG, NULL);
@@ -504,9 +512,12 @@ static void sw_dal_builder_add_damper(void) {
 static void sw_dal_builder_add_anchor_damper(void) {
   double x0[2] = {0.0, 0.0};
   BL(dal_builder_add_anchor_damper(NULL, 0, x0, NULL, NULL, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_anchor_damper(F.bld, 0, NULL, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
+  BL(dal_builder_add_anchor_damper(F.bld, 1, x0, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
   BL(dal_builder_add_anchor_damper(F.bld, -5, x0, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
   BL(dal_builder_add_anchor_damper(F.bld, 0, x0, NULL, NULL, INFINITY), DAL_E_NONFINITE, F.bld);
+  dal_builder *b = scratch(1); // x0 NULL is documented as the origin
+  BL(dal_builder_add_anchor_damper(b, 0, NULL, NULL, NULL, 1.0), DAL_OK, b);
+  dal_builder_destroy(b);
 }
 static void sw_dal_builder_add_potential_r(void) {
   BL(dal_builder_add_potential_r(NULL, pot_r, NULL), DAL_E_ARG, NULL);
@@ -556,6 +567,958 @@ static void sw_dal_system_constraint_name(void) { names(dal_system_constraint_na
 static void sw_dal_system_mass(void) {
   CHECK(isnan(dal_system_mass(NULL, 0)) && isnan(dal_system_mass(F.A, -1)));
   CHECK(isnan(dal_system_mass(F.A, 1)) && dal_system_mass(F.A, 0) == 1.0);
+}
+
+// ---------------------------------------------------------------- helpers of the new rows
+// a scratch builder for calls that succeed (F.bld must keep its one unplaced particle): 2-D,
+// coordinates x, y, particle 's' (placed by dal_map_cartesian2 when `placed`)
+static dal_builder *scratch(int placed) {
+  dal_builder *b = NULL;
+  int c[2] = {0, 1};
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x", NULL));
+  CHECK_OK(dal_builder_add_coord(b, "y", NULL));
+  CHECK_OK(dal_builder_add_particle(b, "s", 1.0, NULL));
+  if (placed) CHECK_OK(dal_builder_place(b, 0, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL));
+  return b;
+}
+
+// a fresh state of B at theta = 0.3 at rest, evaluated (for calls that move their state)
+static dal_state *state_b(void) {
+  dal_state *st = NULL;
+  double th0 = 0.3, thd = 0.0;
+  CHECK_OK(dal_state_create(F.B, &st));
+  CHECK_OK(dal_state_set(F.B, st, 0.0, &th0, &thd));
+  CHECK_OK(dal_forward(F.B, st));
+  return st;
+}
+
+// the status of a call whose message goes into a caller's buffer (msg NULL: no message)
+static void m_expect(const char *call, int rc, int want, const char *msg) {
+  CHECK_MSG(rc == want, "%s: %s, expected %s", call, dal_status_name(rc), dal_status_name(want));
+  if (msg && want != DAL_OK)
+    CHECK_MSG(msg[0] != 0 && strcmp(msg, "stale") != 0, "%s: %s without a message of its own", call,
+              dal_status_name(rc));
+}
+#define MS(call, want, msg)                                                                        \
+  do {                                                                                             \
+    if (msg) snprintf(msg, 8, "stale");                                                            \
+    m_expect(#call, (int)(call), (want), (msg));                                                   \
+  } while (0)
+
+// stA after the rows that override its parameters: back to the system's values, evaluated
+static void stA_restore(void) {
+  double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_reset_params(F.A, F.stA));
+  CHECK_OK(dal_state_set(F.A, F.stA, 0.0, q, qd));
+  CHECK_OK(dal_forward(F.A, F.stA));
+}
+
+// ---------------------------------------------------------------- rows: ensemble.h
+static void sw_dal_sweep_default_opts(void) {
+  dal_sweep_default_opts(NULL); // a no-op
+  dal_sweep_opts o;
+  memset(&o, 0xff, sizeof o);
+  dal_sweep_default_opts(&o);
+  CHECK(o.nthreads == 1 && o.schedule == DAL_SCHEDULE_DYNAMIC && o.chunk == 1);
+  CHECK(o.progress == NULL && o.part == 0 && o.nparts == 1 && o.part_block == 1);
+}
+static void sw_dal_sweep_part_of(void) {
+  // one part, a negative index: part 0; block < 1 counts as 1
+  CHECK(dal_sweep_part_of(5, 1, 1) == 0 && dal_sweep_part_of(5, 0, 1) == 0);
+  CHECK(dal_sweep_part_of(5, INT_MIN, 1) == 0 && dal_sweep_part_of(-1, 3, 1) == 0);
+  CHECK(dal_sweep_part_of(LONG_MIN, 3, 1) == 0 && dal_sweep_part_of(5, 3, 0) == 2);
+  CHECK(dal_sweep_part_of(5, 3, INT_MIN) == 2 && dal_sweep_part_of(LONG_MAX, 2, INT_MAX) >= 0);
+  // blocks of 2 dealt round-robin over 3 parts: 0 0 1 1 2 2 0 0 ...
+  CHECK(dal_sweep_part_of(4, 3, 1) == 1 && dal_sweep_part_of(5, 3, 2) == 2);
+  CHECK(dal_sweep_part_of(6, 3, 2) == 0);
+}
+
+static int reduce_q_mass(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
+  (void)ctx;
+  dal_param_ref m = {DAL_PARAM_MASS, 0, 0};
+  tr->result[0] = dal_state_q(st)[0];
+  return dal_state_param(sys, st, &m, &tr->result[1]);
+}
+
+// a sweep of B over the mass of 'bob' (1 and 2), reducing to (theta, mass)
+typedef struct sweep_fix {
+  dal_param_ref ref;
+  double values[2], q0, qd0, results[4];
+  int status[2];
+  char msgs[2 * 64];
+  dal_sweep sw;
+  dal_sweep_opts o;
+  dal_sweep_out out;
+} sweep_fix;
+
+static void sweep_make(sweep_fix *s) {
+  memset(s, 0, sizeof *s);
+  s->ref = (dal_param_ref){DAL_PARAM_MASS, 0, 0};
+  s->values[0] = 1.0;
+  s->values[1] = 2.0;
+  s->q0 = 0.3;
+  s->sw = (dal_sweep){.ntraj = 2,
+                      .nparam = 1,
+                      .params = &s->ref,
+                      .values = s->values,
+                      .q0 = &s->q0,
+                      .qdot0 = &s->qd0,
+                      .nresult = 2,
+                      .reduce = reduce_q_mass};
+  dal_sweep_default_opts(&s->o);
+  s->out =
+      (dal_sweep_out){.results = s->results, .status = s->status, .msgs = s->msgs, .msg_len = 64};
+}
+
+static void sw_dal_sweep_run(void) {
+  sweep_fix s;
+  sweep_make(&s);
+  char err[256], *e = err;
+  dal_sweep bad = s.sw;
+  dal_sweep_opts raw;
+  memset(&raw, 0, sizeof raw);
+  MS(dal_sweep_run(NULL, &s.sw, &s.o, &s.out, e, sizeof err), DAL_E_ARG, e);
+  MS(dal_sweep_run(F.B, NULL, &s.o, &s.out, e, sizeof err), DAL_E_ARG, e);
+  MS(dal_sweep_run(F.B, &s.sw, NULL, &s.out, e, sizeof err), DAL_E_ARG, e);
+  MS(dal_sweep_run(F.B, &s.sw, &s.o, NULL, e, sizeof err), DAL_E_ARG, e);
+  MS(dal_sweep_run(F.B, &s.sw, &raw, &s.out, e, sizeof err), DAL_E_ARG, e);
+  MS(dal_sweep_run(F.B, &s.sw, &s.o, &s.out, NULL, 0), DAL_OK, NULL);
+  // a parameter of another system (A's constraint 'rod': B has none)
+  bad.params = &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, 0};
+  MS(dal_sweep_run(F.B, &bad, &s.o, &s.out, e, sizeof err), DAL_E_ARG, e);
+  bad = s.sw;
+  bad.ntraj = 0;
+  MS(dal_sweep_run(F.B, &bad, &s.o, &s.out, e, sizeof err), DAL_E_ARG, e);
+  bad = s.sw;
+  bad.q0 = NULL;
+  MS(dal_sweep_run(F.B, &bad, &s.o, &s.out, e, sizeof err), DAL_E_ARG, e);
+  bad = s.sw;
+  bad.state_stride = 2; // n = 1
+  MS(dal_sweep_run(F.B, &bad, &s.o, &s.out, e, sizeof err), DAL_E_ARG, e);
+  bad = s.sw;
+  bad.solve = &F.o;
+  bad.t1 = NAN;
+  // NOTE: header says DAL_E_ARG for an invalid sweep (DAL_E_NONFINITE is not in its list)
+  MS(dal_sweep_run(F.B, &bad, &s.o, &s.out, e, sizeof err), DAL_E_NONFINITE, e);
+  dal_sweep_opts o2 = s.o;
+  o2.part = 1; // of 1 part
+  MS(dal_sweep_run(F.B, &s.sw, &o2, &s.out, e, sizeof err), DAL_E_ARG, e);
+  o2 = s.o;
+  o2.nthreads = -1;
+  MS(dal_sweep_run(F.B, &s.sw, &o2, &s.out, e, sizeof err), DAL_E_ARG, e);
+  dal_sweep_out o3 = s.out;
+  o3.status = NULL;
+  MS(dal_sweep_run(F.B, &s.sw, &s.o, &o3, e, sizeof err), DAL_E_ARG, e);
+  // the valid sweep: each trajectory starts at q0 with its own mass (the values table)
+  for (int i = 0; i < 4; ++i)
+    s.results[i] = -1.0;
+  MS(dal_sweep_run(F.B, &s.sw, &s.o, &s.out, e, sizeof err), DAL_OK, e);
+  CHECK(s.out.nrun == 2 && s.out.nfailed == 0 && s.status[0] == 0 && s.status[1] == 0);
+  CHECK(s.results[0] == 0.3 && s.results[1] == 1.0 && s.results[2] == 0.3 && s.results[3] == 2.0);
+}
+static void sw_dal_sweep_grid(void) {
+  int count[2] = {2, 3}, zero[2] = {2, 0};
+  double lo[2] = {0.0, 0.0}, hi[2] = {1.0, 2.0}, nan2[2] = {0.0, NAN}, v[12];
+  CHECK(dal_sweep_grid(0, count, lo, hi, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(INT_MIN, count, lo, hi, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, NULL, lo, hi, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, count, NULL, hi, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, count, lo, NULL, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, count, lo, hi, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, zero, lo, hi, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, count, nan2, hi, v) == DAL_E_ARG);
+  CHECK(dal_sweep_grid(2, count, lo, (double[2]){1.0, INFINITY}, v) == DAL_E_ARG);
+  // rows (0,0) (0,1) (0,2) (1,0) (1,1) (1,2): the last axis fastest
+  CHECK(dal_sweep_grid(2, count, lo, hi, v) == 6);
+  CHECK(v[0] == 0.0 && v[1] == 0.0 && v[3] == 1.0 && v[5] == 2.0 && v[6] == 1.0 && v[11] == 2.0);
+}
+static void sw_dal_sweep_write_csv(void) {
+  sweep_fix s;
+  sweep_make(&s);
+  CHECK_OK(dal_sweep_run(F.B, &s.sw, &s.o, &s.out, NULL, 0));
+  FILE *fp = tmpfile(), *ro = fopen("/dev/null", "r");
+  CHECK(fp != NULL && ro != NULL);
+  if (!fp || !ro) return;
+  dal_sweep bad = s.sw;
+  bad.params = &(dal_param_ref){DAL_PARAM_SPRING_K, 0, 0}; // B has no spring
+  dal_sweep_out o3 = s.out;
+  o3.results = NULL;
+  CHECK(dal_sweep_write_csv(NULL, F.B, &s.sw, &s.out, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_write_csv(fp, NULL, &s.sw, &s.out, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_write_csv(fp, F.B, NULL, &s.out, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_write_csv(fp, F.B, &s.sw, NULL, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_write_csv(fp, F.B, &s.sw, &o3, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_write_csv(fp, F.B, &bad, &s.out, NULL) == DAL_E_ARG);
+  CHECK(dal_sweep_write_csv(ro, F.B, &s.sw, &s.out, NULL) == DAL_E_IO);
+  rewind(fp);
+  CHECK(dal_sweep_write_csv(fp, F.B, &s.sw, &s.out, NULL) == DAL_OK);
+  char head[64] = "";
+  rewind(fp);
+  CHECK(fgets(head, sizeof head, fp) != NULL);
+  CHECK(strcmp(head, "index,mass:bob,status,r0,r1,message\n") == 0);
+  fclose(fp);
+  fclose(ro);
+}
+
+// ---------------------------------------------------------------- rows: params.h
+static void sw_dal_param_find(void) {
+  dal_param_ref r = {DAL_PARAM_NONE, 0, 0};
+  char msg[256], *m = msg;
+  MS(dal_param_find(NULL, "mass:bob", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, NULL, &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "mass:bob", NULL, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "mass:nobody", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "mass:1", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "con:rod:3", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "con:rod:-1", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "gravity:2", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "place:bob:0", &r, m, sizeof msg), DAL_E_ARG, m); // cartesian2: none
+  MS(dal_param_find(F.A, "spring:0:k", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.B, "con:rod:0", &r, m, sizeof msg), DAL_E_ARG, m); // A's constraint
+  MS(dal_param_find(F.A, "mass:bob:0:1", &r, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_find(F.A, "nonsense", &r, NULL, 0), DAL_E_ARG, NULL);
+  CHECK(r.kind == DAL_PARAM_NONE); // untouched on failure
+  MS(dal_param_find(F.A, "con:rod:0", &r, m, sizeof msg), DAL_OK, m);
+  CHECK(r.kind == DAL_PARAM_CONSTRAINT && r.target == 0 && r.index == 0);
+  MS(dal_param_find(F.B, "place:bob:5", &r, m, sizeof msg), DAL_OK, m);
+  CHECK(r.kind == DAL_PARAM_PLACE && r.target == 0 && r.index == 5);
+}
+static void sw_dal_param_check(void) {
+  char msg[256], *m = msg;
+  dal_param_ref mass = {DAL_PARAM_MASS, 0, 0};
+  MS(dal_param_check(NULL, &mass, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, NULL, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_NONE, 0, 0}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){(dal_param_kind)99, 0, 0}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_MASS, -1, 0}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_MASS, 1, 0}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_MASS, INT_MIN, 0}, m, sizeof msg), DAL_E_ARG,
+     m);
+  MS(dal_param_check(F.B, &(dal_param_ref){DAL_PARAM_PLACE, 0, 7}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.B, &(dal_param_ref){DAL_PARAM_PLACE, 0, -1}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.B, &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, 0}, m, sizeof msg), DAL_E_ARG,
+     m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, INT_MAX}, m, sizeof msg),
+     DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 2}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_SPRING_L, 0, 0}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_DAMPER_C, 0, 0}, m, sizeof msg), DAL_E_ARG, m);
+  MS(dal_param_check(F.A, &(dal_param_ref){DAL_PARAM_SPRING_K, 0, 0}, NULL, 0), DAL_E_ARG, NULL);
+  MS(dal_param_check(F.A, &mass, m, sizeof msg), DAL_OK, m);
+  MS(dal_param_check(F.B, &(dal_param_ref){DAL_PARAM_PLACE, 0, 6}, m, sizeof msg), DAL_OK, m);
+}
+static void sw_dal_param_name(void) {
+  char buf[64];
+  dal_param_ref rod = {DAL_PARAM_CONSTRAINT, 0, 0};
+  CHECK(dal_param_name(NULL, &rod, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_param_name(F.A, NULL, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_param_name(F.A, &rod, NULL, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_param_name(F.A, &rod, buf, 0) == DAL_E_ARG);
+  CHECK(dal_param_name(F.B, &rod, buf, sizeof buf) == DAL_E_ARG); // B has no constraint
+  CHECK(dal_param_name(F.A, &(dal_param_ref){DAL_PARAM_NONE, 0, 0}, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_param_name(F.A, &rod, buf, sizeof buf) == DAL_OK && strcmp(buf, "con:rod:0") == 0);
+  CHECK(dal_param_name(F.A, &rod, buf, 4) == DAL_OK && strcmp(buf, "con") == 0); // truncated
+}
+static void sw_dal_system_param(void) {
+  double v = -1.0;
+  dal_param_ref rod = {DAL_PARAM_CONSTRAINT, 0, 0}, g1 = {DAL_PARAM_GRAVITY, 0, 1};
+  CHECK(dal_system_param(NULL, &rod, &v) == DAL_E_ARG);
+  CHECK(dal_system_param(F.A, NULL, &v) == DAL_E_ARG);
+  CHECK(dal_system_param(F.A, &rod, NULL) == DAL_E_ARG);
+  CHECK(dal_system_param(F.B, &rod, &v) == DAL_E_ARG);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, -1}, &v) == DAL_E_ARG);
+  CHECK(v == -1.0);
+  // the values given to the builders in fix_make
+  CHECK(dal_system_param(F.A, &rod, &v) == DAL_OK && v == 1.0);
+  CHECK(dal_system_param(F.B, &g1, &v) == DAL_OK && v == -9.81);
+}
+static void sw_dal_state_param(void) {
+  double v = -1.0;
+  dal_param_ref rod = {DAL_PARAM_CONSTRAINT, 0, 0};
+  // the state is const: no message can be kept
+  ST(dal_state_param(F.A, NULL, &rod, &v), DAL_E_ARG, NULL);
+  ST(dal_state_param(NULL, F.stA, &rod, &v), DAL_E_STATE, NULL);
+  ST(dal_state_param(F.B, F.stA, &rod, &v), DAL_E_STATE, NULL);
+  ST(dal_state_param(F.A, F.stA, NULL, &v), DAL_E_ARG, NULL);
+  ST(dal_state_param(F.A, F.stA, &rod, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_param(F.A, F.stA, &(dal_param_ref){DAL_PARAM_MASS, 3, 0}, &v), DAL_E_ARG, NULL);
+  CHECK(v == -1.0);
+  ST(dal_state_param(F.A, F.stA, &rod, &v), DAL_OK, NULL);
+  CHECK(v == 1.0);
+}
+static void sw_dal_state_set_param(void) {
+  dal_param_ref mass = {DAL_PARAM_MASS, 0, 0}, g0 = {DAL_PARAM_GRAVITY, 0, 0};
+  dal_param_ref sp = {DAL_PARAM_SPRING_K, 0, 0};
+  ST(dal_state_set_param(F.A, NULL, &mass, 2.0), DAL_E_ARG, NULL);
+  ST(dal_state_set_param(NULL, F.stA, &mass, 2.0), DAL_E_STATE, F.stA);
+  ST(dal_state_set_param(F.B, F.stA, &mass, 2.0), DAL_E_STATE, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, NULL, 2.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, &sp, 2.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, &mass, NAN), DAL_E_NONFINITE, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, &mass, INFINITY), DAL_E_NONFINITE, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, &mass, 0.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, &mass, -1.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param(F.A, F.stA, &g0, -INFINITY), DAL_E_NONFINITE, F.stA);
+  st_intact();
+  double v = 0.0;
+  ST(dal_state_set_param(F.A, F.stA, &mass, 2.0), DAL_OK, F.stA);
+  CHECK(dal_state_param(F.A, F.stA, &mass, &v) == DAL_OK && v == 2.0);
+  CHECK(dal_system_param(F.A, &mass, &v) == DAL_OK && v == 1.0); // the system is untouched
+  stA_restore();
+}
+static void sw_dal_state_set_param_named(void) {
+  dal_param_ref rod = {DAL_PARAM_CONSTRAINT, 0, 0};
+  ST(dal_state_set_param_named(F.A, NULL, "con:rod:0", 1.5), DAL_E_ARG, NULL);
+  ST(dal_state_set_param_named(NULL, F.stA, "con:rod:0", 1.5), DAL_E_STATE, F.stA);
+  ST(dal_state_set_param_named(F.B, F.stA, "con:rod:0", 1.5), DAL_E_STATE, F.stA);
+  ST(dal_state_set_param_named(F.A, F.stA, NULL, 1.5), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param_named(F.A, F.stA, "con:nothing:0", 1.5), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param_named(F.A, F.stA, "con:rod:9", 1.5), DAL_E_ARG, F.stA);
+  ST(dal_state_set_param_named(F.A, F.stA, "con:rod:0", NAN), DAL_E_NONFINITE, F.stA);
+  st_intact();
+  double v = 0.0;
+  ST(dal_state_set_param_named(F.A, F.stA, "con:rod:0", 1.5), DAL_OK, F.stA);
+  CHECK(dal_state_param(F.A, F.stA, &rod, &v) == DAL_OK && v == 1.5);
+  stA_restore();
+}
+static void sw_dal_state_set_mass(void) {
+  dal_param_ref mass = {DAL_PARAM_MASS, 0, 0};
+  ST(dal_state_set_mass(F.A, NULL, 0, 2.0), DAL_E_ARG, NULL);
+  ST(dal_state_set_mass(NULL, F.stA, 0, 2.0), DAL_E_STATE, F.stA);
+  ST(dal_state_set_mass(F.B, F.stA, 0, 2.0), DAL_E_STATE, F.stA);
+  ST(dal_state_set_mass(F.A, F.stA, -1, 2.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_mass(F.A, F.stA, 1, 2.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_mass(F.A, F.stA, INT_MAX, 2.0), DAL_E_ARG, F.stA);
+  ST(dal_state_set_mass(F.A, F.stA, 0, NAN), DAL_E_NONFINITE, F.stA);
+  ST(dal_state_set_mass(F.A, F.stA, 0, -INFINITY), DAL_E_NONFINITE, F.stA);
+  ST(dal_state_set_mass(F.A, F.stA, 0, 0.0), DAL_E_ARG, F.stA);
+  st_intact();
+  double v = 0.0;
+  ST(dal_state_set_mass(F.A, F.stA, 0, 3.0), DAL_OK, F.stA);
+  CHECK(dal_state_param(F.A, F.stA, &mass, &v) == DAL_OK && v == 3.0);
+  stA_restore();
+}
+static void sw_dal_state_set_gravity(void) {
+  double g[2] = {0.0, -1.62}, gn[2] = {NAN, 0.0}, gi[2] = {0.0, INFINITY}, v = 0.0;
+  dal_param_ref g1 = {DAL_PARAM_GRAVITY, 0, 1};
+  ST(dal_state_set_gravity(F.A, NULL, g), DAL_E_ARG, NULL);
+  ST(dal_state_set_gravity(NULL, F.stA, g), DAL_E_STATE, F.stA);
+  ST(dal_state_set_gravity(F.B, F.stA, g), DAL_E_STATE, F.stA);
+  ST(dal_state_set_gravity(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
+  ST(dal_state_set_gravity(F.A, F.stA, gn), DAL_E_NONFINITE, F.stA);
+  ST(dal_state_set_gravity(F.A, F.stA, gi), DAL_E_NONFINITE, F.stA);
+  st_intact();
+  CHECK(dal_state_param(F.A, F.stA, &g1, &v) == DAL_OK && v == -9.81); // unchanged
+  ST(dal_state_set_gravity(F.A, F.stA, g), DAL_OK, F.stA);
+  CHECK(dal_state_param(F.A, F.stA, &g1, &v) == DAL_OK && v == -1.62);
+  stA_restore();
+}
+static void sw_dal_state_reset_params(void) {
+  dal_param_ref mass = {DAL_PARAM_MASS, 0, 0};
+  double v = 0.0;
+  ST(dal_state_reset_params(F.A, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_reset_params(NULL, F.stA), DAL_E_STATE, F.stA);
+  ST(dal_state_reset_params(F.B, F.stA), DAL_E_STATE, F.stA);
+  st_intact();
+  CHECK_OK(dal_state_set_mass(F.A, F.stA, 0, 4.0));
+  ST(dal_state_reset_params(F.A, F.stA), DAL_OK, F.stA);
+  CHECK(dal_state_param(F.A, F.stA, &mass, &v) == DAL_OK && v == 1.0);
+  stA_restore();
+}
+static void sw_dal_state_copy_params(void) {
+  dal_param_ref mass = {DAL_PARAM_MASS, 0, 0};
+  dal_state *st2 = NULL;
+  double v = 0.0;
+  CHECK_OK(dal_state_create(F.A, &st2));
+  ST(dal_state_copy_params(F.A, NULL, F.stA), DAL_E_ARG, NULL);
+  // dst is given but keeps no message for a NULL src (the header promises only the status)
+  ST(dal_state_copy_params(F.A, F.stA, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_copy_params(NULL, F.stA, st2), DAL_E_STATE, F.stA);
+  ST(dal_state_copy_params(F.B, F.stA, st2), DAL_E_STATE, F.stA);
+  ST(dal_state_copy_params(F.A, F.stB, F.stA), DAL_E_STATE, F.stB); // dst of another system
+  ST(dal_state_copy_params(F.A, F.stA, F.stB), DAL_E_STATE, F.stA); // src of another system
+  st_intact();
+  CHECK_OK(dal_state_set_mass(F.A, F.stA, 0, 5.0));
+  ST(dal_state_copy_params(F.A, F.stA, F.stA), DAL_OK, F.stA);
+  ST(dal_state_copy_params(F.A, st2, F.stA), DAL_OK, NULL);
+  CHECK(dal_state_param(F.A, st2, &mass, &v) == DAL_OK && v == 5.0);
+  dal_state_destroy(st2);
+  stA_restore();
+}
+
+// ---------------------------------------------------------------- rows: verify.h
+static void sw_dal_verify_default_opts(void) {
+  dal_verify_default_opts(NULL); // a no-op
+  dal_verify_opts o;
+  memset(&o, 0xff, sizeof o);
+  dal_verify_default_opts(&o);
+  CHECK(o.nsamples == 16 && o.lo == -1.0 && o.hi == 1.0 && o.in_lo == NULL && o.in_hi == NULL);
+  CHECK(o.t_lo == 0.0 && o.t_hi == 1.0 && o.h == 1e-3 && o.tol_factor == 10.0 && o.seed == 1);
+}
+// options every jet check refuses (DAL_E_ARG with the report's message)
+static void verify_bad_opts(dal_verify_opts *few, dal_verify_opts *nan_lo, dal_verify_opts *inf_t,
+                            dal_verify_opts *zero_h) {
+  dal_verify_default_opts(few);
+  few->nsamples = 0;
+  dal_verify_default_opts(nan_lo);
+  nan_lo->lo = NAN;
+  dal_verify_default_opts(inf_t);
+  inf_t->t_hi = INFINITY;
+  dal_verify_default_opts(zero_h);
+  zero_h->h = 0.0;
+}
+static void sw_dal_verify_primitive(void) {
+  dal_verify_report rep;
+  dal_verify_opts few, nan_lo, inf_t, zero_h;
+  verify_bad_opts(&few, &nan_lo, &inf_t, &zero_h);
+  dal_primitive noeval = dal_map_cartesian2, badver = dal_map_cartesian2;
+  noeval.eval = NULL;
+  badver.version = 99;
+  char *m = rep.msg;
+  CHECK(dal_verify_primitive(NULL, NULL, NULL, NULL, &rep) == DAL_E_ARG);
+  CHECK(dal_verify_primitive(&noeval, NULL, NULL, NULL, &rep) == DAL_E_ARG);
+  CHECK(dal_verify_primitive(&badver, NULL, NULL, NULL, &rep) == DAL_E_ARG);
+  // the pendulum's length is required: no defaults to fall back on
+  CHECK(dal_verify_primitive(&dal_map_pendulum, NULL, NULL, NULL, &rep) == DAL_E_ARG);
+  // non-finite options: verify.h documents DAL_E_ARG for options (not DAL_E_NONFINITE)
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &few, &rep), DAL_E_ARG, m);
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &nan_lo, &rep), DAL_E_ARG, m);
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &inf_t, &rep), DAL_E_ARG, m);
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &zero_h, NULL), DAL_E_ARG, NULL);
+  double pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
+  MS(dal_verify_primitive(&dal_map_pendulum, pend, NULL, NULL, &rep), DAL_OK, m);
+  CHECK(rep.samples == 16 && rep.checks > 0 && rep.failures == 0);
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, NULL, NULL), DAL_OK, NULL);
+}
+static void sw_dal_verify_map(void) {
+  dal_verify_report rep;
+  dal_verify_opts few, nan_lo, inf_t, zero_h;
+  verify_bad_opts(&few, &nan_lo, &inf_t, &zero_h);
+  char *m = rep.msg;
+  CHECK(dal_verify_map(NULL, 2, 1, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_map(map_fn, 0, 1, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_map(map_fn, 2, 0, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_map(map_fn, 2, INT_MIN, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_map(map_fn, 2, 1, 1, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_map(map_fn, 2, 1, 4, NULL, &rep, NULL) == DAL_E_ARG);
+  MS(dal_verify_map(map_fn, 2, 1, 2, &few, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_map(map_fn, 2, 1, 2, &nan_lo, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_map(map_fn, 2, 1, 2, &inf_t, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_map(map_fn, 2, 1, 2, NULL, &rep, NULL), DAL_OK, m);
+  CHECK(rep.checks > 0 && rep.failures == 0);
+}
+static void sw_dal_verify_potential_r(void) {
+  dal_verify_report rep;
+  dal_verify_opts few, nan_lo, inf_t, zero_h;
+  verify_bad_opts(&few, &nan_lo, &inf_t, &zero_h);
+  char *m = rep.msg;
+  CHECK(dal_verify_potential_r(NULL, 1, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_potential_r(pot_r, 0, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_potential_r(pot_r, -1, 2, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_potential_r(pot_r, 1, 0, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_potential_r(pot_r, 1, INT_MAX, NULL, &rep, NULL) == DAL_E_ARG);
+  MS(dal_verify_potential_r(pot_r, 1, 2, &few, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_potential_r(pot_r, 1, 2, &nan_lo, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_potential_r(pot_r, 1, 2, &zero_h, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_potential_r(pot_r, 1, 2, NULL, &rep, NULL), DAL_OK, m);
+  CHECK(rep.checks > 0 && rep.failures == 0);
+}
+static void sw_dal_verify_potential_q(void) {
+  dal_verify_report rep;
+  dal_verify_opts few, nan_lo, inf_t, zero_h;
+  verify_bad_opts(&few, &nan_lo, &inf_t, &zero_h);
+  char *m = rep.msg;
+  CHECK(dal_verify_potential_q(NULL, 1, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_potential_q(pot_q, 0, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_potential_q(pot_q, INT_MIN, NULL, &rep, NULL) == DAL_E_ARG);
+  MS(dal_verify_potential_q(pot_q, 1, &few, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_potential_q(pot_q, 1, &inf_t, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_potential_q(pot_q, 1, NULL, &rep, NULL), DAL_OK, m);
+  CHECK(rep.checks > 0 && rep.failures == 0);
+}
+static void sw_dal_verify_lagrangian(void) {
+  dal_verify_report rep;
+  dal_verify_opts few, nan_lo, inf_t, zero_h;
+  verify_bad_opts(&few, &nan_lo, &inf_t, &zero_h);
+  char *m = rep.msg;
+  CHECK(dal_verify_lagrangian(NULL, 1, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_lagrangian(lag_fn, 0, NULL, &rep, NULL) == DAL_E_ARG);
+  CHECK(dal_verify_lagrangian(lag_fn, -1, NULL, &rep, NULL) == DAL_E_ARG);
+  MS(dal_verify_lagrangian(lag_fn, 1, &few, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_lagrangian(lag_fn, 1, &nan_lo, &rep, NULL), DAL_E_ARG, m);
+  MS(dal_verify_lagrangian(lag_fn, 1, NULL, &rep, NULL), DAL_OK, m);
+  CHECK(rep.checks > 0 && rep.failures == 0);
+}
+static void sw_dal_verify_model(void) {
+  dal_model_report rep;
+  // NOTE: header says the status of a failing evaluation (dal_forward: DAL_E_STATE for a NULL
+  // system with a state, README convention too); the implementation returns DAL_E_ARG
+  ST(dal_verify_model(NULL, F.stB, NULL, &rep), DAL_E_ARG, NULL);
+  ST(dal_verify_model(F.B, NULL, NULL, &rep), DAL_E_ARG, NULL);
+  ST(dal_verify_model(F.A, F.stB, NULL, &rep), DAL_E_STATE, F.stB);
+  CHECK(rep.msg[0] != 0 && rep.passed == 0);
+  st_intact();
+  ST(dal_verify_model(F.B, F.stB, NULL, &rep), DAL_OK, F.stB);
+  CHECK(rep.passed == 1 && rep.mass_checked == 1 && rep.path_checked == 1 && rep.m == 0);
+  ST(dal_verify_model(F.B, F.stB, NULL, NULL), DAL_OK, F.stB);
+  st_intact();
+}
+
+// ---------------------------------------------------------------- rows: analysis.h
+// At theta = 0.3 at rest, B (unit mass on a unit rod, g = 9.81) has M = 1, C = 0 and
+// K = d2U/dtheta2 = 9.81 cos(0.3) (U = -9.81 cos theta; M is constant, so no M' qddot term).
+static void sw_dal_linearize(void) {
+  double M[1] = {0}, C[1] = {1}, K[1] = {0};
+  ST(dal_linearize(F.B, NULL, M, C, K), DAL_E_ARG, NULL);
+  ST(dal_linearize(NULL, F.stB, M, C, K), DAL_E_STATE, F.stB);
+  ST(dal_linearize(F.A, F.stB, M, C, K), DAL_E_STATE, F.stB);
+  ST(dal_linearize(F.A, F.stA, NULL, NULL, NULL), DAL_E_UNSUPPORTED, F.stA); // constraint rows
+  st_intact();
+  ST(dal_linearize(F.B, F.stB, NULL, NULL, NULL), DAL_OK, F.stB);
+  ST(dal_linearize(F.B, F.stB, M, C, K), DAL_OK, F.stB);
+  CHECK_CLOSE(M[0], 1.0, 1e-14);
+  CHECK_CLOSE(C[0], 0.0, 1e-14);
+  CHECK_CLOSE(K[0], 9.81 * cos(0.3), 1e-13);
+}
+static void sw_dal_flow_jacobian(void) {
+  double A[4] = {0}, ft[2] = {1, 1};
+  ST(dal_flow_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
+  ST(dal_flow_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_flow_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_flow_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
+  ST(dal_flow_jacobian(F.A, F.stA, A, NULL), DAL_E_UNSUPPORTED, F.stA);
+  st_intact();
+  ST(dal_flow_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
+  ST(dal_flow_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
+  // df/dy = [0 1; -K/M 0] column-major; autonomous: df/dt = 0
+  CHECK(A[0] == 0.0 && A[2] == 1.0 && A[3] == 0.0);
+  CHECK_CLOSE(A[1], -9.81 * cos(0.3), 1e-13);
+  CHECK(ft[0] == 0.0 && ft[1] == 0.0);
+}
+static void sw_dal_stability_name(void) {
+  CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
+  CHECK(strcmp(dal_stability_name((dal_stability)-2), "unknown") == 0);
+  CHECK(strcmp(dal_stability_name(DAL_NEUTRAL), "neutral") == 0);
+  CHECK(strcmp(dal_stability_name(DAL_UNSTABLE), "unstable") == 0);
+}
+static void sw_dal_normal_modes(void) {
+  double w2[1] = {0}, x[1] = {0}, re[2], im[2];
+  dal_modes md;
+  ST(dal_normal_modes(F.B, NULL, w2, x, re, im, &md), DAL_E_ARG, NULL);
+  ST(dal_normal_modes(NULL, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
+  ST(dal_normal_modes(F.A, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
+  ST(dal_normal_modes(F.A, F.stA, w2, x, re, im, &md), DAL_E_UNSUPPORTED, F.stA);
+  st_intact();
+  ST(dal_normal_modes(F.B, F.stB, NULL, NULL, NULL, NULL, NULL), DAL_OK, F.stB);
+  ST(dal_normal_modes(F.B, F.stB, w2, x, re, im, &md), DAL_OK, F.stB);
+  // omega^2 = K / M, shape M-normalized to 1; eigenvalues of df/dy +- i omega
+  CHECK_CLOSE(w2[0], 9.81 * cos(0.3), 1e-13);
+  CHECK_CLOSE(x[0], 1.0, 1e-14);
+  CHECK_CLOSE(im[1], sqrt(9.81 * cos(0.3)), 1e-12);
+  CHECK(md.verdict == DAL_NEUTRAL);
+}
+static void sw_dal_equilibrium_default_opts(void) {
+  dal_equilibrium_default_opts(NULL); // a no-op
+  dal_equilibrium_opts o;
+  memset(&o, 0xff, sizeof o);
+  dal_equilibrium_default_opts(&o);
+  CHECK(o.xtol == 1e-12 && o.max_iter == 50 && o.max_step == 0.0);
+}
+static void sw_dal_equilibrium(void) {
+  dal_equilibrium_opts o, raw, nan_tol, no_iter;
+  dal_equilibrium_report rep;
+  dal_equilibrium_default_opts(&o);
+  memset(&raw, 0, sizeof raw);
+  nan_tol = no_iter = o;
+  nan_tol.xtol = NAN;
+  no_iter.max_iter = 0;
+  ST(dal_equilibrium(F.B, NULL, &o, &rep), DAL_E_ARG, NULL);
+  ST(dal_equilibrium(NULL, F.stB, &o, &rep), DAL_E_STATE, F.stB);
+  ST(dal_equilibrium(F.A, F.stB, &o, &rep), DAL_E_STATE, F.stB);
+  ST(dal_equilibrium(F.B, F.stB, &raw, &rep), DAL_E_ARG, F.stB);
+  ST(dal_equilibrium(F.B, F.stB, &nan_tol, &rep), DAL_E_ARG, F.stB);
+  ST(dal_equilibrium(F.B, F.stB, &no_iter, &rep), DAL_E_ARG, F.stB);
+  ST(dal_equilibrium(F.A, F.stA, NULL, NULL), DAL_E_UNSUPPORTED, F.stA);
+  st_intact();
+  // the hanging pendulum: theta* = 0 from theta = 0.3 (a fresh state: this one moves)
+  dal_state *st = state_b();
+  ST(dal_equilibrium(F.B, st, &o, &rep), DAL_OK, NULL);
+  CHECK(fabs(dal_state_q(st)[0]) < 1e-12 && rep.iterations >= 1 && rep.unsteady == 0.0);
+  CHECK(dal_state_qdot(st)[0] == 0.0);
+  dal_state_destroy(st);
+}
+static void sw_dal_continuation_default_opts(void) {
+  dal_continuation_default_opts(NULL); // a no-op
+  dal_continuation_opts o;
+  memset(&o, 0xff, sizeof o);
+  dal_continuation_default_opts(&o);
+  CHECK(o.p0 == 0.0 && o.p1 == 1.0 && o.npoints == 41 && o.t == 0.0 && o.locate == 1);
+  CHECK(o.newton.xtol == 1e-12 && o.newton.max_iter == 50);
+}
+
+// B with gravity 9.81 + p; ctx: the branch record (fail: rebuild refuses)
+typedef struct branch_rec {
+  int fail, points, bad;
+} branch_rec;
+static int rebuild_pend(double p, dal_system **out, void *ctx) {
+  if (((branch_rec *)ctx)->fail) return 1;
+  double g[2] = {0.0, -9.81 - p}, pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
+  dal_builder *b = NULL;
+  int th = 0, bob = 0, rc = dal_builder_create(2, &b);
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
+  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, pend, NULL);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  if (!rc) rc = dal_builder_compile(b, out);
+  dal_builder_destroy(b);
+  return rc;
+}
+static int branch_point(double p, const dal_system *sys, const dal_state *st, dal_stability v,
+                        dal_branch_kind kind, void *ctx) {
+  (void)p;
+  (void)sys;
+  branch_rec *r = ctx;
+  ++r->points;
+  if (fabs(dal_state_q(st)[0]) > 1e-12 || v != DAL_NEUTRAL || kind != DAL_BRANCH_REGULAR) ++r->bad;
+  return 0;
+}
+static void sw_dal_continue(void) {
+  dal_continuation_opts o, raw, same, nan_p, one, bad_newton;
+  dal_continuation_report rep;
+  char *m = rep.msg;
+  double q0 = 0.3;
+  branch_rec rec = {0, 0, 0};
+  dal_continuation_default_opts(&o);
+  o.npoints = 3;
+  memset(&raw, 0, sizeof raw);
+  same = nan_p = one = bad_newton = o;
+  same.p1 = same.p0;
+  nan_p.p1 = NAN;
+  one.npoints = 1;
+  bad_newton.newton.xtol = -1.0;
+  MS(dal_continue(NULL, &q0, &o, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, NULL, &o, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, NULL, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, &raw, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, &same, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, &nan_p, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, &one, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, &bad_newton, branch_point, &rep, &rec), DAL_E_ARG, m);
+  MS(dal_continue(rebuild_pend, &q0, &o, branch_point, NULL, &rec), DAL_OK, NULL);
+  CHECK(rec.points == 3 && rec.bad == 0);
+  rec.fail = 1;
+  MS(dal_continue(rebuild_pend, &q0, &o, branch_point, &rep, &rec), DAL_E_CALLBACK, m);
+  CHECK(rec.points == 3);
+  rec = (branch_rec){0, 0, 0};
+  MS(dal_continue(rebuild_pend, &q0, &o, branch_point, &rep, &rec), DAL_OK, m);
+  CHECK(rec.points == 3 && rec.bad == 0 && rep.npoints == 3 && rep.ncritical == 0);
+  CHECK(rep.p_end == 1.0 && rep.msg[0] == 0);
+}
+static void sw_dal_lyapunov_default_opts(void) {
+  dal_lyapunov_default_opts(NULL); // a no-op
+  dal_lyapunov_opts o;
+  memset(&o, 0xff, sizeof o);
+  dal_lyapunov_default_opts(&o);
+  CHECK(isnan(o.t_end) && o.nexp == 0 && o.renorm == 1.0 && o.method == DAL_METHOD_DOPRI5);
+  CHECK(o.rtol == 1e-10 && o.atol == 1e-10 && o.y0 == NULL && o.nblocks == 10);
+}
+static void sw_dal_lyapunov(void) {
+  dal_lyapunov_opts o, raw, no_end, behind, bs, many, no_renorm, nan_y0;
+  double ex[2] = {0, 0}, err[2], y0n[4] = {1, 0, NAN, 1};
+  dal_lyapunov_default_opts(&o);
+  o.t_end = 0.05;
+  o.renorm = 0.01;
+  o.nblocks = 2;
+  memset(&raw, 0, sizeof raw);
+  no_end = behind = bs = many = no_renorm = nan_y0 = o;
+  no_end.t_end = NAN;
+  behind.t_end = -1.0;
+  bs.method = DAL_METHOD_BS;
+  many.nexp = 3; // 2n = 2
+  no_renorm.renorm = 0.0;
+  nan_y0.y0 = y0n;
+  ST(dal_lyapunov(F.B, NULL, &o, ex, err, NULL, NULL), DAL_E_ARG, NULL);
+  ST(dal_lyapunov(NULL, F.stB, &o, ex, err, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_lyapunov(F.A, F.stB, &o, ex, err, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &o, NULL, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, NULL, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &raw, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &no_end, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &behind, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &bs, ex, err, NULL, NULL), DAL_E_UNSUPPORTED, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &many, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &no_renorm, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_lyapunov(F.B, F.stB, &nan_y0, ex, err, NULL, NULL), DAL_E_NONFINITE, F.stB);
+  ST(dal_lyapunov(F.A, F.stA, &o, ex, err, NULL, NULL), DAL_E_UNSUPPORTED, F.stA);
+  st_intact();
+  // a short run on a fresh state (it moves to t_end): the flow preserves phase-space volume
+  // (trace df/dy = 0), so the two exponents sum to 0 up to the integration tolerance
+  dal_state *st = state_b();
+  ST(dal_lyapunov(F.B, st, &o, ex, NULL, NULL, NULL), DAL_OK, NULL);
+  CHECK(isfinite(ex[0]) && isfinite(ex[1]) && ex[0] >= ex[1]);
+  CHECK_CLOSE(ex[0] + ex[1], 0.0, 1e-6);
+  CHECK_CLOSE(dal_state_time(st), 0.05, 1e-14);
+  dal_state_destroy(st);
+}
+
+// ---------------------------------------------------------------- rows: system.h (defs)
+static void sw_dal_default_place_def(void) {
+  dal_place_def d = dal_default_place_def();
+  CHECK(d.prim == NULL && d.parent == -1 && d.coords == NULL && d.ncoords == 0 && d.ctx == NULL);
+}
+static void sw_dal_default_constraint_def(void) {
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(d.name == NULL && d.prim == NULL && d.parts == NULL && d.nparts == 0);
+  CHECK(d.coords == NULL && d.ncoords == 0 && d.ctx == NULL);
+}
+static void sw_dal_default_spring_def(void) {
+  dal_spring_def d = dal_default_spring_def();
+  CHECK(d.a == -1 && d.b == -1 && d.k == 0.0 && d.length == 0.0 && d.path == NULL);
+  CHECK(d.anchor[0] == 0.0 && d.anchor[1] == 0.0 && d.anchor[2] == 0.0 && d.ctx == NULL);
+}
+static void sw_dal_default_damper_def(void) {
+  dal_damper_def d = dal_default_damper_def();
+  CHECK(d.a == -1 && d.b == -1 && d.c == 0.0 && d.path == NULL && d.ctx == NULL);
+  CHECK(d.anchor[0] == 0.0 && d.anchor[1] == 0.0 && d.anchor[2] == 0.0);
+}
+static void sw_dal_builder_place_def(void) {
+  int c[2] = {0, 1}, bad[2] = {0, 7};
+  dal_place_def d = dal_default_place_def(), raw, e;
+  memset(&raw, 0, sizeof raw);
+  d.prim = &dal_map_cartesian2;
+  d.coords = c;
+  d.ncoords = 2;
+  BL(dal_builder_place_def(NULL, 0, &d), DAL_E_ARG, NULL);
+  BL(dal_builder_place_def(F.bld, 0, NULL), DAL_E_ARG, F.bld);
+  BL(dal_builder_place_def(F.bld, 0, &raw), DAL_E_ARG, F.bld); // no cookie
+  BL(dal_builder_place_def(F.bld, -1, &d), DAL_E_ARG, F.bld);
+  BL(dal_builder_place_def(F.bld, 1, &d), DAL_E_ARG, F.bld);
+  BL(dal_builder_place_def(F.bld, INT_MIN, &d), DAL_E_ARG, F.bld);
+  e = d;
+  e.prim = NULL;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.coords = bad;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.coords = NULL;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.parent = 5;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.param[0] = 1.0; // cartesian2 takes no parameters
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e = dal_default_place_def();
+  e.prim = &dal_map_pendulum;
+  e.coords = c;
+  e.ncoords = 1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld); // the length is required
+  e.param[DAL_PENDULUM_L] = NAN;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_NONFINITE, F.bld);
+  e.param[DAL_PENDULUM_L] = 1.0;
+  e.param[DAL_PENDULUM_W] = INFINITY;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_NONFINITE, F.bld);
+  dal_builder *b = scratch(0);
+  BL(dal_builder_place_def(b, 0, &d), DAL_OK, b);
+  BL(dal_builder_place_def(b, 0, &d), DAL_E_ARG, b); // placed once
+  dal_system *s = NULL;
+  CHECK_OK(dal_builder_compile(b, &s));
+  dal_system_destroy(s);
+  dal_builder_destroy(b);
+}
+static void sw_dal_builder_add_constraint_def(void) {
+  int p[1] = {0}, pbad[1] = {5}, idx = -1;
+  dal_constraint_def d = dal_default_constraint_def(), raw, e;
+  memset(&raw, 0, sizeof raw);
+  d.name = "rod";
+  d.prim = &dal_con_anchor2;
+  d.parts = p;
+  d.nparts = 1;
+  d.param[0] = 1.0;
+  BL(dal_builder_add_constraint_def(NULL, &d, &idx), DAL_E_ARG, NULL);
+  BL(dal_builder_add_constraint_def(F.bld, NULL, &idx), DAL_E_ARG, F.bld);
+  BL(dal_builder_add_constraint_def(F.bld, &raw, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  e.prim = NULL;
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  e.parts = NULL;
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  e.parts = pbad;
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  e.nparts = -1;
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  e.ncoords = 1; // no coords array, and the input count no longer matches
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  e.param[0] = NAN;
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_NONFINITE, F.bld);
+  e = d;
+  e.param[DAL_MAX_PARAM - 1] = 1.0; // beyond the primitive's parameters
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  CHECK(idx == -1);
+  dal_builder *b = scratch(1);
+  e = d;
+  e.name = NULL; // documented: gives "c<i>"
+  BL(dal_builder_add_constraint_def(b, &e, &idx), DAL_OK, b);
+  CHECK(idx == 0);
+  BL(dal_builder_add_constraint_def(b, &d, NULL), DAL_OK, b);
+  dal_system *s = NULL;
+  CHECK_OK(dal_builder_compile(b, &s));
+  CHECK(dal_system_nconstraints(s) == 2 && strcmp(dal_system_constraint_name(s, 0), "c0") == 0);
+  CHECK(strcmp(dal_system_constraint_name(s, 1), "rod") == 0);
+  dal_system_destroy(s);
+  dal_builder_destroy(b);
+}
+static void sw_dal_builder_add_spring_def(void) {
+  dal_spring_def d = dal_default_spring_def(), raw, e;
+  memset(&raw, 0, sizeof raw);
+  d.a = 0;
+  d.k = 2.0;
+  d.length = 0.5;
+  BL(dal_builder_add_spring_def(NULL, &d), DAL_E_ARG, NULL);
+  BL(dal_builder_add_spring_def(F.bld, NULL), DAL_E_ARG, F.bld);
+  BL(dal_builder_add_spring_def(F.bld, &raw), DAL_E_ARG, F.bld);
+  e = dal_default_spring_def(); // a = -1 must be set
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.a = 1;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.b = -2;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.b = 0; // a spring from a particle to itself
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.k = -1.0;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.length = -1.0;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.k = NAN;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_NONFINITE, F.bld);
+  e = d;
+  e.length = INFINITY;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_NONFINITE, F.bld);
+  e = d;
+  e.anchor[1] = NAN;
+  BL(dal_builder_add_spring_def(F.bld, &e), DAL_E_NONFINITE, F.bld);
+  dal_builder *b = scratch(1);
+  BL(dal_builder_add_spring_def(b, &d), DAL_OK, b);
+  dal_system *s = NULL;
+  dal_param_ref k = {DAL_PARAM_SPRING_K, 0, 0};
+  double v = 0.0;
+  CHECK_OK(dal_builder_compile(b, &s));
+  CHECK(dal_system_param(s, &k, &v) == DAL_OK && v == 2.0);
+  dal_system_destroy(s);
+  dal_builder_destroy(b);
+}
+static void sw_dal_builder_add_damper_def(void) {
+  dal_damper_def d = dal_default_damper_def(), raw, e;
+  memset(&raw, 0, sizeof raw);
+  d.a = 0;
+  d.c = 0.5;
+  BL(dal_builder_add_damper_def(NULL, &d), DAL_E_ARG, NULL);
+  BL(dal_builder_add_damper_def(F.bld, NULL), DAL_E_ARG, F.bld);
+  BL(dal_builder_add_damper_def(F.bld, &raw), DAL_E_ARG, F.bld);
+  e = dal_default_damper_def();
+  BL(dal_builder_add_damper_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.a = INT_MAX;
+  BL(dal_builder_add_damper_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.b = INT_MIN;
+  BL(dal_builder_add_damper_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.c = -0.5;
+  BL(dal_builder_add_damper_def(F.bld, &e), DAL_E_ARG, F.bld);
+  e = d;
+  e.c = -INFINITY;
+  BL(dal_builder_add_damper_def(F.bld, &e), DAL_E_NONFINITE, F.bld);
+  e = d;
+  e.anchor[0] = INFINITY;
+  BL(dal_builder_add_damper_def(F.bld, &e), DAL_E_NONFINITE, F.bld);
+  dal_builder *b = scratch(1);
+  BL(dal_builder_add_damper_def(b, &d), DAL_OK, b);
+  dal_system *s = NULL;
+  dal_param_ref c = {DAL_PARAM_DAMPER_C, 0, 0};
+  double v = 0.0;
+  CHECK_OK(dal_builder_compile(b, &s));
+  CHECK(dal_system_param(s, &c, &v) == DAL_OK && v == 0.5);
+  dal_system_destroy(s);
+  dal_builder_destroy(b);
+}
+static void sw_dal_builder_set_dynamics(void) {
+  BL(dal_builder_set_dynamics(NULL, DAL_DYNAMICS_DENSE), DAL_E_ARG, NULL);
+  BL(dal_builder_set_dynamics(F.bld, (dal_dynamics)7), DAL_E_ARG, F.bld);
+  BL(dal_builder_set_dynamics(F.bld, (dal_dynamics)-1), DAL_E_ARG, F.bld);
+  dal_builder *b = scratch(1);
+  BL(dal_builder_set_dynamics(b, DAL_DYNAMICS_DENSE), DAL_OK, b);
+  dal_system *s = NULL;
+  CHECK_OK(dal_builder_compile(b, &s));
+  CHECK(dal_system_dynamics(s) == DAL_DYNAMICS_DENSE);
+  dal_system_destroy(s);
+  dal_builder_destroy(b);
+}
+static void sw_dal_system_dynamics(void) {
+  CHECK(dal_system_dynamics(NULL) == DAL_DYNAMICS_AUTO);
+  // AUTO is resolved at compile time
+  CHECK(dal_system_dynamics(F.A) == DAL_DYNAMICS_DENSE ||
+        dal_system_dynamics(F.A) == DAL_DYNAMICS_RECURSIVE);
+  CHECK(dal_system_dynamics(F.B) == DAL_DYNAMICS_DENSE ||
+        dal_system_dynamics(F.B) == DAL_DYNAMICS_RECURSIVE);
+}
+static void sw_dal_system_print(void) {
+  FILE *fp = tmpfile(), *ro = fopen("/dev/null", "r");
+  CHECK(fp != NULL && ro != NULL);
+  if (!fp || !ro) return;
+  CHECK(dal_system_print(NULL, fp) == DAL_E_ARG);
+  CHECK(dal_system_print(F.A, NULL) == DAL_E_ARG);
+  CHECK(ftell(fp) == 0);
+  CHECK(dal_system_print(F.A, ro) == DAL_E_IO);
+  CHECK(dal_system_print(F.A, fp) == DAL_OK && ftell(fp) > 0);
+  fclose(fp);
+  fclose(ro);
+}
+
+// ---------------------------------------------------------------- rows: state.h, dae.h (more)
+static void sw_dal_state_print(void) {
+  FILE *fp = tmpfile(), *ro = fopen("/dev/null", "r");
+  CHECK(fp != NULL && ro != NULL);
+  if (!fp || !ro) return;
+  // the state is const: no message can be kept; the header documents DAL_E_ARG for a state of
+  // another system (the README convention would be DAL_E_STATE)
+  ST(dal_state_print(NULL, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(F.A, NULL, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_print(F.B, F.stA, fp), DAL_E_ARG, NULL);
+  CHECK(ftell(fp) == 0);
+  ST(dal_state_print(F.A, F.stA, ro), DAL_E_IO, NULL);
+  ST(dal_state_print(F.A, F.stA, fp), DAL_OK, NULL);
+  CHECK(ftell(fp) > 0);
+  fclose(fp);
+  fclose(ro);
+}
+static void sw_dal_state_init_report(void) {
+  dal_init_report rep;
+  ST(dal_state_init_report(NULL, &rep), DAL_E_ARG, NULL);
+  ST(dal_state_init_report(F.stA, NULL), DAL_E_ARG, NULL);
+  // no consistent start yet on a fresh state: DAL_E_STATE, the report zeroed with rows -1
+  dal_state *st = state_b();
+  memset(&rep, 0x55, sizeof rep);
+  ST(dal_state_init_report(st, &rep), DAL_E_STATE, NULL);
+  CHECK(rep.phi_row == -1 && rep.phidot_row == -1 && rep.dq_coord == -1 && rep.dqdot_coord == -1);
+  dal_state_destroy(st);
+  CHECK_OK(dal_make_consistent(F.A, F.stA, 0.0, NULL));
+  ST(dal_state_init_report(F.stA, &rep), DAL_OK, NULL);
 }
 
 // ---------------------------------------------------------------- the table
@@ -637,6 +1600,52 @@ static const sweep_row rows[] = {
     ROW(dal_system_particle_name),
     ROW(dal_system_constraint_name),
     ROW(dal_system_mass),
+    ROW(dal_sweep_default_opts),
+    ROW(dal_sweep_part_of),
+    ROW(dal_sweep_run),
+    ROW(dal_sweep_grid),
+    ROW(dal_sweep_write_csv),
+    ROW(dal_param_find),
+    ROW(dal_param_check),
+    ROW(dal_param_name),
+    ROW(dal_system_param),
+    ROW(dal_state_param),
+    ROW(dal_state_set_param),
+    ROW(dal_state_set_param_named),
+    ROW(dal_state_set_mass),
+    ROW(dal_state_set_gravity),
+    ROW(dal_state_reset_params),
+    ROW(dal_state_copy_params),
+    ROW(dal_verify_default_opts),
+    ROW(dal_verify_primitive),
+    ROW(dal_verify_map),
+    ROW(dal_verify_potential_r),
+    ROW(dal_verify_potential_q),
+    ROW(dal_verify_lagrangian),
+    ROW(dal_verify_model),
+    ROW(dal_state_print),
+    ROW(dal_state_init_report),
+    ROW(dal_linearize),
+    ROW(dal_flow_jacobian),
+    ROW(dal_stability_name),
+    ROW(dal_normal_modes),
+    ROW(dal_equilibrium_default_opts),
+    ROW(dal_equilibrium),
+    ROW(dal_continuation_default_opts),
+    ROW(dal_continue),
+    ROW(dal_lyapunov_default_opts),
+    ROW(dal_lyapunov),
+    ROW(dal_default_place_def),
+    ROW(dal_default_constraint_def),
+    ROW(dal_default_spring_def),
+    ROW(dal_default_damper_def),
+    ROW(dal_builder_place_def),
+    ROW(dal_builder_add_constraint_def),
+    ROW(dal_builder_add_spring_def),
+    ROW(dal_builder_add_damper_def),
+    ROW(dal_builder_set_dynamics),
+    ROW(dal_system_dynamics),
+    ROW(dal_system_print),
 };
 #define NROWS ((int)(sizeof rows / sizeof rows[0]))
 
@@ -693,6 +1702,9 @@ static int scan_headers(const char *dir, char names[][64]) {
   for (struct dirent *e; (e = readdir(d)) != NULL;) {
     size_t len = strlen(e->d_name);
     if (len < 3 || strcmp(e->d_name + len - 2, ".h") != 0) continue;
+    // mpi.h declares dal_sweep_run_mpi of the separate library dalembert_mpi, which this test
+    // does not link (and <mpi.h> is not on its include path): tests/test_ensemble_mpi.c covers it
+    if (strcmp(e->d_name, "mpi.h") == 0) continue;
     char path[4096];
     snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
     char *text = read_all(path);
