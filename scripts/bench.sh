@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # SPDX-FileCopyrightText: 2026 dalembert engineers
 # Regenerate every benchmark figure: Release build, dal_bench -> bench/results/*.csv, gnuplot
-# charts (PNG + SVG), and the README's "Speed and accuracy" section (bench/report.sh).
+# charts (PNG + SVG), and the tables of docs/performance.md (bench/report.sh).
 # Usage: scripts/bench.sh [--quick | --full]   (quick: a few minutes; full: much longer)
 set -euo pipefail
 mode=--quick
@@ -35,5 +35,5 @@ mkdir -p "$out"
 rm -f "$out"/*.png "$out"/*.svg
 # (gnuplot warns about curves without points, e.g. a formulation that failed at every rtol)
 gnuplot -e "dir='$out'" "$root/bench/plots.gp" 2>&1 | { grep -v "Skipping data file" || true; } >&2
-"$root/bench/report.sh" "$out" "$root/README.md"
+"$root/bench/report.sh" "$out" "$root/docs/performance.md"
 echo "bench: results, charts and summary in $out ($(($(date +%s) - start)) s)"
