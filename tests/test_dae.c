@@ -257,8 +257,8 @@ static void test_pendulum_vs_minimal(void) {
   printf("  pendulum GGL vs minimal: max position error %.2e (%.0fx rtol), tension %.2e\n", emax,
          emax / tol, lmax);
   // IDA's achieved error is 100-1000x its tolerance (see dae.h): bound it there
-  CHECK_MSG(emax < 1e3 * tol, "position error %g", emax);
-  CHECK_MSG(lmax < 1e4 * tol, "tension error %g", lmax);
+  CHECK_MSG(emax < 16 * tol, "position error %g", emax);
+  CHECK_MSG(lmax < 16 * tol, "tension error %g", lmax);
   dal_state_destroy(a);
   dal_state_destroy(b);
   dal_system_destroy(ms);
@@ -297,8 +297,8 @@ static void test_double_and_driven(void) {
     }
     printf("  double pendulum GGL vs minimal: %.2e (%.0fx rtol), forces %.2e\n", emax, emax / tol,
            fmaxd);
-    CHECK_MSG(emax < 1e3 * tol, "double pendulum error %g", emax);
-    CHECK_MSG(fmaxd < 1e4 * tol, "constraint forces differ by %g", fmaxd);
+    CHECK_MSG(emax < 16 * tol, "double pendulum error %g", emax);
+    CHECK_MSG(fmaxd < 16 * tol, "constraint forces differ by %g", fmaxd);
     dal_state_destroy(a);
     dal_state_destroy(b);
     dal_system_destroy(ms);
@@ -326,7 +326,7 @@ static void test_double_and_driven(void) {
       emax = fmax(emax, hypot(q[0] - r[0], q[1] - r[1]));
     }
     printf("  driven pendulum GGL vs minimal: %.2e (%.0fx rtol)\n", emax, emax / tol);
-    CHECK_MSG(emax < 1e3 * tol, "driven pendulum error %g", emax);
+    CHECK_MSG(emax < 16 * tol, "driven pendulum error %g", emax);
     dal_state_destroy(a);
     dal_state_destroy(b);
     dal_system_destroy(ms);
@@ -382,7 +382,7 @@ static void test_rotating_ring(void) {
   }
   printf("  rotating ring GGL vs minimal: %.2e (%.0fx rtol), residual %.1e\n", emax, emax / tol,
          phimax);
-  CHECK_MSG(emax < 1e3 * tol, "rotating ring error %g", emax);
+  CHECK_MSG(emax < 16 * tol, "rotating ring error %g", emax);
   CHECK(phimax < 1e2 * tol);
   dal_state_destroy(a);
   dal_state_destroy(b);
@@ -424,8 +424,8 @@ static void test_turning_line(void) {
     nmax = fmax(nmax, fabs(dal_state_lambda(st)[0] - 2.0 * w * sd) / (2.0 * w * sd));
   }
   printf("  turning line vs s0 cosh(w t): relative %.2e, normal force %.2e\n", emax, nmax);
-  CHECK_MSG(emax < 1e3 * tol, "turning line error %g", emax);
-  CHECK_MSG(nmax < 1e4 * tol, "normal force error %g", nmax);
+  CHECK_MSG(emax < 16 * tol, "turning line error %g", emax);
+  CHECK_MSG(nmax < 16 * tol, "normal force error %g", nmax);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -759,7 +759,7 @@ static void test_klu_vs_dense(void) {
          "evaluations %ld vs %ld\n",
          diff, (double)sa.nonlin_iters / sa.steps, (double)sb.nonlin_iters / sb.steps, sa.rhs_evals,
          sb.rhs_evals);
-  CHECK_MSG(diff < 1e3 * tol, "dense and KLU differ by %g", diff);
+  CHECK_MSG(diff < 16 * tol, "dense and KLU differ by %g", diff);
   // both solve with the same assembled Newton matrix (a Cartesian chain: it is the whole
   // Jacobian): no difference quotients, so residual evaluations stay near one per Newton
   // iteration in both (difference quotients cost neq = 30 more per Jacobian)
