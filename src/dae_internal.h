@@ -33,9 +33,6 @@ void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lam
 /// max |x_i| over n entries (NaN counts as largest); *at (nullable) receives its index
 double dal__max_abs(const double *x, int n, int *at);
 
-/// Kinematics and constraint rows at the state's (t, q, qdot) (no dynamics).
-int dal__eval_constraints(const dal_system *sys, dal_state *st);
-
 /// Project the state's q onto phi = 0 (minimum-norm Gauss-Newton, at most maxit iterations,
 /// max |phi| <= tol) then qdot onto G qdot + dphi/dt = 0 (M-orthogonal). Leaves kinematics,
 /// constraint rows and (when the velocity was projected) dynamics current. *iters receives the

@@ -33,12 +33,6 @@ static void handle_free(void *p) {
   free(h);
 }
 
-void dal__integ_reset(dal_state *st) {
-  if (st->integ && st->integ_free) st->integ_free(st->integ);
-  st->integ = NULL;
-  st->integ_free = NULL;
-  dal__kkt_reset(st->kkt); // the KKT factorization's history goes with it
-}
 
 // resolve formulation and method; *prob is NULL for the IDA route; *tight is set when AUTO
 // chose the index-1 form with projection because IDA cannot honour the tolerance (solve.h)

@@ -198,3 +198,8 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   if (need & DAL_P_POW) dal__power(sys, st);
   return DAL_OK;
 }
+
+int dal__eval_constraints(const dal_system *sys, dal_state *st) {
+  dal__state_moved(st);
+  return dal__eval(sys, st, DAL_P_CON);
+}

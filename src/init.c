@@ -18,10 +18,6 @@
 /// position iterations of the consistent initialization
 #define INIT_MAXIT 50
 
-int dal__eval_constraints(const dal_system *sys, dal_state *st) {
-  dal__state_moved(st);
-  return dal__eval(sys, st, DAL_P_CON);
-}
 
 double dal__max_abs(const double *x, int n, int *at) {
   double mx = 0.0;

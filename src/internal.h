@@ -263,6 +263,8 @@ const char *dal__builtin_param_check(const dal_primitive *prim, const double *pa
 /// depends on; st->have becomes the set computed. Returns 0, DAL__RECOVERABLE or a negative
 /// status with the state's message naming the culprit.
 int dal__eval(const dal_system *sys, dal_state *st, unsigned need);
+/// Kinematics and constraint rows at the state's (t, q, qdot) (no dynamics).
+int dal__eval_constraints(const dal_system *sys, dal_state *st);
 /// the state's (t, q, qdot) changed: no product is current any more
 static inline void dal__state_moved(dal_state *st) { st->have = 0; }
 
@@ -360,7 +362,9 @@ void dal__loop_solve(const dal_system *sys, dal_state *st, const double *a, cons
 /// global compact Jacobians J_k = Lp_k J_parent + Lc_k from the local blocks (DAL_P_J)
 void dal__jacobians(const dal_system *sys, dal_state *st);
 
-/// drop integrator memory (called by dal_state_set and dal_state_destroy)
+/// drop integrator memory (dal_state_set, dal_state_destroy, parameter changes); the KKT
+/// factorization's history goes with it, so that results do not depend on a state's past
+/// (integ.c)
 void dal__integ_reset(dal_state *st);
 
 /// per-trajectory parameters (params.c): point at the system's arrays / free owned copies

@@ -187,19 +187,6 @@ double *dal__kkt_scratch(dal_state *st, int i) {
   return st->kkt->scratch + (size_t)i * st->kkt->nk;
 }
 
-void dal__dense_G(const dal_system *sys, const dal_state *st, double *G, int ld) {
-  for (int j = 0; j < sys->n; ++j)
-    memset(G + (size_t)j * ld, 0, (size_t)sys->m * sizeof(double));
-  for (int ci = 0; ci < sys->ncon; ++ci) {
-    const dal_con *c = &sys->con[ci];
-    const int *dc = sys->cdep + c->dep_off;
-    const double *Gc = st->G + c->g_off;
-    for (int r = 0; r < c->prim->nout; ++r)
-      for (int k = 0; k < c->ndep; ++k)
-        G[(size_t)dc[k] * ld + c->row + r] = Gc[r * c->ndep + k];
-  }
-}
-
 void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lambda, double *y) {
   memset(y, 0, (size_t)sys->n * sizeof(double));
   for (int ci = 0; ci < sys->ncon; ++ci) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Trajectory state: allocation (all workspace up front), setting, accessors, error text.
+// Trajectory state: allocation (all workspace up front), setting, accessors, error text, and
+// the Lagrange-equation residual of a proposed path.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -250,4 +251,59 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
   for (int a = 0; a < d; ++a)
     for (int c = 0; c < nd; ++c) J[a * n + dep[c]] = Jk[a * nd + c];
   return DAL_OK;
+}
+
+// never DAL_OK with a non-finite residual: a path whose accelerations or speeds are too large
+// for double precision makes M qddot + c - Q overflow
+static int residual_finite(const dal_system *sys, dal_state *st, const double *res, double t) {
+  for (int i = 0; i < sys->n; ++i)
+    if (!isfinite(res[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "lagrange_residual: the residual of coordinate '%s' overflows (%g) at "
+                      "t=%.17g: the path's velocities or accelerations are too large for double "
+                      "precision",
+                      sys->coord_names[i], res[i], t);
+  return DAL_OK;
+}
+
+int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *path, double t,
+                          double *res, void *ctx) {
+  int pair = dal__check_pair(sys, st, "lagrange_residual");
+  if (pair) return pair;
+  if (!path || !res) return DAL_FAIL(st, DAL_E_ARG, "lagrange_residual: path or res is NULL");
+  if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "lagrange_residual: t is %g", t);
+  int n = sys->n, rc;
+  // the path's local tuple at t: q, qdot, qddot
+  rc = path(dal_var(t, 1.0), st->jq, ctx);
+  if (rc) return DAL_FAIL(st, DAL_E_CALLBACK, "proposed path failed (returned %d) at t=%.17g",
+                          rc, t);
+  double *qdd = st->work;
+  for (int i = 0; i < n; ++i) {
+    if (!dal_jet_isfinite(st->jq[i]))
+      return DAL_FAIL(st, DAL_E_DOMAIN, "proposed path: coordinate '%s' is not finite at "
+                                        "t=%.17g", sys->coord_names[i], t);
+    st->q[i] = st->jq[i].v;
+    st->qdot[i] = st->jq[i].d;
+    qdd[i] = st->jq[i].dd;
+  }
+  st->t = t;
+  dal__integ_reset(st);
+  dal__state_moved(st);
+  if (sys->lag) {
+    double h, *rhs = st->work + n;
+    rc = dal__lagrangian_terms(sys, st, st->M, rhs, &h);
+    st->have |= DAL_P_M | DAL_P_MLOW;
+    if (rc) return dal__public_status(rc);
+    for (int i = 0; i < n; ++i) {
+      double s = -rhs[i];
+      for (int j = 0; j < n; ++j) s += st->M[(size_t)j * n + i] * qdd[j];
+      res[i] = s;
+    }
+    return residual_finite(sys, st, res, t);
+  }
+  if ((rc = dal__eval(sys, st, DAL_P_J | DAL_P_DYN)) != 0)
+    return dal__public_status(rc);
+  dal__mass_apply(sys, st, qdd, res);
+  for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];
+  return residual_finite(sys, st, res, t);
 }
