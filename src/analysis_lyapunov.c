@@ -294,7 +294,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
        (est = calloc((size_t)p, sizeof(double)));
   if (ok) {
     // workspace of the QR factorization and of forming Q
-    double q1, q2;
+    double q1 = 0.0, q2 = 0.0;
     ok = LAPACKE_dgeqrf_work(LAPACK_COL_MAJOR, ny, p, L.Y + ny, ny, L.tau, &q1, -1) == 0 &&
          LAPACKE_dorgqr_work(LAPACK_COL_MAJOR, ny, p, p, L.Y + ny, ny, L.tau, &q2, -1) == 0;
     L.lwork = (lapack_int)fmax(fmax(q1, q2), 1.0);
