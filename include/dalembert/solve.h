@@ -38,20 +38,20 @@ extern "C" {
 ///
 /// | method / form            | c       | worst error / rtol (t = 10) | bead, 1000 periods |
 /// |--------------------------|---------|-----------------------------|--------------------|
-/// | DOPRI5                   | 0.01    | 1.7                         | 12.8               |
-/// | Fehlberg 7(8)            | 0.01    | 2.6                         | 10.6               |
+/// | DOPRI5                   | 0.01    | 2.4                         | 12.8               |
+/// | Fehlberg 7(8)            | 0.01    | 2.3                         | 10.6               |
 /// | Bulirsch-Stoer           | 0.005   | 9.0                         | 8.4                |
 /// | Adams (CVODE)            | 0.005   | 8.3                         | 7.7                |
-/// | BDF (CVODE)              | 0.0005  | 3.2                         | 10.1               |
-/// | GGL (IDA)                | 0.001   | 9.8 to rtol 1e-10; clamped  | 18.2 (to 1e-8)     |
-/// | index-1 + projection     | x 0.2   | 5.7 (BS), 2.7 (DOPRI5)      |                    |
+/// | BDF (CVODE)              | 0.0005  | 7.8                         | 10.2               |
+/// | GGL (IDA)                | 0.001   | 4.0 to rtol 1e-9; clamped   | 18.2 (to 1e-8)     |
+/// | index-1 + projection     | x 0.2   | 1.1 (BS), 2.1 (DOPRI5)      |                    |
 /// | index-1 in IDA           | 0.0002  | drifts: 34 to 1e-9, 77 at 1e-10 (no stabilization) |
 /// | index-3 in IDA           | 0.001   | 1e3 - 1e5 (kept to show where it fails)            |
 ///
 /// IDA is run at no less than 1e-12 (its corrector stalls on rounding below: limits.h); a
 /// tighter request is clamped, atol scaled alike, and the clamp shows in dal_stats.rtol_used
-/// (GGL then measures 98 x rtol at 1e-11 and 980 x at 1e-12). So with DAL_FORM_AUTO and
-/// DAL_METHOD_AUTO, a constrained system asked for rtol < 1e-9 runs the index-1 form with
+/// (GGL then measures 23 x rtol at 1e-10, 230 x at 1e-11, 2300 x at 1e-12). So with
+/// DAL_FORM_AUTO and DAL_METHOD_AUTO, a constrained system asked for rtol < 1e-9 runs the index-1 form with
 /// projection and Bulirsch-Stoer instead (from a consistent start), which honours it (row
 /// "auto (constrained)" of the table in tests/test_core.c). Ill-conditioned problems (chaos,
 /// near-separatrix motion) amplify local errors further.
