@@ -826,8 +826,8 @@ static void fz_products(fz *f, const fz_run_ctx *r, dal_state *st, const char *c
   fz_s(f, st, "state_energies", rc);
   if (rc != DAL_OK && rc != DAL_E_NONFINITE) fz_die(call, rc, "energies of an evaluated state");
   // h is NaN by definition where a constraint depends on t (state.h), never inf
-  int h_ok = isfinite(e.h) || (isnan(e.h) && r->mc > 0);
-  if (rc == DAL_OK && (!isfinite(e.E) || !h_ok || (!r->lag && !isfinite(e.T))))
+  if (rc == DAL_OK && (!isfinite(e.E) || !(isfinite(e.h) || (isnan(e.h) && r->mc > 0)) ||
+                       (!r->lag && !isfinite(e.T))))
     fz_die(call, rc, "energies not finite after DAL_OK");
   static double buf[3 * FZ_NQ];
   for (int k = 0; k < r->N && k < 2; ++k) {
