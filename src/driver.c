@@ -33,7 +33,6 @@ static void handle_free(void *p) {
   free(h);
 }
 
-
 // resolve formulation and method; *prob is NULL for the IDA route; *tight is set when AUTO
 // chose the index-1 form with projection because IDA cannot honour the tolerance (solve.h)
 static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method *meth,
@@ -118,8 +117,7 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
     // the index-1 form starts from a consistent state too, and projects after every step
     oc.form = DAL_FORM_INDEX1;
     oc.project = 1;
-    if ((rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL))) != 0)
-      return rc;
+    if ((rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL))) != 0) return rc;
     o = &oc;
   }
   h = calloc(1, sizeof *h);
@@ -202,8 +200,9 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
     return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
   // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
   // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
-  int fixed = o->method == DAL_METHOD_RK4 ||
-              (o->fixed_erk && (o->method == DAL_METHOD_DOPRI5 || o->method == DAL_METHOD_FEHLBERG78));
+  int fixed =
+      o->method == DAL_METHOD_RK4 ||
+      (o->fixed_erk && (o->method == DAL_METHOD_DOPRI5 || o->method == DAL_METHOD_FEHLBERG78));
   const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
   const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
   for (int i = 0; i < 4; ++i)

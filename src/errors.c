@@ -54,12 +54,14 @@ void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len) {
 int dal__cb_status(dal_state *st, int rc, const char *what) {
   if (rc == 0) return DAL_OK;
   if (rc > 0) {
-    DAL_FAIL(st, DAL__RECOVERABLE, "%s asked for a smaller step (returned %d) at t=%.17g", what,
-             rc, st->t);
+    DAL_FAIL(st, DAL__RECOVERABLE, "%s asked for a smaller step (returned %d) at t=%.17g", what, rc,
+             st->t);
     return DAL__RECOVERABLE;
   }
-  return DAL_FAIL(st, DAL_E_CALLBACK, "%s failed (returned %d) at t=%.17g; the state holds the "
-                                      "last accepted step", what, rc, st->t);
+  return DAL_FAIL(st, DAL_E_CALLBACK,
+                  "%s failed (returned %d) at t=%.17g; the state holds the "
+                  "last accepted step",
+                  what, rc, st->t);
 }
 
 int dal__public_status(int rc) {

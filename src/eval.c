@@ -47,15 +47,19 @@ static int eval_lagrangian(const dal_system *sys, dal_state *st) {
 static int check_point(const dal_system *sys, dal_state *st) {
   int bad = -1, vel = 0;
   for (int i = 0; i < sys->n && bad < 0; ++i)
-    if (!isfinite(st->q[i])) bad = i;
-    else if (!isfinite(st->qdot[i])) bad = i, vel = 1;
+    if (!isfinite(st->q[i]))
+      bad = i;
+    else if (!isfinite(st->qdot[i]))
+      bad = i, vel = 1;
   if (isfinite(st->t) && bad < 0) return DAL_OK;
   double x = bad < 0 ? st->t : vel ? st->qdot[bad] : st->q[bad];
   DAL_FAIL(st, DAL__RETRY_NONFINITE,
            "the integrator's trial point is not finite (%s%s%s = %g at t=%g): a step overflowed, "
            "or its step size did (velocities or accelerations too large for its error control); "
            "rescale the model's units, or bound the step with opts.h0/opts.hmax",
-           bad < 0 ? "time" : vel ? "velocity of '" : "coordinate '",
+           bad < 0 ? "time"
+           : vel   ? "velocity of '"
+                   : "coordinate '",
            bad < 0 ? "" : sys->coord_names[bad], bad < 0 ? "" : "'", x, st->t);
   return DAL__RETRY_NONFINITE;
 }
@@ -128,8 +132,10 @@ void dal__power(const dal_system *sys, dal_state *st) {
   DAL_NEED(st, DAL_P_OUT | DAL_P_PW);
   // reactions of moving maps and multipliers of moving constraints do work; fixed ones do not
   double p = st->pw[0] + st->pw[1];
-  for (int i = 0; i < sys->N * sys->dim; ++i) p += st->N[i] * st->drdt[i];
-  for (int r = 0; r < sys->m; ++r) p -= st->lambda[r] * st->phit[r];
+  for (int i = 0; i < sys->N * sys->dim; ++i)
+    p += st->N[i] * st->drdt[i];
+  for (int r = 0; r < sys->m; ++r)
+    p -= st->lambda[r] * st->phit[r];
   st->power = p;
   st->have |= DAL_P_POW;
 }

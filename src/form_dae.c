@@ -54,7 +54,8 @@ int dal__dae_init(dal_dae *f, const dal_system *sys, dal_state *st, dal_formulat
 
 void dal__dae_free(dal_dae *f) {
   double *p[] = {f->H, f->hv, f->Ju, f->tmp, f->Hq, f->dir, f->udot, f->g0};
-  for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i) free(p[i]);
+  for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
+    free(p[i]);
   dal__csc_free(&f->pat);
   f->H = f->hv = f->Ju = f->tmp = f->Hq = f->dir = f->udot = f->g0 = NULL;
 }
@@ -83,12 +84,14 @@ int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, d
     dal__gt_apply(sys, st, y + f->off_mu, Fq);
   else
     memset(Fq, 0, (size_t)n * sizeof(double));
-  for (int i = 0; i < n; ++i) Fq[i] += yp[i] - v[i];
+  for (int i = 0; i < n; ++i)
+    Fq[i] += yp[i] - v[i];
   // Fv = M v' - (Q - c) - G' lambda
   dal__mass_apply(sys, st, vd, Fv);
   double *gl = m ? dal__kkt_scratch(st, 0) : NULL; // no KKT workspace when m = 0
   if (m) dal__gt_apply(sys, st, lam, gl);
-  for (int i = 0; i < n; ++i) Fv[i] -= st->Q[i] - st->c[i] + (m ? gl[i] : 0.0);
+  for (int i = 0; i < n; ++i)
+    Fv[i] -= st->Q[i] - st->c[i] + (m ? gl[i] : 0.0);
   // constraint rows
   if (f->form == DAL_FORM_GGL) {
     for (int r = 0; r < m; ++r) {
@@ -104,7 +107,8 @@ int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, d
       const int *dc = sys->cdep + c->dep_off;
       const double *Gc = st->G + c->g_off;
       for (int r = 0; r < c->prim->nout; ++r)
-        for (int k = 0; k < c->ndep; ++k) Fl[c->row + r] += Gc[r * c->ndep + k] * vd[dc[k]];
+        for (int k = 0; k < c->ndep; ++k)
+          Fl[c->row + r] += Gc[r * c->ndep + k] * vd[dc[k]];
     }
     for (int r = 0; r < m; ++r)
       Fl[r] += st->gphi[r] + 2.0 * f->alpha * st->phidot[r] + f->beta * f->beta * st->phi[r];
@@ -138,7 +142,8 @@ void dal__dae_mask(const dal_dae *f, double *id) {
   // index-3 keeps only q in the error test, the usual practice for the higher-index variables
   // of a BDF code (Brenan, Campbell and Petzold, sec. 5.4): with v in it the steps collapse
   int nerr = (f->form == DAL_FORM_INDEX3 ? 1 : 2) * f->n;
-  for (int i = 0; i < f->neq; ++i) id[i] = i < nerr || i == f->off_w ? 1.0 : 0.0;
+  for (int i = 0; i < f->neq; ++i)
+    id[i] = i < nerr || i == f->off_w ? 1.0 : 0.0;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -175,8 +180,10 @@ static int con_curvature(dal_dae *f, int ci) {
   // local velocities udot
   int k = 0;
   for (int a = 0; a < c->npart; ++a)
-    for (int b = 0; b < d; ++b) f->udot[k++] = st->v[parts[a] * d + b];
-  for (int i = 0; i < c->ncoord; ++i) f->udot[k++] = st->qdot[coords[i]];
+    for (int b = 0; b < d; ++b)
+      f->udot[k++] = st->v[parts[a] * d + b];
+  for (int i = 0; i < c->ncoord; ++i)
+    f->udot[k++] = st->qdot[coords[i]];
   memset(dir, 0, (size_t)nin * sizeof(double));
   // diagonal: along e_i
   for (int i = 0; i < nin; ++i) {
@@ -184,7 +191,8 @@ static int con_curvature(dal_dae *f, int ci) {
     rc = dal__prim_eval(sys, st, owner, dir, NULL, 0.0);
     dir[i] = 0.0;
     if (rc) return rc;
-    for (int r = 0; r < nout; ++r) H[(r * nin + i) * nin + i] = st->jout[r].dd;
+    for (int r = 0; r < nout; ++r)
+      H[(r * nin + i) * nin + i] = st->jout[r].dd;
   }
   // off-diagonal: along e_i + e_j
   for (int i = 0; i < nin; ++i)
@@ -194,15 +202,15 @@ static int con_curvature(dal_dae *f, int ci) {
       dir[i] = dir[j] = 0.0;
       if (rc) return rc;
       for (int r = 0; r < nout; ++r) {
-        double h =
-            0.5 * (st->jout[r].dd - H[(r * nin + i) * nin + i] - H[(r * nin + j) * nin + j]);
+        double h = 0.5 * (st->jout[r].dd - H[(r * nin + i) * nin + i] - H[(r * nin + j) * nin + j]);
         H[(r * nin + i) * nin + j] = H[(r * nin + j) * nin + i] = h;
       }
     }
   // mixed with the motion: along (udot, 1) and (udot + e_i, 1)
   rc = dal__prim_eval(sys, st, owner, f->udot, NULL, 1.0);
   if (rc) return rc;
-  for (int r = 0; r < nout; ++r) f->g0[r] = st->jout[r].dd;
+  for (int r = 0; r < nout; ++r)
+    f->g0[r] = st->jout[r].dd;
   for (int i = 0; i < nin; ++i) {
     double keep = f->udot[i];
     f->udot[i] = keep + 1.0;
@@ -232,13 +240,16 @@ static void local_chain(dal_dae *f, int ci) {
     const double *Jp = st->J + sys->pj_off[p];
     int col = 0;
     for (int cp = 0; cp < ndp; ++cp) {
-      while (dc[col] != dp[cp]) ++col;
-      for (int b = 0; b < d; ++b) f->Ju[(a * d + b) * nd + col] = Jp[b * ndp + cp];
+      while (dc[col] != dp[cp])
+        ++col;
+      for (int b = 0; b < d; ++b)
+        f->Ju[(a * d + b) * nd + col] = Jp[b * ndp + cp];
     }
   }
   for (int i = 0; i < c->ncoord; ++i) {
     int col = 0;
-    while (dc[col] != coords[i]) ++col;
+    while (dc[col] != coords[i])
+      ++col;
     f->Ju[(c->npart * d + i) * nd + col] += 1.0;
   }
 }
@@ -250,14 +261,16 @@ static void chained_hessian(dal_dae *f, int ci, const double *wt) {
   double *Hs = f->tmp;
   memset(Hs, 0, (size_t)nin * (size_t)nin * sizeof(double));
   for (int r = 0; r < nout; ++r)
-    for (int i = 0; i < nin * nin; ++i) Hs[i] += wt[r] * f->H[r * nin * nin + i];
+    for (int i = 0; i < nin * nin; ++i)
+      Hs[i] += wt[r] * f->H[r * nin * nin + i];
   for (int a = 0; a < nd; ++a)
     for (int b = 0; b < nd; ++b) {
       double s = 0.0;
       for (int i = 0; i < nin; ++i) {
         double ji = f->Ju[i * nd + a];
         if (ji == 0.0) continue;
-        for (int j = 0; j < nin; ++j) s += ji * Hs[i * nin + j] * f->Ju[j * nd + b];
+        for (int j = 0; j < nin; ++j)
+          s += ji * Hs[i * nin + j] * f->Ju[j * nd + b];
       }
       f->Hq[a * nd + b] = s;
     }
@@ -283,7 +296,8 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
     for (int a = 0; a < nd; ++a)
       for (int b = 0; b < nd; ++b) {
         double v = 0.0;
-        for (int c = 0; c < d && values; ++c) v += Jp[c * nd + a] * Jp[c * nd + b];
+        for (int c = 0; c < d && values; ++c)
+          v += Jp[c * nd + a] * Jp[c * nd + b];
         jadd(f, s, n + dp[a], n + dp[b], cj * st->prm.mass[p] * v);
       }
   }
@@ -317,7 +331,8 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
         // d(G v + phi_t)/dq = Ju' hv (GGL: q columns; index-1: v and q columns)
         if (f->form != DAL_FORM_INDEX3) {
           double h = 0.0;
-          for (int i = 0; i < nin && values; ++i) h += f->Ju[i * nd + k] * f->hv[r * nin + i];
+          for (int i = 0; i < nin && values; ++i)
+            h += f->Ju[i * nd + k] * f->hv[r * nin + i];
           if (f->form == DAL_FORM_GGL) {
             jadd(f, s, f->off_l + row, j, h);
           } else {
@@ -332,11 +347,13 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
     // approximation)
     if (values) chained_hessian(f, ci, y + f->off_l + c->row);
     for (int a = 0; a < nd; ++a)
-      for (int b = 0; b < nd; ++b) jadd(f, s, n + dc[a], dc[b], values ? -f->Hq[a * nd + b] : 0.0);
+      for (int b = 0; b < nd; ++b)
+        jadd(f, s, n + dc[a], dc[b], values ? -f->Hq[a * nd + b] : 0.0);
     if (f->form == DAL_FORM_GGL) {
       if (values) chained_hessian(f, ci, y + f->off_mu + c->row);
       for (int a = 0; a < nd; ++a)
-        for (int b = 0; b < nd; ++b) jadd(f, s, dc[a], dc[b], values ? f->Hq[a * nd + b] : 0.0);
+        for (int b = 0; b < nd; ++b)
+          jadd(f, s, dc[a], dc[b], values ? f->Hq[a * nd + b] : 0.0);
     }
   }
   return DAL_OK;

@@ -16,9 +16,9 @@ typedef struct dal_dae {
   dal_formulation form; ///< DAL_FORM_GGL, DAL_FORM_INDEX3 or DAL_FORM_INDEX1
   double alpha, beta;   ///< index-1 Baumgarte terms
   int n, m, neq;
-  int off_l, off_mu;    ///< offsets of lambda and mu in y (mu: -1 unless GGL)
-  int off_w;            ///< offset of the work W (last unknown; -1 unless opts.work)
-  dal_csc pat;          ///< pattern of the Newton matrix (after dal__dae_pattern)
+  int off_l, off_mu; ///< offsets of lambda and mu in y (mu: -1 unless GGL)
+  int off_w;         ///< offset of the work W (last unknown; -1 unless opts.work)
+  dal_csc pat;       ///< pattern of the Newton matrix (after dal__dae_pattern)
   // geometric-stiffness scratch (max_in, max_out, largest constraint dependency count)
   double *H, *hv, *Ju, *tmp, *Hq, *dir, *udot, *g0;
 } dal_dae;

@@ -32,11 +32,12 @@ static void index1_from_state(const dal_system *sys, const dal_state *st, double
 
 // The acceleration of coordinate i is not finite at a trial point: name what overflowed, the
 // Baumgarte terms or the forces (or, both finite, the accelerations themselves). A retry.
-static int index1_nonfinite(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                            int i, double t) {
+static int index1_nonfinite(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, int i,
+                            double t) {
   double al = opts->baumgarte_alpha, be = opts->baumgarte_beta;
   int forces_ok = 1, baum_ok = 1;
-  for (int j = 0; j < sys->n; ++j) forces_ok &= isfinite(st->Q[j] - st->c[j]);
+  for (int j = 0; j < sys->n; ++j)
+    forces_ok &= isfinite(st->Q[j] - st->c[j]);
   for (int r = 0; r < sys->m; ++r) {
     double bt = 2.0 * al * st->phidot[r] + be * be * st->phi[r];
     baum_ok &= isfinite(bt) && isfinite(st->gphi[r] + bt);
@@ -114,4 +115,3 @@ const dal_ode_problem dal__problem_index1 = {
     .to_state = index1_to_state,
     .tol_factor = 0.2,
 };
-

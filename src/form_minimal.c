@@ -45,4 +45,3 @@ const dal_ode_problem dal__problem_minimal = {
     .to_state = minimal_to_state,
     .tol_factor = 1.0,
 };
-

@@ -19,8 +19,10 @@ static int find_sorted(const int *list, int n, int j) {
   while (lo <= hi) {
     int mid = (lo + hi) / 2;
     if (list[mid] == j) return mid;
-    if (list[mid] < j) lo = mid + 1;
-    else hi = mid - 1;
+    if (list[mid] < j)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
   }
   return -1;
 }
@@ -51,8 +53,10 @@ dal_inst dal__inst(const dal_system *sys, const dal_state *st, int owner) {
 
 // the owner of a primitive instance: particle k (owner = k >= 0) or constraint c (-1 - c)
 static void owner_name(const dal_system *sys, int owner, char *buf, size_t len) {
-  if (owner >= 0) snprintf(buf, len, "particle '%s'", sys->part_names[owner]);
-  else snprintf(buf, len, "constraint '%s'", sys->con[-1 - owner].name);
+  if (owner >= 0)
+    snprintf(buf, len, "particle '%s'", sys->part_names[owner]);
+  else
+    snprintf(buf, len, "constraint '%s'", sys->con[-1 - owner].name);
 }
 
 // the failure of a jet function call (cold path of eval_checked): names the culprit
@@ -79,15 +83,15 @@ static int eval_failed(const dal_system *sys, dal_state *st, const dal_inst *in,
                         "%s '%s' of %s overflows at t=%.17g, %s: its inputs along the motion "
                         "reach %g (positions, velocities or accelerations whose products exceed "
                         "double range), output %d is (%g, %g, %g)",
-                        kind, in->prim->name, name, st->t, qs, big, i, st->jout[i].v,
-                        st->jout[i].d, st->jout[i].dd);
+                        kind, in->prim->name, name, st->t, qs, big, i, st->jout[i].v, st->jout[i].d,
+                        st->jout[i].dd);
       return DAL_FAIL(st, DAL_E_DOMAIN,
                       "%s '%s' of %s produced a non-finite value or derivative (output %d: "
                       "%g, %g, %g) at t=%.17g, %s; an input is outside the primitive's domain "
                       "(sqrt/log/asin of an invalid value, a division by zero, a derivative of "
                       "sqrt at 0)",
-                      kind, in->prim->name, name, i, st->jout[i].v, st->jout[i].d,
-                      st->jout[i].dd, st->t, qs);
+                      kind, in->prim->name, name, i, st->jout[i].v, st->jout[i].d, st->jout[i].dd,
+                      st->t, qs);
     }
   return DAL_OK;
 }
@@ -100,15 +104,16 @@ static int eval_checked(const dal_system *sys, dal_state *st, const dal_inst *in
                         int owner) {
   int rc = in->prim->eval(st->jin, t, in->param, st->jout, in->ctx);
   double z = 0.0;
-  for (int i = 0; i < in->prim->nout; ++i) z += st->jout[i].v + st->jout[i].d + st->jout[i].dd;
+  for (int i = 0; i < in->prim->nout; ++i)
+    z += st->jout[i].v + st->jout[i].d + st->jout[i].dd;
   if (rc || !isfinite(z)) return eval_failed(sys, st, in, t, owner, rc);
   return DAL_OK;
 }
 
 // the values u of an instance's inputs (particle positions, then coordinates) as jets on the
 // curve u + s d1 + s^2/2 d2 (d1, d2 nullable)
-static void load_inputs(const dal_system *sys, dal_state *st, const dal_inst *in,
-                        const double *d1, const double *d2) {
+static void load_inputs(const dal_system *sys, dal_state *st, const dal_inst *in, const double *d1,
+                        const double *d2) {
   int d = sys->dim, k = 0;
   for (int a = 0; a < in->npart; ++a)
     for (int b = 0; b < d; ++b, ++k)
@@ -149,15 +154,18 @@ static int local_jacobian(const dal_system *sys, dal_state *st, const dal_inst *
   // the inputs' values (particle positions, then coordinates) with no direction yet
   for (int a = 0; a < in->npart; ++a) {
     const double *r = st->r + in->parts[a] * d;
-    for (int b = 0; b < d; ++b) st->jin[k++] = dal_const(r[b]);
+    for (int b = 0; b < d; ++b)
+      st->jin[k++] = dal_const(r[b]);
   }
-  for (int i = 0; i < in->ncoord; ++i) st->jin[k++] = dal_const(st->q[in->coords[i]]);
+  for (int i = 0; i < in->ncoord; ++i)
+    st->jin[k++] = dal_const(st->q[in->coords[i]]);
   for (int i = first; i < nin; ++i) {
     if (i > first) st->jin[i - 1].d = 0.0;
     st->jin[i].d = 1.0;
     int rc = eval_checked(sys, st, in, t, owner);
     if (rc) return rc;
-    for (int a = 0; a < nout; ++a) st->loc[a * nin + i] = st->jout[a].d;
+    for (int a = 0; a < nout; ++a)
+      st->loc[a * nin + i] = st->jout[a].d;
   }
   return DAL_OK;
 }
@@ -173,10 +181,12 @@ static void chain_particle(const dal_system *sys, const dal_state *st, int p, co
   const double *Jp = st->J + sys->pj_off[p];
   int c = 0;
   for (int cp = 0; cp < ndp; ++cp) {
-    while (dep_out[c] != dp[cp]) ++c; // subset of a sorted list: always found
+    while (dep_out[c] != dp[cp])
+      ++c; // subset of a sorted list: always found
     for (int r = 0; r < nrow; ++r) {
       double s = 0.0;
-      for (int b = 0; b < d; ++b) s += loc[r * nin + col0 + b] * Jp[b * ndp + cp];
+      for (int b = 0; b < d; ++b)
+        s += loc[r * nin + col0 + b] * Jp[b * ndp + cp];
       out[r * ndep_out + c] += s;
     }
   }
@@ -203,25 +213,24 @@ static int map_nonfinite(const dal_system *sys, dal_state *st, int i, const char
 static int kinematics_map(const dal_system *sys, dal_state *st) {
   int n = sys->n, Nd = sys->N * sys->dim;
   dal_jet t = dal_const(st->t);
-  for (int j = 0; j < n; ++j) st->jq[j] = dal_const(st->q[j]);
+  for (int j = 0; j < n; ++j)
+    st->jq[j] = dal_const(st->q[j]);
   for (int j = 0; j < n; ++j) {
     st->jq[j].d = 1.0;
     int rc = sys->map(st->jq, t, st->jr, sys->map_ctx);
     st->jq[j].d = 0.0;
     if (rc) return dal__cb_status(st, rc, "whole-system coordinate map");
     for (int i = 0; i < Nd; ++i) {
-      if (!dal_jet_isfinite(st->jr[i]))
-        return map_nonfinite(sys, st, i, sys->coord_names[j]);
-      st->J[(size_t)(i / sys->dim) * sys->dim * n + (size_t)(i % sys->dim) * n + j] =
-          st->jr[i].d;
+      if (!dal_jet_isfinite(st->jr[i])) return map_nonfinite(sys, st, i, sys->coord_names[j]);
+      st->J[(size_t)(i / sys->dim) * sys->dim * n + (size_t)(i % sys->dim) * n + j] = st->jr[i].d;
     }
   }
-  for (int j = 0; j < n; ++j) st->jq[j] = dal_var(st->q[j], st->qdot[j]);
+  for (int j = 0; j < n; ++j)
+    st->jq[j] = dal_var(st->q[j], st->qdot[j]);
   int rc = sys->map(st->jq, dal_var(st->t, 1.0), st->jr, sys->map_ctx);
   if (rc) return dal__cb_status(st, rc, "whole-system coordinate map");
   for (int i = 0; i < Nd; ++i) {
-    if (!dal_jet_isfinite(st->jr[i]))
-      return map_nonfinite(sys, st, i, NULL);
+    if (!dal_jet_isfinite(st->jr[i])) return map_nonfinite(sys, st, i, NULL);
     st->r[i] = st->jr[i].v;
     st->v[i] = st->jr[i].d;
     st->gamma[i] = st->jr[i].dd;
@@ -232,7 +241,8 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
     for (int a = 0; a < d; ++a) {
       const double *row = st->J + (size_t)k * d * n + (size_t)a * n;
       double s = 0.0;
-      for (int c = 0; c < n; ++c) s += row[c] * st->qdot[c];
+      for (int c = 0; c < n; ++c)
+        s += row[c] * st->qdot[c];
       st->drdt[k * d + a] = st->v[k * d + a] - s;
     }
   st->tree = 0;
@@ -257,7 +267,8 @@ void dal__jacobians(const dal_system *sys, dal_state *st) {
       chain_particle(sys, st, pl->parent, st->Lp + (size_t)k * d * d, d, 0, d, dk, ndk, Jk);
     for (int i = 0; i < nc; ++i) {
       int c = find_sorted(dk, ndk, coords[i]);
-      for (int a = 0; a < d; ++a) Jk[a * ndk + c] += Lk[a * nc + i];
+      for (int a = 0; a < d; ++a)
+        Jk[a * ndk + c] += Lk[a * nc + i];
     }
   }
   st->have |= DAL_P_J;
@@ -274,14 +285,17 @@ static inline int place_translating1(const dal_system *sys, dal_state *st, int k
   const double *rtp = st->drdt + p * d;
   double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
   dal_jet *jin = st->jin, *jout = st->jout;
-  for (int b = 0; b < d; ++b) jin[b] = dal_const(rp[b]);
+  for (int b = 0; b < d; ++b)
+    jin[b] = dal_const(rp[b]);
   jin[d] = dal_var(st->q[j], 1.0);
   if ((rc = eval_checked(sys, st, &in, dal_const(st->t), k)) != 0) return rc;
   for (int a = 0; a < d; ++a) {
     Lk[a] = jout[a].d;
-    for (int b = 0; b < d; ++b) Lp[a * d + b] = a == b;
+    for (int b = 0; b < d; ++b)
+      Lp[a * d + b] = a == b;
   }
-  for (int b = 0; b < d; ++b) jin[b] = dal_jet_make(rp[b], vp[b], gp[b]);
+  for (int b = 0; b < d; ++b)
+    jin[b] = dal_jet_make(rp[b], vp[b], gp[b]);
   double qd = st->qdot[j];
   jin[d] = dal_var(st->q[j], qd);
   if ((rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k)) != 0) return rc;
@@ -333,10 +347,12 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
       st->tree &= identity;
     }
     if (nc == 1)
-      for (int a = 0; a < d; ++a) Lk[a] = st->loc[a * nin + np * d];
+      for (int a = 0; a < d; ++a)
+        Lk[a] = st->loc[a * nin + np * d];
     else
       for (int a = 0; a < d; ++a)
-        for (int i = 0; i < nc; ++i) Lk[a * nc + i] = st->loc[a * nin + np * d + i];
+        for (int i = 0; i < nc; ++i)
+          Lk[a * nc + i] = st->loc[a * nin + np * d + i];
     // along the state's motion: the inputs keep their values and move along (v, gamma) of the
     // parent and (qdot, 0) of the coordinates; r, v, gamma
     dal_jet *jin = st->jin;
@@ -353,12 +369,16 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
     // dr/dt = v - J_k qdot, with J_k qdot = Lp_k (v_p - drdt_p) + Lc_k qdot_local
     for (int a = 0; a < d; ++a) {
       double s = 0.0, v = st->jout[a].d;
-      if (translates) s = vp[a] - rtp[a];
+      if (translates)
+        s = vp[a] - rtp[a];
       else
-        for (int b = 0; b < d && np; ++b) s += Lp[a * d + b] * (vp[b] - rtp[b]);
-      if (nc == 1) s += Lk[a] * jin[np * d].d;
+        for (int b = 0; b < d && np; ++b)
+          s += Lp[a * d + b] * (vp[b] - rtp[b]);
+      if (nc == 1)
+        s += Lk[a] * jin[np * d].d;
       else
-        for (int i = 0; i < nc; ++i) s += Lk[a * nc + i] * jin[np * d + i].d;
+        for (int i = 0; i < nc; ++i)
+          s += Lk[a * nc + i] * jin[np * d + i].d;
       st->r[k * d + a] = st->jout[a].v;
       st->v[k * d + a] = v;
       st->gamma[k * d + a] = st->jout[a].dd;
@@ -381,22 +401,26 @@ static void chain_local(const dal_system *sys, const dal_state *st, int p, const
   int d = sys->dim;
   for (int r = 0; r < nrow; ++r) {
     double w[3], t[3];
-    for (int a = 0; a < d; ++a) w[a] = loc[r * nin + col0 + a];
+    for (int a = 0; a < d; ++a)
+      w[a] = loc[r * nin + col0 + a];
     for (int b = p; b >= 0; b = sys->place[b].parent) {
       const dal_place *pb = &sys->place[b];
       const int *cb = sys->ipool + pb->coord_off;
       const double *Lc = st->Lc + sys->ploc_off[b], *Lp = st->Lp + (size_t)b * d * d;
       for (int i = 0; i < pb->ncoord; ++i) {
         double s = 0.0;
-        for (int a = 0; a < d; ++a) s += w[a] * Lc[a * pb->ncoord + i];
+        for (int a = 0; a < d; ++a)
+          s += w[a] * Lc[a * pb->ncoord + i];
         out[r * ndep_out + find_sorted(dep_out, ndep_out, cb[i])] += s;
       }
       if (pb->parent < 0) break;
       for (int a = 0; a < d; ++a) {
         t[a] = 0.0;
-        for (int c = 0; c < d; ++c) t[a] += w[c] * Lp[c * d + a];
+        for (int c = 0; c < d; ++c)
+          t[a] += w[c] * Lp[c * d + a];
       }
-      for (int a = 0; a < d; ++a) w[a] = t[a];
+      for (int a = 0; a < d; ++a)
+        w[a] = t[a];
     }
   }
 }
@@ -427,8 +451,10 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     double *G = st->G + c->g_off;
     memset(G, 0, (size_t)nout * (size_t)c->ndep * sizeof(double));
     for (int a = 0; a < c->npart; ++a)
-      if (have_J) chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
-      else chain_local(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      if (have_J)
+        chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+      else
+        chain_local(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
     for (int i = 0; i < c->ncoord; ++i) {
       int col = find_sorted(dc, c->ndep, in.coords[i]);
       for (int r = 0; r < nout; ++r)

@@ -56,7 +56,8 @@
 /// many such steps in a row are a step size collapse (every method's progress guard).
 #define DAL_TINY_STEP_ULPS 8.0
 #define DAL_TINY_STEP_COUNT 5
-#define DAL_TINY_STEP(t) (DAL_TINY_STEP_ULPS * DBL_EPSILON * ((t) > 1.0 || (t) < -1.0 ? ((t) < 0 ? -(t) : (t)) : 1.0))
+#define DAL_TINY_STEP(t)                                                                           \
+  (DAL_TINY_STEP_ULPS * DBL_EPSILON * ((t) > 1.0 || (t) < -1.0 ? ((t) < 0 ? -(t) : (t)) : 1.0))
 
 /// Pivot ratio (smallest / largest squared Cholesky pivot of M) below which a non-finite
 /// acceleration is blamed on a nearly singular mass matrix (a chart singularity) rather than on

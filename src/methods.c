@@ -46,4 +46,3 @@ dal_method dal__auto_method(double rtol) {
   if (rtol >= 1e-12) return DAL_METHOD_ADAMS;
   return DAL_METHOD_BS;
 }
-

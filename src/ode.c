@@ -223,8 +223,8 @@ void dal__ode_destroy(void *p) {
 }
 
 // a fresh ODE integrator at the state's (t, q, qdot)
-int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
-                      dal_method meth, const dal_ode_problem *prob, dal_ode_integ **out) {
+int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method meth,
+                    const dal_ode_problem *prob, dal_ode_integ **out) {
   *out = NULL;
   dal_ode_integ *ig = calloc(1, sizeof *ig);
   if (!ig) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
@@ -263,4 +263,3 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   *out = ig;
   return DAL_OK;
 }
-

@@ -45,7 +45,6 @@ int dal_state_stats(const dal_state *st, dal_stats *out) {
   return DAL_OK;
 }
 
-
 // validate options; a message names the field and the remedy
 int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
   if (!o) return DAL_FAIL(st, DAL_E_ARG, "solve options are NULL; pass dal_solve_default_opts()");
@@ -60,9 +59,9 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
   if ((int)o->linsol < DAL_LINSOL_AUTO || (int)o->linsol > DAL_LINSOL_KLU)
     return DAL_FAIL(st, DAL_E_ARG, "opts.linsol = %d is not a dal_linsol", (int)o->linsol);
   // NaN or inf in any real option is a non-finite input, as everywhere in the library
-  const double *reals[8] = {&o->rtol, &o->atol, &o->fixed_step, &o->h0,
+  const double *reals[8] = {&o->rtol, &o->atol, &o->fixed_step,      &o->h0,
                             &o->hmin, &o->hmax, &o->baumgarte_alpha, &o->baumgarte_beta};
-  const char *rnames[8] = {"rtol", "atol", "fixed_step", "h0",
+  const char *rnames[8] = {"rtol", "atol", "fixed_step",      "h0",
                            "hmin", "hmax", "baumgarte_alpha", "baumgarte_beta"};
   for (int i = 0; i < 8; ++i)
     if (!isfinite(*reals[i]))
@@ -124,9 +123,10 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
 
 // every option field: the integrator is reused only while all of them are unchanged
 #define DAL_OPTS_FIELDS(X)                                                                         \
-  X(magic) X(method) X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step)       \
-      X(max_steps) X(baumgarte_alpha) X(baumgarte_beta) X(project) X(sparse_threshold)           \
-          X(fixed_erk) X(work) X(init_max_move)
+  X(magic)                                                                                         \
+  X(method) X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step) X(max_steps)     \
+      X(baumgarte_alpha) X(baumgarte_beta) X(project) X(sparse_threshold) X(fixed_erk) X(work)     \
+          X(init_max_move)
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)
 // a new field changes the size: add it to DAL_OPTS_FIELDS, then update this check
 _Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) == 112 && sizeof(dal_solve_opts) == 112,

@@ -29,7 +29,8 @@ int dal__csc_build(dal_csc *A, int n, long long *keys, size_t nkeys) {
     A->rowind[i] = (int)(keys[i] % n);
     A->colptr[keys[i] / n + 1]++;
   }
-  for (int j = 0; j < n; ++j) A->colptr[j + 1] += A->colptr[j];
+  for (int j = 0; j < n; ++j)
+    A->colptr[j + 1] += A->colptr[j];
   return 0;
 }
 
@@ -38,8 +39,10 @@ int dal__csc_find(const dal_csc *A, int row, int col) {
   while (lo <= hi) {
     int mid = (lo + hi) / 2;
     if (A->rowind[mid] == row) return mid;
-    if (A->rowind[mid] < row) lo = mid + 1;
-    else hi = mid - 1;
+    if (A->rowind[mid] < row)
+      lo = mid + 1;
+    else
+      hi = mid - 1;
   }
   return -1;
 }

@@ -15,9 +15,7 @@ typedef struct dal_csc {
 } dal_csc;
 
 /// key of entry (row, col) in an order-n matrix
-static inline long long dal__csc_key(int n, int row, int col) {
-  return (long long)col * n + row;
-}
+static inline long long dal__csc_key(int n, int row, int col) { return (long long)col * n + row; }
 
 /// Build the pattern from nkeys keys (dal__csc_key; duplicates allowed; keys is sorted in
 /// place). Returns 0 or -1 (out of memory; A is then empty).

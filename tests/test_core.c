@@ -102,7 +102,8 @@ static dal_system *cart_bead(double w) {
   int c[3], p, rc = dal_builder_create(3, &b);
   double g[3] = {0, 0, -G0}, par[6] = {1.0, w, 0, 0, 0, 0};
   const char *nm[3] = {"x", "y", "z"};
-  for (int i = 0; i < 3 && !rc; ++i) rc = dal_builder_add_coord(b, nm[i], &c[i]);
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(b, nm[i], &c[i]);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
   if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
@@ -162,8 +163,10 @@ static void test_tolerance_table(void) {
               {"index1+proj dopri5", DAL_FORM_INDEX1, DAL_METHOD_DOPRI5, 1}};
   double th0s[3] = {PI / 3, 2 * PI / 3, 170 * PI / 180}, T = 10.0;
   printf("  worst error at t = 10 / rtol (pendulum 60/120/170 deg vs elliptic, oscillator vs "
-         "cos/sin; DAE rows: Cartesian pendulum)\n  %-20s", "method");
-  for (int k = 4; k <= 12; ++k) printf(" 1e-%-3d", k);
+         "cos/sin; DAE rows: Cartesian pendulum)\n  %-20s",
+         "method");
+  for (int k = 4; k <= 12; ++k)
+    printf(" 1e-%-3d", k);
   printf("\n");
   for (size_t r = 0; r < sizeof rows / sizeof rows[0]; ++r) {
     printf("  %-20s", rows[r].name);
@@ -230,7 +233,8 @@ static void test_bead_invariant(void) {
   CHECK_OK(dal_state_create(c, &sc));
   dal_method ms[5] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS, DAL_METHOD_ADAMS,
                       DAL_METHOD_BDF};
-  printf("  bead on the ring turning at w = 2 sqrt(g/R), 1000 periods: |h(T) - h(0)| / |h0| / rtol\n");
+  printf(
+      "  bead on the ring turning at w = 2 sqrt(g/R), 1000 periods: |h(T) - h(0)| / |h0| / rtol\n");
   for (int k = 6; k <= 10; k += 2) {
     double tol = pow(10.0, -k);
     printf("  rtol 1e-%d:", k);
@@ -259,8 +263,10 @@ static void test_bead_invariant(void) {
         o.max_steps = 100000000;
         double jac[2];
         for (int pass = 0; pass < 2; ++pass) {
-          if (pass) CHECK_OK(dal_advance(c, sc, &o, T));
-          else CHECK_OK(dal_forward(c, sc));
+          if (pass)
+            CHECK_OK(dal_advance(c, sc, &o, T));
+          else
+            CHECK_OK(dal_forward(c, sc));
           const double *x = dal_state_q(sc), *v = dal_state_qdot(sc);
           double E = 0.5 * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]) + G0 * x[2];
           jac[pass] = E - w * (x[0] * v[1] - x[1] * v[0]);

@@ -30,7 +30,8 @@ static dal_system *scene(int moving) {
   if (!rc) rc = dal_builder_add_particle(b, "upper", 1.3, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "lower", 0.8, &p[1]);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(b, nm[i], &c[i]);
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = dal_builder_add_coord(b, nm[i], &c[i]);
   if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
   if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
   if (!rc)
@@ -84,7 +85,8 @@ static void check_form(dal_system *sys, dal_formulation form, int sparse, unsign
       x[j] = keep - h;
       CHECK(dal__dae_residual(&f, t, y, yp, F2) == 0);
       x[j] = keep;
-      for (int i = 0; i < neq; ++i) D[(size_t)j * neq + i] += w * (F1[i] - F2[i]) / (2 * h);
+      for (int i = 0; i < neq; ++i)
+        D[(size_t)j * neq + i] += w * (F1[i] - F2[i]) / (2 * h);
     }
   }
   int rows_l0 = f.off_l, rows_l1 = f.off_l + f.m;
@@ -119,7 +121,8 @@ int main(void) {
     CHECK(sys != NULL);
     CHECK(dal__dae_newton_exact(sys));
     for (int fi = 0; fi < 3; ++fi)
-      for (int sparse = 0; sparse < 2; ++sparse) check_form(sys, forms[fi], sparse, 7u + fi);
+      for (int sparse = 0; sparse < 2; ++sparse)
+        check_form(sys, forms[fi], sparse, 7u + fi);
     dal_system_destroy(sys);
   }
   return check_summary("test_newton");
