@@ -106,10 +106,7 @@ static int rk4_segment(lyap *L, double *t, double t1) {
     for (int i = 0; i < m; ++i) {
       double d = h * (k[0][i] / 6.0 + k[1][i] / 3.0 + k[2][i] / 3.0 + k[3][i] / 6.0);
       if (i < L->ny) {
-        // the trajectory by compensated summation, like ode_rk4.c
-        double u = d - L->kc[i], s = y[i] + u;
-        L->kc[i] = (s - y[i]) - u;
-        y[i] = s;
+        dal__ksum(&y[i], &L->kc[i], d); // the trajectory compensated, like ode_rk4.c
       } else {
         y[i] += d;
       }

@@ -165,6 +165,14 @@ enum {
   DAL_P_ALL = DAL_P_KIN | DAL_P_J | DAL_P_CON | DAL_P_DYN | DAL_P_M | DAL_P_ACC | DAL_P_OUT |
               DAL_P_PW | DAL_P_POW,
 };
+/// compensated summation x += d with compensation c (Kahan 1965): c holds the negated
+/// rounding error of the running sum and is fed back into the next addition
+static inline void dal__ksum(double *x, double *c, double d) {
+  double y = d - *c, s = *x + y;
+  *c = (s - *x) - y;
+  *x = s;
+}
+
 /// a consumer reads product bits `p`: they must be current (debug builds check)
 #define DAL_NEED(st, p) DAL_ASSERT(((st)->have & (p)) == (p))
 /// per-trajectory parameters (params.c): read pointers that point at the system's arrays

@@ -215,9 +215,9 @@ static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
       // y + increment, compensated
       const double *Tj = m->T + (size_t)(j - 1) * ig->ny;
       for (int i = 0; i < ig->ny; ++i) {
-        double yv = Tj[i] - m->c[i], sum = ig->y[i] + yv;
-        m->cnew[i] = (sum - ig->y[i]) - yv;
-        m->ynew[i] = sum;
+        m->ynew[i] = ig->y[i];
+        m->cnew[i] = m->c[i];
+        dal__ksum(&m->ynew[i], &m->cnew[i], Tj[i]);
       }
       *kc = j;
       return BS_ACCEPT;

@@ -25,14 +25,6 @@ typedef struct rk4_mem {
   double *c, *c1; // compensation of ig->y and of the step's result y1 (ny each)
 } rk4_mem;
 
-// x + d by compensated summation (Kahan): c holds the negated rounding error of the running
-// sum x and is fed back into the next addition
-static inline void ksum(double *x, double *c, double d) {
-  double y = d - *c, s = *x + y;
-  *c = (s - *x) - y;
-  *x = s;
-}
-
 static void rk4_free(void *p) {
   rk4_mem *m = p;
   if (!m) return;
@@ -67,7 +59,7 @@ static int rk4_step(dal_ode_integ *ig, rk4_mem *m, double t, const double *y, do
     m->c1[i] = m->c[i];
     // each stage divided before the sum (a sum of large stages must not overflow where the
     // result is representable), by 6 and 3 per value: no rounded coefficient h / 6 repeats
-    ksum(&y1[i], &m->c1[i],
+    dal__ksum(&y1[i], &m->c1[i],
          h * (m->k1[i] / 6.0 + m->k2[i] / 3.0 + m->k3[i] / 3.0 + m->k4[i] / 6.0));
     if (bad < 0 && !isfinite(y1[i])) bad = i;
   }

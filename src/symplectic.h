@@ -52,12 +52,4 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b);
 int dal__variational_check(const dal_system *sys, dal_state *st, const char *name);
 int dal__rattle_check(const dal_system *sys, dal_state *st, const char *name);
 
-/// compensated summation x += d with compensation c (Kahan 1965): c holds the negated
-/// rounding error of the running sum and is fed back into the next addition
-static inline void dal__ksum(double *x, double *c, double d) {
-  double y = d - *c, s = *x + y;
-  *c = (s - *x) - y;
-  *x = s;
-}
-
 #endif
