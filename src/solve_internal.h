@@ -74,10 +74,33 @@ struct dal_ode_integ {
   char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
   char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
   void *impl;                   ///< method memory
-  /// integrate from t to tout (> t); on failure call dal__ode_fail
+  /// integrate from t to tout (> t); on failure call dal__ode_fail. Returns 0 at tout, a
+  /// negative status, or DAL__HOOK_STOP when the after-step hook stopped the run (the state
+  /// then holds what the hook left in it; the integrator's own (t, y) is the accepted step)
   int (*advance)(dal_ode_integ *ig, double tout);
   void (*free_impl)(void *impl);
+  // dense output (driver.c): after every accepted step from tprev to t, dal__ode_accept calls
+  // hook(hook_ctx); the hook reads the solution anywhere in [tprev, t] through interp
+  double tprev;  ///< start of the last accepted step (= t before the first step)
+  double *yprev; ///< y at tprev (ny): kept by dal__ode_accept for the Hermite fallback
+  /// y at any t in [tprev, t] into yout (ny) from the method's own interpolant, accurate to
+  /// the method's tolerance; NULL: the cubic Hermite of dal__ode_hermite (ode.c) is used.
+  /// Returns 0 or a negative status. Must not change the integration (no state of the method
+  /// is touched); may use ig->st as workspace.
+  int (*interp)(dal_ode_integ *ig, double t, double *yout);
+  /// after-step hook (NULL: none): 0 to go on, DAL__HOOK_STOP to stop, negative to fail
+  int (*hook)(void *ctx);
+  void *hook_ctx;
+  double *hf0, *hf1; ///< Hermite fallback: f at tprev and t (ny each), valid when hvalid
+  int hvalid;
 };
+
+/// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)
+#define DAL__HOOK_STOP 100
+
+/// y at t in [ig->tprev, ig->t] into yout: the method's interpolant, or the cubic Hermite
+/// fallback (two right-hand sides per step, evaluated on first use) (ode.c)
+int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
 
 /// One row per integration method (GSL's gsl_odeiv2_step_type): adding a method is one row
 /// in methods.c and one file. `tol_factor`: the method's local error control runs at
