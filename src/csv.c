@@ -6,14 +6,6 @@
 
 #include "internal.h"
 
-// principal value of an angle in [-pi, pi)
-static double wrap_pi(double x) {
-  const double pi = 3.14159265358979323846, twopi = 6.28318530717958647692;
-  double r = x - twopi * floor((x + pi) / twopi);
-  if (r >= pi) r -= twopi;
-  if (r < -pi) r += twopi;
-  return r;
-}
 
 int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   dal_csv *c = ctx;
@@ -22,6 +14,7 @@ int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   if (!c || !c->fp)
     return DAL_FAIL_C(st, DAL_E_ARG, "csv_monitor: ctx must be a dal_csv with an open stream");
   // a row holds the state's energies: they must be current at its (t, q, qdot)
+  dal__lazy(st);
   if (!(st->have & DAL_P_DYN))
     return DAL_FAIL_C(st, DAL_E_STATE,
                       "csv_monitor: the state is not evaluated at t=%.17g; call dal_forward "
@@ -39,7 +32,7 @@ int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   }
   fprintf(c->fp, "%.17g", st->t);
   for (int i = 0; i < n; ++i)
-    fprintf(c->fp, ",%.17g", c->wrap_angles ? wrap_pi(st->q[i]) : st->q[i]);
+    fprintf(c->fp, ",%.17g", c->wrap_angles ? dal__wrap_pi(st->q[i]) : st->q[i]);
   for (int i = 0; i < n; ++i)
     fprintf(c->fp, ",%.17g", st->qdot[i]);
   fprintf(c->fp, ",%.17g,%.17g\n", st->en.E, st->en.h);

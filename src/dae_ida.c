@@ -42,6 +42,10 @@ typedef struct ida_mem {
   int cb_status;
   char cb_msg[DAL_ERRMSG_LEN];
   char ida_msg[256];
+  // dense output (driver.c): after every step from tprev to tcur, hook(hook_ctx)
+  int (*hook)(void *ctx);
+  void *hook_ctx;
+  double tprev, tcur;
 } ida_mem;
 
 static const char *form_name(dal_formulation f) {
@@ -424,8 +428,25 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   IDASetMinStep(w->ida, w->opts.hmax > 0 ? fmin(hmin, w->opts.hmax) : hmin);
   IDASetStopTime(w->ida, tout);
   double tret = t0;
-  int flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_NORMAL);
-  update_stats(w, flag);
+  int flag;
+  if (w->hook) {
+    // one step at a time, the driver's hook after each (dense output, events)
+    w->tcur = t0;
+    for (;;) {
+      flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_ONE_STEP);
+      update_stats(w, flag);
+      if (flag < 0) break;
+      if (flag == IDA_TSTOP_RETURN) tret = tout;
+      w->tprev = w->tcur;
+      w->tcur = tret;
+      int rc = w->hook(w->hook_ctx);
+      if (rc) return rc;
+      if (tret >= tout) return finish_state(w, tout, N_VGetArrayPointer(w->y));
+    }
+  } else {
+    flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_NORMAL);
+    update_stats(w, flag);
+  }
   if (flag >= 0) return finish_state(w, tret, N_VGetArrayPointer(w->y));
   // failure: the last accepted step, then the message naming time and variable (and, for
   // repeated recoverable residual failures, the callback that asked last: its message is
@@ -449,4 +470,37 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
     memcpy(st->err, msg, sizeof msg);
   }
   return rc;
+}
+
+void dal__ida_set_hook(void *mem, int (*hook)(void *ctx), void *ctx) {
+  ida_mem *w = mem;
+  w->hook = hook;
+  w->hook_ctx = ctx;
+}
+
+void dal__ida_window(const void *mem, double *t0, double *t1) {
+  const ida_mem *w = mem;
+  *t0 = w->tprev;
+  *t1 = w->tcur;
+}
+
+int dal__ida_place(void *mem, double t) {
+  ida_mem *w = mem;
+  dal_state *st = w->st;
+  // the step's end is IDA's solution itself; inside, its interpolating polynomial
+  const double *y = N_VGetArrayPointer(w->y);
+  if (t != w->tcur) {
+    int flag = IDAGetDky(w->ida, t, 0, w->w1);
+    if (flag != IDA_SUCCESS)
+      return DAL_FAIL(st, DAL_E_SOLVER,
+                      "IDA could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
+                      t, w->tprev, w->tcur, flag);
+    y = N_VGetArrayPointer(w->w1);
+  }
+  if (w->f.off_w >= 0) st->W = y[w->f.off_w];
+  st->t = t;
+  memcpy(st->q, y, (size_t)w->n * sizeof(double));
+  memcpy(st->qdot, y + w->n, (size_t)w->n * sizeof(double));
+  dal__state_moved(st);
+  return DAL_OK;
 }

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "dae_internal.h"
+#include "events_internal.h"
 #include "form_dae.h"
 #include "solve_internal.h"
 #include "symplectic.h"
@@ -20,6 +21,7 @@ typedef struct dal_integ_handle {
   int kind;
   dal_ode_integ *ode;
   void *ida;
+  double *yi; // dense output of the ODE route (ny)
   double t;   // time of the state when last handed back
   double *qq; // (q, qdot) handed back, to notice changes made outside the integrator
 } dal_integ_handle;
@@ -30,6 +32,7 @@ static void handle_free(void *p) {
   if (h->ode) dal__ode_destroy(h->ode);
   if (h->ida) dal__ida_free(h->ida);
   free(h->qq);
+  free(h->yi);
   free(h);
 }
 
@@ -130,6 +133,8 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
   if (prob) {
     h->kind = KIND_ODE;
     rc = dal__ode_create(sys, st, o, meth, prob, &h->ode);
+    if (!rc && !(h->yi = calloc((size_t)h->ode->ny + 1, sizeof(double))))
+      rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   } else {
     h->kind = KIND_IDA;
     rc = dal__public_status(dal__ida_create(sys, st, o, &h->ida));
@@ -150,11 +155,161 @@ static int evaluate_here(const dal_system *sys, dal_state *st) {
   return dal__public_status(dal__eval(sys, st, DAL_P_ALL));
 }
 
-// advance to t1 >= st->t with validated arguments
-static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts *o, double t1) {
-  int rc = ensure_integ(sys, st, o);
+// ---------------------------------------------------------------------------------------------
+// a run of advance or evolve: the integrator steps freely towards the end time; after every
+// accepted step the hook serves the output times and the events inside the step from the
+// method's dense output (no step is shortened for an output)
+
+typedef struct run {
+  const dal_system *sys;
+  dal_state *st;
+  const dal_solve_opts *o;
+  dal_integ_handle *h;
+  int outputs;       // evolve: the output grid below is served
+  double t0, dt, t1; // output times t0 + k dt (k <= K), then t1
+  long k, K;         // next output index
+  double last_out;   // time of the last output served
+  dal_monitor_fn *monitor;
+  void *ctx;
+  dal_events *ev; // attached events with at least one event, or NULL
+  long nsteps;    // steps since the last output (the IDA route's opts.max_steps)
+  int status;     // why the hook stopped the run: DAL_STOPPED, DAL_EVENT, or a failure
+} run;
+
+// the next output time, or +inf when all are served
+static double out_time(const run *r) {
+  if (!r->outputs) return INFINITY;
+  if (r->k <= r->K) {
+    double tk = r->t0 + (double)r->k * r->dt;
+    // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
+    if (r->k == r->K && r->t1 - tk <= 1e-9 * r->dt) tk = r->t1;
+    return tk;
+  }
+  return r->last_out < r->t1 ? r->t1 : INFINITY;
+}
+
+// put the state at time t of the step just taken (dense output; not evaluated)
+static int place(void *p, double t) {
+  run *r = p;
+  dal_integ_handle *h = r->h;
+  if (h->kind == KIND_IDA) return dal__ida_place(h->ida, t);
+  dal_ode_integ *ig = h->ode;
+  int rc = dal__ode_interp(ig, t, h->yi);
+  if (rc) return rc;
+  dal__ode_to_state(ig, t, h->yi);
+  dal__state_moved(r->st);
+  return DAL_OK;
+}
+
+// run the monitor at the state's time; 1 = stop requested (ok), negative = failure
+static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
+  if (!monitor) return 0;
+  st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
+  int mr = monitor(sys, st, ctx);
+  st->lazy = 0;
+  if (mr > 0) {
+    // not a failure; the message says where and why the run ended
+    DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,
+             st->t);
+    return 1;
+  }
+  if (mr < 0) {
+    char why[DAL_ERRMSG_LEN];
+    memcpy(why, st->err, sizeof why);
+    return DAL_FAIL(st, DAL_E_CALLBACK,
+                    "monitor returned %d (%s) at t=%.17g%s%.300s; evolve stopped there (the state "
+                    "holds that time)",
+                    mr, dal_status_name(mr), st->t, why[0] ? ": " : "", why);
+  }
+  return 0;
+}
+
+// the state where the run stops, evaluated there; keeps the message already set
+static int stop_here(run *r, int status) {
+  char msg[DAL_ERRMSG_LEN];
+  memcpy(msg, r->st->err, sizeof msg);
+  int rc = evaluate_here(r->sys, r->st);
+  if (rc) return r->status = rc;
+  memcpy(r->st->err, msg, sizeof msg);
+  r->status = status;
+  return DAL__HOOK_STOP;
+}
+
+// serve output time t (inside the step just taken, or the state's own time when at_state)
+static int serve_output(run *r, double t, int at_state) {
+  dal_state *st = r->st;
+  int rc = at_state ? DAL_OK : place(r, t);
+  if (rc) return r->status = rc;
+  r->last_out = t;
+  r->k++;
+  r->nsteps = 0;
+  if (r->h && r->h->kind == KIND_ODE) r->h->ode->ncall = 0; // opts.max_steps per output
+  if (!r->monitor) return DAL_OK;
+  // the monitor reads the state; products are evaluated on its first read (dal__lazy)
+  st->lazy = !at_state;
+  int mr = call_monitor(r->sys, st, r->monitor, r->ctx);
+  if (mr == 0) return DAL_OK;
+  return stop_here(r, mr > 0 ? DAL_STOPPED : mr);
+}
+
+// after every accepted step [a, b]: the outputs and event crossings inside it, in time order
+static int after_step(void *p) {
+  run *r = p;
+  dal_state *st = r->st;
+  double a = 0, b = 0;
+  if (r->h->kind == KIND_IDA) {
+    dal__ida_window(r->h->ida, &a, &b);
+  } else {
+    a = r->h->ode->tprev;
+    b = r->h->ode->t;
+  }
+  r->nsteps++;
+  int rc, np = 0, kp = 0;
+  if (r->ev) {
+    if ((rc = dal__events_scan(r->ev, st, a, b, place, r)) != 0) {
+      // a failing event function: the run stops at the step's end, evaluated
+      char msg[DAL_ERRMSG_LEN];
+      memcpy(msg, st->err, sizeof msg);
+      if (place(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+      return r->status = rc;
+    }
+    np = dal__events_npending(r->ev);
+  }
+  for (;;) {
+    double to = out_time(r), te = kp < np ? dal__events_pending(r->ev, kp)->t : INFINITY;
+    if (to > b && te > b) break;
+    if (to <= te) {
+      if ((rc = serve_output(r, to, 0)) != 0) return rc;
+      continue;
+    }
+    const dal__pending *e = dal__events_pending(r->ev, kp++);
+    if ((rc = place(r, e->t)) != 0 || (rc = dal__events_record(r->ev, st, e->event, e->dir)) != 0)
+      return r->status = rc;
+    if (dal__events_terminal(r->ev, e->event)) {
+      DAL_FAIL(st, DAL_EVENT, "event '%s' (%s) at t=%.17g: stopped there as asked",
+               dal__events_item_name(r->ev, e->event), e->dir > 0 ? "rising" : "falling", e->t);
+      return stop_here(r, DAL_EVENT);
+    }
+  }
+  if (r->h->kind == KIND_IDA && r->nsteps >= r->o->max_steps && b < r->t1) {
+    place(r, b);
+    DAL_FAIL(st, DAL_E_MAXSTEPS,
+             "%ld steps taken at t=%.17g before the next output or the target t=%.17g "
+             "(opts.max_steps); raise max_steps or loosen the tolerances",
+             r->nsteps, b, r->t1);
+    return stop_here(r, DAL_E_MAXSTEPS);
+  }
+  return DAL_OK;
+}
+
+// advance the run to t1 >= st->t with validated arguments
+static int run_to(run *r, double t1) {
+  const dal_system *sys = r->sys;
+  dal_state *st = r->st;
+  int rc = ensure_integ(sys, st, r->o);
   if (rc) return rc;
   dal_integ_handle *h = st->integ;
+  r->h = h;
   if (t1 == st->t) return evaluate_here(sys, st);
   if (t1 - st->t <= DAL_TINY_STEP(st->t)) {
     // an interval of a few ulps: the solution does not change at double precision; restart
@@ -163,6 +318,10 @@ static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts
     st->t = t1;
     return evaluate_here(sys, st);
   }
+  int hooked = r->outputs || r->ev;
+  if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
+  r->status = DAL_OK;
+  r->nsteps = 0;
   if (h->kind == KIND_ODE) {
     dal_ode_integ *ig = h->ode;
     ig->tout = t1;
@@ -170,23 +329,39 @@ static int advance_to(const dal_system *sys, dal_state *st, const dal_solve_opts
     ig->rhs_fatal = 0;
     ig->ntiny = 0;
     ig->nrecov = 0;
+    ig->hook = hooked ? after_step : NULL;
+    ig->hook_ctx = r;
     rc = ig->advance(ig, t1);
+    ig->hook = NULL;
     if (!rc) {
       // the state at t1, evaluated there
       dal__ode_to_state(ig, ig->t, ig->y);
-      rc = dal__public_status(dal__ode_eval(ig, ig->t, ig->y, ig->ydot, DAL_P_ALL));
+      rc = dal__public_status(dal__eval(sys, st, DAL_P_ALL));
     }
   } else {
-    rc = dal__public_status(dal__ida_advance(sys, st, h->ida, t1));
+    dal__ida_set_hook(h->ida, hooked ? after_step : NULL, r);
+    rc = dal__ida_advance(sys, st, h->ida, t1);
+    if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
+    dal__ida_set_hook(h->ida, NULL, NULL);
+  }
+  if (rc == DAL__HOOK_STOP) {
+    // the hook left the state where the run stops, evaluated; the integrator is elsewhere
+    dal__integ_reset(st);
+    return r->status;
   }
   if (rc) {
-    // the state holds the last accepted step; the next call restarts the integrator there
+    // the state holds the last accepted step (or the failing callback's time); the next
+    // call restarts the integrator there
     dal__integ_reset(st);
     return rc;
   }
   st->err[0] = 0;
   handle_sync(sys, st, h);
   return DAL_OK;
+}
+
+static dal_events *active_events(const dal_state *st) {
+  return st->events && dal_events_size(st->events) > 0 ? st->events : NULL;
 }
 
 // common argument checks of advance and evolve
@@ -223,29 +398,8 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   int rc = check_call(sys, st, opts, t1, "advance");
   if (rc) return rc;
   dal_solve_opts eff = dal__effective_opts(opts);
-  return advance_to(sys, st, &eff, t1);
-}
-
-// run the monitor at the state's time; 1 = stop requested (ok), negative = failure
-static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
-  if (!monitor) return 0;
-  st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
-  int mr = monitor(sys, st, ctx);
-  if (mr > 0) {
-    // not a failure; the message says where and why the run ended
-    DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,
-             st->t);
-    return 1;
-  }
-  if (mr < 0) {
-    char why[DAL_ERRMSG_LEN];
-    memcpy(why, st->err, sizeof why);
-    return DAL_FAIL(st, DAL_E_CALLBACK,
-                    "monitor returned %d (%s) at t=%.17g%s%.300s; evolve stopped there (the state "
-                    "holds that time)",
-                    mr, dal_status_name(mr), st->t, why[0] ? ": " : "", why);
-  }
-  return 0;
+  run r = {.sys = sys, .st = st, .o = &eff, .t1 = t1, .ev = active_events(st)};
+  return run_to(&r, t1);
 }
 
 int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
@@ -269,23 +423,21 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
                     t0, t1, dt);
   dal_solve_opts eff = dal__effective_opts(opts);
-  opts = &eff;
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
   long K = (long)floor(span);
   while (K > 0 && t0 + (double)K * dt > t1)
     --K;
   while (t0 + (double)(K + 1) * dt <= t1)
     ++K;
-  for (long k = 0; k <= K; ++k) {
-    double tk = t0 + (double)k * dt;
-    // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
-    if (k == K && t1 - tk <= 1e-9 * dt) tk = t1;
-    if ((rc = advance_to(sys, st, opts, tk)) != 0) return rc;
-    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_STOPPED : rc;
-  }
-  if (st->t < t1) {
-    if ((rc = advance_to(sys, st, opts, t1)) != 0) return rc;
-    if ((rc = call_monitor(sys, st, monitor, ctx)) != 0) return rc > 0 ? DAL_STOPPED : rc;
-  }
+  run r = {.sys = sys, .st = st, .o = &eff, .outputs = 1, .t0 = t0, .dt = dt, .t1 = t1,
+           .k = 0, .K = K, .last_out = -INFINITY, .monitor = monitor, .ctx = ctx,
+           .ev = active_events(st)};
+  // the start (made consistent first in redundant coordinates), evaluated, is output 0
+  if ((rc = run_to(&r, t0)) != 0) return rc;
+  if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
+  // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
+  if (out_time(&r) <= t1 && (rc = serve_output(&r, st->t, 1)) != 0)
+    return rc == DAL__HOOK_STOP ? r.status : rc;
   return DAL_OK;
 }

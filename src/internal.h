@@ -227,8 +227,27 @@ struct dal_state {
   dal_stats stats;
   dal_init_report init_rep; // the last consistent start's report (init.c)
   int init_rep_valid;       // init_rep holds a report
+  struct dal_events *events; // attached event set (borrowed; events.h)
+  int lazy; // a callback holds the state at an output time, not yet evaluated: the public
+            // accessors evaluate it on first use (dal__lazy)
   char err[DAL_ERRMSG_LEN];
 };
+
+/// principal value of an angle in [-pi, pi) (CSV writers)
+static inline double dal__wrap_pi(double x) {
+  const double pi = 3.14159265358979323846, twopi = 6.28318530717958647692;
+  double r = x - twopi * floor((x + pi) / twopi);
+  if (r >= pi) r -= twopi;
+  if (r < -pi) r += twopi;
+  return r;
+}
+
+/// A state handed to a monitor or event function at a dense-output time is evaluated only
+/// when the callback reads a product (st->lazy): reading q alone costs nothing (state.c)
+void dal__lazy_eval(const dal_state *st);
+static inline void dal__lazy(const dal_state *st) {
+  if (st && st->lazy) dal__lazy_eval(st);
+}
 
 // errors
 int dal__set_err(char *buf, int status, const char *fmt, ...)

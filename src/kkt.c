@@ -349,6 +349,7 @@ int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double 
   int pair = dal__check_pair(sys, st, "constraint_genforces");
   if (pair) return pair;
   if (!Qc) return DAL_FAIL_C(st, DAL_E_ARG, "constraint_genforces: Qc is NULL");
+  dal__lazy(st);
   int rc = multipliers_current(st, "constraint_genforces");
   if (rc) return rc;
   if (sys->m == 0) {
@@ -363,6 +364,7 @@ int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F)
   int pair = dal__check_pair(sys, st, "constraint_forces");
   if (pair) return pair;
   if (!F) return DAL_FAIL_C(st, DAL_E_ARG, "constraint_forces: F is NULL");
+  dal__lazy(st);
   int rc = multipliers_current(st, "constraint_forces");
   if (rc) return rc;
   int d = sys->dim;

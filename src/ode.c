@@ -133,15 +133,23 @@ int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected
                            t, msg, ig->t);
     }
     st->stats.projections++;
+    if (ig->hook) memcpy(ig->yprev, ig->y, (size_t)ig->ny * sizeof(double));
     memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
     if (projected) *projected = 1;
   } else {
+    if (ig->hook) memcpy(ig->yprev, ig->y, (size_t)ig->ny * sizeof(double));
     memcpy(ig->y, y, (size_t)ig->ny * sizeof(double));
   }
   st->stats.steps++;
   st->stats.last_h = t - ig->t;
+  ig->tprev = ig->t;
   ig->t = t;
   ig->ncall++;
+  if (ig->hook) {
+    // dense output and events of the step just accepted (driver.c)
+    ig->hvalid = 0;
+    if ((rc = ig->hook(ig->hook_ctx)) != 0) return rc;
+  }
   if (ig->t < ig->tout && ig->ncall >= ig->opts.max_steps) {
     // the variable that limits the steps: the fastest-changing one relative to its
     // tolerance, |y_i'| / (atol + rtol |y_i|), at the last accepted step
@@ -219,6 +227,9 @@ void dal__ode_destroy(void *p) {
   free(ig->y);
   free(ig->ydot);
   free(ig->ewt);
+  free(ig->yprev);
+  free(ig->hf0);
+  free(ig->hf1);
   free(ig);
 }
 
@@ -244,12 +255,17 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->y = calloc(ny, sizeof(double));
   ig->ydot = calloc(ny, sizeof(double));
   ig->ewt = calloc(ny, sizeof(double));
-  if (!ig->y || !ig->ydot || !ig->ewt) {
+  ig->yprev = calloc(ny, sizeof(double));
+  ig->hf0 = calloc(ny, sizeof(double));
+  ig->hf1 = calloc(ny, sizeof(double));
+  ig->tprev = ig->t;
+  if (!ig->y || !ig->ydot || !ig->ewt || !ig->yprev || !ig->hf0 || !ig->hf1) {
     dal__ode_destroy(ig);
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   }
   prob->from_state(sys, st, ig->y);
   if (o->work) ig->y[ig->ny - 1] = st->W;
+  memcpy(ig->yprev, ig->y, (size_t)ig->ny * sizeof(double));
   const dal_method_row *row = dal__method_row(meth);
   int rc = row && row->ode_create
                ? row->ode_create(ig)
@@ -262,4 +278,37 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   }
   *out = ig;
   return DAL_OK;
+}
+
+// Cubic Hermite interpolation on [tprev, t] from y and f = y' at both ends (the dense output
+// of the fixed-step methods, order 4 like RK4; Hairer-Norsett-Wanner I, sec. II.6, (6.7)).
+// The two right-hand sides are evaluated on first use in a step and kept.
+static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
+  double h = ig->t - ig->tprev;
+  if (!ig->hvalid) {
+    int rc = dal__ode_eval(ig, ig->tprev, ig->yprev, ig->hf0, DAL_P_ACC);
+    if (!rc) rc = dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
+    if (rc) return rc > 0 ? DAL_E_CALLBACK : rc;
+    ig->st->stats.rhs_evals += 2;
+    ig->hvalid = 1;
+  }
+  double s = (t - ig->tprev) / h, s1 = s - 1.0;
+  for (int i = 0; i < ig->ny; ++i) {
+    double y0 = ig->yprev[i], y1 = ig->y[i], d = y1 - y0;
+    yout[i] = y0 + s * d + s * s1 * ((1.0 - 2.0 * s) * d + s1 * h * ig->hf0[i] + s * h * ig->hf1[i]);
+  }
+  return DAL_OK;
+}
+
+int dal__ode_interp(dal_ode_integ *ig, double t, double *yout) {
+  // the step's ends are the accepted values themselves (projected where the form projects)
+  if (t >= ig->t || ig->t == ig->tprev) {
+    memcpy(yout, ig->y, (size_t)ig->ny * sizeof(double));
+    return DAL_OK;
+  }
+  if (t <= ig->tprev) {
+    memcpy(yout, ig->yprev, (size_t)ig->ny * sizeof(double));
+    return DAL_OK;
+  }
+  return ig->interp ? ig->interp(ig, t, yout) : ode_hermite(ig, t, yout);
 }

@@ -22,7 +22,7 @@
 typedef struct erk_mem {
   SUNContext ctx;
   void *ark;
-  N_Vector y, ele, ewt;
+  N_Vector y, ele, ewt, dky;
   long nfe_base, netf_base; // counters already added to the state's statistics
 } erk_mem;
 
@@ -38,6 +38,7 @@ static void erk_free(void *p) {
   if (m->y) N_VDestroy(m->y);
   if (m->ele) N_VDestroy(m->ele);
   if (m->ewt) N_VDestroy(m->ewt);
+  if (m->dky) N_VDestroy(m->dky);
   if (m->ctx) SUNContext_Free(&m->ctx);
   free(m);
 }
@@ -147,6 +148,18 @@ static int erk_set_fehlberg(void *ark) {
   return flag;
 }
 
+// dense output: ARKODE's Hermite interpolant of the last step (degree set at create)
+static int erk_interp(dal_ode_integ *ig, double t, double *yout) {
+  erk_mem *m = ig->impl;
+  int flag = ERKStepGetDky(m->ark, t, 0, m->dky);
+  if (flag != ARK_SUCCESS)
+    return DAL_FAIL(ig->st, DAL_E_SOLVER,
+                    "ARKODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
+                    t, ig->tprev, ig->t, flag);
+  memcpy(yout, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  return DAL_OK;
+}
+
 static int erk_advance(dal_ode_integ *ig, double tout) {
   erk_mem *m = ig->impl;
   int recover = 0, flag = ERKStepSetStopTime(m->ark, tout);
@@ -197,12 +210,14 @@ int dal__erk_create(dal_ode_integ *ig) {
   ig->impl = m;
   ig->free_impl = erk_free;
   ig->advance = erk_advance;
+  ig->interp = erk_interp;
   int flag = SUNContext_Create(NULL, &m->ctx);
   if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
   m->y = N_VNew_Serial(ig->ny, m->ctx);
   m->ele = N_VNew_Serial(ig->ny, m->ctx);
   m->ewt = N_VNew_Serial(ig->ny, m->ctx);
-  if (!m->y || !m->ele || !m->ewt)
+  m->dky = N_VNew_Serial(ig->ny, m->ctx);
+  if (!m->y || !m->ele || !m->ewt || !m->dky)
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   m->ark = ERKStepCreate(erk_rhs, ig->t, m->y, m->ctx);

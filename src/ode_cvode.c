@@ -22,7 +22,7 @@
 typedef struct cv_mem {
   SUNContext ctx;
   void *cv;
-  N_Vector y, ele, ewt;
+  N_Vector y, ele, ewt, dky;
   SUNMatrix A;
   SUNLinearSolver LS;
   SUNNonlinearSolver NLS;
@@ -76,6 +76,7 @@ static void cv_free(void *p) {
   if (m->y) N_VDestroy(m->y);
   if (m->ele) N_VDestroy(m->ele);
   if (m->ewt) N_VDestroy(m->ewt);
+  if (m->dky) N_VDestroy(m->dky);
   if (m->ctx) SUNContext_Free(&m->ctx);
   free(m);
 }
@@ -176,6 +177,18 @@ static int cv_moved(const dal_ode_integ *ig, const double *y) {
   return s > ig->ny;
 }
 
+// dense output: CVODE's interpolating polynomial of the current order (its Nordsieck array)
+static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
+  cv_mem *m = ig->impl;
+  int flag = CVodeGetDky(m->cv, t, 0, m->dky);
+  if (flag != CV_SUCCESS)
+    return DAL_FAIL(ig->st, DAL_E_SOLVER,
+                    "CVODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
+                    t, ig->tprev, ig->t, flag);
+  memcpy(yout, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  return DAL_OK;
+}
+
 static int cv_advance(dal_ode_integ *ig, double tout) {
   cv_mem *m = ig->impl;
   int flag = CVodeSetStopTime(m->cv, tout);
@@ -213,12 +226,14 @@ int dal__cvode_create(dal_ode_integ *ig) {
   ig->impl = m;
   ig->free_impl = cv_free;
   ig->advance = cv_advance;
+  ig->interp = cv_interp;
   int flag = SUNContext_Create(NULL, &m->ctx);
   if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
   m->y = N_VNew_Serial(ig->ny, m->ctx);
   m->ele = N_VNew_Serial(ig->ny, m->ctx);
   m->ewt = N_VNew_Serial(ig->ny, m->ctx);
-  if (!m->y || !m->ele || !m->ewt)
+  m->dky = N_VNew_Serial(ig->ny, m->ctx);
+  if (!m->y || !m->ele || !m->ewt || !m->dky)
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->ctx);

@@ -45,6 +45,11 @@ typedef struct symp_mem {
   long k;          // grid index of x
   double *x, *c;   // state at grid point k and its compensation
   double *xw, *cw; // work copies (a step commits only when it succeeds)
+  // dense output (ig->hook): the step [ig->tprev, ig->t] starts from xs, cs at time ts, and
+  // a time inside it is served like an off-grid output: one composed step into xi, ci
+  const double *xs, *cs;
+  double ts;
+  double *xi, *ci;
 } symp_mem;
 
 int dal__symplectic_method(dal_method m) {
@@ -129,6 +134,33 @@ static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc) {
                        ig->t, ig->tout);
 }
 
+// dense output: the composed step of length t - ts from the start of the step (the same
+// partial step that serves an off-grid output; the trajectory is not touched)
+static int symp_interp(dal_ode_integ *ig, double t, double *yout) {
+  symp_mem *m = ig->impl;
+  size_t bytes = (size_t)m->base.nx * sizeof(double);
+  memcpy(m->xi, m->xs, bytes);
+  memcpy(m->ci, m->cs, bytes);
+  int rc = composed_step(ig, m, m->ts, t - m->ts, m->xi, m->ci);
+  m->base.invalidate(m->base.mem);
+  if (!rc) rc = m->base.to_y(ig, m->base.mem, t, m->xi, yout);
+  return dal__public_status(rc);
+}
+
+// the step from (ts, xs) to (t, y) is accepted: tell the driver's hook
+static int symp_hook(dal_ode_integ *ig, symp_mem *m, double ts, const double *xs,
+                     const double *cs, double t, const double *y) {
+  m->xs = xs;
+  m->cs = cs;
+  m->ts = ts;
+  memcpy(ig->yprev, ig->y, (size_t)ig->ny * sizeof(double));
+  memcpy(ig->y, y, (size_t)ig->ny * sizeof(double));
+  ig->tprev = ig->t;
+  ig->t = t;
+  ig->hvalid = 0;
+  return ig->hook(ig->hook_ctx);
+}
+
 static int symp_advance(dal_ode_integ *ig, double tout) {
   symp_mem *m = ig->impl;
   size_t bytes = (size_t)m->base.nx * sizeof(double);
@@ -167,6 +199,13 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     ig->ncall++;
     ig->st->stats.steps++;
     ig->st->stats.last_h = m->H;
+    if (ig->hook) {
+      // the grid point as the accepted step; the previous one (now in xw, cw) starts it
+      double tg = grid_time(m, m->k);
+      if ((rc = m->base.to_y(ig, m->base.mem, tg, m->x, ig->ydot)) != 0)
+        return fail_step(ig, m, rc);
+      if ((rc = symp_hook(ig, m, tk, m->xw, m->cw, tg, ig->ydot)) != 0) return rc;
+    }
   }
   double tk = grid_time(m, m->k);
   if (near_time(tk, tout)) {
@@ -181,6 +220,12 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     rc = m->base.to_y(ig, m->base.mem, tout, m->xw, ig->ydot);
   }
   if (rc) return fail_step(ig, m, rc);
+  if (ig->hook && tout > ig->t && !near_time(tk, tout)) {
+    // the last piece [t_k, tout] is a step of its own for dense output and events
+    if ((rc = m->base.to_y(ig, m->base.mem, tk, m->x, ig->y)) != 0) return fail_step(ig, m, rc);
+    ig->t = tk;
+    return symp_hook(ig, m, tk, m->x, m->c, tout, ig->ydot);
+  }
   memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
   ig->t = tout;
   return DAL_OK;
@@ -194,6 +239,8 @@ static void symp_free(void *p) {
   free(m->c);
   free(m->xw);
   free(m->cw);
+  free(m->xi);
+  free(m->ci);
   free(m);
 }
 
@@ -203,6 +250,7 @@ int dal__symplectic_create(dal_ode_integ *ig) {
   ig->impl = m;
   ig->free_impl = symp_free;
   ig->advance = symp_advance;
+  ig->interp = symp_interp;
   int order = order_of(ig->method);
   if (order == 2) {
     m->ns = 1;
@@ -229,7 +277,9 @@ int dal__symplectic_create(dal_ode_integ *ig) {
   m->c = calloc(nx, sizeof(double));
   m->xw = calloc(nx, sizeof(double));
   m->cw = calloc(nx, sizeof(double));
-  if (!m->x || !m->c || !m->xw || !m->cw)
+  m->xi = calloc(nx, sizeof(double));
+  m->ci = calloc(nx, sizeof(double));
+  if (!m->x || !m->c || !m->xw || !m->cw || !m->xi || !m->ci)
     return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the integrator");
   // the base may have moved the state (RATTLE: onto the constraints): start from it
   ig->prob->from_state(ig->sys, ig->st, ig->y);

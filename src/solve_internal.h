@@ -45,6 +45,13 @@ extern const dal_ode_problem dal__problem_index1;
 int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem);
 int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout);
 void dal__ida_free(void *mem);
+/// dense output of the IDA route: with a hook set, advance takes one step at a time and calls
+/// hook(ctx) after each (0: go on, DAL__HOOK_STOP: stop, negative: fail); window gives the
+/// step just taken; place puts the state's (t, q, qdot, W) at t in that window from IDA's
+/// interpolating polynomial (no evaluation)
+void dal__ida_set_hook(void *mem, int (*hook)(void *ctx), void *ctx);
+void dal__ida_window(const void *mem, double *t0, double *t1);
+int dal__ida_place(void *mem, double t);
 
 /// An ODE integrator run on a dal_ode_problem (ode_arkode.c, ode_cvode.c, ode_bs.c,
 /// ode_rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a

@@ -132,7 +132,17 @@ int dal_forward(const dal_system *sys, dal_state *st) {
 // (st->have); before an evaluation, after dal_state_set and after a failed evaluation the
 // pointer is NULL, never a view of stale or unset values.
 static const double *current(const dal_state *st, unsigned p, const double *x) {
+  dal__lazy(st);
   return st && (st->have & p) == p ? x : NULL;
+}
+
+void dal__lazy_eval(const dal_state *cst) {
+  // the driver's own state, lent to a monitor or event function as const: evaluated on the
+  // first read of a product; on failure the products stay unset (accessors give NULL and the
+  // message is the state's)
+  dal_state *st = (dal_state *)cst;
+  st->lazy = 0;
+  if ((st->have & DAL_P_ALL) != DAL_P_ALL) (void)dal__eval(st->sys, st, DAL_P_ALL);
 }
 
 double dal_state_time(const dal_state *st) { return st ? st->t : NAN; }
@@ -185,6 +195,7 @@ const double *dal_state_phidot(const dal_state *st) {
 int dal_state_energies(const dal_state *st, dal_energies *out) {
   if (!st) return DAL_E_ARG;
   if (!out) return DAL_FAIL_C(st, DAL_E_ARG, "state_energies: out is NULL");
+  dal__lazy(st);
   if (!(st->have & DAL_P_DYN))
     return DAL_FAIL_C(st, DAL_E_STATE,
                       "state_energies: the state is not evaluated at its (t, q, qdot); call "
@@ -211,6 +222,7 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
   int pair = dal__check_pair(sys, st, "state_jacobian");
   if (pair) return pair;
   if (!J) return DAL_FAIL_C(st, DAL_E_ARG, "state_jacobian: J is NULL");
+  dal__lazy(st);
   if (k < 0 || k >= sys->N)
     return DAL_FAIL_C(st, DAL_E_ARG, "state_jacobian: particle index %d out of range [0, %d)", k,
                       sys->N);

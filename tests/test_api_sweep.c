@@ -196,8 +196,9 @@ static void sw_dal_status_string(void) {
   CHECK(strcmp(dal_status_string(DAL_OK), "ok") == 0);
 }
 static void sw_dal_status_name(void) {
-  CHECK(strcmp(dal_status_name(2), "DAL_UNKNOWN") == 0);
-  CHECK(strcmp(dal_status_name(1), "DAL_STOPPED") == 0); // the one positive status
+  CHECK(strcmp(dal_status_name(3), "DAL_UNKNOWN") == 0);
+  CHECK(strcmp(dal_status_name(1), "DAL_STOPPED") == 0); // the positive statuses
+  CHECK(strcmp(dal_status_name(2), "DAL_EVENT") == 0);
   CHECK(strcmp(dal_status_name(INT_MAX), "DAL_UNKNOWN") == 0);
   CHECK(strcmp(dal_status_name(DAL_E_STATE), "DAL_E_STATE") == 0);
 }
@@ -1522,6 +1523,99 @@ static void sw_dal_state_init_report(void) {
 }
 
 // ---------------------------------------------------------------- the table
+// ---------------------------------------------------------------- rows: events.h
+static double ev_theta(double t, const double *q, const double *qd, void *ctx) {
+  (void)t;
+  (void)qd;
+  (void)ctx;
+  return q[0];
+}
+static void sw_dal_default_event_def(void) {
+  dal_event_def d = dal_default_event_def();
+  CHECK(d.g == NULL && d.g_state == NULL && d.constraint == NULL && d.terminal == 0);
+  CHECK(d.direction == DAL_EVENT_BOTH && d.name != NULL);
+}
+static void sw_dal_events_create(void) {
+  dal_events *ev = (dal_events *)&F; // overwritten with NULL on failure
+  CHECK(dal_events_create(NULL, &ev) == DAL_E_ARG && ev == NULL);
+  CHECK(dal_events_create(F.A, NULL) == DAL_E_ARG);
+  CHECK(dal_events_create(F.A, &ev) == DAL_OK && ev != NULL);
+  dal_events_free(ev);
+}
+static void sw_dal_events_free(void) { dal_events_free(NULL); }
+static void sw_dal_events_add(void) {
+  dal_events *ev = NULL;
+  CHECK_OK(dal_events_create(F.A, &ev));
+  dal_event_def d = dal_default_event_def();
+  CHECK(dal_events_add(NULL, &d) == DAL_E_ARG);
+  CHECK(dal_events_add(ev, NULL) == DAL_E_ARG);
+  CHECK(dal_events_add(ev, &d) == DAL_E_ARG); // no function
+  CHECK(strstr(dal_events_errmsg(ev), "exactly one") != NULL);
+  dal_event_def raw;
+  memset(&raw, 0, sizeof raw);
+  raw.g = ev_theta;
+  CHECK(dal_events_add(ev, &raw) == DAL_E_ARG); // no cookie
+  d.g = ev_theta;
+  d.constraint = "rod";
+  CHECK(dal_events_add(ev, &d) == DAL_E_ARG); // two kinds
+  d.g = NULL;
+  d.constraint = "rope";
+  CHECK(dal_events_add(ev, &d) == DAL_E_ARG); // unknown constraint, named with the known ones
+  CHECK(strstr(dal_events_errmsg(ev), "'rope'") && strstr(dal_events_errmsg(ev), "'rod'"));
+  d.constraint = "rod";
+  d.row = 1;
+  CHECK(dal_events_add(ev, &d) == DAL_E_ARG); // a scalar constraint has row 0 only
+  d.row = 0;
+  d.direction = (dal_event_direction)3;
+  CHECK(dal_events_add(ev, &d) == DAL_E_ARG);
+  d.direction = DAL_EVENT_FALLING;
+  CHECK(dal_events_add(ev, &d) == 0);
+  CHECK(dal_events_size(ev) == 1);
+  dal_events_free(ev);
+}
+static void sw_dal_events_errmsg(void) { CHECK(strcmp(dal_events_errmsg(NULL), "") == 0); }
+static void sw_dal_events_size(void) { CHECK(dal_events_size(NULL) == 0); }
+static void sw_dal_events_name(void) {
+  dal_events *ev = NULL;
+  CHECK_OK(dal_events_create(F.B, &ev));
+  dal_event_def d = dal_default_event_def();
+  d.g = ev_theta;
+  d.name = "zero";
+  CHECK(dal_events_add(ev, &d) == 0);
+  CHECK(strcmp(dal_events_name(ev, 0), "zero") == 0);
+  CHECK(dal_events_name(ev, 1) == NULL && dal_events_name(ev, -1) == NULL);
+  CHECK(dal_events_name(NULL, 0) == NULL);
+  dal_events_free(ev);
+}
+static void sw_dal_state_set_events(void) {
+  dal_events *ev = NULL;
+  CHECK_OK(dal_events_create(F.A, &ev));
+  CHECK(dal_state_set_events(NULL, ev) == DAL_E_ARG);
+  ST(dal_state_set_events(F.stB, ev), DAL_E_STATE, F.stB); // a set of another system
+  CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
+  dal_events_free(ev);
+}
+static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
+static void sw_dal_events_get(void) {
+  dal_events *ev = NULL;
+  dal_event_record r;
+  CHECK_OK(dal_events_create(F.B, &ev));
+  CHECK(dal_events_get(NULL, 0, &r, NULL, NULL) == DAL_E_ARG);
+  CHECK(dal_events_get(ev, 0, &r, NULL, NULL) == DAL_E_ARG); // empty log
+  CHECK(dal_events_get(ev, -1, &r, NULL, NULL) == DAL_E_ARG);
+  dal_events_free(ev);
+}
+static void sw_dal_events_clear(void) { dal_events_clear(NULL); }
+static void sw_dal_events_write_csv(void) {
+  dal_events *ev = NULL;
+  CHECK_OK(dal_events_create(F.B, &ev));
+  CHECK(dal_events_write_csv(NULL, stdout, -1, 0) == DAL_E_ARG);
+  CHECK(dal_events_write_csv(ev, NULL, -1, 0) == DAL_E_ARG);
+  CHECK(dal_events_write_csv(ev, stdout, 0, 0) == DAL_E_ARG); // no event 0
+  CHECK(dal_events_write_csv(ev, stdout, -2, 0) == DAL_E_ARG);
+  dal_events_free(ev);
+}
+
 typedef struct sweep_row {
   const char *name;
   void (*run)(void);
@@ -1547,6 +1641,18 @@ static const sweep_row rows[] = {
     ROW(dal_advance),
     ROW(dal_evolve),
     ROW(dal_csv_monitor),
+    ROW(dal_default_event_def),
+    ROW(dal_events_create),
+    ROW(dal_events_free),
+    ROW(dal_events_add),
+    ROW(dal_events_errmsg),
+    ROW(dal_events_size),
+    ROW(dal_events_name),
+    ROW(dal_state_set_events),
+    ROW(dal_events_count),
+    ROW(dal_events_get),
+    ROW(dal_events_clear),
+    ROW(dal_events_write_csv),
     ROW(dal_state_create),
     ROW(dal_state_destroy),
     ROW(dal_state_errmsg),

@@ -30,12 +30,14 @@ extern "C" {
 #define DAL_VERSION_NUMBER (DAL_VERSION_MAJOR * 10000 + DAL_VERSION_MINOR * 100 + DAL_VERSION_PATCH)
 
 /// The one list of status codes: X(name, value, description).
-/// 0 is success; every failure is negative. The one positive code, DAL_STOPPED, is not a
-/// failure: dal_evolve returns it when a monitor asked to stop before the end time. A detailed message naming the culprit and a
+/// 0 is success; every failure is negative. The positive codes are not failures: dal_evolve
+/// returns DAL_STOPPED when a monitor asked to stop before the end time, dal_advance and
+/// dal_evolve return DAL_EVENT when a terminal event stopped them (events.h). A detailed message naming the culprit and a
 /// remedy is kept by the object that failed (dal_builder_errmsg, dal_state_errmsg).
 #define DAL_STATUS_LIST(X)                                                                        \
   X(DAL_OK, 0, "ok")                                                                              \
   X(DAL_STOPPED, 1, "stopped early by a monitor (not an error)")                                  \
+  X(DAL_EVENT, 2, "stopped at a terminal event (not an error)")                                   \
   X(DAL_E_ARG, -1, "invalid argument (index, dimension, count or option)")                        \
   X(DAL_E_NOMEM, -2, "out of memory")                                                             \
   X(DAL_E_NONFINITE, -3, "non-finite input (NaN or inf)")                                         \

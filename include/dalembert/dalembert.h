@@ -8,6 +8,7 @@
 #include "dalembert/base.h"
 #include "dalembert/dae.h"
 #include "dalembert/ensemble.h"
+#include "dalembert/events.h"
 #include "dalembert/jet.h"
 #include "dalembert/params.h"
 #include "dalembert/primitives.h"
