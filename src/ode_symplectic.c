@@ -141,6 +141,8 @@ static int symp_interp(dal_ode_integ *ig, double t, double *yout) {
   size_t bytes = (size_t)m->base.nx * sizeof(double);
   memcpy(m->xi, m->xs, bytes);
   memcpy(m->ci, m->cs, bytes);
+  // the base's caches belong to the last grid point, not to the step's start
+  m->base.invalidate(m->base.mem);
   int rc = composed_step(ig, m, m->ts, t - m->ts, m->xi, m->ci);
   m->base.invalidate(m->base.mem);
   if (!rc) rc = m->base.to_y(ig, m->base.mem, t, m->xi, yout);

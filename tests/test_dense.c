@@ -1,0 +1,206 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Dense output against closed forms, for every method: dal_evolve's states between steps
+// (output times that are no step's end) against the elliptic pendulum and the Cartesian
+// pendulum, within the method's tolerance; outputs do not change the trajectory.
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "check.h"
+#include "dalembert/dalembert.h"
+#include "ref_elliptic.h"
+
+#define G0 9.81
+
+static dal_system *finish(dal_builder *b, int rc) {
+  dal_system *s = NULL;
+  if (!rc) rc = dal_builder_compile(b, &s);
+  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
+  dal_builder_destroy(b);
+  return s;
+}
+
+static dal_system *pendulum(void) {
+  dal_builder *b = NULL;
+  int c, p, rc = dal_builder_create(2, &b);
+  double g[2] = {0.0, -G0};
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_pendulum;
+  d.coords = &c;
+  d.ncoords = 1;
+  d.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p, &d);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return finish(b, rc);
+}
+
+static dal_system *cart_pendulum(void) {
+  dal_builder *b = NULL;
+  int c[2], p, rc = dal_builder_create(2, &b);
+  double g[2] = {0.0, -G0};
+  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_cartesian2;
+  d.coords = c;
+  d.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &d);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  dal_constraint_def k = dal_default_constraint_def();
+  k.name = "rod";
+  k.prim = &dal_con_anchor2;
+  k.parts = &p;
+  k.nparts = 1;
+  k.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
+  return finish(b, rc);
+}
+
+// the worst deviation from the closed form over the outputs, and their count
+typedef struct cmp {
+  double th0, err;
+  int cart, n;
+} cmp;
+
+static int mon(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  cmp *c = ctx;
+  double th, thd, t = dal_state_time(st);
+  ref_pendulum(c->th0, sqrt(G0), t, &th, &thd);
+  const double *q = dal_state_q(st), *v = dal_state_qdot(st);
+  double e;
+  if (c->cart)
+    e = fmax(fmax(fabs(q[0] - sin(th)), fabs(q[1] + cos(th))),
+             fmax(fabs(v[0] - thd * cos(th)), fabs(v[1] - thd * sin(th))) / sqrt(G0));
+  else
+    e = fmax(fabs(q[0] - th), fabs(v[0] - thd) / sqrt(G0));
+  c->err = fmax(c->err, e);
+  c->n++;
+  return 0;
+}
+
+// one run: evolve to t1 with outputs every dt; returns the worst error at the outputs and the
+// error at t1 (the step points' accuracy)
+static double run(const dal_system *s, dal_state *st, const dal_solve_opts *o, int cart,
+                  double dt, double *end_err, long *steps) {
+  const double th0 = 2.0, t1 = 10.0;
+  if (cart) {
+    double x[2] = {sin(th0), -cos(th0)}, v[2] = {0, 0};
+    CHECK_OK(dal_state_set(s, st, 0.0, x, v));
+  } else {
+    double q = th0, qd = 0;
+    CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
+  }
+  cmp c = {th0, 0, cart, 0};
+  int rc = dal_evolve(s, st, o, t1, dt, mon, &c);
+  CHECK_MSG(rc == DAL_OK, "%s: %s", dal_method_name(o->method), dal_state_errmsg(st));
+  cmp e = {th0, 0, cart, 0};
+  mon(s, st, &e);
+  *end_err = e.err;
+  dal_stats sts;
+  dal_state_stats(st, &sts);
+  *steps = sts.steps;
+  return c.err;
+}
+
+// adaptive methods: outputs between the steps within 16 x rtol (the library's promise for
+// the step points, solve.h), and the step count independent of the outputs
+static void test_adaptive(void) {
+  dal_system *s = pendulum(), *cs = cart_pendulum();
+  dal_state *st = NULL, *cst = NULL;
+  CHECK_OK(dal_state_create(s, &st));
+  CHECK_OK(dal_state_create(cs, &cst));
+  const struct {
+    dal_method m;
+    dal_formulation f;
+  } cases[] = {
+      {DAL_METHOD_DOPRI5, DAL_FORM_AUTO}, {DAL_METHOD_FEHLBERG78, DAL_FORM_AUTO},
+      {DAL_METHOD_BS, DAL_FORM_AUTO},     {DAL_METHOD_ADAMS, DAL_FORM_AUTO},
+      {DAL_METHOD_BDF, DAL_FORM_AUTO},    {DAL_METHOD_BDF, DAL_FORM_GGL},
+      {DAL_METHOD_BS, DAL_FORM_INDEX1},   {DAL_METHOD_DOPRI5, DAL_FORM_INDEX1},
+  };
+  const double tols[] = {1e-5, 1e-8, 1e-11};
+  printf("dense output: worst error at outputs every 0.0137 / rtol (error at t = 10 / rtol)\n");
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+    int cart = cases[k].f != DAL_FORM_AUTO;
+    printf("  %-7s %-10s", cart ? dal_formulation_name(cases[k].f) : "minimal",
+           dal_method_name(cases[k].m));
+    for (size_t j = 0; j < sizeof tols / sizeof tols[0]; ++j) {
+      dal_solve_opts o;
+      dal_solve_default_opts(&o);
+      o.method = cases[k].m;
+      o.form = cases[k].f;
+      o.project = cases[k].f == DAL_FORM_INDEX1;
+      o.rtol = tols[j];
+      if (cases[k].f == DAL_FORM_GGL && o.rtol < 1e-9) o.rtol = 1e-9; // IDA's floor (solve.h)
+      double end_dense = 0, end_coarse = 0;
+      long st_dense = 0, st_coarse = 0;
+      double e = run(cart ? cs : s, cart ? cst : st, &o, cart, 0.0137, &end_dense, &st_dense);
+      run(cart ? cs : s, cart ? cst : st, &o, cart, 10.0, &end_coarse, &st_coarse);
+      printf("  %6.2f (%5.2f)", e / o.rtol, end_dense / o.rtol);
+      CHECK_MSG(e <= 16.0 * o.rtol, "%s %s rtol %g: dense error %g = %.1f x rtol",
+                dal_formulation_name(cases[k].f), dal_method_name(o.method), o.rtol, e,
+                e / o.rtol);
+      // the outputs do not steer the steps: the same steps with and without them
+      CHECK_MSG(st_dense == st_coarse && end_dense == end_coarse,
+                "%s: %ld steps with outputs, %ld without", dal_method_name(o.method), st_dense,
+                st_coarse);
+    }
+    printf("\n");
+  }
+  dal_state_destroy(st);
+  dal_state_destroy(cst);
+  dal_system_destroy(s);
+  dal_system_destroy(cs);
+}
+
+// fixed-step methods: outputs between grid points as accurate as the grid points themselves
+// (RK4's cubic Hermite and the symplectic methods' partial composed step are of the method's
+// order), and the grid trajectory untouched by the outputs
+static void test_fixed(void) {
+  dal_system *s = pendulum(), *cs = cart_pendulum();
+  dal_state *st = NULL, *cst = NULL;
+  CHECK_OK(dal_state_create(s, &st));
+  CHECK_OK(dal_state_create(cs, &cst));
+  const struct {
+    dal_method m;
+    double h;
+    int cart;
+  } cases[] = {
+      {DAL_METHOD_RK4, 1e-3, 0},          {DAL_METHOD_VARIATIONAL, 1e-3, 0},
+      {DAL_METHOD_VARIATIONAL4, 1e-2, 0}, {DAL_METHOD_VARIATIONAL6, 1e-2, 0},
+      {DAL_METHOD_RATTLE, 1e-3, 1},       {DAL_METHOD_RATTLE4, 1e-2, 1},
+  };
+  printf("fixed-step dense output: worst error at outputs every 0.0137 and on the grid (0.1)\n");
+  for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
+    dal_solve_opts o;
+    dal_solve_default_opts(&o);
+    o.method = cases[k].m;
+    o.fixed_step = cases[k].h;
+    int cart = cases[k].cart;
+    double end_a = 0, end_b = 0;
+    long sa = 0, sb = 0;
+    double off = run(cart ? cs : s, cart ? cst : st, &o, cart, 0.0137, &end_a, &sa);
+    double on = run(cart ? cs : s, cart ? cst : st, &o, cart, 0.1, &end_b, &sb);
+    printf("  %-12s h = %g: off the grid %.2e, on the grid %.2e\n", dal_method_name(o.method),
+           o.fixed_step, off, on);
+    CHECK_MSG(off <= 1.5 * on + 1e-12, "%s: off-grid outputs %g, grid %g",
+              dal_method_name(o.method), off, on);
+    CHECK_MSG(end_a == end_b && sa == sb, "%s: the outputs changed the trajectory",
+              dal_method_name(o.method));
+  }
+  dal_state_destroy(st);
+  dal_state_destroy(cst);
+  dal_system_destroy(s);
+  dal_system_destroy(cs);
+}
+
+int main(void) {
+  test_adaptive();
+  test_fixed();
+  return check_summary("test_dense");
+}
