@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Flagship demo: run the seed scenes (SICM oscillator, SICM driven pendulum, bead on a
-// rotating ring) and the analysis scenes (the driven pendulum's Lyapunov exponents converging,
-// the bead's bifurcation diagram) in full mode, leaving their CSVs and charts in one folder.
+// rotating ring) and the analysis scenes (the driven pendulum's Poincare sections and its
+// Lyapunov exponents converging, the bead's bifurcation diagram) in full mode, leaving their
+// CSVs and charts in one folder.
 //
 // Usage: demo [OUTDIR]   (default ./demo-output); demo --check runs each scene's own check.
-// The scenes are the sibling programs sicm_oscillator, sicm_driven_pendulum, ring_scene,
-// lyapunov and bead_bifurcation (built next to this one); each is self-contained and documented
+// The scenes are the sibling programs sicm_oscillator, sicm_driven_pendulum, sicm_section,
+// ring_scene, lyapunov and bead_bifurcation (built next to this one); each is self-contained and documented
 // in its own file.
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,10 +26,10 @@ int main(int argc, char **argv) {
     dir[slash - argv[0]] = 0;
   }
   printf("dalembert %s: seed scenes%s\n", dal_version(), check ? " (checks)" : "");
-  const char *scenes[5] = {"sicm_oscillator", "sicm_driven_pendulum", "ring_scene", "lyapunov",
-                           "bead_bifurcation"};
+  const char *scenes[6] = {"sicm_oscillator", "sicm_driven_pendulum", "sicm_section",
+                           "ring_scene",      "lyapunov",             "bead_bifurcation"};
   int bad = 0;
-  for (int i = 0; i < 5; ++i) {
+  for (int i = 0; i < 6; ++i) {
     char cmd[3200];
     if (check)
       snprintf(cmd, sizeof cmd, "'%s/%s' --check", dir, scenes[i]);

@@ -153,15 +153,15 @@ static int erk_set_fehlberg(void *ark) {
   return flag;
 }
 
-// dense output: ARKODE's Hermite interpolant of the last step (degree set at create)
-static int erk_interp(dal_ode_integ *ig, double t, double *yout) {
+// DOPRI5's slope at the end of the step: its last stage (first same as last), which ARKODE's
+// interpolation module keeps; the driver's cubic Hermite (ode.c) is its dense output
+static int erk_end_slope(dal_ode_integ *ig, double *f) {
   erk_mem *m = ig->impl;
-  int flag = ERKStepGetDky(m->ark, t, 0, m->dky);
+  int flag = ERKStepGetDky(m->ark, ig->t, 1, m->dky);
   if (flag != ARK_SUCCESS)
-    return DAL_FAIL(ig->st, DAL_E_SOLVER,
-                    "ARKODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
-                    t, ig->tprev, ig->t, flag);
-  memcpy(yout, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+    return DAL_FAIL(ig->st, DAL_E_SOLVER, "ARKODE could not give the slope at t=%.17g (code %d)",
+                    ig->t, flag);
+  memcpy(f, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
   return DAL_OK;
 }
 
@@ -250,7 +250,7 @@ int dal__erk_create(dal_ode_integ *ig) {
   ig->impl = m;
   ig->free_impl = erk_free;
   ig->advance = erk_advance;
-  ig->interp = erk_interp;
+  ig->end_slope = erk_end_slope;
   int flag = SUNContext_Create(NULL, &m->ctx);
   if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
   m->y = N_VNew_Serial(ig->ny, m->ctx);
@@ -276,9 +276,8 @@ int dal__erk_create(dal_ode_integ *ig) {
   else if (!flag)
     flag = ERKStepSetTableNum(m->ark, ARKODE_DORMAND_PRINCE_7_4_5);
   if (!flag) flag = ERKStepSStolerances(m->ark, ig->rtol, ig->atol);
-  // dense output: ARKODE's Hermite interpolant of its highest degree (5): the default degree
-  // left Fehlberg 7(8)'s long steps with crossing times 2e-8 s off at rtol 1e-9
-  if (!flag) flag = ERKStepSetInterpolantDegree(m->ark, ARK_INTERP_MAX_DEGREE);
+  // ARKODE's interpolant serves only the end slope (Hermite of degree 3 keeps the stored f)
+  if (!flag) flag = ERKStepSetInterpolantDegree(m->ark, 3);
   if (!flag && o->fixed_erk) flag = ERKStepSetFixedStep(m->ark, o->fixed_step);
   if (!flag && o->h0 > 0) flag = ERKStepSetInitStep(m->ark, o->h0);
   if (!flag && o->hmin > 0) flag = ERKStepSetMinStep(m->ark, o->hmin);

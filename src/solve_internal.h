@@ -98,8 +98,11 @@ struct dal_ode_integ {
   /// after-step hook (NULL: none): 0 to go on, DAL__HOOK_STOP to stop, negative to fail
   int (*hook)(void *ctx);
   void *hook_ctx;
-  double *hf0, *hf1; ///< Hermite fallback: f at tprev and t (ny each), valid when hvalid
-  int hvalid;
+  double *hf0, *hf1; ///< Hermite fallback: f at tprev and t (ny each)
+  int hvalid;        ///< bit 0: hf0 is current for this step, bit 1: hf1
+  /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
+  /// last stage of an FSAL method); NULL: evaluated
+  int (*end_slope)(dal_ode_integ *ig, double *f);
 };
 
 /// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)

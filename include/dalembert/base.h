@@ -32,8 +32,8 @@ extern "C" {
 /// The one list of status codes: X(name, value, description).
 /// 0 is success; every failure is negative. The positive codes are not failures: dal_evolve
 /// returns DAL_STOPPED when a monitor asked to stop before the end time, dal_advance and
-/// dal_evolve return DAL_EVENT when a terminal event stopped them (events.h). A detailed message naming the culprit and a
-/// remedy is kept by the object that failed (dal_builder_errmsg, dal_state_errmsg).
+/// dal_evolve return DAL_EVENT when a terminal event stopped them (events.h). A detailed
+/// message naming the culprit and a remedy is kept by the object that failed (dal_builder_errmsg, dal_state_errmsg).
 #define DAL_STATUS_LIST(X)                                                                        \
   X(DAL_OK, 0, "ok")                                                                              \
   X(DAL_STOPPED, 1, "stopped early by a monitor (not an error)")                                  \

@@ -266,20 +266,33 @@ DAL_API int dal_state_stats(const dal_state *st, dal_stats *out);
 DAL_API int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                         double t1);
 
-/// Monitor called by dal_evolve at every output time with the state evaluated there
-/// (dal_forward outputs valid). Return 0 to continue, > 0 to stop early (dal_evolve then
-/// returns DAL_STOPPED, a positive status that is not an error: the state holds that time
-/// and dal_state_errmsg says where it stopped),
+/// Monitor called by dal_evolve at every output time with the state there (its products are
+/// evaluated on first read: dal_forward's outputs are valid through the accessors). Return 0
+/// to continue, > 0 to stop early (dal_evolve then returns DAL_STOPPED, a positive status that
+/// is not an error: the state holds that time and dal_state_errmsg says where it stopped),
 /// < 0 to report a failure (dal_evolve returns DAL_E_CALLBACK).
 typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx);
 
 /// Evolve from the current time t0 to t1, calling `monitor` (may be NULL) at t0 and at
-/// every t0 + k dt <= t1 (dt > 0), and at t1. The monitor sees the state at exactly those
-/// times (the integrator steps to each output time). Returns DAL_OK when it reached t1,
-/// DAL_STOPPED when the monitor stopped it before t1 (not an error), or a negative status.
-/// times (the integrator steps to each output time). dt NaN or inf is DAL_E_NONFINITE, dt <= 0
-/// or below the resolution of t DAL_E_ARG. A monitor returning < 0 stops evolve with
-/// DAL_E_CALLBACK; a message the monitor left in the state (dal_csv_monitor does) is quoted.
+/// every t0 + k dt <= t1 (dt > 0), and at t1. Returns DAL_OK when it reached t1, DAL_STOPPED
+/// when the monitor stopped it before t1 (not an error), DAL_EVENT when a terminal event
+/// stopped it (events.h), or a negative status.
+///
+/// Dense output: the integrator takes its own steps towards t1 and the states at the output
+/// times come from the method's interpolant of each step (SUNDIALS' own for CVODE, ARKODE's
+/// DOPRI5 and IDA; Hairer-Norsett-Wanner's extrapolated dense output for Bulirsch-Stoer; for
+/// Fehlberg 7(8) a partial step of the method; a cubic Hermite for RK4; a partial composed step
+/// for the symplectic methods), accurate to the method's tolerance (tests/test_dense.c: within
+/// 16 x rtol of the closed forms for every method). So the outputs do not change the steps:
+/// the trajectory, its end state and the statistics are the same for any dt. opts.max_steps
+/// counts the steps between two outputs.
+///
+/// The monitor gets the state at the output time with (t, q, qdot) set; everything else
+/// (positions, reactions, multipliers, energies, M ...) is evaluated on its first read through
+/// the accessors, so a monitor that reads only q costs no model evaluation. dt NaN or inf is
+/// DAL_E_NONFINITE, dt <= 0 or below the resolution of t DAL_E_ARG. A monitor returning < 0
+/// stops evolve with DAL_E_CALLBACK; a message the monitor left in the state (dal_csv_monitor
+/// does) is quoted. On any early end the state is at that time, evaluated.
 DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                        double t1, double dt, dal_monitor_fn *monitor, void *ctx);
 
