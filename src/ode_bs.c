@@ -15,6 +15,25 @@
 // Round-off: the midpoint rule and the extrapolation run on increments z - y (whose rounding
 // is relative to the increment, not to y), and the accepted increment is added to y by
 // compensated (Kahan) summation, so that round-off does not accumulate linearly in the steps.
+//
+// Dense output (an advance call that starts with an after-step hook set, ig->hook): the
+// extrapolated dense output of Hairer & Ostermann (1990), HNW sec. II.9 "dense output for
+// extrapolation methods", as in ODEX. The step numbers become n_j = 4j - 2 (2, 6, 10, ...), so
+// that the midpoint of the step is a grid point of odd index in every row and the values
+// there have an expansion in h^2. Row j gives the midpoint value and, by central differences
+// of its f values, the derivatives of order l = 1 .. 2j at the midpoint (order 2j needs f at
+// the row's end point, evaluated for the rows below the target column only); these are
+// extrapolated over the rows that have them. The interpolant is the polynomial of degree
+// mu + 4 in s = theta - 1/2 through y0, H f0, y1, H f1 (f1 = f(t1, y1), reused as the next
+// step's f0) and the scaled derivatives H^l y^(l)(mid), l = 0 .. mu, with mu = 2 kappa - 3
+// (kappa the accepted column; ODEX's default). Its last term a_{mu+4} (s^2 - 1/4)^2 s^mu
+// estimates the interpolation error; a step whose estimate exceeds the tolerance (the norm of
+// err) is rejected, and the next step is limited by it. Without a hook the sequence n_j = 2j
+// runs, bit for bit the integration the tolerance factor was calibrated with, and no dense
+// data is kept (measured on the pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs
+// about the same right-hand sides but takes longer steps whose error at the step points
+// between 0 and 10 reaches 127 x rtol; the interpolation error control keeps it below 16).
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,6 +45,17 @@
 #define BS_KMAX 9
 /// halvings tolerated for one step (recoverable failures, stability check) before giving up
 #define BS_MAX_REJECT 60
+/// largest step number with the dense sequence n_j = 4j - 2 (j <= BS_KMAX)
+#define BS_NMAX (4 * BS_KMAX - 2)
+/// coefficients of the interpolant: degree mu + 4 <= 2 BS_KMAX + 1
+#define BS_NCOEF (2 * BS_KMAX + 2)
+/// the interpolation error estimate above which a step is rejected (scaled norm, like err)
+#define BS_DENSE_REJECT 1.0
+/// the interpolation error the next step aims at: the estimate (one coefficient) scatters by
+/// a factor of ten between neighbouring steps, so that aiming at the bound itself gets many
+/// steps rejected (a retry after a rejection aims at the bound, as ODEX's step after a
+/// dense-output rejection)
+#define BS_DENSE_TARGET 0.1
 
 // outcomes of an attempt, apart from the internal retry codes (DAL__RECOVERABLE ...)
 enum { BS_ACCEPT = 0, BS_REJECT = 100, BS_UNSTABLE = 101 };
@@ -48,6 +78,22 @@ typedef struct bs_mem {
   double H;                 // proposed step
   int kshort;               // target column for steps shortened to land on an output time
   int rejected_last;        // the previous attempt was rejected
+  // dense output
+  int dense;             // this advance call keeps dense output (n_j = 4j - 2)
+  int endf;              // rows j <= endf evaluate f at their end point (dense)
+  double *F;             // f at the grid points of the current row ((BS_NMAX + 1) x ny)
+  double *D;             // scaled midpoint derivatives H^l y^(l), row j at (j^2 - 1) ny,
+                         // l = 0 .. lmax[j] (l = 0: the midpoint value as an increment)
+  int lmax[BS_KMAX + 2]; // highest derivative row j holds
+  double *f1;            // f(t1, y1) of the step being accepted (ny)
+  double errint;         // interpolation error estimate of the step being accepted
+  struct bs_dense {
+    double t0, t1, H; // the step
+    int deg;          // degree of the interpolant in s = (t - t0) / H - 1/2
+    double *y0, *y1;  // y at t0 and t1 (ny each)
+    double *a;        // coefficients a_q of s^q, a[q ny + i] (BS_NCOEF x ny)
+  } dd[2];
+  int cur; // the record of the last accepted step (-1: none, or not a dense step)
 } bs_mem;
 
 static void bs_free(void *p) {
@@ -62,7 +108,26 @@ static void bs_free(void *p) {
   free(m->c);
   free(m->cnew);
   free(m->yz);
+  free(m->F);
+  free(m->D);
+  free(m->f1);
+  for (int b = 0; b < 2; ++b) {
+    free(m->dd[b].y0);
+    free(m->dd[b].y1);
+    free(m->dd[b].a);
+  }
   free(m);
+}
+
+// the step-number sequence: n_j = 2j, or n_j = 4j - 2 with dense output; work A_1 = n_1 + 1,
+// A_j = A_{j-1} + n_j (9.26)
+static void bs_sequence(bs_mem *m, int dense) {
+  m->dense = dense;
+  for (int j = 1; j <= BS_KMAX + 1; ++j)
+    m->nseq[j] = dense ? 4 * j - 2 : 2 * j;
+  m->A[1] = m->nseq[1] + 1;
+  for (int j = 2; j <= BS_KMAX + 1; ++j)
+    m->A[j] = m->A[j - 1] + m->nseq[j];
 }
 
 // scaled RMS norm of v with the weights of y (atol + rtol |y|)
@@ -75,36 +140,78 @@ static double wnorm(const dal_ode_integ *ig, const double *v, const double *y) {
   return sqrt(s / ig->ny);
 }
 
+// dense output, row j: the scaled derivatives H^l y^(l) at the midpoint, l = 1 .. lmax, from
+// the f values F[p] at the grid points p = 0 .. N of the row (N = n or n - 1): with central
+// differences g^(0)_p = f_p, g^(q)_p = g^(q-1)_{p+1} - g^(q-1)_{p-1},
+// y^(q+1)(mid) ~ g^(q)_{n/2} / (2h)^q, hence H^(q+1) y^(q+1) ~ H (n/2)^q g^(q)_{n/2}.
+// The differences overwrite F in place: after level q, F[p] holds g^(q)_{p+q}.
+static void bs_dense_row(dal_ode_integ *ig, bs_mem *m, double H, int j, int N) {
+  int ny = ig->ny, n = m->nseq[j], mid = n / 2, lmax = N - mid + 1;
+  double *D = m->D + (size_t)(j * j - 1) * ny, *F = m->F, sc = H;
+  for (int i = 0; i < ny; ++i)
+    D[ny + i] = H * F[(size_t)mid * ny + i];
+  for (int q = 1; q < lmax; ++q) {
+    for (int p = 0; p <= N - 2 * q; ++p) {
+      double *g = F + (size_t)p * ny;
+      const double *g2 = g + 2 * (size_t)ny;
+      for (int i = 0; i < ny; ++i)
+        g[i] = g2[i] - g[i];
+    }
+    sc *= 0.5 * n;
+    const double *g = F + (size_t)(mid - q) * ny;
+    for (int i = 0; i < ny; ++i)
+      D[(size_t)(q + 1) * ny + i] = sc * g[i];
+  }
+  m->lmax[j] = lmax;
+}
+
 // column j: T_{j,1} by Gragg's midpoint rule with n_j sub-steps over [t, t + H], then the
 // extrapolated row T_{j,2..j}, all as increments over y; returns 0, BS_UNSTABLE (stability
-// check) or the rhs code
+// check) or the rhs code. With dense output the f values of the row are kept in m->F and the
+// row's midpoint data go to m->D.
 static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
   int ny = ig->ny, n = m->nseq[j], rc;
-  double h = H / n, *z0 = m->za, *z1 = m->zb;
+  double h = H / n, *z0 = m->za, *z1 = m->zb, *F = m->dense ? m->F : NULL;
   const double *y = ig->y;
   for (int i = 0; i < ny; ++i) {
     z0[i] = 0.0;
     z1[i] = h * m->f0[i];
   }
+  if (F) memcpy(F, m->f0, (size_t)ny * sizeof(double));
   for (int s = 1; s < n; ++s) {
+    double *fs = F ? F + (size_t)s * ny : m->fz;
     for (int i = 0; i < ny; ++i)
       m->yz[i] = y[i] + z1[i];
-    if ((rc = dal__ode_rhs(ig, t + s * h, m->yz, m->fz)) != 0) return rc;
+    if ((rc = dal__ode_rhs(ig, t + s * h, m->yz, fs)) != 0) return rc;
     if (s == 1 && j <= 2) {
       // stability check: f must not change by more than twice its size over one sub-step
       double del1 = 0.0, del2 = 0.0;
       for (int i = 0; i < ny; ++i) {
         double sc = ig->atol + ig->rtol * fabs(y[i]);
         del1 += (m->f0[i] / sc) * (m->f0[i] / sc);
-        del2 += ((m->fz[i] - m->f0[i]) / sc) * ((m->fz[i] - m->f0[i]) / sc);
+        del2 += ((fs[i] - m->f0[i]) / sc) * ((fs[i] - m->f0[i]) / sc);
       }
       if (del2 > 4.0 * fmax(del1, 1e-300)) return BS_UNSTABLE;
     }
+    // the midpoint value of the row (an increment), for the dense output
+    if (F && 2 * s == n) memcpy(m->D + (size_t)(j * j - 1) * ny, z1, (size_t)ny * sizeof(double));
     for (int i = 0; i < ny; ++i)
-      z0[i] += 2.0 * h * m->fz[i];
+      z0[i] += 2.0 * h * fs[i];
     double *sw = z0;
     z0 = z1;
     z1 = sw;
+  }
+  if (F) {
+    // f at the end point of the row gives the derivative of order 2j (not needed in the last
+    // two columns, see bs_dense_build)
+    int N = n - 1;
+    if (j <= m->endf) {
+      for (int i = 0; i < ny; ++i)
+        m->yz[i] = y[i] + z1[i];
+      if ((rc = dal__ode_rhs(ig, t + H, m->yz, F + (size_t)n * ny)) != 0) return rc;
+      N = n;
+    }
+    bs_dense_row(ig, m, H, j, N);
   }
   // Aitken-Neville in h^2: T_{j,l+1} = T_{j,l} + (T_{j,l} - T_{j-1,l}) / ((n_j/n_{j-l})^2 - 1)
   for (int i = 0; i < ny; ++i) {
@@ -185,6 +292,9 @@ static void bs_reject(bs_mem *m, int kc) {
 static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
   int rc;
   double t = ig->t, n1 = m->nseq[1];
+  // with dense output, the rows that may give the derivative of order 2j need the f value at
+  // their end point: j <= kappa - 2 for the accepted column kappa <= k + 1
+  m->endf = k - 1;
   for (int j = 1; j <= k + 1; ++j) {
     rc = bs_column(ig, m, t, H, j);
     if (dal__is_retry(rc) || rc == BS_UNSTABLE) {
@@ -230,6 +340,124 @@ static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
   return BS_REJECT; // not reached: line k+1 always decides
 }
 
+// max over s in [-1/2, 1/2] of (1/4 - s^2)^2 |s|^mu: at s^2 = mu / (4 (mu + 4))
+static double bs_errfac(int mu) {
+  double u = mu / (4.0 * (mu + 4.0));
+  return (0.25 - u) * (0.25 - u) * pow(u, 0.5 * mu);
+}
+
+// the interpolant of the step just accepted at column kc (increment m->T row kc - 1, end
+// value m->ynew, f1 = m->f1 at t1) into the free record; sets m->errint. Returns the record.
+//   P(s) = sum_{l <= mu} d_l s^l / l! + s^(mu+1) R(s), s = theta - 1/2, R cubic:
+// the Taylor part has the extrapolated midpoint derivatives d_l = H^l y^(l)(mid), and R makes
+// P(-1/2) = 0, P'(-1/2) = H f0, P(1/2) = T_kc,kc, P'(1/2) = H f1 (increments over y0).
+static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double t1) {
+  int ny = ig->ny, b = m->cur == 0 ? 1 : 0, mu = 2 * kc - 3, p = mu + 1;
+  struct bs_dense *d = &m->dd[b];
+  double *a = d->a;
+  // extrapolate derivative l over the rows j0 .. kc that hold it (Aitken-Neville in h^2,
+  // in place in D, descending j)
+  double fact = 1.0;
+  for (int l = 0; l <= mu; ++l) {
+    int j0 = l <= 1 ? 1 : (l + 1) / 2;
+    while (m->lmax[j0] < l)
+      ++j0;
+    for (int q = 1; q <= kc - j0; ++q) {
+      for (int j = kc; j >= j0 + q; --j) {
+        double r = (double)m->nseq[j] / m->nseq[j - q], den = r * r - 1.0;
+        double *cur = m->D + (size_t)(j * j - 1 + l) * ny;
+        const double *prev = m->D + (size_t)((j - 1) * (j - 1) - 1 + l) * ny;
+        for (int i = 0; i < ny; ++i)
+          cur[i] += (cur[i] - prev[i]) / den;
+      }
+    }
+    if (l > 1) fact *= l;
+    const double *dl = m->D + (size_t)(kc * kc - 1 + l) * ny;
+    for (int i = 0; i < ny; ++i)
+      a[(size_t)l * ny + i] = dl[i] / fact;
+  }
+  // the cubic R from the end conditions: with e = Y - T (value) and e' (derivative) at
+  // sigma = +-1/2, R(sigma) = e / sigma^p, R'(sigma) = (e' - p e / sigma) / sigma^p
+  const double *Tkk = m->T + (size_t)(kc - 1) * ny;
+  double sp = ldexp(1.0, -p), s = 0.0; // (1/2)^p
+  for (int i = 0; i < ny; ++i) {
+    double Tp = 0.0, Tm = 0.0, dTp = 0.0, dTm = 0.0;
+    for (int l = mu; l >= 0; --l) {
+      double al = a[(size_t)l * ny + i];
+      dTp = dTp * 0.5 + Tp;
+      dTm = dTm * -0.5 + Tm;
+      Tp = Tp * 0.5 + al;
+      Tm = Tm * -0.5 + al;
+    }
+    double em = 0.0 - Tm, ep = Tkk[i] - Tp;
+    double dem = H * m->f0[i] - dTm, dep = H * m->f1[i] - dTp;
+    double sgn = (p & 1) ? -1.0 : 1.0; // (-1/2)^p = sgn sp
+    double Rm = em / (sgn * sp), Rp = ep / sp;
+    double dRm = (dem + 2.0 * p * em) / (sgn * sp), dRp = (dep - 2.0 * p * ep) / sp;
+    double S0 = Rp + Rm, D0 = Rp - Rm, S1 = dRp + dRm, D1 = dRp - dRm;
+    double c3 = S1 - 2.0 * D0;
+    a[(size_t)p * ny + i] = 0.5 * S0 - 0.125 * D1;
+    a[(size_t)(p + 1) * ny + i] = 1.5 * D0 - 0.25 * S1;
+    a[(size_t)(p + 2) * ny + i] = 0.5 * D1;
+    a[(size_t)(p + 3) * ny + i] = c3;
+    // error estimate: the last term c3 (1/4 - s^2)^2 s^mu (the difference to the interpolant
+    // with one midpoint derivative less), scaled like the step's error
+    double sc = ig->atol + ig->rtol * fmax(fabs(ig->y[i]), fabs(m->ynew[i]));
+    s += (c3 / sc) * (c3 / sc);
+  }
+  m->errint = sqrt(s / ny) * bs_errfac(mu);
+  d->t0 = ig->t;
+  d->t1 = t1;
+  d->H = H;
+  d->deg = mu + 4;
+  memcpy(d->y0, ig->y, (size_t)ny * sizeof(double));
+  memcpy(d->y1, m->ynew, (size_t)ny * sizeof(double));
+  return b;
+}
+
+// step factor from the interpolation error estimate (of order deg in H) aiming at target,
+// between 0.2 and 4
+static double bs_dense_fac(double errint, int deg, double target) {
+  double fac = 0.94 * pow(target / fmax(errint, 1e-300), 1.0 / deg);
+  return fmin(4.0, fmax(0.2, fac));
+}
+
+// y at t in [tprev, t] of the last accepted step, from its interpolant (the integration is not
+// touched). Dense data exist for the steps of an advance call that started with a hook.
+static int bs_interp(dal_ode_integ *ig, double t, double *yout) {
+  bs_mem *m = ig->impl;
+  int ny = ig->ny;
+  if (m->cur < 0) {
+    if (t == ig->t) {
+      memcpy(yout, ig->y, (size_t)ny * sizeof(double));
+      return DAL_OK;
+    }
+    return DAL_FAIL(ig->st, DAL_E_UNSUPPORTED,
+                    "Bulirsch-Stoer: no dense output for the step ending at t=%.17g (dense "
+                    "output is kept only when the after-step hook is set before advance)",
+                    ig->t);
+  }
+  const struct bs_dense *d = &m->dd[m->cur];
+  double slack = 4.0 * DBL_EPSILON * fmax(fabs(d->t0), fabs(d->t1));
+  if (!(t >= d->t0 - slack && t <= d->t1 + slack))
+    return DAL_FAIL(ig->st, DAL_E_ARG,
+                    "Bulirsch-Stoer dense output: t=%.17g lies outside the last step "
+                    "[%.17g, %.17g]",
+                    t, d->t0, d->t1);
+  if (t == d->t1) {
+    memcpy(yout, d->y1, (size_t)ny * sizeof(double));
+    return DAL_OK;
+  }
+  double s = (t - d->t0) / d->H - 0.5;
+  for (int i = 0; i < ny; ++i) {
+    double acc = d->a[(size_t)d->deg * ny + i];
+    for (int q = d->deg - 1; q >= 0; --q)
+      acc = acc * s + d->a[(size_t)q * ny + i];
+    yout[i] = d->y0[i] + acc;
+  }
+  return DAL_OK;
+}
+
 // initial step: Hairer-Norsett-Wanner sec. II.4 (starting step size), order p = 2k
 static int bs_initial_step(dal_ode_integ *ig, bs_mem *m, double tout, double *H) {
   int ny = ig->ny, rc;
@@ -252,6 +480,8 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
   const dal_solve_opts *o = &ig->opts;
   char var[128];
   int nrej = 0, rc;
+  // dense output when a hook reads the steps (the driver sets it before advance)
+  if ((ig->hook != NULL) != m->dense) bs_sequence(m, ig->hook != NULL);
   while (ig->t < tout) {
     if (!m->f0_ok) {
       rc = dal__ode_rhs(ig, ig->t, ig->y, m->f0);
@@ -284,13 +514,26 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     // the progress guard: a step of a few ulps of t (a collapsed first-step estimate, or a
     // step size control driven down) stops at once with its cause
     double hfloor = fmax(o->hmin, DAL_TINY_STEP(ig->t));
-    if (H < hfloor && !last)
-      return dal__ode_stall(ig, H, "the step size fell to a few ulps of t");
+    if (H < hfloor && !last) return dal__ode_stall(ig, H, "the step size fell to a few ulps of t");
     // a shortened step uses the order that sufficed for the last shortened one: with outputs
     // denser than the natural steps a low order is cheapest; the natural order and step are
     // kept for the next full step
-    int shortened = last && H < Hprop, kc = 0;
+    int shortened = last && H < Hprop, kc = 0, b = -1;
+    double t1 = last ? tout : ig->t + H;
     rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, &kc);
+    if (rc == BS_ACCEPT && m->dense) {
+      // the interpolant needs f(t1, y1) (the next step's f0); its error estimate can still
+      // reject the step
+      rc = dal__ode_rhs(ig, t1, m->ynew, m->f1);
+      if (dal__is_retry(rc)) m->H = 0.5 * H;
+      if (rc == 0) {
+        b = bs_dense_build(ig, m, kc, H, t1);
+        if (!(m->errint <= BS_DENSE_REJECT)) {
+          m->H = H * bs_dense_fac(m->errint, m->dd[b].deg, BS_DENSE_REJECT);
+          rc = BS_REJECT;
+        }
+      }
+    }
     if (dal__is_retry(rc) || rc == BS_REJECT || rc == BS_UNSTABLE) {
       // rejected: bs_attempt has set the order and step of the retry
       m->rejected_last = 1;
@@ -326,16 +569,35 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
         }
       m->kshort = jmin + 1 < m->k ? jmin + 1 : m->k;
     }
+    // the next step is limited by the interpolation error too
+    if (b >= 0 && !shortened)
+      m->H = fmin(m->H, H * bs_dense_fac(m->errint, m->dd[b].deg, BS_DENSE_TARGET));
     m->rejected_last = 0;
     nrej = 0;
     m->f0_ok = 0;
-    int projected = 0;
-    if ((rc = dal__ode_accept(ig, last ? tout : ig->t + H, m->ynew, &projected)) != 0) return rc;
+    int projected = 0, prev = m->cur;
+    // the dense data of the step are ready before dal__ode_accept (which calls the hook)
+    m->cur = b;
+    rc = dal__ode_accept(ig, t1, m->ynew, &projected);
+    if (ig->t != t1) {
+      // refused by the progress guard: the last step stays the one to read
+      m->cur = prev;
+      return rc;
+    }
     // the compensation belongs to the accepted sum (a projection starts a new one)
     double *sw = m->c;
     m->c = m->cnew;
     m->cnew = sw;
     if (projected) memset(m->c, 0, (size_t)ig->ny * sizeof(double));
+    if (b >= 0 && !projected) {
+      // f(t1, y1) is the next step's f0
+      sw = m->f0;
+      m->f0 = m->f1;
+      m->f1 = sw;
+      m->f0_ok = 1;
+    }
+    // accepted, then stopped: by the hook (DAL__HOOK_STOP) or opts.max_steps
+    if (rc) return rc;
   }
   return DAL_OK;
 }
@@ -356,14 +618,21 @@ int dal__bs_create(dal_ode_integ *ig) {
   m->c = calloc(ny, sizeof(double));
   m->cnew = calloc(ny, sizeof(double));
   m->yz = calloc(ny, sizeof(double));
-  if (!m->f0 || !m->za || !m->zb || !m->fz || !m->ynew || !m->T || !m->c || !m->cnew || !m->yz)
-    return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
-  // step numbers n_j = 2j and work A_1 = n_1 + 1, A_j = A_{j-1} + n_j
-  for (int j = 1; j <= BS_KMAX + 1; ++j)
-    m->nseq[j] = 2 * j;
-  m->A[1] = m->nseq[1] + 1;
-  for (int j = 2; j <= BS_KMAX + 1; ++j)
-    m->A[j] = m->A[j - 1] + m->nseq[j];
+  m->F = calloc((BS_NMAX + 1) * ny, sizeof(double));
+  m->D = calloc((size_t)(BS_KMAX * BS_KMAX + 2 * BS_KMAX) * ny, sizeof(double));
+  m->f1 = calloc(ny, sizeof(double));
+  int ok = m->f0 && m->za && m->zb && m->fz && m->ynew && m->T && m->c && m->cnew && m->yz &&
+           m->F && m->D && m->f1;
+  for (int b = 0; b < 2; ++b) {
+    m->dd[b].y0 = calloc(ny, sizeof(double));
+    m->dd[b].y1 = calloc(ny, sizeof(double));
+    m->dd[b].a = calloc(BS_NCOEF * ny, sizeof(double));
+    ok = ok && m->dd[b].y0 && m->dd[b].y1 && m->dd[b].a;
+  }
+  if (!ok) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
+  ig->interp = bs_interp;
+  m->cur = -1;
+  bs_sequence(m, 0);
   int k = (int)(-log10(ig->rtol) * 0.6 + 1.5);
   m->k = k < 2 ? 2 : k > BS_KMAX - 1 ? BS_KMAX - 1 : k;
   m->kshort = m->k;
