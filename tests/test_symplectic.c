@@ -657,7 +657,18 @@ static double run_invariant(dal_system *sys, const double *q, const double *qd, 
   m->w = w;
   m->T = T;
   CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
-  int rc = dal_evolve(sys, st, o, T, dt, inv_monitor, m);
+  int rc = 0;
+  if (o->method == DAL_METHOD_DOPRI5) {
+    // DOPRI5 measured at its own steps (dal_advance lands a step on each output time):
+    // between steps its cubic dense output adds an interpolation error of its own, larger
+    // than the energy drift this test looks for at rtol 1e-6 (docs/events.md)
+    CHECK_OK(dal_forward(sys, st));
+    inv_monitor(sys, st, m);
+    for (long k = 1; !rc && (double)k * dt <= T; ++k)
+      if ((rc = dal_advance(sys, st, o, (double)k * dt)) == 0) rc = inv_monitor(sys, st, m);
+  } else {
+    rc = dal_evolve(sys, st, o, T, dt, inv_monitor, m);
+  }
   if (rc) fprintf(stderr, "evolve: %s\n", dal_state_errmsg(st));
   CHECK_OK(rc);
   dal_state_destroy(st);
