@@ -17,6 +17,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include "analysis_internal.h"
 #include "solve_internal.h"
 
 typedef struct cv_mem {
@@ -27,6 +28,8 @@ typedef struct cv_mem {
   SUNLinearSolver LS;
   SUNNonlinearSolver NLS;
   long netf, nsf, nje, nni; // counters already added to the state's statistics
+  dal_tangent *tg; // exact Newton matrix for BDF in minimal coordinates (NULL: differences)
+  double *Af;      // its flow Jacobian (2n x 2n, column-major)
 } cv_mem;
 
 static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
@@ -38,11 +41,34 @@ static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
 // (inc_j = max(sqrt(uround) |y_j|, min_inc / w_j), min_inc from the step, size and |f|;
 // Hindmarsh et al. 2005, sec. 2.1). Written here so that a step allocates nothing (CVODE's
 // own dense difference quotient clones a vector per Jacobian).
+// The exact Jacobian df/dy of f = (qdot, qddot) from the jets (analysis_tangent.c, the same
+// tangent as dal_flow_jacobian); nonzero when it cannot be had at this point (a jet without a
+// third derivative, a singular M): the caller falls back to differences
+static int cv_jac_exact(dal_ode_integ *ig, cv_mem *m, double t, const double *y, SUNMatrix J) {
+  dal_state *st = ig->st;
+  int n = ig->sys->n, rc;
+  char keep[DAL_ERRMSG_LEN];
+  memcpy(keep, st->err, sizeof keep);
+  dal__ode_to_state(ig, t, y);
+  rc = dal__eval(ig->sys, st, DAL_P_ALL);
+  if (!rc) rc = dal__tangent_eval(ig->sys, st, m->tg, 0);
+  if (!rc) rc = dal__tangent_factor(ig->sys, st, m->tg);
+  if (rc) {
+    memcpy(st->err, keep, sizeof keep);
+    return rc;
+  }
+  dal__tangent_flow(m->tg, m->Af, NULL);
+  for (int j = 0; j < 2 * n; ++j)
+    memcpy(SUNDenseMatrix_Column(J, j), m->Af + (size_t)j * 2 * n, 2 * (size_t)n * sizeof(double));
+  return DAL_OK;
+}
+
 static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_Vector tmp1,
                   N_Vector tmp2, N_Vector tmp3) {
   (void)tmp3;
   dal_ode_integ *ig = ud;
   cv_mem *m = ig->impl;
+  if (m->tg && cv_jac_exact(ig, m, t, N_VGetArrayPointer(y), J) == DAL_OK) return 0;
   int n = ig->ny;
   double h = 0, *yp = N_VGetArrayPointer(tmp2), *fp = N_VGetArrayPointer(tmp1);
   const double *y0 = N_VGetArrayPointer(y), *f0 = N_VGetArrayPointer(fy);
@@ -78,6 +104,8 @@ static void cv_free(void *p) {
   if (m->ewt) N_VDestroy(m->ewt);
   if (m->dky) N_VDestroy(m->dky);
   if (m->ctx) SUNContext_Free(&m->ctx);
+  if (m->tg) dal__tangent_free(m->tg);
+  free(m->Af);
   free(m);
 }
 
@@ -248,6 +276,17 @@ int dal__cvode_create(dal_ode_integ *ig) {
     m->LS = m->A ? SUNLinSol_Dense(m->y, m->A, m->ctx) : NULL;
     flag = m->LS ? CVodeSetLinearSolver(m->cv, m->LS, m->A) : CV_MEM_FAIL;
     if (!flag) flag = CVodeSetJacFn(m->cv, cv_jac);
+    // the exact Newton matrix where the jets give it: minimal coordinates, no force callbacks
+    // (plain doubles have no derivative), no work component; otherwise difference quotients
+    char keep[DAL_ERRMSG_LEN];
+    memcpy(keep, st->err, sizeof keep);
+    if (!flag && ig->prob == &dal__problem_minimal && !o->work &&
+        dal__tangent_supported(ig->sys, st, "bdf") == DAL_OK &&
+        dal__tangent_create(ig->sys, &m->tg) == DAL_OK) {
+      m->Af = calloc(4 * (size_t)ig->sys->n * (size_t)ig->sys->n + 1, sizeof(double));
+      if (!m->Af) flag = CV_MEM_FAIL;
+    }
+    memcpy(st->err, keep, sizeof keep);
   } else if (!flag) {
     // functional (fixed-point) iteration, no Jacobian
     m->NLS = SUNNonlinSol_FixedPoint(m->y, 0, m->ctx);
