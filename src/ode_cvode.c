@@ -281,10 +281,9 @@ int dal__cvode_create(dal_ode_integ *ig) {
     char keep[DAL_ERRMSG_LEN];
     memcpy(keep, st->err, sizeof keep);
     if (!flag && ig->prob == &dal__problem_minimal && !o->work &&
-        dal__tangent_supported(ig->sys, st, "bdf") == DAL_OK &&
-        dal__tangent_create(ig->sys, &m->tg) == DAL_OK) {
+        dal__tangent_supported(ig->sys, st, "bdf") == DAL_OK) {
       m->Af = calloc(4 * (size_t)ig->sys->n * (size_t)ig->sys->n + 1, sizeof(double));
-      if (!m->Af) flag = CV_MEM_FAIL;
+      if (!m->Af || dal__tangent_create(ig->sys, &m->tg) != DAL_OK) flag = CV_MEM_FAIL;
     }
     memcpy(st->err, keep, sizeof keep);
   } else if (!flag) {
@@ -296,6 +295,8 @@ int dal__cvode_create(dal_ode_integ *ig) {
   if (!flag && o->hmin > 0) flag = CVodeSetMinStep(m->cv, o->hmin);
   if (!flag && o->hmax > 0) flag = CVodeSetMaxStep(m->cv, o->hmax);
   if (flag)
-    return DAL_FAIL(st, DAL_E_SOLVER, "CVODE setup failed (code %d): %s", flag, ig->sun_err);
+    return flag == CV_MEM_FAIL
+               ? DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator")
+               : DAL_FAIL(st, DAL_E_SOLVER, "CVODE setup failed (code %d): %s", flag, ig->sun_err);
   return DAL_OK;
 }
