@@ -243,13 +243,13 @@ static int full_mode(const char *dir) {
   FILE *g1 = fopen(gp, "w");
   if (g1) {
     fprintf(g1,
-            "set terminal pngcairo size 900,700\nset output '%s'\n"
-            "set title \"SICM's driven pendulum, stroboscopic section at the drive period "
-            "T = 2 pi / omega\\n(l = 1 m, g = 9.8 m/s^2, pivot y = 0.1 m cos(omega t), omega = "
-            "2 sqrt(g); 24 orbits x 400 periods; Bulirsch-Stoer, rtol 1e-10)\"\n"
+            "set terminal pngcairo size 900,760\nset output '%s'\n"
+            "set title \"SICM's driven pendulum: stroboscopic Poincare section at the drive "
+            "period\\nl = 1 m, g = 9.8 m/s^2, pivot y = 0.1 m cos(w t), w = 2 sqrt(g)\\n"
+            "24 orbits (colours) x 400 periods; Bulirsch-Stoer, rtol 1e-10\"\n"
             "set xlabel 'theta (rad, wrapped to [-pi, pi))'\nset ylabel 'thetadot (rad/s)'\n"
             "set datafile separator ','\nset key off\nset xrange [-pi:pi]\n"
-            "plot '%s' every ::1 using 3:4:1 with dots lc variable\n",
+            "plot '%s' every ::1 using 3:4:1 with points pt 7 ps 0.15 lc variable\n",
             png, p1);
     fclose(g1);
     char cmd[2200];
