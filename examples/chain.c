@@ -50,7 +50,7 @@ static int build(int N, int cartesian, dal_system **sys) {
       if (!rc) rc = dal_builder_place_def(b, p, &pd);
       snprintf(name, sizeof name, "rod%d", k);
       // the first rod to the fixed pivot at the origin, the others between neighbours
-      int pp[2] = {prev, p};
+      int pp[2];
       dal_constraint_def cd = dal_default_constraint_def();
       cd.name = name;
       if (k == 0) {
@@ -59,6 +59,8 @@ static int build(int N, int cartesian, dal_system **sys) {
         cd.nparts = 1;
         cd.param[DAL_ANCHOR_L] = 1.0;
       } else {
+        pp[0] = prev;
+        pp[1] = p;
         cd.prim = &dal_con_distance2;
         cd.parts = pp;
         cd.nparts = 2;
