@@ -1070,12 +1070,14 @@ static void sw_dal_verify_lagrangian(void) {
 }
 static void sw_dal_verify_model(void) {
   dal_model_report rep;
-  // NOTE: header says the status of a failing evaluation (dal_forward: DAL_E_STATE for a NULL
-  // system with a state, README convention too); the implementation returns DAL_E_ARG
-  ST(dal_verify_model(NULL, F.stB, NULL, &rep), DAL_E_ARG, NULL);
+  // the (system, state) convention of state.h: a NULL system is DAL_E_STATE with a message in
+  // the state (and in the report), a NULL state DAL_E_ARG with the message in the report
+  ST(dal_verify_model(NULL, F.stB, NULL, &rep), DAL_E_STATE, F.stB);
+  CHECK(strstr(rep.msg, "the system is NULL") != NULL && rep.passed == 0);
   ST(dal_verify_model(F.B, NULL, NULL, &rep), DAL_E_ARG, NULL);
+  CHECK(strstr(rep.msg, "state is NULL") != NULL && rep.passed == 0);
   ST(dal_verify_model(F.A, F.stB, NULL, &rep), DAL_E_STATE, F.stB);
-  CHECK(rep.msg[0] != 0 && rep.passed == 0);
+  CHECK(strstr(rep.msg, "another system") != NULL && rep.passed == 0);
   st_intact();
   ST(dal_verify_model(F.B, F.stB, NULL, &rep), DAL_OK, F.stB);
   CHECK(rep.passed == 1 && rep.mass_checked == 1 && rep.path_checked == 1 && rep.m == 0);
