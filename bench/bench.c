@@ -744,13 +744,21 @@ static void exp_stiff(const bench_cfg *cfg) {
     bench_model m;
     memset(&m, 0, sizeof m);
     int xy[2], p, rc = dal_builder_create(2, &b);
-    double g[2] = {0.0, -9.81}, x0[2] = {0.0, 0.0};
+    double g[2] = {0.0, -9.81};
     if (!rc) rc = dal_builder_add_coord(b, "x", &xy[0]);
     if (!rc) rc = dal_builder_add_coord(b, "y", &xy[1]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, xy, 0, NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = xy;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
-    if (!rc) rc = dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, ks[ki], 1.0);
+    dal_spring_def sd = dal_default_spring_def(); // anchored at the origin
+    sd.a = p;
+    sd.k = ks[ki];
+    sd.length = 1.0;
+    if (!rc) rc = dal_builder_add_spring_def(b, &sd);
     if (!rc) rc = dal_builder_compile(b, &m.sys);
     if (!rc) rc = dal_state_create(m.sys, &m.st);
     m.n = 2;
@@ -792,21 +800,32 @@ static int spherical_model(int redundant, double th0, double thd0, double phd0, 
   int rc = dal_builder_create(3, &b), p, c[3];
   double g[3] = {0.0, 0.0, -9.81};
   if (!rc && !redundant) {
-    double par[4] = {1.0, 0.0, 0.0, 0.0};
     rc = dal_builder_add_coord(b, "theta", &c[0]);
     if (!rc) rc = dal_builder_add_coord(b, "phi", &c[1]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_spherical, -1, 2, c, 4, par, NULL);
+    dal_place_def pd = dal_default_place_def(); // unit length, pivot at the origin
+    pd.prim = &dal_map_spherical;
+    pd.coords = c;
+    pd.ncoords = 2;
+    pd.param[DAL_SPHERICAL_L] = 1.0;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
   } else if (!rc) {
-    double par[4] = {1.0, 0.0, 0.0, 0.0};
     rc = dal_builder_add_coord(b, "x", &c[0]);
     if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
     if (!rc) rc = dal_builder_add_coord(b, "z", &c[2]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor3, 1, &p, 0, NULL, 4, par, NULL,
-                                      NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian3;
+    pd.coords = c;
+    pd.ncoords = 3;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    dal_constraint_def cd = dal_default_constraint_def(); // unit rod to the origin
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor3;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = 1.0;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &m->sys);

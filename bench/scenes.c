@@ -119,7 +119,11 @@ static int build_minimal(const bench_scene *sc, dal_builder *b, bench_model *m) 
     if (!rc) rc = dal_builder_add_coord(b, "x", &xy[0]);
     if (!rc) rc = dal_builder_add_coord(b, "y", &xy[1]);
     if (!rc) rc = dal_builder_add_particle(b, "m", HO_M, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, xy, 0, NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = xy;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_add_potential_r(b, ho_potential, NULL);
     if (!rc) rc = model_alloc(m, 2);
     if (!rc) {
@@ -131,20 +135,32 @@ static int build_minimal(const bench_scene *sc, dal_builder *b, bench_model *m) 
     return rc;
   }
   case SC_RING: {
-    double par[3] = {RING_R, ring_w(), 0.0};
     if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
     if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &c, 3, par, NULL);
+    dal_place_def pd = dal_default_place_def(); // the ring's plane at angle 0 at t = 0
+    pd.prim = &dal_map_ring;
+    pd.coords = &c;
+    pd.ncoords = 1;
+    pd.param[DAL_RING_R] = RING_R;
+    pd.param[DAL_RING_W] = ring_w();
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g3);
     if (!rc) rc = model_alloc(m, 1);
     if (!rc) m->q0[0] = RING_TH0;
     return rc;
   }
   case SC_DRIVEN: {
-    double par[7] = {DRV_L, 0.0, 0.0, 0.0, DRV_A, drv_w(), 0.0}, gd[2] = {0.0, -DRV_G};
+    double gd[2] = {0.0, -DRV_G};
     if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
+    dal_place_def pd = dal_default_place_def(); // pivot (0, a cos(w t))
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c;
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = DRV_L;
+    pd.param[DAL_PENDULUM_AY] = DRV_A;
+    pd.param[DAL_PENDULUM_W] = drv_w();
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, gd);
     if (!rc) rc = model_alloc(m, 1);
     if (!rc) m->q0[0] = 1.0;
@@ -155,7 +171,6 @@ static int build_minimal(const bench_scene *sc, dal_builder *b, bench_model *m) 
   }
   // chain-like: pendulum about the origin, then links hanging from the previous particle
   int N = sc->N;
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, len = 1.0;
   rc = model_alloc(m, N);
   for (int i = 0; i < N && !rc; ++i) {
     char name[32];
@@ -163,10 +178,18 @@ static int build_minimal(const bench_scene *sc, dal_builder *b, bench_model *m) 
     rc = dal_builder_add_coord(b, name, &c);
     snprintf(name, sizeof name, "p%d", i);
     if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    if (!rc && i == 0)
-      rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
-    else if (!rc)
-      rc = dal_builder_place(b, p, &dal_map_hanging, p - 1, 1, &c, 1, &len, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.coords = &c;
+    pd.ncoords = 1;
+    if (i == 0) {
+      pd.prim = &dal_map_pendulum;
+      pd.param[DAL_PENDULUM_L] = 1.0;
+    } else {
+      pd.prim = &dal_map_hanging;
+      pd.parent = p - 1;
+      pd.param[DAL_HANGING_L] = 1.0;
+    }
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     m->q0[i] = chain_th0(sc, i);
   }
   if (!rc) rc = dal_builder_set_gravity(b, g2);
@@ -193,9 +216,11 @@ static int add_cartesian(dal_builder *b, int d, int i, int *p) {
   }
   snprintf(name, sizeof name, "p%d", i);
   if (!rc) rc = dal_builder_add_particle(b, name, 1.0, p);
-  if (!rc)
-    rc = dal_builder_place(b, *p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c, 0,
-                           NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3;
+  pd.coords = c;
+  pd.ncoords = d;
+  if (!rc) rc = dal_builder_place_def(b, *p, &pd);
   return rc;
 }
 
@@ -206,11 +231,15 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
   switch (sc->kind) {
   case SC_RING: {
     // bead held on the turning circle; starts on the ring at rest relative to it
-    double par[6] = {RING_R, ring_w(), 0.0, 0.0, 0.0, 0.0};
     rc = add_cartesian(b, 3, 0, &p);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, par,
-                                      NULL, NULL);
+    dal_constraint_def cd = dal_default_constraint_def(); // centred at the origin
+    cd.name = "ring";
+    cd.prim = &dal_con_turning_circle;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_TURNING_CIRCLE_R] = RING_R;
+    cd.param[DAL_TURNING_CIRCLE_W] = ring_w();
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
     if (!rc) rc = dal_builder_set_gravity(b, g3);
     if (!rc) rc = model_alloc(m, 3);
     if (!rc) {
@@ -222,11 +251,16 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
   }
   case SC_DRIVEN: {
     // rod to the moving pivot (0, a cos(w t)), which starts at (0, a) at rest
-    double par[3] = {DRV_L, 0.0, 0.0}, gd[2] = {0.0, -DRV_G};
+    double gd[2] = {0.0, -DRV_G};
     rc = add_cartesian(b, 2, 0, &p);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
-                                      (void *)&driven_point, NULL);
+    dal_constraint_def cd = dal_default_constraint_def(); // the point 0 + x(t)
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = DRV_L;
+    cd.ctx = (void *)&driven_point;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
     if (!rc) rc = dal_builder_set_gravity(b, gd);
     if (!rc) rc = model_alloc(m, 2);
     if (!rc) {
@@ -248,16 +282,24 @@ static int build_redundant(const bench_scene *sc, dal_builder *b, bench_model *m
     char name[32];
     rc = add_cartesian(b, 2, i, &p);
     snprintf(name, sizeof name, "rod%d", i);
-    if (!rc && i == 0) {
-      double par[3] = {1.0, 0.0, 0.0};
-      rc =
-          dal_builder_add_constraint(b, name, &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
-    } else if (!rc) {
-      double L = 1.0;
-      int ends[2] = {p - 1, p};
-      rc = dal_builder_add_constraint(b, name, &dal_con_distance2, 2, ends, 0, NULL, 1, &L, NULL,
-                                      NULL);
+    // the first rod to the fixed pivot at the origin, the others between neighbours
+    int ends[2];
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = name;
+    if (i == 0) {
+      cd.prim = &dal_con_anchor2;
+      cd.parts = &p;
+      cd.nparts = 1;
+      cd.param[DAL_ANCHOR_L] = 1.0;
+    } else {
+      ends[0] = p - 1;
+      ends[1] = p;
+      cd.prim = &dal_con_distance2;
+      cd.parts = ends;
+      cd.nparts = 2;
+      cd.param[DAL_DISTANCE_L] = 1.0;
     }
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
     x += sin(chain_th0(sc, i));
     y -= cos(chain_th0(sc, i));
     m->q0[2 * i] = x;
@@ -419,15 +461,26 @@ static int build_fourbar(dal_builder *b, int cart, bench_model *m) {
   double w2 = -a * w1 * (CD[0] * e1[0] + CD[1] * e1[1]) / (bl * (CD[0] * e2[0] + CD[1] * e2[1]));
   double Bd[2] = {a * w1 * e1[0], a * w1 * e1[1]};
   double Cd[2] = {Bd[0] + bl * w2 * e2[0], Bd[1] + bl * w2 * e2[1]};
-  double pend[7] = {a, 0, 0, 0, 0, 0, 0}, rodA[3] = {a, 0, 0}, rodD[3] = {c, Dx, 0};
   int p[2], cs[4], rc = model_alloc(m, cart ? 4 : 2);
   if (!rc) rc = dal_builder_add_particle(b, "B", 1.0, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "C", 2.0, &p[1]);
+  dal_place_def pd = dal_default_place_def();
+  dal_constraint_def cd = dal_default_constraint_def();
   if (!rc && !cart) {
     rc = dal_builder_add_coord(b, "crank", &cs[0]);
     if (!rc) rc = dal_builder_add_coord(b, "coupler", &cs[1]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &cs[0], 7, pend, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &cs[1], 1, &bl, NULL);
+    pd.prim = &dal_map_pendulum; // B about A at the origin
+    pd.coords = &cs[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = a;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def(); // C hanging from B
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &cs[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = bl;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
     if (!rc) {
       m->q0[0] = th1, m->q0[1] = th2, m->qd0[0] = w1, m->qd0[1] = w2;
     }
@@ -435,23 +488,39 @@ static int build_fourbar(dal_builder *b, int cart, bench_model *m) {
     const char *nm[4] = {"xB", "yB", "xC", "yC"};
     for (int i = 0; i < 4 && !rc; ++i)
       rc = dal_builder_add_coord(b, nm[i], &cs[i]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, cs, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, cs + 2, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "AB", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rodA, NULL,
-                                      NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "BC", &dal_con_distance2, 2, p, 0, NULL, 1, &bl, NULL,
-                                      NULL);
+    pd.prim = &dal_map_cartesian2;
+    pd.ncoords = 2;
+    pd.coords = cs;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd.coords = cs + 2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    cd.name = "AB"; // B to the ground pivot A at the origin
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p[0];
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = a;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    cd = dal_default_constraint_def();
+    cd.name = "BC";
+    cd.prim = &dal_con_distance2;
+    cd.parts = p;
+    cd.nparts = 2;
+    cd.param[DAL_DISTANCE_L] = bl;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
     if (!rc) {
       double q[4] = {B[0], B[1], C[0], C[1]}, qd[4] = {Bd[0], Bd[1], Cd[0], Cd[1]};
       memcpy(m->q0, q, sizeof q);
       memcpy(m->qd0, qd, sizeof qd);
     }
   }
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "CD", &dal_con_anchor2, 1, &p[1], 0, NULL, 3, rodD, NULL,
-                                    NULL);
+  cd = dal_default_constraint_def(); // C to the ground pivot D = (Dx, 0)
+  cd.name = "CD";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p[1];
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = c;
+  cd.param[DAL_ANCHOR_X0] = Dx;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   double g[2] = {0.0, -G_STD};
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return rc;
@@ -462,8 +531,7 @@ static int build_fourbar(dal_builder *b, int cart, bench_model *m) {
 // last rod to B; Cartesian: NL - 1 particles and NL rods.
 static int build_held(dal_builder *b, int NL, int cart, bench_model *m) {
   const double al = PI / 3.0;
-  double span = NL * sin(al), x = 0.0, y = 0.0, pend[7] = {1, 0, 0, 0, 0, 0, 0}, l = 1.0;
-  double rodA[3] = {1.0, 0.0, 0.0}, rodB[3] = {1.0, span, 0.0};
+  double span = NL * sin(al), x = 0.0, y = 0.0;
   int rc = model_alloc(m, cart ? 2 * (NL - 1) : NL - 1), prev = -1;
   for (int k = 0; k < NL - 1 && !rc; ++k) {
     double th = k < NL / 2 ? al : PI - al;
@@ -478,31 +546,57 @@ static int build_held(dal_builder *b, int NL, int cart, bench_model *m) {
     if (!rc && !cart) {
       snprintf(name, sizeof name, "th%d", k);
       rc = dal_builder_add_coord(b, name, &c[0]);
-      if (!rc && k == 0)
-        rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, c, 7, pend, NULL);
-      else if (!rc)
-        rc = dal_builder_place(b, p, &dal_map_hanging, prev, 1, c, 1, &l, NULL);
+      // unit links: a pendulum about A at the origin, then each hanging from the previous
+      dal_place_def pd = dal_default_place_def();
+      pd.coords = c;
+      pd.ncoords = 1;
+      if (k == 0) {
+        pd.prim = &dal_map_pendulum;
+        pd.param[DAL_PENDULUM_L] = 1.0;
+      } else {
+        pd.prim = &dal_map_hanging;
+        pd.parent = prev;
+        pd.param[DAL_HANGING_L] = 1.0;
+      }
+      if (!rc) rc = dal_builder_place_def(b, p, &pd);
       m->q0[k] = th;
     } else if (!rc) {
       snprintf(name, sizeof name, "x%d", k);
       rc = dal_builder_add_coord(b, name, &c[0]);
       snprintf(name, sizeof name, "y%d", k);
       if (!rc) rc = dal_builder_add_coord(b, name, &c[1]);
-      if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-      if (!rc && k == 0)
-        rc = dal_builder_add_constraint(b, NULL, &dal_con_anchor2, 1, &p, 0, NULL, 3, rodA, NULL,
-                                        NULL);
-      else if (!rc)
-        rc = dal_builder_add_constraint(b, NULL, &dal_con_distance2, 2, pair, 0, NULL, 1, &l, NULL,
-                                        NULL);
+      dal_place_def pd = dal_default_place_def();
+      pd.prim = &dal_map_cartesian2;
+      pd.coords = c;
+      pd.ncoords = 2;
+      if (!rc) rc = dal_builder_place_def(b, p, &pd);
+      // unit rods: the first to A at the origin, then between neighbours
+      dal_constraint_def cd = dal_default_constraint_def();
+      if (k == 0) {
+        cd.prim = &dal_con_anchor2;
+        cd.parts = &p;
+        cd.nparts = 1;
+        cd.param[DAL_ANCHOR_L] = 1.0;
+      } else {
+        cd.prim = &dal_con_distance2;
+        cd.parts = pair;
+        cd.nparts = 2;
+        cd.param[DAL_DISTANCE_L] = 1.0;
+      }
+      if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
       m->q0[2 * k] = x;
       m->q0[2 * k + 1] = y;
     }
     prev = p;
   }
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "held", &dal_con_anchor2, 1, &prev, 0, NULL, 3, rodB, NULL,
-                                    NULL);
+  dal_constraint_def cd = dal_default_constraint_def(); // the last unit rod to B = (span, 0)
+  cd.name = "held";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &prev;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.param[DAL_ANCHOR_X0] = span;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   double g[2] = {0.0, -G_STD};
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return rc;

@@ -73,10 +73,18 @@ static dal_system *compile(dal_builder *b, int rc) {
 static dal_system *build_pendulum(double ax, double ay, double w) {
   dal_builder *b = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8}, par[7] = {1.0, 0, 0, ax, ay, w, 0};
+  double g[2] = {0, -9.8};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // unit length, pivot at the origin driven by (ax, ay)
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_AX] = ax;
+  pd.param[DAL_PENDULUM_AY] = ay;
+  pd.param[DAL_PENDULUM_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -89,17 +97,30 @@ static dal_system *build_ring(double w, int cartesian) {
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (cartesian) {
     const char *nm[3] = {"x", "y", "z"};
-    double par[6] = {1.0, w, 0, 0, 0, 0};
     for (int i = 0; i < 3 && !rc; ++i)
       rc = dal_builder_add_coord(b, nm[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, par,
-                                      NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian3;
+    pd.coords = c;
+    pd.ncoords = 3;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    dal_constraint_def cd = dal_default_constraint_def(); // unit radius, centred at the origin
+    cd.name = "ring";
+    cd.prim = &dal_con_turning_circle;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
+    cd.param[DAL_TURNING_CIRCLE_W] = w;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   } else {
-    double par[3] = {1.0, w, 0};
     if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, c, 3, par, NULL);
+    dal_place_def pd = dal_default_place_def(); // unit radius
+    pd.prim = &dal_map_ring;
+    pd.coords = c;
+    pd.ncoords = 1;
+    pd.param[DAL_RING_R] = 1.0;
+    pd.param[DAL_RING_W] = w;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
   }
   return compile(b, rc);
 }
@@ -107,21 +128,34 @@ static dal_system *build_ring(double w, int cartesian) {
 static dal_system *build_double_cartesian(void) {
   dal_builder *b = NULL;
   int p[2], c[4], rc = dal_builder_create(2, &b);
-  double grav[2] = {0.0, -9.81}, rod1[3] = {1.0, 0.0, 0.0}, l2 = 0.7;
+  double grav[2] = {0.0, -9.81};
   const char *names[4] = {"x1", "y1", "x2", "y2"};
   if (!rc) rc = dal_builder_add_particle(b, "upper", 1.0, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "lower", 0.5, &p[1]);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   for (int i = 0; i < 4 && !rc; ++i)
     rc = dal_builder_add_coord(b, names[i], &c[i]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod1", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod1, NULL,
-                                    NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod2", &dal_con_distance2, 2, p, 0, NULL, 1, &l2, NULL,
-                                    NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.ncoords = 2;
+  pd.coords = c;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd.coords = c + 2;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  dal_constraint_def cd = dal_default_constraint_def(); // unit rod to the origin
+  cd.name = "rod1";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p[0];
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  cd = dal_default_constraint_def();
+  cd.name = "rod2";
+  cd.prim = &dal_con_distance2;
+  cd.parts = p;
+  cd.nparts = 2;
+  cd.param[DAL_DISTANCE_L] = 0.7;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   return compile(b, rc);
 }
 
@@ -578,9 +612,13 @@ static dal_system *build_stiff(void) {
   const char *nm[4] = {"x1", "y1", "x2", "y2"};
   for (int i = 0; i < 4 && !rc; ++i)
     rc = dal_builder_add_coord(b, nm[i], &c[i]);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.ncoords = 2;
   for (int i = 0; i < 2 && !rc; ++i) {
     rc = dal_builder_add_particle(b, i ? "m2" : "m1", 1.0, &p[i]);
-    if (!rc) rc = dal_builder_place(b, p[i], &dal_map_cartesian2, -1, 2, c + 2 * i, 0, NULL, NULL);
+    pd.coords = c + 2 * i;
+    if (!rc) rc = dal_builder_place_def(b, p[i], &pd);
   }
   if (!rc) rc = dal_builder_add_potential_q(b, stiff_pot, NULL);
   return compile(b, rc);
@@ -829,7 +867,11 @@ static void rounding(void) {
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_add_potential_q(b, unit_pot, NULL);
   dal_system *sys = compile(b, rc);
   dal_state *st = NULL;
@@ -897,7 +939,7 @@ static void rounding(void) {
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "m", 2.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  if (!rc) rc = dal_builder_place_def(b, p, &pd); // the same Cartesian placement
   if (!rc) rc = dal_builder_add_potential_q(b, sicm_pot, NULL);
   sys = compile(b, rc);
   dal_state_create(sys, &st);

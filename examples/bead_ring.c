@@ -46,10 +46,16 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 static int build(ring *r) {
   dal_builder *b = NULL;
   int th, p, rc = dal_builder_create(3, &b);
-  double par[3] = {R, r->w, 0.0}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
+  pd.prim = &dal_map_ring;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = R;
+  pd.param[DAL_RING_W] = r->w;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &r->sys);
   if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));

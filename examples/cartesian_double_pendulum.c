@@ -33,24 +33,46 @@ static int build(int cartesian, dal_system **sys) {
   if (cartesian) {
     int c[4];
     const char *names[4] = {"x1", "y1", "x2", "y2"};
-    double rod1[3] = {l1, 0.0, 0.0};
     for (int i = 0; i < 4 && !rc; ++i)
       rc = dal_builder_add_coord(b, names[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod1", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod1, NULL,
-                                      NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod2", &dal_con_distance2, 2, p, 0, NULL, 1, &l2, NULL,
-                                      NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.ncoords = 2;
+    pd.coords = c;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd.coords = c + 2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    dal_constraint_def cd = dal_default_constraint_def(); // to the fixed pivot at the origin
+    cd.name = "rod1";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p[0];
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = l1;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    cd = dal_default_constraint_def();
+    cd.name = "rod2";
+    cd.prim = &dal_con_distance2;
+    cd.parts = p;
+    cd.nparts = 2;
+    cd.param[DAL_DISTANCE_L] = l2;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   } else {
     int th[2];
-    double par[7] = {l1, 0, 0, 0, 0, 0, 0};
     if (!rc) rc = dal_builder_add_coord(b, "theta1", &th[0]);
     if (!rc) rc = dal_builder_add_coord(b, "theta2", &th[1]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &th[0], 7, par, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &th[1], 1, &l2, NULL);
+    dal_place_def pd = dal_default_place_def(); // pivot fixed at the origin
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &th[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = l1;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &th[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   }
   if (!rc) rc = dal_builder_compile(b, sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));

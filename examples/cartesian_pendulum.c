@@ -68,15 +68,23 @@ static void exact(double th0, double t, double *th, double *thd) {
 static int build(dal_system **sys) {
   dal_builder *b = NULL;
   int c[2], bob, rc = dal_builder_create(2, &b);
-  double grav[2] = {0.0, -g}, rod[3] = {l, 0.0, 0.0};
+  double grav[2] = {0.0, -g};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod, NULL,
-                                    NULL);
+  dal_constraint_def cd = dal_default_constraint_def(); // to the fixed pivot at the origin
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = l;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_compile(b, sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
   dal_builder_destroy(b);

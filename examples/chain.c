@@ -43,28 +43,46 @@ static int build(int N, int cartesian, dal_system **sys) {
       if (!rc) rc = dal_builder_add_coord(b, name, &c[0]);
       snprintf(name, sizeof name, "y%d", k);
       if (!rc) rc = dal_builder_add_coord(b, name, &c[1]);
-      if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+      dal_place_def pd = dal_default_place_def();
+      pd.prim = &dal_map_cartesian2;
+      pd.coords = c;
+      pd.ncoords = 2;
+      if (!rc) rc = dal_builder_place_def(b, p, &pd);
       snprintf(name, sizeof name, "rod%d", k);
+      // the first rod to the fixed pivot at the origin, the others between neighbours
+      int pp[2];
+      dal_constraint_def cd = dal_default_constraint_def();
+      cd.name = name;
       if (k == 0) {
-        double par[3] = {1.0, 0.0, 0.0};
-        if (!rc)
-          rc = dal_builder_add_constraint(b, name, &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL,
-                                          NULL);
+        cd.prim = &dal_con_anchor2;
+        cd.parts = &p;
+        cd.nparts = 1;
+        cd.param[DAL_ANCHOR_L] = 1.0;
       } else {
-        int pp[2] = {prev, p};
-        double L = 1.0;
-        if (!rc)
-          rc = dal_builder_add_constraint(b, name, &dal_con_distance2, 2, pp, 0, NULL, 1, &L, NULL,
-                                          NULL);
+        pp[0] = prev;
+        pp[1] = p;
+        cd.prim = &dal_con_distance2;
+        cd.parts = pp;
+        cd.nparts = 2;
+        cd.param[DAL_DISTANCE_L] = 1.0;
       }
+      if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
     } else {
       snprintf(name, sizeof name, "theta%d", k);
       if (!rc) rc = dal_builder_add_coord(b, name, &c[0]);
-      double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, L = 1.0;
-      if (!rc && k == 0)
-        rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, c, 7, par, NULL);
-      else if (!rc)
-        rc = dal_builder_place(b, p, &dal_map_hanging, prev, 1, c, 1, &L, NULL);
+      // the first link swings about the fixed pivot at the origin, the others hang from it
+      dal_place_def pd = dal_default_place_def();
+      pd.coords = c;
+      pd.ncoords = 1;
+      if (k == 0) {
+        pd.prim = &dal_map_pendulum;
+        pd.param[DAL_PENDULUM_L] = 1.0;
+      } else {
+        pd.prim = &dal_map_hanging;
+        pd.parent = prev;
+        pd.param[DAL_HANGING_L] = 1.0;
+      }
+      if (!rc) rc = dal_builder_place_def(b, p, &pd);
     }
     prev = p;
   }

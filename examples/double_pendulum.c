@@ -43,7 +43,7 @@ static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int q[2], p1, p2, rc = dal_builder_create(2, &b);
-  double par1[7] = {l1, 0, 0, 0, 0, 0, 0}, par2[1] = {l2}, g[2] = {0, -grav};
+  double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta1", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "theta2", &q[1]);
   if (lagrange) {
@@ -51,8 +51,19 @@ static dal_system *build(int lagrange) {
   } else {
     if (!rc) rc = dal_builder_add_particle(b, "bob1", m1, &p1);
     if (!rc) rc = dal_builder_add_particle(b, "bob2", m2, &p2);
-    if (!rc) rc = dal_builder_place(b, p1, &dal_map_pendulum, -1, 1, &q[0], 7, par1, NULL);
-    if (!rc) rc = dal_builder_place(b, p2, &dal_map_hanging, p1, 1, &q[1], 1, par2, NULL);
+    dal_place_def pd = dal_default_place_def(); // pivot fixed at the origin
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &q[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = l1;
+    if (!rc) rc = dal_builder_place_def(b, p1, &pd);
+    pd = dal_default_place_def(); // bob2 hangs from bob1
+    pd.prim = &dal_map_hanging;
+    pd.parent = p1;
+    pd.coords = &q[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l2;
+    if (!rc) rc = dal_builder_place_def(b, p2, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
   if (!rc) rc = dal_builder_compile(b, &sys);

@@ -48,14 +48,21 @@ static dal_system *build(drive *D, int lagrange) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int th, p, rc = dal_builder_create(2, &b);
-  // support p(t) = (0, a cos(w t)): pendulum parameters (l, x0, y0, ax, ay, w, ph)
-  double par[7] = {len, 0, 0, 0, D->a, D->w, 0}, g[2] = {0, -grav};
+  double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (lagrange) {
     if (!rc) rc = dal_builder_set_lagrangian(b, lagrangian, D);
   } else {
     if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+    // support p(t) = (0, a cos(w t)): the pivot at the origin driven along y
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &th;
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = len;
+    pd.param[DAL_PENDULUM_AY] = D->a;
+    pd.param[DAL_PENDULUM_W] = D->w;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
   if (!rc) rc = dal_builder_compile(b, &sys);

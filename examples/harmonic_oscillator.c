@@ -53,15 +53,21 @@ static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double origin[2] = {0, 0};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (lagrange) {
     if (!rc) rc = dal_builder_set_lagrangian(b, lagrangian, NULL);
   } else {
     if (!rc) rc = dal_builder_add_particle(b, "particle", mass, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_add_anchor_spring(b, p, origin, NULL, NULL, k, 0.0);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    dal_spring_def sd = dal_default_spring_def(); // anchored at the origin, rest length 0
+    sd.a = p;
+    sd.k = k;
+    if (!rc) rc = dal_builder_add_spring_def(b, &sd);
   }
   if (!rc) rc = dal_builder_compile(b, &sys);
   if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));

@@ -45,10 +45,19 @@ static dal_system *chain(int n, const double *len) {
     rc = dal_builder_add_coord(b, name, &q);
     snprintf(name, sizeof name, "bob%d", k + 1);
     if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    double par[7] = {len[k], 0, 0, 0, 0, 0, 0};
-    if (!rc)
-      rc = k == 0 ? dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &q, 7, par, NULL)
-                  : dal_builder_place(b, p, &dal_map_hanging, prev, 1, &q, 1, &len[k], NULL);
+    // the first bob swings about the fixed pivot at the origin, the others hang from it
+    dal_place_def pd = dal_default_place_def();
+    pd.coords = &q;
+    pd.ncoords = 1;
+    if (k == 0) {
+      pd.prim = &dal_map_pendulum;
+      pd.param[DAL_PENDULUM_L] = len[k];
+    } else {
+      pd.prim = &dal_map_hanging;
+      pd.parent = prev;
+      pd.param[DAL_HANGING_L] = len[k];
+    }
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     prev = p;
   }
   if (!rc) rc = dal_builder_set_gravity(b, g);
@@ -147,7 +156,12 @@ static int trap_scene(const trap *tr, dal_stability expect) {
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "ion", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &prim_rotating, -1, 2, q, 1, &tr->w, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &prim_rotating;
+  pd.coords = q;
+  pd.ncoords = 2;
+  pd.param[0] = tr->w; // the frame's rate w, the primitive's one parameter
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
   if (!rc) rc = dal_builder_compile(b, &sys);
   dal_builder_destroy(b);

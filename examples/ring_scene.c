@@ -31,10 +31,16 @@ static const double g = 9.8, R = 1.0, mass = 1.0;
 
 static int build(double omega, dal_builder **b, dal_system **sys) {
   int th, bead, rc = dal_builder_create(3, b);
-  double grav[3] = {0, 0, -g}, par[3] = {R, omega, 0};
+  double grav[3] = {0, 0, -g};
   if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(*b, "bead", mass, &bead);
-  if (!rc) rc = dal_builder_place(*b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
+  pd.prim = &dal_map_ring;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = R;
+  pd.param[DAL_RING_W] = omega;
+  if (!rc) rc = dal_builder_place_def(*b, bead, &pd);
   if (!rc) rc = dal_builder_set_gravity(*b, grav);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));

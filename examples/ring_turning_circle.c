@@ -33,19 +33,32 @@ static int build(int cartesian, dal_system **sys) {
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (cartesian) {
     int c[3];
-    double par[6] = {R, omega, 0.0, 0.0, 0.0, 0.0};
     const char *names[3] = {"x", "y", "z"};
     for (int i = 0; i < 3 && !rc; ++i)
       rc = dal_builder_add_coord(b, names[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, bead, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &bead, 0, NULL, 6, par,
-                                      NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian3;
+    pd.coords = c;
+    pd.ncoords = 3;
+    if (!rc) rc = dal_builder_place_def(b, bead, &pd);
+    dal_constraint_def cd = dal_default_constraint_def(); // centred at the origin, angle 0 at t = 0
+    cd.name = "ring";
+    cd.prim = &dal_con_turning_circle;
+    cd.parts = &bead;
+    cd.nparts = 1;
+    cd.param[DAL_TURNING_CIRCLE_R] = R;
+    cd.param[DAL_TURNING_CIRCLE_W] = omega;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   } else {
     int th;
-    double par[3] = {R, omega, 0.0};
     if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-    if (!rc) rc = dal_builder_place(b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+    dal_place_def pd = dal_default_place_def(); // the same ring: plane at angle 0 at t = 0
+    pd.prim = &dal_map_ring;
+    pd.coords = &th;
+    pd.ncoords = 1;
+    pd.param[DAL_RING_R] = R;
+    pd.param[DAL_RING_W] = omega;
+    if (!rc) rc = dal_builder_place_def(b, bead, &pd);
   }
   if (!rc) rc = dal_builder_compile(b, sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));

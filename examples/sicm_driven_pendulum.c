@@ -38,10 +38,17 @@ static double wrap(double x) {
 static int build(dal_builder **b, dal_system **sys) {
   int th, bob, rc = dal_builder_create(2, b);
   double omega = 2 * sqrt(g);
-  double grav[2] = {0, -g}, par[7] = {l, 0, 0, 0, a, omega, 0}; // pivot y = a cos(omega t)
+  double grav[2] = {0, -g};
   if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(*b, "bob", mass, &bob);
-  if (!rc) rc = dal_builder_place(*b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // pivot y = a cos(omega t)
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = l;
+  pd.param[DAL_PENDULUM_AY] = a;
+  pd.param[DAL_PENDULUM_W] = omega;
+  if (!rc) rc = dal_builder_place_def(*b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(*b, grav);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));

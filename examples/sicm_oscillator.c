@@ -36,7 +36,11 @@ static int build(dal_builder **b, dal_system **sys) {
   if (!rc) rc = dal_builder_add_coord(*b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(*b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(*b, "particle", mass, &p);
-  if (!rc) rc = dal_builder_place(*b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(*b, p, &pd);
   if (!rc) rc = dal_builder_add_potential_q(*b, spring, NULL);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));

@@ -86,10 +86,15 @@ int main(int argc, char **argv) {
   dal_system *sys = NULL;
   dal_state *st = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double par[7] = {len, 0, 0, 0, 0, 0, 0}, g[2] = {0, -grav};
+  double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // pivot fixed at the origin
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = len;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &sys);
   if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));

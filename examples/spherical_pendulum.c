@@ -38,14 +38,19 @@ static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int q[2], p, rc = dal_builder_create(3, &b);
-  double par[4] = {len, 0, 0, 0}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "phi", &q[1]);
   if (lagrange) {
     if (!rc) rc = dal_builder_set_lagrangian(b, lagrangian, NULL);
   } else {
     if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_spherical, -1, 2, q, 4, par, NULL);
+    dal_place_def pd = dal_default_place_def(); // pivot at the origin
+    pd.prim = &dal_map_spherical;
+    pd.coords = q;
+    pd.ncoords = 2;
+    pd.param[DAL_SPHERICAL_L] = len;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
   if (!rc) rc = dal_builder_compile(b, &sys);

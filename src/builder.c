@@ -457,6 +457,8 @@ dal_damper_def dal_default_damper_def(void) {
 // a def's parameters beyond the primitive's count must be left unset
 static int check_def_params(dal_builder *b, const char *what, const dal_primitive *prim,
                             const double *param) {
+  // a malformed count (nparam < 0) is reported by check_instance; never index param[-1]
+  if (prim && prim->nparam < 0) return DAL_OK;
   int np = prim && prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
   for (int i = np; i < DAL_MAX_PARAM && prim; ++i)
     if (!is_unset(param[i]))

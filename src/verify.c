@@ -402,7 +402,17 @@ int dal_verify_model(const dal_system *sys, dal_state *st, const dal_verify_opts
   memset(rep, 0, sizeof *rep);
   rep->force_coord = rep->path_coord = rep->rank = -1;
   rep->rmin = 1.0;
-  if (!sys || !st) return DAL_E_ARG;
+  // the (system, state) convention of state.h: no state is DAL_E_ARG, a NULL system or a state
+  // of another system DAL_E_STATE with the message in the state; rep->msg says it too
+  if (!st) {
+    snprintf(rep->msg, sizeof rep->msg, "model check: the state is NULL");
+    return DAL_E_ARG;
+  }
+  int pair = dal__check_pair(sys, st, "verify_model");
+  if (pair) {
+    snprintf(rep->msg, sizeof rep->msg, "model check: %.290s", dal_state_errmsg(st));
+    return pair;
+  }
   double tolf = opts && opts->tol_factor > 0 ? opts->tol_factor : 10.0;
   int n = sys->n, rc = dal_forward(sys, st);
   if (rc) {

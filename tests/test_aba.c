@@ -318,7 +318,14 @@ static int build_tree(unsigned long long seed, int d, int N, int nloop, dal_dyna
     }
     snprintf(name, sizeof name, "p%d", k);
     if (!rc) rc = dal_builder_add_particle(b, name, urange(0.5, 2.0), &part);
-    if (!rc) rc = dal_builder_place(b, part, prim, p, nc, coord, npar, par, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = prim;
+    pd.parent = p;
+    pd.coords = coord;
+    pd.ncoords = nc;
+    for (int i = 0; i < npar; ++i)
+      pd.param[i] = par[i]; // the rest take the primitive's defaults
+    if (!rc) rc = dal_builder_place_def(b, part, &pd);
     md->n += nc;
   }
   // forces
@@ -327,12 +334,33 @@ static int build_tree(unsigned long long seed, int d, int N, int nloop, dal_dyna
   if (!rc) rc = dal_builder_set_gravity(b, g);
   for (int i = 0; i < N / 3 + 1 && !rc && N > 1; ++i) {
     int a = irand(N), c = irand(N);
-    if (a != c) rc = dal_builder_add_spring(b, a, c, urange(1, 10), urange(0.5, 2));
-    if (!rc && a != c && i % 2) rc = dal_builder_add_damper(b, a, c, urange(0.1, 1));
+    if (a == c) continue;
+    dal_spring_def sd = dal_default_spring_def();
+    sd.a = a;
+    sd.b = c;
+    sd.length = urange(0.5, 2); // drawn before k, as the compiler evaluated the former call
+    sd.k = urange(1, 10);
+    rc = dal_builder_add_spring_def(b, &sd);
+    if (rc || i % 2 == 0) continue;
+    dal_damper_def dd = dal_default_damper_def();
+    dd.a = a;
+    dd.b = c;
+    dd.c = urange(0.1, 1);
+    rc = dal_builder_add_damper_def(b, &dd);
   }
   double x0[3] = {0.3, 0.4, 0.5};
-  if (!rc) rc = dal_builder_add_anchor_spring(b, irand(N), x0, moving_anchor, NULL, 3.0, 0.5);
-  if (!rc) rc = dal_builder_add_anchor_damper(b, irand(N), x0, NULL, NULL, 0.4);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = irand(N);
+  memcpy(sd.anchor, x0, sizeof x0);
+  sd.path = moving_anchor;
+  sd.k = 3.0;
+  sd.length = 0.5;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = irand(N);
+  memcpy(dd.anchor, x0, sizeof x0);
+  dd.c = 0.4;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   md->fc.N = N;
   md->fc.d = d;
   md->qc.n = md->n;
@@ -344,19 +372,35 @@ static int build_tree(unsigned long long seed, int d, int N, int nloop, dal_dyna
     int parts[2] = {irand(N), irand(N)};
     snprintf(name, sizeof name, "loop%d", i);
     if (i % 3 == 1) {
-      double par[4] = {1.0, 0.1, 0.2, 0.3};
-      rc = dal_builder_add_constraint(b, name, d == 2 ? &dal_con_anchor2 : &dal_con_anchor3, 1,
-                                      parts, 0, NULL, d + 1, par, NULL, NULL);
+      dal_constraint_def cd = dal_default_constraint_def(); // a unit rod to (0.1, 0.2[, 0.3])
+      cd.name = name;
+      cd.prim = d == 2 ? &dal_con_anchor2 : &dal_con_anchor3;
+      cd.parts = parts;
+      cd.nparts = 1;
+      cd.param[DAL_ANCHOR_L] = 1.0;
+      cd.param[DAL_ANCHOR_X0] = 0.1;
+      cd.param[DAL_ANCHOR_Y0] = 0.2;
+      if (d == 3) cd.param[DAL_ANCHOR_Z0] = 0.3;
+      rc = dal_builder_add_constraint_def(b, &cd, NULL);
     } else if (i % 3 == 2) {
       int j = irand(md->n);
       double q0 = 0.2;
-      rc = dal_builder_add_constraint(b, name, &dal_con_prescribed, 0, NULL, 1, &j, 1, &q0, NULL,
-                                      NULL);
+      dal_constraint_def cd = dal_default_constraint_def();
+      cd.name = name;
+      cd.prim = &dal_con_prescribed;
+      cd.coords = &j;
+      cd.ncoords = 1;
+      cd.param[DAL_PRESCRIBED_Q0] = q0;
+      rc = dal_builder_add_constraint_def(b, &cd, NULL);
     } else {
       if (parts[0] == parts[1]) parts[1] = (parts[0] + 1) % N;
-      double L = 1.0;
-      rc = dal_builder_add_constraint(b, name, d == 2 ? &dal_con_distance2 : &dal_con_distance3, 2,
-                                      parts, 0, NULL, 1, &L, NULL, NULL);
+      dal_constraint_def cd = dal_default_constraint_def();
+      cd.name = name;
+      cd.prim = d == 2 ? &dal_con_distance2 : &dal_con_distance3;
+      cd.parts = parts;
+      cd.nparts = 2;
+      cd.param[DAL_DISTANCE_L] = 1.0;
+      rc = dal_builder_add_constraint_def(b, &cd, NULL);
     }
   }
   if (!rc) rc = dal_builder_set_dynamics(b, how);
@@ -503,21 +547,39 @@ static int singular_model(int which, dal_dynamics how, dal_system **sys) {
   dal_builder *b = NULL;
   int rc = dal_builder_create(which == 0 ? 3 : 2, &b), c[3], p[3];
   if (which == 0) {
-    double par[4] = {1.0, 0, 0, 0};
     rc = rc ? rc : dal_builder_add_coord(b, "theta", &c[0]);
     rc = rc ? rc : dal_builder_add_coord(b, "phi", &c[1]);
     rc = rc ? rc : dal_builder_add_particle(b, "bob", 1.0, &p[0]);
-    rc = rc ? rc : dal_builder_place(b, p[0], &dal_map_spherical, -1, 2, c, 4, par, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_spherical;
+    pd.coords = c;
+    pd.ncoords = 2;
+    pd.param[DAL_SPHERICAL_L] = 1.0;
+    rc = rc ? rc : dal_builder_place_def(b, p[0], &pd);
   } else {
-    double pend[7] = {1.0, 0, 0, 0, 0, 0, 0}, l0 = 0.0, l1 = 1.0;
+    double l0 = 0.0, l1 = 1.0;
     rc = rc ? rc : dal_builder_add_coord(b, "a", &c[0]);
     rc = rc ? rc : dal_builder_add_coord(b, "b", &c[1]);
     rc = rc ? rc : dal_builder_add_coord(b, "c", &c[2]);
     for (int k = 0; k < 3 && !rc; ++k)
       rc = dal_builder_add_particle(b, NULL, 1.0, &p[k]);
-    rc = rc ? rc : dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c[0], 7, pend, NULL);
-    rc = rc ? rc : dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &c[1], 1, &l0, NULL);
-    rc = rc ? rc : dal_builder_place(b, p[2], &dal_map_hanging, p[1], 1, &c[2], 1, &l1, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    rc = rc ? rc : dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &c[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l0;
+    rc = rc ? rc : dal_builder_place_def(b, p[1], &pd);
+    pd.parent = p[1];
+    pd.coords = &c[2];
+    pd.param[DAL_HANGING_L] = l1;
+    rc = rc ? rc : dal_builder_place_def(b, p[2], &pd);
   }
   double g[3] = {0, 0, -9.81};
   rc = rc ? rc : dal_builder_set_gravity(b, g);
@@ -562,18 +624,34 @@ static void test_singular(void) {
     dal_system *s = NULL;
     dal_state *st = NULL;
     int c[2], p[2];
-    double pend[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 1.0, par[3] = {2.0, 0.0, 0.0};
+    double l = 1.0;
     CHECK_OK(dal_builder_create(2, &b));
     CHECK_OK(dal_builder_add_coord(b, "a", &c[0]));
     CHECK_OK(dal_builder_add_coord(b, "b", &c[1]));
     CHECK_OK(dal_builder_add_particle(b, "p", 1.0, &p[0]));
     CHECK_OK(dal_builder_add_particle(b, "tip", 1.0, &p[1]));
-    CHECK_OK(dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c[0], 7, pend, NULL));
-    CHECK_OK(dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &c[1], 1, &l, NULL));
-    CHECK_OK(dal_builder_add_constraint(b, "held", &dal_con_anchor2, 1, &p[1], 0, NULL, 3, par,
-                                        NULL, NULL));
-    CHECK_OK(dal_builder_add_constraint(b, "held_again", &dal_con_anchor2, 1, &p[1], 0, NULL, 3,
-                                        par, NULL, NULL));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    CHECK_OK(dal_builder_place_def(b, p[0], &pd));
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &c[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l;
+    CHECK_OK(dal_builder_place_def(b, p[1], &pd));
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "held";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p[1];
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = 2.0;
+    CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
+    cd.name = "held_again";
+    CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
     CHECK_OK(dal_builder_set_dynamics(b, r ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_RECURSIVE));
     CHECK_OK(dal_builder_compile(b, &s));
     dal_builder_destroy(b);
@@ -596,13 +674,24 @@ static void test_detection(void) {
     dal_builder *b = NULL;
     dal_system *s = NULL;
     int c, p[2];
-    double pend[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 1.0;
+    double l = 1.0;
     CHECK_OK(dal_builder_create(2, &b));
     CHECK_OK(dal_builder_add_coord(b, "theta", &c));
     CHECK_OK(dal_builder_add_particle(b, "p0", 1.0, &p[0]));
     CHECK_OK(dal_builder_add_particle(b, "p1", 1.0, &p[1]));
-    CHECK_OK(dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c, 7, pend, NULL));
-    CHECK_OK(dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &c, 1, &l, NULL));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c;
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    CHECK_OK(dal_builder_place_def(b, p[0], &pd));
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &c;
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l;
+    CHECK_OK(dal_builder_place_def(b, p[1], &pd));
     CHECK_OK(dal_builder_set_dynamics(b, how ? DAL_DYNAMICS_RECURSIVE : DAL_DYNAMICS_AUTO));
     int rc = dal_builder_compile(b, &s);
     if (how == 0) {
@@ -618,12 +707,16 @@ static void test_detection(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int c[2], p;
-  double pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &c[0]));
   CHECK_OK(dal_builder_add_coord(b, "idle", &c[1]));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &p));
-  CHECK_OK(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c[0], 7, pend, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, p, &pd));
   CHECK(dal_builder_set_dynamics(b, (dal_dynamics)7) == DAL_E_ARG);
   CHECK_OK(dal_builder_set_dynamics(b, DAL_DYNAMICS_RECURSIVE));
   CHECK(dal_builder_compile(b, &s) == DAL_E_UNSUPPORTED);
@@ -654,16 +747,25 @@ static void test_large_chain(void) {
   double *J = malloc(2 * (size_t)N * sizeof(double));
   for (int r = 0; r < 2; ++r) {
     dal_builder *b = NULL;
-    double pend[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 1.0, g[2] = {0, -9.81};
+    double g[2] = {0, -9.81};
     CHECK_OK(dal_builder_create(2, &b));
     for (int k = 0; k < N; ++k) {
       int c, p;
       CHECK_OK(dal_builder_add_coord(b, NULL, &c));
       CHECK_OK(dal_builder_add_particle(b, NULL, 1.0 + 0.001 * k, &p));
-      if (k == 0)
-        CHECK_OK(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, pend, NULL));
-      else
-        CHECK_OK(dal_builder_place(b, p, &dal_map_hanging, p - 1, 1, &c, 1, &l, NULL));
+      // unit links: a pendulum about the origin, then each hanging from the previous
+      dal_place_def pd = dal_default_place_def();
+      pd.coords = &c;
+      pd.ncoords = 1;
+      if (k == 0) {
+        pd.prim = &dal_map_pendulum;
+        pd.param[DAL_PENDULUM_L] = 1.0;
+      } else {
+        pd.prim = &dal_map_hanging;
+        pd.parent = p - 1;
+        pd.param[DAL_HANGING_L] = 1.0;
+      }
+      CHECK_OK(dal_builder_place_def(b, p, &pd));
     }
     CHECK_OK(dal_builder_set_gravity(b, g));
     CHECK_OK(dal_builder_set_dynamics(b, r ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_AUTO));
@@ -781,34 +883,62 @@ static void fourbar(int cart, dal_dynamics how, double th1, double w1, dal_syste
   double Cd[2] = {Bd[0] + bl * w2 * e2[0], Bd[1] + bl * w2 * e2[1]};
   dal_builder *b = NULL;
   int p[2], cs[4], rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.81}, pend[7] = {a, 0, 0, 0, 0, 0, 0}, rodD[3] = {c, Dx, 0.0};
-  double rodA[3] = {a, 0.0, 0.0};
+  double g[2] = {0, -9.81};
   rc = rc ? rc : dal_builder_add_particle(b, "B", 1.0, &p[0]);
   rc = rc ? rc : dal_builder_add_particle(b, "C", 2.0, &p[1]);
   if (!cart) {
     rc = rc ? rc : dal_builder_add_coord(b, "crank", &cs[0]);
     rc = rc ? rc : dal_builder_add_coord(b, "coupler", &cs[1]);
-    rc = rc ? rc : dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &cs[0], 7, pend, NULL);
-    rc = rc ? rc : dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &cs[1], 1, &bl, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &cs[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = a;
+    rc = rc ? rc : dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &cs[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = bl;
+    rc = rc ? rc : dal_builder_place_def(b, p[1], &pd);
     q[0] = th1, q[1] = th2, qd[0] = w1, qd[1] = w2;
   } else {
     const char *nm[4] = {"xB", "yB", "xC", "yC"};
     for (int i = 0; i < 4; ++i)
       rc = rc ? rc : dal_builder_add_coord(b, nm[i], &cs[i]);
-    rc = rc ? rc : dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, cs, 0, NULL, NULL);
-    rc = rc ? rc : dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, cs + 2, 0, NULL, NULL);
-    rc = rc ? rc
-            : dal_builder_add_constraint(b, "AB", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rodA,
-                                         NULL, NULL);
-    rc = rc ? rc
-            : dal_builder_add_constraint(b, "BC", &dal_con_distance2, 2, p, 0, NULL, 1, &bl, NULL,
-                                         NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = cs;
+    pd.ncoords = 2;
+    rc = rc ? rc : dal_builder_place_def(b, p[0], &pd);
+    pd.coords = cs + 2;
+    rc = rc ? rc : dal_builder_place_def(b, p[1], &pd);
+    dal_constraint_def cd = dal_default_constraint_def(); // B to the ground pivot A (origin)
+    cd.name = "AB";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p[0];
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = a;
+    rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
+    cd = dal_default_constraint_def();
+    cd.name = "BC";
+    cd.prim = &dal_con_distance2;
+    cd.parts = p;
+    cd.nparts = 2;
+    cd.param[DAL_DISTANCE_L] = bl;
+    rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
     q[0] = B[0], q[1] = B[1], q[2] = C[0], q[3] = C[1];
     qd[0] = Bd[0], qd[1] = Bd[1], qd[2] = Cd[0], qd[3] = Cd[1];
   }
-  rc = rc ? rc
-          : dal_builder_add_constraint(b, "CD", &dal_con_anchor2, 1, &p[1], 0, NULL, 3, rodD, NULL,
-                                       NULL);
+  dal_constraint_def cd = dal_default_constraint_def(); // C to the ground pivot D = (Dx, 0)
+  cd.name = "CD";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p[1];
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = c;
+  cd.param[DAL_ANCHOR_X0] = Dx;
+  rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
   rc = rc ? rc : dal_builder_set_gravity(b, g);
   rc = rc ? rc : dal_builder_set_dynamics(b, how);
   rc = rc ? rc : dal_builder_compile(b, s);
@@ -824,7 +954,7 @@ static void held_chain(int NL, int cart, dal_dynamics how, dal_system **s, doubl
   double span = NL * sin(al), x = 0.0, y = 0.0;
   dal_builder *b = NULL;
   int rc = dal_builder_create(2, &b), prev = -1;
-  double g[2] = {0, -9.81}, pend[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 1.0;
+  double g[2] = {0, -9.81};
   for (int k = 0; k < NL - 1 && !rc; ++k) {
     double th = k < NL / 2 ? al : PI - al;
     int p, c[2];
@@ -833,35 +963,57 @@ static void held_chain(int NL, int cart, dal_dynamics how, dal_system **s, doubl
     rc = dal_builder_add_particle(b, NULL, 1.0, &p);
     if (!cart) {
       rc = rc ? rc : dal_builder_add_coord(b, NULL, &c[0]);
-      if (k == 0)
-        rc = rc ? rc : dal_builder_place(b, p, &dal_map_pendulum, -1, 1, c, 7, pend, NULL);
-      else
-        rc = rc ? rc : dal_builder_place(b, p, &dal_map_hanging, prev, 1, c, 1, &l, NULL);
+      // unit links: a pendulum about A at the origin, then each hanging from the previous
+      dal_place_def pd = dal_default_place_def();
+      pd.coords = c;
+      pd.ncoords = 1;
+      if (k == 0) {
+        pd.prim = &dal_map_pendulum;
+        pd.param[DAL_PENDULUM_L] = 1.0;
+      } else {
+        pd.prim = &dal_map_hanging;
+        pd.parent = prev;
+        pd.param[DAL_HANGING_L] = 1.0;
+      }
+      rc = rc ? rc : dal_builder_place_def(b, p, &pd);
       q[k] = th;
       qd[k] = 0.0;
     } else {
       rc = rc ? rc : dal_builder_add_coord(b, NULL, &c[0]);
       rc = rc ? rc : dal_builder_add_coord(b, NULL, &c[1]);
-      rc = rc ? rc : dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-      double rodA[3] = {1.0, 0.0, 0.0};
+      dal_place_def pd = dal_default_place_def();
+      pd.prim = &dal_map_cartesian2;
+      pd.coords = c;
+      pd.ncoords = 2;
+      rc = rc ? rc : dal_builder_place_def(b, p, &pd);
+      // unit rods: the first to A at the origin, then between neighbours
       int pair[2] = {prev, p};
-      if (k == 0)
-        rc = rc ? rc
-                : dal_builder_add_constraint(b, NULL, &dal_con_anchor2, 1, &p, 0, NULL, 3, rodA,
-                                             NULL, NULL);
-      else
-        rc = rc ? rc
-                : dal_builder_add_constraint(b, NULL, &dal_con_distance2, 2, pair, 0, NULL, 1, &l,
-                                             NULL, NULL);
+      dal_constraint_def cd = dal_default_constraint_def();
+      if (k == 0) {
+        cd.prim = &dal_con_anchor2;
+        cd.parts = &p;
+        cd.nparts = 1;
+        cd.param[DAL_ANCHOR_L] = 1.0;
+      } else {
+        cd.prim = &dal_con_distance2;
+        cd.parts = pair;
+        cd.nparts = 2;
+        cd.param[DAL_DISTANCE_L] = 1.0;
+      }
+      rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
       q[2 * k] = x, q[2 * k + 1] = y;
       qd[2 * k] = qd[2 * k + 1] = 0.0;
     }
     prev = p;
   }
-  double rodB[3] = {1.0, span, 0.0};
-  rc = rc ? rc
-          : dal_builder_add_constraint(b, "held", &dal_con_anchor2, 1, &prev, 0, NULL, 3, rodB,
-                                       NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def(); // the last unit rod to B = (span, 0)
+  cd.name = "held";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &prev;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.param[DAL_ANCHOR_X0] = span;
+  rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
   rc = rc ? rc : dal_builder_set_gravity(b, g);
   rc = rc ? rc : dal_builder_set_dynamics(b, how);
   rc = rc ? rc : dal_builder_compile(b, s);

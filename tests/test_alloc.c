@@ -157,23 +157,41 @@ static int build(run *r, int N, int minimal, dal_builder **b, dal_system **sys) 
     note(r, dal_builder_add_particle(*b, NULL, 1.0, &p), dal_builder_errmsg(*b));
     if (r->rc) break;
     if (minimal) {
-      double pend[7] = {1.0, 0, 0, 0, 0, 0, 0}, L = 1.0;
-      rc = k == 0 ? dal_builder_place(*b, p, &dal_map_pendulum, -1, 1, c, 7, pend, NULL)
-                  : dal_builder_place(*b, p, &dal_map_hanging, p - 1, 1, c, 1, &L, NULL);
-      note(r, rc, dal_builder_errmsg(*b));
+      // unit links: a pendulum about the origin, then each hanging from the previous
+      dal_place_def pd = dal_default_place_def();
+      pd.coords = c;
+      pd.ncoords = 1;
+      if (k == 0) {
+        pd.prim = &dal_map_pendulum;
+        pd.param[DAL_PENDULUM_L] = 1.0;
+      } else {
+        pd.prim = &dal_map_hanging;
+        pd.parent = p - 1;
+        pd.param[DAL_HANGING_L] = 1.0;
+      }
+      note(r, dal_builder_place_def(*b, p, &pd), dal_builder_errmsg(*b));
       continue;
     }
-    note(r, dal_builder_place(*b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL),
-         dal_builder_errmsg(*b));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    note(r, dal_builder_place_def(*b, p, &pd), dal_builder_errmsg(*b));
     if (k == 0) {
-      double rod[3] = {1.0, 0.0, 0.0};
-      rc = dal_builder_add_constraint(*b, NULL, &dal_con_anchor2, 1, &p, 0, NULL, 3, rod, NULL,
-                                      NULL);
+      dal_constraint_def cd = dal_default_constraint_def();
+      cd.prim = &dal_con_anchor2;
+      cd.parts = &p;
+      cd.nparts = 1;
+      cd.param[DAL_ANCHOR_L] = 1.0;
+      rc = dal_builder_add_constraint_def(*b, &cd, NULL);
     } else {
       int parts[2] = {p - 1, p};
-      double L = 1.0;
-      rc = dal_builder_add_constraint(*b, NULL, &dal_con_distance2, 2, parts, 0, NULL, 1, &L, NULL,
-                                      NULL);
+      dal_constraint_def cd = dal_default_constraint_def();
+      cd.prim = &dal_con_distance2;
+      cd.parts = parts;
+      cd.nparts = 2;
+      cd.param[DAL_DISTANCE_L] = 1.0;
+      rc = dal_builder_add_constraint_def(*b, &cd, NULL);
     }
     note(r, rc, dal_builder_errmsg(*b));
   }

@@ -46,13 +46,24 @@ static dal_system *compile(dal_builder *b, int rc) {
 static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
   dal_builder *b = NULL;
   int q[2], p[2], rc = dal_builder_create(2, &b);
-  double par[7] = {l1, 0, 0, 0, 0, 0, 0}, g[2] = {0, -grav};
+  double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob1", m1, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "bob2", m2, &p[1]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &q[0], 7, par, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &q[1], 1, &l2, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &q[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = l1;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &q[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = l2;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -61,10 +72,17 @@ static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
 static dal_system *driven_pendulum(void) {
   dal_builder *b = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, 0, 0.1, 2 * sqrt(9.8), 0}, g[2] = {0, -9.8};
+  double g[2] = {0, -9.8};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_AY] = 0.1;
+  pd.param[DAL_PENDULUM_W] = 2 * sqrt(9.8);
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -73,10 +91,17 @@ static dal_system *driven_pendulum(void) {
 static dal_system *ring(double m, double R, double w) {
   dal_builder *b = NULL;
   int th, bead, rc = dal_builder_create(3, &b);
-  double par[3] = {R, w, 0.2}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", m, &bead);
-  if (!rc) rc = dal_builder_place(b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_ring;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = R;
+  pd.param[DAL_RING_W] = w;
+  pd.param[DAL_RING_PHI0] = 0.2;
+  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -118,14 +143,45 @@ static dal_system *springs(void) {
     rc = dal_builder_add_coord(b, names[i], &c[i]);
   if (!rc) rc = dal_builder_add_particle(b, "a", 1.3, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "b", 0.6, &p[1]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p[0], NULL, circle_path, NULL, 30.0, 0.4);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p[1], x0, NULL, NULL, 12.0, 0.0);
-  if (!rc) rc = dal_builder_add_spring(b, p[0], p[1], 20.0, 0.5);
-  if (!rc) rc = dal_builder_add_anchor_damper(b, p[0], NULL, circle_path, NULL, 0.7);
-  if (!rc) rc = dal_builder_add_anchor_damper(b, p[1], x0, NULL, NULL, 0.3);
-  if (!rc) rc = dal_builder_add_damper(b, p[0], p[1], 0.9);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd.coords = c + 2;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p[0];
+  sd.path = circle_path;
+  sd.k = 30.0;
+  sd.length = 0.4;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  sd = dal_default_spring_def();
+  sd.a = p[1];
+  memcpy(sd.anchor, x0, sizeof x0);
+  sd.k = 12.0;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  sd = dal_default_spring_def();
+  sd.a = p[0];
+  sd.b = p[1];
+  sd.k = 20.0;
+  sd.length = 0.5;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p[0];
+  dd.path = circle_path;
+  dd.c = 0.7;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
+  dd = dal_default_damper_def();
+  dd.a = p[1];
+  memcpy(dd.anchor, x0, sizeof x0);
+  dd.c = 0.3;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
+  dd = dal_default_damper_def();
+  dd.a = p[0];
+  dd.b = p[1];
+  dd.c = 0.9;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_add_potential_r(b, pot_r, NULL);
   if (!rc) rc = dal_builder_add_potential_q(b, pot_q, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
@@ -158,11 +214,19 @@ static dal_system *paraboloid(void) {
 static dal_system *spherical(void) {
   dal_builder *b = NULL;
   int q[2], p, rc = dal_builder_create(3, &b);
-  double par[4] = {1.2, 0.1, -0.2, 0.3}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "phi", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 0.9, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_spherical, -1, 2, q, 4, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_spherical;
+  pd.coords = q;
+  pd.ncoords = 2;
+  pd.param[DAL_SPHERICAL_L] = 1.2;
+  pd.param[DAL_SPHERICAL_X0] = 0.1;
+  pd.param[DAL_SPHERICAL_Y0] = -0.2;
+  pd.param[DAL_SPHERICAL_Z0] = 0.3;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -206,7 +270,12 @@ static dal_system *rotating_trap(const trap *tr, double m) {
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "ion", m, &p);
-  if (!rc) rc = dal_builder_place(b, p, &prim_rotating, -1, 2, q, 1, &tr->w, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &prim_rotating;
+  pd.coords = q;
+  pd.ncoords = 2;
+  pd.param[0] = tr->w;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
   return compile(b, rc);
 }
@@ -215,13 +284,24 @@ static dal_system *rotating_trap(const trap *tr, double m) {
 static dal_system *hanging_spring(double m, double k, double L, double c) {
   dal_builder *b = NULL;
   int q[2], p, rc = dal_builder_create(2, &b);
-  double o[2] = {0, 0}, g[2] = {0, -grav};
+  double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "mass", m, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p, o, NULL, NULL, k, L);
-  if (!rc) rc = dal_builder_add_anchor_damper(b, p, o, NULL, NULL, c);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = k;
+  sd.length = L;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.c = c;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -866,14 +946,22 @@ static void test_refusals(void) {
                  "no exact derivative");
   // constraints
   int c[2];
-  double rod[3] = {1.0, 0.0, 0.0};
   rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, rod, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   expect_refusal("constrained", compile(b, rc), DAL_E_UNSUPPORTED, "'rod'");
   // force callbacks (Cartesian and generalized)
   for (int g = 0; g < 2; ++g) {
@@ -881,7 +969,11 @@ static void test_refusals(void) {
     if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
     if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc)
       rc = g ? dal_builder_add_genforce(b, gdrag, NULL) : dal_builder_add_force(b, drag, NULL);
     expect_refusal("force callback", compile(b, rc), DAL_E_UNSUPPORTED, "no exact derivative");
@@ -891,7 +983,11 @@ static void test_refusals(void) {
   rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "th", &q);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &prim_hand, -1, 1, &q, 0, NULL, NULL);
+  pd = dal_default_place_def();
+  pd.prim = &prim_hand;
+  pd.coords = &q;
+  pd.ncoords = 1;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   dal_system *sys = compile(b, rc);
   dal_state *st = NULL;

@@ -24,10 +24,16 @@ static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
   dal_builder *b = NULL;
   int th, bead, rc = dal_builder_create(3, &b);
-  double par[3] = {R, w, 0.0}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  if (!rc) rc = dal_builder_place(b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_ring;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = R;
+  pd.param[DAL_RING_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, out);
   dal_builder_destroy(b);

@@ -43,10 +43,17 @@ static dal_system *compile(dal_builder *b, int rc) {
 static dal_system *driven(double a, double w) {
   dal_builder *b = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, 0, a, w, 0}, g[2] = {0, -9.8};
+  double g[2] = {0, -9.8};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_AY] = a;
+  pd.param[DAL_PENDULUM_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -54,13 +61,24 @@ static dal_system *driven(double a, double w) {
 static dal_system *double_pendulum(void) {
   dal_builder *b = NULL;
   int q[2], p[2], rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, l2 = 1.0, g[2] = {0, -9.81};
+  double l2 = 1.0, g[2] = {0, -9.81};
   if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "bob2", 1.0, &p[1]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &q[0], 7, par, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &q[1], 1, &l2, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &q[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &q[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = l2;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -99,7 +117,12 @@ static dal_system *rotating_trap(const trap *tr) {
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "ion", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &prim_rotating, -1, 2, q, 1, &tr->w, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &prim_rotating;
+  pd.coords = q;
+  pd.ncoords = 2;
+  pd.param[0] = tr->w;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
   return compile(b, rc);
 }
@@ -107,13 +130,24 @@ static dal_system *rotating_trap(const trap *tr) {
 static dal_system *hanging_spring(double m, double k, double L, double c) {
   dal_builder *b = NULL;
   int q[2], p, rc = dal_builder_create(2, &b);
-  double o[2] = {0, 0}, g[2] = {0, -9.81};
+  double g[2] = {0, -9.81};
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "mass", m, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p, o, NULL, NULL, k, L);
-  if (!rc) rc = dal_builder_add_anchor_damper(b, p, o, NULL, NULL, c);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = k;
+  sd.length = L;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.c = c;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }

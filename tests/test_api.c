@@ -2,6 +2,8 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The user-facing API: element defs and their defaults, named parameters, table versions, the
 // moving-point convention, and each papercut of issue 11 against an independent reference.
+#include <ctype.h>
+#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -155,6 +157,160 @@ static void test_positional_defaults(void) {
   dal_system_destroy(s1);
   dal_system_destroy(s2);
   dal_builder_destroy(b);
+}
+
+// the positional wrappers (kept, thin) build exactly what the defs build: one scene through
+// all six of them and through the defs, compared by the printed model (every parameter with
+// %.17g) and by the accelerations, multipliers and forces at a state, bit for bit
+static int wobble(dal_jet t, dal_jet *x, void *ctx) {
+  (void)ctx;
+  x[0] = dal_scale(dal_sin(t), 0.2);
+  x[1] = dal_scale(t, -0.1);
+  return 0;
+}
+static const dal_moving_point wobble_point = {wobble, NULL};
+
+static dal_system *wrapper_scene(int positional) {
+  // a: Cartesian (x, y) on a rod to the moving point (0.3, 0.1) + x(t); b: pendulum (theta)
+  // about a driven pivot; c hanging from b (phi); springs a-b and c-anchor, dampers a-c and
+  // b-anchor (moving anchors x0 + x(t))
+  dal_builder *b = NULL;
+  int q[4], a, pb, c;
+  double g[2] = {0, -G}, x0[2] = {0.5, -1.0};
+  CHECK_OK(dal_builder_create(2, &b));
+  const char *names[4] = {"x", "y", "theta", "phi"};
+  for (int i = 0; i < 4; ++i)
+    CHECK_OK(dal_builder_add_coord(b, names[i], &q[i]));
+  CHECK_OK(dal_builder_add_particle(b, "a", 1.5, &a));
+  CHECK_OK(dal_builder_add_particle(b, "b", 0.8, &pb));
+  CHECK_OK(dal_builder_add_particle(b, "c", 0.6, &c));
+  CHECK_OK(dal_builder_set_gravity(b, g));
+  if (positional) {
+    double rod[3] = {1.2, 0.3, 0.1}, pend[6] = {0.9, -0.5, 0.2, 0.1, 0.05, 2.0}, hang = 0.7;
+    CHECK_OK(dal_builder_place(b, a, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL));
+    CHECK_OK(dal_builder_place(b, pb, &dal_map_pendulum, -1, 1, &q[2], 6, pend, NULL));
+    CHECK_OK(dal_builder_place(b, c, &dal_map_hanging, pb, 1, &q[3], 1, &hang, NULL));
+    CHECK_OK(dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &a, 0, NULL, 3, rod,
+                                        (void *)&wobble_point, NULL));
+    CHECK_OK(dal_builder_add_spring(b, a, pb, 20.0, 0.4));
+    CHECK_OK(dal_builder_add_anchor_spring(b, c, x0, wobble, NULL, 15.0, 0.3));
+    CHECK_OK(dal_builder_add_damper(b, a, c, 0.3));
+    CHECK_OK(dal_builder_add_anchor_damper(b, pb, x0, wobble, NULL, 0.2));
+  } else {
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = q;
+    pd.ncoords = 2;
+    CHECK_OK(dal_builder_place_def(b, a, &pd));
+    pd = dal_default_place_def(); // the phase DAL_PENDULUM_PH keeps its default 0
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &q[2];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 0.9;
+    pd.param[DAL_PENDULUM_X0] = -0.5;
+    pd.param[DAL_PENDULUM_Y0] = 0.2;
+    pd.param[DAL_PENDULUM_AX] = 0.1;
+    pd.param[DAL_PENDULUM_AY] = 0.05;
+    pd.param[DAL_PENDULUM_W] = 2.0;
+    CHECK_OK(dal_builder_place_def(b, pb, &pd));
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = pb;
+    pd.coords = &q[3];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = 0.7;
+    CHECK_OK(dal_builder_place_def(b, c, &pd));
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &a;
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = 1.2;
+    cd.param[DAL_ANCHOR_X0] = 0.3;
+    cd.param[DAL_ANCHOR_Y0] = 0.1;
+    cd.ctx = (void *)&wobble_point;
+    CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
+    dal_spring_def sd = dal_default_spring_def();
+    sd.a = a;
+    sd.b = pb;
+    sd.k = 20.0;
+    sd.length = 0.4;
+    CHECK_OK(dal_builder_add_spring_def(b, &sd));
+    sd = dal_default_spring_def();
+    sd.a = c;
+    sd.anchor[0] = x0[0];
+    sd.anchor[1] = x0[1];
+    sd.path = wobble;
+    sd.k = 15.0;
+    sd.length = 0.3;
+    CHECK_OK(dal_builder_add_spring_def(b, &sd));
+    dal_damper_def dd = dal_default_damper_def();
+    dd.a = a;
+    dd.b = c;
+    dd.c = 0.3;
+    CHECK_OK(dal_builder_add_damper_def(b, &dd));
+    dd = dal_default_damper_def();
+    dd.a = pb;
+    dd.anchor[0] = x0[0];
+    dd.anchor[1] = x0[1];
+    dd.path = wobble;
+    dd.c = 0.2;
+    CHECK_OK(dal_builder_add_damper_def(b, &dd));
+  }
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_builder_destroy(b);
+  return sys;
+}
+
+// the printed model as a string (caller frees)
+static char *printed(const dal_system *sys) {
+  FILE *fp = tmpfile();
+  if (!fp) return NULL;
+  CHECK_OK(dal_system_print(sys, fp));
+  long len = ftell(fp);
+  char *s = len > 0 ? malloc((size_t)len + 1) : NULL;
+  rewind(fp);
+  if (s && fread(s, 1, (size_t)len, fp) != (size_t)len) len = 0;
+  if (s) s[len > 0 ? len : 0] = 0;
+  fclose(fp);
+  return s;
+}
+
+static void test_positional_wrappers(void) {
+  dal_system *sp = wrapper_scene(1), *sd = wrapper_scene(0);
+  if (!sp || !sd) {
+    dal_system_destroy(sp);
+    dal_system_destroy(sd);
+    return;
+  }
+  char *tp = printed(sp), *td = printed(sd);
+  CHECK_MSG(tp && td && strcmp(tp, td) == 0, "positional model:\n%s\ndef model:\n%s", tp ? tp : "",
+            td ? td : "");
+  // the wrappers' moving anchors and springs are in it (a print that omitted them could agree)
+  CHECK(tp && has(tp, "rod") && has(tp, "l=0.69999999999999996") && has(tp, "k=15"));
+  free(tp);
+  free(td);
+  dal_state *a = NULL, *c = NULL;
+  CHECK_OK(dal_state_create(sp, &a));
+  CHECK_OK(dal_state_create(sd, &c));
+  double q[4] = {0.4, -0.95, 0.6, -0.3}, v[4] = {0.2, 0.1, -0.4, 0.7};
+  CHECK_OK(dal_state_set(sp, a, 0.7, q, v));
+  CHECK_OK(dal_state_set(sd, c, 0.7, q, v));
+  CHECK_OK(dal_forward(sp, a));
+  CHECK_OK(dal_forward(sd, c));
+  int same = 1;
+  for (int i = 0; i < 4; ++i)
+    same &= dal_state_qddot(a)[i] == dal_state_qddot(c)[i];
+  same &= dal_state_lambda(a)[0] == dal_state_lambda(c)[0];
+  for (int i = 0; i < 6; ++i)
+    same &= dal_state_forces(a)[i] == dal_state_forces(c)[i];
+  CHECK_MSG(same, "positional and def scenes differ at a state");
+  CHECK(dal_state_qddot(a)[0] != 0.0 && dal_state_lambda(a)[0] != 0.0);
+  dal_state_destroy(a);
+  dal_state_destroy(c);
+  dal_system_destroy(sp);
+  dal_system_destroy(sd);
 }
 
 // every built-in names all its parameters; defaults are NaN (required) or finite
@@ -546,6 +702,124 @@ static void test_lagrangian_energies(void) {
   dal_builder_destroy(b);
 }
 
+// ---------------------------------------------------------------- context last (papercut)
+// In every public function and callback type a user context `ctx` is the last parameter. The
+// public headers (DAL_HEADER_DIR) are read at run time: comments and preprocessor lines are
+// stripped, each declaration's parameter list is split at its top-level commas, and a `ctx`
+// that is not the last parameter fails, except the documented exceptions below (each must
+// still exist, so the list cannot rot).
+static const char *const ctx_exceptions[][2] = {
+    {"dal_builder_add_constraint", "positional wrapper kept for compatibility; the def holds ctx"},
+    {"dal_builder_add_anchor_spring", "positional wrapper kept; the def holds ctx"},
+    {"dal_builder_add_anchor_damper", "positional wrapper kept; the def holds ctx"},
+    {"dal_verify_primitive", "ctx is the primitive instance's data (as param), not a callback's"},
+    {"dal_worker_create_fn", "an out-parameter (data) follows the context"},
+};
+#define NEXC ((int)(sizeof ctx_exceptions / sizeof ctx_exceptions[0]))
+
+static char *read_text(const char *path) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) return NULL;
+  fseek(fp, 0, SEEK_END);
+  long len = ftell(fp);
+  rewind(fp);
+  char *s = len >= 0 ? malloc((size_t)len + 1) : NULL;
+  if (s && fread(s, 1, (size_t)len, fp) != (size_t)len) {
+    free(s);
+    s = NULL;
+  }
+  if (s) s[len] = 0;
+  fclose(fp);
+  return s;
+}
+
+// blank out comments and preprocessor lines (with their continuations) in place
+static void strip_noise(char *s) {
+  for (char *p = s; *p;) {
+    if (p[0] == '/' && p[1] == '/') {
+      while (*p && *p != '\n')
+        *p++ = ' ';
+    } else if (p[0] == '/' && p[1] == '*') {
+      while (*p && !(p[0] == '*' && p[1] == '/'))
+        *p++ = ' ';
+      if (*p) p[0] = p[1] = ' ', p += 2;
+    } else if (*p == '#' && (p == s || p[-1] == '\n')) {
+      while (*p && !(*p == '\n' && p[-1] != '\\'))
+        *p++ = ' ';
+    } else {
+      ++p;
+    }
+  }
+}
+
+static int is_ident(char c) { return isalnum((unsigned char)c) || c == '_'; }
+
+// check the declarations in text; counts declarations with a ctx parameter and exceptions met
+static void check_ctx_last(char *text, const char *file, int *nctx, int *met) {
+  strip_noise(text);
+  for (char *stmt = text; *stmt;) {
+    size_t len = strcspn(stmt, ";{}");
+    char *open = memchr(stmt, '(', len);
+    if (open && open[1] != '*') {
+      // the declared name precedes the parameter list
+      char *e = open;
+      while (e > stmt && isspace((unsigned char)e[-1]))
+        --e;
+      char *b = e;
+      while (b > stmt && is_ident(b[-1]))
+        --b;
+      char name[64] = "";
+      if (e - b > 0 && e - b < 64) memcpy(name, b, (size_t)(e - b)), name[e - b] = 0;
+      // parameters: split at top-level commas up to the matching ')'
+      int depth = 0, index = 0, ctx_index = -1;
+      char *q = open;
+      for (; q < stmt + len; ++q) {
+        if (*q == '(') ++depth;
+        if (*q == ')' && --depth == 0) break;
+        if (*q == ',' && depth == 1) ++index;
+        if (depth == 1 && q[0] == 'c' && q[1] == 't' && q[2] == 'x' && !is_ident(q[-1]) &&
+            !is_ident(q[3]))
+          ctx_index = index;
+      }
+      if (ctx_index >= 0) {
+        ++*nctx;
+        int exc = -1;
+        for (int k = 0; k < NEXC; ++k)
+          if (strcmp(name, ctx_exceptions[k][0]) == 0) exc = k;
+        if (ctx_index != index && exc >= 0) met[exc] = 1;
+        CHECK_MSG(ctx_index == index || exc >= 0,
+                  "%s: %s takes ctx as parameter %d of %d; put the user context last", file, name,
+                  ctx_index + 1, index + 1);
+      }
+    }
+    stmt += len + (stmt[len] != 0);
+  }
+}
+
+static void test_context_last(void) {
+  DIR *d = opendir(DAL_HEADER_DIR);
+  CHECK_MSG(d != NULL, "cannot read %s", DAL_HEADER_DIR);
+  if (!d) return;
+  int nctx = 0, files = 0, met[NEXC] = {0};
+  for (struct dirent *e; (e = readdir(d)) != NULL;) {
+    size_t len = strlen(e->d_name);
+    if (len < 3 || strcmp(e->d_name + len - 2, ".h") != 0) continue;
+    char path[4096];
+    snprintf(path, sizeof path, "%s/%s", DAL_HEADER_DIR, e->d_name);
+    char *text = read_text(path);
+    if (!text) continue;
+    check_ctx_last(text, e->d_name, &nctx, met);
+    free(text);
+    ++files;
+  }
+  closedir(d);
+  // the scan saw the headers' callback types and functions (more than 20 take a ctx)
+  CHECK_MSG(files >= 10 && nctx > 20, "%d headers, %d declarations with ctx", files, nctx);
+  for (int k = 0; k < NEXC; ++k)
+    CHECK_MSG(met[k], "exception %s (%s) no longer needed: remove it from the list",
+              ctx_exceptions[k][0], ctx_exceptions[k][1]);
+}
+
 static void test_version(void) {
   char v[32];
   snprintf(v, sizeof v, "%d.%d.%d", DAL_VERSION_MAJOR, DAL_VERSION_MINOR, DAL_VERSION_PATCH);
@@ -558,6 +832,7 @@ int main(void) {
   test_place_def();
   test_def_errors();
   test_positional_defaults();
+  test_positional_wrappers();
   test_registry_names();
   test_versions();
   test_anchor_convention();
@@ -567,5 +842,6 @@ int main(void) {
   test_singular_start_message();
   test_lagrangian_energies();
   test_version();
+  test_context_last();
   return check_summary("test_api");
 }

@@ -97,16 +97,24 @@ static int lag_fn(dal_jet t, const dal_jet *q, const dal_jet *qd, dal_jet *L, vo
 static void fix_make(void) {
   static const double g2[2] = {0.0, -9.81};
   int c[2], bob, th;
-  double rod[3] = {1.0, 0.0, 0.0}, pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
   double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0}, th0 = 0.3, thd = 0.0;
   CHECK_OK(dal_builder_create(2, &F.ba));
   CHECK_OK(dal_builder_add_coord(F.ba, "x", &c[0]));
   CHECK_OK(dal_builder_add_coord(F.ba, "y", &c[1]));
   CHECK_OK(dal_builder_add_particle(F.ba, "bob", 1.0, &bob));
-  CHECK_OK(dal_builder_place(F.ba, bob, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(F.ba, bob, &pd));
   CHECK_OK(dal_builder_set_gravity(F.ba, g2));
-  CHECK_OK(dal_builder_add_constraint(F.ba, "rod", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod, NULL,
-                                      NULL));
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  CHECK_OK(dal_builder_add_constraint_def(F.ba, &cd, NULL));
   CHECK_OK(dal_builder_compile(F.ba, &F.A));
   CHECK_OK(dal_state_create(F.A, &F.stA));
   CHECK_OK(dal_state_set(F.A, F.stA, 0.0, q, qd));
@@ -114,7 +122,12 @@ static void fix_make(void) {
   CHECK_OK(dal_builder_create(2, &F.bb));
   CHECK_OK(dal_builder_add_coord(F.bb, "theta", &th));
   CHECK_OK(dal_builder_add_particle(F.bb, "bob", 1.0, &bob));
-  CHECK_OK(dal_builder_place(F.bb, bob, &dal_map_pendulum, -1, 1, &th, 7, pend, NULL));
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(F.bb, bob, &pd));
   CHECK_OK(dal_builder_set_gravity(F.bb, g2));
   CHECK_OK(dal_builder_compile(F.bb, &F.B));
   CHECK_OK(dal_state_create(F.B, &F.stB));
@@ -580,7 +593,11 @@ static dal_builder *scratch(int placed) {
   CHECK_OK(dal_builder_add_coord(b, "x", NULL));
   CHECK_OK(dal_builder_add_coord(b, "y", NULL));
   CHECK_OK(dal_builder_add_particle(b, "s", 1.0, NULL));
-  if (placed) CHECK_OK(dal_builder_place(b, 0, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (placed) CHECK_OK(dal_builder_place_def(b, 0, &pd));
   return b;
 }
 
@@ -1054,12 +1071,14 @@ static void sw_dal_verify_lagrangian(void) {
 }
 static void sw_dal_verify_model(void) {
   dal_model_report rep;
-  // NOTE: header says the status of a failing evaluation (dal_forward: DAL_E_STATE for a NULL
-  // system with a state, README convention too); the implementation returns DAL_E_ARG
-  ST(dal_verify_model(NULL, F.stB, NULL, &rep), DAL_E_ARG, NULL);
+  // the (system, state) convention of state.h: a NULL system is DAL_E_STATE with a message in
+  // the state (and in the report), a NULL state DAL_E_ARG with the message in the report
+  ST(dal_verify_model(NULL, F.stB, NULL, &rep), DAL_E_STATE, F.stB);
+  CHECK(strstr(rep.msg, "the system is NULL") != NULL && rep.passed == 0);
   ST(dal_verify_model(F.B, NULL, NULL, &rep), DAL_E_ARG, NULL);
+  CHECK(strstr(rep.msg, "state is NULL") != NULL && rep.passed == 0);
   ST(dal_verify_model(F.A, F.stB, NULL, &rep), DAL_E_STATE, F.stB);
-  CHECK(rep.msg[0] != 0 && rep.passed == 0);
+  CHECK(strstr(rep.msg, "another system") != NULL && rep.passed == 0);
   st_intact();
   ST(dal_verify_model(F.B, F.stB, NULL, &rep), DAL_OK, F.stB);
   CHECK(rep.passed == 1 && rep.mass_checked == 1 && rep.path_checked == 1 && rep.m == 0);
@@ -1165,12 +1184,17 @@ typedef struct branch_rec {
 } branch_rec;
 static int rebuild_pend(double p, dal_system **out, void *ctx) {
   if (((branch_rec *)ctx)->fail) return 1;
-  double g[2] = {0.0, -9.81 - p}, pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
+  double g[2] = {0.0, -9.81 - p};
   dal_builder *b = NULL;
   int th = 0, bob = 0, rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, pend, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, out);
   dal_builder_destroy(b);
@@ -1856,7 +1880,11 @@ int main(int argc, char **argv) {
   // after the whole sweep the fixtures still work: the builder compiles once its particle is
   // placed, and both states integrate
   int c[2] = {0, 1};
-  CHECK_OK(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(F.bld, 0, &pd));
   dal_system *s = NULL;
   CHECK_OK(dal_builder_compile(F.bld, &s));
   CHECK(dal_system_ncoords(s) == 2 && dal_system_nparticles(s) == 1 &&

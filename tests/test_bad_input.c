@@ -33,11 +33,15 @@ static const double g2[2] = {0.0, -9.81}, g3[3] = {0.0, 0.0, -9.81};
 // planar pendulum in minimal coordinates: coordinate 'theta', particle 'bob' (1 kg, 1 m)
 static int pendulum(dal_builder **b, dal_system **sys, dal_state **st) {
   int th, bob;
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0};
   int rc = dal_builder_create(2, b);
   if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(*b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(*b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(*b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(*b, g2);
   if (!rc && sys) rc = dal_builder_compile(*b, sys);
   if (!rc && st) rc = dal_state_create(*sys, st);
@@ -51,7 +55,11 @@ static int free2(dal_builder **b, int *bob) {
   if (!rc) rc = dal_builder_add_coord(*b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(*b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(*b, "bob", 2.0, bob);
-  if (!rc) rc = dal_builder_place(*b, *bob, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(*b, *bob, &pd);
   return rc;
 }
 
@@ -91,7 +99,6 @@ static int row_dim(char *msg) {
 static int mass_row(char *msg, double mass) {
   dal_builder *b = NULL;
   int th, idx = -7;
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0};
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   int rc = dal_builder_add_particle(b, "bob", mass, &idx);
@@ -99,7 +106,12 @@ static int mass_row(char *msg, double mass) {
   CHECK(idx == -7);
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &idx));
   CHECK(idx == 0);
-  CHECK_OK(dal_builder_place(b, idx, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, idx, &pd));
   CHECK_OK(compiles_and_runs(b));
   dal_builder_destroy(b);
   return rc;
@@ -109,7 +121,8 @@ static int row_mass_inf(char *msg) { return mass_row(msg, INFINITY); }
 static int row_mass_zero(char *msg) { return mass_row(msg, 0.0); }
 static int row_mass_negative(char *msg) { return mass_row(msg, -1.0); }
 
-// dal_builder_place with one thing wrong, then the right call
+// the positional dal_builder_place with one thing wrong (its own rows: the wrapper is kept and
+// tested here), then the right call, by a def
 typedef struct place_case {
   int particle, ncoords, coord0, nparam;
   double l;
@@ -128,9 +141,13 @@ static int place_row(char *msg, place_case pc) {
                              NULL);
   copy_msg(msg, dal_builder_errmsg(b));
   // the failed placement left no trace: the particle can still be placed, once
-  par[0] = 1.0;
-  CHECK_OK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
-  CHECK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL) == DAL_E_ARG);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
+  CHECK(dal_builder_place_def(b, bob, &pd) == DAL_E_ARG);
   CHECK_OK(compiles_and_runs(b));
   dal_builder_destroy(b);
   return rc;
@@ -166,17 +183,34 @@ static int row_place_null_prim(char *msg) {
 static int row_place_parent_order(char *msg) {
   dal_builder *b = NULL;
   int th[2], p[2];
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 1.0;
+  double l = 1.0;
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "th1", &th[0]));
   CHECK_OK(dal_builder_add_coord(b, "th2", &th[1]));
   CHECK_OK(dal_builder_add_particle(b, "upper", 1.0, &p[0]));
   CHECK_OK(dal_builder_add_particle(b, "lower", 1.0, &p[1]));
   // the lower bob hangs from the upper one, which is not placed yet
-  int rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &th[1], 1, &l, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &th[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = l;
+  int rc = dal_builder_place_def(b, p[1], &pd);
   copy_msg(msg, dal_builder_errmsg(b));
-  CHECK_OK(dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &th[0], 7, par, NULL));
-  CHECK_OK(dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &th[1], 1, &l, NULL));
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, p[0], &pd));
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &th[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = l;
+  CHECK_OK(dal_builder_place_def(b, p[1], &pd));
   CHECK_OK(compiles_and_runs(b));
   dal_builder_destroy(b);
   return rc;
@@ -206,8 +240,13 @@ static int two_free(dal_builder **b, int *pa, int *pb) {
   for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(*b, names[i], &c[i]);
   if (!rc) rc = dal_builder_add_particle(*b, "a", 1.0, pa);
   if (!rc) rc = dal_builder_add_particle(*b, "b", 1.0, pb);
-  if (!rc) rc = dal_builder_place(*b, *pa, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_place(*b, *pb, &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(*b, *pa, &pd);
+  pd.coords = c + 2;
+  if (!rc) rc = dal_builder_place_def(*b, *pb, &pd);
   return rc;
 }
 
@@ -227,9 +266,13 @@ static int constraint_row(char *msg, con_case cc) {
   copy_msg(msg, dal_builder_errmsg(b));
   CHECK(row == -5);
   parts[1] = pb;
-  L = 1.0;
-  CHECK_OK(dal_builder_add_constraint(b, "rod", &user_rod2, 2, parts, 0, NULL, 1, &L, NULL,
-                                      &row));
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &user_rod2;
+  cd.parts = parts;
+  cd.nparts = 2;
+  cd.param[0] = 1.0; // L, the user primitive's one parameter
+  CHECK_OK(dal_builder_add_constraint_def(b, &cd, &row));
   CHECK(row == 0); // the failed call added no rows
   dal_system *sys = NULL;
   CHECK_OK(dal_builder_compile(b, &sys));
@@ -278,7 +321,12 @@ static int link_row(char *msg, link_case lc) {
            : lc.kind == 1 ? dal_builder_add_anchor_spring(b, pa, x0, NULL, NULL, lc.k, lc.L)
                           : dal_builder_add_damper(b, pa, lc.pb, lc.k);
   copy_msg(msg, dal_builder_errmsg(b));
-  CHECK_OK(dal_builder_add_spring(b, pa, pb, 10.0, 1.0));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = pa;
+  sd.b = pb;
+  sd.k = 10.0;
+  sd.length = 1.0;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
   CHECK_OK(compiles_and_runs(b));
   dal_builder_destroy(b);
   return rc;
@@ -304,17 +352,21 @@ static int row_compile_unplaced(char *msg) {
   dal_builder *b = NULL;
   dal_system *sys = (dal_system *)&msg; // must be overwritten with NULL
   int th, bob, extra;
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0};
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
   CHECK_OK(dal_builder_add_particle(b, "stray", 1.0, &extra));
-  CHECK_OK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
   int rc = dal_builder_compile(b, &sys);
   copy_msg(msg, dal_builder_errmsg(b));
   CHECK(sys == NULL);
-  par[2] = -1.0;
-  CHECK_OK(dal_builder_place(b, extra, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+  pd.param[DAL_PENDULUM_Y0] = -1.0; // the stray's pivot at (0, -1)
+  CHECK_OK(dal_builder_place_def(b, extra, &pd));
   CHECK_OK(compiles_and_runs(b));
   dal_builder_destroy(b);
   return rc;
@@ -324,10 +376,12 @@ static int row_compile_no_coords(char *msg) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int bob;
-  double x[2] = {0.0, 1.0};
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
-  CHECK_OK(dal_builder_place(b, bob, &dal_map_fixed2, -1, 0, NULL, 2, x, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_fixed2;
+  pd.param[DAL_FIXED_Y] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
   int rc = dal_builder_compile(b, &sys);
   copy_msg(msg, dal_builder_errmsg(b));
   CHECK(sys == NULL);
@@ -403,12 +457,16 @@ static int row_foreign_state(char *msg) {
 // spherical pendulum in minimal coordinates at its pole: phi moves no mass
 static int spherical(dal_builder **b, dal_system **sys, dal_state **st) {
   int c[2], bob;
-  double par[4] = {1.0, 0, 0, 0};
   int rc = dal_builder_create(3, b);
   if (!rc) rc = dal_builder_add_coord(*b, "theta", &c[0]);
   if (!rc) rc = dal_builder_add_coord(*b, "phi", &c[1]);
   if (!rc) rc = dal_builder_add_particle(*b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(*b, bob, &dal_map_spherical, -1, 2, c, 4, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_spherical;
+  pd.coords = c;
+  pd.ncoords = 2;
+  pd.param[DAL_SPHERICAL_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(*b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(*b, g3);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (!rc) rc = dal_state_create(*sys, st);
@@ -596,7 +654,11 @@ static int row_map_domain(char *msg) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "s", &s));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
-  CHECK_OK(dal_builder_place(b, bob, &user_sqrt, -1, 1, &s, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &user_sqrt;
+  pd.coords = &s;
+  pd.ncoords = 1;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
   CHECK_OK(dal_builder_compile(b, &sys));
   CHECK_OK(dal_state_create(sys, &st));
   double q = -0.5, qd = 0.0;
@@ -630,7 +692,11 @@ static int row_curve_no_ctx(char *msg) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "s", &s));
   CHECK_OK(dal_builder_add_particle(b, "bead", 1.0, &bob));
-  CHECK_OK(dal_builder_place(b, bob, &dal_map_curve2, -1, 1, &s, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_curve2;
+  pd.coords = &s;
+  pd.ncoords = 1;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
   CHECK_OK(dal_builder_compile(b, &sys));
   CHECK_OK(dal_state_create(sys, &st));
   double q = 0.5, qd = 1.0;
@@ -644,7 +710,12 @@ static int row_curve_no_ctx(char *msg) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "s", &s));
   CHECK_OK(dal_builder_add_particle(b, "bead", 1.0, &bob));
-  CHECK_OK(dal_builder_place(b, bob, &dal_map_curve2, -1, 1, &s, 0, NULL, &cv));
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_curve2;
+  pd.coords = &s;
+  pd.ncoords = 1;
+  pd.ctx = &cv;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
   CHECK_OK(dal_builder_compile(b, &sys));
   CHECK_OK(dal_state_create(sys, &st));
   CHECK_OK(dal_state_set(sys, st, 0.0, &q, &qd));
@@ -1039,8 +1110,11 @@ static int osc2_make(osc *o, int map, force_ctx *ctl) {
   if (!rc) rc = dal_builder_add_coord(o->b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(o->b, "bob", 2.0, &bob);
   if (!rc && map) rc = dal_builder_set_map(o->b, map_ctl, ctl);
-  if (!rc && !map)
-    rc = dal_builder_place(o->b, bob, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc && !map) rc = dal_builder_place_def(o->b, bob, &pd);
   if (!rc && !map) rc = dal_builder_add_potential_r(o->b, pot_ctl, ctl);
   if (!rc) rc = dal_builder_add_force(o->b, force_cb, &o->fc);
   if (!rc) rc = dal_builder_compile(o->b, &o->sys);
@@ -1078,15 +1152,18 @@ static int row_map_transient(char *msg) { return ctl_row(msg, 1, 2, 2); }
 static int cart_pendulum(dal_builder **b, dal_system **sys, dal_state **st, int second,
                          double ax, force_ctx *fc) {
   int c[2], bob;
-  double rod[3] = {1.0, 0.0, 0.0}, rod2[3] = {1.0, ax, 0.0};
   int rc = free2(b, &bob);
   if (!rc) rc = dal_builder_set_gravity(*b, g2);
-  if (!rc)
-    rc = dal_builder_add_constraint(*b, "rodA", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod, NULL,
-                                    NULL);
-  if (!rc && second)
-    rc = dal_builder_add_constraint(*b, "rodB", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod2,
-                                    NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rodA";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(*b, &cd, NULL);
+  cd.name = "rodB";
+  cd.param[DAL_ANCHOR_X0] = ax;
+  if (!rc && second) rc = dal_builder_add_constraint_def(*b, &cd, NULL);
   if (!rc && fc) rc = dal_builder_add_force(*b, force_cb, fc);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (!rc) rc = dal_state_create(*sys, st);
@@ -1238,8 +1315,12 @@ static int row_init_unassemblable(char *msg) {
   dal_state *st = NULL;
   int bob, x = 0;
   CHECK_OK(free2(&b, &bob));
-  CHECK_OK(dal_builder_add_constraint(b, "unreachable", &user_never, 0, NULL, 1, &x, 0, NULL,
-                                      NULL, NULL));
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "unreachable";
+  cd.prim = &user_never;
+  cd.coords = &x;
+  cd.ncoords = 1;
+  CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
   CHECK_OK(dal_builder_compile(b, &sys));
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {0.5, 0.25}, qd[2] = {0.1, 0.0};
@@ -1278,9 +1359,12 @@ static int cusp_scene(dal_builder **b, dal_system **sys, dal_state **st) {
   double g[2] = {-9.81, 0.0}, q[2] = {1.0, 1.0}, qd[2] = {0.0, 0.0};
   int rc = free2(b, &bob);
   if (!rc) rc = dal_builder_set_gravity(*b, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(*b, "cusp", &user_cusp, 1, &bob, 0, NULL, 0, NULL, NULL,
-                                    NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "cusp";
+  cd.prim = &user_cusp;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  if (!rc) rc = dal_builder_add_constraint_def(*b, &cd, NULL);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (!rc) rc = dal_state_create(*sys, st);
   if (!rc) rc = dal_state_set(*sys, *st, 0.0, q, qd);

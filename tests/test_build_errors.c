@@ -42,11 +42,14 @@ static void test_dimension(void) {
   CHECK_OK(dal_builder_create(3, &b));
   // a 2D map in a 3D scene: wrong number of outputs
   int th, p;
-  double par[7] = {1, 0, 0, 0, 0, 0, 0};
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &p));
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL), DAL_E_ARG, "bob",
-           "'pendulum'", "3D");
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  EXPECT_B(dal_builder_place_def(b, p, &pd), DAL_E_ARG, "bob", "'pendulum'", "3D");
   // a 3D gravity vector with NaN in z is caught in 3D only
   double g[3] = {0, 0, NAN};
   EXPECT_B(dal_builder_set_gravity(b, g), DAL_E_NONFINITE, "gravity", "2", NULL);
@@ -57,8 +60,13 @@ static void test_dimension(void) {
 
 // a pendulum builder after errors: must still compile and give theta'' = -g/l sin(theta)
 static void check_recovers(dal_builder *b, int th, int p, double l) {
-  double par[7] = {l, 0, 0, 0, 0, 0, 0}, g[2] = {0, -9.81};
-  CHECK_OK(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+  double g[2] = {0, -9.81};
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = l;
+  CHECK_OK(dal_builder_place_def(b, p, &pd));
   CHECK_OK(dal_builder_set_gravity(b, g));
   dal_system *sys = NULL;
   dal_state *st = NULL;
@@ -94,61 +102,87 @@ static void test_masses_and_indices(void) {
   CHECK(idx == -7);
   CHECK_OK(dal_builder_add_particle(b, "bob", 2.0, &p));
   CHECK(p == 0); // the rejected particles took no index
-  // bad indices in place
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0};
+  // bad indices in place: e is the good def pd with one field spoiled
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  dal_place_def e = pd;
   int badc = 3;
-  EXPECT_B(dal_builder_place(b, 5, &dal_map_pendulum, -1, 1, &th, 7, par, NULL), DAL_E_ARG, "5",
-           NULL, NULL);
-  EXPECT_B(dal_builder_place(b, -1, &dal_map_pendulum, -1, 1, &th, 7, par, NULL), DAL_E_ARG, "-1",
-           NULL, NULL);
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &badc, 7, par, NULL), DAL_E_ARG, "bob",
-           "coordinate index 3", NULL);
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, NULL, 7, par, NULL), DAL_E_ARG, "bob",
-           NULL, NULL);
-  EXPECT_B(dal_builder_place(b, p, NULL, -1, 1, &th, 7, par, NULL), DAL_E_ARG, "bob", NULL, NULL);
+  EXPECT_B(dal_builder_place_def(b, 5, &pd), DAL_E_ARG, "5", NULL, NULL);
+  EXPECT_B(dal_builder_place_def(b, -1, &pd), DAL_E_ARG, "-1", NULL, NULL);
+  e.coords = &badc;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "coordinate index 3", NULL);
+  e.coords = NULL;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", NULL, NULL);
+  e = pd;
+  e.prim = NULL;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", NULL, NULL);
   // parents: itself, out of range, not placed, added after the child
-  EXPECT_B(dal_builder_place(b, p, &dal_map_hanging, p, 1, &th, 1, par, NULL), DAL_E_ARG, "bob",
-           "parent", NULL);
-  EXPECT_B(dal_builder_place(b, p, &dal_map_hanging, 9, 1, &th, 1, par, NULL), DAL_E_ARG, "bob",
-           "parent", NULL);
-  // wrong number of inputs and parameters
+  e = pd;
+  e.prim = &dal_map_hanging; // its one parameter, the length, is index 0: 1.0
+  e.parent = p;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "parent", NULL);
+  e.parent = 9;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "parent", NULL);
+  // wrong number of inputs
   int two[2] = {th, th};
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 2, two, 7, par, NULL), DAL_E_ARG, "bob",
-           "'pendulum'", "inputs");
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 0, NULL, 7, par, NULL), DAL_E_ARG, "bob",
-           "'pendulum'", "inputs");
+  e = pd;
+  e.coords = two;
+  e.ncoords = 2;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "'pendulum'", "inputs");
+  e.coords = NULL;
+  e.ncoords = 0;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "'pendulum'", "inputs");
+  // the positional wrapper's own checks: more parameters than the primitive has, none given
+  double par[8] = {1.0, 0, 0, 0, 0, 0, 0, 0};
   EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 8, par, NULL), DAL_E_ARG, "bob",
            "'pendulum'", "parameters");
   EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, NULL, NULL), DAL_E_ARG, "bob",
            "'pendulum'", "parameters");
   // NaN and infinite parameters
-  for (int i = 0; i < 7; ++i) {
-    double bad[7] = {1.0, 0, 0, 0, 0, 0, 0};
-    bad[i] = i % 2 ? NAN : INFINITY;
+  for (int i = 0; i < DAL_PENDULUM_NPARAM; ++i) {
+    e = pd;
+    e.param[i] = i % 2 ? NAN : INFINITY;
     char idxs[32];
     snprintf(idxs, sizeof idxs, "(index %d)", i);
-    EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, bad, NULL), DAL_E_NONFINITE,
-             "bob", "'pendulum'", idxs);
+    EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_NONFINITE, "bob", "'pendulum'", idxs);
   }
-  // springs and dampers: bad indices, NaN or negative coefficients
-  double x0[2] = {0, 0}, xnan[2] = {0, NAN};
-  EXPECT_B(dal_builder_add_spring(b, p, 4, 1.0, 1.0), DAL_E_ARG, "spring", "4", NULL);
-  EXPECT_B(dal_builder_add_spring(b, p, p, 1.0, 1.0), DAL_E_ARG, "spring", NULL, NULL);
-  EXPECT_B(dal_builder_add_spring(b, 8, p, 1.0, 1.0), DAL_E_ARG, "spring", "8", NULL);
-  EXPECT_B(dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, NAN, 1.0), DAL_E_NONFINITE, "spring",
-           "bob", NULL);
-  EXPECT_B(dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, -1.0, 1.0), DAL_E_ARG, "spring",
-           "bob", NULL);
-  EXPECT_B(dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, 1.0, -1.0), DAL_E_ARG, "spring",
-           "bob", NULL);
-  EXPECT_B(dal_builder_add_anchor_spring(b, p, xnan, NULL, NULL, 1.0, 1.0), DAL_E_NONFINITE,
-           "spring", "bob", NULL);
-  // (x0 NULL is the origin since the moving-point convention x0 + x(t); tests/test_api.c)
-  EXPECT_B(dal_builder_add_damper(b, p, 3, 1.0), DAL_E_ARG, "damper", "3", NULL);
-  EXPECT_B(dal_builder_add_anchor_damper(b, p, x0, NULL, NULL, INFINITY), DAL_E_NONFINITE, "damper",
-           "bob", NULL);
-  EXPECT_B(dal_builder_add_anchor_damper(b, p, x0, NULL, NULL, -0.5), DAL_E_ARG, "damper", "bob",
-           NULL);
+  // springs and dampers: bad indices, NaN or negative coefficients (b = -1: the anchor point,
+  // at the origin by default)
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.b = 4;
+  sd.k = 1.0;
+  sd.length = 1.0;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_ARG, "spring", "4", NULL);
+  sd.b = p;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_ARG, "spring", NULL, NULL);
+  sd.a = 8;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_ARG, "spring", "8", NULL);
+  sd.a = p;
+  sd.b = -1;
+  sd.k = NAN;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_NONFINITE, "spring", "bob", NULL);
+  sd.k = -1.0;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_ARG, "spring", "bob", NULL);
+  sd.k = 1.0;
+  sd.length = -1.0;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_ARG, "spring", "bob", NULL);
+  sd.length = 1.0;
+  sd.anchor[1] = NAN;
+  EXPECT_B(dal_builder_add_spring_def(b, &sd), DAL_E_NONFINITE, "spring", "bob", NULL);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.b = 3;
+  dd.c = 1.0;
+  EXPECT_B(dal_builder_add_damper_def(b, &dd), DAL_E_ARG, "damper", "3", NULL);
+  dd.b = -1;
+  dd.c = INFINITY;
+  EXPECT_B(dal_builder_add_damper_def(b, &dd), DAL_E_NONFINITE, "damper", "bob", NULL);
+  dd.c = -0.5;
+  EXPECT_B(dal_builder_add_damper_def(b, &dd), DAL_E_ARG, "damper", "bob", NULL);
   // NULL callbacks
   EXPECT_B(dal_builder_add_potential_r(b, NULL, NULL), DAL_E_ARG, "U(r,t)", NULL, NULL);
   EXPECT_B(dal_builder_add_potential_q(b, NULL, NULL), DAL_E_ARG, "U(q,t)", NULL, NULL);
@@ -159,8 +193,7 @@ static void test_masses_and_indices(void) {
   // the builder still works
   check_recovers(b, th, p, 1.5);
   // placing twice
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL), DAL_E_ARG, "bob",
-           "already placed", NULL);
+  EXPECT_B(dal_builder_place_def(b, p, &pd), DAL_E_ARG, "bob", "already placed", NULL);
   dal_builder_destroy(b);
 }
 
@@ -181,7 +214,6 @@ static int dummy_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
 }
 
 static void test_model_errors(void) {
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, par1[1] = {1.0};
   dal_system *sys = NULL;
   // no coordinates, no particles
   dal_builder *b = NULL;
@@ -189,6 +221,17 @@ static void test_model_errors(void) {
   EXPECT_B(dal_builder_compile(b, &sys), DAL_E_ARG, "coordinates", NULL, NULL);
   CHECK(sys == NULL);
   int th, p, q2;
+  // a pendulum on theta (l = 1), and a link hanging from `upper` on theta2
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  dal_place_def hd = dal_default_place_def();
+  hd.prim = &dal_map_hanging;
+  hd.coords = &q2;
+  hd.ncoords = 1;
+  hd.param[DAL_HANGING_L] = 1.0;
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   EXPECT_B(dal_builder_compile(b, &sys), DAL_E_ARG, "particles", NULL, NULL);
   // a particle without a position
@@ -197,7 +240,7 @@ static void test_model_errors(void) {
   CHECK(sys == NULL);
   // a Lagrangian excludes particles, and a map excludes placements
   EXPECT_B(dal_builder_set_lagrangian(b, dummy_lag, NULL), DAL_E_ARG, "particles", NULL, NULL);
-  CHECK_OK(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+  CHECK_OK(dal_builder_place_def(b, p, &pd));
   EXPECT_B(dal_builder_set_map(b, dummy_map, NULL), DAL_E_ARG, "bob", "placed", NULL);
   dal_builder_destroy(b);
 
@@ -211,8 +254,7 @@ static void test_model_errors(void) {
   CHECK_OK(dal_builder_add_coord(b, "x", &th));
   CHECK_OK(dal_builder_add_particle(b, "bead", 1.0, &p));
   CHECK_OK(dal_builder_set_map(b, dummy_map, NULL));
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL), DAL_E_ARG, "bead",
-           "map", NULL);
+  EXPECT_B(dal_builder_place_def(b, p, &pd), DAL_E_ARG, "bead", "map", NULL);
   dal_builder_destroy(b);
 
   // a parent added after its child, and a parent not yet placed
@@ -222,11 +264,10 @@ static void test_model_errors(void) {
   int lower, upper;
   CHECK_OK(dal_builder_add_particle(b, "lower", 1.0, &lower));
   CHECK_OK(dal_builder_add_particle(b, "upper", 1.0, &upper));
-  EXPECT_B(dal_builder_place(b, lower, &dal_map_hanging, upper, 1, &q2, 1, par1, NULL), DAL_E_ARG,
-           "lower", "upper", "placed");
-  CHECK_OK(dal_builder_place(b, upper, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
-  EXPECT_B(dal_builder_place(b, lower, &dal_map_hanging, upper, 1, &q2, 1, par1, NULL), DAL_E_ARG,
-           "lower", "upper", "added before");
+  hd.parent = upper;
+  EXPECT_B(dal_builder_place_def(b, lower, &hd), DAL_E_ARG, "lower", "upper", "placed");
+  CHECK_OK(dal_builder_place_def(b, upper, &pd));
+  EXPECT_B(dal_builder_place_def(b, lower, &hd), DAL_E_ARG, "lower", "upper", "added before");
   dal_builder_destroy(b);
 
   // constraints: bad particle index, wrong input count (the constraint is named)
@@ -235,14 +276,22 @@ static void test_model_errors(void) {
   CHECK_OK(dal_builder_add_coord(b, "x", &xy[0]));
   CHECK_OK(dal_builder_add_coord(b, "y", &xy[1]));
   CHECK_OK(dal_builder_add_particle(b, "bead", 1.0, &p));
-  CHECK_OK(dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, xy, 0, NULL, NULL));
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = xy;
+  pd.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(b, p, &pd));
   int parts_bad[2] = {p, 6}, parts_one[1] = {p};
-  EXPECT_B(dal_builder_add_constraint(b, "rod", &dal_map_pendulum, 2, parts_bad, 0, NULL, 7, par,
-                                      NULL, NULL),
-           DAL_E_ARG, "rod", "6", NULL);
-  EXPECT_B(dal_builder_add_constraint(b, "rod", &dal_map_pendulum, 1, parts_one, 0, NULL, 7, par,
-                                      NULL, NULL),
-           DAL_E_ARG, "rod", "'pendulum'", "inputs");
+  dal_constraint_def cd = dal_default_constraint_def(); // a map used as a constraint
+  cd.name = "rod";
+  cd.prim = &dal_map_pendulum;
+  cd.parts = parts_bad;
+  cd.nparts = 2;
+  cd.param[DAL_PENDULUM_L] = 1.0;
+  EXPECT_B(dal_builder_add_constraint_def(b, &cd, NULL), DAL_E_ARG, "rod", "6", NULL);
+  cd.parts = parts_one;
+  cd.nparts = 1;
+  EXPECT_B(dal_builder_add_constraint_def(b, &cd, NULL), DAL_E_ARG, "rod", "'pendulum'", "inputs");
   dal_builder_destroy(b);
 }
 
@@ -273,14 +322,24 @@ static void test_state_errors(void) {
   dal_builder *b = NULL;
   CHECK_OK(dal_builder_create(2, &b));
   int th, p, s2;
-  double par[7] = {1.2, 0, 0, 0, 0, 0, 0}, par2[7] = {1.2, 0, 0, 0, 0, 0, 0}, g[2] = {0, -9.81};
+  double g[2] = {0, -9.81};
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 2.0, &p));
   CHECK_OK(dal_builder_add_particle(b, "twin", 1.0, &s2));
-  CHECK_OK(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
-  CHECK_OK(dal_builder_place(b, s2, &dal_map_pendulum, -1, 1, &th, 7, par2, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.2;
+  CHECK_OK(dal_builder_place_def(b, p, &pd));
+  CHECK_OK(dal_builder_place_def(b, s2, &pd));
   CHECK_OK(dal_builder_set_gravity(b, g));
-  CHECK_OK(dal_builder_add_spring(b, p, s2, 1.0, 0.5)); // bob and twin coincide: zero length
+  dal_spring_def sd = dal_default_spring_def(); // bob and twin coincide: zero length
+  sd.a = p;
+  sd.b = s2;
+  sd.k = 1.0;
+  sd.length = 0.5;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
   CHECK_OK(dal_builder_add_force(b, force_fail, &mode));
   CHECK_OK(dal_builder_add_genforce(b, gen_nan, &mode));
   dal_system *sys = NULL, *other = NULL;
@@ -315,7 +374,7 @@ static void test_state_errors(void) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 2.0, &p));
-  CHECK_OK(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+  CHECK_OK(dal_builder_place_def(b, p, &pd));
   CHECK_OK(dal_builder_set_gravity(b, g));
   CHECK_OK(dal_builder_add_force(b, force_fail, &mode));
   CHECK_OK(dal_builder_add_genforce(b, gen_nan, &mode));

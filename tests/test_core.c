@@ -36,13 +36,24 @@ static dal_system *finish(dal_builder *b, int rc) {
 static dal_system *pendulum(int two) {
   dal_builder *b = NULL;
   int c[2], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0}, par[7] = {1.0, 0, 0, 0, 0, 0, 0}, l2 = 1.0;
+  double g[2] = {0.0, -G0};
   if (!rc) rc = dal_builder_add_coord(b, "th1", &c[0]);
   if (!rc) rc = dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c[0], 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
   if (two && !rc) rc = dal_builder_add_coord(b, "th2", &c[1]);
   if (two && !rc) rc = dal_builder_add_particle(b, "bob2", 1.0, &p[1]);
-  if (two && !rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &c[1], 1, &l2, NULL);
+  pd = dal_default_place_def(); // bob2 hangs from bob1
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &c[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = 1.0;
+  if (two && !rc) rc = dal_builder_place_def(b, p[1], &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return finish(b, rc);
 }
@@ -51,12 +62,18 @@ static dal_system *pendulum(int two) {
 static dal_system *oscillator(void) {
   dal_builder *b = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double x0[2] = {0, 0};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, 1.0, 0.0);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = 1.0;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
   return finish(b, rc);
 }
 
@@ -72,15 +89,24 @@ static dal_moving_point pivot = {pivot_path, NULL};
 static dal_system *cart_pendulum(int moving) {
   dal_builder *b = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0}, par[3] = {1.0, 0, 0};
+  double g[2] = {0.0, -G0};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par,
-                                    moving ? &pivot : NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.ctx = moving ? &pivot : NULL;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   return finish(b, rc);
 }
 
@@ -88,10 +114,16 @@ static dal_system *cart_pendulum(int moving) {
 static dal_system *bead(double w) {
   dal_builder *b = NULL;
   int c, p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -G0}, par[3] = {1.0, w, 0.0};
+  double g[3] = {0, 0, -G0};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &c, 3, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_ring;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = 1.0;
+  pd.param[DAL_RING_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return finish(b, rc);
 }
@@ -100,16 +132,25 @@ static dal_system *bead(double w) {
 static dal_system *cart_bead(double w) {
   dal_builder *b = NULL;
   int c[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -G0}, par[6] = {1.0, w, 0, 0, 0, 0};
+  double g[3] = {0, 0, -G0};
   const char *nm[3] = {"x", "y", "z"};
   for (int i = 0; i < 3 && !rc; ++i)
     rc = dal_builder_add_coord(b, nm[i], &c[i]);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian3;
+  pd.coords = c;
+  pd.ncoords = 3;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, par,
-                                    NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_turning_circle;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
+  cd.param[DAL_TURNING_CIRCLE_W] = w;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   return finish(b, rc);
 }
 
@@ -344,26 +385,44 @@ static dal_moving_point drive = {drive_path, NULL};
 static dal_system *forced_pendulum(int cartesian) {
   dal_builder *b = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0}, x0[2] = {0.0, -2.0};
+  double g[2] = {0.0, -G0};
   if (!cartesian) {
     // the built-in drive: pivot (ax cos(w t + ph), ay cos(w t + ph)); use the path through a
     // user map instead to match the Cartesian scene exactly
-    double par[7] = {1.0, 0.0, 0.0, 0.2, 0.0, 3.0, 0.0};
     if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c[0], 7, par, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    pd.param[DAL_PENDULUM_AX] = 0.2;
+    pd.param[DAL_PENDULUM_W] = 3.0;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
   } else {
-    double par[3] = {1.0, 0.0, 0.0};
     if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
     if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par, &drive,
-                                      NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = 1.0; // to the moving point 0 + x(t)
+    cd.ctx = &drive;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_add_anchor_damper(b, p, x0, NULL, NULL, 0.4);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.anchor[1] = -2.0; // at (0, -2)
+  dd.c = 0.4;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_add_force(b, wind, NULL);
   return finish(b, rc);
 }

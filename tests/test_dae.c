@@ -60,14 +60,26 @@ static dal_system *cart_pendulum(double l, double m, double x0, double y0, dal_m
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0}, par[3] = {l, x0, y0};
+  double g[2] = {0.0, -G0};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par, mp, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = l;
+  cd.param[DAL_ANCHOR_X0] = x0;
+  cd.param[DAL_ANCHOR_Y0] = y0;
+  cd.ctx = mp;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "cart_pendulum: %s\n", dal_builder_errmsg(b));
   dal_builder_destroy(b);
@@ -80,10 +92,18 @@ static dal_system *min_pendulum(double l, double m, const drive *dr) {
   dal_system *s = NULL;
   int c, p, rc = dal_builder_create(2, &b);
   double g[2] = {0.0, -G0};
-  double par[7] = {l, 0, 0, dr ? dr->ax : 0, dr ? dr->ay : 0, dr ? dr->w : 0, dr ? dr->ph : 0};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
   if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = l;
+  pd.param[DAL_PENDULUM_AX] = dr ? dr->ax : 0;
+  pd.param[DAL_PENDULUM_AY] = dr ? dr->ay : 0;
+  pd.param[DAL_PENDULUM_W] = dr ? dr->w : 0;
+  pd.param[DAL_PENDULUM_PH] = dr ? dr->ph : 0;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "min_pendulum: %s\n", dal_builder_errmsg(b));
@@ -102,25 +122,47 @@ static dal_system *double_pendulum(int dae, double l1, double l2, double m1, dou
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!dae) {
     int th[2];
-    double par[7] = {l1, 0, 0, 0, 0, 0, 0};
     if (!rc) rc = dal_builder_add_coord(b, "th1", &th[0]);
     if (!rc) rc = dal_builder_add_coord(b, "th2", &th[1]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &th[0], 7, par, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &th[1], 1, &l2, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &th[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = l1;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &th[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   } else {
     int c[4];
     const char *nm[4] = {"x1", "y1", "x2", "y2"};
-    double rod1[3] = {l1, 0, 0};
     for (int i = 0; i < 4 && !rc; ++i)
       rc = dal_builder_add_coord(b, nm[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod1", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod1, NULL,
-                                      NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod2", &dal_con_distance2, 2, p, 0, NULL, 1, &l2, NULL,
-                                      NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd.coords = c + 2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod1";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p[0];
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = l1;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    cd = dal_default_constraint_def();
+    cd.name = "rod2";
+    cd.prim = &dal_con_distance2;
+    cd.parts = p;
+    cd.nparts = 2;
+    cd.param[DAL_DISTANCE_L] = l2;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "double_pendulum: %s\n", dal_builder_errmsg(b));
@@ -143,20 +185,28 @@ static dal_system *chain(int N) {
     snprintf(nm, sizeof nm, "y%d", k);
     if (!rc) rc = dal_builder_add_coord(b, nm, &c[1]);
     if (!rc) rc = dal_builder_add_particle(b, NULL, 1.0, &p);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
     snprintf(nm, sizeof nm, "rod%d", k);
+    // unit rods: the first to the origin, then between neighbours
+    int pp[2] = {k - 1, k};
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = nm;
     if (k == 0) {
-      double par[3] = {1.0, 0.0, 0.0};
-      if (!rc)
-        rc =
-            dal_builder_add_constraint(b, nm, &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
+      cd.prim = &dal_con_anchor2;
+      cd.parts = &p;
+      cd.nparts = 1;
+      cd.param[DAL_ANCHOR_L] = 1.0;
     } else {
-      int pp[2] = {k - 1, k};
-      double L = 1.0;
-      if (!rc)
-        rc = dal_builder_add_constraint(b, nm, &dal_con_distance2, 2, pp, 0, NULL, 1, &L, NULL,
-                                        NULL);
+      cd.prim = &dal_con_distance2;
+      cd.parts = pp;
+      cd.nparts = 2;
+      cd.param[DAL_DISTANCE_L] = 1.0;
     }
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "chain: %s\n", dal_builder_errmsg(b));
@@ -339,11 +389,17 @@ static void test_rotating_ring(void) {
   double R = 0.5, w = 7.0, tol = 1e-9;
   dal_builder *bm = NULL, *bd = NULL;
   dal_system *ms = NULL, *ds = NULL;
-  double g[3] = {0, 0, -G0}, pr[3] = {R, w, 0.0}, pc[6] = {R, w, 0.0, 0, 0, 0};
+  double g[3] = {0, 0, -G0};
   int c, p, rc = dal_builder_create(3, &bm);
   if (!rc) rc = dal_builder_add_coord(bm, "theta", &c);
   if (!rc) rc = dal_builder_add_particle(bm, "bead", 0.2, &p);
-  if (!rc) rc = dal_builder_place(bm, p, &dal_map_ring, -1, 1, &c, 3, pr, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_ring;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = R;
+  pd.param[DAL_RING_W] = w;
+  if (!rc) rc = dal_builder_place_def(bm, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(bm, g);
   if (!rc) rc = dal_builder_compile(bm, &ms);
   int cc[3];
@@ -351,11 +407,20 @@ static void test_rotating_ring(void) {
   for (int i = 0; i < 3 && !rc; ++i)
     rc = dal_builder_add_coord(bd, NULL, &cc[i]);
   if (!rc) rc = dal_builder_add_particle(bd, "bead", 0.2, &p);
-  if (!rc) rc = dal_builder_place(bd, p, &dal_map_cartesian3, -1, 3, cc, 0, NULL, NULL);
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian3;
+  pd.coords = cc;
+  pd.ncoords = 3;
+  if (!rc) rc = dal_builder_place_def(bd, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(bd, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(bd, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, pc,
-                                    NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_turning_circle;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_TURNING_CIRCLE_R] = R;
+  cd.param[DAL_TURNING_CIRCLE_W] = w;
+  if (!rc) rc = dal_builder_add_constraint_def(bd, &cd, NULL);
   if (!rc) rc = dal_builder_compile(bd, &ds);
   CHECK_OK(rc);
   dal_builder_destroy(bm);
@@ -395,15 +460,22 @@ static void test_turning_line(void) {
   double w = 1.5, s0 = 0.4, tol = 1e-9;
   dal_builder *b = NULL;
   dal_system *s = NULL;
-  double par[4] = {0, 0, w, 0};
   int c[2], p, rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_turning_line2, 1, &p, 0, NULL, 4, par, NULL,
-                                    NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_turning_line2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_TURNING_LINE2_W] = w;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc);
@@ -448,15 +520,25 @@ static void test_prescribed(void) {
   dal_prescribed pr = {wiggle_fn, &wg};
   dal_builder *b = NULL;
   dal_system *s = NULL;
-  double par[7] = {l, 0, 0, 0, 0, 0, 0}, g[2] = {0, -G0};
+  double g[2] = {0, -G0};
   int c, p, rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
   if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = l;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "motor", &dal_con_prescribed, 0, NULL, 1, &c, 1, &th0, &pr,
-                                    NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "motor";
+  cd.prim = &dal_con_prescribed;
+  cd.coords = &c;
+  cd.ncoords = 1;
+  cd.param[DAL_PRESCRIBED_Q0] = th0;
+  cd.ctx = &pr;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc);
@@ -623,18 +705,30 @@ static void test_consistent_init(void) {
   // a conflicting pair: two rods of length 1 from pivots 3 apart cannot both hold
   dal_builder *bb = NULL;
   dal_system *cs = NULL;
-  double pa[3] = {1.0, 0.0, 0.0}, pb[3] = {1.0, 3.0, 0.0};
   int c[2], p, rc = dal_builder_create(2, &bb);
   if (!rc) rc = dal_builder_add_coord(bb, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(bb, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(bb, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(bb, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc)
-    rc =
-        dal_builder_add_constraint(bb, "left", &dal_con_anchor2, 1, &p, 0, NULL, 3, pa, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(bb, "right", &dal_con_anchor2, 1, &p, 0, NULL, 3, pb, NULL,
-                                    NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(bb, p, &pd);
+  dal_constraint_def cd = dal_default_constraint_def(); // rod to the pivot (0, 0)
+  cd.name = "left";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(bb, &cd, NULL);
+  cd = dal_default_constraint_def(); // rod to the pivot (3, 0)
+  cd.name = "right";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.param[DAL_ANCHOR_X0] = 3.0;
+  if (!rc) rc = dal_builder_add_constraint_def(bb, &cd, NULL);
   if (!rc) rc = dal_builder_compile(bb, &cs);
   dal_builder_destroy(bb);
   CHECK_OK(rc);
@@ -662,17 +756,24 @@ static void test_redundant(void) {
   // duplicated rod on the Cartesian pendulum
   dal_builder *b = NULL;
   dal_system *s = NULL;
-  double par[3] = {1.0, 0.0, 0.0};
   int c[8], p[4], rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, p, 0, NULL, 3, par, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod_copy", &dal_con_anchor2, 1, p, 0, NULL, 3, par, NULL,
-                                    NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  cd.name = "rod_copy";
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc);
@@ -704,7 +805,11 @@ static void test_redundant(void) {
     rc = dal_builder_add_coord(b, NULL, &c[2 * k]);
     if (!rc) rc = dal_builder_add_coord(b, NULL, &c[2 * k + 1]);
     if (!rc) rc = dal_builder_add_particle(b, NULL, 1.0, &p[k]);
-    if (!rc) rc = dal_builder_place(b, p[k], &dal_map_cartesian2, -1, 2, c + 2 * k, 0, NULL, NULL);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c + 2 * k;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p[k], &pd);
   }
   const int pairs[6][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {1, 3}};
   for (int i = 0; i < 6 && !rc; ++i) {
@@ -712,8 +817,13 @@ static void test_redundant(void) {
     double L = hypot(xy[2 * pairs[i][1]] - xy[2 * pairs[i][0]],
                      xy[2 * pairs[i][1] + 1] - xy[2 * pairs[i][0] + 1]);
     snprintf(nm, sizeof nm, "rod%d", i + 1);
-    rc = dal_builder_add_constraint(b, nm, &dal_con_distance2, 2, pairs[i], 0, NULL, 1, &L, NULL,
-                                    NULL);
+    cd = dal_default_constraint_def();
+    cd.name = nm;
+    cd.prim = &dal_con_distance2;
+    cd.parts = pairs[i];
+    cd.nparts = 2;
+    cd.param[DAL_DISTANCE_L] = L;
+    rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
@@ -873,16 +983,23 @@ static void test_failures(void) {
   dal_system_destroy(s);
   s = NULL;
   dal_builder *b = NULL;
-  double par[3] = {1.0, 0.0, 0.0};
   int c[2], p, rc2 = dal_builder_create(2, &b);
   if (!rc2) rc2 = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc2) rc2 = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc2) rc2 = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc2) rc2 = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pdef = dal_default_place_def();
+  pdef.prim = &dal_map_cartesian2;
+  pdef.coords = c;
+  pdef.ncoords = 2;
+  if (!rc2) rc2 = dal_builder_place_def(b, p, &pdef);
   if (!rc2) rc2 = dal_builder_add_force(b, failing_force, NULL);
-  if (!rc2)
-    rc2 =
-        dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, par, NULL, NULL);
+  dal_constraint_def cdef = dal_default_constraint_def(); // unit rod to the origin
+  cdef.name = "rod";
+  cdef.prim = &dal_con_anchor2;
+  cdef.parts = &p;
+  cdef.nparts = 1;
+  cdef.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc2) rc2 = dal_builder_add_constraint_def(b, &cdef, NULL);
   if (!rc2) rc2 = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   CHECK_OK(rc2);

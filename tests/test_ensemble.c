@@ -24,10 +24,16 @@ static dal_system *driven(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, p, rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, 0.0, 0, 1.0, 0}, g[2] = {0, -9.81};
+  double g[2] = {0, -9.81};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_W] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
@@ -39,12 +45,18 @@ static dal_system *oscillator(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int q[2], p, rc = dal_builder_create(2, &b);
-  double x0[2] = {0, 0};
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
   if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, 1.0, 0.0);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = 1.0;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
   return s;
@@ -55,22 +67,40 @@ static dal_system *loop(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int q[4], p[2], rc = dal_builder_create(2, &b);
-  double rod[3] = {1.0, 0.5, 0}, circ[3] = {1.0, 0, 0}, link = 0.8, g[2] = {0, -9.81};
+  double link = 0.8, g[2] = {0, -9.81};
   for (int i = 0; i < 4 && !rc; ++i)
     rc = dal_builder_add_coord(b, NULL, &q[i]);
   if (!rc) rc = dal_builder_add_particle(b, "p", 1.0, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "s", 1.0, &p[1]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, q + 2, 0, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod, NULL,
-                                    NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "ring", &dal_con_circle2, 1, &p[1], 0, NULL, 3, circ, NULL,
-                                    NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "link", &dal_con_distance2, 2, p, 0, NULL, 1, &link, NULL,
-                                    NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd.coords = q + 2;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p[0];
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.param[DAL_ANCHOR_X0] = 0.5;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_circle2;
+  cd.parts = &p[1];
+  cd.nparts = 1;
+  cd.param[DAL_CIRCLE_R] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  cd = dal_default_constraint_def();
+  cd.name = "link";
+  cd.prim = &dal_con_distance2;
+  cd.parts = p;
+  cd.nparts = 2;
+  cd.param[DAL_DISTANCE_L] = link;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);

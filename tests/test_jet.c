@@ -940,9 +940,14 @@ static dal_system *build_domain_system(int which) {
   if (!rc) rc = dal_builder_add_coord(b, "u", &q[0]);
   if (!rc && which == 2) rc = dal_builder_add_coord(b, "w", &q[1]);
   if (!rc && which != 3) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc && which == 0) rc = dal_builder_place(b, p, &prim_root, -1, 1, q, 0, NULL, NULL);
+  // 0: the bead placed by prim_root(u); 2: Cartesian (u, w)
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = which == 0 ? &prim_root : &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = which == 0 ? 1 : 2;
+  if (!rc && which == 0) rc = dal_builder_place_def(b, p, &pd);
   if (!rc && which == 1) rc = dal_builder_set_map(b, arc_map, NULL);
-  if (!rc && which == 2) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
+  if (!rc && which == 2) rc = dal_builder_place_def(b, p, &pd);
   if (!rc && which == 2) rc = dal_builder_add_potential_q(b, logpot, NULL);
   if (!rc && which == 3) rc = dal_builder_set_lagrangian(b, sqrtlag, NULL);
   if (!rc) rc = dal_builder_compile(b, &sys);

@@ -192,12 +192,18 @@ static void test_harmonic_oscillator(void) {
   // (a) Cartesian particle + anchor spring of rest length 0 at the origin
   dal_builder *b = builder(2);
   int q[2], p;
-  double origin[2] = {0, 0};
   BUILD(dal_builder_add_coord(b, "x", &q[0]));
   BUILD(dal_builder_add_coord(b, "y", &q[1]));
   BUILD(dal_builder_add_particle(b, "m", par.m, &p));
-  BUILD(dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL));
-  BUILD(dal_builder_add_anchor_spring(b, p, origin, NULL, NULL, par.k, 0.0));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  BUILD(dal_builder_place_def(b, p, &pd));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = par.k;
+  BUILD(dal_builder_add_spring_def(b, &sd));
   scene sa = scene_make(compile(b));
   // (b) whole-system identity map + U(q)
   b = builder(2);
@@ -323,10 +329,17 @@ static void test_ring(void) {
     ring_par P = {rnd(0.5, 2), rnd(0.3, 2), rnd(0, 8), rnd(-1, 1), 9.81};
     dal_builder *b = builder(3);
     int th, p;
-    double par[3] = {P.R, P.w, P.phi0}, g[3] = {0, 0, -P.g};
+    double g[3] = {0, 0, -P.g};
     BUILD(dal_builder_add_coord(b, "theta", &th));
     BUILD(dal_builder_add_particle(b, "bead", P.m, &p));
-    BUILD(dal_builder_place(b, p, &dal_map_ring, -1, 1, &th, 3, par, NULL));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_ring;
+    pd.coords = &th;
+    pd.ncoords = 1;
+    pd.param[DAL_RING_R] = P.R;
+    pd.param[DAL_RING_W] = P.w;
+    pd.param[DAL_RING_PHI0] = P.phi0;
+    BUILD(dal_builder_place_def(b, p, &pd));
     BUILD(dal_builder_set_gravity(b, g));
     scene s = scene_make(compile(b));
     b = builder(3);
@@ -447,10 +460,21 @@ static void test_pendulum(int driven) {
     }
     dal_builder *b = builder(2);
     int th, p;
-    double par[7] = {P.l, P.x0, P.y0, P.ax, P.ay, P.w, P.ph}, g[2] = {0, -P.g};
+    double g[2] = {0, -P.g};
     BUILD(dal_builder_add_coord(b, "theta", &th));
     BUILD(dal_builder_add_particle(b, "bob", P.m, &p));
-    BUILD(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
+    dal_place_def pdef = dal_default_place_def();
+    pdef.prim = &dal_map_pendulum;
+    pdef.coords = &th;
+    pdef.ncoords = 1;
+    pdef.param[DAL_PENDULUM_L] = P.l;
+    pdef.param[DAL_PENDULUM_X0] = P.x0;
+    pdef.param[DAL_PENDULUM_Y0] = P.y0;
+    pdef.param[DAL_PENDULUM_AX] = P.ax;
+    pdef.param[DAL_PENDULUM_AY] = P.ay;
+    pdef.param[DAL_PENDULUM_W] = P.w;
+    pdef.param[DAL_PENDULUM_PH] = P.ph;
+    BUILD(dal_builder_place_def(b, p, &pdef));
     BUILD(dal_builder_set_gravity(b, g));
     scene s = scene_make(compile(b));
     b = builder(2);
@@ -572,7 +596,7 @@ static void test_double_pendulum(void) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
     dbl_par P = {rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(-1, 1), rnd(-1, 1), 9.81};
-    double g[2] = {0, -P.g}, par1[7] = {P.l1, P.x0, P.y0, 0, 0, 0, 0}, par2[1] = {P.l2};
+    double g[2] = {0, -P.g};
     // (a) primitives: pendulum + hanging from bob 1
     dal_builder *b = builder(2);
     int q[2], p1, p2;
@@ -580,8 +604,21 @@ static void test_double_pendulum(void) {
     BUILD(dal_builder_add_coord(b, "theta2", &q[1]));
     BUILD(dal_builder_add_particle(b, "bob1", P.m1, &p1));
     BUILD(dal_builder_add_particle(b, "bob2", P.m2, &p2));
-    BUILD(dal_builder_place(b, p1, &dal_map_pendulum, -1, 1, &q[0], 7, par1, NULL));
-    BUILD(dal_builder_place(b, p2, &dal_map_hanging, p1, 1, &q[1], 1, par2, NULL));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &q[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = P.l1;
+    pd.param[DAL_PENDULUM_X0] = P.x0;
+    pd.param[DAL_PENDULUM_Y0] = P.y0;
+    BUILD(dal_builder_place_def(b, p1, &pd));
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p1;
+    pd.coords = &q[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = P.l2;
+    BUILD(dal_builder_place_def(b, p2, &pd));
     BUILD(dal_builder_set_gravity(b, g));
     scene sa = scene_make(compile(b));
     // (b) whole-system map
@@ -671,13 +708,21 @@ static int sph_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet
 static void test_spherical(void) {
   int f0 = check_failures;
   sph_par P = {1.3, 0.8, 9.81};
-  double piv[3] = {0.2, -0.3, 0.5}, par[4] = {P.l, piv[0], piv[1], piv[2]}, g[3] = {0, 0, -P.g};
+  double piv[3] = {0.2, -0.3, 0.5}, g[3] = {0, 0, -P.g};
   dal_builder *b = builder(3);
   int q[2], p;
   BUILD(dal_builder_add_coord(b, "theta", &q[0]));
   BUILD(dal_builder_add_coord(b, "phi", &q[1]));
   BUILD(dal_builder_add_particle(b, "bob", P.m, &p));
-  BUILD(dal_builder_place(b, p, &dal_map_spherical, -1, 2, q, 4, par, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_spherical;
+  pd.coords = q;
+  pd.ncoords = 2;
+  pd.param[DAL_SPHERICAL_L] = P.l;
+  pd.param[DAL_SPHERICAL_X0] = piv[0];
+  pd.param[DAL_SPHERICAL_Y0] = piv[1];
+  pd.param[DAL_SPHERICAL_Z0] = piv[2];
+  BUILD(dal_builder_place_def(b, p, &pd));
   BUILD(dal_builder_set_gravity(b, g));
   scene s = scene_make(compile(b));
   b = builder(3);
@@ -802,22 +847,55 @@ static int zoo_genforce(double t, const double *q, const double *qd, double *Q, 
 static dal_system *zoo_build(const zoo *z, int which) {
   dal_builder *b = builder(2);
   int th, q[2], A, B;
-  double par[7] = {z->l, 0, 0, 0, 0, 0, 0};
   BUILD(dal_builder_add_coord(b, "theta", &th));
   BUILD(dal_builder_add_coord(b, "x", &q[0]));
   BUILD(dal_builder_add_coord(b, "y", &q[1]));
   BUILD(dal_builder_add_particle(b, "A", z->mA, &A));
   BUILD(dal_builder_add_particle(b, "B", z->mB, &B));
-  BUILD(dal_builder_place(b, A, &dal_map_pendulum, -1, 1, &th, 7, par, NULL));
-  BUILD(dal_builder_place(b, B, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = z->l;
+  BUILD(dal_builder_place_def(b, A, &pd));
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  BUILD(dal_builder_place_def(b, B, &pd));
   if (which & 1) {
-    BUILD(dal_builder_add_spring(b, A, B, z->k1, z->L1));
-    BUILD(dal_builder_add_anchor_spring(b, A, z->X2, NULL, NULL, z->k2, z->L2));
-    BUILD(dal_builder_add_anchor_spring(b, B, NULL, moving_anchor, (void *)z, z->k3, z->L3));
+    dal_spring_def sd = dal_default_spring_def();
+    sd.a = A;
+    sd.b = B;
+    sd.k = z->k1;
+    sd.length = z->L1;
+    BUILD(dal_builder_add_spring_def(b, &sd));
+    sd = dal_default_spring_def();
+    sd.a = A;
+    memcpy(sd.anchor, z->X2, sizeof z->X2);
+    sd.k = z->k2;
+    sd.length = z->L2;
+    BUILD(dal_builder_add_spring_def(b, &sd));
+    sd = dal_default_spring_def();
+    sd.a = B;
+    sd.path = moving_anchor;
+    sd.ctx = (void *)z;
+    sd.k = z->k3;
+    sd.length = z->L3;
+    BUILD(dal_builder_add_spring_def(b, &sd));
   }
   if (which & 2) {
-    BUILD(dal_builder_add_damper(b, A, B, z->c1));
-    BUILD(dal_builder_add_anchor_damper(b, B, NULL, moving_anchor, (void *)z, z->c3));
+    dal_damper_def dd = dal_default_damper_def();
+    dd.a = A;
+    dd.b = B;
+    dd.c = z->c1;
+    BUILD(dal_builder_add_damper_def(b, &dd));
+    dd = dal_default_damper_def();
+    dd.a = B;
+    dd.path = moving_anchor;
+    dd.ctx = (void *)z;
+    dd.c = z->c3;
+    BUILD(dal_builder_add_damper_def(b, &dd));
   }
   if (which & 4) BUILD(dal_builder_add_potential_r(b, zoo_Ur, (void *)z));
   if (which & 8) BUILD(dal_builder_add_potential_q(b, zoo_Uq, (void *)z));
@@ -1037,16 +1115,43 @@ static dal_system *tree_build(int general) {
   if (general) {
     BUILD(dal_builder_set_map(b, tree_map, NULL));
   } else {
-    double root[7] = {tree_len[0], 0, 0, 0, tree_drive[0], tree_drive[1], tree_drive[2]};
-    BUILD(dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c[0], 7, root, NULL));
-    for (int k = 1; k < TREE_N; ++k)
-      BUILD(dal_builder_place(b, p[k], &dal_map_hanging, p[k - 1], 1, &c[k], 1, &tree_len[k],
-                              NULL));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = tree_len[0];
+    pd.param[DAL_PENDULUM_AY] = tree_drive[0];
+    pd.param[DAL_PENDULUM_W] = tree_drive[1];
+    pd.param[DAL_PENDULUM_PH] = tree_drive[2];
+    BUILD(dal_builder_place_def(b, p[0], &pd));
+    for (int k = 1; k < TREE_N; ++k) {
+      pd = dal_default_place_def(); // each link hangs from the previous one
+      pd.prim = &dal_map_hanging;
+      pd.parent = p[k - 1];
+      pd.coords = &c[k];
+      pd.ncoords = 1;
+      pd.param[DAL_HANGING_L] = tree_len[k];
+      BUILD(dal_builder_place_def(b, p[k], &pd));
+    }
   }
   BUILD(dal_builder_set_gravity(b, g));
-  BUILD(dal_builder_add_spring(b, p[0], p[2], 40.0, 1.1));
-  BUILD(dal_builder_add_anchor_spring(b, p[3], x0, NULL, NULL, 25.0, 0.3));
-  BUILD(dal_builder_add_damper(b, p[1], p[3], 0.8));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p[0];
+  sd.b = p[2];
+  sd.k = 40.0;
+  sd.length = 1.1;
+  BUILD(dal_builder_add_spring_def(b, &sd));
+  sd = dal_default_spring_def();
+  sd.a = p[3];
+  memcpy(sd.anchor, x0, sizeof x0);
+  sd.k = 25.0;
+  sd.length = 0.3;
+  BUILD(dal_builder_add_spring_def(b, &sd));
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p[1];
+  dd.b = p[3];
+  dd.c = 0.8;
+  BUILD(dal_builder_add_damper_def(b, &dd));
   return compile(b);
 }
 
@@ -1120,7 +1225,7 @@ static void test_non_translating_parent(void) {
   for (int general = 0; general < 2; ++general) {
     dal_builder *b = builder(2);
     int c[2], p[2];
-    double g[2] = {0.0, -9.81}, root[7] = {1.0, 0, 0, 0, 0, 0, 0}, l = 0.8;
+    double g[2] = {0.0, -9.81}, l = 0.8;
     BUILD(dal_builder_add_coord(b, NULL, &c[0]));
     BUILD(dal_builder_add_coord(b, NULL, &c[1]));
     BUILD(dal_builder_add_particle(b, NULL, 1.0, &p[0]));
@@ -1128,8 +1233,19 @@ static void test_non_translating_parent(void) {
     if (general) {
       BUILD(dal_builder_set_map(b, scaled_map, NULL));
     } else {
-      BUILD(dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &c[0], 7, root, NULL));
-      BUILD(dal_builder_place(b, p[1], &scaled_prim, p[0], 1, &c[1], 1, &l, NULL));
+      dal_place_def pd = dal_default_place_def();
+      pd.prim = &dal_map_pendulum;
+      pd.coords = &c[0];
+      pd.ncoords = 1;
+      pd.param[DAL_PENDULUM_L] = 1.0;
+      BUILD(dal_builder_place_def(b, p[0], &pd));
+      pd = dal_default_place_def();
+      pd.prim = &scaled_prim;
+      pd.parent = p[0];
+      pd.coords = &c[1];
+      pd.ncoords = 1;
+      pd.param[0] = l;
+      BUILD(dal_builder_place_def(b, p[1], &pd));
     }
     BUILD(dal_builder_set_gravity(b, g));
     s[general] = scene_make(compile(b));

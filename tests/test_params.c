@@ -27,20 +27,50 @@ static dal_system *chain(const chain_par *P) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int q[3], p[3], rc = dal_builder_create(2, &b);
-  double pend[7] = {P->l0, 0, 0, P->ax, 0, P->w, 0}, h1 = P->l1, h2 = P->l2;
+  double h1 = P->l1, h2 = P->l2;
   double g[2] = {0, -P->g}, x0[2] = {0.5, -1.0};
   const char *names[3] = {"a", "b", "c"};
   for (int i = 0; i < 3 && !rc; ++i)
     rc = dal_builder_add_coord(b, NULL, &q[i]);
   for (int i = 0; i < 3 && !rc; ++i)
     rc = dal_builder_add_particle(b, names[i], P->m[i], &p[i]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &q[0], 7, pend, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &q[1], 1, &h1, NULL);
-  if (!rc) rc = dal_builder_place(b, p[2], &dal_map_hanging, p[1], 1, &q[2], 1, &h2, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &q[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = P->l0;
+  pd.param[DAL_PENDULUM_AX] = P->ax;
+  pd.param[DAL_PENDULUM_W] = P->w;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &q[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = h1;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  pd.parent = p[1];
+  pd.coords = &q[2];
+  pd.param[DAL_HANGING_L] = h2;
+  if (!rc) rc = dal_builder_place_def(b, p[2], &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_add_spring(b, p[0], p[2], P->k, P->L);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p[1], x0, NULL, NULL, P->ka, 0.2);
-  if (!rc) rc = dal_builder_add_damper(b, p[1], p[2], P->c);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p[0];
+  sd.b = p[2];
+  sd.k = P->k;
+  sd.length = P->L;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  sd = dal_default_spring_def();
+  sd.a = p[1];
+  memcpy(sd.anchor, x0, sizeof x0);
+  sd.k = P->ka;
+  sd.length = 0.2;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p[1];
+  dd.b = p[2];
+  dd.c = P->c;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "chain: %s\n", dal_builder_errmsg(b));
   dal_builder_destroy(b);
@@ -54,22 +84,40 @@ static dal_system *loop(double L, double x0, double R, double link, double m) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int q[4], p[2], rc = dal_builder_create(2, &b);
-  double rod[3] = {L, x0, 0}, circ[3] = {R, 0, 0}, g[2] = {0, -9.81};
+  double g[2] = {0, -9.81};
   for (int i = 0; i < 4 && !rc; ++i)
     rc = dal_builder_add_coord(b, NULL, &q[i]);
   if (!rc) rc = dal_builder_add_particle(b, "p", m, &p[0]);
   if (!rc) rc = dal_builder_add_particle(b, "s", 1.0, &p[1]);
-  if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, q + 2, 0, NULL, NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod, NULL,
-                                    NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "ring", &dal_con_circle2, 1, &p[1], 0, NULL, 3, circ, NULL,
-                                    NULL);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "link", &dal_con_distance2, 2, p, 0, NULL, 1, &link, NULL,
-                                    NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = q;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd.coords = q + 2;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p[0];
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = L;
+  cd.param[DAL_ANCHOR_X0] = x0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_circle2;
+  cd.parts = &p[1];
+  cd.nparts = 1;
+  cd.param[DAL_CIRCLE_R] = R;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  cd = dal_default_constraint_def();
+  cd.name = "link";
+  cd.prim = &dal_con_distance2;
+  cd.parts = p;
+  cd.nparts = 2;
+  cd.param[DAL_DISTANCE_L] = link;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "loop: %s\n", dal_builder_errmsg(b));

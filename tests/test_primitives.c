@@ -324,25 +324,49 @@ static dal_system *scene_build(scene *S, int as_con) {
   int self = -1;
   for (int a = 0; a < S->npart && !rc; ++a) {
     rc = dal_builder_add_particle(b, NULL, 0.7, &parts[a]);
-    if (!rc)
-      rc = dal_builder_place(b, parts[a], d == 3 ? &warp3 : &warp2, -1, d, coords + a * d, 0, NULL,
-                             d == 3 ? &dim3 : &dim2);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = d == 3 ? &warp3 : &warp2;
+    pd.coords = coords + a * d;
+    pd.ncoords = d;
+    pd.ctx = d == 3 ? &dim3 : &dim2;
+    if (!rc) rc = dal_builder_place_def(b, parts[a], &pd);
   }
   if (!rc && !as_con) rc = dal_builder_add_particle(b, "self", 1.3, &self);
   S->self = self;
   for (int i = 0; i < S->n && !rc; ++i) {
     rc = dal_builder_add_particle(b, NULL, 0.9, &idx);
-    if (!rc)
-      rc =
-          dal_builder_place(b, idx, d == 3 ? &slider3 : &slider2, -1, 1, &coords[i], 0, NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = d == 3 ? &slider3 : &slider2;
+    pd.coords = &coords[i];
+    pd.ncoords = 1;
+    if (!rc) rc = dal_builder_place_def(b, idx, &pd);
   }
+  // the primitive under test with all its parameters (by index: any primitive of the registry)
   int nrest = S->prim->nin - S->npart * d;
-  if (!rc && !as_con)
-    rc = dal_builder_place(b, self, S->prim, S->npart ? parts[0] : -1, nrest, coords + S->npart * d,
-                           S->prim->nparam, S->param, S->ctx);
-  if (!rc && as_con)
-    rc = dal_builder_add_constraint(b, S->prim->name, S->prim, S->npart, parts, nrest,
-                                    coords + S->npart * d, S->prim->nparam, S->param, S->ctx, NULL);
+  if (!rc && !as_con) {
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = S->prim;
+    pd.parent = S->npart ? parts[0] : -1;
+    pd.coords = coords + S->npart * d;
+    pd.ncoords = nrest;
+    for (int i = 0; i < S->prim->nparam; ++i)
+      pd.param[i] = S->param[i];
+    pd.ctx = S->ctx;
+    rc = dal_builder_place_def(b, self, &pd);
+  }
+  if (!rc && as_con) {
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = S->prim->name;
+    cd.prim = S->prim;
+    cd.parts = parts;
+    cd.nparts = S->npart;
+    cd.coords = coords + S->npart * d;
+    cd.ncoords = nrest;
+    for (int i = 0; i < S->prim->nparam; ++i)
+      cd.param[i] = S->param[i];
+    cd.ctx = S->ctx;
+    rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  }
   if (!rc) rc = dal_builder_compile(b, &sys);
   CHECK_MSG(rc == 0, "'%s': building the %s scene: %s", S->prim->name,
             as_con ? "constraint" : "map", dal_builder_errmsg(b));

@@ -62,7 +62,11 @@ static int free2(scene *s, double m, int gravity) {
   if (!rc) rc = dal_builder_add_coord(s->b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(s->b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(s->b, "bob", m, &bob);
-  if (!rc) rc = dal_builder_place(s->b, bob, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(s->b, bob, &pd);
   if (!rc && gravity) rc = dal_builder_set_gravity(s->b, g2);
   return rc;
 }
@@ -70,12 +74,17 @@ static int free2(scene *s, double m, int gravity) {
 // the planar pendulum 'bob' (1 kg, 1 m) on coordinate 'theta'
 static int pendulum(scene *s, double th) {
   int c, bob;
-  double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, qd = 0.0;
+  double qd = 0.0;
   memset(s, 0, sizeof *s);
   int rc = dal_builder_create(2, &s->b);
   if (!rc) rc = dal_builder_add_coord(s->b, "theta", &c);
   if (!rc) rc = dal_builder_add_particle(s->b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(s->b, bob, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(s->b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(s->b, g2);
   if (!rc) rc = scene_finish(s, 0.0, &th, &qd);
   return rc;
@@ -83,11 +92,15 @@ static int pendulum(scene *s, double th) {
 
 // the Cartesian pendulum: 'bob' (2 kg) at (x, y) on the rod 'rod' of 1 m from the origin
 static int cart_pendulum(scene *s, double th, dal_force_fn *force, void *fctx) {
-  double rod[3] = {1.0, 0.0, 0.0}, q[2] = {sin(th), -cos(th)}, qd[2] = {0.0, 0.0};
+  double q[2] = {sin(th), -cos(th)}, qd[2] = {0.0, 0.0};
   int rc = free2(s, 2.0, 1), bob = 0;
-  if (!rc)
-    rc = dal_builder_add_constraint(s->b, "rod", &dal_con_anchor2, 1, &bob, 0, NULL, 3, rod, NULL,
-                                    NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  if (!rc) rc = dal_builder_add_constraint_def(s->b, &cd, NULL);
   if (!rc && force) rc = dal_builder_add_force(s->b, force, fctx);
   if (!rc) rc = scene_finish(s, 0.0, q, qd);
   return rc;
@@ -272,13 +285,18 @@ static int row_unevaluated_products(char *msg) {
 static int row_failed_evaluation(char *msg) {
   scene s;
   int c[2], bob;
-  double par[4] = {1.0, 0, 0, 0}, q[2] = {0.5, 0.3}, qd[2] = {1.0, 0.0};
+  double q[2] = {0.5, 0.3}, qd[2] = {1.0, 0.0};
   memset(&s, 0, sizeof s);
   CHECK_OK(dal_builder_create(3, &s.b));
   CHECK_OK(dal_builder_add_coord(s.b, "theta", &c[0]));
   CHECK_OK(dal_builder_add_coord(s.b, "phi", &c[1]));
   CHECK_OK(dal_builder_add_particle(s.b, "bob", 1.0, &bob));
-  CHECK_OK(dal_builder_place(s.b, bob, &dal_map_spherical, -1, 2, c, 4, par, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_spherical;
+  pd.coords = c;
+  pd.ncoords = 2;
+  pd.param[DAL_SPHERICAL_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(s.b, bob, &pd));
   CHECK_OK(dal_builder_set_gravity(s.b, g3));
   CHECK_OK(scene_finish(&s, 0.0, q, qd));
   CHECK_OK(dal_forward(s.sys, s.st));
@@ -321,21 +339,45 @@ static int row_subnormal_inputs(char *msg) {
   scene s;
   int bob = 0, rc0;
   CHECK_OK(free2(&s, 1.0, 0));
-  rc0 = dal_builder_add_anchor_spring(s.b, bob, g2, NULL, NULL, 1e-310, 1.0);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = bob;
+  memcpy(sd.anchor, g2, sizeof g2);
+  sd.k = 1e-310;
+  sd.length = 1.0;
+  rc0 = dal_builder_add_spring_def(s.b, &sd);
   copy_msg(msg, dal_builder_errmsg(s.b));
-  double gs[2] = {0.0, -1e-310}, par[3] = {1.0, 2e-320, 0.0};
+  double gs[2] = {0.0, -1e-310};
   CHECK(dal_builder_set_gravity(s.b, gs) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "gravity component 1") != NULL);
-  CHECK(dal_builder_add_constraint(s.b, "rod", &dal_con_anchor2, 1, &bob, 0, NULL, 3, par, NULL,
-                                   NULL) == DAL_E_ARG);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.param[DAL_ANCHOR_X0] = 2e-320;
+  CHECK(dal_builder_add_constraint_def(s.b, &cd, NULL) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "index 1") != NULL);
-  CHECK(dal_builder_add_anchor_damper(s.b, bob, g2, NULL, NULL, 1e-320) == DAL_E_ARG);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = bob;
+  memcpy(dd.anchor, g2, sizeof g2);
+  dd.c = 1e-320;
+  CHECK(dal_builder_add_damper_def(s.b, &dd) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "subnormal") != NULL);
   const double x0[2] = {1e-315, 0.0};
-  CHECK(dal_builder_add_anchor_damper(s.b, bob, x0, NULL, NULL, 1.0) == DAL_E_ARG);
+  dd = dal_default_damper_def();
+  dd.a = bob;
+  memcpy(dd.anchor, x0, sizeof x0);
+  dd.c = 1.0;
+  CHECK(dal_builder_add_damper_def(s.b, &dd) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "anchor component 0") != NULL);
   // normal values pass, and the model runs
-  CHECK_OK(dal_builder_add_anchor_spring(s.b, bob, g2, NULL, NULL, 1e-300, 1.0));
+  sd = dal_default_spring_def();
+  sd.a = bob;
+  memcpy(sd.anchor, g2, sizeof g2);
+  sd.k = 1e-300;
+  sd.length = 1.0;
+  CHECK_OK(dal_builder_add_spring_def(s.b, &sd));
   CHECK(dal_builder_errmsg(s.b)[0] == 0);
   scene_free(&s);
   return rc0;
@@ -448,13 +490,22 @@ static const dal_primitive prim_lift = {.name = "lift", .version = 1, .nin = 2, 
 
 static int row_ida_unsatisfiable(char *msg) {
   scene s;
-  double circ[3] = {1.0, 0.0, 0.0}, q[2] = {1.0, 0.0}, qd[2] = {0.0, 1.0};
+  double q[2] = {1.0, 0.0}, qd[2] = {0.0, 1.0};
   int bob = 0;
   CHECK_OK(free2(&s, 1.0, 0));
-  CHECK_OK(dal_builder_add_constraint(s.b, "circle", &dal_con_circle2, 1, &bob, 0, NULL, 3, circ,
-                                      NULL, NULL));
-  CHECK_OK(
-      dal_builder_add_constraint(s.b, "lift", &prim_lift, 1, &bob, 0, NULL, 0, NULL, NULL, NULL));
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "circle";
+  cd.prim = &dal_con_circle2;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  cd.param[DAL_CIRCLE_R] = 1.0;
+  CHECK_OK(dal_builder_add_constraint_def(s.b, &cd, NULL));
+  cd = dal_default_constraint_def();
+  cd.name = "lift";
+  cd.prim = &prim_lift;
+  cd.parts = &bob;
+  cd.nparts = 1;
+  CHECK_OK(dal_builder_add_constraint_def(s.b, &cd, NULL));
   CHECK_OK(scene_finish(&s, 0.0, q, qd));
   dal_solve_opts o = opts_for(DAL_METHOD_AUTO);
   int rc = dal_advance(s.sys, s.st, &o, 2.0);
@@ -553,9 +604,19 @@ static int row_spring_overflow(char *msg) {
     CHECK_OK(dal_builder_add_coord(s.b, NULL, &c[i]));
   CHECK_OK(dal_builder_add_particle(s.b, "a", 1.0, &a));
   CHECK_OK(dal_builder_add_particle(s.b, "b", 1.0, &b));
-  CHECK_OK(dal_builder_place(s.b, a, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL));
-  CHECK_OK(dal_builder_place(s.b, b, &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL));
-  CHECK_OK(dal_builder_add_spring(s.b, a, b, 1e300, 1.0));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(s.b, a, &pd));
+  pd.coords = c + 2;
+  CHECK_OK(dal_builder_place_def(s.b, b, &pd));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = a;
+  sd.b = b;
+  sd.k = 1e300;
+  sd.length = 1.0;
+  CHECK_OK(dal_builder_add_spring_def(s.b, &sd));
   CHECK_OK(scene_finish(&s, 0.0, q, qd));
   int rc = dal_forward(s.sys, s.st);
   copy_msg(msg, dal_state_errmsg(s.st));
@@ -695,12 +756,23 @@ static int row_malformed_primitive(char *msg) {
   const dal_primitive neg_param = {.name = "neg_param", .version = 1, .nin = 1, .nout = 1, .nparam = -1, .eval = user_prim_eval, .doc = "", .flags = 0};
   const dal_primitive neg_in = {.name = "neg_in", .version = 1, .nin = -1, .nout = 1, .nparam = 0, .eval = user_prim_eval, .doc = "", .flags = 0};
   CHECK_OK(free2(&s, 1.0, 0));
-  int rc = dal_builder_add_constraint(s.b, "c", &neg_param, 0, NULL, 1, &x, -1, NULL, NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "c";
+  cd.prim = &neg_param;
+  cd.coords = &x;
+  cd.ncoords = 1;
+  int rc = dal_builder_add_constraint_def(s.b, &cd, NULL);
   copy_msg(msg, dal_builder_errmsg(s.b));
-  CHECK(dal_builder_add_constraint(s.b, "c", &neg_in, 0, NULL, 0, NULL, 0, NULL, NULL, NULL) ==
-        DAL_E_ARG);
+  cd = dal_default_constraint_def();
+  cd.name = "c";
+  cd.prim = &neg_in;
+  CHECK(dal_builder_add_constraint_def(s.b, &cd, NULL) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "'neg_in'") != NULL);
-  CHECK(dal_builder_place(s.b, bob, &neg_param, -1, 1, &x, -1, NULL, NULL) == DAL_E_ARG);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &neg_param;
+  pd.coords = &x;
+  pd.ncoords = 1;
+  CHECK(dal_builder_place_def(s.b, bob, &pd) == DAL_E_ARG);
   scene_free(&s);
   return rc;
 }
@@ -709,23 +781,32 @@ static int row_malformed_primitive(char *msg) {
 static int row_rod_length_zero(char *msg) {
   scene s;
   int c[4], a, b;
-  double L0[1] = {0.0}, L1[1] = {1.0};
   memset(&s, 0, sizeof s);
   CHECK_OK(dal_builder_create(2, &s.b));
   for (int i = 0; i < 4; ++i)
     CHECK_OK(dal_builder_add_coord(s.b, NULL, &c[i]));
   CHECK_OK(dal_builder_add_particle(s.b, "a", 1.0, &a));
   CHECK_OK(dal_builder_add_particle(s.b, "b", 1.0, &b));
-  CHECK_OK(dal_builder_place(s.b, a, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL));
-  CHECK_OK(dal_builder_place(s.b, b, &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  CHECK_OK(dal_builder_place_def(s.b, a, &pd));
+  pd.coords = c + 2;
+  CHECK_OK(dal_builder_place_def(s.b, b, &pd));
   CHECK(dal_builder_add_particle(s.b, "bad", -1.0, NULL) == DAL_E_ARG);
   int parts[2] = {a, b};
-  int rc = dal_builder_add_constraint(s.b, "rod", &dal_con_distance2, 2, parts, 0, NULL, 1, L0,
-                                      NULL, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_distance2;
+  cd.parts = parts;
+  cd.nparts = 2;
+  cd.param[DAL_DISTANCE_L] = 0.0;
+  int rc = dal_builder_add_constraint_def(s.b, &cd, NULL);
   copy_msg(msg, dal_builder_errmsg(s.b));
   CHECK(strstr(msg, "'bad'") == NULL); // not the earlier failure's message
-  CHECK_OK(dal_builder_add_constraint(s.b, "rod", &dal_con_distance2, 2, parts, 0, NULL, 1, L1,
-                                      NULL, NULL));
+  cd.param[DAL_DISTANCE_L] = 1.0;
+  CHECK_OK(dal_builder_add_constraint_def(s.b, &cd, NULL));
   CHECK(dal_builder_errmsg(s.b)[0] == 0); // a successful call leaves no message
   scene_free(&s);
   return rc;

@@ -59,13 +59,18 @@ static int pend_lag(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, v
 static dal_system *make_pendulum(int lagrangian) {
   dal_builder *b = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8}, par[7] = {1.0, 0, 0, 0, 0, 0, 0};
+  double g[2] = {0, -9.8};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (lagrangian) {
     if (!rc) rc = dal_builder_set_lagrangian(b, pend_lag, NULL);
   } else {
     if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-    if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &th;
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    if (!rc) rc = dal_builder_place_def(b, bob, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
   return compile(b, rc);
@@ -110,7 +115,11 @@ static dal_system *make_oscillator(osc_par *p, int lagrangian) {
     if (!rc) rc = dal_builder_set_lagrangian(b, osc_lag, p);
   } else {
     if (!rc) rc = dal_builder_add_particle(b, "m", p->m, &k);
-    if (!rc) rc = dal_builder_place(b, k, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, k, &pd);
     if (!rc) rc = dal_builder_add_potential_q(b, osc_pot, p);
   }
   if (!rc && p->c > 0) rc = dal_builder_add_genforce(b, osc_damp, p);
@@ -133,14 +142,24 @@ static int pivot_path(dal_jet t, dal_jet *x, void *ctx) {
 static dal_system *make_cart_pendulum(dal_moving_point *mp) {
   dal_builder *b = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8}, rod[3] = {1.0, 0, 0};
+  double g[2] = {0, -9.8};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc)
-    rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &p, 0, NULL, 3, rod, mp, NULL);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor2;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = 1.0;
+  cd.ctx = mp;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   return compile(b, rc);
 }
 
@@ -148,10 +167,17 @@ static dal_system *make_cart_pendulum(dal_moving_point *mp) {
 static dal_system *make_driven_minimal(const pivot *pv) {
   dal_builder *b = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8}, par[7] = {1.0, 0, 0, pv->a, 0, pv->w, 0};
+  double g[2] = {0, -9.8};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_AX] = pv->a;
+  pd.param[DAL_PENDULUM_W] = pv->w;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
@@ -167,24 +193,46 @@ static dal_system *make_double(int cartesian) {
   if (cartesian) {
     int c[4];
     const char *names[4] = {"x1", "y1", "x2", "y2"};
-    double rod1[3] = {1.0, 0.0, 0.0};
     for (int i = 0; i < 4 && !rc; ++i)
       rc = dal_builder_add_coord(b, names[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod1", &dal_con_anchor2, 1, &p[0], 0, NULL, 3, rod1, NULL,
-                                      NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod2", &dal_con_distance2, 2, p, 0, NULL, 1, &l2, NULL,
-                                      NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd.coords = c + 2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod1";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &p[0];
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = 1.0;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    cd = dal_default_constraint_def();
+    cd.name = "rod2";
+    cd.prim = &dal_con_distance2;
+    cd.parts = p;
+    cd.nparts = 2;
+    cd.param[DAL_DISTANCE_L] = l2;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   } else {
     int th[2];
-    double par[7] = {1.0, 0, 0, 0, 0, 0, 0};
     if (!rc) rc = dal_builder_add_coord(b, "theta1", &th[0]);
     if (!rc) rc = dal_builder_add_coord(b, "theta2", &th[1]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &th[0], 7, par, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &th[1], 1, &l2, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &th[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &th[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = l2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   }
   return compile(b, rc);
 }
@@ -242,7 +290,11 @@ static dal_system *make_henon_heiles(void) {
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "star", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_add_potential_q(b, hh_pot, NULL);
   return compile(b, rc);
 }
@@ -251,21 +303,34 @@ static dal_system *make_henon_heiles(void) {
 static dal_system *make_spherical(int cartesian) {
   dal_builder *b = NULL;
   int q[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -9.81}, par[4] = {1.0, 0, 0, 0};
+  double g[3] = {0, 0, -9.81};
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (cartesian) {
     const char *nm[3] = {"x", "y", "z"};
     for (int i = 0; i < 3 && !rc; ++i)
       rc = dal_builder_add_coord(b, nm[i], &q[i]);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, q, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod", &dal_con_anchor3, 1, &p, 0, NULL, 4, par, NULL,
-                                      NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian3;
+    pd.coords = q;
+    pd.ncoords = 3;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor3;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = 1.0;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   } else {
     if (!rc) rc = dal_builder_add_coord(b, "theta", &q[0]);
     if (!rc) rc = dal_builder_add_coord(b, "phi", &q[1]);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_spherical, -1, 2, q, 4, par, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_spherical;
+    pd.coords = q;
+    pd.ncoords = 2;
+    pd.param[DAL_SPHERICAL_L] = 1.0;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
   }
   return compile(b, rc);
 }
@@ -280,17 +345,30 @@ static dal_system *make_ring(double w, int cartesian) {
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (cartesian) {
     const char *nm[3] = {"x", "y", "z"};
-    double par[6] = {1.0, w, 0, 0, 0, 0};
     for (int i = 0; i < 3 && !rc; ++i)
       rc = dal_builder_add_coord(b, nm[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian3, -1, 3, c, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "ring", &dal_con_turning_circle, 1, &p, 0, NULL, 6, par,
-                                      NULL, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian3;
+    pd.coords = c;
+    pd.ncoords = 3;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "ring";
+    cd.prim = &dal_con_turning_circle;
+    cd.parts = &p;
+    cd.nparts = 1;
+    cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
+    cd.param[DAL_TURNING_CIRCLE_W] = w;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   } else {
-    double par[3] = {1.0, w, 0};
     if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
-    if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, c, 3, par, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_ring;
+    pd.coords = c;
+    pd.ncoords = 1;
+    pd.param[DAL_RING_R] = 1.0;
+    pd.param[DAL_RING_W] = w;
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
   }
   return compile(b, rc);
 }
@@ -865,12 +943,18 @@ static void test_failures(void) {
   {
     dal_builder *bb = NULL;
     int c[2], p, rc = dal_builder_create(2, &bb);
-    double x0[2] = {0, 0};
     if (!rc) rc = dal_builder_add_coord(bb, "x", &c[0]);
     if (!rc) rc = dal_builder_add_coord(bb, "y", &c[1]);
     if (!rc) rc = dal_builder_add_particle(bb, "m", 1.0, &p);
-    if (!rc) rc = dal_builder_place(bb, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_add_anchor_damper(bb, p, x0, NULL, NULL, 0.1);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(bb, p, &pd);
+    dal_damper_def dd = dal_default_damper_def();
+    dd.a = p;
+    dd.c = 0.1;
+    if (!rc) rc = dal_builder_add_damper_def(bb, &dd);
     dal_system *ds = compile(bb, rc);
     CHECK_OK(dal_state_create(ds, &a));
     double z[2] = {1, 0};

@@ -23,8 +23,8 @@
 //                                  included, in the order they were added)
 //   "damper:<j>:c"                 coefficient of the j-th damper (anchor dampers included)
 // <particle> and <constraint> are the names given to the builder, or 0-based indices.
-// Primitives do not name their parameters yet: they are addressed by index, in the order
-// listed with each primitive in primitives.h.
+// A primitive's parameter is addressed by its index, the value of its named index enum in
+// primitives.h (DAL_PENDULUM_W = 5: "place:bob:5"), in dal_param_ref.index as well.
 //
 // What cannot be overridden (it is not data of the compiled system): the structure (counts,
 // inputs, which primitive), user callbacks and their contexts (a force callback's constants

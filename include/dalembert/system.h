@@ -228,8 +228,11 @@ DAL_API int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def
 DAL_API int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def);
 
 // ---------------------------------------------------------------------------------------
-// Positional forms (the first API; thin wrappers over the same code as the defs). New code
-// should use the defs above, whose contexts sit inside the def.
+// Positional forms (the first API), kept as thin wrappers over the same code as the defs: a
+// scene built with them is the scene built with the defs, bit for bit (tests/test_api.c
+// builds one through all six and compares), and their own argument checks keep their rows in
+// tests/test_api_sweep.c and tests/test_bad_input.c. New code should use the defs above, whose
+// contexts sit inside the def; the examples, tests and benchmarks do.
 
 /// Place particle `particle` by primitive `prim` (a dal_map_*, nout == d; borrowed, must
 /// outlive the system). Local inputs are, in order: the position of particle `parent`
@@ -262,8 +265,8 @@ DAL_API int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, vo
 /// Local inputs: positions of particles parts[0..nparts-1] (d values each), then coordinates
 /// coords[0..ncoords-1]; prim->nin must equal nparts * d + ncoords. prim->nout rows are
 /// added. Parameters as in dal_builder_place. (The context is not last here, for
-/// compatibility; dal_builder_add_constraint_def holds it in the def.) Residuals should be in length units (built-ins are). *index receives the index of
-/// the first row (may be NULL).
+/// compatibility; dal_builder_add_constraint_def holds it in the def.) Residuals should be in
+/// length units (built-ins are). *index receives the index of the first row (may be NULL).
 DAL_API int dal_builder_add_constraint(dal_builder *b, const char *name,
                                        const dal_primitive *prim, int nparts, const int *parts,
                                        int ncoords, const int *coords, int nparam,
@@ -296,7 +299,8 @@ DAL_API int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, dou
 
 /// Linear spring from particle p to the anchor point x0 + x(t): x0 (d values, copied; NULL:
 /// the origin), x(t) from fn (NULL: none). U = k/2 (|r_p - (x0 + x(t))| - L)^2. Same as
-/// dal_builder_add_spring_def with b = -1.
+/// dal_builder_add_spring_def with b = -1 (the context is not last here, for compatibility;
+/// the def holds it).
 DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0,
                                           dal_path_fn *fn, void *ctx, double k, double L);
 
@@ -305,7 +309,7 @@ DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x
 DAL_API int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c);
 
 /// Linear damper from particle p to the anchor point x0 + x(t) (x0 NULL: the origin; fn NULL:
-/// fixed), as above.
+/// fixed), as above. Same as dal_builder_add_damper_def with b = -1.
 DAL_API int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0,
                                           dal_path_fn *fn, void *ctx, double c);
 

@@ -112,7 +112,9 @@ typedef struct dal_model_report {
 /// relative), which for a constrained system must equal G' lambda; the rank of the
 /// constraints (dal_check_constraints). The state is left evaluated at its (t, q, qdot).
 /// `o` nullable (only tol_factor is used); `rep` nullable. Returns DAL_OK when all pass,
-/// DAL_E_VERIFY naming the first failing check, or the status of a failing evaluation.
+/// DAL_E_VERIFY naming the first failing check, DAL_E_ARG for a NULL state, DAL_E_STATE for a
+/// NULL system or a state of another system (as every (system, state) call; the message in the
+/// state), DAL_E_NOMEM, or the status of a failing evaluation; rep->msg names the cause.
 DAL_API int dal_verify_model(const dal_system *sys, dal_state *st, const dal_verify_opts *o,
                              dal_model_report *rep);
 

@@ -33,10 +33,15 @@ int main(void) {
   dal_system *sys = NULL;
   dal_state *st = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double par[7] = {0.75, 0, 0, 0, 0, 0, 0}, g[2] = {0, -9.81}, q = 1.1, qd = 0.3;
+  double g[2] = {0, -9.81}, q = 1.1, qd = 0.3;
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.5, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // pivot fixed at the origin
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 0.75;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &sys);
   if (rc) printf("consumer: build failed: %s: %s\n", dal_status_name(rc), dal_builder_errmsg(b));

@@ -10,6 +10,10 @@
 # pkgconfig: compile tests/consumer/main.c with the flags `pkg-config` gives for dalembert.pc
 # found through PKG_CONFIG_PATH in <prefix>, then run it. Extra flags (sanitizers) are passed
 # to the compiler and linker so that the consumer matches an instrumented library.
+# Both ways also build the README's first program (examples/first_program.c) as the README
+# says -- find_package + dalembert::dalembert, or `cc app.c $(pkg-config --cflags --libs
+# dalembert) -Wl,-rpath,<prefix>/<libdir>` -- run it without LD_LIBRARY_PATH (the rpath note of
+# docs/guide.md) and check its theta(10) against the exact elliptic answer (check_first.c).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 mode=$1
@@ -24,6 +28,13 @@ fi
 prefix=$2 work=$3 libdir=$4 cc=$5 kind=$6 flags=${7:-}
 rm -rf "$work"
 mkdir -p "$work"
+# the README's program must find the library by its rpath alone: it runs with LD_LIBRARY_PATH
+# as the caller had it, without the prefix
+caller_ld=${LD_LIBRARY_PATH-}
+first_program() {
+  LD_LIBRARY_PATH="$caller_ld" "$work/first_program" >"$work/first_program.out"
+  "$work/check_first" <"$work/first_program.out"
+}
 export LD_LIBRARY_PATH="$prefix/$libdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
 case "$mode" in
@@ -33,6 +44,7 @@ case "$mode" in
       -DCMAKE_BUILD_TYPE=Release
     cmake --build "$work"
     "$work/consumer"
+    first_program
     ctest --test-dir "$work" -L dalembert_verify --output-on-failure --no-tests=error
     ;;
   pkgconfig)
@@ -52,6 +64,13 @@ case "$mode" in
     "$cc" -std=c11 -Wall -Wextra -pedantic -Werror $flags $cflags \
       -DDAL_EXPECT_VERSION="\"$version\"" "$here/main.c" -o "$work/consumer" $libs -lm
     "$work/consumer"
+    # the README's command line, with the rpath of its install note
+    # shellcheck disable=SC2086
+    "$cc" $flags "$here/../../examples/first_program.c" $cflags $libs \
+      -Wl,-rpath,"$prefix/$libdir" -o "$work/first_program"
+    "$cc" -std=c11 -Wall -Wextra -pedantic -Werror $flags -I"$here/.." "$here/check_first.c" \
+      -o "$work/check_first" -lm
+    first_program
     ;;
   *)
     echo "usage: run.sh install|cmake|pkgconfig ..." >&2
