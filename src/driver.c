@@ -245,7 +245,7 @@ static int serve_output(run *r, double t, int at_state) {
   r->nsteps = 0;
   if (r->h && r->h->kind == KIND_ODE) r->h->ode->ncall = 0; // opts.max_steps per output
   if (!r->monitor) return DAL_OK;
-  // the monitor reads the state; products are evaluated on its first read (dal__lazy)
+  // the monitor reads the state; products are evaluated on its first read (dal__lazy_eval)
   st->lazy = !at_state;
   int mr = call_monitor(r->sys, st, r->monitor, r->ctx);
   if (mr == 0) return DAL_OK;

@@ -229,7 +229,7 @@ struct dal_state {
   int init_rep_valid;       // init_rep holds a report
   struct dal_events *events; // attached event set (borrowed; events.h)
   int lazy; // a callback holds the state at an output time, not yet evaluated: the public
-            // accessors evaluate it on first use (dal__lazy)
+            // accessors evaluate it on first use (dal__lazy_eval)
   char err[DAL_ERRMSG_LEN];
 };
 
@@ -243,11 +243,9 @@ static inline double dal__wrap_pi(double x) {
 }
 
 /// A state handed to a monitor or event function at a dense-output time is evaluated only
-/// when the callback reads a product (st->lazy): reading q alone costs nothing (state.c)
+/// when the callback reads a product (st->lazy): reading q alone costs nothing; the public
+/// readers call this first (state.c; nothing happens unless st->lazy)
 void dal__lazy_eval(const dal_state *st);
-static inline void dal__lazy(const dal_state *st) {
-  if (st && st->lazy) dal__lazy_eval(st);
-}
 
 // errors
 int dal__set_err(char *buf, int status, const char *fmt, ...)

@@ -119,7 +119,7 @@ static void print_vec(FILE *fp, const char *label, const double *x, int n) {
 
 int dal_state_print(const dal_system *sys, const dal_state *st, FILE *fp) {
   if (!sys || !st || !fp || st->sys != sys) return DAL_E_ARG;
-  dal__lazy(st);
+  dal__lazy_eval(st);
   int n = sys->n, m = sys->m;
   fprintf(fp, "state at t=%.17g\n", st->t);
   for (int i = 0; i < n; ++i)

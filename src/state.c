@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "dae_internal.h"
 #include "internal.h"
 
 int dal_state_create(const dal_system *sys, dal_state **out) {
@@ -132,7 +133,7 @@ int dal_forward(const dal_system *sys, dal_state *st) {
 // (st->have); before an evaluation, after dal_state_set and after a failed evaluation the
 // pointer is NULL, never a view of stale or unset values.
 static const double *current(const dal_state *st, unsigned p, const double *x) {
-  dal__lazy(st);
+  dal__lazy_eval(st);
   return st && (st->have & p) == p ? x : NULL;
 }
 
@@ -140,6 +141,7 @@ void dal__lazy_eval(const dal_state *cst) {
   // the driver's own state, lent to a monitor or event function as const: evaluated on the
   // first read of a product; on failure the products stay unset (accessors give NULL and the
   // message is the state's)
+  if (!cst || !cst->lazy) return;
   dal_state *st = (dal_state *)cst;
   st->lazy = 0;
   if ((st->have & DAL_P_ALL) != DAL_P_ALL) (void)dal__eval(st->sys, st, DAL_P_ALL);
@@ -195,7 +197,7 @@ const double *dal_state_phidot(const dal_state *st) {
 int dal_state_energies(const dal_state *st, dal_energies *out) {
   if (!st) return DAL_E_ARG;
   if (!out) return DAL_FAIL_C(st, DAL_E_ARG, "state_energies: out is NULL");
-  dal__lazy(st);
+  dal__lazy_eval(st);
   if (!(st->have & DAL_P_DYN))
     return DAL_FAIL_C(st, DAL_E_STATE,
                       "state_energies: the state is not evaluated at its (t, q, qdot); call "
@@ -222,7 +224,7 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
   int pair = dal__check_pair(sys, st, "state_jacobian");
   if (pair) return pair;
   if (!J) return DAL_FAIL_C(st, DAL_E_ARG, "state_jacobian: J is NULL");
-  dal__lazy(st);
+  dal__lazy_eval(st);
   if (k < 0 || k >= sys->N)
     return DAL_FAIL_C(st, DAL_E_ARG, "state_jacobian: particle index %d out of range [0, %d)", k,
                       sys->N);
@@ -318,4 +320,54 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
   dal__mass_apply(sys, st, qdd, res);
   for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];
   return residual_finite(sys, st, res, t);
+}
+
+// Constraint forces from the multipliers of an evaluated state (dae.h); the state a monitor
+// holds is evaluated here on first use
+static int multipliers_current(const dal_state *st, const char *what) {
+  if ((st->have & (DAL_P_CON | DAL_P_ACC)) == (DAL_P_CON | DAL_P_ACC)) return DAL_OK;
+  return DAL_FAIL_C(st, DAL_E_STATE,
+                    "%s: the state holds no evaluated multipliers at its (t, q, qdot); call "
+                    "dal_forward or integrate first",
+                    what);
+}
+
+int dal_constraint_genforces(const dal_system *sys, const dal_state *st, double *Qc) {
+  int pair = dal__check_pair(sys, st, "constraint_genforces");
+  if (pair) return pair;
+  if (!Qc) return DAL_FAIL_C(st, DAL_E_ARG, "constraint_genforces: Qc is NULL");
+  dal__lazy_eval(st);
+  int rc = multipliers_current(st, "constraint_genforces");
+  if (rc) return rc;
+  if (sys->m == 0) {
+    memset(Qc, 0, (size_t)sys->n * sizeof(double));
+    return DAL_OK;
+  }
+  dal__gt_apply(sys, st, st->lambda, Qc);
+  return DAL_OK;
+}
+
+int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F) {
+  int pair = dal__check_pair(sys, st, "constraint_forces");
+  if (pair) return pair;
+  if (!F) return DAL_FAIL_C(st, DAL_E_ARG, "constraint_forces: F is NULL");
+  dal__lazy_eval(st);
+  int rc = multipliers_current(st, "constraint_forces");
+  if (rc) return rc;
+  int d = sys->dim;
+  memset(F, 0, (size_t)sys->N * (size_t)d * sizeof(double));
+  if (sys->m == 0) return DAL_OK;
+  // F_k = (dphi/dr_k)' lambda from each constraint's local Jacobian at the evaluated point
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const int *parts = sys->ipool + c->part_off;
+    int nin = c->prim->nin;
+    const double *Gl = st->Gl + sys->con_loff[ci];
+    for (int i = 0; i < c->npart * d; ++i) {
+      double f = 0.0;
+      for (int r = 0; r < c->prim->nout; ++r) f += Gl[r * nin + i] * st->lambda[c->row + r];
+      F[parts[i / d] * d + i % d] += f;
+    }
+  }
+  return DAL_OK;
 }
