@@ -34,11 +34,15 @@
 //  6. the per-trajectory override equals a system compiled with those drive values, bit for
 //     bit (a = 1.5, w = 0.9 over 50).
 // Usage: lyapunov_map [--check] [--out DIR] [--threads N]
-//   full mode writes DIR/lyapunov_map.csv and, with gnuplot, DIR/lyapunov_map.png
+//   full mode writes DIR/lyapunov_map.csv and, with gnuplot, DIR/lyapunov_map.png, and prints
+//   the CPU cost of the trajectories and how evenly MPI parts of the map would share it
+//   (round-robin vs contiguous blocks; docs/ensembles.md, load balance)
+#define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "dalembert/dalembert.h"
 
@@ -82,10 +86,17 @@ static dal_system *build(scene *sc, double a, double w) {
 }
 
 typedef struct lyap_cfg {
-  double T;    // averaging time after the transient
-  int nexp;    // exponents per trajectory (1 for the map; 2 in the checks)
-  double rtol; // DOPRI5 tolerance
+  double T;     // averaging time after the transient
+  int nexp;     // exponents per trajectory (1 for the map; 2 in the checks)
+  double rtol;  // DOPRI5 tolerance
+  double *cost; // nullable: thread CPU seconds of trajectory i (slot i, written by its worker)
 } lyap_cfg;
+
+static double thread_cpu(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
 
 // reducer: the largest exponent(s) and their convergence estimates (block standard errors)
 static int lyapunov(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
@@ -96,8 +107,9 @@ static int lyapunov(const dal_system *sys, dal_state *st, const dal_traj *tr, vo
   o.transient = T_TRANS;
   o.t_end = dal_state_time(st) + T_TRANS + c->T;
   o.rtol = o.atol = c->rtol;
-  double ex[2], er[2];
+  double ex[2], er[2], c0 = thread_cpu();
   int rc = dal_lyapunov(sys, st, &o, ex, er, NULL, NULL);
+  if (c->cost) c->cost[tr->index] = thread_cpu() - c0; // kept apart: the CSV stays exact
   if (rc) return rc;
   for (int k = 0; k < c->nexp; ++k) {
     tr->result[2 * k] = ex[k];
@@ -209,6 +221,51 @@ static int check_override(const dal_system *sys, const dal_param_ref *par, const
   return !same;
 }
 
+static int cmp_d(const void *a, const void *b) {
+  double x = *(const double *)a, y = *(const double *)b;
+  return (x > y) - (x < y);
+}
+
+// the cost of the trajectories over the map, and how well MPI parts balance it: for P parts,
+// the largest part's CPU over the mean part's (1 = perfect), round-robin (dal_sweep_part_of
+// with block 1, the default) against contiguous blocks of ntraj / P
+static void cost_report(const double *cost, const double *res, const int *status, long nt) {
+  double *c = malloc((size_t)nt * sizeof(double)), tot = 0.0, chaos = 0.0, calm = 0.0;
+  long nchaos = 0;
+  if (!c) return;
+  for (long i = 0; i < nt; ++i) {
+    c[i] = cost[i];
+    tot += cost[i];
+    if (!status[i] && res[2 * i] > 0.01) {
+      chaos += cost[i];
+      ++nchaos;
+    } else {
+      calm += cost[i];
+    }
+  }
+  qsort(c, (size_t)nt, sizeof(double), cmp_d);
+  printf("  cost per trajectory (thread CPU s): min %.4f, median %.4f, max %.4f, total %.1f; "
+         "mean where lambda_1 > 0.01: %.4f, elsewhere %.4f\n",
+         c[0], c[nt / 2], c[nt - 1], tot, nchaos ? chaos / nchaos : 0.0,
+         nt > nchaos ? calm / (nt - nchaos) : 0.0);
+  const int parts[4] = {2, 8, 32, 128};
+  for (int k = 0; k < 4; ++k) {
+    int P = parts[k], block = (int)((nt + P - 1) / P);
+    double rr[128] = {0}, cb[128] = {0}, mrr = 0, mcb = 0;
+    for (long i = 0; i < nt; ++i) {
+      rr[dal_sweep_part_of(i, P, 1)] += cost[i];
+      cb[dal_sweep_part_of(i, P, block)] += cost[i];
+    }
+    for (int p = 0; p < P; ++p) {
+      mrr = fmax(mrr, rr[p]);
+      mcb = fmax(mcb, cb[p]);
+    }
+    printf("  %3d parts: largest / mean part CPU, round-robin %.3f, contiguous blocks %.3f\n", P,
+           mrr * P / tot, mcb * P / tot);
+  }
+  free(c);
+}
+
 int main(int argc, char **argv) {
   int check = 0, threads = 2;
   const char *dir = ".";
@@ -223,7 +280,7 @@ int main(int argc, char **argv) {
   scene sc;
   dal_system *sys = build(&sc, 0.0, 1.0);
   if (!sys) return 1;
-  lyap_cfg cfg = {check ? 2000.0 : 400.0, check ? 2 : 1, check ? 1e-10 : 1e-8};
+  lyap_cfg cfg = {check ? 2000.0 : 400.0, check ? 2 : 1, check ? 1e-10 : 1e-8, NULL};
   int na = check ? 1 : 48, nw = check ? 4 : 40;
   long nt = (long)na * nw;
   double amax = 3.0, wmin = 0.3, wmax = 1.5;
@@ -232,7 +289,9 @@ int main(int argc, char **argv) {
   double *res = malloc((size_t)nt * 4 * sizeof(double));
   int *status = malloc((size_t)nt * sizeof(int));
   char *msgs = malloc((size_t)nt * 200);
-  if (!values || !res || !status || !msgs) return 1;
+  double *cost = check ? NULL : calloc((size_t)nt, sizeof(double));
+  if (!values || !res || !status || !msgs || (!check && !cost)) return 1;
+  cfg.cost = cost;
   if (check) {
     // (a, w, damper c): no drive, no drive with c = 0.3, the chaotic point, a periodic point
     const double pts[12] = {0.0,  1.0, drag, 0.0, 1.0, 0.3, 2.625, 0.3 + 1.2 * 29 / 39,
@@ -300,6 +359,7 @@ int main(int argc, char **argv) {
       pos += !status[i] && res[2 * i] > 0.01;
     printf("lyapunov map: %ld trajectories, %ld failed, %ld with lambda_1 > 0.01\n", nt,
            out.nfailed, pos);
+    cost_report(cost, res, status, nt);
     char csv[1024];
     snprintf(csv, sizeof csv, "%s/lyapunov_map.csv", dir);
     FILE *fp = fopen(csv, "w");
@@ -312,6 +372,7 @@ int main(int argc, char **argv) {
       printf("  chart: %s/lyapunov_map.png\n", dir);
   }
   free(values);
+  free(cost);
   free(res);
   free(status);
   free(msgs);
