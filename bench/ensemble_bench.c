@@ -16,7 +16,9 @@
 // Built with -DDAL_BENCH_MPI (target dal_bench_ensemble_mpi): the sweep over MPI ranks
 // (dal_sweep_run_mpi, 1 thread per rank), timed on rank 0 between barriers; run it under
 // mpirun -np 1 and -np 2 (bench/ensemble.sh).
-// Usage: dal_bench_ensemble [reps] | dal_bench_ensemble loop|sweep <t1> (one pass, for callgrind)
+// Usage: dal_bench_ensemble [reps] | dal_bench_ensemble loop|sweep <t1> [threads] (one pass: for
+// callgrind and for whole-process timings paired run by run) | dal_bench_ensemble split <t1>
+// <threads> (one sweep: each worker's thread CPU time, i.e. how evenly the pool splits the work)
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -130,6 +132,83 @@ static double time_sweep(setup *s, const dal_sweep *sw, int threads, dal_schedul
   return rc || out.nfailed ? NAN : t;
 }
 
+// the CPU split of a threaded sweep: each worker's thread CPU time when it finished its last
+// trajectory (load-independent: time a thread waits for a core is not CPU time)
+static double thread_cpu(void) {
+  struct timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+enum { MAXW = 64 };
+typedef struct wclock {
+  int id;
+  long n;     // trajectories run
+  double cpu; // thread CPU time after the last one
+} wclock;
+typedef struct split {
+  double cpu[MAXW];
+  long n[MAXW];
+} split;
+
+static int clock_create(const dal_system *sys, int id, void *ctx, void **data) {
+  (void)sys;
+  (void)ctx;
+  wclock *c = calloc(1, sizeof *c);
+  if (c) c->id = id;
+  *data = c;
+  return c ? 0 : DAL_E_NOMEM;
+}
+
+static void clock_destroy(void *data, void *ctx) {
+  wclock *c = data;
+  split *sp = ctx;
+  if (c && c->id < MAXW) {
+    sp->cpu[c->id] = c->cpu;
+    sp->n[c->id] = c->n;
+  }
+  free(c);
+}
+
+static int keep_timed(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
+  wclock *c = tr->worker;
+  c->cpu = thread_cpu();
+  c->n++;
+  return keep(sys, st, tr, ctx);
+}
+
+// one sweep on `threads` threads; prints each worker's CPU seconds and the speed-up that split
+// allows on free cores (total / largest): the load balance, not a wall-clock speed-up
+static int cpu_split(setup *s, double t1, int threads) {
+  split sp;
+  memset(&sp, 0, sizeof sp);
+  dal_sweep sw = s->sw;
+  sw.t1 = t1;
+  sw.reduce = keep_timed;
+  dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
+  dal_sweep_opts o;
+  dal_sweep_default_opts(&o);
+  o.nthreads = threads;
+  o.worker_create = clock_create;
+  o.worker_destroy = clock_destroy;
+  o.worker_ctx = &sp;
+  double c0 = thread_cpu(), w0 = now();
+  int rc = dal_sweep_run(s->sys, &sw, &o, &out, NULL, 0);
+  double wall = now() - w0;
+  if (rc || out.nfailed) return 1;
+  sp.cpu[0] -= c0; // worker 0 is this thread: its clock ran before the sweep
+  double tot = 0.0, mx = 0.0;
+  printf("split t1=%g threads=%d: worker CPU s (trajectories):", t1, threads);
+  for (int w = 0; w < threads && w < MAXW; ++w) {
+    printf(" %.3f (%ld)", sp.cpu[w], sp.n[w]);
+    tot += sp.cpu[w];
+    mx = fmax(mx, sp.cpu[w]);
+  }
+  printf("; total %.3f s, largest %.3f s: the split allows %.3fx on free cores; wall %.3f s\n", tot,
+         mx, tot / mx, wall);
+  return 0;
+}
+
 static double time_loop(setup *s, dal_state *st, double t1) {
   double t0 = now();
   for (int i = 0; i < NT; ++i) {
@@ -148,18 +227,28 @@ int main(int argc, char **argv) {
   if (reps < 1 || reps > 100) reps = 7;
   setup *s = calloc(1, sizeof *s);
   if (!s || make(s)) return 1;
-  // one pass of the loop or the sweep (1 thread) to t1, for instruction counts under
-  // valgrind --tool=callgrind: dal_bench_ensemble loop|sweep <t1>
+  // one pass of the loop or the sweep to t1 (on `threads` threads, default 1): for instruction
+  // counts under valgrind --tool=callgrind and for whole-process timings paired run by run
+  // (bench/ensemble.sh): dal_bench_ensemble loop|sweep <t1> [threads]
+  if (argc > 3 && !strcmp(argv[1], "split")) {
+    int threads = atoi(argv[3]);
+    int rc = threads < 1 || threads > MAXW || cpu_split(s, atof(argv[2]), threads);
+    dal_system_destroy(s->sys);
+    free(s);
+    return rc;
+  }
   if (argc > 2 && (!strcmp(argv[1], "loop") || !strcmp(argv[1], "sweep"))) {
     double t1 = atof(argv[2]);
+    int threads = argc > 3 ? atoi(argv[3]) : 1;
+    if (threads < 1 || threads > 64) threads = 1;
     dal_state *st1 = NULL;
     dal_sweep sw1 = s->sw;
     sw1.t1 = t1;
     int rc = dal_state_create(s->sys, &st1);
     double t = rc ? NAN
                   : (!strcmp(argv[1], "loop") ? time_loop(s, st1, t1)
-                                              : time_sweep(s, &sw1, 1, DAL_SCHEDULE_DYNAMIC));
-    printf("%s t1=%g: %.6f s\n", argv[1], t1, t);
+                                              : time_sweep(s, &sw1, threads, DAL_SCHEDULE_DYNAMIC));
+    printf("%s t1=%g threads=%d: %.6f s\n", argv[1], t1, threads, t);
     dal_state_destroy(st1);
     dal_system_destroy(s->sys);
     free(s);

@@ -14,7 +14,8 @@
 // cos(theta0) = g/(R w^2), stable, frequency w sin(theta0).
 //
 // Full mode (default; --out DIR, default ./demo-output): writes bead_bifurcation.csv
-// (branch, w, theta, verdict, small-oscillation frequency) and draws bead_bifurcation.png
+// (branch, w, theta, verdict, small-oscillation frequency; the located fork as branch "fork",
+// frequency 0) and draws bead_bifurcation.png
 // (stable branches solid, unstable dashed, the located fork marked) with gnuplot.
 // --check (ctest): every point against the closed form (theta to 1e-12, frequency to 1e-10,
 // verdict neutral/unstable as above) and the located fork against sqrt(g/R) to 1e-9.
@@ -63,6 +64,7 @@ static int on_point(double w, const dal_system *sys, const dal_state *st, dal_st
     dg->fork = w;
     printf("  %-8s critical point (det K = 0) at w = %.12f, sqrt(g/R) = %.12f\n", dg->branch, w,
            wc);
+    if (dg->csv) fprintf(dg->csv, "fork,%.12g,%.15g,%s,0\n", w, th, dal_stability_name(v));
     return 0;
   }
   // the small-oscillation frequency from the normal modes at this equilibrium
@@ -149,7 +151,8 @@ static void chart(const char *dir, const char *csvpath) {
       f,
       "set terminal pngcairo size 1000,650\nset output '%s'\nset datafile separator ','\n"
       "set xlabel 'ring rate w (rad/s)'\nset ylabel 'equilibrium theta (rad, from the bottom)'\n"
-      "set title 'Bead on a turning ring: pitchfork at w = sqrt(g/R) = %.4f rad/s'\n"
+      "set title 'Bead on a turning ring (R = 0.5 m, g = 9.81 m/s^2): pitchfork at w = sqrt(g/R) = "
+      "%.4f rad/s'\n"
       "set key top left\nset grid\nset samples 2000\n"
       "set arrow from %g,-pi/2 to %g,pi/2 nohead dt 3 lc rgb 'gray50'\n"
       "stable(s) = (s eq 'neutral' || s eq 'asymptotic') ? 1 : 0\n"
@@ -157,8 +160,10 @@ static void chart(const char *dir, const char *csvpath) {
       "with lines lw 3 lc rgb '#1f77b4' title 'theta = 0, stable', "
       "'' using ($2):((!stable(strcol(4)) && strcol(1) eq 'trivial') ? $3 : 1/0) with lines "
       "lw 3 dt 2 lc rgb '#d62728' title 'theta = 0, unstable', "
-      "'' using ($2):((strcol(1) ne 'trivial') ? $3 : 1/0) with points pt 7 ps 0.6 lc rgb "
-      "'#2ca02c' title 'cos theta = g/(R w^2) (stable, computed)', "
+      "'' using ($2):((strcol(1) eq 'upper' || strcol(1) eq 'lower') ? $3 : 1/0) with points "
+      "pt 7 ps 0.6 lc rgb '#2ca02c' title 'cos theta = g/(R w^2) (stable, computed)', "
+      "'' using ($2):((strcol(1) eq 'fork') ? $3 : 1/0) with points pt 6 ps 2.5 lw 2 "
+      "lc rgb 'black' title 'located fork (det K = 0, bisection)', "
       "acos(%g/(%g*x*x)) * (x > %g ? 1 : 1/0) with lines lc rgb 'black' title 'closed form', "
       "-acos(%g/(%g*x*x)) * (x > %g ? 1 : 1/0) with lines lc rgb 'black' notitle\n",
       png, wc, wc, wc, csvpath, g, R, wc, g, R, wc);

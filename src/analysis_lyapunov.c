@@ -280,12 +280,14 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   int nb = o->nblocks, ny = L.ny, p = L.p;
   double *sum = NULL, *blk = NULL, *lg = NULL, *est = NULL;
   size_t m = (size_t)L.m;
-  int ok = dal_state_create(sys, &L.st) == 0 && dal__tangent_create(sys, &L.tg) == 0;
+  // the work state carries the state's parameter overrides (a sweep's per-trajectory values)
+  int ok = dal_state_create(sys, &L.st) == 0 && dal_state_copy_params(sys, L.st, st) == 0 &&
+           dal__tangent_create(sys, &L.tg) == 0;
   for (int i = 0; i < 7 && ok; ++i)
     ok = (L.k[i] = calloc(m, sizeof(double))) != NULL;
   ok = ok && (L.yt = calloc(m, sizeof(double))) && (L.y1 = calloc(m, sizeof(double))) &&
-       (L.kc = calloc(m, sizeof(double))) &&
-       (L.Y = calloc(m, sizeof(double))) && (L.Z = calloc((size_t)L.n * p + 1, sizeof(double))) &&
+       (L.kc = calloc(m, sizeof(double))) && (L.Y = calloc(m, sizeof(double))) &&
+       (L.Z = calloc((size_t)L.n * p + 1, sizeof(double))) &&
        (L.tau = calloc((size_t)p, sizeof(double))) && (sum = calloc((size_t)p, sizeof(double))) &&
        (blk = calloc((size_t)p * nb, sizeof(double))) && (lg = calloc((size_t)p, sizeof(double))) &&
        (est = calloc((size_t)p, sizeof(double)));

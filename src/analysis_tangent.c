@@ -240,14 +240,15 @@ static int potential(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_
 
 // damper forces at the state into F (nd; may be NULL) and, when dF is not NULL, their derivatives
 // along a direction with particle derivatives dr, dv (nd) and time component dt; anchors move with
-// x(t): derivative x' dt of the position and x'' dt of the velocity (tg->link)
-static void dampers(const dal_system *sys, dal_tangent *tg, const double *dr, const double *dv,
-                    double dt, double *F, double *dF) {
+// x(t): derivative x' dt of the position and x'' dt of the velocity (tg->link); the dampers
+// are the state's (st->prm.dampers: a per-trajectory coefficient override applies here too)
+static void dampers(const dal_system *sys, const dal_state *st, dal_tangent *tg, const double *dr,
+                    const double *dv, double dt, double *F, double *dF) {
   int d = sys->dim;
   if (F) memset(F, 0, (size_t)tg->nd * sizeof(double));
   if (dF) memset(dF, 0, (size_t)tg->nd * sizeof(double));
   for (int i = 0; i < sys->ndamper; ++i) {
-    const dal_link *l = &sys->dampers[i];
+    const dal_link *l = &st->prm.dampers[i];
     const double *an = tg->link + 9 * (size_t)(sys->nspring + i);
     dal_jet diff[3], rel = dal_const(0.0);
     for (int b = 0; b < d; ++b) {
@@ -341,7 +342,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     tg->v[c] = tg->jr[c].d;
     tg->A[c] = tg->jr[c].dd;
   }
-  dampers(sys, tg, NULL, NULL, 0.0, tg->Fd, NULL);
+  dampers(sys, st, tg, NULL, NULL, 0.0, tg->Fd, NULL);
   for (int c = 0; c < nd; ++c)
     tg->w[c] = st->prm.mass[c / d] * tg->A[c] - tg->Fd[c];
 
@@ -402,7 +403,7 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
       tg->dv[c] = 0.25 * (tg->cp[c].dd - tg->cm[c].dd);
       tg->da[c] = (0.5 * (tg->cp[c].d3 - tg->cm[c].d3) - (pure ? pure[c] : 0.0)) / 3.0;
     }
-    dampers(sys, tg, tg->dr, tg->dv, udir || qdir ? 0.0 : 1.0, NULL, tg->dF);
+    dampers(sys, st, tg, tg->dr, tg->dv, udir || qdir ? 0.0 : 1.0, NULL, tg->dF);
     double *col = qdir ? tg->Rq + (size_t)i * n : udir ? tg->Ru + (size_t)i * n : tg->Rt;
     double *cabs = qdir ? tg->Kabs + (size_t)i * n : udir ? tg->Cabs + (size_t)i * n : NULL;
     for (int j = 0; j < n; ++j) {

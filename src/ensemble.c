@@ -215,8 +215,10 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
   if (out->msgs && out->msg_len < 1)
     return SFAIL(DAL_E_ARG, "sweep: out->msgs is set with msg_len %d; give msg_len > 0",
                  out->msg_len);
+  if (!isfinite(sw->t0))
+    return SFAIL(DAL_E_NONFINITE, "sweep: initial time t0 is %g; give a finite time", sw->t0);
   if (sw->solve && !isfinite(sw->t1))
-    return SFAIL(DAL_E_NONFINITE, "sweep: target time t1 is %g", sw->t1);
+    return SFAIL(DAL_E_NONFINITE, "sweep: target time t1 is %g; give a finite time", sw->t1);
   if (o->nthreads < 0 || o->chunk < 1 || o->progress_every < 1 || o->nparts < 1 || o->part < 0 ||
       o->part >= o->nparts || o->part_block < 1 ||
       (o->schedule != DAL_SCHEDULE_DYNAMIC && o->schedule != DAL_SCHEDULE_STATIC))

@@ -62,10 +62,13 @@ int dal_sweep_run_mpi(const dal_system *sys, const dal_sweep *sw, const dal_swee
     o.nparts = size;
     rc = dal_sweep_run(sys, sw, &o, out, errmsg, errlen);
   }
-  // a sweep every rank rejected ran nowhere: stop before gathering
-  int worst = rc;
-  if (MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MIN, comm) != MPI_SUCCESS) return DAL_E_SOLVER;
-  if (rc == DAL_E_ARG || worst == DAL_E_ARG) return worst;
+  // a sweep every rank rejected (bad arguments, non-finite times) ran nowhere and wrote no
+  // slot: stop before gathering
+  int worst = rc, rejected = rc == DAL_E_ARG || rc == DAL_E_NONFINITE, any_rejected = rejected;
+  if (MPI_Allreduce(&rc, &worst, 1, MPI_INT, MPI_MIN, comm) != MPI_SUCCESS ||
+      MPI_Allreduce(&rejected, &any_rejected, 1, MPI_INT, MPI_MAX, comm) != MPI_SUCCESS)
+    return DAL_E_SOLVER;
+  if (any_rejected) return worst;
 
   // gather every part's slots on rank 0 (each rank's count follows from the partition)
   int block = o.part_block, ml = out->msgs ? out->msg_len : 0, nr = sw->nresult;

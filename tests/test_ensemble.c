@@ -10,6 +10,8 @@
 // 3. Failures: negative and NaN masses, a rod that cannot close its loop, a failing reducer:
 //    the sweep completes; those rows carry their status and message, the others are exact.
 // 4. Progress: serialized calls, done counts 1..ntraj; cancellation leaves "not run" rows.
+//    Rejected sweeps: bad sizes are DAL_E_ARG, non-finite t0 / t1 DAL_E_NONFINITE, no slot
+//    written.
 // 5. Per-worker data: a second state per worker (two-trajectory methods), copied parameters.
 #include <stdlib.h>
 #include <string.h>
@@ -435,6 +437,28 @@ static void test_progress(void) {
   bad = sw;
   bad.ntraj = 0;
   CHECK(dal_sweep_run(sys, &bad, &o, &out, err, sizeof err) == DAL_E_ARG);
+  // non-finite times are DAL_E_NONFINITE (the library's convention for non-finite input),
+  // named in the message, and reject the sweep before any slot is written
+  const double nonfinite[3] = {NAN, INFINITY, -INFINITY};
+  for (int k = 0; k < 6; ++k) {
+    bad = sw;
+    if (k < 3)
+      bad.t1 = nonfinite[k];
+    else
+      bad.t0 = nonfinite[k - 3];
+    for (int i = 0; i < NT; ++i)
+      status[i] = 12345;
+    out.nrun = -1;
+    CHECK(dal_sweep_run(sys, &bad, &o, &out, err, sizeof err) == DAL_E_NONFINITE);
+    CHECK(strstr(err, k < 3 ? "target time t1" : "initial time t0") != NULL);
+    CHECK(status[0] == 12345 && status[NT - 1] == 12345 && out.nrun == -1);
+  }
+  // t1 is only read with solve options: a reducer-driven sweep ignores it
+  bad = sw;
+  bad.solve = NULL;
+  bad.t1 = NAN;
+  CHECK_OK(dal_sweep_run(sys, &bad, &o, &out, err, sizeof err));
+  CHECK(out.nrun == NT && out.nfailed == 0);
   dal_sweep_opts raw;
   memset(&raw, 0, sizeof raw);
   CHECK(dal_sweep_run(sys, &sw, &raw, &out, err, sizeof err) == DAL_E_ARG);

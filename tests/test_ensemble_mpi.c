@@ -7,6 +7,7 @@
 // gathers, writes the CSV to argv[1] and compares it byte for byte with the same sweep run
 // in this process alone on 2 threads (MPI_COMM_SELF is not needed: dal_sweep_run). The
 // ctest script (run_mpi.sh) runs this under mpirun -np 1 and -np 2 and compares the files.
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -128,6 +129,13 @@ int main(int argc, char **argv) {
   badsw.ntraj = 0;
   int rc = dal_sweep_run_mpi(sys, &badsw, &o, &out, MPI_COMM_WORLD, err, sizeof err);
   if (rc != DAL_E_ARG) bad = 1;
+  // a non-finite target time too: DAL_E_NONFINITE on every rank, nothing gathered
+  badsw = sw;
+  badsw.t1 = NAN;
+  for (int i = 0; i < NT; ++i)
+    status[i] = 12345;
+  rc = dal_sweep_run_mpi(sys, &badsw, &o, &out, MPI_COMM_WORLD, err, sizeof err);
+  if (rc != DAL_E_NONFINITE || !strstr(err, "target time t1") || status[0] != 12345) bad = 1;
   MPI_Bcast(&bad, 1, MPI_INT, 0, MPI_COMM_WORLD);
   dal_system_destroy(sys);
   MPI_Finalize();

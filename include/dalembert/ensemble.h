@@ -143,7 +143,10 @@ DAL_API int dal_sweep_part_of(long i, int nparts, int block);
 /// status and msgs of the part's trajectories are written, other slots are left untouched.
 /// Returns DAL_OK when every trajectory ran (each may have failed: see out->status, nfailed);
 /// DAL_E_ARG for an invalid sweep or options (message in errmsg, `errlen` bytes, nullable);
-/// DAL_E_NOMEM; DAL_E_CALLBACK when the progress callback cancelled; a worker_create status.
+/// DAL_E_NONFINITE for a non-finite t0, or t1 with solve options (a non-finite entry of q0,
+/// qdot0 or a parameter value is a per-trajectory failure instead); DAL_E_NOMEM;
+/// DAL_E_CALLBACK when the progress callback cancelled; a worker_create status. Nothing runs
+/// and no slot is written when the sweep is rejected (DAL_E_ARG, DAL_E_NONFINITE).
 DAL_API int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_opts *o,
                           dal_sweep_out *out, char *errmsg, size_t errlen);
 

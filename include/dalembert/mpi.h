@@ -26,8 +26,9 @@ extern "C" {
 /// out->nfailed summed over the ranks (other ranks keep their own counts). opts->part and
 /// opts->nparts must be left at their defaults (the ranks are the parts). Progress callbacks
 /// report each rank's own part. Returns on every rank the most negative status of any rank
-/// (DAL_OK when all ran), DAL_E_ARG as dal_sweep_run, or DAL_E_SOLVER when an MPI call
-/// failed; `errmsg` (nullable, errlen bytes) receives this rank's message.
+/// (DAL_OK when all ran), DAL_E_ARG or DAL_E_NONFINITE as dal_sweep_run (a rejected sweep:
+/// nothing is gathered), or DAL_E_SOLVER when an MPI call failed; `errmsg` (nullable, errlen
+/// bytes) receives this rank's message.
 DAL_API int dal_sweep_run_mpi(const dal_system *sys, const dal_sweep *sw,
                               const dal_sweep_opts *opts, dal_sweep_out *out, MPI_Comm comm,
                               char *errmsg, size_t errlen);
