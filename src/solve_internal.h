@@ -106,7 +106,7 @@ struct dal_ode_integ {
 };
 
 /// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)
-#define DAL__HOOK_STOP 100
+#define DAL__HOOK_STOP 1000
 
 /// y at t in [ig->tprev, ig->t] into yout: the method's interpolant, or the cubic Hermite
 /// fallback (two right-hand sides per step, evaluated on first use) (ode.c)
