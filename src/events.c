@@ -93,14 +93,16 @@ static int find_row(dal_events *ev, const char *name, int row, int *out) {
   char list[300] = "";
   size_t len = 0;
   for (int c = 0; c < sys->ncon && len + 2 < sizeof list; ++c)
-    len += (size_t)snprintf(list + len, sizeof list - len, "%s'%s'", c ? ", " : "",
-                            sys->con[c].name);
+    len +=
+        (size_t)snprintf(list + len, sizeof list - len, "%s'%s'", c ? ", " : "", sys->con[c].name);
   if (len >= sizeof list) len = sizeof list - 1;
   return dal__set_err(ev->err, DAL_E_ARG,
                       "events_add: the system has no constraint '%s' (its constraints: %s); a "
                       "multiplier event names one of them",
-                      name, sys->ncon ? list : "none, it is in minimal coordinates: use g_state "
-                                               "with dal_state_reactions instead");
+                      name,
+                      sys->ncon ? list
+                                : "none, it is in minimal coordinates: use g_state "
+                                  "with dal_state_reactions instead");
 }
 
 int dal_events_add(dal_events *ev, const dal_event_def *d) {

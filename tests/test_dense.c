@@ -10,55 +10,9 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "scenes_def.h"
 
-#define G0 9.81
-
-static dal_system *finish(dal_builder *b, int rc) {
-  dal_system *s = NULL;
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
-
-static dal_system *pendulum(void) {
-  dal_builder *b = NULL;
-  int c, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_pendulum;
-  d.coords = &c;
-  d.ncoords = 1;
-  d.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return finish(b, rc);
-}
-
-static dal_system *cart_pendulum(void) {
-  dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_cartesian2;
-  d.coords = c;
-  d.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def k = dal_default_constraint_def();
-  k.name = "rod";
-  k.prim = &dal_con_anchor2;
-  k.parts = &p;
-  k.nparts = 1;
-  k.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
-  return finish(b, rc);
-}
+#define G0 SCENE_G
 
 // the worst deviation from the closed form over the outputs, and their count
 typedef struct cmp {
@@ -85,8 +39,8 @@ static int mon(const dal_system *sys, const dal_state *st, void *ctx) {
 
 // one run: evolve to t1 with outputs every dt; returns the worst error at the outputs and the
 // error at t1 (the step points' accuracy)
-static double run(const dal_system *s, dal_state *st, const dal_solve_opts *o, int cart,
-                  double dt, double *end_err, long *steps) {
+static double run(const dal_system *s, dal_state *st, const dal_solve_opts *o, int cart, double dt,
+                  double *end_err, long *steps) {
   const double th0 = 2.0, t1 = 10.0;
   if (cart) {
     double x[2] = {sin(th0), -cos(th0)}, v[2] = {0, 0};
@@ -110,7 +64,7 @@ static double run(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
 // adaptive methods: outputs between the steps within 16 x rtol (the library's promise for
 // the step points, solve.h), and the step count independent of the outputs
 static void test_adaptive(void) {
-  dal_system *s = pendulum(), *cs = cart_pendulum();
+  dal_system *s = scene_pendulum(1.0), *cs = scene_cart_pendulum(1.0);
   dal_state *st = NULL, *cst = NULL;
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_create(cs, &cst));
@@ -143,8 +97,7 @@ static void test_adaptive(void) {
       run(cart ? cs : s, cart ? cst : st, &o, cart, 10.0, &end_coarse, &st_coarse);
       printf("  %6.2f (%5.2f)", e / o.rtol, end_dense / o.rtol);
       CHECK_MSG(e <= 16.0 * o.rtol, "%s %s rtol %g: dense error %g = %.1f x rtol",
-                dal_formulation_name(cases[k].f), dal_method_name(o.method), o.rtol, e,
-                e / o.rtol);
+                dal_formulation_name(cases[k].f), dal_method_name(o.method), o.rtol, e, e / o.rtol);
       // the outputs do not steer the steps: the same steps with and without them
       CHECK_MSG(st_dense == st_coarse && end_dense == end_coarse,
                 "%s: %ld steps with outputs, %ld without", dal_method_name(o.method), st_dense,
@@ -162,7 +115,7 @@ static void test_adaptive(void) {
 // (RK4's cubic Hermite and the symplectic methods' partial composed step are of the method's
 // order), and the grid trajectory untouched by the outputs
 static void test_fixed(void) {
-  dal_system *s = pendulum(), *cs = cart_pendulum();
+  dal_system *s = scene_pendulum(1.0), *cs = scene_cart_pendulum(1.0);
   dal_state *st = NULL, *cst = NULL;
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_create(cs, &cst));

@@ -10,76 +10,10 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "scenes_def.h"
 
-#define G0 9.81
+#define G0 SCENE_G
 #define PI 3.14159265358979323846
-
-static dal_system *finish(dal_builder *b, int rc) {
-  dal_system *s = NULL;
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
-
-// a pendulum of length l (theta from the downward vertical)
-static dal_system *pendulum(double l) {
-  dal_builder *b = NULL;
-  int c, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_pendulum;
-  d.coords = &c;
-  d.ncoords = 1;
-  d.param[DAL_PENDULUM_L] = l;
-  if (!rc) rc = dal_builder_place_def(b, p, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return finish(b, rc);
-}
-
-// the same circle of radius l in Cartesian coordinates (a rod to the origin)
-static dal_system *cart_pendulum(double l) {
-  dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_cartesian2;
-  d.coords = c;
-  d.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def k = dal_default_constraint_def();
-  k.name = "rod";
-  k.prim = &dal_con_anchor2;
-  k.parts = &p;
-  k.nparts = 1;
-  k.param[DAL_ANCHOR_L] = l;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
-  return finish(b, rc);
-}
-
-// Likharev's bead on a ring of radius R turning at w about the vertical
-static dal_system *bead(double R, double w) {
-  dal_builder *b = NULL;
-  int c, p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_ring;
-  d.coords = &c;
-  d.ncoords = 1;
-  d.param[DAL_RING_R] = R;
-  d.param[DAL_RING_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, p, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return finish(b, rc);
-}
 
 static double g_q0(double t, const double *q, const double *qd, void *ctx) {
   (void)t;
@@ -98,7 +32,7 @@ static double g_qd0(double t, const double *q, const double *qd, void *ctx) {
 static void test_period(void) {
   const double l = 1.0, th0 = 2.0, w0 = sqrt(G0 / l);
   const double T = 4.0 * ref_ellip_K(sin(0.5 * th0) * sin(0.5 * th0)) / w0;
-  dal_system *s = pendulum(l);
+  dal_system *s = scene_pendulum(l);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -114,10 +48,8 @@ static void test_period(void) {
     double rtol, bound; // bound on |T_measured - T| / T
   } cases[] = {
       {DAL_METHOD_AUTO, 1e-12, 1e-12}, // Adams at 1e-12 (AUTO's rule)
-      {DAL_METHOD_BS, 1e-12, 1e-12},
-      {DAL_METHOD_DOPRI5, 1e-12, 1e-12},
-      {DAL_METHOD_FEHLBERG78, 1e-12, 1e-12},
-      {DAL_METHOD_AUTO, 1e-8, 2e-8},
+      {DAL_METHOD_BS, 1e-12, 1e-12},         {DAL_METHOD_DOPRI5, 1e-12, 1e-12},
+      {DAL_METHOD_FEHLBERG78, 1e-12, 1e-12}, {DAL_METHOD_AUTO, 1e-8, 2e-8},
   };
   for (size_t c = 0; c < sizeof cases / sizeof cases[0]; ++c) {
     double q = th0, qd = 0.0;
@@ -161,7 +93,7 @@ static void test_period(void) {
 // 2. the bead's turning points (theta' = 0) against the Jacobi integral's prediction
 static void test_bead_turning(void) {
   const double R = 0.5, w = 6.0; // above the critical rate sqrt(g/R) = 4.43: off-axis minimum
-  dal_system *s = bead(R, w);
+  dal_system *s = scene_bead(R, w);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -196,8 +128,8 @@ static void test_bead_turning(void) {
     CHECK(r.direction == (i % 2 == 0 ? -1 : 1));
     worst = fmax(worst, fabs(qq - want));
   }
-  printf("  bead turning points: %ld, worst |theta - Jacobi prediction| %.2e rad (%.3f, %.3f)\n",
-         n, worst, th_a, th_b);
+  printf("  bead turning points: %ld, worst |theta - Jacobi prediction| %.2e rad (%.3f, %.3f)\n", n,
+         worst, th_a, th_b);
   // at a turning point theta is quadratic in time: an error eps in t moves it by ~theta'' eps^2
   CHECK_MSG(worst < 1e-8, "turning points off by %g", worst);
   dal_state_set_events(st, NULL);
@@ -221,7 +153,7 @@ static void test_leaving_circle(void) {
   const double R = 1.0, v0 = 0.5;
   const double phi_ref = acos((2.0 + v0 * v0 / (G0 * R)) / 3.0);
   // minimal coordinates: the pendulum map's reaction (theta = pi at the top)
-  dal_system *s = pendulum(R);
+  dal_system *s = scene_pendulum(R);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -259,7 +191,7 @@ static void test_leaving_circle(void) {
   dal_system_destroy(s);
 
   // Cartesian coordinates in GGL (IDA): the rod's multiplier changes sign there
-  s = cart_pendulum(R);
+  s = scene_cart_pendulum(R);
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_events_create(s, &ev));
   d = dal_default_event_def();
@@ -310,7 +242,7 @@ static int mon_count(const dal_system *sys, const dal_state *st, void *ctx) {
 static void test_every_method(void) {
   const double l = 1.0, th0 = 1.0, w0 = sqrt(G0 / l);
   const double T = 4.0 * ref_ellip_K(sin(0.5 * th0) * sin(0.5 * th0)) / w0;
-  dal_system *s = pendulum(l);
+  dal_system *s = scene_pendulum(l);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -324,9 +256,10 @@ static void test_every_method(void) {
   d.direction = DAL_EVENT_RISING;
   CHECK(dal_events_add(ev, &d) == 1);
   CHECK_OK(dal_state_set_events(st, ev));
-  const dal_method ms[] = {DAL_METHOD_DOPRI5,      DAL_METHOD_FEHLBERG78,   DAL_METHOD_BS,
-                           DAL_METHOD_RK4,         DAL_METHOD_ADAMS,        DAL_METHOD_BDF,
-                           DAL_METHOD_VARIATIONAL, DAL_METHOD_VARIATIONAL4, DAL_METHOD_VARIATIONAL6};
+  const dal_method ms[] = {
+      DAL_METHOD_DOPRI5,      DAL_METHOD_FEHLBERG78,   DAL_METHOD_BS,
+      DAL_METHOD_RK4,         DAL_METHOD_ADAMS,        DAL_METHOD_BDF,
+      DAL_METHOD_VARIATIONAL, DAL_METHOD_VARIATIONAL4, DAL_METHOD_VARIATIONAL6};
   for (size_t k = 0; k < sizeof ms / sizeof ms[0]; ++k) {
     double q = th0, qd = 0.0;
     CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
@@ -396,7 +329,7 @@ static double g_nan(double t, const double *q, const double *qd, void *ctx) {
 
 // 5. a failing event function stops the run with DAL_E_CALLBACK naming it; a section to CSV
 static void test_failures_and_csv(void) {
-  dal_system *s = pendulum(1.0);
+  dal_system *s = scene_pendulum(1.0);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));

@@ -58,17 +58,17 @@ typedef enum dal_event_direction {
 /// Definition of an event. Start from dal_default_event_def() and set exactly one of `g`,
 /// `g_state` and `constraint`.
 typedef struct dal_event_def {
-  int cookie;                  ///< set by dal_default_event_def; do not touch
-  const char *name;            ///< name in messages and in the log (copied), default "event"
-  dal_event_fn *g;             ///< g(t, q, qdot), or NULL
-  dal_event_state_fn *g_state; ///< g of the evaluated state, or NULL
-  const char *constraint;      ///< or: the name of a constraint; g is its multiplier lambda
-                               ///< (row `row`): a rod or rope goes slack, a bead leaves its
-                               ///< wire where it changes sign (dae.h for the sign convention)
-  int row;                     ///< row of that constraint, 0 ... rows - 1 (default 0)
-  void *ctx;                   ///< passed to g or g_state (borrowed)
+  int cookie;                    ///< set by dal_default_event_def; do not touch
+  const char *name;              ///< name in messages and in the log (copied), default "event"
+  dal_event_fn *g;               ///< g(t, q, qdot), or NULL
+  dal_event_state_fn *g_state;   ///< g of the evaluated state, or NULL
+  const char *constraint;        ///< or: the name of a constraint; g is its multiplier lambda
+                                 ///< (row `row`): a rod or rope goes slack, a bead leaves its
+                                 ///< wire where it changes sign (dae.h for the sign convention)
+  int row;                       ///< row of that constraint, 0 ... rows - 1 (default 0)
+  void *ctx;                     ///< passed to g or g_state (borrowed)
   dal_event_direction direction; ///< default DAL_EVENT_BOTH
-  int terminal;                ///< nonzero: stop the run at the crossing (DAL_EVENT)
+  int terminal;                  ///< nonzero: stop the run at the crossing (DAL_EVENT)
 } dal_event_def;
 
 /// A definition with the defaults above (no function set yet).
