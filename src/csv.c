@@ -6,7 +6,6 @@
 
 #include "internal.h"
 
-
 int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   dal_csv *c = ctx;
   int pair = dal__check_pair(sys, st, "csv_monitor");
@@ -37,7 +36,9 @@ int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
     fprintf(c->fp, ",%.17g", st->qdot[i]);
   fprintf(c->fp, ",%.17g,%.17g\n", st->en.E, st->en.h);
   if (ferror(c->fp))
-    return DAL_FAIL_C(st, DAL_E_IO, "csv_monitor: writing the row at t=%.17g failed; check the "
-                                    "stream (disk full, closed file, permissions)", st->t);
+    return DAL_FAIL_C(st, DAL_E_IO,
+                      "csv_monitor: writing the row at t=%.17g failed; check the "
+                      "stream (disk full, closed file, permissions)",
+                      st->t);
   return DAL_OK;
 }

@@ -26,7 +26,7 @@ typedef struct ida_mem {
   const dal_system *sys;
   dal_state *st;
   dal_solve_opts opts;
-  dal_dae f; // the formulation (sizes, residual, Newton matrix)
+  dal_dae f;                    // the formulation (sizes, residual, Newton matrix)
   int n, m, neq, off_l, off_mu; // copies of f's sizes
   int sparse, started;
   double rtol; // the relative tolerance IDA runs at (calibrated and floored)
@@ -108,8 +108,10 @@ static int jacobian(double t, double cj, N_Vector yy, N_Vector yp, N_Vector rr, 
   if (w->sparse) {
     // IDA zeroes the matrix, pattern included, before each call: write it again
     sunindextype *cp = SM_INDEXPTRS_S(J), *ri = SM_INDEXVALS_S(J);
-    for (int j = 0; j <= w->f.neq; ++j) cp[j] = w->f.pat.colptr[j];
-    for (int k = 0; k < w->f.pat.nnz; ++k) ri[k] = w->f.pat.rowind[k];
+    for (int j = 0; j <= w->f.neq; ++j)
+      cp[j] = w->f.pat.colptr[j];
+    for (int k = 0; k < w->f.pat.nnz; ++k)
+      ri[k] = w->f.pat.rowind[k];
     memcpy(SM_DATA_S(J), w->val, (size_t)w->f.pat.nnz * sizeof(double));
   }
   return 0;
@@ -232,7 +234,8 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     for (int r = 0; r < w->m; ++r)
       fscale = fmax(fscale, fabs(st->lambda[r]));
     dal__dae_mask(&w->f, id);
-    for (int i = 0; i < w->neq; ++i) at[i] = atol;
+    for (int i = 0; i < w->neq; ++i)
+      at[i] = atol;
     for (int r = 0; r < w->m; ++r) {
       at[w->off_l + r] = fmax(atol, w->rtol * fmax(fscale, 1.0));
       if (w->off_mu >= 0) at[w->off_mu + r] = fmax(atol, sqrt(opts->atol));
@@ -401,8 +404,8 @@ static int map_failure(ida_mem *w, int flag, double tfail) {
   return DAL_FAIL(st, code,
                   "IDA (%s form, %s) at t=%.17g: %s; error dominated by %s; %s; the state "
                   "holds the last accepted step (t=%.17g)%s [IDA flag %d: %.120s]",
-                  form_name(w->f.form), w->sparse ? "KLU" : "dense", tfail, what, var, remedy, st->t,
-                  cause, flag, w->ida_msg);
+                  form_name(w->f.form), w->sparse ? "KLU" : "dense", tfail, what, var, remedy,
+                  st->t, cause, flag, w->ida_msg);
 }
 
 int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout) {

@@ -429,8 +429,18 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
     --K;
   while (t0 + (double)(K + 1) * dt <= t1)
     ++K;
-  run r = {.sys = sys, .st = st, .o = &eff, .outputs = 1, .t0 = t0, .dt = dt, .t1 = t1,
-           .k = 0, .K = K, .last_out = -INFINITY, .monitor = monitor, .ctx = ctx,
+  run r = {.sys = sys,
+           .st = st,
+           .o = &eff,
+           .outputs = 1,
+           .t0 = t0,
+           .dt = dt,
+           .t1 = t1,
+           .k = 0,
+           .K = K,
+           .last_out = -INFINITY,
+           .monitor = monitor,
+           .ctx = ctx,
            .ev = active_events(st)};
   // the start (made consistent first in redundant coordinates), evaluated, is output 0
   if ((rc = run_to(&r, t0)) != 0) return rc;

@@ -119,14 +119,14 @@ struct dal_system {
   double *ppool;
   // per-particle dependency coordinates (sorted): pdep[pdep_off[k] .. pdep_off[k+1])
   int *pdep_off, *pdep;
-  int *pj_off; // offset of particle k's compact J (d x ndep_k, row-major); pj_off[N] = total
+  int *pj_off;   // offset of particle k's compact J (d x ndep_k, row-major); pj_off[N] = total
   int *con_loff; // offset of constraint c's local Jacobian (nout x nin) in st->Gl; [ncon] total
   // constraints
   int ncon;
   dal_con *con;
   int *cdep;
-  int g_total;   // total size of compact G storage
-  int *row_con;  // constraint index owning each row (m)
+  int g_total;  // total size of compact G storage
+  int *row_con; // constraint index owning each row (m)
   // forces
   int has_gravity;
   double g[3];
@@ -136,9 +136,9 @@ struct dal_system {
   // sizes
   int max_in, max_out; // largest local input/output count of any primitive instance or map
   // tree assembly (placements only): subtree masses and local coordinate columns
-  double *mu;   // mu[k] = sum of the masses of particle k and all particles it carries
+  double *mu;    // mu[k] = sum of the masses of particle k and all particles it carries
   int *ploc_off; // offset of particle k's local coordinate columns (d x ncoord) in st->Lc
-  int dense_M;         // M is assembled densely (n x n)
+  int dense_M;   // M is assembled densely (n x n)
   // the articulated-body recursion (aba.c): accelerations without M, and with constraints the
   // m x m loop system instead of the KKT matrix; chosen at compile time (system.c)
   int aba;
@@ -190,43 +190,43 @@ typedef struct dal_params {
 /// workspace and outputs of one trajectory
 struct dal_state {
   const dal_system *sys;
-  dal_params prm;           // per-trajectory parameters (params.c)
+  dal_params prm; // per-trajectory parameters (params.c)
   double t;
-  double *q, *qdot, *qddot; // n
+  double *q, *qdot, *qddot;                 // n
   double *r, *v, *a, *drdt, *gamma, *F, *N; // N x d
-  double *J;                // compact per particle
-  double *M;                // n x n (dense_M) or NULL
-  double *L;                // Cholesky / scratch n x n (dense_M) or NULL
-  double *Q, *c;            // n
+  double *J;                                // compact per particle
+  double *M;                                // n x n (dense_M) or NULL
+  double *L;                                // Cholesky / scratch n x n (dense_M) or NULL
+  double *Q, *c;                            // n
   double *lambda, *phi, *phidot, *gphi, *G; // constraint outputs (m, m, m, m, compact)
-  double *Gl;               // local constraint Jacobians (nout x nin per constraint, con_loff)
-  double *phit;             // explicit time derivatives of the constraint rows (m)
-  double pw[2];             // (DAL_P_PW) non-conservative power, explicit dU/dt
-  double power;             // (DAL_P_POW) dE/dt = P_nc + dU/dt|explicit + sum N_k . drdt_k
-                            // - lambda . phi_t: the power of everything that makes E change
-  double W;                 // work of that power since dal_state_set (opts.work runs)
+  double *Gl;   // local constraint Jacobians (nout x nin per constraint, con_loff)
+  double *phit; // explicit time derivatives of the constraint rows (m)
+  double pw[2]; // (DAL_P_PW) non-conservative power, explicit dU/dt
+  double power; // (DAL_P_POW) dE/dt = P_nc + dU/dt|explicit + sum N_k . drdt_k
+                // - lambda . phi_t: the power of everything that makes E change
+  double W;     // work of that power since dal_state_set (opts.work runs)
   dal_energies en;
-  unsigned have;            // products current for (t, q, qdot): DAL_P_* bits
-  int tree;                 // (DAL_P_KIN) every parent link is a translation at this point
+  unsigned have; // products current for (t, q, qdot): DAL_P_* bits
+  int tree;      // (DAL_P_KIN) every parent link is a translation at this point
   // jet scratch
   dal_jet *jin, *jout; // max_in, max_out
-  double *loc;          // local Jacobian, max_out x max_in
-  double *dir;          // local direction scratch (2 x max_in)
-  dal_jet *jq, *jv;     // n
-  dal_jet *jr;          // N x d
-  double *work;         // n-sized scratch (x 4)
-  double *Lc;           // local coordinate columns of each placement (sys->ploc_off)
-  double *Lp;           // local parent block of each placement (d x d per particle)
-  double *cf;           // subtree sums of F and m gamma (2 x N x d)
-  struct dal_kkt *kkt;  // KKT factorization workspace (kkt.c), NULL when m = 0
-  struct dal_aba *aba;  // recursion workspace (aba.c), NULL unless sys->aba
+  double *loc;         // local Jacobian, max_out x max_in
+  double *dir;         // local direction scratch (2 x max_in)
+  dal_jet *jq, *jv;    // n
+  dal_jet *jr;         // N x d
+  double *work;        // n-sized scratch (x 4)
+  double *Lc;          // local coordinate columns of each placement (sys->ploc_off)
+  double *Lp;          // local parent block of each placement (d x d per particle)
+  double *cf;          // subtree sums of F and m gamma (2 x N x d)
+  struct dal_kkt *kkt; // KKT factorization workspace (kkt.c), NULL when m = 0
+  struct dal_aba *aba; // recursion workspace (aba.c), NULL unless sys->aba
   // integrator (owned by the driver)
   void *integ;
   void (*integ_free)(void *);
   dal_solve_opts integ_opts;
   dal_stats stats;
-  dal_init_report init_rep; // the last consistent start's report (init.c)
-  int init_rep_valid;       // init_rep holds a report
+  dal_init_report init_rep;  // the last consistent start's report (init.c)
+  int init_rep_valid;        // init_rep holds a report
   struct dal_events *events; // attached event set (borrowed; events.h)
   int lazy; // a callback holds the state at an output time, not yet evaluated: the public
             // accessors evaluate it on first use (dal__lazy_eval)
@@ -275,7 +275,9 @@ int dal__cb_status(dal_state *st, int rc, const char *what);
 /// statuses pass through.
 int dal__public_status(int rc);
 /// true for the internal retry codes (a smaller step may help)
-static inline int dal__is_retry(int rc) { return rc >= DAL__RECOVERABLE && rc <= DAL__RETRY_SINGULAR; }
+static inline int dal__is_retry(int rc) {
+  return rc >= DAL__RECOVERABLE && rc <= DAL__RETRY_SINGULAR;
+}
 
 /// Domain check of a built-in primitive's parameters (constraints/registry.c): NULL when they
 /// are fine (or prim is not a built-in), else the name of the offending quantity ("rod length
@@ -374,8 +376,7 @@ void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, dou
 /// qddot from M qddot = Q - c by the recursion (requires DAL_P_KIN | DAL_P_DYN)
 int dal__aba_accel(const dal_system *sys, dal_state *st);
 /// y (n) = M x from the local blocks in O(N) (requires DAL_P_KIN; no J, no M)
-void dal__tree_mass_apply(const dal_system *sys, const dal_state *st, const double *x,
-                          double *y);
+void dal__tree_mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y);
 /// The KKT solves of a recursive system with constraints through the m x m loop system:
 /// factor A = I or M (metric as in dae_internal.h) and S = G A^-1 G'; then solve
 /// A x = a + G' y, G x = b (x may alias a, y may alias b). Same contract as dal__kkt_factor

@@ -20,7 +20,6 @@
 #include "dae_internal.h"
 #include "sparse.h"
 
-
 struct dal_kkt {
   int n, m, nk, sparse;
   int cur;         // metric of the current factorization (-1: none)
@@ -131,7 +130,8 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
     double nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
     nnz += nd * nd;
   }
-  k->sparse = !sys->dense_M || (k->nk >= DAL_KKT_SPARSE_MIN && nnz <= DAL_KKT_SPARSE_FILL * k->nk * (double)k->nk);
+  k->sparse = !sys->dense_M ||
+              (k->nk >= DAL_KKT_SPARSE_MIN && nnz <= DAL_KKT_SPARSE_FILL * k->nk * (double)k->nk);
   k->cur = -1;
   size_t nk = (size_t)k->nk;
   k->scratch = calloc(4 * nk + 1, sizeof(double));

@@ -314,7 +314,8 @@ static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
   double s = (t - ig->tprev) / h, s1 = s - 1.0;
   for (int i = 0; i < ig->ny; ++i) {
     double y0 = ig->yprev[i], y1 = ig->y[i], d = y1 - y0;
-    yout[i] = y0 + s * d + s * s1 * ((1.0 - 2.0 * s) * d + s1 * h * ig->hf0[i] + s * h * ig->hf1[i]);
+    yout[i] =
+        y0 + s * d + s * s1 * ((1.0 - 2.0 * s) * d + s1 * h * ig->hf0[i] + s * h * ig->hf1[i]);
   }
   return DAL_OK;
 }

@@ -23,8 +23,8 @@ typedef struct erk_mem {
   SUNContext ctx;
   void *ark;
   N_Vector y, ele, ewt, dky;
-  ARKodeButcherTable fb; // Fehlberg 7(8): its table for the dense output's partial steps
-  double *K, *yk;        // its stages (stages x ny) and stage argument (ny)
+  ARKodeButcherTable fb;    // Fehlberg 7(8): its table for the dense output's partial steps
+  double *K, *yk;           // its stages (stages x ny) and stage argument (ny)
   long nfe_base, netf_base; // counters already added to the state's statistics
 } erk_mem;
 
@@ -82,8 +82,10 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
   case ARK_FIRST_RHSFUNC_ERR:
   case ARK_REPTD_RHSFUNC_ERR:
   case ARK_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal
-                                           : ig->recov_rc ? ig->recov_rc : DAL__RECOVERABLE,
+    return dal__ode_fail(ig,
+                         ig->rhs_fatal  ? ig->rhs_fatal
+                         : ig->recov_rc ? ig->recov_rc
+                                        : DAL__RECOVERABLE,
                          "%s; stopped at t=%.17g (last accepted step) before the target "
                          "t=%.17g",
                          ig->rhs_err, ig->t, ig->tout);
@@ -272,8 +274,7 @@ int dal__erk_create(dal_ode_integ *ig) {
     if (!m->K || !m->yk)
       return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
     ig->interp = fehlberg_interp;
-  }
-  else if (!flag)
+  } else if (!flag)
     flag = ERKStepSetTableNum(m->ark, ARKODE_DORMAND_PRINCE_7_4_5);
   if (!flag) flag = ERKStepSStolerances(m->ark, ig->rtol, ig->atol);
   // ARKODE's interpolant serves only the end slope (Hermite of degree 3 keeps the stored f)

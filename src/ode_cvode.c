@@ -76,7 +76,8 @@ static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_
   CVodeGetCurrentStep(m->cv, &h);
   CVodeGetErrWeights(m->cv, m->ewt);
   double fnorm = 0, uround = DBL_EPSILON, srur = sqrt(uround);
-  for (int i = 0; i < n; ++i) fnorm += (f0[i] * w[i]) * (f0[i] * w[i]);
+  for (int i = 0; i < n; ++i)
+    fnorm += (f0[i] * w[i]) * (f0[i] * w[i]);
   fnorm = sqrt(fnorm / n);
   double min_inc = fnorm != 0 ? 1000.0 * fabs(h) * uround * n * fnorm : 1.0;
   memcpy(yp, y0, (size_t)n * sizeof(double));
@@ -87,7 +88,8 @@ static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_
     yp[j] = y0[j];
     if (rc) return rc;
     double *col = SUNDenseMatrix_Column(J, j);
-    for (int i = 0; i < n; ++i) col[i] = (fp[i] - f0[i]) / inc;
+    for (int i = 0; i < n; ++i)
+      col[i] = (fp[i] - f0[i]) / inc;
   }
   return 0;
 }
@@ -160,8 +162,10 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   case CV_FIRST_RHSFUNC_ERR:
   case CV_REPTD_RHSFUNC_ERR:
   case CV_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig, ig->rhs_fatal ? ig->rhs_fatal
-                                           : ig->recov_rc ? ig->recov_rc : DAL__RECOVERABLE,
+    return dal__ode_fail(ig,
+                         ig->rhs_fatal  ? ig->rhs_fatal
+                         : ig->recov_rc ? ig->recov_rc
+                                        : DAL__RECOVERABLE,
                          "%s; stopped at t=%.17g (last accepted step) before the target "
                          "t=%.17g",
                          ig->rhs_err, ig->t, ig->tout);

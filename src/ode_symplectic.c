@@ -150,8 +150,8 @@ static int symp_interp(dal_ode_integ *ig, double t, double *yout) {
 }
 
 // the step from (ts, xs) to (t, y) is accepted: tell the driver's hook
-static int symp_hook(dal_ode_integ *ig, symp_mem *m, double ts, const double *xs,
-                     const double *cs, double t, const double *y) {
+static int symp_hook(dal_ode_integ *ig, symp_mem *m, double ts, const double *xs, const double *cs,
+                     double t, const double *y) {
   m->xs = xs;
   m->cs = cs;
   m->ts = ts;

@@ -140,8 +140,8 @@ dal_solve_opts dal__effective_opts(const dal_solve_opts *o);
 int dal__same_opts(const dal_solve_opts *a, const dal_solve_opts *b);
 /// a fresh ODE integrator for method meth on problem prob at the state's (t, q, qdot), and
 /// its destruction (ode.c)
-int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
-                    dal_method meth, const dal_ode_problem *prob, dal_ode_integ **out);
+int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method meth,
+                    const dal_ode_problem *prob, dal_ode_integ **out);
 void dal__ode_destroy(void *ig);
 
 /// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the

@@ -62,8 +62,8 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   if (!st->q || !st->qdot || !st->qddot || !st->Q || !st->c || !st->work || !st->r || !st->v ||
       !st->a || !st->drdt || !st->gamma || !st->F || !st->N || !st->J ||
       (sys->dense_M && (!st->M || !st->L)) ||
-      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->Gl || !st->phit ||
-             !st->kkt)) ||
+      (m && (!st->lambda || !st->phi || !st->phidot || !st->gphi || !st->G || !st->Gl ||
+             !st->phit || !st->kkt)) ||
       !st->jin || !st->Lc || !st->Lp || !st->dir || !st->cf || (sys->aba && !st->aba) ||
       !st->jout || !st->loc || !st->jq || !st->jv || !st->jr) {
     dal_state_destroy(st);
@@ -78,11 +78,12 @@ void dal_state_destroy(dal_state *st) {
   if (!st) return;
   dal__integ_reset(st);
   dal__params_free(st);
-  double *d[] = {st->q,  st->qdot, st->qddot, st->Q,      st->c,      st->work, st->r,
-                 st->v,  st->a,    st->drdt,  st->gamma,  st->F,      st->N,    st->J,
-                 st->M,  st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
-                 st->loc, st->Lc, st->cf, st->Lp, st->Gl, st->dir, st->phit};
-  for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i) free(d[i]);
+  double *d[] = {st->q,   st->qdot, st->qddot,  st->Q,     st->c,      st->work, st->r,
+                 st->v,   st->a,    st->drdt,   st->gamma, st->F,      st->N,    st->J,
+                 st->M,   st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
+                 st->loc, st->Lc,   st->cf,     st->Lp,    st->Gl,     st->dir,  st->phit};
+  for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i)
+    free(d[i]);
   free(st->jin);
   free(st->jout);
   free(st->jq);
@@ -103,8 +104,8 @@ int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *
   if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: time is %g", t);
   for (int i = 0; i < sys->n; ++i) {
     if (!isfinite(q[i]))
-      return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: coordinate '%s' is %g",
-                      sys->coord_names[i], q[i]);
+      return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: coordinate '%s' is %g", sys->coord_names[i],
+                      q[i]);
     if (!isfinite(qdot[i]))
       return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: velocity of coordinate '%s' is %g",
                       sys->coord_names[i], qdot[i]);
@@ -246,13 +247,15 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
       for (int a = 0; a < d; ++a)
         for (int i = 0; i < pb->ncoord; ++i) {
           double s = 0.0;
-          for (int c = 0; c < d; ++c) s += P[a * d + c] * Lb[c * pb->ncoord + i];
+          for (int c = 0; c < d; ++c)
+            s += P[a * d + c] * Lb[c * pb->ncoord + i];
           J[a * n + cb[i]] += s;
         }
       for (int a = 0; a < d; ++a)
         for (int c = 0; c < d; ++c) {
           double s = 0.0;
-          for (int e = 0; e < d; ++e) s += P[a * d + e] * Lp[e * d + c];
+          for (int e = 0; e < d; ++e)
+            s += P[a * d + e] * Lp[e * d + c];
           T[a * d + c] = s;
         }
       memcpy(P, T, (size_t)d * d * sizeof(double));
@@ -263,7 +266,8 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
   int nd = sys->pdep_off[k + 1] - sys->pdep_off[k];
   const double *Jk = st->J + sys->pj_off[k];
   for (int a = 0; a < d; ++a)
-    for (int c = 0; c < nd; ++c) J[a * n + dep[c]] = Jk[a * nd + c];
+    for (int c = 0; c < nd; ++c)
+      J[a * n + dep[c]] = Jk[a * nd + c];
   return DAL_OK;
 }
 
@@ -289,13 +293,15 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
   int n = sys->n, rc;
   // the path's local tuple at t: q, qdot, qddot
   rc = path(dal_var(t, 1.0), st->jq, ctx);
-  if (rc) return DAL_FAIL(st, DAL_E_CALLBACK, "proposed path failed (returned %d) at t=%.17g",
-                          rc, t);
+  if (rc)
+    return DAL_FAIL(st, DAL_E_CALLBACK, "proposed path failed (returned %d) at t=%.17g", rc, t);
   double *qdd = st->work;
   for (int i = 0; i < n; ++i) {
     if (!dal_jet_isfinite(st->jq[i]))
-      return DAL_FAIL(st, DAL_E_DOMAIN, "proposed path: coordinate '%s' is not finite at "
-                                        "t=%.17g", sys->coord_names[i], t);
+      return DAL_FAIL(st, DAL_E_DOMAIN,
+                      "proposed path: coordinate '%s' is not finite at "
+                      "t=%.17g",
+                      sys->coord_names[i], t);
     st->q[i] = st->jq[i].v;
     st->qdot[i] = st->jq[i].d;
     qdd[i] = st->jq[i].dd;
@@ -310,15 +316,16 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
     if (rc) return dal__public_status(rc);
     for (int i = 0; i < n; ++i) {
       double s = -rhs[i];
-      for (int j = 0; j < n; ++j) s += st->M[(size_t)j * n + i] * qdd[j];
+      for (int j = 0; j < n; ++j)
+        s += st->M[(size_t)j * n + i] * qdd[j];
       res[i] = s;
     }
     return residual_finite(sys, st, res, t);
   }
-  if ((rc = dal__eval(sys, st, DAL_P_J | DAL_P_DYN)) != 0)
-    return dal__public_status(rc);
+  if ((rc = dal__eval(sys, st, DAL_P_J | DAL_P_DYN)) != 0) return dal__public_status(rc);
   dal__mass_apply(sys, st, qdd, res);
-  for (int i = 0; i < n; ++i) res[i] += st->c[i] - st->Q[i];
+  for (int i = 0; i < n; ++i)
+    res[i] += st->c[i] - st->Q[i];
   return residual_finite(sys, st, res, t);
 }
 
@@ -365,7 +372,8 @@ int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F)
     const double *Gl = st->Gl + sys->con_loff[ci];
     for (int i = 0; i < c->npart * d; ++i) {
       double f = 0.0;
-      for (int r = 0; r < c->prim->nout; ++r) f += Gl[r * nin + i] * st->lambda[c->row + r];
+      for (int r = 0; r < c->prim->nout; ++r)
+        f += Gl[r * nin + i] * st->lambda[c->row + r];
       F[parts[i / d] * d + i % d] += f;
     }
   }

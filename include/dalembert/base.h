@@ -33,27 +33,28 @@ extern "C" {
 /// 0 is success; every failure is negative. The positive codes are not failures: dal_evolve
 /// returns DAL_STOPPED when a monitor asked to stop before the end time, dal_advance and
 /// dal_evolve return DAL_EVENT when a terminal event stopped them (events.h). A detailed
-/// message naming the culprit and a remedy is kept by the object that failed (dal_builder_errmsg, dal_state_errmsg).
-#define DAL_STATUS_LIST(X)                                                                        \
-  X(DAL_OK, 0, "ok")                                                                              \
-  X(DAL_STOPPED, 1, "stopped early by a monitor (not an error)")                                  \
-  X(DAL_EVENT, 2, "stopped at a terminal event (not an error)")                                   \
-  X(DAL_E_ARG, -1, "invalid argument (index, dimension, count or option)")                        \
-  X(DAL_E_NOMEM, -2, "out of memory")                                                             \
-  X(DAL_E_NONFINITE, -3, "non-finite input (NaN or inf)")                                         \
-  X(DAL_E_DOMAIN, -4, "a jet function produced NaN or inf (domain error)")                       \
-  X(DAL_E_SINGULAR, -5, "mass matrix singular or not positive definite")                          \
-  X(DAL_E_CALLBACK, -6, "a user callback reported an unrecoverable failure")                      \
-  X(DAL_E_CONSTRAINT, -7, "redundant or conflicting constraints")                                 \
-  X(DAL_E_INIT, -8, "consistent initial state could not be assembled")                            \
-  X(DAL_E_STEP, -9, "step size underflow")                                                        \
-  X(DAL_E_MAXSTEPS, -10, "too many steps before the target time")                                 \
-  X(DAL_E_CONV, -11, "nonlinear or error-test convergence failure")                               \
-  X(DAL_E_SOLVER, -12, "integrator or linear solver failure")                                     \
-  X(DAL_E_TIME, -13, "target time lies behind the current time")                                  \
-  X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                       \
-  X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                          \
-  X(DAL_E_IO, -16, "file input/output failed")                                                   \
+/// message naming the culprit and a remedy is kept by the object that failed (dal_builder_errmsg,
+/// dal_state_errmsg).
+#define DAL_STATUS_LIST(X)                                                                         \
+  X(DAL_OK, 0, "ok")                                                                               \
+  X(DAL_STOPPED, 1, "stopped early by a monitor (not an error)")                                   \
+  X(DAL_EVENT, 2, "stopped at a terminal event (not an error)")                                    \
+  X(DAL_E_ARG, -1, "invalid argument (index, dimension, count or option)")                         \
+  X(DAL_E_NOMEM, -2, "out of memory")                                                              \
+  X(DAL_E_NONFINITE, -3, "non-finite input (NaN or inf)")                                          \
+  X(DAL_E_DOMAIN, -4, "a jet function produced NaN or inf (domain error)")                         \
+  X(DAL_E_SINGULAR, -5, "mass matrix singular or not positive definite")                           \
+  X(DAL_E_CALLBACK, -6, "a user callback reported an unrecoverable failure")                       \
+  X(DAL_E_CONSTRAINT, -7, "redundant or conflicting constraints")                                  \
+  X(DAL_E_INIT, -8, "consistent initial state could not be assembled")                             \
+  X(DAL_E_STEP, -9, "step size underflow")                                                         \
+  X(DAL_E_MAXSTEPS, -10, "too many steps before the target time")                                  \
+  X(DAL_E_CONV, -11, "nonlinear or error-test convergence failure")                                \
+  X(DAL_E_SOLVER, -12, "integrator or linear solver failure")                                      \
+  X(DAL_E_TIME, -13, "target time lies behind the current time")                                   \
+  X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                        \
+  X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                           \
+  X(DAL_E_IO, -16, "file input/output failed")                                                     \
   X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")
 
 /// Status codes returned by every fallible dalembert call.

@@ -51,8 +51,8 @@ extern "C" {
 /// IDA is run at no less than 1e-12 (its corrector stalls on rounding below: limits.h); a
 /// tighter request is clamped, atol scaled alike, and the clamp shows in dal_stats.rtol_used
 /// (GGL then measures 23 x rtol at 1e-10, 230 x at 1e-11, 2300 x at 1e-12). So with
-/// DAL_FORM_AUTO and DAL_METHOD_AUTO, a constrained system asked for rtol < 1e-9 runs the index-1 form with
-/// projection and Bulirsch-Stoer instead (from a consistent start), which honours it (row
+/// DAL_FORM_AUTO and DAL_METHOD_AUTO, a constrained system asked for rtol < 1e-9 runs the index-1
+/// form with projection and Bulirsch-Stoer instead (from a consistent start), which honours it (row
 /// "auto (constrained)" of the table in tests/test_core.c). Ill-conditioned problems (chaos,
 /// near-separatrix motion) amplify local errors further.
 ///
@@ -183,40 +183,40 @@ typedef enum dal_linsol {
 
 /// Options for advance/evolve. Always start from dal_solve_default_opts().
 typedef struct dal_solve_opts {
-  int magic;                  ///< set by dal_solve_default_opts; do not touch
-  dal_method method;          ///< integration method
-  dal_formulation form;       ///< formulation
-  dal_linsol linsol;          ///< linear solver for implicit methods
-  double rtol;                ///< relative tolerance, 1e-15 <= rtol < 1, default 1e-8
-  double atol;                ///< absolute tolerance (> 0, units of q); 0 (default) follows
-                              ///< rtol: atol = DAL_ATOL_PER_RTOL * rtol (1e-10 at the default
-                              ///< rtol), so setting only rtol tightens both. Set it yourself
-                              ///< when coordinates are far from unit scale.
-  double h0;                  ///< initial step (0: automatic)
-  double hmin;                ///< minimum step (0: none)
-  double hmax;                ///< maximum step (0: none)
-  double fixed_step;          ///< step of DAL_METHOD_RK4 and of the symplectic methods (> 0,
-                              ///< and it must move t: a step below the resolution of t is
-                              ///< DAL_E_ARG), default 1e-3
-  long max_steps;             ///< maximum steps per advance call, default 1000000
-  double baumgarte_alpha;     ///< INDEX1: damping of G v + dphi/dt (1/s), default 0 (off)
-  double baumgarte_beta;      ///< INDEX1: frequency on phi (1/s; term beta^2 phi, dae.h), 0
-                              ///< (both >= 0, with 2 alpha and beta^2 finite)
-  int project;                ///< INDEX1: project q and v onto the manifold after each step
-                              ///< (ODE methods; with BDF/IDA: DAL_E_UNSUPPORTED)
-  int sparse_threshold;       ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
-  int work;                   ///< if nonzero, integrate the work W done by non-conservative
-                              ///< forces, time-dependent potentials and moving constraints
-                              ///< with the motion (dal_energies.W; E - W is then conserved);
-                              ///< default 0. Adaptive methods and IDA; not the fixed-step
-                              ///< structure-preserving ones
-  int fixed_erk;              ///< DOPRI5/FEHLBERG78: if nonzero, take fixed steps of
-                              ///< opts.fixed_step without error control (order studies); 0
-  double init_max_move;       ///< DAE start: the largest change |delta q_i| (units of q) the
-                              ///< consistent initialization may apply; a larger one fails with
-                              ///< DAL_E_INIT naming the coordinate and the state is unchanged.
-                              ///< 0 (default): no limit. Either way the report of the move is
-                              ///< kept (dal_state_init_report in dae.h).
+  int magic;              ///< set by dal_solve_default_opts; do not touch
+  dal_method method;      ///< integration method
+  dal_formulation form;   ///< formulation
+  dal_linsol linsol;      ///< linear solver for implicit methods
+  double rtol;            ///< relative tolerance, 1e-15 <= rtol < 1, default 1e-8
+  double atol;            ///< absolute tolerance (> 0, units of q); 0 (default) follows
+                          ///< rtol: atol = DAL_ATOL_PER_RTOL * rtol (1e-10 at the default
+                          ///< rtol), so setting only rtol tightens both. Set it yourself
+                          ///< when coordinates are far from unit scale.
+  double h0;              ///< initial step (0: automatic)
+  double hmin;            ///< minimum step (0: none)
+  double hmax;            ///< maximum step (0: none)
+  double fixed_step;      ///< step of DAL_METHOD_RK4 and of the symplectic methods (> 0,
+                          ///< and it must move t: a step below the resolution of t is
+                          ///< DAL_E_ARG), default 1e-3
+  long max_steps;         ///< maximum steps per advance call, default 1000000
+  double baumgarte_alpha; ///< INDEX1: damping of G v + dphi/dt (1/s), default 0 (off)
+  double baumgarte_beta;  ///< INDEX1: frequency on phi (1/s; term beta^2 phi, dae.h), 0
+                          ///< (both >= 0, with 2 alpha and beta^2 finite)
+  int project;            ///< INDEX1: project q and v onto the manifold after each step
+                          ///< (ODE methods; with BDF/IDA: DAL_E_UNSUPPORTED)
+  int sparse_threshold;   ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
+  int work;               ///< if nonzero, integrate the work W done by non-conservative
+                          ///< forces, time-dependent potentials and moving constraints
+                          ///< with the motion (dal_energies.W; E - W is then conserved);
+                          ///< default 0. Adaptive methods and IDA; not the fixed-step
+                          ///< structure-preserving ones
+  int fixed_erk;          ///< DOPRI5/FEHLBERG78: if nonzero, take fixed steps of
+                          ///< opts.fixed_step without error control (order studies); 0
+  double init_max_move;   ///< DAE start: the largest change |delta q_i| (units of q) the
+                          ///< consistent initialization may apply; a larger one fails with
+                          ///< DAL_E_INIT naming the coordinate and the state is unchanged.
+                          ///< 0 (default): no limit. Either way the report of the move is
+                          ///< kept (dal_state_init_report in dae.h).
 } dal_solve_opts;
 
 /// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default).
@@ -293,14 +293,14 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 /// DAL_E_NONFINITE, dt <= 0 or below the resolution of t DAL_E_ARG. A monitor returning < 0
 /// stops evolve with DAL_E_CALLBACK; a message the monitor left in the state (dal_csv_monitor
 /// does) is quoted. On any early end the state is at that time, evaluated.
-DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                       double t1, double dt, dal_monitor_fn *monitor, void *ctx);
+DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                       double dt, dal_monitor_fn *monitor, void *ctx);
 
 /// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row.
 typedef struct dal_csv {
-  FILE *fp;         ///< output stream (borrowed)
-  int header_done;  ///< set after the header row is written
-  int wrap_angles;  ///< if nonzero, write q wrapped to [-pi, pi) (principal value)
+  FILE *fp;        ///< output stream (borrowed)
+  int header_done; ///< set after the header row is written
+  int wrap_angles; ///< if nonzero, write q wrapped to [-pi, pi) (principal value)
 } dal_csv;
 
 /// Monitor that writes one CSV row (and the header first); ctx is a dal_csv *. Returns
