@@ -20,6 +20,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "form_dae.h"
+#include "nvec.h"
 #include "solve_internal.h"
 
 typedef struct ida_mem {
@@ -215,6 +216,12 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   if (!w->y || !w->yp || !w->id || !w->atol || !w->w1 || !w->w2) {
     rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d unknowns", w->neq);
     goto fail;
+  }
+  // the library's vector kernels; IDA's work vectors are clones of these and inherit them
+  {
+    N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
+    for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
+      dal__nvec_fast(vs[i]);
   }
   // error test on q and v; lambda and mu (algebraic) out of it. Index-3 keeps only q in
   // the error test, the usual practice for the higher-index variables of a BDF code (Brenan,
