@@ -503,9 +503,11 @@ static int rod_rows(const dal_system *sys, dal_state *st, const dal_con *c, cons
   return 0;
 }
 
+// a rod on particle positions (its inputs may also be given as coordinates: the jet path)
 static int is_rod(const dal_con *c) {
-  return c->prim == &dal_con_distance2 || c->prim == &dal_con_distance3 ||
-         ((c->prim == &dal_con_anchor2 || c->prim == &dal_con_anchor3) && !c->ctx);
+  if (c->ncoord) return 0;
+  if (c->prim == &dal_con_distance2 || c->prim == &dal_con_distance3) return c->npart == 2;
+  return (c->prim == &dal_con_anchor2 || c->prim == &dal_con_anchor3) && !c->ctx && c->npart == 1;
 }
 
 int dal__constraints(const dal_system *sys, dal_state *st) {

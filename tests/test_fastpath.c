@@ -49,6 +49,7 @@ static dal_system *scene(int d, int np, int jets) {
   dal_system *s = NULL;
   int rc = dal_builder_create(d, &b);
   double g[3] = {0.0, -9.81, 0.0};
+  int rodq[6], nrodq = 0; // coordinates of particles 0 and 3 (a rod given on coordinates)
   if (d == 3) g[1] = 0.0, g[2] = -9.81;
   if (!rc) rc = dal_builder_set_gravity(b, g);
   for (int k = 0; k < np && !rc; ++k) {
@@ -85,6 +86,8 @@ static dal_system *scene(int d, int np, int jets) {
       pd.ncoords = d;
     }
     if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    for (int a = 0; a < d && (k == 0 || k == 3) && !hang; ++a)
+      rodq[nrodq++] = c[a];
     dal_constraint_def cd = dal_default_constraint_def();
     int ends[2] = {p - 1, p};
     snprintf(name, sizeof name, "rod%d", k);
@@ -114,6 +117,16 @@ static dal_system *scene(int d, int np, int jets) {
   cd.param[DAL_ANCHOR_L] = 2.0;
   cd.ctx = &mover;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  // a rod whose inputs are coordinates, not particles (the jet path in both builds)
+  if (nrodq == 2 * d) {
+    cd = dal_default_constraint_def();
+    cd.name = "on-coordinates";
+    cd.prim = dist;
+    cd.coords = rodq;
+    cd.ncoords = 2 * d;
+    cd.param[DAL_DISTANCE_L] = 1.7;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  }
   if (!rc) rc = dal_builder_set_dynamics(b, DAL_DYNAMICS_DENSE);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "scene: %s\n", dal_builder_errmsg(b));
