@@ -340,6 +340,43 @@ static void place_cartesian(const dal_system *sys, dal_state *st, int k, int d) 
   }
 }
 
+// A particle hanging from its parent by a rod of length l at angle q (dal_map_hanging, the
+// links of planar chains): r = r_p + l (sin q, -cos q). Its two jet evaluations (along the
+// coordinate, then along the motion) written out with one sin and cos, in the jet path's own
+// arithmetic and order (dal_var, dal_sincos, dal_scale, dal_add/dal_sub of jet.h), so the
+// results agree bit for bit (tests/test_fastpath.c). Returns 0, or -1 when a result is not
+// finite (nothing is written; the jet path then names the failure).
+static int place_hanging(const dal_system *sys, dal_state *st, int k) {
+  const dal_place *pl = &sys->place[k];
+  int p = pl->parent, j = sys->ipool[pl->coord_off];
+  double l = st->prm.ppool[pl->param_off], q = st->q[j], qd = st->qdot[j];
+  const double *rp = st->r + p * 2, *vp = st->v + p * 2, *gp = st->gamma + p * 2;
+  const double *rtp = st->drdt + p * 2;
+  double sv = sin(q), cv = cos(q);
+  // along the coordinate (direction 1): the column Lc
+  double L0 = 0.0 + l * (cv * 1.0), L1 = 0.0 - l * (-sv * 1.0);
+  // along the motion: sin and cos of (q, qd, 0) and the parent's (r, v, gamma)
+  double sd = cv * qd, sdd = cv * 0.0 + -sv * qd * qd;
+  double cd = -sv * qd, cdd = -sv * 0.0 + -cv * qd * qd;
+  double r0 = rp[0] + l * sv, v0 = vp[0] + l * sd, g0 = gp[0] + l * sdd;
+  double r1 = rp[1] - l * cv, v1 = vp[1] - l * cd, g1 = gp[1] - l * cdd;
+  if (!isfinite(r0 + v0 + g0 + r1 + v1 + g1 + L0 + L1)) return -1;
+  double *Lp = st->Lp + (size_t)k * 4, *Lk = st->Lc + sys->ploc_off[k];
+  Lk[0] = L0;
+  Lk[1] = L1;
+  Lp[0] = Lp[3] = 1.0;
+  Lp[1] = Lp[2] = 0.0;
+  st->r[k * 2] = r0;
+  st->r[k * 2 + 1] = r1;
+  st->v[k * 2] = v0;
+  st->v[k * 2 + 1] = v1;
+  st->gamma[k * 2] = g0;
+  st->gamma[k * 2 + 1] = g1;
+  st->drdt[k * 2] = v0 - (vp[0] - rtp[0]) - L0 * qd;
+  st->drdt[k * 2 + 1] = v1 - (vp[1] - rtp[1]) - L1 * qd;
+  return 0;
+}
+
 int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   int d = sys->dim, rc;
   st->tree = sys->place != NULL;
@@ -354,6 +391,9 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
       place_cartesian(sys, st, k, d);
       continue;
     }
+    if (pl->prim == &dal_map_hanging && d == 2 && pl->parent >= 0 && pl->ncoord == 1 &&
+        place_hanging(sys, st, k) == 0)
+      continue;
     if (pl->ncoord == 1 && pl->parent >= 0 && (pl->prim->flags & DAL_PRIM_TRANSLATES) &&
         pl->prim->nin == d + 1) {
       rc = d == 2 ? place_translating1(sys, st, k, 2) : place_translating1(sys, st, k, 3);

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // White box: the hand-coded fast paths of kinematics.c (particles placed by their own
-// Cartesian coordinates; rods dal_con_distance2/3 and fixed dal_con_anchor2/3) against the jet
+// Cartesian coordinates, particles hanging from their parent by dal_map_hanging; rods
+// dal_con_distance2/3 and fixed dal_con_anchor2/3) against the jet
 // path they replace. The same scene is built twice, once with the built-in primitives and once
 // with copies of their tables (another address, so the library evaluates them by jets); every
 // kinematic and constraint product, the accelerations and multipliers, the DAE residual and
@@ -32,7 +33,7 @@ static int wobble(dal_jet t, dal_jet *x, void *ctx) {
 static dal_moving_point mover = {wobble, NULL};
 
 // the jet-path twins: same tables at other addresses
-static dal_primitive cart2, cart3, dist2, dist3, anch2, anch3;
+static dal_primitive cart2, cart3, dist2, dist3, anch2, anch3, hang2;
 
 // A d-dimensional scene of np particles: the first placed by Cartesian coordinates, every
 // third hanging from its predecessor by a pendulum-like map (not Cartesian: exercises the
@@ -64,7 +65,7 @@ static dal_system *scene(int d, int np, int jets) {
     }
     dal_place_def pd = dal_default_place_def();
     if (hang) {
-      pd.prim = &dal_map_hanging;
+      pd.prim = jets ? &hang2 : &dal_map_hanging;
       pd.parent = p - 1;
       pd.param[DAL_HANGING_L] = 0.8;
       pd.coords = c;
@@ -222,13 +223,82 @@ static void compare(int d, int np) {
   dal_system_destroy(js);
 }
 
+// a planar pendulum chain in minimal coordinates (links hanging from links; the recursion)
+static dal_system *chain(int N, int jets) {
+  dal_builder *b = NULL;
+  dal_system *s = NULL;
+  int rc = dal_builder_create(2, &b);
+  double g[2] = {0.0, -9.81};
+  for (int k = 0; k < N && !rc; ++k) {
+    char name[32];
+    int p, c;
+    snprintf(name, sizeof name, "th%d", k);
+    rc = dal_builder_add_coord(b, name, &c);
+    snprintf(name, sizeof name, "p%d", k);
+    if (!rc) rc = dal_builder_add_particle(b, name, 1.0 + 0.1 * k, &p);
+    dal_place_def pd = dal_default_place_def();
+    pd.coords = &c;
+    pd.ncoords = 1;
+    if (k == 0) {
+      pd.prim = &dal_map_pendulum;
+      pd.param[DAL_PENDULUM_L] = 1.2;
+    } else {
+      pd.prim = jets ? &hang2 : &dal_map_hanging;
+      pd.parent = p - 1;
+      pd.param[DAL_HANGING_L] = 0.5 + 0.1 * k;
+    }
+    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  }
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  if (!rc) rc = dal_builder_compile(b, &s);
+  if (rc) fprintf(stderr, "chain: %s\n", dal_builder_errmsg(b));
+  dal_builder_destroy(b);
+  return s;
+}
+
+static void compare_chain(int N) {
+  dal_system *fs = chain(N, 0), *js = chain(N, 1);
+  CHECK(fs && js);
+  if (!fs || !js) return;
+  dal_state *fst = NULL, *jst = NULL;
+  CHECK_OK(dal_state_create(fs, &fst));
+  CHECK_OK(dal_state_create(js, &jst));
+  double q[16], qd[16];
+  for (int i = 0; i < N; ++i) {
+    q[i] = 3.0 * urand();
+    qd[i] = 4.0 * urand();
+  }
+  CHECK_OK(dal_state_set(fs, fst, 0.1, q, qd));
+  CHECK_OK(dal_state_set(js, jst, 0.1, q, qd));
+  CHECK_OK(dal_forward(fs, fst));
+  CHECK_OK(dal_forward(js, jst));
+  int Nd = 2 * N;
+  CHECK(same(fst->r, jst->r, Nd, "chain r", 2));
+  CHECK(same(fst->v, jst->v, Nd, "chain v", 2));
+  CHECK(same(fst->gamma, jst->gamma, Nd, "chain gamma", 2));
+  CHECK(same(fst->drdt, jst->drdt, Nd, "chain drdt", 2));
+  CHECK(same(fst->Lc, jst->Lc, fs->ploc_off[N], "chain Lc", 2));
+  CHECK(same(fst->Lp, jst->Lp, 4 * (size_t)N, "chain Lp", 2));
+  CHECK(same(fst->qddot, jst->qddot, N, "chain qddot", 2));
+  CHECK(same(fst->a, jst->a, Nd, "chain a", 2));
+  CHECK(same(fst->N, jst->N, Nd, "chain reactions", 2));
+  CHECK(fst->en.E == jst->en.E && fst->en.h == jst->en.h);
+  printf("  pendulum chain of %d links (the recursion): fast path == jet path (bit for bit)\n", N);
+  dal_state_destroy(fst);
+  dal_state_destroy(jst);
+  dal_system_destroy(fs);
+  dal_system_destroy(js);
+}
+
 int main(void) {
   cart2 = dal_map_cartesian2, cart3 = dal_map_cartesian3;
   dist2 = dal_con_distance2, dist3 = dal_con_distance3;
-  anch2 = dal_con_anchor2, anch3 = dal_con_anchor3;
+  anch2 = dal_con_anchor2, anch3 = dal_con_anchor3, hang2 = dal_map_hanging;
   for (int d = 2; d <= 3; ++d) {
     compare(d, 2);
     compare(d, 7);
   }
+  compare_chain(2);
+  compare_chain(9);
   return check_summary("test_fastpath");
 }
