@@ -145,6 +145,12 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
   return DAL_OK;
 }
 
+int dal__forces(const dal_system *sys, dal_state *st) {
+  DAL_NEED(st, DAL_P_KIN);
+  double U = 0.0;
+  return sys->N > 0 ? applied_forces(sys, st, &U, NULL) : DAL_OK;
+}
+
 // generalized terms from user callbacks over q: Q += Q_user - dU/dq, U += U(q); pw as in
 // applied_forces (Q_user . qdot and dU(q,t)/dt)
 int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) {

@@ -145,6 +145,10 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   st->have = 0;
   if ((rc = check_point(sys, st)) != 0) return rc;
   if (sys->lag) return eval_lagrangian(sys, st);
+  // accelerations alone on the recursion, with every force on the particles: the forces F are
+  // all it reads (aba.c), so Q, c and the energies are skipped (an integrator's right-hand side)
+  int lean = sys->aba && m == 0 && !sys->npotq && !sys->ngenforce &&
+             (need & ~(DAL_P_KIN | DAL_P_ACC)) == 0 && (need & DAL_P_ACC);
   if (need & DAL_P_POW) need |= DAL_P_OUT | DAL_P_PW;
   if (need & DAL_P_PW) need |= DAL_P_DYN;
   // what each product needs: outputs need accelerations; accelerations need forces and M
@@ -167,6 +171,18 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
     dal__jacobians(sys, st);
   if ((need & DAL_P_CON) && m && (rc = dal__constraints(sys, st)) != 0) return rc;
   if (need & DAL_P_CON) st->have |= DAL_P_CON;
+  if (lean) {
+    // (a failing force is reported as dal__dynamics reports it)
+    if ((rc = dal__forces(sys, st)) != 0)
+      return rc == DAL_E_NONFINITE ? dal__blame_forces(sys, st) : rc;
+    if (dal__aba_accel(sys, st) == DAL_OK && first_nonfinite(st->qddot, sys->n) < 0) {
+      st->have |= DAL_P_ACC;
+      return DAL_OK;
+    }
+    // a degenerate coordinate or accelerations that overflow: the whole evaluation below
+    // names the cause, as it always has
+    st->have &= DAL_P_KIN | DAL_P_J | DAL_P_CON;
+  }
   if (need & DAL_P_DYN) {
     int want_M = (need & DAL_P_M) ? 2 : (need & DAL_P_MLOW) ? 1 : 0;
     st->pw[0] = st->pw[1] = 0.0;
