@@ -57,7 +57,6 @@ struct dal_aba {
   double *piv;      // pivot of each coordinate (n)
   double *pA, *acc; // bias forces and accelerations (N x d)
   double *z;        // L_k^-1 (tau_k - Lc_k' pA_k) per coordinate (n)
-  double *load;     // particle loads m_k gamma_k - F_k, the bias forces' start (N x d)
   double *zero;     // a zero load on the coordinates (n)
   double pmax;      // largest pivot of the last factorization (the scale of M)
   // the loop system (m > 0)
@@ -99,7 +98,6 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
   w->pA = calloc(Nd + 1, sizeof(double));
   w->acc = calloc(Nd + 1, sizeof(double));
   w->z = calloc(n + 1, sizeof(double));
-  w->load = calloc(Nd + 1, sizeof(double));
   w->zero = calloc(n + 1, sizeof(double));
   w->metric = -1;
   if (m) {
@@ -108,7 +106,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
     w->x0 = calloc(n, sizeof(double));
     w->r = calloc(m, sizeof(double));
   }
-  if (!w->IA || !w->Lf || !w->W || !w->piv || !w->pA || !w->acc || !w->z || !w->load || !w->zero ||
+  if (!w->IA || !w->Lf || !w->W || !w->piv || !w->pA || !w->acc || !w->z || !w->zero ||
       (m && (!w->Y || !w->S || !w->x0 || !w->r))) {
     dal__aba_free(w);
     return NULL;
@@ -119,8 +117,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
 void dal__aba_free(struct dal_aba *w) {
   if (!w) return;
   free(w->node);
-  double *p[] = {w->IA,   w->Lf,   w->W, w->piv, w->pA, w->acc, w->z,
-                 w->load, w->zero, w->Y, w->S,   w->x0, w->r};
+  double *p[] = {w->IA, w->Lf, w->W, w->piv, w->pA, w->acc, w->z, w->zero, w->Y, w->S, w->x0, w->r};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(w);
@@ -235,17 +232,18 @@ static inline void pass_up(const aba_node *nd, const int d, const double *Lp, co
 
 // The backward pass for d = 2 or 3 (a constant once inlined): articulated inertias and, for a
 // load tau on the coordinates (nullable), the bias forces in the same sweep, starting from the
-// particle loads `load` (N x d; NULL: 0).
+// particle loads m gamma - F when `loads` is set, else from 0.
 static inline void factor_pass(struct dal_aba *w, const dal_state *st, const double *mass, int N,
-                               const int d, const double *tau, const double *load) {
+                               const int d, const double *tau, int loads) {
   const int dd = d * d;
   double *restrict IA = w->IA, *restrict pA = w->pA;
+  const double *gam = st->gamma, *F = st->F;
   // every articulated inertia starts as its particle's mass, every bias force at its load
   for (int k = 0; k < N; ++k)
     for (int a = 0; a < d; ++a) {
       for (int b = 0; b < d; ++b)
         IA[k * dd + a * d + b] = a == b ? mass[k] : 0.0;
-      pA[k * d + a] = load ? load[k * d + a] : 0.0;
+      pA[k * d + a] = loads ? mass[k] * gam[k * d + a] - F[k * d + a] : 0.0;
     }
   for (int k = N - 1; k >= 0; --k) {
     const aba_node *nd = &w->node[k];
@@ -343,9 +341,9 @@ static int check_pivots(const dal_system *sys, dal_state *st, const char *what) 
 static int factor(const dal_system *sys, dal_state *st, const char *what) {
   DAL_NEED(st, DAL_P_KIN);
   if (sys->dim == 2)
-    factor_pass(st->aba, st, st->prm.mass, sys->N, 2, NULL, NULL);
+    factor_pass(st->aba, st, st->prm.mass, sys->N, 2, NULL, 0);
   else
-    factor_pass(st->aba, st, st->prm.mass, sys->N, 3, NULL, NULL);
+    factor_pass(st->aba, st, st->prm.mass, sys->N, 3, NULL, 0);
   return check_pivots(sys, st, what);
 }
 
@@ -433,17 +431,12 @@ int dal__aba_accel(const dal_system *sys, dal_state *st) {
   DAL_NEED(st, DAL_P_KIN);
   struct dal_aba *w = st->aba;
   int N = sys->N, d = sys->dim;
-  const double *tau, *load = NULL;
-  if (!sys->npotq && !sys->ngenforce) {
-    // every force acts on particles: the bias forces start at the particle loads m gamma - F
-    // (Featherstone's form; no Q and c needed, so the right-hand side can skip them)
-    for (int k = 0; k < N; ++k)
-      for (int a = 0; a < d; ++a)
-        w->load[k * d + a] = st->prm.mass[k] * st->gamma[k * d + a] - st->F[k * d + a];
-    tau = w->zero;
-    load = w->load;
-  } else {
-    // generalized forces too: tau = Q - c (dal__dynamics)
+  // every force on the particles: the bias forces start at the particle loads m gamma - F
+  // (Featherstone's form; no Q and c needed, so the right-hand side can skip them); with
+  // generalized forces too, tau = Q - c (dal__dynamics)
+  int loads = !sys->npotq && !sys->ngenforce;
+  const double *tau = w->zero;
+  if (!loads) {
     DAL_NEED(st, DAL_P_DYN);
     for (int j = 0; j < sys->n; ++j)
       st->qddot[j] = st->Q[j] - st->c[j];
@@ -451,9 +444,9 @@ int dal__aba_accel(const dal_system *sys, dal_state *st) {
   }
   // one backward sweep (inertias and biases) and one forward sweep
   if (d == 2)
-    factor_pass(w, st, st->prm.mass, N, 2, tau, load);
+    factor_pass(w, st, st->prm.mass, N, 2, tau, loads);
   else
-    factor_pass(w, st, st->prm.mass, N, 3, tau, load);
+    factor_pass(w, st, st->prm.mass, N, 3, tau, loads);
   int rc = check_pivots(sys, st, NULL);
   if (rc) return rc;
   if (d == 2)

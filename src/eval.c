@@ -164,7 +164,10 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   if ((need & DAL_P_CON) && !sys->aba) need |= DAL_P_J;
   if (need & DAL_P_M) need |= DAL_P_MLOW;
   if (need & DAL_P_MLOW) need |= DAL_P_DYN;
-  if (!sys->store_J) need &= ~DAL_P_J;
+  // the recursion reads no global Jacobian: for an evaluated state (all products) they are left
+  // to dal_state_jacobian, which forms them from the local blocks (O(N^2) storage and work
+  // otherwise for a chain, once per output); callers that read J ask for it alone
+  if (!sys->store_J || (sys->aba && (need & DAL_P_ALL) == DAL_P_ALL)) need &= ~DAL_P_J;
   if ((rc = dal__kinematics(sys, st, (need & DAL_P_J) != 0)) != 0) return rc;
   // M of a tree with a link that is not a translation is assembled through J
   if ((need & DAL_P_MLOW) && sys->dense_M && !st->tree && !(st->have & DAL_P_J))
