@@ -8,6 +8,8 @@
 #   - every DAE configuration beside the default on the 32-link chain at rtol 1e-3 ... 1e-10
 #     (dal_bench_dae configs -> dae_configs.csv, wall times of interleaved runs, and
 #     bench/dae_configs_ir.sh -> dae_configs_ir.csv, instructions; ratio default / best per rtol);
+#   - the large chain in minimal coordinates against the hand-written O(N) chain, in
+#     instructions per run and per right-hand side (bench/min_ir.sh -> min_ir.csv);
 #   - the tables of docs/performance.md between <!-- dae:begin/end --> (bench/dae_report.sh).
 # Usage: bench/dae.sh [--before COMMIT] [--full]
 set -euo pipefail
@@ -30,7 +32,7 @@ build() { # source dir, build dir
     -DDAL_BUILD_EXAMPLES=OFF -DDAL_BUILD_BENCH=ON >/dev/null
   cmake --build "$2" -j 2 --target dal_bench_dae >/dev/null
 }
-rm -f "$out/dae_ir.csv" "$out/dae_ratio.csv"
+rm -f "$out/dae_ir.csv" "$out/dae_ratio.csv" "$out/min_ir.csv"
 if [[ -n $before ]]; then
   # the older library with this tree's benchmark program
   src=$(mktemp -d)
@@ -44,6 +46,7 @@ if [[ -n $before ]]; then
   build "$src" "$src/build"
   "$root/bench/dae_ir.sh" "$src/build/bench/dal_bench_dae" "$out" "before ($before)"
   "$root/bench/dae_configs_ir.sh" "$src/build/bench/dal_bench_dae" "$out" dae_configs_ir_before.csv
+  "$root/bench/min_ir.sh" "$src/build/bench/dal_bench_dae" "$out" "before ($before)"
 else
   rm -f "$out/dae_configs_ir_before.csv"
 fi
@@ -51,6 +54,7 @@ bdir=${DAL_DAE_BUILD_DIR:-$root/build-prof}
 build "$root" "$bdir"
 head=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
 "$root/bench/dae_ir.sh" "$bdir/bench/dal_bench_dae" "$out" "after ($head)"
+"$root/bench/min_ir.sh" "$bdir/bench/dal_bench_dae" "$out" "after ($head)"
 "$bdir/bench/dal_bench_dae" configs "$mode" --out "$out"
 "$root/bench/dae_configs_ir.sh" "$bdir/bench/dal_bench_dae" "$out"
 {

@@ -107,6 +107,48 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/dae
       }' "$before" "$dir/dae_configs_ir.csv" "$dir/dae_configs.csv"
     echo
   fi
+  if [[ -s $dir/min_ir.csv ]]; then
+    echo "**The large chain in minimal coordinates against the hand-written O(N) chain**"
+    echo "(\`min_ir.csv\`, \`bench/min_ir.sh\`): the library's automatic route (the"
+    echo "articulated-body recursion) and the chain derived by hand in its O(N) form (rod"
+    echo "tensions from a tridiagonal system), both by CVODE Adams at the same local tolerance"
+    echo "(rtol 1e-6: the same steps, equal right-hand-side counts), the horizons of the"
+    echo "cost-growth runs; instructions of one run each. Per right-hand side and link: the"
+    echo "library's evaluation (kinematics + forces + recursion + the rest of the pipeline;"
+    echo "it includes the run's final evaluation of every output, which up to 512 coordinates"
+    echo "assembles the dense M, O(N^2)) against the hand-written function; the rest of each"
+    echo "run is CVODE's own work (the same code on both sides) and the setup."
+    echo
+    echo "| | N | rhs | library | hand-written | ratio | per rhs and link: library (kinematics / forces / recursion) | hand-written |"
+    echo "|---|---:|---:|---:|---:|---:|---|---:|"
+    awk -F, 'NR > 1 {
+        e = $4 * $2
+        printf "| %s | %d | %d | %.3g | %.3g | %.2f | %.0f (%.0f / %.0f / %.0f) | %.0f |\n", $1, $2,
+               $4, $6, $7, $8, $9 / e, $11 / e, $12 / e, $13 / e, $10 / ($5 * $2)
+      }' "$dir/min_ir.csv"
+    echo
+    # least-squares exponents over N of the last label (per simulated second, per rhs)
+    awk -F, 'NR > 1 { lab[NR] = $1; last = $1 }
+      NR > 1 { L[NR] = $0 }
+      END {
+        n = 0
+        for (i in L) {
+          split(L[i], f, ",")
+          if (f[1] != last) continue
+          x = log(f[2]); ++n
+          y1 = log(f[6] / f[3]); y2 = log(f[7] / f[3]); y3 = log(f[9] / f[4]); y4 = log(f[10] / f[5])
+          sx += x; sxx += x * x; s1 += y1; s2 += y2; s3 += y3; s4 += y4
+          p1 += x * y1; p2 += x * y2; p3 += x * y3; p4 += x * y4
+          if (f[8] > worst) { worst = f[8]; wn = f[2] }
+        }
+        den = n * sxx - sx * sx
+        if (n < 2 || den == 0) exit
+        printf "Fitted exponents (%s, N = 128 ... 4096): instructions per simulated second N^%.2f for the library and N^%.2f for the hand-written chain; per right-hand side N^%.2f and N^%.2f (target <= 1.1). Largest ratio %.2f at N = %d (target 1.5).\n",
+               last, (n * p1 - sx * s1) / den, (n * p2 - sx * s2) / den, (n * p3 - sx * s3) / den,
+               (n * p4 - sx * s4) / den, worst, wn
+      }' "$dir/min_ir.csv"
+    echo
+  fi
 } >"$out"
 
 if [[ -f $doc ]] && grep -q '<!-- dae:begin -->' "$doc"; then
