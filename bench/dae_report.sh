@@ -13,10 +13,11 @@ out=$dir/dae_summary.md
 meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/dae_machine.txt"; }
 
 {
-  echo "_Measured $(meta date), $(meta nproc) cores, $(meta cpu); \`bench/dae.sh"
-  [[ $(meta before) != - ]] && printf ' --before %s' "$(meta before)"
-  echo "\` at commit $(meta commit). Computed by \`bench/dae_report.sh\` from"
-  echo "\`dae_ir.csv\`, \`dae_ratio.csv\` and \`dae_configs.csv\`._"
+  cmd="bench/dae.sh"
+  [[ $(meta before) != - ]] && cmd="$cmd --before $(meta before)"
+  echo "_Measured $(meta date), $(meta nproc) cores, $(meta cpu); \`$cmd\` at commit"
+  echo "$(meta commit). Computed by \`bench/dae_report.sh\` from \`dae_ir.csv\`, \`dae_ratio.csv\`,"
+  echo "\`dae_configs.csv\`, \`dae_configs_ir.csv\` and \`min_ir.csv\`._"
   echo
   if [[ -s $dir/dae_ir.csv ]]; then
     echo "**Where the instructions go** (\`dae_ir.csv\`; callgrind, one run inside the measured"
@@ -118,6 +119,8 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/dae
     echo "it includes the run's final evaluation of every output, which up to 512 coordinates"
     echo "assembles the dense M, O(N^2)) against the hand-written function; the rest of each"
     echo "run is CVODE's own work (the same code on both sides) and the setup."
+    echo
+    echo "(Before, the forces column is all of dal__dynamics: forces, Q, c and the energies.)"
     echo
     echo "| | N | rhs | library | hand-written | ratio | per rhs and link: library (kinematics / forces / recursion) | hand-written |"
     echo "|---|---:|---:|---:|---:|---:|---|---:|"
