@@ -48,7 +48,7 @@ for N in 1 2 4 8 16 32; do
     read -r id rd < <(count ir dense "$N" "$m" "$rtol" "$t1")
     awk -v N="$N" -v m="$m" -v r="$rtol" -v t="$t1" -v il="$il" -v ih="$ih" -v rl="$rl" \
       -v rh="$rh" -v it="$it" -v rt="$rt" -v id="$id" -v rd="$rd" 'BEGIN {
-        printf "%d,%s,%s,%s,%d,%d,%.4f,%d,%d,%d,%.4f,%d,%d,%.4f,%d\n", N, m, r, t, il, ih,
+        printf "%d,%s,%s,%s,%.0f,%.0f,%.4f,%d,%d,%.0f,%.4f,%d,%.0f,%.4f,%d\n", N, m, r, t, il, ih,
                il / ih, rl, rh, it, il / it, rt, id, id / ih, rd }' >>"$out"
     echo "overhead_ir N=$N $m: $(tail -1 "$out")" >&2
   done
@@ -63,7 +63,7 @@ for N in 128 256 512 1024 2048 4096; do
   read -r il rl < <(count ir lib "$N" adams 1e-6 "$h")
   read -r it rt < <(count ir tridiag "$N" adams 1e-6 "$h")
   awk -v N="$N" -v t="$h" -v il="$il" -v it="$it" -v rl="$rl" -v rt="$rt" 'BEGIN {
-      printf "%d,adams,1e-06,%s,%d,%d,%.4f,%d,%d\n", N, t, il, it, il / it, rl, rt }' >>"$out"
+      printf "%d,adams,1e-06,%s,%.0f,%.0f,%.4f,%d,%d\n", N, t, il, it, il / it, rl, rt }' >>"$out"
   echo "cost_ir N=$N: $(tail -1 "$out")" >&2
 done
 
@@ -91,6 +91,6 @@ for N in 4 16 32 64 72 128; do
   read -r il rl < <(count irroute "$N" recursive 1e-6 0.2)
   read -r ik rk < <(count irroute "$N" dense 1e-6 0.2)
   awk -v N="$N" -v il="$il" -v ik="$ik" -v rl="$rl" -v rk="$rk" 'BEGIN {
-      printf "%d,%d,%d,%d,%.4f,%d,%d\n", N, N, il, ik, il / ik, rl, rk }' >>"$out"
+      printf "%d,%d,%.0f,%.0f,%.4f,%d,%d\n", N, N, il, ik, il / ik, rl, rk }' >>"$out"
   echo "routes_ir: $(tail -1 "$out")" >&2
 done

@@ -15,7 +15,11 @@
 //                            z_k = L_k^-1 (tau_k - Lc_k' pA_k),  pA_p += Lp_k' (pA_k + W_k z_k)
 //   forward, roots first:    x_k = L_k^-T (z_k - W_k' Lp_k a_p),  a_k = Lp_k a_p + Lc_k x_k
 // with IA_k starting at m_k I and pA_k at 0. Accelerations are x for tau = Q - c (the same Q
-// and c the dense route uses). The pivots of the D_k are those of an LDL' factorization of M
+// and c the dense route uses); when every force acts on the particles (no generalized force,
+// no potential over q) they come instead from tau = 0 with pA_k starting at the particle load
+// m_k gamma_k - F_k, Featherstone's bias form: the same equations (Q - c = sum J_k' (F_k -
+// m_k gamma_k)) without forming Q and c, so an integrator's right-hand side skips them
+// (eval.c). The pivots of the D_k are those of an LDL' factorization of M
 // that eliminates leaves first: the same relative test as the dense Cholesky names a
 // degenerate coordinate. Cost O(N (d^3 + d nc^2 + nc^3)) instead of O(n^3).
 //
@@ -53,6 +57,7 @@ struct dal_aba {
   double *piv;      // pivot of each coordinate (n)
   double *pA, *acc; // bias forces and accelerations (N x d)
   double *z;        // L_k^-1 (tau_k - Lc_k' pA_k) per coordinate (n)
+  double *zero;     // a zero load on the coordinates (n)
   double pmax;      // largest pivot of the last factorization (the scale of M)
   // the loop system (m > 0)
   int metric;     // factorization held: -1 none, DAL_KKT_IDENTITY or DAL_KKT_MASS
@@ -93,6 +98,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
   w->pA = calloc(Nd + 1, sizeof(double));
   w->acc = calloc(Nd + 1, sizeof(double));
   w->z = calloc(n + 1, sizeof(double));
+  w->zero = calloc(n + 1, sizeof(double));
   w->metric = -1;
   if (m) {
     w->Y = calloc(n * m, sizeof(double));
@@ -100,7 +106,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
     w->x0 = calloc(n, sizeof(double));
     w->r = calloc(m, sizeof(double));
   }
-  if (!w->IA || !w->Lf || !w->W || !w->piv || !w->pA || !w->acc || !w->z ||
+  if (!w->IA || !w->Lf || !w->W || !w->piv || !w->pA || !w->acc || !w->z || !w->zero ||
       (m && (!w->Y || !w->S || !w->x0 || !w->r))) {
     dal__aba_free(w);
     return NULL;
@@ -111,7 +117,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
 void dal__aba_free(struct dal_aba *w) {
   if (!w) return;
   free(w->node);
-  double *p[] = {w->IA, w->Lf, w->W, w->piv, w->pA, w->acc, w->z, w->Y, w->S, w->x0, w->r};
+  double *p[] = {w->IA, w->Lf, w->W, w->piv, w->pA, w->acc, w->z, w->zero, w->Y, w->S, w->x0, w->r};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(w);
@@ -225,17 +231,19 @@ static inline void pass_up(const aba_node *nd, const int d, const double *Lp, co
 }
 
 // The backward pass for d = 2 or 3 (a constant once inlined): articulated inertias and, for a
-// load tau (nullable), the bias forces in the same sweep.
+// load tau on the coordinates (nullable), the bias forces in the same sweep, starting from the
+// particle loads m gamma - F when `loads` is set, else from 0.
 static inline void factor_pass(struct dal_aba *w, const dal_state *st, const double *mass, int N,
-                               const int d, const double *tau) {
+                               const int d, const double *tau, int loads) {
   const int dd = d * d;
   double *restrict IA = w->IA, *restrict pA = w->pA;
-  // every articulated inertia starts as its particle's mass, every bias force at 0
+  const double *gam = st->gamma, *F = st->F;
+  // every articulated inertia starts as its particle's mass, every bias force at its load
   for (int k = 0; k < N; ++k)
     for (int a = 0; a < d; ++a) {
       for (int b = 0; b < d; ++b)
         IA[k * dd + a * d + b] = a == b ? mass[k] : 0.0;
-      pA[k * d + a] = 0.0;
+      pA[k * d + a] = loads ? mass[k] * gam[k * d + a] - F[k * d + a] : 0.0;
     }
   for (int k = N - 1; k >= 0; --k) {
     const aba_node *nd = &w->node[k];
@@ -333,9 +341,9 @@ static int check_pivots(const dal_system *sys, dal_state *st, const char *what) 
 static int factor(const dal_system *sys, dal_state *st, const char *what) {
   DAL_NEED(st, DAL_P_KIN);
   if (sys->dim == 2)
-    factor_pass(st->aba, st, st->prm.mass, sys->N, 2, NULL);
+    factor_pass(st->aba, st, st->prm.mass, sys->N, 2, NULL, 0);
   else
-    factor_pass(st->aba, st, st->prm.mass, sys->N, 3, NULL);
+    factor_pass(st->aba, st, st->prm.mass, sys->N, 3, NULL, 0);
   return check_pivots(sys, st, what);
 }
 
@@ -420,21 +428,31 @@ void dal__aba_solve(const dal_system *sys, dal_state *st, const double *tau, dou
 }
 
 int dal__aba_accel(const dal_system *sys, dal_state *st) {
-  DAL_NEED(st, DAL_P_KIN | DAL_P_DYN);
-  int N = sys->N;
-  // tau = Q - c, then one backward sweep (inertias and biases) and one forward sweep
-  for (int j = 0; j < sys->n; ++j)
-    st->qddot[j] = st->Q[j] - st->c[j];
-  if (sys->dim == 2)
-    factor_pass(st->aba, st, st->prm.mass, N, 2, st->qddot);
+  DAL_NEED(st, DAL_P_KIN);
+  struct dal_aba *w = st->aba;
+  int N = sys->N, d = sys->dim;
+  // every force on the particles: the bias forces start at the particle loads m gamma - F
+  // (Featherstone's form; no Q and c needed, so the right-hand side can skip them); with
+  // generalized forces too, tau = Q - c (dal__dynamics)
+  int loads = !sys->npotq && !sys->ngenforce;
+  const double *tau = w->zero;
+  if (!loads) {
+    DAL_NEED(st, DAL_P_DYN);
+    for (int j = 0; j < sys->n; ++j)
+      st->qddot[j] = st->Q[j] - st->c[j];
+    tau = st->qddot;
+  }
+  // one backward sweep (inertias and biases) and one forward sweep
+  if (d == 2)
+    factor_pass(w, st, st->prm.mass, N, 2, tau, loads);
   else
-    factor_pass(st->aba, st, st->prm.mass, N, 3, st->qddot);
+    factor_pass(w, st, st->prm.mass, N, 3, tau, loads);
   int rc = check_pivots(sys, st, NULL);
   if (rc) return rc;
-  if (sys->dim == 2)
-    forward_pass(st->aba, st, N, 2, st->qddot);
+  if (d == 2)
+    forward_pass(w, st, N, 2, st->qddot);
   else
-    forward_pass(st->aba, st, N, 3, st->qddot);
+    forward_pass(w, st, N, 3, st->qddot);
   return DAL_OK;
 }
 

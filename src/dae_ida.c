@@ -20,6 +20,7 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "form_dae.h"
+#include "nvec.h"
 #include "solve_internal.h"
 
 typedef struct ida_mem {
@@ -35,7 +36,6 @@ typedef struct ida_mem {
   N_Vector y, yp, id, atol, w1, w2;
   SUNMatrix A;
   SUNLinearSolver LS;
-  double *val; // sparse Newton matrix values (pattern f.pat)
   // statistics already added to the state
   long nst, nre, nje, nni, netf, ncfn;
   // failures seen inside callbacks and from IDA's error handler
@@ -101,19 +101,19 @@ static int jacobian(double t, double cj, N_Vector yy, N_Vector yp, N_Vector rr, 
   (void)t2;
   (void)t3;
   dal_dae_sink s = {w->sparse ? DAL_SINK_SPARSE : DAL_SINK_DENSE, 0, NULL,
-                    w->sparse ? w->val : SM_DATA_D(J)};
-  if (w->sparse) memset(w->val, 0, (size_t)w->f.pat.nnz * sizeof(double));
-  int rc = dal__dae_newton(&w->f, t, cj, N_VGetArrayPointer(yy), &s);
-  if (rc) return cb_fail(w, rc);
+                    w->sparse ? SM_DATA_S(J) : SM_DATA_D(J)};
   if (w->sparse) {
-    // IDA zeroes the matrix, pattern included, before each call: write it again
+    // IDA zeroes the matrix, pattern included, before each call: write the pattern, and sum
+    // the entries straight into its values
     sunindextype *cp = SM_INDEXPTRS_S(J), *ri = SM_INDEXVALS_S(J);
     for (int j = 0; j <= w->f.neq; ++j)
       cp[j] = w->f.pat.colptr[j];
     for (int k = 0; k < w->f.pat.nnz; ++k)
       ri[k] = w->f.pat.rowind[k];
-    memcpy(SM_DATA_S(J), w->val, (size_t)w->f.pat.nnz * sizeof(double));
+    memset(SM_DATA_S(J), 0, (size_t)w->f.pat.nnz * sizeof(double));
   }
+  int rc = dal__dae_newton(&w->f, t, cj, N_VGetArrayPointer(yy), &s);
+  if (rc) return cb_fail(w, rc);
   return 0;
 }
 
@@ -129,7 +129,6 @@ void dal__ida_free(void *mem) {
   for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
     if (vs[i]) N_VDestroy(vs[i]);
   if (w->ctx) SUNContext_Free(&w->ctx);
-  free(w->val);
   dal__dae_free(&w->f);
   free(w);
 }
@@ -222,6 +221,12 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d unknowns", w->neq);
     goto fail;
   }
+  // the library's vector kernels; IDA's work vectors are clones of these and inherit them
+  {
+    N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
+    for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
+      dal__nvec_fast(vs[i]);
+  }
   // error test on q and v; lambda and mu (algebraic) out of it. Index-3 keeps only q in
   // the error test, the usual practice for the higher-index variables of a BDF code (Brenan,
   // Campbell and Petzold, sec. 5.4): with v in it the steps collapse at rtol <= 1e-6.
@@ -257,8 +262,7 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   if (opts->hmax > 0) IDA_CHECK(IDASetMaxStep(w->ida, opts->hmax));
   if (opts->hmin > 0) IDA_CHECK(IDASetMinStep(w->ida, opts->hmin));
   if (w->sparse) {
-    if (dal__dae_pattern(&w->f) ||
-        !(w->val = malloc(((size_t)w->f.pat.nnz + 1) * sizeof(double)))) {
+    if (dal__dae_pattern(&w->f)) {
       rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for the sparse Jacobian");
       goto fail;
     }

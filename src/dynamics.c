@@ -145,6 +145,29 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
   return DAL_OK;
 }
 
+int dal__forces(const dal_system *sys, dal_state *st) {
+  DAL_NEED(st, DAL_P_KIN);
+  int d = sys->dim, N = sys->N;
+  if (sys->nspring || sys->ndamper || sys->npotr || sys->nforce) {
+    double U = 0.0;
+    return N > 0 ? applied_forces(sys, st, &U, NULL) : DAL_OK;
+  }
+  // gravity alone (or no force): F = 0 + m g as applied_forces sums it, without U
+  double z = 0.0;
+  for (int k = 0; k < N; ++k)
+    for (int b = 0; b < d; ++b) {
+      double f = 0.0 + (st->prm.has_gravity ? st->prm.mass[k] * st->prm.g[b] : 0.0);
+      st->F[k * d + b] = f;
+      z += f;
+    }
+  // a non-finite sum: the general routine names the force
+  if (!isfinite(z)) {
+    double U = 0.0;
+    return applied_forces(sys, st, &U, NULL);
+  }
+  return DAL_OK;
+}
+
 // generalized terms from user callbacks over q: Q += Q_user - dU/dq, U += U(q); pw as in
 // applied_forces (Q_user . qdot and dU(q,t)/dt)
 int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) {

@@ -145,6 +145,10 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   st->have = 0;
   if ((rc = check_point(sys, st)) != 0) return rc;
   if (sys->lag) return eval_lagrangian(sys, st);
+  // accelerations alone on the recursion, with every force on the particles: the forces F are
+  // all it reads (aba.c), so Q, c and the energies are skipped (an integrator's right-hand side)
+  int lean = sys->aba && m == 0 && !sys->npotq && !sys->ngenforce &&
+             (need & ~(DAL_P_KIN | DAL_P_ACC)) == 0 && (need & DAL_P_ACC);
   if (need & DAL_P_POW) need |= DAL_P_OUT | DAL_P_PW;
   if (need & DAL_P_PW) need |= DAL_P_DYN;
   // what each product needs: outputs need accelerations; accelerations need forces and M
@@ -160,13 +164,28 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   if ((need & DAL_P_CON) && !sys->aba) need |= DAL_P_J;
   if (need & DAL_P_M) need |= DAL_P_MLOW;
   if (need & DAL_P_MLOW) need |= DAL_P_DYN;
-  if (!sys->store_J) need &= ~DAL_P_J;
+  // the recursion reads no global Jacobian: for an evaluated state (all products) they are left
+  // to dal_state_jacobian, which forms them from the local blocks (O(N^2) storage and work
+  // otherwise for a chain, once per output); callers that read J ask for it alone
+  if (!sys->store_J || (sys->aba && (need & DAL_P_ALL) == DAL_P_ALL)) need &= ~DAL_P_J;
   if ((rc = dal__kinematics(sys, st, (need & DAL_P_J) != 0)) != 0) return rc;
   // M of a tree with a link that is not a translation is assembled through J
   if ((need & DAL_P_MLOW) && sys->dense_M && !st->tree && !(st->have & DAL_P_J))
     dal__jacobians(sys, st);
   if ((need & DAL_P_CON) && m && (rc = dal__constraints(sys, st)) != 0) return rc;
   if (need & DAL_P_CON) st->have |= DAL_P_CON;
+  if (lean) {
+    // (a failing force is reported as dal__dynamics reports it)
+    if ((rc = dal__forces(sys, st)) != 0)
+      return rc == DAL_E_NONFINITE ? dal__blame_forces(sys, st) : rc;
+    if (dal__aba_accel(sys, st) == DAL_OK && first_nonfinite(st->qddot, sys->n) < 0) {
+      st->have |= DAL_P_ACC;
+      return DAL_OK;
+    }
+    // a degenerate coordinate or accelerations that overflow: the whole evaluation below
+    // names the cause, as it always has
+    st->have &= DAL_P_KIN | DAL_P_J | DAL_P_CON;
+  }
   if (need & DAL_P_DYN) {
     int want_M = (need & DAL_P_M) ? 2 : (need & DAL_P_MLOW) ? 1 : 0;
     st->pw[0] = st->pw[1] = 0.0;

@@ -57,6 +57,8 @@ void dal__dae_free(dal_dae *f) {
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   dal__csc_free(&f->pat);
+  free(f->pos);
+  f->pos = NULL;
   f->H = f->hv = f->Ju = f->tmp = f->Hq = f->dir = f->udot = f->g0 = NULL;
 }
 
@@ -149,22 +151,25 @@ void dal__dae_mask(const dal_dae *f, double *id) {
 // ---------------------------------------------------------------------------------------
 // Newton matrix dF/dy + cj dF/dy'
 
-static void jadd(const dal_dae *f, dal_dae_sink *s, int row, int col, double v) {
+// one entry: the sparse sink adds at the position recorded for the s->n-th entry by
+// dal__dae_pattern (no search per entry: the assembly visits the entries in a fixed order)
+static inline void jadd(const dal_dae *f, dal_dae_sink *s, int row, int col, double v) {
   switch (s->mode) {
+  case DAL_SINK_SPARSE:
+    DAL_ASSERT(s->n < f->npos && f->pos[s->n] == dal__csc_find(&f->pat, row, col));
+    s->val[f->pos[s->n++]] += v;
+    break;
+  case DAL_SINK_DENSE:
+    s->val[(size_t)col * f->neq + row] += v;
+    break;
   case DAL_SINK_COUNT:
     s->n++;
     break;
   case DAL_SINK_KEYS:
     s->keys[s->n++] = dal__csc_key(f->neq, row, col);
     break;
-  case DAL_SINK_SPARSE: {
-    int p = dal__csc_find(&f->pat, row, col);
-    DAL_ASSERT(p >= 0);
-    s->val[p] += v;
-    break;
-  }
-  default:
-    s->val[(size_t)col * f->neq + row] += v;
+  default: // DAL_SINK_POS
+    f->pos[s->n++] = dal__csc_find(&f->pat, row, col);
   }
 }
 
@@ -281,6 +286,7 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
   const dal_system *sys = f->sys;
   dal_state *st = f->st;
   int n = f->n, d = sys->dim, rc, values = s->mode >= DAL_SINK_SPARSE;
+  s->n = 0;
   double al = f->alpha, be = f->beta;
   // W' - P: cj on the diagonal (dP/dy is left out: a Newton approximation)
   if (f->off_w >= 0) jadd(f, s, f->off_w, f->off_w, cj);
@@ -362,14 +368,21 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
 int dal__dae_pattern(dal_dae *f) {
   dal_dae_sink s = {DAL_SINK_COUNT, 0, NULL, NULL};
   assemble(f, 1.0, NULL, &s);
-  s.keys = malloc((s.n + 1) * sizeof(long long));
+  size_t count = s.n;
+  s.keys = malloc((count + 1) * sizeof(long long));
   if (!s.keys) return -1;
   s.mode = DAL_SINK_KEYS;
-  s.n = 0;
   assemble(f, 1.0, NULL, &s);
+  dal__csc_free(&f->pat);
   int rc = dal__csc_build(&f->pat, f->neq, s.keys, s.n);
   free(s.keys);
-  return rc;
+  if (rc) return rc;
+  free(f->pos);
+  f->npos = count;
+  if (!(f->pos = malloc((count + 1) * sizeof(int)))) return -1;
+  s.mode = DAL_SINK_POS;
+  assemble(f, 1.0, NULL, &s);
+  return 0;
 }
 
 int dal__dae_newton(dal_dae *f, double t, double cj, const double *y, dal_dae_sink *out) {

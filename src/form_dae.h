@@ -19,25 +19,31 @@ typedef struct dal_dae {
   int off_l, off_mu; ///< offsets of lambda and mu in y (mu: -1 unless GGL)
   int off_w;         ///< offset of the work W (last unknown; -1 unless opts.work)
   dal_csc pat;       ///< pattern of the Newton matrix (after dal__dae_pattern)
+  int *pos;          ///< position in pat's values of each Newton-matrix entry, in assembly
+                     ///< order (after dal__dae_pattern; the sparse sink's addresses)
+  size_t npos;       ///< number of entries assembled (with repetitions)
   // geometric-stiffness scratch (max_in, max_out, largest constraint dependency count)
   double *H, *hv, *Ju, *tmp, *Hq, *dir, *udot, *g0;
 } dal_dae;
 
-/// Where Newton-matrix entries go: counted, recorded as keys, summed into a sparse value
-/// array of the pattern, or into a dense column-major matrix (leading dimension neq).
+/// Where Newton-matrix entries go: counted, recorded as keys, their positions in the pattern
+/// recorded (these three build the pattern), summed into a sparse value array of the pattern
+/// (through f->pos: the entries come in the same order every time), or into a dense
+/// column-major matrix (leading dimension neq).
 typedef struct dal_dae_sink {
-  int mode; ///< DAL_SINK_COUNT, DAL_SINK_KEYS, DAL_SINK_SPARSE, DAL_SINK_DENSE
-  size_t n;
+  int mode; ///< DAL_SINK_COUNT, DAL_SINK_KEYS, DAL_SINK_POS, DAL_SINK_SPARSE, DAL_SINK_DENSE
+  size_t n; ///< entries so far (start at 0)
   long long *keys;
   double *val;
 } dal_dae_sink;
-enum { DAL_SINK_COUNT, DAL_SINK_KEYS, DAL_SINK_SPARSE, DAL_SINK_DENSE };
+enum { DAL_SINK_COUNT, DAL_SINK_KEYS, DAL_SINK_POS, DAL_SINK_SPARSE, DAL_SINK_DENSE };
 
 /// Set up form f (sizes, scratch). Returns 0 or DAL_E_NOMEM.
 int dal__dae_init(dal_dae *f, const dal_system *sys, dal_state *st, dal_formulation form,
                   double alpha, double beta, int work);
 void dal__dae_free(dal_dae *f);
-/// The Newton matrix's pattern (f->pat). Returns 0 or -1 (out of memory).
+/// The Newton matrix's pattern (f->pat) and the position of every assembled entry in it
+/// (f->pos). Returns 0 or -1 (out of memory).
 int dal__dae_pattern(dal_dae *f);
 /// Evaluate the state at (t, q, v) from y: kinematics, constraint rows, forces (M through J).
 int dal__dae_eval(dal_dae *f, double t, const double *y);

@@ -334,6 +334,9 @@ int dal__constraints(const dal_system *sys, dal_state *st);
 int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw);
 /// generalized terms from user callbacks over q: Q += Q_user - dU/dq, *U += U(q); pw as above
 int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw);
+/// The applied forces F on the particles alone (no Q, c, energies): what the recursion's
+/// accelerations need when no force acts on the coordinates (eval.c). 0, or as dal__dynamics.
+int dal__forces(const dal_system *sys, dal_state *st);
 /// After dal__dynamics failed with DAL_E_NONFINITE: when a built-in force (gravity, a spring, a
 /// damper) or the sum of finite ones overflowed rather than a force callback, rewrite the
 /// message to name it (blame.c). Returns DAL_E_NONFINITE.

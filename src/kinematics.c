@@ -250,6 +250,14 @@ static int kinematics_map(const dal_system *sys, dal_state *st) {
   return DAL_OK;
 }
 
+// A particle placed by its own Cartesian coordinates (dal_map_cartesian2/3, no parent): the
+// identity map, whose jets give r = q, v = qdot, gamma = 0, local Jacobian I and dr/dt =
+// v - I qdot = 0 exactly; written out here because this is the whole kinematics of the
+// redundant-coordinate (DAE) scenes (tests/test_newton.c compares it with the jet path).
+static inline int cartesian_place(const dal_place *pl, int d) {
+  return pl->parent < 0 && pl->prim == (d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3);
+}
+
 // J_k = Lp_k J_parent + Lc_k over k's dependency columns (parents first)
 void dal__jacobians(const dal_system *sys, dal_state *st) {
   DAL_NEED(st, DAL_P_KIN);
@@ -262,6 +270,13 @@ void dal__jacobians(const dal_system *sys, dal_state *st) {
     int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k], nc = pl->ncoord;
     double *Jk = st->J + sys->pj_off[k];
     const double *Lk = st->Lc + sys->ploc_off[k];
+    if (cartesian_place(pl, d)) {
+      // the identity on k's own coordinates (its dependencies, sorted)
+      for (int a = 0; a < d; ++a)
+        for (int c = 0; c < ndk; ++c)
+          Jk[a * ndk + c] = dk[c] == coords[a] ? 1.0 : 0.0;
+      continue;
+    }
     memset(Jk, 0, (size_t)d * (size_t)ndk * sizeof(double));
     if (pl->parent >= 0)
       chain_particle(sys, st, pl->parent, st->Lp + (size_t)k * d * d, d, 0, d, dk, ndk, Jk);
@@ -310,6 +325,58 @@ static inline int place_translating1(const dal_system *sys, dal_state *st, int k
   return DAL_OK;
 }
 
+static void place_cartesian(const dal_system *sys, dal_state *st, int k, int d) {
+  const dal_place *pl = &sys->place[k];
+  const int *coords = sys->ipool + pl->coord_off;
+  double *Lk = st->Lc + sys->ploc_off[k];
+  for (int a = 0; a < d; ++a) {
+    int j = coords[a];
+    st->r[k * d + a] = st->q[j];
+    st->v[k * d + a] = st->qdot[j];
+    st->gamma[k * d + a] = 0.0;
+    st->drdt[k * d + a] = 0.0;
+    for (int i = 0; i < d; ++i)
+      Lk[a * d + i] = a == i;
+  }
+}
+
+// A particle hanging from its parent by a rod of length l at angle q (dal_map_hanging, the
+// links of planar chains): r = r_p + l (sin q, -cos q). Its two jet evaluations (along the
+// coordinate, then along the motion) written out with one sin and cos, in the jet path's own
+// arithmetic and order (dal_var, dal_sincos, dal_scale, dal_add/dal_sub of jet.h), so the
+// results agree bit for bit (tests/test_fastpath.c). Returns 0, or -1 when a result is not
+// finite (nothing is written; the jet path then names the failure).
+static int place_hanging(const dal_system *sys, dal_state *st, int k) {
+  const dal_place *pl = &sys->place[k];
+  int p = pl->parent, j = sys->ipool[pl->coord_off];
+  double l = st->prm.ppool[pl->param_off], q = st->q[j], qd = st->qdot[j];
+  const double *rp = st->r + p * 2, *vp = st->v + p * 2, *gp = st->gamma + p * 2;
+  const double *rtp = st->drdt + p * 2;
+  double sv = sin(q), cv = cos(q);
+  // along the coordinate (direction 1): the column Lc
+  double L0 = 0.0 + l * (cv * 1.0), L1 = 0.0 - l * (-sv * 1.0);
+  // along the motion: sin and cos of (q, qd, 0) and the parent's (r, v, gamma)
+  double sd = cv * qd, sdd = cv * 0.0 + -sv * qd * qd;
+  double cd = -sv * qd, cdd = -sv * 0.0 + -cv * qd * qd;
+  double r0 = rp[0] + l * sv, v0 = vp[0] + l * sd, g0 = gp[0] + l * sdd;
+  double r1 = rp[1] - l * cv, v1 = vp[1] - l * cd, g1 = gp[1] - l * cdd;
+  if (!isfinite(r0 + v0 + g0 + r1 + v1 + g1 + L0 + L1)) return -1;
+  double *Lp = st->Lp + (size_t)k * 4, *Lk = st->Lc + sys->ploc_off[k];
+  Lk[0] = L0;
+  Lk[1] = L1;
+  Lp[0] = Lp[3] = 1.0;
+  Lp[1] = Lp[2] = 0.0;
+  st->r[k * 2] = r0;
+  st->r[k * 2 + 1] = r1;
+  st->v[k * 2] = v0;
+  st->v[k * 2 + 1] = v1;
+  st->gamma[k * 2] = g0;
+  st->gamma[k * 2 + 1] = g1;
+  st->drdt[k * 2] = v0 - (vp[0] - rtp[0]) - L0 * qd;
+  st->drdt[k * 2 + 1] = v1 - (vp[1] - rtp[1]) - L1 * qd;
+  return 0;
+}
+
 int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   int d = sys->dim, rc;
   st->tree = sys->place != NULL;
@@ -320,6 +387,13 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   if (sys->map) return kinematics_map(sys, st);
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = &sys->place[k];
+    if (cartesian_place(pl, d)) {
+      place_cartesian(sys, st, k, d);
+      continue;
+    }
+    if (pl->prim == &dal_map_hanging && d == 2 && pl->parent >= 0 && pl->ncoord == 1 &&
+        place_hanging(sys, st, k) == 0)
+      continue;
     if (pl->ncoord == 1 && pl->parent >= 0 && (pl->prim->flags & DAL_PRIM_TRANSLATES) &&
         pl->prim->nin == d + 1) {
       rc = d == 2 ? place_translating1(sys, st, k, 2) : place_translating1(sys, st, k, 3);
@@ -425,6 +499,57 @@ static void chain_local(const dal_system *sys, const dal_state *st, int p, const
   }
 }
 
+// A rod, |r_b - r_a| - L between two particles (dal_con_distance2/3) or to a fixed point x0
+// (dal_con_anchor2/3 without a moving-point context): the local row G = (-e, e) / |e|, phi,
+// phidot and gamma_phi from the same arithmetic, in the same order, as the jet path (dal_sub,
+// dal_sq, dal_add, dal_sqrt of jet.h), so the results agree bit for bit (tests/test_newton.c).
+// Rods are most of the constraints of redundant-coordinate scenes, and this replaces nin + 1
+// jet evaluations by a few flops. Returns 0 when it applies and the rod has a length;
+// otherwise nothing is written and the jet path runs (it names a zero-length rod).
+static int rod_rows(const dal_system *sys, dal_state *st, const dal_con *c, const dal_inst *in) {
+  int d = sys->dim, two = c->prim == &dal_con_distance2 || c->prim == &dal_con_distance3;
+  const double *p = in->param;
+  const int *parts = in->parts;
+  // e = r_b - r_a (or r - x0) with its first and second derivative along the motion
+  const double *ra = two ? st->r + parts[0] * d : p + 1, *rb = st->r + parts[two] * d;
+  const double *vb = st->v + parts[two] * d, *gb = st->gamma + parts[two] * d;
+  double e[3], s = 0.0, sd = 0.0, sdd = 0.0;
+  for (int i = 0; i < d; ++i) {
+    e[i] = rb[i] - ra[i];
+    double w = two ? vb[i] - st->v[parts[0] * d + i] : vb[i];
+    double g = two ? gb[i] - st->gamma[parts[0] * d + i] : gb[i];
+    s += e[i] * e[i];
+    sd += 2.0 * e[i] * w;
+    sdd += 2.0 * (w * w + e[i] * g);
+  }
+  // |e| as dal_sqrt: the derivatives d, dd of the square root of (s, sd, sdd)
+  double len = sqrt(s), len2 = 2.0 * len;
+  double dl = 0.0, ddl = 0.0;
+  if (sd != 0.0 || sdd != 0.0) {
+    dl = sd / len2;
+    ddl = (sdd - 2.0 * dl * dl) / len2;
+  }
+  if (!(len > 0.0) || !isfinite(len2) || !isfinite(dl) || !isfinite(ddl)) return -1;
+  // the local row: along the input direction of e_i, s' = +-2 e_i and |e|' = s' / (2 |e|)
+  for (int i = 0; i < d; ++i) {
+    double gi = 2.0 * e[i] / len2;
+    if (!isfinite(gi)) return -1;
+    if (two) st->loc[i] = -2.0 * e[i] / len2;
+    st->loc[(two ? d : 0) + i] = gi;
+  }
+  st->phi[c->row] = len - p[0];
+  st->phidot[c->row] = dl;
+  st->gphi[c->row] = ddl;
+  return 0;
+}
+
+// a rod on particle positions (its inputs may also be given as coordinates: the jet path)
+static int is_rod(const dal_con *c) {
+  if (c->ncoord) return 0;
+  if (c->prim == &dal_con_distance2 || c->prim == &dal_con_distance3) return c->npart == 2;
+  return (c->prim == &dal_con_anchor2 || c->prim == &dal_con_anchor3) && !c->ctx && c->npart == 1;
+}
+
 int dal__constraints(const dal_system *sys, dal_state *st) {
   int d = sys->dim, rc;
   // compact G through the global Jacobians, or (recursive systems) through the local blocks
@@ -435,26 +560,39 @@ int dal__constraints(const dal_system *sys, dal_state *st) {
     const dal_con *c = &sys->con[ci];
     dal_inst in = dal__inst(sys, st, -1 - ci);
     int nin = in.prim->nin, nout = in.prim->nout;
-    rc = local_jacobian(sys, st, &in, -1 - ci, 0);
-    if (rc) return rc;
-    memcpy(st->Gl + sys->con_loff[ci], st->loc, (size_t)nout * (size_t)nin * sizeof(double));
-    local_motion(sys, st, &in);
-    load_inputs(sys, st, &in, st->dir, st->dir + nin);
-    rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), -1 - ci);
-    if (rc) return rc;
-    for (int r = 0; r < nout; ++r) {
-      st->phi[c->row + r] = st->jout[r].v;
-      st->phidot[c->row + r] = st->jout[r].d;
-      st->gphi[c->row + r] = st->jout[r].dd;
+    if (!is_rod(c) || rod_rows(sys, st, c, &in) != 0) {
+      rc = local_jacobian(sys, st, &in, -1 - ci, 0);
+      if (rc) return rc;
+      local_motion(sys, st, &in);
+      load_inputs(sys, st, &in, st->dir, st->dir + nin);
+      rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), -1 - ci);
+      if (rc) return rc;
+      for (int r = 0; r < nout; ++r) {
+        st->phi[c->row + r] = st->jout[r].v;
+        st->phidot[c->row + r] = st->jout[r].d;
+        st->gphi[c->row + r] = st->jout[r].dd;
+      }
     }
+    memcpy(st->Gl + sys->con_loff[ci], st->loc, (size_t)nout * (size_t)nin * sizeof(double));
     const int *dc = sys->cdep + c->dep_off;
     double *G = st->G + c->g_off;
     memset(G, 0, (size_t)nout * (size_t)c->ndep * sizeof(double));
-    for (int a = 0; a < c->npart; ++a)
-      if (have_J)
-        chain_particle(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
-      else
-        chain_local(sys, st, in.parts[a], st->loc, nin, a * d, nout, dc, c->ndep, G);
+    for (int a = 0; a < c->npart; ++a) {
+      int p = in.parts[a];
+      if (sys->place && cartesian_place(&sys->place[p], d)) {
+        // J_p = I on p's own coordinates: the local columns are G's columns
+        const int *cp = sys->ipool + sys->place[p].coord_off;
+        for (int b = 0; b < d; ++b) {
+          int col = find_sorted(dc, c->ndep, cp[b]);
+          for (int r = 0; r < nout; ++r)
+            G[r * c->ndep + col] += st->loc[r * nin + a * d + b];
+        }
+      } else if (have_J) {
+        chain_particle(sys, st, p, st->loc, nin, a * d, nout, dc, c->ndep, G);
+      } else {
+        chain_local(sys, st, p, st->loc, nin, a * d, nout, dc, c->ndep, G);
+      }
+    }
     for (int i = 0; i < c->ncoord; ++i) {
       int col = find_sorted(dc, c->ndep, in.coords[i]);
       for (int r = 0; r < nout; ++r)

@@ -36,8 +36,15 @@
 #define DAL_RANK_MAX_ROWS 512
 #define DAL_RANK_MAX_ENTRIES 1000000.0
 
-/// Default number of unknowns from which DAL_LINSOL_AUTO uses KLU in IDA.
-#define DAL_SPARSE_THRESHOLD 200
+/// Default number of unknowns from which DAL_LINSOL_AUTO uses KLU in IDA (opts.sparse_threshold;
+/// systems without a dense M use KLU at any size). Measured in instructions (callgrind,
+/// bench/dae_bench.c) on the N-link Cartesian chain in GGL (6N unknowns) at rtol 1e-4 and
+/// 1e-8, dense LU / KLU: 1.0 at 6 unknowns, 1.3-1.4 at 12, 1.5 at 18, 1.8-2.0 at 24, 3.1-3.3 at
+/// 48, 5.6-6.3 at 96, 13-14 at 192 (it was 200: the 32-link chain then ran dense, 10-12x slower
+/// than with KLU at every rtol from 1e-3 to 1e-9, bench/dae_configs). SUNDIALS' dense LU as
+/// Debian packages it is compiled without optimization, which moves the crossover down; with
+/// an optimized one KLU still wins well below 192 unknowns.
+#define DAL_SPARSE_THRESHOLD 12
 
 /// Smallest local relative tolerance handed to any integrator: below it the error
 /// estimates are dominated by rounding and the step size collapses.

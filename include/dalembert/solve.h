@@ -204,7 +204,7 @@ typedef struct dal_solve_opts {
                           ///< (both >= 0, with 2 alpha and beta^2 finite)
   int project;            ///< INDEX1: project q and v onto the manifold after each step
                           ///< (ODE methods; with BDF/IDA: DAL_E_UNSUPPORTED)
-  int sparse_threshold;   ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (200)
+  int sparse_threshold;   ///< DAL_LINSOL_AUTO switches to KLU at this many unknowns (12)
   int work;               ///< if nonzero, integrate the work W done by non-conservative
                           ///< forces, time-dependent potentials and moving constraints
                           ///< with the motion (dal_energies.W; E - W is then conserved);
