@@ -38,11 +38,11 @@ extern "C" {
 ///
 /// | method / form            | c       | worst error / rtol (t = 10) | bead, 1000 periods |
 /// |--------------------------|---------|-----------------------------|--------------------|
-/// | DOPRI5                   | 0.01    | 2.4                         | 12.8               |
-/// | Fehlberg 7(8)            | 0.01    | 2.3                         | 10.6               |
+/// | DOPRI5                   | 0.01    | 1.0                         | 12.1               |
+/// | Fehlberg 7(8)            | 0.01    | 2.4                         | 10.3               |
 /// | Bulirsch-Stoer           | 0.005   | 9.0                         | 8.4                |
-/// | Adams (CVODE)            | 0.005   | 8.3                         | 7.7                |
-/// | BDF (CVODE)              | 0.0005  | 7.8                         | 10.2               |
+/// | Adams (CVODE)            | 0.005   | 8.3                         | 3.5                |
+/// | BDF (CVODE)              | 0.0005  | 11.7 (exact Newton matrix)  | 9.5                |
 /// | GGL (IDA)                | 0.001   | 4.0 to rtol 1e-9; clamped   | 18.2 (to 1e-8)     |
 /// | index-1 + projection     | x 0.2   | 1.1 (BS), 2.1 (DOPRI5)      |                    |
 /// | index-1 in IDA           | 0.0002  | drifts: 34 to 1e-9, 77 at 1e-10 (no stabilization) |
