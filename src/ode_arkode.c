@@ -14,6 +14,7 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
+#include "nvec.h"
 #include "solve_internal.h"
 
 /// consecutive recoverable right-hand-side failures tolerated before giving up
@@ -261,6 +262,9 @@ int dal__erk_create(dal_ode_integ *ig) {
   m->dky = N_VNew_Serial(ig->ny, m->ctx);
   if (!m->y || !m->ele || !m->ewt || !m->dky)
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
+  // the library's vector kernels (nvec.c); the integrator's work vectors are clones of y
+  dal__nvec_fast(m->y);
+  dal__nvec_fast(m->dky);
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   m->ark = ERKStepCreate(erk_rhs, ig->t, m->y, m->ctx);
   if (!m->ark) return DAL_FAIL(st, DAL_E_NOMEM, "ERKStepCreate failed");

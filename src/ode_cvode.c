@@ -18,6 +18,7 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include "analysis_internal.h"
+#include "nvec.h"
 #include "solve_internal.h"
 
 /// CVODE's Newton convergence coefficient with the exact Newton matrix (default 0.1): the
@@ -273,6 +274,9 @@ int dal__cvode_create(dal_ode_integ *ig) {
   m->dky = N_VNew_Serial(ig->ny, m->ctx);
   if (!m->y || !m->ele || !m->ewt || !m->dky)
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
+  // the library's vector kernels (nvec.c); the integrator's work vectors are clones of y
+  dal__nvec_fast(m->y);
+  dal__nvec_fast(m->dky);
   memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
   m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->ctx);
   if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
