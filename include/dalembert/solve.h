@@ -151,9 +151,9 @@ typedef enum dal_formulation {
 //   constraints (loops closed on the tree, a few Cartesian rods) the multipliers come from
 //   the m x m system G M^-1 G' lambda = ..., built from m recursion solves with unit loads;
 //   the dense or sparse KKT matrix in all coordinates is not formed. M is assembled only when
-//   asked for (dal_forward, dal_state_mass_matrix), and not at all above 512 coordinates, where
-//   the global Jacobians are not stored either (dal_state_jacobian forms them from the local
-//   blocks).
+//   asked for (dal_forward, dal_state_mass_matrix), and not at all above 512 coordinates; the
+//   global Jacobians are never stored in an evaluated state of a recursive system
+//   (dal_state_jacobian forms them from the local blocks on request).
 // - DAL_DYNAMICS_DENSE: M assembled (composite masses for translating trees, J'MJ otherwise)
 //   and factored by LAPACK Cholesky; the KKT matrix dense (dsytrf) or sparse (KLU).
 //
