@@ -32,7 +32,8 @@ mkdir -p "$out"
 } >"$out/machine.txt"
 "$bdir/bench/dal_bench" "$mode" --out "$out"
 "$root/bench/overhead_ir.sh" "$bdir/bench/dal_bench" "$out" "$mode"
-rm -f "$out"/*.png "$out"/*.svg
+# the charts bench/plots.gp draws; the symplectic ones (sym_*) belong to bench_symplectic.sh
+find "$out" -maxdepth 1 \( -name '*.png' -o -name '*.svg' \) ! -name 'sym_*' -delete
 # (gnuplot warns about curves without points, e.g. a formulation that failed at every rtol)
 gnuplot -e "dir='$out'" "$root/bench/plots.gp" 2>&1 | { grep -v "Skipping data file" || true; } >&2
 "$root/bench/report.sh" "$out" "$root/docs/performance.md"
