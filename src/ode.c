@@ -258,6 +258,7 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   double c = dal__tol_factor(meth) * prob->tol_factor;
   ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
   ig->atol = c * o->atol;
+  st->stats.rtol_used = ig->rtol; // the local tolerance, floor included (solve.h)
   ig->t = st->t;
   size_t ny = (size_t)ig->ny + 1;
   ig->y = calloc(ny, sizeof(double));

@@ -98,6 +98,11 @@ static void test_adaptive(void) {
       printf("  %6.2f (%5.2f)", e / o.rtol, end_dense / o.rtol);
       CHECK_MSG(e <= 16.0 * o.rtol, "%s %s rtol %g: dense error %g = %.1f x rtol",
                 dal_formulation_name(cases[k].f), dal_method_name(o.method), o.rtol, e, e / o.rtol);
+      // the local tolerance the method runs at is reported (solve.h: factor x rtol, floored)
+      dal_stats ss;
+      CHECK_OK(dal_state_stats(cart ? cst : st, &ss));
+      CHECK_MSG(ss.rtol_used > 0 && ss.rtol_used <= o.rtol, "%s: rtol_used %g",
+                dal_method_name(o.method), ss.rtol_used);
       // the outputs do not steer the steps: the same steps with and without them
       CHECK_MSG(st_dense == st_coarse && end_dense == end_coarse,
                 "%s: %ld steps with outputs, %ld without", dal_method_name(o.method), st_dense,
