@@ -318,7 +318,8 @@ static int run_to(run *r, double t1) {
     st->t = t1;
     return evaluate_here(sys, st);
   }
-  int hooked = r->outputs || r->ev;
+  // the hook only when someone looks: a monitor at output times, or events
+  int hooked = (r->outputs && r->monitor) || r->ev;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
   r->nsteps = 0;
