@@ -205,8 +205,19 @@ static int place(void *p, double t) {
 static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
   if (!monitor) return 0;
   st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
+  st->lazy_rc = 0;
   int mr = monitor(sys, st, ctx);
   st->lazy = 0;
+  if (st->lazy_rc) {
+    // the state could not be evaluated at this output time (the monitor saw NULL products):
+    // the run fails there with the evaluation's status and message
+    char why[DAL_ERRMSG_LEN];
+    memcpy(why, st->err, sizeof why);
+    int rc = st->lazy_rc;
+    st->lazy_rc = 0;
+    return DAL_FAIL(st, rc, "evaluating the state at the output time t=%.17g failed: %.400s", st->t,
+                    why);
+  }
   if (mr > 0) {
     // not a failure; the message says where and why the run ended
     DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,
@@ -229,6 +240,11 @@ static int stop_here(run *r, int status) {
   char msg[DAL_ERRMSG_LEN];
   memcpy(msg, r->st->err, sizeof msg);
   int rc = evaluate_here(r->sys, r->st);
+  if (rc && status < 0) {
+    // already a failure (the evaluation at this time is what failed): keep its message
+    memcpy(r->st->err, msg, sizeof msg);
+    return r->status = status;
+  }
   if (rc) return r->status = rc;
   memcpy(r->st->err, msg, sizeof msg);
   r->status = status;

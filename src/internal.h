@@ -230,6 +230,7 @@ struct dal_state {
   struct dal_events *events; // attached event set (borrowed; events.h)
   int lazy; // a callback holds the state at an output time, not yet evaluated: the public
             // accessors evaluate it on first use (dal__lazy_eval)
+  int lazy_rc; // status of that evaluation when it failed (the driver then stops the run)
   char err[DAL_ERRMSG_LEN];
 };
 

@@ -145,7 +145,11 @@ void dal__lazy_eval(const dal_state *cst) {
   if (!cst || !cst->lazy) return;
   dal_state *st = (dal_state *)cst;
   st->lazy = 0;
-  if ((st->have & DAL_P_ALL) != DAL_P_ALL) (void)dal__eval(st->sys, st, DAL_P_ALL);
+  if ((st->have & DAL_P_ALL) != DAL_P_ALL) {
+    // no step can shrink at an output time: a recoverable request is a failure here
+    int rc = dal__public_status(dal__eval(st->sys, st, DAL_P_ALL));
+    if (rc) st->lazy_rc = rc;
+  }
 }
 
 double dal_state_time(const dal_state *st) { return st ? st->t : NAN; }

@@ -289,7 +289,10 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 ///
 /// The monitor gets the state at the output time with (t, q, qdot) set; everything else
 /// (positions, reactions, multipliers, energies, M ...) is evaluated on its first read through
-/// the accessors, so a monitor that reads only q costs no model evaluation. dt NaN or inf is
+/// the accessors, so a monitor that reads only q costs no model evaluation. Where that
+/// evaluation fails (a point between steps the integrator never evaluated, outside a map's
+/// domain, say), the monitor reads NULL products and evolve then fails there with the
+/// evaluation's status and message. dt NaN or inf is
 /// DAL_E_NONFINITE, dt <= 0 or below the resolution of t DAL_E_ARG. A monitor returning < 0
 /// stops evolve with DAL_E_CALLBACK; a message the monitor left in the state (dal_csv_monitor
 /// does) is quoted. On any early end the state is at that time, evaluated.

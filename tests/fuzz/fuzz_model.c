@@ -871,6 +871,7 @@ static int fz_qpath(dal_jet t, dal_jet *q, void *ctx) {
 typedef struct fz_mon {
   double t0, t1, last;
   int calls, stop_at, stopped, n, csv;
+  int unevaluated; // the state could not be evaluated at an output time (evolve must fail)
   dal_csv out;
 } fz_mon;
 
@@ -882,7 +883,13 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   mo->last = t;
   const double *q = dal_state_q(st), *qdd = dal_state_qddot(st);
   if (!fz_finite(q, mo->n)) fz_die("monitor sees a non-finite q", 0, NULL);
-  if (!qdd || !fz_finite(qdd, mo->n)) fz_die("monitor sees a state not evaluated", 0, NULL);
+  // products are evaluated on first read; where that evaluation fails (a point between steps
+  // outside the model's domain) they are NULL and evolve must fail there
+  if (!qdd) {
+    mo->unevaluated = 1;
+    return 0;
+  }
+  if (!fz_finite(qdd, mo->n)) fz_die("monitor sees a non-finite qddot", 0, NULL);
   if (mo->csv) {
     int rc = dal_csv_monitor(sys, st, &mo->out);
     if (rc != DAL_OK && rc != DAL_E_STATE) fz_die("csv monitor", rc, dal_state_errmsg(st));
@@ -996,8 +1003,11 @@ static void fz_integrate(fz *f, fz_run_ctx *r, dal_state *st) {
     int rc = fz_s(f, st, "evolve", dal_evolve(r->sys, st, &o, t1, dt, fz_monitor, &mo));
     // a monitor that stopped the run early leaves the state before t1
     fz_progress(f, r, st, ta, t1, rc, "evolve", mo.stopped);
-    if (rc == DAL_OK && mo.calls < 1 && isfinite(t1) && t1 >= ta)
+    if (rc == DAL_OK && mo.calls < 1 && isfinite(t1) && t1 >= ta && !mo.unevaluated)
       fz_die("evolve succeeded without calling the monitor", rc, NULL);
+    if (mo.unevaluated && rc >= 0)
+      fz_die("the monitor saw a state that could not be evaluated, yet evolve went on", rc,
+             dal_state_errmsg(st));
   } else {
     int rc = fz_s(f, st, "advance", dal_advance(r->sys, st, &o, t1));
     fz_progress(f, r, st, ta, t1, rc, "advance", 0);
