@@ -221,9 +221,19 @@ static int value(dal_events *ev, int i, dal_state *st, double *g) {
     *g = e->g(st->t, st->q, st->qdot, e->ctx);
   } else if (e->gs) {
     st->lazy = 1;
+    st->lazy_rc = 0;
     st->err[0] = 0;
     *g = e->gs(sys, st, e->ctx);
     st->lazy = 0;
+    if (st->lazy_rc) {
+      // the state could not be evaluated here: the event's value means nothing
+      char why[DAL_ERRMSG_LEN];
+      memcpy(why, st->err, sizeof why);
+      int rc = st->lazy_rc;
+      st->lazy_rc = 0;
+      return DAL_FAIL(st, rc, "event '%s' at t=%.17g: evaluating the state failed: %.400s",
+                      e->name, st->t, why);
+    }
   } else {
     int rc = dal__public_status(dal__eval(sys, st, DAL_P_ACC));
     if (rc) return rc;
