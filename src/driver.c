@@ -331,6 +331,7 @@ static int run_to(run *r, double t1) {
     // an interval of a few ulps: the solution does not change at double precision; restart
     // the integrator at the new time rather than asking it for a step it cannot take
     dal__integ_reset(st);
+    r->h = NULL; // freed with it
     st->t = t1;
     return evaluate_here(sys, st);
   }
@@ -364,12 +365,14 @@ static int run_to(run *r, double t1) {
   if (rc == DAL__HOOK_STOP) {
     // the hook left the state where the run stops, evaluated; the integrator is elsewhere
     dal__integ_reset(st);
+    r->h = NULL; // freed with it
     return r->status;
   }
   if (rc) {
     // the state holds the last accepted step (or the failing callback's time); the next
     // call restarts the integrator there
     dal__integ_reset(st);
+    r->h = NULL; // freed with it
     return rc;
   }
   st->err[0] = 0;
