@@ -207,17 +207,9 @@ static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *mo
   st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
   st->lazy_rc = 0;
   int mr = monitor(sys, st, ctx);
-  st->lazy = 0;
-  if (st->lazy_rc) {
-    // the state could not be evaluated at this output time (the monitor saw NULL products):
-    // the run fails there with the evaluation's status and message
-    char why[DAL_ERRMSG_LEN];
-    memcpy(why, st->err, sizeof why);
-    int rc = st->lazy_rc;
-    st->lazy_rc = 0;
-    return DAL_FAIL(st, rc, "evaluating the state at the output time t=%.17g failed: %.400s", st->t,
-                    why);
-  }
+  // a state the monitor could not have evaluated (it saw NULL products) fails the run there
+  int rc = dal__lazy_end(st, "the output time");
+  if (rc) return rc;
   if (mr > 0) {
     // not a failure; the message says where and why the run ended
     DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,

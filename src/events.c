@@ -224,16 +224,11 @@ static int value(dal_events *ev, int i, dal_state *st, double *g) {
     st->lazy_rc = 0;
     st->err[0] = 0;
     *g = e->gs(sys, st, e->ctx);
-    st->lazy = 0;
-    if (st->lazy_rc) {
-      // the state could not be evaluated here: the event's value means nothing
-      char why[DAL_ERRMSG_LEN];
-      memcpy(why, st->err, sizeof why);
-      int rc = st->lazy_rc;
-      st->lazy_rc = 0;
-      return DAL_FAIL(st, rc, "event '%s' at t=%.17g: evaluating the state failed: %.400s",
-                      e->name, st->t, why);
-    }
+    // a state that could not be evaluated here: the event's value means nothing
+    char who[96];
+    snprintf(who, sizeof who, "event '%s'", e->name);
+    int rc = dal__lazy_end(st, who);
+    if (rc) return rc;
   } else {
     int rc = dal__public_status(dal__eval(sys, st, DAL_P_ACC));
     if (rc) return rc;

@@ -228,8 +228,8 @@ struct dal_state {
   dal_init_report init_rep;  // the last consistent start's report (init.c)
   int init_rep_valid;        // init_rep holds a report
   struct dal_events *events; // attached event set (borrowed; events.h)
-  int lazy; // a callback holds the state at an output time, not yet evaluated: the public
-            // accessors evaluate it on first use (dal__lazy_eval)
+  int lazy;    // a callback holds the state at an output time, not yet evaluated: the public
+               // accessors evaluate it on first use (dal__lazy_eval)
   int lazy_rc; // status of that evaluation when it failed (the driver then stops the run)
   char err[DAL_ERRMSG_LEN];
 };
@@ -247,6 +247,10 @@ static inline double dal__wrap_pi(double x) {
 /// when the callback reads a product (st->lazy): reading q alone costs nothing; the public
 /// readers call this first (state.c; nothing happens unless st->lazy)
 void dal__lazy_eval(const dal_state *st);
+/// End a callback's hold on a lazily evaluated state: 0, or the status of an evaluation that
+/// failed while the callback read it, with the message "<who> at t=...: evaluating the state
+/// failed: ..." (state.c)
+int dal__lazy_end(dal_state *st, const char *who);
 
 // errors
 int dal__set_err(char *buf, int status, const char *fmt, ...)

@@ -295,20 +295,25 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
 // a run with outputs in every step pays one right-hand side per step (none for DOPRI5, whose
 // last stage is that slope). Once per step the coefficients, then a few flops per output:
 // measured 10x cheaper per output than ARKODE's own interpolation call.
+int dal__ode_start_slope(dal_ode_integ *ig) {
+  if (ig->hvalid & 1) return DAL_OK;
+  int rc = dal__ode_eval(ig, ig->tprev, ig->yprev, ig->hf0, DAL_P_ACC);
+  if (rc) return dal__public_status(rc);
+  ig->st->stats.rhs_evals++;
+  ig->hvalid |= 1;
+  return DAL_OK;
+}
+
 static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
   double h = ig->t - ig->tprev;
-  if (!(ig->hvalid & 1)) {
-    int rc = dal__ode_eval(ig, ig->tprev, ig->yprev, ig->hf0, DAL_P_ACC);
-    if (rc) return rc > 0 ? DAL_E_CALLBACK : rc;
-    ig->st->stats.rhs_evals++;
-    ig->hvalid |= 1;
-  }
+  int rc = dal__ode_start_slope(ig);
+  if (rc) return rc;
   if (!(ig->hvalid & 2)) {
     // the method's own slope at the step's end when it has one (no projection moved y)
-    int rc = ig->end_slope && !(ig->prob->project && ig->opts.project)
-                 ? ig->end_slope(ig, ig->hf1)
-                 : dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
-    if (rc) return rc > 0 ? DAL_E_CALLBACK : rc;
+    rc = ig->end_slope && !(ig->prob->project && ig->opts.project)
+             ? ig->end_slope(ig, ig->hf1)
+             : dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
+    if (rc) return dal__public_status(rc);
     if (!ig->end_slope) ig->st->stats.rhs_evals++;
     ig->hvalid |= 2;
   }

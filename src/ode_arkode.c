@@ -176,12 +176,8 @@ static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
   ARKodeButcherTable F = m->fb;
   int ny = ig->ny, s = F->stages;
   double tau = t - ig->tprev;
-  if (!ig->hvalid) {
-    int rc = dal__ode_eval(ig, ig->tprev, ig->yprev, ig->hf0, DAL_P_ACC);
-    if (rc) return rc > 0 ? DAL_E_CALLBACK : rc;
-    ig->st->stats.rhs_evals++;
-    ig->hvalid = 1;
-  }
+  int rc = dal__ode_start_slope(ig);
+  if (rc) return rc;
   memcpy(m->K, ig->hf0, (size_t)ny * sizeof(double));
   for (int i = 1; i < s; ++i) {
     for (int k = 0; k < ny; ++k) {
@@ -190,8 +186,8 @@ static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
         a += F->A[i][j] * m->K[(size_t)j * ny + k];
       m->yk[k] = ig->yprev[k] + tau * a;
     }
-    int rc = dal__ode_eval(ig, ig->tprev + F->c[i] * tau, m->yk, m->K + (size_t)i * ny, DAL_P_ACC);
-    if (rc) return rc > 0 ? DAL_E_CALLBACK : rc;
+    rc = dal__ode_eval(ig, ig->tprev + F->c[i] * tau, m->yk, m->K + (size_t)i * ny, DAL_P_ACC);
+    if (rc) return dal__public_status(rc);
     ig->st->stats.rhs_evals++;
   }
   for (int k = 0; k < ny; ++k) {

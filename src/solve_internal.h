@@ -111,6 +111,9 @@ struct dal_ode_integ {
 /// y at t in [ig->tprev, ig->t] into yout: the method's interpolant, or the cubic Hermite
 /// fallback (two right-hand sides per step, evaluated on first use) (ode.c)
 int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
+/// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
+/// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
+int dal__ode_start_slope(dal_ode_integ *ig);
 
 /// One row per integration method (GSL's gsl_odeiv2_step_type): adding a method is one row
 /// in methods.c and one file. `tol_factor`: the method's local error control runs at

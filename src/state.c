@@ -138,6 +138,16 @@ static const double *current(const dal_state *st, unsigned p, const double *x) {
   return st && (st->have & p) == p ? x : NULL;
 }
 
+int dal__lazy_end(dal_state *st, const char *who) {
+  st->lazy = 0;
+  if (!st->lazy_rc) return DAL_OK;
+  char why[DAL_ERRMSG_LEN];
+  memcpy(why, st->err, sizeof why);
+  int rc = st->lazy_rc;
+  st->lazy_rc = 0;
+  return DAL_FAIL(st, rc, "%s at t=%.17g: evaluating the state failed: %.400s", who, st->t, why);
+}
+
 void dal__lazy_eval(const dal_state *cst) {
   // the driver's own state, lent to a monitor or event function as const: evaluated on the
   // first read of a product; on failure the products stay unset (accessors give NULL and the
