@@ -253,7 +253,7 @@ static int mode_ir_hand(int N, double rtol, double t1) {
     y[N + i] = 0.0;
   }
   // the ODE integrators leave dal_stats.rtol_used at 0: then the factor of Adams in the method
-  // table (src/methods.c), mirrored; the equal right-hand-side counts printed check it
+  // table (src/integrate/methods.c), mirrored; the equal right-hand-side counts printed check it
   double tol = s.rtol_used > 0 ? s.rtol_used : 0.005 * rtol;
   hand_stats hs;
   rc = ir_region(NULL, NULL, t1, ch, y, tol, &hs);

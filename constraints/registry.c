@@ -7,7 +7,7 @@
 #include <string.h>
 
 #include "dalembert/primitives.h"
-#include "internal.h"
+#include "base/base.h"
 
 static const dal_primitive *const registry[] = {
     &dal_map_cartesian2, &dal_map_cartesian3, &dal_map_fixed2,    &dal_map_fixed3,

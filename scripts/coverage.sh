@@ -29,7 +29,7 @@ echo "$report"
 # totals: llvm-cov's columns are regions, functions, lines, branches (each: total, missed, %)
 echo "$report" | awk '/^TOTAL/ {printf "coverage from the corpus: lines %s, branches %s\n", $10, $13}'
 missing=""
-for f in "$root"/src/*.c "$root"/constraints/*.c; do
+for f in "$root"/src/*/*.c "$root"/constraints/*.c; do
   rel=${f#"$root"/}
   grep -q "$rel" <<<"$report" || missing="$missing $rel"
 done

@@ -18,7 +18,7 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
-#include "solve_internal.h"
+#include "integrate/integrate.h"
 
 #define G0 9.81
 #define PI 3.14159265358979323846

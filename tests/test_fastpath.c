@@ -13,8 +13,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "form_dae.h"
-#include "internal.h"
+#include "form/form.h"
 
 static unsigned seed = 2024u;
 static double urand(void) {

@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "check.h"
-#include "form_dae.h"
+#include "form/form.h"
 
 #define G0 9.81
 

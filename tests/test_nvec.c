@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// White box: the library's serial-vector kernels (src/nvec.c) against SUNDIALS' own serial
+// White box: the library's serial-vector kernels (src/integrate/nvec.c) against SUNDIALS' own serial
 // vector operations on random vectors (the reference), including the fused and vector-array
 // forms against their definitions through SUNDIALS' single operations, and aliasing.
 #include <math.h>
@@ -11,7 +11,7 @@
 #include <sundials/sundials_context.h>
 
 #include "check.h"
-#include "nvec.h"
+#include "integrate/nvec.h"
 
 #define LEN 37
 #define NV 7

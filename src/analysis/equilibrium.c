@@ -1,0 +1,374 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Equilibria by Newton's method with the exact stiffness K, and their natural-parameter
+// continuation with stability and located critical points (sign changes of det K).
+#include <lapacke.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis.h"
+
+#define DAL_EQ_MAGIC 0x0e9c1b05
+#define DAL_CONT_MAGIC 0x0c0a71e5
+
+void dal_equilibrium_default_opts(dal_equilibrium_opts *o) {
+  if (!o) return;
+  o->magic = DAL_EQ_MAGIC;
+  o->xtol = 1e-12;
+  o->max_iter = 50;
+  o->max_step = 0.0;
+}
+
+void dal_continuation_default_opts(dal_continuation_opts *o) {
+  if (!o) return;
+  o->magic = DAL_CONT_MAGIC;
+  o->p0 = 0.0;
+  o->p1 = 1.0;
+  o->npoints = 41;
+  o->t = 0.0;
+  o->locate = 1;
+  o->ptol = 0.0;
+  dal_equilibrium_default_opts(&o->newton);
+}
+
+static int check_eq_opts(const dal_equilibrium_opts *o, char *err, size_t len) {
+  if (o->magic != DAL_EQ_MAGIC) {
+    snprintf(err, len, "equilibrium options not initialized: call dal_equilibrium_default_opts");
+    return DAL_E_ARG;
+  }
+  if (!(o->xtol > 0) || !isfinite(o->xtol) || o->max_iter < 1 || !(o->max_step >= 0) ||
+      !isfinite(o->max_step)) {
+    snprintf(err, len,
+             "equilibrium options: xtol = %g must be finite and > 0, max_iter = %d >= 1, "
+             "max_step = %g finite and >= 0",
+             o->xtol, o->max_iter, o->max_step);
+    return DAL_E_ARG;
+  }
+  return DAL_OK;
+}
+
+// scratch of one Newton solve: n x n K and the pivots, n-vectors
+typedef struct newton_ws {
+  dal_tangent *tg;
+  double *K, *x, *q, *zero;
+  lapack_int *ipiv;
+} newton_ws;
+
+static void newton_free(newton_ws *w) {
+  dal__tangent_free(w->tg);
+  free(w->K);
+  free(w->x);
+  free(w->q);
+  free(w->zero);
+  free(w->ipiv);
+  memset(w, 0, sizeof *w);
+}
+
+static int newton_alloc(const dal_system *sys, newton_ws *w) {
+  size_t n = (size_t)sys->n + 1;
+  memset(w, 0, sizeof *w);
+  int rc = dal__tangent_create(sys, &w->tg);
+  w->K = calloc(n * n, sizeof(double));
+  w->x = calloc(n, sizeof(double));
+  w->q = calloc(n, sizeof(double));
+  w->zero = calloc(n, sizeof(double));
+  w->ipiv = calloc(n, sizeof(lapack_int));
+  if (rc || !w->K || !w->x || !w->q || !w->zero || !w->ipiv) {
+    newton_free(w);
+    return DAL_E_NOMEM;
+  }
+  return DAL_OK;
+}
+
+// the equilibrium solve on a prepared workspace; on success the state is at (t, q*, 0),
+// evaluated, with the tangent (and dR/dt) of the solution in w->tg
+static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o, newton_ws *w,
+                 dal_equilibrium_report *rep) {
+  int n = sys->n, rc;
+  double t = st->t, step = INFINITY;
+  memcpy(w->q, st->q, (size_t)n * sizeof(double));
+  dal_equilibrium_report r = {0, 0.0, 0.0, 0.0};
+  for (int it = 1;; ++it) {
+    if ((rc = dal__analysis_eval(sys, st, t, w->q, w->zero)) != 0) return rc;
+    if ((rc = dal__tangent_eval(sys, st, w->tg, 0)) != 0) return rc;
+    if (step <= 0.0) break; // the last step was below xtol: converged at this evaluation
+    if (it > o->max_iter) {
+      char qs[256];
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_CONV,
+                      "equilibrium: Newton did not converge in %d iterations at t=%.17g (last "
+                      "step %.3g, now at %s); start closer to the equilibrium, bound the step "
+                      "(max_step) or raise max_iter",
+                      o->max_iter, t, r.step, qs);
+    }
+    // K dq = M qddot (= Q - c at qdot = 0)
+    for (int i = 0; i < n; ++i) {
+      double s = 0.0;
+      for (int j = 0; j < n; ++j)
+        s += w->tg->M[(size_t)j * n + i] * st->qddot[j];
+      w->x[i] = s;
+    }
+    memcpy(w->K, w->tg->Rq, (size_t)n * (size_t)n * sizeof(double));
+    lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, 1, w->K, n, w->ipiv, w->x, n);
+    if (info != 0) {
+      char qs[256];
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_SINGULAR,
+                      "equilibrium: the stiffness K is singular at t=%.17g, %s (pivot of "
+                      "coordinate '%s'): a bifurcation point, or a direction with no restoring "
+                      "force (a free or cyclic coordinate); fix that coordinate or move the "
+                      "parameter off the critical value",
+                      t, qs, sys->coord_names[info > 0 ? (int)info - 1 : 0]);
+    }
+    double big = 0.0, conv = 0.0;
+    for (int i = 0; i < n; ++i) {
+      big = fmax(big, fabs(w->x[i]));
+      if (!isfinite(w->x[i])) big = INFINITY;
+    }
+    if (!isfinite(big))
+      return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
+    double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
+    for (int i = 0; i < n; ++i) {
+      w->q[i] += f * w->x[i];
+      conv = fmax(conv, fabs(f * w->x[i]) / (1.0 + fabs(w->q[i])));
+    }
+    r.iterations = it;
+    r.step = f * big;
+    step = conv <= o->xtol && f == 1.0 ? 0.0 : conv;
+  }
+  // the solution: residual and time dependence d qddot/dt = -M^-1 dR/dt
+  if ((rc = dal__tangent_eval(sys, st, w->tg, 1)) != 0) return rc;
+  if ((rc = dal__tangent_factor(sys, st, w->tg)) != 0) return rc;
+  memcpy(w->x, w->tg->Rt, (size_t)n * sizeof(double));
+  dal__tangent_msolve(w->tg, 1, w->x);
+  for (int i = 0; i < n; ++i) {
+    r.accel = fmax(r.accel, fabs(st->qddot[i]));
+    r.unsteady = fmax(r.unsteady, fabs(w->x[i]));
+  }
+  if (rep) *rep = r;
+  return DAL_OK;
+}
+
+int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
+                    dal_equilibrium_report *rep) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "equilibrium: the state belongs to another system");
+  dal_equilibrium_opts def;
+  if (!o) {
+    dal_equilibrium_default_opts(&def);
+    o = &def;
+  }
+  char err[256];
+  int rc = check_eq_opts(o, err, sizeof err);
+  if (rc) return DAL_FAIL(st, rc, "%s", err);
+  if ((rc = dal__tangent_supported(sys, st, "equilibrium")) != 0) return rc;
+  newton_ws w;
+  if (newton_alloc(sys, &w))
+    return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory for the Newton workspace");
+  rc = solve(sys, st, o, &w, rep);
+  newton_free(&w);
+  return rc;
+}
+
+// ---------------------------------------------------------------------------------------------
+// continuation
+
+// sign of det K from an LU factorization of a copy (0 when exactly singular)
+static int det_sign(int n, const double *K, double *work, lapack_int *ipiv) {
+  memcpy(work, K, (size_t)n * (size_t)n * sizeof(double));
+  lapack_int info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n, n, work, n, ipiv);
+  if (info > 0) return 0;
+  int s = 1;
+  for (int i = 0; i < n; ++i) {
+    if (work[(size_t)i * n + i] < 0) s = -s;
+    if (ipiv[i] != i + 1) s = -s;
+  }
+  return s;
+}
+
+// one point of a branch: a system at p, its equilibrium from the guess q (n), the verdict
+// and the sign of det K; the system and state stay alive for the caller
+typedef struct cont_point {
+  dal_system *sys;
+  dal_state *st;
+  dal_stability verdict;
+  int sign;
+} cont_point;
+
+static void point_free(cont_point *pt) {
+  dal_state_destroy(pt->st);
+  dal_system_destroy(pt->sys);
+  pt->st = NULL;
+  pt->sys = NULL;
+}
+
+static int solve_point(dal_rebuild_fn *rebuild, double p, const double *guess, int *n,
+                       const dal_continuation_opts *o, cont_point *pt, dal_continuation_report *r,
+                       void *ctx) {
+  memset(pt, 0, sizeof *pt);
+  int rc = rebuild(p, &pt->sys, ctx);
+  if (rc || !pt->sys) {
+    snprintf(r->msg, sizeof r->msg, "rebuild returned %d (system %s) at p=%.17g", rc,
+             pt->sys ? "built" : "NULL", p);
+    dal_system_destroy(pt->sys);
+    pt->sys = NULL;
+    return DAL_E_CALLBACK;
+  }
+  if (*n < 0) *n = pt->sys->n;
+  if (pt->sys->n != *n) {
+    snprintf(r->msg, sizeof r->msg,
+             "rebuild at p=%.17g gave a system with %d coordinates, the branch has %d", p,
+             pt->sys->n, *n);
+    point_free(pt);
+    return DAL_E_ARG;
+  }
+  if ((rc = dal_state_create(pt->sys, &pt->st)) != 0) {
+    snprintf(r->msg, sizeof r->msg, "out of memory for a state at p=%.17g", p);
+    point_free(pt);
+    return rc;
+  }
+  double zero[64] = {0};
+  double *z = *n <= 64 ? zero : calloc((size_t)*n, sizeof(double));
+  rc = z ? dal_state_set(pt->sys, pt->st, o->t, guess, z) : DAL_E_NOMEM;
+  if (z != zero) free(z);
+  if (!rc) rc = dal_equilibrium(pt->sys, pt->st, &o->newton, NULL);
+  dal_modes md;
+  if (!rc) rc = dal_normal_modes(pt->sys, pt->st, NULL, NULL, NULL, NULL, &md);
+  if (rc) {
+    snprintf(r->msg, sizeof r->msg, "at p=%.17g: %s", p, dal_state_errmsg(pt->st));
+    point_free(pt);
+    return rc;
+  }
+  pt->verdict = md.verdict;
+  return DAL_OK;
+}
+
+// det K sign at the point's solution (the state is evaluated at the equilibrium)
+static int point_sign(cont_point *pt, double *work, lapack_int *ipiv) {
+  int n = pt->sys->n;
+  double *K = work + (size_t)n * n;
+  int rc = dal_linearize(pt->sys, pt->st, NULL, NULL, K);
+  if (rc) return rc;
+  pt->sign = det_sign(n, K, work, ipiv);
+  return DAL_OK;
+}
+
+int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuation_opts *o,
+                 dal_branch_fn *point, dal_continuation_report *rep, void *ctx) {
+  dal_continuation_report r;
+  memset(&r, 0, sizeof r);
+  int rc = DAL_OK;
+  if (!rebuild || !q0 || !o) {
+    snprintf(r.msg, sizeof r.msg, "continue: rebuild, q0 and options are required");
+    rc = DAL_E_ARG;
+  } else if (o->magic != DAL_CONT_MAGIC) {
+    snprintf(r.msg, sizeof r.msg,
+             "continuation options not initialized: call dal_continuation_default_opts");
+    rc = DAL_E_ARG;
+  } else if (!isfinite(o->p0) || !isfinite(o->p1) || o->p0 == o->p1 || o->npoints < 2 ||
+             !isfinite(o->t) || !(o->ptol >= 0)) {
+    snprintf(r.msg, sizeof r.msg,
+             "continuation options: p0 = %g and p1 = %g must be finite and differ, npoints = %d "
+             ">= 2, t = %g finite, ptol = %g >= 0",
+             o->p0, o->p1, o->npoints, o->t, o->ptol);
+    rc = DAL_E_ARG;
+  } else {
+    rc = check_eq_opts(&o->newton, r.msg, sizeof r.msg);
+  }
+  if (rc) {
+    if (rep) *rep = r;
+    return rc;
+  }
+  int n = -1;
+  double ptol = o->ptol > 0 ? o->ptol : 1e-10 * fabs(o->p1 - o->p0);
+  cont_point cur = {0}, prev = {0};
+  double *hist = NULL, *guess = NULL, *work = NULL, pprev = o->p0;
+  lapack_int *ipiv = NULL;
+  for (int k = 0; k < o->npoints; ++k) {
+    double p = k == o->npoints - 1 ? o->p1 : o->p0 + (o->p1 - o->p0) * k / (o->npoints - 1);
+    // the guess: q0, the previous solution, or a secant through the two previous ones
+    if (k == 0) {
+      rc = solve_point(rebuild, p, q0, &n, o, &cur, &r, ctx);
+      if (!rc) {
+        hist = calloc(2 * (size_t)n + 1, sizeof(double));
+        guess = calloc((size_t)n + 1, sizeof(double));
+        work = calloc(2 * (size_t)n * n + 1, sizeof(double));
+        ipiv = calloc((size_t)n + 1, sizeof(lapack_int));
+        if (!hist || !guess || !work || !ipiv) {
+          snprintf(r.msg, sizeof r.msg, "continue: out of memory");
+          rc = DAL_E_NOMEM;
+        }
+      }
+    } else {
+      for (int i = 0; i < n; ++i)
+        guess[i] = k == 1 ? hist[i] : hist[i] + (hist[i] - hist[n + i]);
+      rc = solve_point(rebuild, p, guess, &n, o, &cur, &r, ctx);
+    }
+    if (!rc) rc = point_sign(&cur, work, ipiv);
+    if (rc) {
+      if (!r.msg[0]) snprintf(r.msg, sizeof r.msg, "at p=%.17g: %s", p, dal_state_errmsg(cur.st));
+      break;
+    }
+    // a sign change of det K since the previous point: bisect for the critical parameter
+    if (k > 0 && o->locate && cur.sign != prev.sign && cur.sign != 0 && prev.sign != 0) {
+      double a = pprev, b = p;
+      int sa = prev.sign;
+      cont_point mid = {0};
+      double *qa = guess; // the solution at a (guess for the midpoints)
+      memcpy(qa, prev.st->q, (size_t)n * sizeof(double));
+      while (fabs(b - a) > ptol) {
+        double c = 0.5 * (a + b);
+        point_free(&mid);
+        rc = solve_point(rebuild, c, qa, &n, o, &mid, &r, ctx);
+        if (!rc) rc = point_sign(&mid, work, ipiv);
+        if (rc) break;
+        if (mid.sign == sa) {
+          a = c;
+          memcpy(qa, mid.st->q, (size_t)n * sizeof(double));
+        } else {
+          b = c;
+        }
+        if (mid.sign == 0) break;
+      }
+      if (!rc) {
+        double c = 0.5 * (a + b);
+        point_free(&mid);
+        rc = solve_point(rebuild, c, qa, &n, o, &mid, &r, ctx);
+        if (!rc) {
+          r.ncritical++;
+          if (point && point(c, mid.sys, mid.st, mid.verdict, DAL_BRANCH_CRITICAL, ctx)) {
+            snprintf(r.msg, sizeof r.msg, "the point callback stopped at p=%.17g", c);
+            rc = DAL_E_CALLBACK;
+          }
+        }
+      }
+      point_free(&mid);
+      if (rc) break;
+    }
+    r.npoints++;
+    r.p_end = p;
+    if (point && point(p, cur.sys, cur.st, cur.verdict, DAL_BRANCH_REGULAR, ctx)) {
+      snprintf(r.msg, sizeof r.msg, "the point callback stopped at p=%.17g", p);
+      rc = DAL_E_CALLBACK;
+      break;
+    }
+    // shift the history
+    memcpy(hist + n, hist, (size_t)n * sizeof(double));
+    memcpy(hist, cur.st->q, (size_t)n * sizeof(double));
+    point_free(&prev);
+    prev = cur;
+    memset(&cur, 0, sizeof cur);
+    pprev = p;
+  }
+  point_free(&cur);
+  point_free(&prev);
+  free(hist);
+  free(guess);
+  free(work);
+  free(ipiv);
+  if (rep) *rep = r;
+  return rc;
+}

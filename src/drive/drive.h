@@ -1,0 +1,37 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Private interface between the integration driver (driver.c) and the events (events.c).
+#ifndef DAL_EVENTS_INTERNAL_H
+#define DAL_EVENTS_INTERNAL_H
+
+#include "dalembert/events.h"
+#include "integrate/integrate.h"
+
+/// put the state's (t, q, qdot) at time t of the step just taken (dense output; no evaluation)
+typedef int dal__place_fn(void *ctx, double t);
+
+/// a crossing found in the step just taken
+typedef struct dal__pending {
+  double t;      ///< located time (the side after the crossing)
+  int event;     ///< index in the set
+  int dir;       ///< +1 rising, -1 falling
+  double g0, g1; ///< g before the step and at its end
+} dal__pending;
+
+/// signs of every g at the state's current (t, q, qdot) (a run starts); 0 or a status
+int dal__events_begin(dal_events *ev, dal_state *st);
+/// the crossings of the step [a, b] (the state is moved through `place`), located and in time
+/// order; the signs move on to b. 0 or a negative status (a g that is not finite: named)
+int dal__events_scan(dal_events *ev, dal_state *st, double a, double b, dal__place_fn *place,
+                     void *pctx);
+/// the crossings found by the last scan
+int dal__events_npending(const dal_events *ev);
+const dal__pending *dal__events_pending(const dal_events *ev, int k);
+/// event i stops the run
+int dal__events_terminal(const dal_events *ev, int i);
+/// name of event i
+const char *dal__events_item_name(const dal_events *ev, int i);
+/// log event i (direction dir) at the state's (t, q, qdot)
+int dal__events_record(dal_events *ev, const dal_state *st, int i, int dir);
+
+#endif

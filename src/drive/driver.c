@@ -1,0 +1,464 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Integration driver: the integrator kept in the state, advance and evolve, monitors.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "eval/eval.h"
+#include "drive.h"
+#include "form/form.h"
+#include "integrate/integrate.h"
+
+// ---------------------------------------------------------------------------------------------
+// integrator handle kept in the state
+
+enum { KIND_ODE = 1, KIND_IDA = 2 };
+
+typedef struct dal_integ_handle {
+  int kind;
+  dal_ode_integ *ode;
+  void *ida;
+  double *yi; // dense output of the ODE route (ny)
+  double t;   // time of the state when last handed back
+  double *qq; // (q, qdot) handed back, to notice changes made outside the integrator
+} dal_integ_handle;
+
+static void handle_free(void *p) {
+  dal_integ_handle *h = p;
+  if (!h) return;
+  if (h->ode) dal__ode_destroy(h->ode);
+  if (h->ida) dal__ida_free(h->ida);
+  free(h->qq);
+  free(h->yi);
+  free(h);
+}
+
+// resolve formulation and method; *prob is NULL for the IDA route; *tight is set when AUTO
+// chose the index-1 form with projection because IDA cannot honour the tolerance (solve.h)
+static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method *meth,
+                   const dal_ode_problem **prob, int *tight) {
+  dal_formulation form = o->form;
+  dal_method m = o->method;
+  *tight = 0;
+  if (o->work && sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "opts.work: a Lagrangian-only system has no forces or constraints whose work "
+                    "could be tracked; its energy function is dal_energies.h (unset opts.work)");
+  if (dal__symplectic_method(m)) {
+    if (o->work)
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "opts.work is not supported by the fixed-step method '%s' (its energy "
+                      "error is bounded by construction); use an adaptive method to track W",
+                      dal_method_name(m));
+    *meth = m;
+    return dal__symplectic_resolve(sys, st, o, m, prob);
+  }
+  if (form == DAL_FORM_AUTO && sys->m && m == DAL_METHOD_AUTO &&
+      dal__dae_tol_factor(DAL_FORM_GGL) * o->rtol < DAL_IDA_TOL_FLOOR) {
+    // IDA would be clamped at its floor: index-1 with projection and Bulirsch-Stoer honours
+    // such tolerances (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
+    *tight = 1;
+    *meth = DAL_METHOD_BS;
+    *prob = &dal__problem_index1;
+    return DAL_OK;
+  }
+  if (form == DAL_FORM_AUTO) form = sys->m ? DAL_FORM_GGL : DAL_FORM_ODE;
+  if (form == DAL_FORM_INDEX1 && sys->m == 0) form = DAL_FORM_ODE;
+  if (form == DAL_FORM_ODE && sys->m > 0)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "formulation 'ode' needs minimal coordinates, but the system has %d "
+                    "constraint rows (first: '%s'); use DAL_FORM_GGL or DAL_FORM_INDEX1",
+                    sys->m, sys->con[0].name);
+  if (form == DAL_FORM_GGL || form == DAL_FORM_INDEX3 ||
+      (form == DAL_FORM_INDEX1 && m == DAL_METHOD_BDF)) {
+    if (m != DAL_METHOD_AUTO && m != DAL_METHOD_BDF)
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "formulation '%s' runs only with DAL_METHOD_BDF (IDA), not '%s'; use "
+                      "DAL_METHOD_BDF or DAL_METHOD_AUTO, or DAL_FORM_INDEX1 for explicit "
+                      "methods",
+                      dal_formulation_name(form), dal_method_name(m));
+    *meth = DAL_METHOD_BDF;
+    *prob = NULL;
+    return DAL_OK;
+  }
+  if (m == DAL_METHOD_AUTO) m = dal__auto_method(o->rtol);
+  *meth = m;
+  *prob = form == DAL_FORM_INDEX1 ? &dal__problem_index1 : &dal__problem_minimal;
+  return DAL_OK;
+}
+
+// remember what the state looked like when the integrator handed it back
+static void handle_sync(const dal_system *sys, dal_state *st, dal_integ_handle *h) {
+  size_t n = (size_t)sys->n;
+  h->t = st->t;
+  memcpy(h->qq, st->q, n * sizeof(double));
+  memcpy(h->qq + n, st->qdot, n * sizeof(double));
+}
+
+// the state's (t, q, qdot) still are where the integrator left them
+static int handle_current(const dal_system *sys, const dal_state *st, const dal_integ_handle *h) {
+  size_t n = (size_t)sys->n;
+  return h->t == st->t && memcmp(h->qq, st->q, n * sizeof(double)) == 0 &&
+         memcmp(h->qq + n, st->qdot, n * sizeof(double)) == 0;
+}
+
+// make sure st->integ is an integrator for these options at the state's current point
+static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_opts *o) {
+  dal_integ_handle *h = st->integ;
+  if (h && dal__same_opts(o, &st->integ_opts) && handle_current(sys, st, h)) return DAL_OK;
+  dal__integ_reset(st);
+  dal_method meth = DAL_METHOD_AUTO;
+  const dal_ode_problem *prob = NULL;
+  int tight = 0;
+  int rc = resolve(sys, st, o, &meth, &prob, &tight);
+  if (rc) return rc;
+  dal_solve_opts oc = *o;
+  if (tight) {
+    // the index-1 form starts from a consistent state too, and projects after every step
+    oc.form = DAL_FORM_INDEX1;
+    oc.project = 1;
+    if ((rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL))) != 0) return rc;
+    o = &oc;
+  }
+  h = calloc(1, sizeof *h);
+  if (!h) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  h->qq = calloc(2 * (size_t)sys->n + 1, sizeof(double));
+  if (!h->qq) {
+    free(h);
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  }
+  if (prob) {
+    h->kind = KIND_ODE;
+    rc = dal__ode_create(sys, st, o, meth, prob, &h->ode);
+    if (!rc && !(h->yi = calloc((size_t)h->ode->ny + 1, sizeof(double))))
+      rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  } else {
+    h->kind = KIND_IDA;
+    rc = dal__public_status(dal__ida_create(sys, st, o, &h->ida));
+  }
+  if (rc) {
+    handle_free(h);
+    return rc;
+  }
+  handle_sync(sys, st, h);
+  st->integ = h;
+  st->integ_free = handle_free;
+  st->integ_opts = *o;
+  return DAL_OK;
+}
+
+// evaluate the state where it stands (outputs valid); a recoverable request is a failure here
+static int evaluate_here(const dal_system *sys, dal_state *st) {
+  return dal__public_status(dal__eval(sys, st, DAL_P_ALL));
+}
+
+// ---------------------------------------------------------------------------------------------
+// a run of advance or evolve: the integrator steps freely towards the end time; after every
+// accepted step the hook serves the output times and the events inside the step from the
+// method's dense output (no step is shortened for an output)
+
+typedef struct run {
+  const dal_system *sys;
+  dal_state *st;
+  const dal_solve_opts *o;
+  dal_integ_handle *h;
+  int outputs;       // evolve: the output grid below is served
+  double t0, dt, t1; // output times t0 + k dt (k <= K), then t1
+  long k, K;         // next output index
+  double last_out;   // time of the last output served
+  dal_monitor_fn *monitor;
+  void *ctx;
+  dal_events *ev; // attached events with at least one event, or NULL
+  long nsteps;    // steps since the last output (the IDA route's opts.max_steps)
+  int status;     // why the hook stopped the run: DAL_STOPPED, DAL_EVENT, or a failure
+} run;
+
+// the next output time, or +inf when all are served
+static double out_time(const run *r) {
+  if (!r->outputs) return INFINITY;
+  if (r->k <= r->K) {
+    double tk = r->t0 + (double)r->k * r->dt;
+    // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
+    if (r->k == r->K && r->t1 - tk <= 1e-9 * r->dt) tk = r->t1;
+    return tk;
+  }
+  return r->last_out < r->t1 ? r->t1 : INFINITY;
+}
+
+// put the state at time t of the step just taken (dense output; not evaluated)
+static int place(void *p, double t) {
+  run *r = p;
+  dal_integ_handle *h = r->h;
+  if (h->kind == KIND_IDA) return dal__ida_place(h->ida, t);
+  dal_ode_integ *ig = h->ode;
+  int rc = dal__ode_interp(ig, t, h->yi);
+  if (rc) return rc;
+  dal__ode_to_state(ig, t, h->yi);
+  dal__state_moved(r->st);
+  return DAL_OK;
+}
+
+// run the monitor at the state's time; 1 = stop requested (ok), negative = failure
+static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
+  if (!monitor) return 0;
+  st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
+  st->lazy_rc = 0;
+  int mr = monitor(sys, st, ctx);
+  // a state the monitor could not have evaluated (it saw NULL products) fails the run there
+  int rc = dal__lazy_end(st, "the output time");
+  if (rc) return rc;
+  if (mr > 0) {
+    // not a failure; the message says where and why the run ended
+    DAL_FAIL(st, DAL_STOPPED, "monitor returned %d at t=%.17g: evolve stopped there as asked", mr,
+             st->t);
+    return 1;
+  }
+  if (mr < 0) {
+    char why[DAL_ERRMSG_LEN];
+    memcpy(why, st->err, sizeof why);
+    return DAL_FAIL(st, DAL_E_CALLBACK,
+                    "monitor returned %d (%s) at t=%.17g%s%.300s; evolve stopped there (the state "
+                    "holds that time)",
+                    mr, dal_status_name(mr), st->t, why[0] ? ": " : "", why);
+  }
+  return 0;
+}
+
+// the state where the run stops, evaluated there; keeps the message already set
+static int stop_here(run *r, int status) {
+  char msg[DAL_ERRMSG_LEN];
+  memcpy(msg, r->st->err, sizeof msg);
+  int rc = evaluate_here(r->sys, r->st);
+  if (rc && status < 0) {
+    // already a failure (the evaluation at this time is what failed): keep its message
+    memcpy(r->st->err, msg, sizeof msg);
+    return r->status = status;
+  }
+  if (rc) return r->status = rc;
+  memcpy(r->st->err, msg, sizeof msg);
+  r->status = status;
+  return DAL__HOOK_STOP;
+}
+
+// serve output time t (inside the step just taken, or the state's own time when at_state)
+static int serve_output(run *r, double t, int at_state) {
+  dal_state *st = r->st;
+  int rc = at_state ? DAL_OK : place(r, t);
+  if (rc) return r->status = rc;
+  r->last_out = t;
+  r->k++;
+  r->nsteps = 0;
+  if (r->h && r->h->kind == KIND_ODE) r->h->ode->ncall = 0; // opts.max_steps per output
+  if (!r->monitor) return DAL_OK;
+  // the monitor reads the state; products are evaluated on its first read (dal__lazy_eval)
+  st->lazy = !at_state;
+  int mr = call_monitor(r->sys, st, r->monitor, r->ctx);
+  if (mr == 0) return DAL_OK;
+  return stop_here(r, mr > 0 ? DAL_STOPPED : mr);
+}
+
+// after every accepted step [a, b]: the outputs and event crossings inside it, in time order
+static int after_step(void *p) {
+  run *r = p;
+  dal_state *st = r->st;
+  double a = 0, b = 0;
+  if (r->h->kind == KIND_IDA) {
+    dal__ida_window(r->h->ida, &a, &b);
+  } else {
+    a = r->h->ode->tprev;
+    b = r->h->ode->t;
+  }
+  r->nsteps++;
+  int rc, np = 0, kp = 0;
+  if (r->ev) {
+    if ((rc = dal__events_scan(r->ev, st, a, b, place, r)) != 0) {
+      // a failing event function: the run stops at the step's end, evaluated
+      char msg[DAL_ERRMSG_LEN];
+      memcpy(msg, st->err, sizeof msg);
+      if (place(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+      return r->status = rc;
+    }
+    np = dal__events_npending(r->ev);
+  }
+  for (;;) {
+    double to = out_time(r), te = kp < np ? dal__events_pending(r->ev, kp)->t : INFINITY;
+    if (to > b && te > b) break;
+    if (to <= te) {
+      if ((rc = serve_output(r, to, 0)) != 0) return rc;
+      continue;
+    }
+    const dal__pending *e = dal__events_pending(r->ev, kp++);
+    if ((rc = place(r, e->t)) != 0 || (rc = dal__events_record(r->ev, st, e->event, e->dir)) != 0)
+      return r->status = rc;
+    if (dal__events_terminal(r->ev, e->event)) {
+      DAL_FAIL(st, DAL_EVENT, "event '%s' (%s) at t=%.17g: stopped there as asked",
+               dal__events_item_name(r->ev, e->event), e->dir > 0 ? "rising" : "falling", e->t);
+      return stop_here(r, DAL_EVENT);
+    }
+  }
+  if (r->h->kind == KIND_IDA && r->nsteps >= r->o->max_steps && b < r->t1) {
+    place(r, b);
+    DAL_FAIL(st, DAL_E_MAXSTEPS,
+             "%ld steps taken at t=%.17g before the next output or the target t=%.17g "
+             "(opts.max_steps); raise max_steps or loosen the tolerances",
+             r->nsteps, b, r->t1);
+    return stop_here(r, DAL_E_MAXSTEPS);
+  }
+  return DAL_OK;
+}
+
+// advance the run to t1 >= st->t with validated arguments
+static int run_to(run *r, double t1) {
+  const dal_system *sys = r->sys;
+  dal_state *st = r->st;
+  int rc = ensure_integ(sys, st, r->o);
+  if (rc) return rc;
+  dal_integ_handle *h = st->integ;
+  r->h = h;
+  if (t1 == st->t) return evaluate_here(sys, st);
+  if (t1 - st->t <= DAL_TINY_STEP(st->t)) {
+    // an interval of a few ulps: the solution does not change at double precision; restart
+    // the integrator at the new time rather than asking it for a step it cannot take
+    dal__integ_reset(st);
+    r->h = NULL; // freed with it
+    st->t = t1;
+    return evaluate_here(sys, st);
+  }
+  // the hook only when someone looks: a monitor at output times, or events
+  int hooked = (r->outputs && r->monitor) || r->ev;
+  if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
+  r->status = DAL_OK;
+  r->nsteps = 0;
+  if (h->kind == KIND_ODE) {
+    dal_ode_integ *ig = h->ode;
+    ig->tout = t1;
+    ig->ncall = 0;
+    ig->rhs_fatal = 0;
+    ig->ntiny = 0;
+    ig->nrecov = 0;
+    ig->hook = hooked ? after_step : NULL;
+    ig->hook_ctx = r;
+    rc = ig->advance(ig, t1);
+    ig->hook = NULL;
+    if (!rc) {
+      // the state at t1, evaluated there
+      dal__ode_to_state(ig, ig->t, ig->y);
+      rc = dal__public_status(dal__eval(sys, st, DAL_P_ALL));
+    }
+  } else {
+    dal__ida_set_hook(h->ida, hooked ? after_step : NULL, r);
+    rc = dal__ida_advance(sys, st, h->ida, t1);
+    if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
+    dal__ida_set_hook(h->ida, NULL, NULL);
+  }
+  if (rc == DAL__HOOK_STOP) {
+    // the hook left the state where the run stops, evaluated; the integrator is elsewhere
+    dal__integ_reset(st);
+    r->h = NULL; // freed with it
+    return r->status;
+  }
+  if (rc) {
+    // the state holds the last accepted step (or the failing callback's time); the next
+    // call restarts the integrator there
+    dal__integ_reset(st);
+    r->h = NULL; // freed with it
+    return rc;
+  }
+  st->err[0] = 0;
+  handle_sync(sys, st, h);
+  return DAL_OK;
+}
+
+static dal_events *active_events(const dal_state *st) {
+  return st->events && dal_events_size(st->events) > 0 ? st->events : NULL;
+}
+
+// common argument checks of advance and evolve
+static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts *o, double t1,
+                      const char *what) {
+  int pair = dal__check_pair(sys, st, what);
+  if (pair) return pair;
+  int rc = dal__check_opts(st, o);
+  if (rc) return rc;
+  if (!isfinite(t1))
+    return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
+  // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
+  // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
+  int fixed =
+      o->method == DAL_METHOD_RK4 ||
+      (o->fixed_erk && (o->method == DAL_METHOD_DOPRI5 || o->method == DAL_METHOD_FEHLBERG78));
+  const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
+  const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
+  for (int i = 0; i < 4; ++i)
+    if (hs[i] > 0 && (st->t + hs[i] == st->t || t1 + hs[i] == t1))
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "%s: opts.%s = %g is below the floating-point resolution of t between %g "
+                      "and %g; use a larger value or 0 (automatic)",
+                      what, hn[i], hs[i], st->t, t1);
+  if (t1 < st->t)
+    return DAL_FAIL(st, DAL_E_TIME,
+                    "%s: target time %.17g lies behind the current time %.17g; integration runs "
+                    "forward only (reset the state with dal_state_set to go back)",
+                    what, t1, st->t);
+  return DAL_OK;
+}
+
+int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1) {
+  int rc = check_call(sys, st, opts, t1, "advance");
+  if (rc) return rc;
+  dal_solve_opts eff = dal__effective_opts(opts);
+  run r = {.sys = sys, .st = st, .o = &eff, .t1 = t1, .ev = active_events(st)};
+  return run_to(&r, t1);
+}
+
+int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+               double dt, dal_monitor_fn *monitor, void *ctx) {
+  int rc = check_call(sys, st, opts, t1, "evolve");
+  if (rc) return rc;
+  if (!isfinite(dt))
+    return DAL_FAIL(st, DAL_E_NONFINITE,
+                    "evolve: output interval dt = %g is not finite; give a positive finite dt", dt);
+  if (!(dt > 0))
+    return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive", dt);
+  double t0 = st->t, span = (t1 - t0) / dt;
+  // a dt below the floating-point spacing of t would give output times that never advance
+  if (t0 + dt == t0 || t1 + dt == t1)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "evolve: output interval dt = %g is below the floating-point resolution of "
+                    "t between %g and %g; use a larger dt or restart the clock near 0",
+                    dt, t0, t1);
+  if (span > 1e12)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
+                    t0, t1, dt);
+  dal_solve_opts eff = dal__effective_opts(opts);
+  // K = number of whole output intervals: t0 + K dt <= t1 in floating point
+  long K = (long)floor(span);
+  while (K > 0 && t0 + (double)K * dt > t1)
+    --K;
+  while (t0 + (double)(K + 1) * dt <= t1)
+    ++K;
+  run r = {.sys = sys,
+           .st = st,
+           .o = &eff,
+           .outputs = 1,
+           .t0 = t0,
+           .dt = dt,
+           .t1 = t1,
+           .k = 0,
+           .K = K,
+           .last_out = -INFINITY,
+           .monitor = monitor,
+           .ctx = ctx,
+           .ev = active_events(st)};
+  // the start (made consistent first in redundant coordinates), evaluated, is output 0
+  if ((rc = run_to(&r, t0)) != 0) return rc;
+  if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
+  // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
+  if (out_time(&r) <= t1 && (rc = serve_output(&r, st->t, 1)) != 0)
+    return rc == DAL__HOOK_STOP ? r.status : rc;
+  return DAL_OK;
+}

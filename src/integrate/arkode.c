@@ -1,0 +1,292 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Explicit adaptive Runge-Kutta through SUNDIALS ARKODE ERKStep: Dormand-Prince 5(4) and
+// Fehlberg 7(8) (tables ARKODE_DORMAND_PRINCE_7_4_5 and ARKODE_FEHLBERG_13_7_8 made FSAL;
+// Hairer-Norsett-Wanner, Solving ODEs I, sec. II.5 and II.10). One internal step per call, so
+// the driver keeps every accepted step and can project or restart there.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include <arkode/arkode_butcher_erk.h>
+#include <arkode/arkode_erkstep.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+
+#include "nvec.h"
+#include "integrate.h"
+
+/// consecutive recoverable right-hand-side failures tolerated before giving up
+#define ERK_MAX_RECOVER 30
+
+typedef struct erk_mem {
+  SUNContext ctx;
+  void *ark;
+  N_Vector y, ele, ewt, dky;
+  ARKodeButcherTable fb;    // Fehlberg 7(8): its table for the dense output's partial steps
+  double *K, *yk;           // its stages (stages x ny) and stage argument (ny)
+  long nfe_base, netf_base; // counters already added to the state's statistics
+} erk_mem;
+
+static int erk_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
+  dal_ode_integ *ig = ud;
+  return dal__ode_rhs(ig, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+}
+
+static void erk_free(void *p) {
+  erk_mem *m = p;
+  if (!m) return;
+  if (m->ark) ERKStepFree(&m->ark);
+  if (m->y) N_VDestroy(m->y);
+  if (m->ele) N_VDestroy(m->ele);
+  if (m->ewt) N_VDestroy(m->ewt);
+  if (m->dky) N_VDestroy(m->dky);
+  if (m->fb) ARKodeButcherTable_Free(m->fb);
+  free(m->K);
+  free(m->yk);
+  if (m->ctx) SUNContext_Free(&m->ctx);
+  free(m);
+}
+
+// add the error-test failures since the last call to the statistics
+static void erk_sync_stats(dal_ode_integ *ig, erk_mem *m) {
+  long netf = 0;
+  ERKStepGetNumErrTestFails(m->ark, &netf);
+  ig->st->stats.rejected += netf - m->netf_base;
+  m->netf_base = netf;
+}
+
+// restart the integrator at the last accepted step with initial step h (0: estimate)
+static int erk_restart(dal_ode_integ *ig, erk_mem *m, double h) {
+  erk_sync_stats(ig, m);
+  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  int flag = ERKStepSetInitStep(m->ark, h);
+  if (flag == ARK_SUCCESS) flag = ERKStepReset(m->ark, ig->t, m->y);
+  // a reset forgets the stop time
+  if (flag == ARK_SUCCESS) flag = ERKStepSetStopTime(m->ark, ig->tout);
+  m->netf_base = 0;
+  ERKStepGetNumErrTestFails(m->ark, &m->netf_base);
+  return flag;
+}
+
+// the failure message and status for an ARKODE return code
+static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
+  char var[128];
+  double h = 0;
+  ERKStepGetCurrentStep(m->ark, &h);
+  ig->st->stats.foreign_code = flag;
+  // an unrecoverable right-hand side decides, whatever the integrator made of it
+  if (ig->rhs_fatal) flag = ARK_RHSFUNC_FAIL;
+  switch (flag) {
+  case ARK_RHSFUNC_FAIL:
+  case ARK_FIRST_RHSFUNC_ERR:
+  case ARK_REPTD_RHSFUNC_ERR:
+  case ARK_UNREC_RHSFUNC_ERR:
+    return dal__ode_fail(ig,
+                         ig->rhs_fatal  ? ig->rhs_fatal
+                         : ig->recov_rc ? ig->recov_rc
+                                        : DAL__RECOVERABLE,
+                         "%s; stopped at t=%.17g (last accepted step) before the target "
+                         "t=%.17g",
+                         ig->rhs_err, ig->t, ig->tout);
+  case ARK_ERR_FAILURE:
+  case ARK_TOO_MUCH_ACC: {
+    // a callback that keeps asking for a smaller step, not the solution, stopped us
+    if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
+    // dominating variable: the largest weighted local error estimate of the failed try
+    ERKStepGetEstLocalErrors(m->ark, m->ele);
+    ERKStepGetErrWeights(m->ark, m->ewt);
+    const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
+    for (int i = 0; i < ig->ny; ++i)
+      ig->ewt[i] = e[i] * w[i];
+    int i = dal__ode_argmax(ig->ewt, ig->ny);
+    return dal__ode_fail(ig, DAL_E_STEP,
+                         "step size underflow at t=%.17g (h=%.3g, %s): error dominated by %s; "
+                         "the solution may be singular there, or the tolerances too tight: "
+                         "loosen rtol/atol or check the model near this time",
+                         ig->t, h, dal_method_name(ig->method),
+                         dal__ode_var_name(ig, i, var, sizeof var));
+  }
+  case ARK_TOO_MUCH_WORK:
+    return dal__ode_fail(ig, DAL_E_MAXSTEPS,
+                         "too many steps at t=%.17g before the target t=%.17g; raise "
+                         "opts.max_steps or loosen the tolerances",
+                         ig->t, ig->tout);
+  case ARK_CONV_FAILURE:
+    return dal__ode_fail(ig, DAL_E_CONV, "convergence failure at t=%.17g: %s", ig->t, ig->sun_err);
+  default:
+    return dal__ode_fail(ig, DAL_E_SOLVER, "ARKODE failed at t=%.17g (code %d): %s", ig->t, flag,
+                         ig->sun_err);
+  }
+}
+
+// Fehlberg 7(8) with an appended first-same-as-last stage. ARKODE 6.4.1 reuses the last
+// stage's f as the next step's first stage whenever the last node c_s is 1; Fehlberg's 13th
+// stage has c = 1 but is not y_{n+1}, so the stock ARKODE_FEHLBERG_13_7_8 table converges at
+// order 7 instead of 8 (measured: error ratio 128, not 256, per halving on the pendulum). The
+// extra stage Y_14 = y_n + h sum_j b_j k_j = y_{n+1} (c = 1, weight 0) makes the reuse exact:
+// still 13 evaluations per step, order 8 propagated, order-7 embedding for the error estimate.
+// The coefficients are ARKODE's own (Fehlberg, NASA TR R-287, 1968).
+static int erk_set_fehlberg(void *ark) {
+  ARKodeButcherTable F = ARKodeButcherTable_LoadERK(ARKODE_FEHLBERG_13_7_8);
+  if (!F) return ARK_MEM_FAIL;
+  int s = F->stages;
+  ARKodeButcherTable G = ARKodeButcherTable_Alloc(s + 1, SUNTRUE);
+  if (!G) {
+    ARKodeButcherTable_Free(F);
+    return ARK_MEM_FAIL;
+  }
+  for (int i = 0; i < s; ++i) {
+    G->c[i] = F->c[i];
+    G->b[i] = F->b[i];
+    G->d[i] = F->d[i];
+    for (int j = 0; j < s; ++j)
+      G->A[i][j] = F->A[i][j];
+  }
+  for (int j = 0; j < s; ++j)
+    G->A[s][j] = F->b[j];
+  G->c[s] = 1.0;
+  G->b[s] = G->d[s] = 0.0;
+  G->q = F->q;
+  G->p = F->p;
+  int flag = ERKStepSetTable(ark, G);
+  ARKodeButcherTable_Free(G);
+  ARKodeButcherTable_Free(F);
+  return flag;
+}
+
+// DOPRI5's slope at the end of the step: its last stage (first same as last), which ARKODE's
+// interpolation module keeps; the driver's cubic Hermite (ode.c) is its dense output
+static int erk_end_slope(dal_ode_integ *ig, double *f) {
+  erk_mem *m = ig->impl;
+  int flag = ERKStepGetDky(m->ark, ig->t, 1, m->dky);
+  if (flag != ARK_SUCCESS)
+    return DAL_FAIL(ig->st, DAL_E_SOLVER, "ARKODE could not give the slope at t=%.17g (code %d)",
+                    ig->t, flag);
+  memcpy(f, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  return DAL_OK;
+}
+
+// dense output of Fehlberg 7(8): one step of the method itself, of length t - tprev, from the
+// step's start (order 8 like the step; ARKODE's Hermite interpolant of degree 5 measured 400 x
+// rtol between Fehlberg's long steps). The first stage is shared by the outputs of a step.
+static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
+  erk_mem *m = ig->impl;
+  ARKodeButcherTable F = m->fb;
+  int ny = ig->ny, s = F->stages;
+  double tau = t - ig->tprev;
+  int rc = dal__ode_start_slope(ig);
+  if (rc) return rc;
+  memcpy(m->K, ig->hf0, (size_t)ny * sizeof(double));
+  for (int i = 1; i < s; ++i) {
+    for (int k = 0; k < ny; ++k) {
+      double a = 0.0;
+      for (int j = 0; j < i; ++j)
+        a += F->A[i][j] * m->K[(size_t)j * ny + k];
+      m->yk[k] = ig->yprev[k] + tau * a;
+    }
+    rc = dal__ode_eval(ig, ig->tprev + F->c[i] * tau, m->yk, m->K + (size_t)i * ny, DAL_P_ACC);
+    if (rc) return dal__public_status(rc);
+    ig->st->stats.rhs_evals++;
+  }
+  for (int k = 0; k < ny; ++k) {
+    double a = 0.0;
+    for (int j = 0; j < s; ++j)
+      a += F->b[j] * m->K[(size_t)j * ny + k];
+    yout[k] = ig->yprev[k] + tau * a;
+  }
+  return DAL_OK;
+}
+
+static int erk_advance(dal_ode_integ *ig, double tout) {
+  erk_mem *m = ig->impl;
+  int recover = 0, flag = ERKStepSetStopTime(m->ark, tout);
+  if (flag != ARK_SUCCESS) return erk_failure(ig, m, flag);
+  while (ig->t < tout) {
+    realtype tret = ig->t;
+    ig->rhs_rc = 0;
+    flag = ERKStepEvolve(m->ark, tout, m->y, &tret, ARK_ONE_STEP);
+    erk_sync_stats(ig, m);
+    if (flag >= 0 && ig->rhs_fatal) flag = ARK_RHSFUNC_FAIL;
+    if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = ARK_ERR_FAILURE;
+    if (flag < 0) {
+      // ERKStep treats any right-hand-side failure as final: a recoverable one restarts
+      // here from the last accepted step with a quarter of the step that failed
+      if (!ig->rhs_fatal && dal__is_retry(ig->rhs_rc) && recover < ERK_MAX_RECOVER) {
+        double h = 0;
+        ERKStepGetCurrentStep(m->ark, &h);
+        if (!(h > 0)) h = ig->st->stats.last_h;
+        ig->st->stats.rejected++;
+        ++recover;
+        flag = erk_restart(ig, m, h > 0 ? 0.25 * h : 0.0);
+        if (flag == ARK_SUCCESS) continue;
+      }
+      return erk_failure(ig, m, flag);
+    }
+    recover = 0;
+    ig->st->stats.foreign_code = flag;
+    // a step that reached the stop time within rounding lands exactly on tout
+    if (flag == ARK_TSTOP_RETURN) tret = tout;
+    if (tret > tout) return erk_failure(ig, m, ARK_BAD_T);
+    int projected = 0;
+    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
+    if (rc) return rc;
+    if (projected && ig->t < tout) {
+      double h = 0;
+      ERKStepGetCurrentStep(m->ark, &h); // the step proposed next, not the one taken
+      if ((flag = erk_restart(ig, m, h)) != ARK_SUCCESS) return erk_failure(ig, m, flag);
+    }
+  }
+  return DAL_OK;
+}
+
+int dal__erk_create(dal_ode_integ *ig) {
+  dal_state *st = ig->st;
+  const dal_solve_opts *o = &ig->opts;
+  erk_mem *m = calloc(1, sizeof *m);
+  if (!m) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
+  ig->impl = m;
+  ig->free_impl = erk_free;
+  ig->advance = erk_advance;
+  ig->end_slope = erk_end_slope;
+  int flag = SUNContext_Create(NULL, &m->ctx);
+  if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
+  m->y = N_VNew_Serial(ig->ny, m->ctx);
+  m->ele = N_VNew_Serial(ig->ny, m->ctx);
+  m->ewt = N_VNew_Serial(ig->ny, m->ctx);
+  m->dky = N_VNew_Serial(ig->ny, m->ctx);
+  if (!m->y || !m->ele || !m->ewt || !m->dky)
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
+  // the library's vector kernels (nvec.c); the integrator's work vectors are clones of y
+  dal__nvec_fast(m->y);
+  dal__nvec_fast(m->dky);
+  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  m->ark = ERKStepCreate(erk_rhs, ig->t, m->y, m->ctx);
+  if (!m->ark) return DAL_FAIL(st, DAL_E_NOMEM, "ERKStepCreate failed");
+  flag = ERKStepSetErrHandlerFn(m->ark, dal__ode_sun_err, ig);
+  if (!flag) flag = ERKStepSetUserData(m->ark, ig);
+  if (!flag && ig->method == DAL_METHOD_FEHLBERG78) {
+    flag = erk_set_fehlberg(m->ark);
+    m->fb = ARKodeButcherTable_LoadERK(ARKODE_FEHLBERG_13_7_8);
+    m->K = m->fb ? calloc((size_t)m->fb->stages * (size_t)ig->ny + 1, sizeof(double)) : NULL;
+    m->yk = calloc((size_t)ig->ny + 1, sizeof(double));
+    if (!m->K || !m->yk)
+      return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
+    ig->interp = fehlberg_interp;
+  } else if (!flag)
+    flag = ERKStepSetTableNum(m->ark, ARKODE_DORMAND_PRINCE_7_4_5);
+  if (!flag) flag = ERKStepSStolerances(m->ark, ig->rtol, ig->atol);
+  // ARKODE's interpolant serves only the end slope (Hermite of degree 3 keeps the stored f)
+  if (!flag) flag = ERKStepSetInterpolantDegree(m->ark, 3);
+  if (!flag && o->fixed_erk) flag = ERKStepSetFixedStep(m->ark, o->fixed_step);
+  if (!flag && o->h0 > 0) flag = ERKStepSetInitStep(m->ark, o->h0);
+  if (!flag && o->hmin > 0) flag = ERKStepSetMinStep(m->ark, o->hmin);
+  if (!flag && o->hmax > 0) flag = ERKStepSetMaxStep(m->ark, o->hmax);
+  // steps are counted per advance call by the driver; one internal step per ERKStepEvolve
+  if (!flag) flag = ERKStepSetMaxNumSteps(m->ark, 0);
+  if (flag)
+    return DAL_FAIL(st, DAL_E_SOLVER, "ARKODE ERKStep setup failed (code %d): %s", flag,
+                    ig->sun_err);
+  return DAL_OK;
+}

@@ -1,0 +1,513 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// SUNDIALS IDA glue for the DAE formulations of form_dae.c (GGL, index-3, index-1): setup,
+// tolerances, the residual and Newton-matrix callbacks, advance, and failures named.
+//
+// lambda and mu are algebraic and kept out of IDA's error test (IDASetId + IDASetSuppressAlg).
+// The Newton matrix comes from form_dae.c (exact pieces, no difference quotients) with KLU, and
+// with the dense solver when it is the whole Jacobian (dal__dae_newton_exact); otherwise the
+// dense solver uses IDA's difference quotients.
+#include <ida/ida.h>
+#include <math.h>
+#include <nvector/nvector_serial.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include "form/form.h"
+#include "nvec.h"
+#include "integrate.h"
+
+typedef struct ida_mem {
+  const dal_system *sys;
+  dal_state *st;
+  dal_solve_opts opts;
+  dal_dae f;                    // the formulation (sizes, residual, Newton matrix)
+  int n, m, neq, off_l, off_mu; // copies of f's sizes
+  int sparse, started;
+  double rtol; // the relative tolerance IDA runs at (calibrated and floored)
+  SUNContext ctx;
+  void *ida;
+  N_Vector y, yp, id, atol, w1, w2;
+  SUNMatrix A;
+  SUNLinearSolver LS;
+  // statistics already added to the state
+  long nst, nre, nje, nni, netf, ncfn;
+  // failures seen inside callbacks and from IDA's error handler
+  int cb_status;
+  char cb_msg[DAL_ERRMSG_LEN];
+  char ida_msg[256];
+  // dense output (driver.c): after every step from tprev to tcur, hook(hook_ctx)
+  int (*hook)(void *ctx);
+  void *hook_ctx;
+  double tprev, tcur;
+} ida_mem;
+
+static const char *form_name(dal_formulation f) {
+  return f == DAL_FORM_INDEX3 ? "index-3" : f == DAL_FORM_INDEX1 ? "index-1" : "GGL";
+}
+
+// SUNDIALS messages are kept (for our error text), never printed
+static void silent_handler(int code, const char *module, const char *function, char *msg,
+                           void *data) {
+  ida_mem *w = data;
+  (void)code;
+  (void)module;
+  snprintf(w->ida_msg, sizeof w->ida_msg, "%s: %s", function, msg);
+}
+
+// name of unknown i for messages
+static void unknown_name(const ida_mem *w, int i, char *buf, size_t len) {
+  const dal_system *sys = w->sys;
+  int n = w->n;
+  if (i < n)
+    snprintf(buf, len, "q[%d] (coordinate '%s')", i, sys->coord_names[i]);
+  else if (i < 2 * n)
+    snprintf(buf, len, "v[%d] (velocity of '%s')", i - n, sys->coord_names[i - n]);
+  else if (i < w->off_l + w->m)
+    snprintf(buf, len, "lambda[%d] (constraint '%s')", i - w->off_l,
+             sys->con[sys->row_con[i - w->off_l]].name);
+  else
+    snprintf(buf, len, "mu[%d] (constraint '%s')", i - w->off_mu,
+             sys->con[sys->row_con[i - w->off_mu]].name);
+}
+
+// map a callback status to IDA's convention and remember it
+static int cb_fail(ida_mem *w, int rc) {
+  if (rc == DAL__RECOVERABLE) return 1;
+  w->cb_status = rc;
+  memcpy(w->cb_msg, w->st->err, sizeof w->cb_msg);
+  return -1;
+}
+
+static int residual(double t, N_Vector yy, N_Vector yp, N_Vector rr, void *data) {
+  ida_mem *w = data;
+  int rc = dal__dae_residual(&w->f, t, N_VGetArrayPointer(yy), N_VGetArrayPointer(yp),
+                             N_VGetArrayPointer(rr));
+  return rc ? cb_fail(w, rc) : 0;
+}
+
+static int jacobian(double t, double cj, N_Vector yy, N_Vector yp, N_Vector rr, SUNMatrix J,
+                    void *data, N_Vector t1, N_Vector t2, N_Vector t3) {
+  ida_mem *w = data;
+  (void)yp;
+  (void)rr;
+  (void)t1;
+  (void)t2;
+  (void)t3;
+  dal_dae_sink s = {w->sparse ? DAL_SINK_SPARSE : DAL_SINK_DENSE, 0, NULL,
+                    w->sparse ? SM_DATA_S(J) : SM_DATA_D(J)};
+  if (w->sparse) {
+    // IDA zeroes the matrix, pattern included, before each call: write the pattern, and sum
+    // the entries straight into its values
+    sunindextype *cp = SM_INDEXPTRS_S(J), *ri = SM_INDEXVALS_S(J);
+    for (int j = 0; j <= w->f.neq; ++j)
+      cp[j] = w->f.pat.colptr[j];
+    for (int k = 0; k < w->f.pat.nnz; ++k)
+      ri[k] = w->f.pat.rowind[k];
+    memset(SM_DATA_S(J), 0, (size_t)w->f.pat.nnz * sizeof(double));
+  }
+  int rc = dal__dae_newton(&w->f, t, cj, N_VGetArrayPointer(yy), &s);
+  if (rc) return cb_fail(w, rc);
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------------
+
+void dal__ida_free(void *mem) {
+  ida_mem *w = mem;
+  if (!w) return;
+  if (w->ida) IDAFree(&w->ida);
+  if (w->LS) SUNLinSolFree(w->LS);
+  if (w->A) SUNMatDestroy(w->A);
+  N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
+  for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
+    if (vs[i]) N_VDestroy(vs[i]);
+  if (w->ctx) SUNContext_Free(&w->ctx);
+  dal__dae_free(&w->f);
+  free(w);
+}
+
+// y and y' from the state's consistent (t, q, qdot, qddot, lambda)
+static void load_y(ida_mem *w) {
+  const dal_state *st = w->st;
+  int n = w->n, m = w->m;
+  double *y = N_VGetArrayPointer(w->y), *yp = N_VGetArrayPointer(w->yp);
+  memset(y, 0, (size_t)w->neq * sizeof(double));
+  memset(yp, 0, (size_t)w->neq * sizeof(double));
+  memcpy(y, st->q, (size_t)n * sizeof(double));
+  memcpy(y + n, st->qdot, (size_t)n * sizeof(double));
+  if (m) memcpy(y + w->off_l, st->lambda, (size_t)m * sizeof(double));
+  memcpy(yp, st->qdot, (size_t)n * sizeof(double));
+  memcpy(yp + n, st->qddot, (size_t)n * sizeof(double));
+  if (w->f.off_w >= 0) {
+    y[w->f.off_w] = st->W;
+    yp[w->f.off_w] = st->power; // the start is evaluated with DAL_P_ALL (power included)
+  }
+}
+
+#define IDA_CHECK(call)                                                                            \
+  do {                                                                                             \
+    int f_ = (call);                                                                               \
+    if (f_ < 0) {                                                                                  \
+      st->stats.foreign_code = f_;                                                                 \
+      rc = DAL_FAIL(st, DAL_E_SOLVER, "IDA setup failed in %s (flag %d): %s", #call, f_,           \
+                    w->ida_msg);                                                                   \
+      goto fail;                                                                                   \
+    }                                                                                              \
+  } while (0)
+
+int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem) {
+  *mem = NULL;
+  dal_formulation form = opts->form == DAL_FORM_AUTO ? DAL_FORM_GGL : opts->form;
+  if (form != DAL_FORM_GGL && form != DAL_FORM_INDEX3 && form != DAL_FORM_INDEX1)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "the DAE integrator (IDA) runs the GGL, index-3 and index-1 forms, not "
+                    "'%s'",
+                    dal_formulation_name(form));
+  if (form == DAL_FORM_INDEX1 && opts->project)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "the index-1 form with projection runs with the ODE methods (DOPRI5, "
+                    "Fehlberg 7(8), Bulirsch-Stoer, Adams), not with BDF in IDA; with BDF use "
+                    "Baumgarte terms (opts.baumgarte_alpha/beta) or the GGL form");
+  if (sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "a Lagrangian system has no particles or constraints for the DAE "
+                    "integrator; use an ODE method");
+  // consistent start: rank check, projections, KKT accelerations and multipliers
+  int rc = dal__dae_start(sys, st, opts->init_max_move, NULL);
+  if (rc) return rc;
+  ida_mem *w = calloc(1, sizeof *w);
+  if (!w) return DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory");
+  w->sys = sys;
+  w->st = st;
+  w->opts = *opts;
+  if (dal__dae_init(&w->f, sys, st, form, opts->baumgarte_alpha, opts->baumgarte_beta,
+                    opts->work)) {
+    free(w);
+    return DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory");
+  }
+  w->n = w->f.n;
+  w->m = w->f.m;
+  w->neq = w->f.neq;
+  w->off_l = w->f.off_l;
+  w->off_mu = w->f.off_mu;
+  // the calibrated tolerance (solve.h), floored where IDA's Newton iteration stalls on
+  // rounding; a clamp is reported in the statistics
+  double fac = dal__dae_tol_factor(form);
+  w->rtol = fmax(fac * opts->rtol, DAL_IDA_TOL_FLOOR);
+  st->stats.rtol_used = w->rtol;
+  w->sparse =
+      opts->linsol == DAL_LINSOL_KLU ||
+      (opts->linsol == DAL_LINSOL_AUTO && (w->neq >= opts->sparse_threshold || !sys->dense_M));
+  if (SUNContext_Create(NULL, &w->ctx) != 0) {
+    dal__dae_free(&w->f);
+    free(w);
+    return DAL_FAIL(st, DAL_E_NOMEM, "IDA: cannot create the SUNDIALS context");
+  }
+  sunindextype neq = w->neq;
+  w->y = N_VNew_Serial(neq, w->ctx);
+  w->yp = N_VNew_Serial(neq, w->ctx);
+  w->id = N_VNew_Serial(neq, w->ctx);
+  w->atol = N_VNew_Serial(neq, w->ctx);
+  w->w1 = N_VNew_Serial(neq, w->ctx);
+  w->w2 = N_VNew_Serial(neq, w->ctx);
+  if (!w->y || !w->yp || !w->id || !w->atol || !w->w1 || !w->w2) {
+    rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d unknowns", w->neq);
+    goto fail;
+  }
+  // the library's vector kernels; IDA's work vectors are clones of these and inherit them
+  {
+    N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
+    for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
+      dal__nvec_fast(vs[i]);
+  }
+  // error test on q and v; lambda and mu (algebraic) out of it. Index-3 keeps only q in
+  // the error test, the usual practice for the higher-index variables of a BDF code (Brenan,
+  // Campbell and Petzold, sec. 5.4): with v in it the steps collapse at rtol <= 1e-6.
+  // Absolute tolerances: opts.atol for q and v; multipliers and mu get loose ones, they only
+  // weigh Newton corrections.
+  {
+    double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
+    // a clamped rtol raises atol in proportion: the requested ratio atol / rtol is kept
+    double fscale = 0.0, atol = opts->atol * (w->rtol / opts->rtol);
+    for (int r = 0; r < w->m; ++r)
+      fscale = fmax(fscale, fabs(st->lambda[r]));
+    dal__dae_mask(&w->f, id);
+    for (int i = 0; i < w->neq; ++i)
+      at[i] = atol;
+    for (int r = 0; r < w->m; ++r) {
+      at[w->off_l + r] = fmax(atol, w->rtol * fmax(fscale, 1.0));
+      if (w->off_mu >= 0) at[w->off_mu + r] = fmax(atol, sqrt(opts->atol));
+    }
+  }
+  load_y(w);
+  w->ida = IDACreate(w->ctx);
+  if (!w->ida) {
+    rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: IDACreate failed (out of memory)");
+    goto fail;
+  }
+  IDA_CHECK(IDASetErrHandlerFn(w->ida, silent_handler, w));
+  IDA_CHECK(IDAInit(w->ida, residual, st->t, w->y, w->yp));
+  IDA_CHECK(IDASVtolerances(w->ida, w->rtol, w->atol));
+  IDA_CHECK(IDASetUserData(w->ida, w));
+  IDA_CHECK(IDASetId(w->ida, w->id));
+  IDA_CHECK(IDASetSuppressAlg(w->ida, SUNTRUE));
+  IDA_CHECK(IDASetMaxNumSteps(w->ida, opts->max_steps > 0 ? opts->max_steps : 1000000));
+  if (opts->hmax > 0) IDA_CHECK(IDASetMaxStep(w->ida, opts->hmax));
+  if (opts->hmin > 0) IDA_CHECK(IDASetMinStep(w->ida, opts->hmin));
+  if (w->sparse) {
+    if (dal__dae_pattern(&w->f)) {
+      rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for the sparse Jacobian");
+      goto fail;
+    }
+    w->A = SUNSparseMatrix(neq, neq, w->f.pat.nnz, CSC_MAT, w->ctx);
+    w->LS = w->A ? SUNLinSol_KLU(w->y, w->A, w->ctx) : NULL;
+  } else {
+    w->A = SUNDenseMatrix(neq, neq, w->ctx);
+    w->LS = w->A ? SUNLinSol_Dense(w->y, w->A, w->ctx) : NULL;
+  }
+  if (!w->A || !w->LS) {
+    rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: cannot create the %s linear solver (%d unknowns)",
+                  w->sparse ? "KLU" : "dense", w->neq);
+    goto fail;
+  }
+  IDA_CHECK(IDASetLinearSolver(w->ida, w->LS, w->A));
+  if (w->sparse || dal__dae_newton_exact(sys)) IDA_CHECK(IDASetJacFn(w->ida, jacobian));
+  *mem = w;
+  return DAL_OK;
+fail:
+  dal__ida_free(w);
+  return rc;
+}
+
+// add IDA's counters since the last call to the state's statistics
+static void update_stats(ida_mem *w, int flag) {
+  dal_stats *s = &w->st->stats;
+  long nst = 0, nre = 0, nje = 0, nni = 0, netf = 0, ncfn = 0, nreLS = 0;
+  IDAGetNumSteps(w->ida, &nst);
+  IDAGetNumResEvals(w->ida, &nre);
+  IDAGetNumJacEvals(w->ida, &nje);
+  IDAGetNumLinResEvals(w->ida, &nreLS);
+  IDAGetNumNonlinSolvIters(w->ida, &nni);
+  IDAGetNumErrTestFails(w->ida, &netf);
+  IDAGetNumNonlinSolvConvFails(w->ida, &ncfn);
+  nre += nreLS;
+  s->steps += nst - w->nst;
+  s->rhs_evals += nre - w->nre;
+  s->jac_evals += nje - w->nje;
+  s->nonlin_iters += nni - w->nni;
+  s->rejected += (netf - w->netf) + (ncfn - w->ncfn);
+  w->nst = nst;
+  w->nre = nre;
+  w->nje = nje;
+  w->nni = nni;
+  w->netf = netf;
+  w->ncfn = ncfn;
+  double h = 0.0;
+  if (IDAGetLastStep(w->ida, &h) == IDA_SUCCESS && h != 0.0) s->last_h = h;
+  s->foreign_code = flag;
+}
+
+// the state at (t, y) evaluated as after dal_forward
+static int finish_state(ida_mem *w, double t, const double *y) {
+  dal_state *st = w->st;
+  if (w->f.off_w >= 0) st->W = y[w->f.off_w];
+  st->t = t;
+  memcpy(st->q, y, (size_t)w->n * sizeof(double));
+  memcpy(st->qdot, y + w->n, (size_t)w->n * sizeof(double));
+  dal__state_moved(st);
+  return dal__public_status(dal__eval(w->sys, st, DAL_P_ALL));
+}
+
+// the component dominating the weighted local error estimate (differential ones first)
+static int dominating(ida_mem *w) {
+  if (IDAGetErrWeights(w->ida, w->w1) != IDA_SUCCESS ||
+      IDAGetEstLocalErrors(w->ida, w->w2) != IDA_SUCCESS)
+    return -1;
+  const double *ew = N_VGetArrayPointer(w->w1), *le = N_VGetArrayPointer(w->w2);
+  int best = -1;
+  double bmax = -1.0;
+  for (int pass = 0; pass < 2 && best < 0; ++pass)
+    for (int i = pass ? 2 * w->n : 0; i < (pass ? w->neq : 2 * w->n); ++i) {
+      double e = fabs(ew[i] * le[i]);
+      if (e > bmax && e > 0.0) {
+        bmax = e;
+        best = i;
+      }
+    }
+  return best;
+}
+
+static int map_failure(ida_mem *w, int flag, double tfail) {
+  dal_state *st = w->st;
+  const char *what, *remedy;
+  int code;
+  switch (flag) {
+  case IDA_TOO_MUCH_WORK:
+    code = DAL_E_MAXSTEPS;
+    what = "too many steps before the target time";
+    remedy = "raise opts.max_steps, or loosen the tolerances";
+    break;
+  case IDA_TOO_MUCH_ACC:
+    code = DAL_E_STEP;
+    what = "the tolerances are too tight for double precision";
+    remedy = "loosen rtol/atol";
+    break;
+  case IDA_ERR_FAIL:
+    code = DAL_E_STEP;
+    what = "repeated error-test failures (step size underflow)";
+    remedy = "loosen the tolerances, or check the forces for discontinuities and the "
+             "constraints for a near-singular configuration";
+    break;
+  case IDA_CONV_FAIL:
+  case IDA_NLS_FAIL:
+    code = DAL_E_CONV;
+    what = "the Newton iteration failed to converge repeatedly";
+    remedy = w->f.form == DAL_FORM_GGL
+                 ? "check the constraints (dal_check_constraints) for near-redundancy or a "
+                   "vanishing gradient near this configuration"
+                 : "check the constraints (dal_check_constraints) for near-redundancy, or use "
+                   "the GGL form";
+    break;
+  case IDA_LINIT_FAIL:
+  case IDA_LSETUP_FAIL:
+  case IDA_LSOLVE_FAIL:
+    code = DAL_E_SOLVER;
+    what = "the linear solver failed (singular iteration matrix)";
+    remedy = "check for redundant constraints (dal_check_constraints) and positive masses";
+    break;
+  case IDA_RES_FAIL:
+  case IDA_FIRST_RES_FAIL:
+    code = w->cb_status ? w->cb_status : DAL_E_CALLBACK;
+    what = "the residual evaluation failed";
+    remedy = "see the cause below";
+    break;
+  case IDA_REP_RES_ERR:
+    code = DAL_E_CALLBACK;
+    what = "a callback asked for smaller steps repeatedly";
+    remedy = "check the callback's domain";
+    break;
+  default:
+    code = DAL_E_SOLVER;
+    what = "IDA failed";
+    remedy = "see IDA's message";
+    break;
+  }
+  char var[160] = "no variable";
+  int dom = dominating(w);
+  if (dom >= 0) unknown_name(w, dom, var, sizeof var);
+  char cause[DAL_ERRMSG_LEN] = "";
+  if (code == w->cb_status && w->cb_status)
+    snprintf(cause, sizeof cause, "; cause: %.400s", w->cb_msg);
+  return DAL_FAIL(st, code,
+                  "IDA (%s form, %s) at t=%.17g: %s; error dominated by %s; %s; the state "
+                  "holds the last accepted step (t=%.17g)%s [IDA flag %d: %.120s]",
+                  form_name(w->f.form), w->sparse ? "KLU" : "dense", tfail, what, var, remedy,
+                  st->t, cause, flag, w->ida_msg);
+}
+
+int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout) {
+  ida_mem *w = mem;
+  (void)sys;
+  DAL_ASSERT(w && w->st == st && w->sys == sys);
+  double t0 = st->t;
+  if (tout == t0) return finish_state(w, t0, N_VGetArrayPointer(w->y));
+  if (!w->started) {
+    // IDA's own first step is ~1e-16 at tight tolerances and fails: start near 0.1 sqrt(rtol)
+    double h0 = w->opts.h0 > 0 ? w->opts.h0 : DAL_IDA_H0_FACTOR * sqrt(w->rtol);
+    if (w->opts.hmax > 0 && h0 > w->opts.hmax) h0 = w->opts.hmax;
+    if (h0 > fabs(tout - t0)) h0 = fabs(tout - t0);
+    IDASetInitStep(w->ida, tout > t0 ? h0 : -h0);
+    w->started = 1;
+  }
+  w->cb_status = 0;
+  w->ida_msg[0] = 0;
+  // progress guard: no step below a few ulps of t (IDA would otherwise creep towards a point
+  // it cannot pass, e.g. a callback that keeps returning > 0 or a constraint that becomes
+  // unsatisfiable, with a million steps that do not move t); opts.hmin when larger
+  double hmin = fmax(w->opts.hmin, DAL_TINY_STEP(fmax(fabs(t0), fabs(tout))));
+  IDASetMinStep(w->ida, w->opts.hmax > 0 ? fmin(hmin, w->opts.hmax) : hmin);
+  IDASetStopTime(w->ida, tout);
+  double tret = t0;
+  int flag;
+  if (w->hook) {
+    // one step at a time, the driver's hook after each (dense output, events)
+    w->tcur = t0;
+    for (;;) {
+      flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_ONE_STEP);
+      update_stats(w, flag);
+      if (flag < 0) break;
+      if (flag == IDA_TSTOP_RETURN) tret = tout;
+      w->tprev = w->tcur;
+      w->tcur = tret;
+      int rc = w->hook(w->hook_ctx);
+      if (rc) return rc;
+      if (tret >= tout) return finish_state(w, tout, N_VGetArrayPointer(w->y));
+    }
+  } else {
+    flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_NORMAL);
+    update_stats(w, flag);
+  }
+  if (flag >= 0) return finish_state(w, tret, N_VGetArrayPointer(w->y));
+  // failure: the last accepted step, then the message naming time and variable (and, for
+  // repeated recoverable residual failures, the callback that asked last: its message is
+  // still the state's)
+  char recov[DAL_ERRMSG_LEN] = "";
+  if (flag == IDA_REP_RES_ERR) memcpy(recov, st->err, sizeof recov);
+  double tcur = t0;
+  IDAGetCurrentTime(w->ida, &tcur);
+  if (IDAGetDky(w->ida, tcur, 0, w->w1) == IDA_SUCCESS) {
+    char keep[DAL_ERRMSG_LEN];
+    memcpy(keep, st->err, sizeof keep);
+    if (finish_state(w, tcur, N_VGetArrayPointer(w->w1)) != 0) memcpy(st->err, keep, sizeof keep);
+  }
+  double hcur = 0.0;
+  IDAGetCurrentStep(w->ida, &hcur);
+  int rc = map_failure(w, flag, tcur + hcur);
+  if (recov[0]) {
+    char msg[DAL_ERRMSG_LEN];
+    snprintf(msg, sizeof msg, "%.200s; it kept asking while IDA shrank the step: %.260s", recov,
+             st->err);
+    memcpy(st->err, msg, sizeof msg);
+  }
+  return rc;
+}
+
+void dal__ida_set_hook(void *mem, int (*hook)(void *ctx), void *ctx) {
+  ida_mem *w = mem;
+  w->hook = hook;
+  w->hook_ctx = ctx;
+}
+
+void dal__ida_window(const void *mem, double *t0, double *t1) {
+  const ida_mem *w = mem;
+  *t0 = w->tprev;
+  *t1 = w->tcur;
+}
+
+int dal__ida_place(void *mem, double t) {
+  ida_mem *w = mem;
+  dal_state *st = w->st;
+  // the step's end is IDA's solution itself; inside, its interpolating polynomial
+  const double *y = N_VGetArrayPointer(w->y);
+  if (t != w->tcur) {
+    int flag = IDAGetDky(w->ida, t, 0, w->w1);
+    if (flag != IDA_SUCCESS)
+      return DAL_FAIL(st, DAL_E_SOLVER,
+                      "IDA could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
+                      t, w->tprev, w->tcur, flag);
+    y = N_VGetArrayPointer(w->w1);
+  }
+  if (w->f.off_w >= 0) st->W = y[w->f.off_w];
+  st->t = t;
+  memcpy(st->q, y, (size_t)w->n * sizeof(double));
+  memcpy(st->qdot, y + w->n, (size_t)w->n * sizeof(double));
+  dal__state_moved(st);
+  return DAL_OK;
+}

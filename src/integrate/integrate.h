@@ -1,0 +1,168 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Private interface between the integration driver (solve.c), the ODE integrators
+// (ode_*.c) and the DAE side (dae_ida.c, init.c, kkt.c).
+#ifndef DAL_SOLVE_INTERNAL_H
+#define DAL_SOLVE_INTERNAL_H
+
+#include "form/form.h"
+
+
+
+/// DAE integration through SUNDIALS IDA for the GGL, index-3 and BDF index-1 forms
+/// (dae_ida.c). create: allocate and initialize from the state's consistent (q, qdot);
+/// advance: integrate to tout, leaving the state at tout (or at the last accepted step on
+/// failure, with its error message naming time and dominating variable).
+int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem);
+int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout);
+void dal__ida_free(void *mem);
+/// dense output of the IDA route: with a hook set, advance takes one step at a time and calls
+/// hook(ctx) after each (0: go on, DAL__HOOK_STOP: stop, negative: fail); window gives the
+/// step just taken; place puts the state's (t, q, qdot, W) at t in that window from IDA's
+/// interpolating polynomial (no evaluation)
+void dal__ida_set_hook(void *mem, int (*hook)(void *ctx), void *ctx);
+void dal__ida_window(const void *mem, double *t0, double *t1);
+int dal__ida_place(void *mem, double t);
+
+/// An ODE integrator run on a dal_ode_problem (ode_arkode.c, ode_cvode.c, ode_bs.c,
+/// ode_rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a
+/// step needs is allocated by the method's create function.
+typedef struct dal_ode_integ dal_ode_integ;
+struct dal_ode_integ {
+  const dal_ode_problem *prob;
+  const dal_system *sys;
+  dal_state *st;
+  dal_solve_opts opts; ///< copy of the options the integrator was created with
+  double rtol, atol;   ///< local tolerances of the error control (dal__tol_factor applied)
+  dal_method method;   ///< resolved method (never AUTO)
+  int ny;              ///< size of y
+  double t;            ///< time of the last accepted step
+  double tout;         ///< target of the current advance call
+  long ncall;          ///< steps accepted in the current advance call (for opts.max_steps)
+  double *y;           ///< solution at the last accepted step (ny)
+  double *ydot;        ///< scratch (ny) for the final evaluation
+  double *ewt;         ///< scratch (ny): error weights or scaled local errors of the last try
+  int rhs_rc;          ///< return code of the last right-hand-side call
+  int rhs_fatal;       ///< first negative right-hand-side code of this advance call (0: none)
+  int ntiny;           ///< consecutive accepted steps of a few ulps of t (step size collapse)
+  double tiny_t;       ///< time of the last step dal__ode_collapsed counted
+  int nrecov;          ///< recoverable right-hand-side failures in this advance call
+  double recov_t;      ///< time of the last of them
+  int recov_rc;        ///< its retry code (DAL__RECOVERABLE, DAL__RETRY_*): the cause
+  char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
+  char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
+  void *impl;                   ///< method memory
+  /// integrate from t to tout (> t); on failure call dal__ode_fail. Returns 0 at tout, a
+  /// negative status, or DAL__HOOK_STOP when the after-step hook stopped the run (the state
+  /// then holds what the hook left in it; the integrator's own (t, y) is the accepted step)
+  int (*advance)(dal_ode_integ *ig, double tout);
+  void (*free_impl)(void *impl);
+  // dense output (driver.c): after every accepted step from tprev to t, dal__ode_accept calls
+  // hook(hook_ctx); the hook reads the solution anywhere in [tprev, t] through interp
+  double tprev;  ///< start of the last accepted step (= t before the first step)
+  double *yprev; ///< y at tprev (ny): kept by dal__ode_accept for the Hermite fallback
+  /// y at any t in [tprev, t] into yout (ny) from the method's own interpolant, accurate to
+  /// the method's tolerance; NULL: the cubic Hermite of dal__ode_hermite (ode.c) is used.
+  /// Returns 0 or a negative status. Must not change the integration (no state of the method
+  /// is touched); may use ig->st as workspace.
+  int (*interp)(dal_ode_integ *ig, double t, double *yout);
+  /// after-step hook (NULL: none): 0 to go on, DAL__HOOK_STOP to stop, negative to fail
+  int (*hook)(void *ctx);
+  void *hook_ctx;
+  double *hf0, *hf1; ///< Hermite fallback: f at tprev and t (ny each)
+  int hvalid;        ///< bit 0: hf0 is current for this step, bit 1: hf1
+  /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
+  /// last stage of an FSAL method); NULL: evaluated
+  int (*end_slope)(dal_ode_integ *ig, double *f);
+};
+
+/// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)
+#define DAL__HOOK_STOP 1000
+
+/// y at t in [ig->tprev, ig->t] into yout: the method's interpolant, or the cubic Hermite
+/// fallback (two right-hand sides per step, evaluated on first use) (ode.c)
+int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
+/// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
+/// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
+int dal__ode_start_slope(dal_ode_integ *ig);
+
+/// One row per integration method (GSL's gsl_odeiv2_step_type): adding a method is one row
+/// in methods.c and one file. `tol_factor`: the method's local error control runs at
+/// tol_factor * rtol, tol_factor * atol (not below DAL_TOL_FLOOR), so that the global error
+/// tracks the requested tolerance (measurements in solve.h; like RADAU5's tolerance
+/// transformation, Hairer-Wanner, Solving ODEs II, sec. IV.8). `ode_create` runs the method
+/// on an ODE problem (NULL: none); `dae` marks the method that runs the DAE forms in IDA.
+typedef struct dal_method_row {
+  dal_method id;
+  const char *name;
+  double tol_factor;
+  int (*ode_create)(dal_ode_integ *ig);
+  int dae;
+} dal_method_row;
+/// the row of a method (AUTO has a row too, with no create function)
+const dal_method_row *dal__method_row(dal_method m);
+/// local tolerance factor of a method (its row's tol_factor)
+double dal__tol_factor(dal_method m);
+
+/// the automatic method for an ODE formulation by relative tolerance (rule in solve.h)
+dal_method dal__auto_method(double rtol);
+/// a fresh ODE integrator for method meth on problem prob at the state's (t, q, qdot), and
+/// its destruction (ode.c)
+int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method meth,
+                    const dal_ode_problem *prob, dal_ode_integ **out);
+void dal__ode_destroy(void *ig);
+
+/// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the
+/// last component when opts.work is set (not counted; no failure bookkeeping)
+int dal__ode_eval(dal_ode_integ *ig, double t, const double *y, double *ydot, unsigned need);
+/// the state's (t, q, qdot) and W from y (does not evaluate)
+void dal__ode_to_state(dal_ode_integ *ig, double t, const double *y);
+/// y' = f(t, y) through the problem, counting evaluations and keeping the failure message;
+/// returns 0, a retry code (DAL__RECOVERABLE, DAL__RETRY_*) or a negative status (ode.c)
+int dal__ode_rhs(dal_ode_integ *ig, double t, const double *y, double *ydot);
+/// true when the step just taken from ig->t to t is a few ulps of t, several times in a row:
+/// the integrator makes no progress (step size collapse). Counts each step once (asking again
+/// about the same t gives the same answer).
+int dal__ode_collapsed(dal_ode_integ *ig, double t);
+/// record an accepted step (t, y): copies y into ig->y, counts the step and, when the problem
+/// has a projection and opts.project is set, projects ig->y in place (*projected = 1 then;
+/// projected may be NULL). The progress guard of every ODE method: a step that does not
+/// advance t, a step size collapse (dal__ode_collapsed) or a non-finite y is a failure with
+/// the status of its cause (a retry that kept failing, else DAL_E_STEP or DAL_E_NONFINITE).
+/// Returns 0 or a negative status (the state then holds the step before).
+int dal__ode_accept(dal_ode_integ *ig, double t, const double *y, int *projected);
+/// stop with the state at the last accepted step (ig->t, ig->y), re-evaluated there, and the
+/// message fmt... (prefixed to nothing; name time and culprit in it). Returns status.
+int dal__ode_fail(dal_ode_integ *ig, int status, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+/// name of component i of y ("coordinate 'x'", "velocity of 'x'") into buf
+const char *dal__ode_var_name(const dal_ode_integ *ig, int i, char *buf, size_t len);
+/// index of the largest |w[i]| (the dominating variable of an error estimate)
+int dal__ode_argmax(const double *w, int n);
+/// SUNDIALS error handler of the ODE drivers (ud is the dal_ode_integ): keeps the message in
+/// ig->sun_err instead of printing it
+void dal__ode_sun_err(int code, const char *module, const char *function, char *msg, void *ud);
+/// true when recoverable right-hand-side failures after the last accepted step are what
+/// keeps the integrator from advancing (a step collapse is then the callback's doing)
+int dal__ode_recov_blocked(const dal_ode_integ *ig);
+/// A step size collapse at ig->t (h the step that does not make progress, `what` says how):
+/// the status of a retry that kept failing there (dal__ode_recov_fail), else DAL_E_STEP naming
+/// the fastest-changing variable. The state goes back to the last accepted step.
+int dal__ode_stall(dal_ode_integ *ig, double h, const char *what);
+/// the status and message of a step collapse caused by a retry that kept failing (a callback
+/// that keeps asking for a smaller step, an overflow, a near-singular matrix; see
+/// dal__ode_recov_blocked): the status of that cause; h is the last step size tried
+int dal__ode_recov_fail(dal_ode_integ *ig, double h);
+
+/// method constructors: fill ig->impl, ig->advance, ig->free_impl from ig->y at ig->t
+int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (ode_arkode.c)
+int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (ode_cvode.c)
+int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (ode_bs.c)
+int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (ode_rk4.c)
+
+#include "symplectic.h"
+
+#endif

@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The method table: one constant row per integration method, and the automatic choice.
+#include <stddef.h>
+
+#include "integrate.h"
+#include "symplectic.h"
+
+static const dal_method_row rows[] = {
+    {DAL_METHOD_AUTO, "auto", 1.0, NULL, 0},
+    {DAL_METHOD_DOPRI5, "dopri5", 0.01, dal__erk_create, 0},
+    {DAL_METHOD_FEHLBERG78, "fehlberg78", 0.01, dal__erk_create, 0},
+    {DAL_METHOD_BS, "bs", 0.005, dal__bs_create, 0},
+    {DAL_METHOD_RK4, "rk4", 1.0, dal__rk4_create, 0},
+    {DAL_METHOD_ADAMS, "adams", 0.005, dal__cvode_create, 0},
+    {DAL_METHOD_BDF, "bdf", 0.0005, dal__cvode_create, 1},
+    // fixed-step structure-preserving methods (ode_symplectic.c): no error control
+    {DAL_METHOD_VARIATIONAL, "variational", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_VARIATIONAL4, "variational4", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_VARIATIONAL6, "variational6", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_RATTLE, "rattle", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_RATTLE4, "rattle4", 1.0, dal__symplectic_create, 0},
+    {DAL_METHOD_RATTLE6, "rattle6", 1.0, dal__symplectic_create, 0},
+};
+
+const dal_method_row *dal__method_row(dal_method m) {
+  for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i)
+    if (rows[i].id == m) return &rows[i];
+  return NULL;
+}
+
+double dal__tol_factor(dal_method m) {
+  const dal_method_row *r = dal__method_row(m);
+  return r ? r->tol_factor : 1.0;
+}
+
+const char *dal_method_name(dal_method m) {
+  const dal_method_row *r = dal__method_row(m);
+  return r ? r->name : "unknown";
+}
+
+/// The automatic method for an ODE formulation, by relative tolerance (documented in solve.h):
+/// rtol > 1e-6: DOPRI5; 1e-12 <= rtol <= 1e-6: Adams; rtol < 1e-12: Bulirsch-Stoer.
+dal_method dal__auto_method(double rtol) {
+  if (rtol > 1e-6) return DAL_METHOD_DOPRI5;
+  if (rtol >= 1e-12) return DAL_METHOD_ADAMS;
+  return DAL_METHOD_BS;
+}

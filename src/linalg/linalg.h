@@ -1,0 +1,18 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Dense linear algebra through LAPACKE (private).
+#ifndef DAL_LINALG_H
+#define DAL_LINALG_H
+
+/// Relative pivot threshold below which a Cholesky pivot counts as degenerate.
+#define DAL_CHOL_RTOL 2.2e-13
+
+/// Solve A x = b for symmetric positive definite A (n x n, column-major, not modified) by
+/// Cholesky into the scratch L (n x n). b (n) is overwritten by x. Returns 0, or -1 with
+/// *bad = index of the first degenerate pivot (not positive definite, or a pivot squared
+/// below DAL_CHOL_RTOL times the largest).
+int dal__chol_solve(int n, const double *A, double *L, double *b, int *bad);
+
+#include "sparse.h"
+
+#endif

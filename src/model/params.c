@@ -1,0 +1,583 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// Per-trajectory parameters: copy-on-write overrides of a shared system's parameters.
+#include <ctype.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "dalembert/params.h"
+#include "base/base.h"
+
+void dal__params_init(dal_state *st) {
+  const dal_system *sys = st->sys;
+  memset(&st->prm, 0, sizeof st->prm);
+  st->prm.mass = sys->mass;
+  st->prm.mu = sys->mu;
+  st->prm.ppool = sys->ppool;
+  st->prm.g = sys->g;
+  st->prm.springs = sys->springs;
+  st->prm.dampers = sys->dampers;
+  st->prm.has_gravity = sys->has_gravity;
+}
+
+void dal__params_free(dal_state *st) {
+  free(st->prm.own_mass);
+  free(st->prm.own_mu);
+  free(st->prm.own_ppool);
+  free(st->prm.own_springs);
+  free(st->prm.own_dampers);
+  memset(&st->prm, 0, sizeof st->prm);
+}
+
+// length of the system's parameter pool (the system does not store it)
+static size_t ppool_len(const dal_system *sys) {
+  size_t len = 0;
+  for (int k = 0; k < sys->N && sys->place; ++k) {
+    size_t end = (size_t)sys->place[k].param_off + (size_t)sys->place[k].prim->nparam;
+    if (end > len) len = end;
+  }
+  for (int i = 0; i < sys->ncon; ++i) {
+    size_t end = (size_t)sys->con[i].param_off + (size_t)sys->con[i].prim->nparam;
+    if (end > len) len = end;
+  }
+  return len;
+}
+
+// subtree masses from the state's masses, summed in the order system.c uses (bit-identical)
+static void subtree_masses(const dal_system *sys, const double *mass, double *mu) {
+  memcpy(mu, mass, (size_t)sys->N * sizeof(double));
+  for (int k = sys->N - 1; k >= 0 && sys->place; --k)
+    if (sys->place[k].parent >= 0) mu[sys->place[k].parent] += mu[k];
+}
+
+// make the state own a copy of the array `ref` points into; 0 or DAL_E_NOMEM
+static int own(const dal_system *sys, dal_state *st, dal_param_kind kind) {
+  dal_params *p = &st->prm;
+  size_t N = (size_t)sys->N;
+  switch (kind) {
+  case DAL_PARAM_MASS:
+    if (p->own_mass) return DAL_OK;
+    p->own_mass = malloc((N ? N : 1) * sizeof(double));
+    p->own_mu = malloc((N ? N : 1) * sizeof(double));
+    if (!p->own_mass || !p->own_mu) {
+      free(p->own_mass);
+      free(p->own_mu);
+      p->own_mass = p->own_mu = NULL;
+      return DAL_E_NOMEM;
+    }
+    memcpy(p->own_mass, sys->mass, N * sizeof(double));
+    memcpy(p->own_mu, sys->mu, N * sizeof(double));
+    p->mass = p->own_mass;
+    p->mu = p->own_mu;
+    return DAL_OK;
+  case DAL_PARAM_PLACE:
+  case DAL_PARAM_CONSTRAINT: {
+    if (p->own_ppool) return DAL_OK;
+    size_t len = ppool_len(sys);
+    p->own_ppool = malloc((len ? len : 1) * sizeof(double));
+    if (!p->own_ppool) return DAL_E_NOMEM;
+    if (len) memcpy(p->own_ppool, sys->ppool, len * sizeof(double));
+    p->ppool = p->own_ppool;
+    return DAL_OK;
+  }
+  case DAL_PARAM_GRAVITY:
+    if (p->g != p->own_g) {
+      memcpy(p->own_g, sys->g, sizeof p->own_g);
+      p->g = p->own_g;
+    }
+    return DAL_OK;
+  case DAL_PARAM_SPRING_K:
+  case DAL_PARAM_SPRING_L:
+    if (p->own_springs) return DAL_OK;
+    p->own_springs = malloc(((size_t)sys->nspring + 1) * sizeof(dal_link));
+    if (!p->own_springs) return DAL_E_NOMEM;
+    if (sys->nspring) memcpy(p->own_springs, sys->springs, (size_t)sys->nspring * sizeof(dal_link));
+    p->springs = p->own_springs;
+    return DAL_OK;
+  case DAL_PARAM_DAMPER_C:
+    if (p->own_dampers) return DAL_OK;
+    p->own_dampers = malloc(((size_t)sys->ndamper + 1) * sizeof(dal_link));
+    if (!p->own_dampers) return DAL_E_NOMEM;
+    if (sys->ndamper) memcpy(p->own_dampers, sys->dampers, (size_t)sys->ndamper * sizeof(dal_link));
+    p->dampers = p->own_dampers;
+    return DAL_OK;
+  case DAL_PARAM_NONE:
+    break;
+  }
+  return DAL_E_ARG;
+}
+
+int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, size_t len) {
+  if (msg && len) msg[0] = 0;
+  if (!sys || !ref) {
+    if (msg && len) snprintf(msg, len, "parameter: system or parameter reference is NULL");
+    return DAL_E_ARG;
+  }
+  int t = ref->target, i = ref->index;
+  switch (ref->kind) {
+  case DAL_PARAM_MASS:
+  case DAL_PARAM_PLACE:
+    if (t < 0 || t >= sys->N) {
+      if (msg && len)
+        snprintf(msg, len, "parameter: particle index %d out of range [0, %d)", t, sys->N);
+      return DAL_E_ARG;
+    }
+    if (ref->kind == DAL_PARAM_MASS) return DAL_OK;
+    if (!sys->place) {
+      if (msg && len)
+        snprintf(msg, len,
+                 "parameter of particle '%s': the particles are placed by a "
+                 "whole-system map, which has no parameters",
+                 sys->part_names[t]);
+      return DAL_E_ARG;
+    }
+    if (i < 0 || i >= sys->place[t].prim->nparam) {
+      if (msg && len)
+        snprintf(msg, len,
+                 "placing particle '%s': primitive '%s' takes %d parameters; index %d "
+                 "is out of range (see the primitive's parameter list in primitives.h)",
+                 sys->part_names[t], sys->place[t].prim->name, sys->place[t].prim->nparam, i);
+      return DAL_E_ARG;
+    }
+    return DAL_OK;
+  case DAL_PARAM_CONSTRAINT:
+    if (t < 0 || t >= sys->ncon) {
+      if (msg && len)
+        snprintf(msg, len, "parameter: constraint index %d out of range [0, %d)", t, sys->ncon);
+      return DAL_E_ARG;
+    }
+    if (i < 0 || i >= sys->con[t].prim->nparam) {
+      if (msg && len)
+        snprintf(msg, len,
+                 "constraint '%s': primitive '%s' takes %d parameters; index %d is "
+                 "out of range (see the primitive's parameter list in primitives.h)",
+                 sys->con[t].name, sys->con[t].prim->name, sys->con[t].prim->nparam, i);
+      return DAL_E_ARG;
+    }
+    return DAL_OK;
+  case DAL_PARAM_GRAVITY:
+    if (i < 0 || i >= sys->dim) {
+      if (msg && len) snprintf(msg, len, "gravity component %d out of range [0, %d)", i, sys->dim);
+      return DAL_E_ARG;
+    }
+    return DAL_OK;
+  case DAL_PARAM_SPRING_K:
+  case DAL_PARAM_SPRING_L:
+    if (t < 0 || t >= sys->nspring) {
+      if (msg && len)
+        snprintf(msg, len, "parameter: spring index %d out of range [0, %d)", t, sys->nspring);
+      return DAL_E_ARG;
+    }
+    return DAL_OK;
+  case DAL_PARAM_DAMPER_C:
+    if (t < 0 || t >= sys->ndamper) {
+      if (msg && len)
+        snprintf(msg, len, "parameter: damper index %d out of range [0, %d)", t, sys->ndamper);
+      return DAL_E_ARG;
+    }
+    return DAL_OK;
+  case DAL_PARAM_NONE:
+    break;
+  }
+  if (msg && len) snprintf(msg, len, "parameter: unknown kind %d", (int)ref->kind);
+  return DAL_E_ARG;
+}
+
+// the value a parameter has in the arrays of p (system's or state's)
+static double read_param(const dal_system *sys, const dal_params *p, const dal_param_ref *r) {
+  switch (r->kind) {
+  case DAL_PARAM_MASS:
+    return p->mass[r->target];
+  case DAL_PARAM_PLACE:
+    return p->ppool[sys->place[r->target].param_off + r->index];
+  case DAL_PARAM_CONSTRAINT:
+    return p->ppool[sys->con[r->target].param_off + r->index];
+  case DAL_PARAM_GRAVITY:
+    return p->has_gravity ? p->g[r->index] : 0.0;
+  case DAL_PARAM_SPRING_K:
+    return p->springs[r->target].k;
+  case DAL_PARAM_SPRING_L:
+    return p->springs[r->target].L;
+  case DAL_PARAM_DAMPER_C:
+    return p->dampers[r->target].k;
+  case DAL_PARAM_NONE:
+    break;
+  }
+  return NAN;
+}
+
+int dal_system_param(const dal_system *sys, const dal_param_ref *ref, double *value) {
+  if (!value || dal_param_check(sys, ref, NULL, 0)) return DAL_E_ARG;
+  dal_params p = {.mass = sys->mass,
+                  .ppool = sys->ppool,
+                  .g = sys->g,
+                  .springs = sys->springs,
+                  .dampers = sys->dampers,
+                  .has_gravity = sys->has_gravity};
+  *value = read_param(sys, &p, ref);
+  return DAL_OK;
+}
+
+int dal_state_param(const dal_system *sys, const dal_state *st, const dal_param_ref *ref,
+                    double *value) {
+  if (!st || !value) return DAL_E_ARG;
+  if (!sys || st->sys != sys) return DAL_E_STATE;
+  if (dal_param_check(sys, ref, NULL, 0)) return DAL_E_ARG;
+  *value = read_param(sys, &st->prm, ref);
+  return DAL_OK;
+}
+
+int dal_param_name(const dal_system *sys, const dal_param_ref *ref, char *buf, size_t len) {
+  if (!buf || !len || dal_param_check(sys, ref, NULL, 0)) return DAL_E_ARG;
+  int t = ref->target, i = ref->index;
+  switch (ref->kind) {
+  case DAL_PARAM_MASS:
+    snprintf(buf, len, "mass:%s", sys->part_names[t]);
+    break;
+  case DAL_PARAM_PLACE:
+    snprintf(buf, len, "place:%s:%d", sys->part_names[t], i);
+    break;
+  case DAL_PARAM_CONSTRAINT:
+    snprintf(buf, len, "con:%s:%d", sys->con[t].name, i);
+    break;
+  case DAL_PARAM_GRAVITY:
+    snprintf(buf, len, "gravity:%d", i);
+    break;
+  case DAL_PARAM_SPRING_K:
+    snprintf(buf, len, "spring:%d:k", t);
+    break;
+  case DAL_PARAM_SPRING_L:
+    snprintf(buf, len, "spring:%d:L", t);
+    break;
+  case DAL_PARAM_DAMPER_C:
+    snprintf(buf, len, "damper:%d:c", t);
+    break;
+  case DAL_PARAM_NONE:
+    return DAL_E_ARG;
+  }
+  return DAL_OK;
+}
+
+// a non-negative decimal integer filling the whole string s[0..n); -1 if not one
+static int parse_index(const char *s, size_t n) {
+  if (n == 0 || n > 9) return -1;
+  int v = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!isdigit((unsigned char)s[i])) return -1;
+    v = 10 * v + (s[i] - '0');
+  }
+  return v;
+}
+
+// index of a name among names[0..count) (or a decimal index); -1 if none
+static int find_name(char *const *names, int count, const char *s, size_t n) {
+  for (int i = 0; i < count; ++i)
+    if (strlen(names[i]) == n && memcmp(names[i], s, n) == 0) return i;
+  int v = parse_index(s, n);
+  return v < count ? v : -1;
+}
+
+int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, char *msg,
+                   size_t len) {
+  if (msg && len) msg[0] = 0;
+  if (!sys || !name || !out) {
+    if (msg && len) snprintf(msg, len, "parameter lookup: system, name or output is NULL");
+    return DAL_E_ARG;
+  }
+  // split "kind:target[:index]" (names may not contain ':')
+  const char *f[3] = {name, NULL, NULL};
+  size_t fl[3] = {0, 0, 0};
+  int nf = 1;
+  for (const char *c = name;; ++c) {
+    if (*c == ':' || *c == 0) {
+      fl[nf - 1] = (size_t)(c - f[nf - 1]);
+      if (*c == 0) break;
+      if (nf == 3) {
+        nf = 4;
+        break;
+      }
+      f[nf++] = c + 1;
+    }
+  }
+  dal_param_ref r = {DAL_PARAM_NONE, 0, 0};
+  const char *kinds = "mass:<particle>, place:<particle>:<i>, con:<constraint>:<i>, "
+                      "gravity:<i>, spring:<j>:k, spring:<j>:L, damper:<j>:c";
+#define KIND_IS(s) (fl[0] == strlen(s) && memcmp(f[0], s, fl[0]) == 0)
+  if (KIND_IS("mass") && nf == 2) {
+    r.kind = DAL_PARAM_MASS;
+    r.target = find_name(sys->part_names, sys->N, f[1], fl[1]);
+  } else if (KIND_IS("place") && nf == 3) {
+    r.kind = DAL_PARAM_PLACE;
+    r.target = find_name(sys->part_names, sys->N, f[1], fl[1]);
+    r.index = parse_index(f[2], fl[2]);
+  } else if (KIND_IS("con") && nf == 3) {
+    r.kind = DAL_PARAM_CONSTRAINT;
+    r.target = -1;
+    for (int i = 0; i < sys->ncon && r.target < 0; ++i)
+      if (strlen(sys->con[i].name) == fl[1] && memcmp(sys->con[i].name, f[1], fl[1]) == 0)
+        r.target = i;
+    if (r.target < 0) {
+      int v = parse_index(f[1], fl[1]);
+      r.target = v < sys->ncon ? v : -1;
+    }
+    r.index = parse_index(f[2], fl[2]);
+  } else if (KIND_IS("gravity") && nf == 2) {
+    r.kind = DAL_PARAM_GRAVITY;
+    r.index = parse_index(f[1], fl[1]);
+  } else if (KIND_IS("spring") && nf == 3 && fl[2] == 1 && (f[2][0] == 'k' || f[2][0] == 'L')) {
+    r.kind = f[2][0] == 'k' ? DAL_PARAM_SPRING_K : DAL_PARAM_SPRING_L;
+    r.target = parse_index(f[1], fl[1]);
+  } else if (KIND_IS("damper") && nf == 3 && fl[2] == 1 && f[2][0] == 'c') {
+    r.kind = DAL_PARAM_DAMPER_C;
+    r.target = parse_index(f[1], fl[1]);
+  } else {
+    if (msg && len) snprintf(msg, len, "parameter '%s': unknown form; use one of %s", name, kinds);
+    return DAL_E_ARG;
+  }
+#undef KIND_IS
+  if (r.target < 0) {
+    const char *what = r.kind == DAL_PARAM_CONSTRAINT                            ? "constraint"
+                       : (r.kind == DAL_PARAM_MASS || r.kind == DAL_PARAM_PLACE) ? "particle"
+                       : r.kind == DAL_PARAM_DAMPER_C                            ? "damper"
+                                                                                 : "spring";
+    if (msg && len)
+      snprintf(msg, len,
+               "parameter '%s': no %s named '%.*s' in the system (give a name used in "
+               "the builder or a 0-based index)",
+               name, what, (int)fl[1], f[1]);
+    return DAL_E_ARG;
+  }
+  if (r.index < 0) {
+    if (msg && len)
+      snprintf(msg, len, "parameter '%s': the index must be a non-negative integer", name);
+    return DAL_E_ARG;
+  }
+  char m2[DAL_ERRMSG_LEN];
+  if (dal_param_check(sys, &r, m2, sizeof m2)) {
+    if (msg && len) snprintf(msg, len, "parameter '%s': %s", name, m2);
+    return DAL_E_ARG;
+  }
+  *out = r;
+  return DAL_OK;
+}
+
+// validate a value as the builder does; the message names the owner and the remedy
+static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r, double v) {
+  int t = r->target, i = r->index;
+  switch (r->kind) {
+  case DAL_PARAM_MASS: {
+    const char *nm = sys->part_names[t];
+    if (!isfinite(v))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "particle '%s': mass is %g; give a finite positive "
+                      "mass",
+                      nm, v);
+    if (v <= 0)
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "particle '%s': mass %g is not positive; a massless point belongs in a "
+                      "constraint or a coordinate map, not a particle",
+                      nm, v);
+    return DAL_OK;
+  }
+  case DAL_PARAM_PLACE:
+    if (!isfinite(v))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "placing particle '%s': parameter %d of primitive "
+                      "'%s' is %g",
+                      sys->part_names[t], i, sys->place[t].prim->name, v);
+    return DAL_OK;
+  case DAL_PARAM_CONSTRAINT:
+    if (!isfinite(v))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "constraint '%s': parameter %d of primitive '%s' is "
+                      "%g",
+                      sys->con[t].name, i, sys->con[t].prim->name, v);
+    return DAL_OK;
+  case DAL_PARAM_GRAVITY:
+    if (!isfinite(v)) return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, v);
+    return DAL_OK;
+  case DAL_PARAM_SPRING_K:
+  case DAL_PARAM_SPRING_L:
+  case DAL_PARAM_DAMPER_C: {
+    int damper = r->kind == DAL_PARAM_DAMPER_C;
+    const dal_link *l = damper ? &st->prm.dampers[t] : &st->prm.springs[t];
+    const char *kind =
+        damper ? (l->b < 0 ? "anchor damper" : "damper") : (l->b < 0 ? "anchor spring" : "spring");
+    double k = r->kind == DAL_PARAM_SPRING_L ? l->k : v;
+    double L = r->kind == DAL_PARAM_SPRING_L ? v : l->L;
+    if (!isfinite(k) || !isfinite(L))
+      return DAL_FAIL(st, DAL_E_NONFINITE,
+                      "%s on particle '%s': coefficient %g or length %g is "
+                      "not finite",
+                      kind, sys->part_names[l->a], k, L);
+    if (k < 0 || L < 0)
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "%s on particle '%s': coefficient %g and length %g must be "
+                      ">= 0",
+                      kind, sys->part_names[l->a], k, L);
+    return DAL_OK;
+  }
+  case DAL_PARAM_NONE:
+    break;
+  }
+  return DAL_E_ARG;
+}
+
+int dal_state_set_param(const dal_system *sys, dal_state *st, const dal_param_ref *ref,
+                        double value) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
+  char msg[DAL_ERRMSG_LEN];
+  if (dal_param_check(sys, ref, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
+  int rc = validate(sys, st, ref, value);
+  if (rc) return rc;
+  if (own(sys, st, ref->kind))
+    return DAL_FAIL(st, DAL_E_NOMEM, "set_param: out of memory copying the system's parameters");
+  dal_params *p = &st->prm;
+  switch (ref->kind) {
+  case DAL_PARAM_MASS:
+    p->own_mass[ref->target] = value;
+    subtree_masses(sys, p->own_mass, p->own_mu);
+    break;
+  case DAL_PARAM_PLACE:
+    p->own_ppool[sys->place[ref->target].param_off + ref->index] = value;
+    break;
+  case DAL_PARAM_CONSTRAINT:
+    p->own_ppool[sys->con[ref->target].param_off + ref->index] = value;
+    break;
+  case DAL_PARAM_GRAVITY:
+    p->own_g[ref->index] = value;
+    p->has_gravity = 1;
+    break;
+  case DAL_PARAM_SPRING_K:
+    p->own_springs[ref->target].k = value;
+    break;
+  case DAL_PARAM_SPRING_L:
+    p->own_springs[ref->target].L = value;
+    break;
+  case DAL_PARAM_DAMPER_C:
+    p->own_dampers[ref->target].k = value;
+    break;
+  case DAL_PARAM_NONE:
+    break;
+  }
+  dal__integ_reset(st);
+  dal__state_moved(st);
+  st->err[0] = 0;
+  return DAL_OK;
+}
+
+int dal_state_set_param_named(const dal_system *sys, dal_state *st, const char *name,
+                              double value) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
+  dal_param_ref r;
+  char msg[DAL_ERRMSG_LEN];
+  if (dal_param_find(sys, name, &r, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
+  return dal_state_set_param(sys, st, &r, value);
+}
+
+int dal_state_set_mass(const dal_system *sys, dal_state *st, int k, double mass) {
+  dal_param_ref r = {DAL_PARAM_MASS, k, 0};
+  return dal_state_set_param(sys, st, &r, mass);
+}
+
+int dal_state_set_gravity(const dal_system *sys, dal_state *st, const double *g) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "set_gravity: the state belongs to another system");
+  if (!g) return DAL_FAIL(st, DAL_E_ARG, "set_gravity: g is NULL");
+  for (int i = 0; i < sys->dim; ++i)
+    if (!isfinite(g[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
+  for (int i = 0; i < sys->dim; ++i) {
+    dal_param_ref r = {DAL_PARAM_GRAVITY, 0, i};
+    int rc = dal_state_set_param(sys, st, &r, g[i]);
+    if (rc) return rc;
+  }
+  return DAL_OK;
+}
+
+void dal__params_rewind(dal_state *st) {
+  const dal_system *sys = st->sys;
+  dal_params *p = &st->prm;
+  size_t N = (size_t)sys->N;
+  if (p->own_mass) {
+    memcpy(p->own_mass, sys->mass, N * sizeof(double));
+    memcpy(p->own_mu, sys->mu, N * sizeof(double));
+  }
+  size_t len = p->own_ppool ? ppool_len(sys) : 0;
+  if (len) memcpy(p->own_ppool, sys->ppool, len * sizeof(double));
+  if (p->own_springs && sys->nspring)
+    memcpy(p->own_springs, sys->springs, (size_t)sys->nspring * sizeof(dal_link));
+  if (p->own_dampers && sys->ndamper)
+    memcpy(p->own_dampers, sys->dampers, (size_t)sys->ndamper * sizeof(dal_link));
+  p->g = sys->g;
+  p->has_gravity = sys->has_gravity;
+}
+
+int dal_state_reset_params(const dal_system *sys, dal_state *st) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "reset_params: the state belongs to another system");
+  dal__params_free(st);
+  dal__params_init(st);
+  dal__integ_reset(st);
+  dal__state_moved(st);
+  return DAL_OK;
+}
+
+int dal_state_copy_params(const dal_system *sys, dal_state *dst, const dal_state *src) {
+  if (!dst || !src) return DAL_E_ARG;
+  if (!sys || dst->sys != sys || src->sys != sys)
+    return DAL_FAIL(dst, DAL_E_STATE, "copy_params: the states belong to different systems");
+  if (dst == src) return DAL_OK;
+  const dal_params *s = &src->prm;
+  // reserve every copy first so that a failure leaves dst unchanged
+  static const dal_param_kind kinds[] = {DAL_PARAM_MASS, DAL_PARAM_PLACE, DAL_PARAM_SPRING_K,
+                                         DAL_PARAM_DAMPER_C};
+  const void *owned[] = {s->own_mass, s->own_ppool, s->own_springs, s->own_dampers};
+  dal_params keep = dst->prm;
+  for (int i = 0; i < 4; ++i)
+    if (owned[i] && own(sys, dst, kinds[i])) {
+      // undo the copies made here
+      if (!keep.own_mass) {
+        free(dst->prm.own_mass);
+        free(dst->prm.own_mu);
+      }
+      if (!keep.own_ppool) free(dst->prm.own_ppool);
+      if (!keep.own_springs) free(dst->prm.own_springs);
+      if (!keep.own_dampers) free(dst->prm.own_dampers);
+      dst->prm = keep;
+      return DAL_FAIL(dst, DAL_E_NOMEM, "copy_params: out of memory");
+    }
+  dal_params *d = &dst->prm;
+  size_t N = (size_t)sys->N;
+  if (s->own_mass) {
+    memcpy(d->own_mass, s->own_mass, N * sizeof(double));
+    memcpy(d->own_mu, s->own_mu, N * sizeof(double));
+  } else if (d->own_mass) {
+    memcpy(d->own_mass, sys->mass, N * sizeof(double));
+    memcpy(d->own_mu, sys->mu, N * sizeof(double));
+  }
+  if (d->own_ppool) {
+    size_t len = ppool_len(sys);
+    if (len) memcpy(d->own_ppool, s->own_ppool ? s->own_ppool : sys->ppool, len * sizeof(double));
+  }
+  if (d->own_springs && sys->nspring)
+    memcpy(d->own_springs, s->own_springs ? s->own_springs : sys->springs,
+           (size_t)sys->nspring * sizeof(dal_link));
+  if (d->own_dampers && sys->ndamper)
+    memcpy(d->own_dampers, s->own_dampers ? s->own_dampers : sys->dampers,
+           (size_t)sys->ndamper * sizeof(dal_link));
+  memcpy(d->own_g, s->g, sizeof d->own_g);
+  d->g = d->own_g;
+  d->has_gravity = s->has_gravity;
+  dal__integ_reset(dst);
+  dal__state_moved(dst);
+  return DAL_OK;
+}
