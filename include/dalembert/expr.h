@@ -147,6 +147,81 @@ DAL_API int dal_expr_time(dal_jet t, dal_jet *f, void *ctx);
 /// DAL_EXPR_EVENT_MAXN coordinates).
 DAL_API double dal_expr_event(double t, const double *q, const double *qdot, void *ctx);
 
+// ---------------------------------------------------------------------------------------
+// Equations shown: the same formulas as symbols. Every result below is simplified: numbers
+// folded, 0 and 1 dropped, like terms collected (2 x + 3 x = 5 x, x^a x^b = x^(a + b)),
+// products of sums multiplied out, c X sin(u)^2 + c X cos(u)^2 = c X; printing takes common
+// factors out of sums (m l^2 a + m l b = m l (l a + b)).
+
+/// Output formats of dal_expr_print.
+typedef enum dal_expr_format {
+  DAL_EXPR_TEXT = 0, ///< plain text that dal_expr_create reads back ("1/2*m*l^2*thetadot^2")
+  DAL_EXPR_LATEX,    ///< LaTeX math ("\frac{1}{2} l^{2} m \dot{\theta}^{2}")
+  DAL_EXPR_SCHEME,   ///< SICM's prefix notation ("(* 1/2 (expt l 2) m (expt thetadot 2))")
+} dal_expr_format;
+
+/// Print formula k of e, simplified, into buf (len bytes, truncated, NUL-terminated; buf may
+/// be NULL when len is 0). Returns the length of the whole text (as snprintf), or DAL_E_ARG
+/// (NULL e, k out of range, unknown format), DAL_E_NOMEM.
+DAL_API int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, size_t len);
+
+/// The derivative of formula k of e along input j (0 <= j < dal_expr_nin(e)), or along t for
+/// j = -1, simplified, as a new one-formula expression with e's inputs and parameters (*out;
+/// the caller destroys it). Returns DAL_OK, DAL_E_ARG, DAL_E_NOMEM.
+DAL_API int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *msg,
+                                size_t msglen);
+
+/// A model of particles given by formulas, from which T, U and L are derived symbolically.
+/// Start from dal_default_expr_model_def().
+typedef struct dal_expr_model_def {
+  const char *name;                ///< name in messages (copied); default "model"
+  int dim;                         ///< spatial dimension d (1, 2 or 3). Required
+  const char *const *coords;       ///< names of the ncoords generalized coordinates
+  int ncoords;                     ///< number of coordinates n (>= 1)
+  const char *const *masses;       ///< nparticles formulas of the masses ("m", "2")
+  int nparticles;                  ///< number of particles N (>= 1)
+  const char *const *positions;    ///< N d formulas r_k(q, t), particle by particle
+  const char *const *gravity;      ///< d formulas of the gravity vector ("0", "-g"); NULL: none
+  const char *potential;           ///< a further potential U(q, t); NULL: none
+  const char *const *params;       ///< names of the nparam parameters
+  const double *values;            ///< their values (NULL: all 0)
+  int nparam;                      ///< number of parameters
+  int cookie;                      ///< set by dal_default_expr_model_def; do not touch
+} dal_expr_model_def;
+
+/// A model def with no coordinates, particles or parameters, dim 0 (to be set), name "model".
+DAL_API dal_expr_model_def dal_default_expr_model_def(void);
+
+/// The kinetic energy T = sum_k 1/2 m_k |v_k|^2 with v_k = sum_j dr_k/dq_j qdot_j + dr_k/dt,
+/// the potential U = -sum_k m_k g . r_k + U(q, t) and L = T - U of a model, each a
+/// one-formula expression over the coordinates with velocities (inputs q, qdot), t and the
+/// parameters (T, U, L nullable: the ones wanted). Errors name the formula and column as
+/// dal_expr_create. Returns DAL_OK, DAL_E_ARG, DAL_E_NONFINITE, DAL_E_NOMEM.
+DAL_API int dal_expr_model_energies(const dal_expr_model_def *def, dal_expr **T, dal_expr **U,
+                                    dal_expr **L, char *msg, size_t msglen);
+
+/// Lagrange's equations d/dt dL/dqdot - dL/dq = 0 of a Lagrangian expression, written
+/// M(q, t) qddot = F(t, q, qdot), each part an expression over the Lagrangian's inputs
+/// (coordinates with velocities), t and parameters; the caller owns them
+/// (dal_expr_equations_destroy).
+typedef struct dal_expr_equations {
+  int n;               ///< number of coordinates
+  dal_expr *momentum;  ///< p_i = dL/dqdot_i (n formulas)
+  dal_expr *mass;      ///< M_ij = d2L/dqdot_i dqdot_j (n x n formulas, row-major)
+  dal_expr *force;     ///< F_i = dL/dq_i - sum_j d2L/dqdot_i dq_j qdot_j - d2L/dqdot_i dt (n)
+  dal_expr *accel;     ///< qddot = M^-1 F when n == 1 (the state derivative's last part), NULL
+                       ///< for n > 1
+} dal_expr_equations;
+
+/// Derive Lagrange's equations from L (one formula, velocities = 1) into *eq. Returns DAL_OK,
+/// DAL_E_ARG (L not a Lagrangian expression), DAL_E_NOMEM; on failure *eq holds no
+/// expression.
+DAL_API int dal_expr_lagrange(const dal_expr *L, dal_expr_equations *eq, char *msg,
+                              size_t msglen);
+
+/// Free the expressions of eq (NULL members are skipped) and zero it.
+DAL_API void dal_expr_equations_destroy(dal_expr_equations *eq);
+
 #ifdef __cplusplus
 }
 #endif

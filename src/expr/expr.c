@@ -7,9 +7,11 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "expr.h"
+#include "algebra.h"
 
 #define EXPR_COOKIE 0x0e7a2d25
+
+static void face(dal_expr *e);
 
 dal_expr_def dal_default_expr_def(void) {
   dal_expr_def d;
@@ -131,7 +133,7 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
       goto fail;
     }
     char m[400];
-    rc = dal__xparse(&e->tree, d->formulas[k], k, &e->roots[k], m, sizeof m);
+    rc = dal__xparse(&e->tree, d->formulas[k], k, NULL, &e->roots[k], m, sizeof m);
     if (rc) {
       say(msg, len, rc, "%s: %s", name, m);
       goto fail;
@@ -145,7 +147,17 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
       goto fail;
     }
   }
-  // the primitive face
+  face(e);
+  *out = e;
+  return DAL_OK;
+fail:
+  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
+  dal_expr_destroy(e);
+  return rc;
+}
+
+// the primitive face
+static void face(dal_expr *e) {
   e->prim.name = e->name;
   e->prim.version = DAL_PRIMITIVE_VERSION;
   e->prim.nin = e->tree.nin;
@@ -156,6 +168,51 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
   e->prim.flags = 0;
   e->prim.param_names = e->tree.nparam ? (const char *const *)(e->tree.names + e->tree.nin) : NULL;
   e->prim.param_defaults = e->values;
+}
+
+int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots, int nout,
+                        int nin_named, int velocities, const double *values, dal_expr **out,
+                        char *msg, size_t len) {
+  *out = NULL;
+  dal_expr *e = calloc(1, sizeof *e);
+  if (!e) return DAL_E_NOMEM;
+  int rc = DAL_E_NOMEM, nn = tr->nin + tr->nparam;
+  e->name = dup(name);
+  e->nout = nout;
+  e->nin_named = nin_named;
+  e->velocities = velocities;
+  e->roots = calloc((size_t)nout, sizeof *e->roots);
+  e->formulas = calloc((size_t)nout, sizeof *e->formulas);
+  e->values = calloc((size_t)tr->nparam + 1, sizeof *e->values);
+  if (!e->name || !e->roots || !e->formulas || !e->values || dal__xtree_init(&e->tree)) goto fail;
+  e->tree.names = calloc((size_t)nn + 1, sizeof *e->tree.names);
+  if (!e->tree.names) goto fail;
+  for (int i = 0; i < nn; ++i) {
+    e->tree.names[i] = dup(tr->names[i]);
+    if (!e->tree.names[i]) goto fail;
+  }
+  e->tree.nin = tr->nin;
+  e->tree.nparam = tr->nparam;
+  for (int i = 0; i < tr->nparam; ++i)
+    e->values[i] = values ? values[i] : 0.0;
+  for (int k = 0; k < nout; ++k) {
+    e->roots[k] = dal__ximport(&e->tree, tr, roots[k]);
+    if (e->roots[k] < 0) goto fail;
+  }
+  for (int k = 0; k < nout; ++k) {
+    int n = dal__xprint(&e->tree, e->roots[k], DAL_EXPR_TEXT, NULL, 0);
+    if (n < 0) goto fail;
+    e->formulas[k] = malloc((size_t)n + 1);
+    if (!e->formulas[k]) goto fail;
+    dal__xprint(&e->tree, e->roots[k], DAL_EXPR_TEXT, e->formulas[k], (size_t)n + 1);
+  }
+  char m[300];
+  rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
+  if (rc) {
+    say(msg, len, rc, "%s: %s", name, m);
+    goto fail;
+  }
+  face(e);
   *out = e;
   return DAL_OK;
 fail:

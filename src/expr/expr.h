@@ -72,9 +72,18 @@ const char *dal__xop_name(int op);
 /// 1 when op is a one-argument function (X_SIN .. X_SQRT)
 int dal__xop_unary_fn(int op);
 
-/// parse `text` (formula number `which`) into the tree; *root receives the node. Symbols:
-/// tr->names (inputs, then parameters), "t", "pi". msg names the formula, column and token.
-int dal__xparse(dal_xtree *tr, const char *text, int which, int *root, char *msg, size_t msglen);
+/// parse `text` (formula number `which`, called `label` in messages, NULL: "formula <which+1>")
+/// into the tree; *root receives the node. Symbols: tr->names (inputs, then parameters), "t",
+/// "pi". msg names the formula, column and token.
+int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root,
+                char *msg, size_t msglen);
+
+/// a new expression from roots (nout nodes) of tr, whose symbols are nin_named inputs (with
+/// their velocities when `velocities`) and parameters with `values`; formulas are the roots
+/// printed. msg on failure.
+int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots, int nout,
+                        int nin_named, int velocities, const double *values, dal_expr **out,
+                        char *msg, size_t msglen);
 
 /// a compiled program: a scalar part (parameters and constants, doubles) and a jet part
 typedef struct dal_xins {

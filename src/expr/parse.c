@@ -16,6 +16,7 @@ typedef struct parser {
   const char *s;
   size_t pos;
   int which, depth;
+  const char *label;
   char *msg;
   size_t msglen;
   int failed;
@@ -34,8 +35,11 @@ static int fail(parser *p, size_t col, const char *what) {
   if (!p->failed && p->msg && p->msglen) {
     char q[64];
     quote(p, q, sizeof q);
-    snprintf(p->msg, p->msglen, "formula %d '%s', column %zu: %s", p->which + 1, q, col + 1,
-             what);
+    if (p->label)
+      snprintf(p->msg, p->msglen, "%s '%s', column %zu: %s", p->label, q, col + 1, what);
+    else
+      snprintf(p->msg, p->msglen, "formula %d '%s', column %zu: %s", p->which + 1, q, col + 1,
+               what);
   }
   p->failed = 1;
   return -1;
@@ -266,9 +270,9 @@ static int expr(parser *p) {
   return a;
 }
 
-int dal__xparse(dal_xtree *tr, const char *text, int which, int *root, char *msg,
-                size_t msglen) {
-  parser p = {tr, text, 0, which, 0, msg, msglen, 0};
+int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root,
+                char *msg, size_t msglen) {
+  parser p = {tr, text, 0, which, 0, label, msg, msglen, 0};
   int r = expr(&p);
   if (r >= 0) {
     skip(&p);
