@@ -104,6 +104,8 @@ DAL_API int dal_expr_nparam(const dal_expr *e);
 DAL_API const char *dal_expr_symbol(const dal_expr *e, int i);
 /// Values of the parameters (nparam values; borrowed from e).
 DAL_API const double *dal_expr_values(const dal_expr *e);
+/// 1 when some formula of e depends on input i (on t for i = -1), else 0.
+DAL_API int dal_expr_depends(const dal_expr *e, int i);
 /// Number of instructions the compiled program runs per evaluation (scalar and jet parts).
 DAL_API int dal_expr_ninstructions(const dal_expr *e);
 

@@ -241,6 +241,16 @@ int dal_expr_nparam(const dal_expr *e) { return e ? e->tree.nparam : 0; }
 const double *dal_expr_values(const dal_expr *e) { return e ? e->values : NULL; }
 int dal_expr_ninstructions(const dal_expr *e) { return e ? e->prog.nscalar + e->prog.njet : 0; }
 
+int dal_expr_depends(const dal_expr *e, int i) {
+  if (!e || i < -1 || i >= e->tree.nin) return 0;
+  for (int k = 0; k < e->prog.nscalar + e->prog.njet; ++k) {
+    const dal_xins *x = &e->prog.ins[k];
+    if (k >= e->prog.nscalar && ((i < 0 && x->op == X_TIME) || (i >= 0 && x->op == X_IN && x->a == i)))
+      return 1;
+  }
+  return 0;
+}
+
 const char *dal_expr_symbol(const dal_expr *e, int i) {
   if (!e || i < 0 || i >= e->tree.nin + e->tree.nparam) return NULL;
   return e->tree.names[i];
