@@ -156,6 +156,27 @@ fail:
   return rc;
 }
 
+// DAL_PRIM_TRANSLATES when output k = input k + f(the other inputs) for every output: the
+// derivative of output k along input j < nout is exactly 1 (j = k) or 0, found symbolically
+static unsigned translates(const dal_expr *e) {
+  if (e->tree.nin <= e->nout || e->tree.n > 4000) return 0;
+  dal_xtree s;
+  if (dal__xtree_init(&s)) return 0;
+  s.nin = e->tree.nin;
+  s.nparam = e->tree.nparam;
+  dal_alg g;
+  dal__alg_init(&g, &s);
+  int ok = 1;
+  for (int k = 0; k < e->nout && ok; ++k) {
+    int r = dal__ximport(&s, &e->tree, e->roots[k]);
+    for (int j = 0; j < e->nout && ok; ++j)
+      ok = dal__alg_isnum(&g, dal__alg_diff(&g, r, j), j == k ? 1.0 : 0.0);
+  }
+  dal__alg_free(&g);
+  dal__xtree_free(&s);
+  return ok ? DAL_PRIM_TRANSLATES : 0u;
+}
+
 // the primitive face
 static void face(dal_expr *e) {
   e->prim.name = e->name;
@@ -165,7 +186,7 @@ static void face(dal_expr *e) {
   e->prim.nparam = e->tree.nparam;
   e->prim.eval = prim_eval;
   e->prim.doc = "an expression (dalembert/expr.h)";
-  e->prim.flags = 0;
+  e->prim.flags = translates(e);
   e->prim.param_names = e->tree.nparam ? (const char *const *)(e->tree.names + e->tree.nin) : NULL;
   e->prim.param_defaults = e->values;
 }

@@ -131,6 +131,21 @@ static int print_eq(FILE *fp, const char *lhs, const dal_expr *e, int k, dal_exp
   return DAL_OK;
 }
 
+// a coordinate's name in LaTeX (Greek letters, accents), through a one-symbol expression
+static void latex_sym(const char *name, char *out, size_t len) {
+  snprintf(out, len, "%s", name);
+  dal_expr_def d = dal_default_expr_def();
+  d.formulas = &name;
+  d.nout = 1;
+  d.inputs = &name;
+  d.nin = 1;
+  dal_expr *e;
+  if (!dal_expr_create(&d, &e, NULL, 0)) {
+    dal_expr_print(e, 0, DAL_EXPR_LATEX, out, len);
+    dal_expr_destroy(e);
+  }
+}
+
 static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, dal_expr *T,
                           dal_expr *U, dal_expr *L, char *msg, size_t msglen) {
   int rc = DAL_OK;
@@ -143,7 +158,10 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
   int n = eq.n;
   char lhs[160];
   for (int i = 0; i < n && !rc; ++i) {
-    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "p_{%s}" : "p_%s", sc->cname[i]);
+    char nm[96];
+    latex_sym(sc->cname[i], nm, sizeof nm);
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "p_{%s}" : "p_%s",
+             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
     rc = print_eq(fp, lhs, eq.momentum, i, fmt);
   }
   for (int i = 0; i < n * n && !rc; ++i) {
@@ -152,7 +170,10 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
     rc = print_eq(fp, lhs, eq.mass, i, fmt);
   }
   for (int i = 0; i < n && !rc; ++i) {
-    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "F_{%s}" : "F_%s", sc->cname[i]);
+    char nm[96];
+    latex_sym(sc->cname[i], nm, sizeof nm);
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "F_{%s}" : "F_%s",
+             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
     rc = print_eq(fp, lhs, eq.force, i, fmt);
   }
   if (!rc && n > 1) fprintf(fp, "%s", fmt == DAL_EXPR_LATEX ? "$$M \\ddot{q} = F$$\n" : "M qddot = F\n");
@@ -170,20 +191,9 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
     } else {
       snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "\\ddot{%s}" : "%sddot", sc->cname[0]);
       if (fmt == DAL_EXPR_LATEX) {
-        // the accent on a Greek name: print the name through a one-symbol expression
-        const char *f = sc->cname[0];
-        dal_expr_def d = dal_default_expr_def();
-        d.formulas = &f;
-        d.nout = 1;
-        d.inputs = (const char *const *)sc->cname;
-        d.nin = 1;
-        dal_expr *e;
-        char nm[128];
-        if (!dal_expr_create(&d, &e, NULL, 0)) {
-          dal_expr_print(e, 0, DAL_EXPR_LATEX, nm, sizeof nm);
-          snprintf(lhs, sizeof lhs, "\\ddot{%s}", nm);
-          dal_expr_destroy(e);
-        }
+        char nm[96];
+        latex_sym(sc->cname[0], nm, sizeof nm);
+        snprintf(lhs, sizeof lhs, "\\ddot{%s}", nm);
       }
       rc = print_eq(fp, lhs, eq.accel, 0, fmt);
     }
