@@ -64,7 +64,7 @@ DAL_API int dal_scene_write(const dal_scene *sc, FILE *fp);
 
 /// Override parameter `name` (a `param` line's value) and rebuild the system. States of the
 /// old system must be destroyed first. Returns DAL_OK, DAL_E_ARG (unknown name; msg says),
-/// or the rebuild's status.
+/// DAL_E_NONFINITE, or the rebuild's status (the scene then keeps the old value and system).
 DAL_API int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg,
                                 size_t msglen);
 
