@@ -82,8 +82,7 @@ DAL_API int dal_scene_state(const dal_scene *sc, dal_state **out);
 /// Run the scene: from its initial state to t1 with output every dt, written as CSV to `csv`
 /// (nullable: no output). `st` (nullable) receives the final state (else it is destroyed).
 /// Returns the status of dal_evolve (its message in msg).
-DAL_API int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **st, char *msg,
-                          size_t msglen);
+DAL_API int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **st, char *msg, size_t msglen);
 
 /// Print the scene's equations: r_k(q, t) of every particle, T, U, L, the mass matrix, the
 /// forces and (one coordinate) the state derivative, in format fmt. Particles placed by the
