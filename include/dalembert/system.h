@@ -1,20 +1,21 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Model building: coordinates, particles, coordinate maps, constraints and forces -> system.
-//
-// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
-// any number of states (trajectories, threads) may share read-only.
-//
-// Threads: a compiled system is never written after dal_builder_compile, so states of the
-// same system may step in parallel threads (one thread per state); the results are
-// bit-identical to serial runs (tests/test_threads.c). The library keeps no global mutable
-// state. The user's callbacks and the contexts given to the builder are then called from
-// those threads at the same time: they must not write shared data without synchronization.
-// A builder, like a state, is used by one thread at a time.
-//
-// Conventions: spatial dimension d is 2 (x, y) or 3 (x, y, z); gravity is whatever vector the
-// user gives (typically (0, -g) in 2D, (0, 0, -g) in 3D). Units are the user's, consistent
-// (SI suggested). Indices are 0-based. Local matrices are row-major, global ones column-major.
+/// @file
+/// @brief Model building: coordinates, particles, coordinate maps, constraints and forces -> system.
+///
+/// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
+/// any number of states (trajectories, threads) may share read-only.
+///
+/// Threads: a compiled system is never written after dal_builder_compile, so states of the
+/// same system may step in parallel threads (one thread per state); the results are
+/// bit-identical to serial runs (tests/test_threads.c). The library keeps no global mutable
+/// state. The user's callbacks and the contexts given to the builder are then called from
+/// those threads at the same time: they must not write shared data without synchronization.
+/// A builder, like a state, is used by one thread at a time.
+///
+/// Conventions: spatial dimension d is 2 (x, y) or 3 (x, y, z); gravity is whatever vector the
+/// user gives (typically (0, -g) in 2D, (0, 0, -g) in 3D). Units are the user's, consistent
+/// (SI suggested). Indices are 0-based. Local matrices are row-major, global ones column-major.
 #ifndef DAL_SYSTEM_H
 #define DAL_SYSTEM_H
 
