@@ -1298,6 +1298,32 @@ static void sw_dal_default_constraint_def(void) {
   CHECK(d.name == NULL && d.prim == NULL && d.parts == NULL && d.nparts == 0);
   CHECK(d.coords == NULL && d.ncoords == 0 && d.ctx == NULL);
 }
+// the name-checked setters: a name of the def's primitive sets that entry only; an unknown
+// name, a name of another primitive, a missing primitive or NULL set nothing
+static void sw_dal_place_def_set(void) {
+  dal_place_def d = dal_default_place_def();
+  double before[DAL_MAX_PARAM];
+  CHECK(dal_place_def_set(&d, "l", 1.0) == DAL_E_ARG); // no primitive yet
+  d.prim = &dal_map_pendulum;
+  memcpy(before, d.param, sizeof before);
+  CHECK(dal_place_def_set(NULL, "l", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "R", 1.0) == DAL_E_ARG); // the ring's radius: not a pendulum's
+  CHECK(dal_place_def_set(&d, "", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "7", 1.0) == DAL_E_ARG); // the pendulum has 7 parameters
+  CHECK(memcmp(before, d.param, sizeof before) == 0);
+  CHECK(dal_place_def_set(&d, "w", 2.5) == DAL_OK && d.param[DAL_PENDULUM_W] == 2.5);
+  CHECK(dal_place_def_set(&d, "0", 0.5) == DAL_OK && d.param[DAL_PENDULUM_L] == 0.5);
+}
+static void sw_dal_constraint_def_set(void) {
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(dal_constraint_def_set(&d, "L", 1.0) == DAL_E_ARG);
+  d.prim = &dal_con_anchor2;
+  CHECK(dal_constraint_def_set(NULL, "L", 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, "z0", 1.0) == DAL_E_ARG); // anchor2 is planar
+  CHECK(dal_constraint_def_set(&d, "y0", -0.5) == DAL_OK && d.param[DAL_ANCHOR_Y0] == -0.5);
+}
 static void sw_dal_default_spring_def(void) {
   dal_spring_def d = dal_default_spring_def();
   CHECK(d.a == -1 && d.b == -1 && d.k == 0.0 && d.length == 0.0 && d.path == NULL);
@@ -1766,6 +1792,8 @@ static const sweep_row rows[] = {
     ROW(dal_lyapunov_default_opts),
     ROW(dal_lyapunov),
     ROW(dal_default_place_def),
+    ROW(dal_place_def_set),
+    ROW(dal_constraint_def_set),
     ROW(dal_default_constraint_def),
     ROW(dal_default_spring_def),
     ROW(dal_default_damper_def),

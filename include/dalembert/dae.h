@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 /// @file
-/// @brief Redundant coordinates: consistent initialization, constraint diagnostics, constraint forces.
+/// @brief Redundant coordinates: consistent initialization, constraint diagnostics, constraint
+/// forces.
 ///
 /// A system with constraints phi(q, t) = 0 (m rows, G = dphi/dq, m x n) moves by
 ///   M qddot = Q - c + G' lambda,   phi(q, t) = 0,

@@ -181,7 +181,7 @@ static inline dal_jet dal_powi(dal_jet a, int n) {
   if (n == 1) return a;
   double f0 = 1.0, f1, f2, f3;
   unsigned m = n < 0 ? 0u - (unsigned)n : (unsigned)n; // |n| without overflow at INT_MIN
-  double pm2 = 1.0; // a^(m-2) by repeated squaring when m >= 2
+  double pm2 = 1.0;                                    // a^(m-2) by repeated squaring when m >= 2
   if (m >= 2) {
     double base = a.v;
     unsigned e = m - 2;

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 /// @file
-/// @brief Built-in primitives: coordinate maps (dal_map_*) and constraints (dal_con_*), and the registry.
+/// @brief Built-in primitives: coordinate maps (dal_map_*) and constraints (dal_con_*), and the
+/// registry.
 ///
 /// Each is a dal_primitive (see system.h): inputs, parameters and outputs are listed with it.
 /// The builder refuses parameters outside a built-in's domain, naming them: the length or radius

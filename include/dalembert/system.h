@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 /// @file
-/// @brief Model building: coordinates, particles, coordinate maps, constraints and forces -> system.
+/// @brief Model building: coordinates, particles, coordinate maps, constraints and forces ->
+/// system.
 ///
 /// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
 /// any number of states (trajectories, threads) may share read-only.
@@ -32,8 +33,7 @@ extern "C" {
 /// `param` holds the instance's `nparam` parameters (borrowed); `ctx` is the instance's
 /// user pointer. Return 0 on success, > 0 for a recoverable failure (the integrator retries
 /// with a smaller step), < 0 to stop.
-typedef int dal_jet_fn(const dal_jet *in, dal_jet t, const double *param, dal_jet *out,
-                       void *ctx);
+typedef int dal_jet_fn(const dal_jet *in, dal_jet t, const double *param, dal_jet *out, void *ctx);
 
 /// Newest layout of the dal_primitive table this library knows. A table declares the layout it
 /// was written for in `version`; the library reads only the fields that layout has, so a
@@ -99,8 +99,7 @@ typedef int dal_lagrangian_fn(dal_jet t, const dal_jet *q, const dal_jet *qdot, 
 typedef int dal_force_fn(double t, const double *r, const double *v, double *F, void *ctx);
 
 /// Generalized forces: given t, q (n), qdot (n), ADD into Q (n). Same return convention.
-typedef int dal_genforce_fn(double t, const double *q, const double *qdot, double *Q,
-                            void *ctx);
+typedef int dal_genforce_fn(double t, const double *q, const double *qdot, double *Q, void *ctx);
 
 /// Mutable model under construction.
 typedef struct dal_builder dal_builder;
@@ -202,6 +201,16 @@ typedef struct dal_damper_def {
 DAL_API dal_place_def dal_default_place_def(void);
 /// A constraint def with the defaults: no name, no primitive, no inputs, parameters unset.
 DAL_API dal_constraint_def dal_default_constraint_def(void);
+/// Sets the parameter of def->prim called `name` (its name in the primitive's table, e.g. "l"
+/// or "w" of dal_map_pendulum; a 0-based index in decimal works too): the name-checked form
+/// of def->param[DAL_PENDULUM_L] = value, which cannot pick an index of another primitive's
+/// enum by mistake. Set def->prim first. Returns DAL_OK, or DAL_E_ARG (nothing set) when def,
+/// def->prim or name is NULL or the primitive has no parameter of that name (the names are
+/// listed with each primitive in primitives.h and by dal_system_print). The value itself is
+/// checked when the def is placed, as for def->param.
+DAL_API int dal_place_def_set(dal_place_def *def, const char *name, double value);
+/// dal_place_def_set for a constraint def: sets the parameter `name` of def->prim.
+DAL_API int dal_constraint_def_set(dal_constraint_def *def, const char *name, double value);
 /// A spring def with the defaults: a = -1 (must be set), anchored (b = -1) at the origin, no
 /// path, k = 0, length = 0.
 DAL_API dal_spring_def dal_default_spring_def(void);
@@ -246,9 +255,9 @@ DAL_API int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def
 /// built-in's parameters must lie in their domain (lengths and radii of constraints > 0, those
 /// of maps nonzero, normals and directions of representable nonzero length; primitives.h):
 /// DAL_E_ARG naming the parameter otherwise.
-DAL_API int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim,
-                              int parent, int ncoords, const int *coords, int nparam,
-                              const double *param, void *ctx);
+DAL_API int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, int parent,
+                              int ncoords, const int *coords, int nparam, const double *param,
+                              void *ctx);
 
 /// Give all particle positions at once by a user map r(q, t) (r is N x d row-major).
 /// Exclusive with dal_builder_place.
@@ -268,10 +277,9 @@ DAL_API int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, vo
 /// added. Parameters as in dal_builder_place. (The context is not last here, for
 /// compatibility; dal_builder_add_constraint_def holds it in the def.) Residuals should be in
 /// length units (built-ins are). *index receives the index of the first row (may be NULL).
-DAL_API int dal_builder_add_constraint(dal_builder *b, const char *name,
-                                       const dal_primitive *prim, int nparts, const int *parts,
-                                       int ncoords, const int *coords, int nparam,
-                                       const double *param, void *ctx, int *index);
+DAL_API int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primitive *prim,
+                                       int nparts, const int *parts, int ncoords, const int *coords,
+                                       int nparam, const double *param, void *ctx, int *index);
 
 /// Uniform gravity: acceleration vector g (d values, copied), force m_k g on every particle.
 DAL_API int dal_builder_set_gravity(dal_builder *b, const double *g);
@@ -302,8 +310,8 @@ DAL_API int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, dou
 /// the origin), x(t) from fn (NULL: none). U = k/2 (|r_p - (x0 + x(t))| - L)^2. Same as
 /// dal_builder_add_spring_def with b = -1 (the context is not last here, for compatibility;
 /// the def holds it).
-DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0,
-                                          dal_path_fn *fn, void *ctx, double k, double L);
+DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
+                                          void *ctx, double k, double L);
 
 /// Linear damper between particles a and b: F_b = -c ((v_b - v_a) . e) e, e = unit vector
 /// from a to b; F_a = -F_b. c >= 0.
@@ -311,8 +319,8 @@ DAL_API int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c);
 
 /// Linear damper from particle p to the anchor point x0 + x(t) (x0 NULL: the origin; fn NULL:
 /// fixed), as above. Same as dal_builder_add_damper_def with b = -1.
-DAL_API int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0,
-                                          dal_path_fn *fn, void *ctx, double c);
+DAL_API int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
+                                          void *ctx, double c);
 
 /// Add a user potential U(r, t) over all particle positions; F = -grad U is exact.
 DAL_API int dal_builder_add_potential_r(dal_builder *b, dal_potential_r_fn *fn, void *ctx);
