@@ -136,7 +136,7 @@ structs=$(grep -o 'href="struct[A-Za-z_0-9]*\.html"[^>]*>[A-Za-z_0-9]*<' "$html/
 # the status codes: the reference reads a spelled-out copy of DAL_STATUS_LIST (base.h); the
 # copy must give the same names and values
 list=$(sed -n 's/^ *X(\(DAL_[A-Z_]*\), \(-\{0,1\}[0-9]*\),.*/\1 \2/p' "$headers/base.h")
-copy=$(sed -n 's/^ *\(DAL_[A-Z_]*\) = \(-\{0,1\}[0-9]*\), \/\/\/<.*/\1 \2/p' "$headers/base.h")
+copy=$(sed -n 's/^ *\(DAL_[A-Z_]*\) = \(-\{0,1\}[0-9]*\), *\/\/\/<.*/\1 \2/p' "$headers/base.h")
 fail=0
 if [ -z "$list" ] || [ "$list" != "$copy" ]; then
   echo "reference: base.h's documented status enum differs from DAL_STATUS_LIST:" >&2
