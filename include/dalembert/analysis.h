@@ -157,8 +157,10 @@ typedef int dal_rebuild_fn(double p, dal_system **out, void *ctx);
 typedef enum dal_branch_kind {
   DAL_BRANCH_REGULAR = 0,  ///< a point of the parameter grid
   DAL_BRANCH_CRITICAL = 1, ///< a located point where a real eigenvalue of K crosses zero
-                           ///< (det K changes sign: fold, pitchfork, transcritical), between
-                           ///< two grid points whose det K differ in sign
+                           ///< along the branch (det K changes sign: a pitchfork or
+                           ///< transcritical bifurcation), between two grid points whose det K
+                           ///< differ in sign. A fold (the branch turns back in p) is not one:
+                           ///< it ends the continuation with DAL_E_CONV (see dal_continue)
 } dal_branch_kind;
 
 /// Called at every converged point of a branch with the state at the equilibrium
@@ -232,7 +234,9 @@ typedef struct dal_lyapunov_opts {
 DAL_API void dal_lyapunov_default_opts(dal_lyapunov_opts *o);
 
 /// Called after every reorthonormalization that lies past the transient: time t and the
-/// running estimates (nexp, largest first), valid during the call. Return 0 to continue,
+/// running estimates (nexp), in the order of the QR columns (decreasing once the tangent
+/// vectors have aligned; only dal_lyapunov's final exponents are sorted largest first), valid
+/// during the call. Return 0 to continue,
 /// non-zero to stop (dal_lyapunov then returns DAL_OK with the estimates so far).
 typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *ctx);
 

@@ -25,7 +25,8 @@
 /// Poincare sections: a surface section is a non-terminal event with a direction (theta = 0
 /// crossed upwards, say); its log is the section (dal_events_write_csv). A stroboscopic section
 /// (the state once per period T of a drive) is dal_evolve with dt = T and a monitor, e.g.
-/// dal_csv_monitor (docs/analysis.md).
+/// dal_csv_monitor (docs/events.md: sections, their accuracy and cost;
+/// examples/sicm_section.c draws both kinds).
 #ifndef DAL_EVENTS_H
 #define DAL_EVENTS_H
 
