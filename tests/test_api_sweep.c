@@ -1590,9 +1590,9 @@ static void sw_dal_events_create(void) {
   CHECK(dal_events_create(NULL, &ev) == DAL_E_ARG && ev == NULL);
   CHECK(dal_events_create(F.A, NULL) == DAL_E_ARG);
   CHECK(dal_events_create(F.A, &ev) == DAL_OK && ev != NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
-static void sw_dal_events_free(void) { dal_events_free(NULL); }
+static void sw_dal_events_destroy(void) { dal_events_destroy(NULL); }
 static void sw_dal_events_add(void) {
   dal_events *ev = NULL;
   CHECK_OK(dal_events_create(F.A, &ev));
@@ -1621,7 +1621,7 @@ static void sw_dal_events_add(void) {
   d.direction = DAL_EVENT_FALLING;
   CHECK(dal_events_add(ev, &d) == 0);
   CHECK(dal_events_size(ev) == 1);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_errmsg(void) { CHECK(strcmp(dal_events_errmsg(NULL), "") == 0); }
 static void sw_dal_events_size(void) { CHECK(dal_events_size(NULL) == 0); }
@@ -1635,7 +1635,7 @@ static void sw_dal_events_name(void) {
   CHECK(strcmp(dal_events_name(ev, 0), "zero") == 0);
   CHECK(dal_events_name(ev, 1) == NULL && dal_events_name(ev, -1) == NULL);
   CHECK(dal_events_name(NULL, 0) == NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_state_set_events(void) {
   dal_events *ev = NULL;
@@ -1643,7 +1643,7 @@ static void sw_dal_state_set_events(void) {
   CHECK(dal_state_set_events(NULL, ev) == DAL_E_ARG);
   ST(dal_state_set_events(F.stB, ev), DAL_E_STATE, F.stB); // a set of another system
   CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
 static void sw_dal_events_get(void) {
@@ -1653,7 +1653,7 @@ static void sw_dal_events_get(void) {
   CHECK(dal_events_get(NULL, 0, &r, NULL, NULL) == DAL_E_ARG);
   CHECK(dal_events_get(ev, 0, &r, NULL, NULL) == DAL_E_ARG); // empty log
   CHECK(dal_events_get(ev, -1, &r, NULL, NULL) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_clear(void) { dal_events_clear(NULL); }
 static void sw_dal_events_write_csv(void) {
@@ -1663,7 +1663,7 @@ static void sw_dal_events_write_csv(void) {
   CHECK(dal_events_write_csv(ev, NULL, -1, 0) == DAL_E_ARG);
   CHECK(dal_events_write_csv(ev, stdout, 0, 0) == DAL_E_ARG); // no event 0
   CHECK(dal_events_write_csv(ev, stdout, -2, 0) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 
 typedef struct sweep_row {
@@ -1693,7 +1693,7 @@ static const sweep_row rows[] = {
     ROW(dal_csv_monitor),
     ROW(dal_default_event_def),
     ROW(dal_events_create),
-    ROW(dal_events_free),
+    ROW(dal_events_destroy),
     ROW(dal_events_add),
     ROW(dal_events_errmsg),
     ROW(dal_events_size),

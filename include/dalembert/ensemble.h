@@ -159,7 +159,9 @@ DAL_API long dal_sweep_grid(int naxes, const int *count, const double *lo, const
                             double *values);
 
 /// Write the sweep as CSV, one row per trajectory in index order: index, the parameter
-/// values (columns named by dal_param_name), status (dal_status_name), the results (columns
+/// values (columns named by dal_param_name), with per-trajectory initial states
+/// (state_stride = n) the trajectory's q0 and qdot0 (columns "q0:<coordinate>", then
+/// "qdot0:<coordinate>"), status (dal_status_name), the results (columns
 /// result_names[0..nresult-1], or r0, r1, ... when result_names is NULL) and the message
 /// (quoted). Numbers are printed with %.17g, so equal results give equal bytes. Returns
 /// DAL_OK or DAL_E_IO / DAL_E_ARG.

@@ -84,7 +84,7 @@ typedef struct dal_events dal_events;
 DAL_API int dal_events_create(const dal_system *sys, dal_events **out);
 
 /// Free the set (NULL is fine). Detach it from any state first (dal_state_set_events).
-DAL_API void dal_events_free(dal_events *ev);
+DAL_API void dal_events_destroy(dal_events *ev);
 
 /// Add an event; returns its index (0, 1, ...) or a negative status: DAL_E_ARG (a def not
 /// made by dal_default_event_def, none or several of g / g_state / constraint, a direction
