@@ -1225,6 +1225,32 @@ static void sw_dal_default_constraint_def(void) {
   CHECK(d.name == NULL && d.prim == NULL && d.parts == NULL && d.nparts == 0);
   CHECK(d.coords == NULL && d.ncoords == 0 && d.ctx == NULL);
 }
+// the name-checked setters: a name of the def's primitive sets that entry only; an unknown
+// name, a name of another primitive, a missing primitive or NULL set nothing
+static void sw_dal_place_def_set(void) {
+  dal_place_def d = dal_default_place_def();
+  double before[DAL_MAX_PARAM];
+  CHECK(dal_place_def_set(&d, "l", 1.0) == DAL_E_ARG); // no primitive yet
+  d.prim = &dal_map_pendulum;
+  memcpy(before, d.param, sizeof before);
+  CHECK(dal_place_def_set(NULL, "l", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "R", 1.0) == DAL_E_ARG); // the ring's radius: not a pendulum's
+  CHECK(dal_place_def_set(&d, "", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "7", 1.0) == DAL_E_ARG); // the pendulum has 7 parameters
+  CHECK(memcmp(before, d.param, sizeof before) == 0);
+  CHECK(dal_place_def_set(&d, "w", 2.5) == DAL_OK && d.param[DAL_PENDULUM_W] == 2.5);
+  CHECK(dal_place_def_set(&d, "0", 0.5) == DAL_OK && d.param[DAL_PENDULUM_L] == 0.5);
+}
+static void sw_dal_constraint_def_set(void) {
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(dal_constraint_def_set(&d, "L", 1.0) == DAL_E_ARG);
+  d.prim = &dal_con_anchor2;
+  CHECK(dal_constraint_def_set(NULL, "L", 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, "z0", 1.0) == DAL_E_ARG); // anchor2 is planar
+  CHECK(dal_constraint_def_set(&d, "y0", -0.5) == DAL_OK && d.param[DAL_ANCHOR_Y0] == -0.5);
+}
 static void sw_dal_default_spring_def(void) {
   dal_spring_def d = dal_default_spring_def();
   CHECK(d.a == -1 && d.b == -1 && d.k == 0.0 && d.length == 0.0 && d.path == NULL);
@@ -1519,9 +1545,9 @@ static void sw_dal_events_create(void) {
   CHECK(dal_events_create(NULL, &ev) == DAL_E_ARG && ev == NULL);
   CHECK(dal_events_create(F.A, NULL) == DAL_E_ARG);
   CHECK(dal_events_create(F.A, &ev) == DAL_OK && ev != NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
-static void sw_dal_events_free(void) { dal_events_free(NULL); }
+static void sw_dal_events_destroy(void) { dal_events_destroy(NULL); }
 static void sw_dal_events_add(void) {
   dal_events *ev = NULL;
   CHECK_OK(dal_events_create(F.A, &ev));
@@ -1550,7 +1576,7 @@ static void sw_dal_events_add(void) {
   d.direction = DAL_EVENT_FALLING;
   CHECK(dal_events_add(ev, &d) == 0);
   CHECK(dal_events_size(ev) == 1);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_errmsg(void) { CHECK(strcmp(dal_events_errmsg(NULL), "") == 0); }
 static void sw_dal_events_size(void) { CHECK(dal_events_size(NULL) == 0); }
@@ -1564,7 +1590,7 @@ static void sw_dal_events_name(void) {
   CHECK(strcmp(dal_events_name(ev, 0), "zero") == 0);
   CHECK(dal_events_name(ev, 1) == NULL && dal_events_name(ev, -1) == NULL);
   CHECK(dal_events_name(NULL, 0) == NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_state_set_events(void) {
   dal_events *ev = NULL;
@@ -1572,7 +1598,7 @@ static void sw_dal_state_set_events(void) {
   CHECK(dal_state_set_events(NULL, ev) == DAL_E_ARG);
   ST(dal_state_set_events(F.stB, ev), DAL_E_STATE, F.stB); // a set of another system
   CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
 static void sw_dal_events_get(void) {
@@ -1582,7 +1608,7 @@ static void sw_dal_events_get(void) {
   CHECK(dal_events_get(NULL, 0, &r, NULL, NULL) == DAL_E_ARG);
   CHECK(dal_events_get(ev, 0, &r, NULL, NULL) == DAL_E_ARG); // empty log
   CHECK(dal_events_get(ev, -1, &r, NULL, NULL) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_clear(void) { dal_events_clear(NULL); }
 static void sw_dal_events_write_csv(void) {
@@ -1592,7 +1618,7 @@ static void sw_dal_events_write_csv(void) {
   CHECK(dal_events_write_csv(ev, NULL, -1, 0) == DAL_E_ARG);
   CHECK(dal_events_write_csv(ev, stdout, 0, 0) == DAL_E_ARG); // no event 0
   CHECK(dal_events_write_csv(ev, stdout, -2, 0) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 
 typedef struct sweep_row {
@@ -1622,7 +1648,7 @@ static const sweep_row rows[] = {
     ROW(dal_csv_monitor),
     ROW(dal_default_event_def),
     ROW(dal_events_create),
-    ROW(dal_events_free),
+    ROW(dal_events_destroy),
     ROW(dal_events_add),
     ROW(dal_events_errmsg),
     ROW(dal_events_size),
@@ -1715,6 +1741,8 @@ static const sweep_row rows[] = {
     ROW(dal_lyapunov_default_opts),
     ROW(dal_lyapunov),
     ROW(dal_default_place_def),
+    ROW(dal_place_def_set),
+    ROW(dal_constraint_def_set),
     ROW(dal_default_constraint_def),
     ROW(dal_default_spring_def),
     ROW(dal_default_damper_def),

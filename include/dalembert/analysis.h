@@ -1,35 +1,36 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Analysis: exact linearization, normal modes and stability, equilibria and their
-// continuation in one parameter, Lyapunov exponents (docs/analysis.md).
-//
-// The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
-// y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
-// the equations of motion are written R(t, q, qdot, qddot) = M qddot + c - Q = 0, and
-//   K = dR/dq,  C = dR/dqdot  (at fixed qddot),  M = dR/dqddot,
-// so a small variation obeys M dq'' + C dq' + K dq = 0 (with coefficients that depend on time
-// away from a steady state), and df/dy = [0, I; -M^-1 K, -M^-1 C]. No finite differences:
-// K and C come from jets. Their derivatives of M, Q and c need second derivatives of the maps
-// and potentials (by polarization of order-2 coefficients along sums of directions) and the
-// derivative of the curvature terms gamma, a third derivative D^3 r[dq, w, w] with
-// w = (qdot, 1) (by polarization of the order-3 coefficient d3 of dal_jet along the curves
-// s -> (q + s (qdot +- dq) + s^2/2 (qddot +- 2 dqdot), t + s (1 +- dt)); see jet.h).
-//
-// What the tangent covers: particle systems in minimal coordinates (no constraint rows,
-// m = 0) placed by primitives or a whole-system map, with gravity, springs, dampers and jet
-// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included; and systems given
-// by a Lagrangian L(t, q, qdot) (with U(q, t)), whose tangent needs third partials of L, taken
-// the same way (polarization of d3 along curves in (q, qdot, t)). It refuses, with
-// DAL_E_UNSUPPORTED and a message naming the cause:
-//  - constraint rows (m > 0): use minimal coordinates for the analysis;
-//  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
-//    they have no exact derivative; write the force as a potential over jets if it has one.
-// A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
-// third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
-//
-// Every function takes the system and a state; it evaluates the state (as dal_forward does)
-// and reports failures in dal_state_errmsg(st). Matrices are column-major; n = number of
-// coordinates.
+/// @file
+/// @brief Analysis: exact linearization, normal modes and stability, equilibria and their
+/// continuation in one parameter, Lyapunov exponents (docs/analysis.md).
+///
+/// The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
+/// y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
+/// the equations of motion are written R(t, q, qdot, qddot) = M qddot + c - Q = 0, and
+///   K = dR/dq,  C = dR/dqdot  (at fixed qddot),  M = dR/dqddot,
+/// so a small variation obeys M dq'' + C dq' + K dq = 0 (with coefficients that depend on time
+/// away from a steady state), and df/dy = [0, I; -M^-1 K, -M^-1 C]. No finite differences:
+/// K and C come from jets. Their derivatives of M, Q and c need second derivatives of the maps
+/// and potentials (by polarization of order-2 coefficients along sums of directions) and the
+/// derivative of the curvature terms gamma, a third derivative D^3 r[dq, w, w] with
+/// w = (qdot, 1) (by polarization of the order-3 coefficient d3 of dal_jet along the curves
+/// s -> (q + s (qdot +- dq) + s^2/2 (qddot +- 2 dqdot), t + s (1 +- dt)); see jet.h).
+///
+/// What the tangent covers: particle systems in minimal coordinates (no constraint rows,
+/// m = 0) placed by primitives or a whole-system map, with gravity, springs, dampers and jet
+/// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included; and systems given
+/// by a Lagrangian L(t, q, qdot) (with U(q, t)), whose tangent needs third partials of L, taken
+/// the same way (polarization of d3 along curves in (q, qdot, t)). It refuses, with
+/// DAL_E_UNSUPPORTED and a message naming the cause:
+///  - constraint rows (m > 0): use minimal coordinates for the analysis;
+///  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
+///    they have no exact derivative; write the force as a potential over jets if it has one.
+/// A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
+/// third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
+///
+/// Every function takes the system and a state; it evaluates the state (as dal_forward does)
+/// and reports failures in dal_state_errmsg(st). Matrices are column-major; n = number of
+/// coordinates.
 #ifndef DAL_ANALYSIS_H
 #define DAL_ANALYSIS_H
 
@@ -156,8 +157,10 @@ typedef int dal_rebuild_fn(double p, dal_system **out, void *ctx);
 typedef enum dal_branch_kind {
   DAL_BRANCH_REGULAR = 0,  ///< a point of the parameter grid
   DAL_BRANCH_CRITICAL = 1, ///< a located point where a real eigenvalue of K crosses zero
-                           ///< (det K changes sign: fold, pitchfork, transcritical), between
-                           ///< two grid points whose det K differ in sign
+                           ///< along the branch (det K changes sign: a pitchfork or
+                           ///< transcritical bifurcation), between two grid points whose det K
+                           ///< differ in sign. A fold (the branch turns back in p) is not one:
+                           ///< it ends the continuation with DAL_E_CONV (see dal_continue)
 } dal_branch_kind;
 
 /// Called at every converged point of a branch with the state at the equilibrium
@@ -231,7 +234,9 @@ typedef struct dal_lyapunov_opts {
 DAL_API void dal_lyapunov_default_opts(dal_lyapunov_opts *o);
 
 /// Called after every reorthonormalization that lies past the transient: time t and the
-/// running estimates (nexp, largest first), valid during the call. Return 0 to continue,
+/// running estimates (nexp), in the order of the QR columns (decreasing once the tangent
+/// vectors have aligned; only dal_lyapunov's final exponents are sorted largest first), valid
+/// during the call. Return 0 to continue,
 /// non-zero to stop (dal_lyapunov then returns DAL_OK with the estimates so far).
 typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *ctx);
 

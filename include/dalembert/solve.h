@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Integrating the motion: methods, formulations, options, advance/evolve, statistics.
-//
-// A system without constraints runs as the ODE y = (q, qdot); a system with constraints runs
-// as a DAE (index-2 stabilized GGL through SUNDIALS IDA by default). After any failure the
-// state holds the last accepted step and dal_state_errmsg says what failed, when and why.
+/// @file
+/// @brief Integrating the motion: methods, formulations, options, advance/evolve, statistics.
+///
+/// A system without constraints runs as the ODE y = (q, qdot); a system with constraints runs
+/// as a DAE (index-2 stabilized GGL through SUNDIALS IDA by default). After any failure the
+/// state holds the last accepted step and dal_state_errmsg says what failed, when and why.
 #ifndef DAL_SOLVE_H
 #define DAL_SOLVE_H
 
