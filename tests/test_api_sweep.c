@@ -1502,10 +1502,10 @@ static void sw_dal_state_print(void) {
   if (!fp || !ro) return;
   // the state is const: no message can be kept; the header documents DAL_E_ARG for a state of
   // another system (the README convention would be DAL_E_STATE)
-  ST(dal_state_print(NULL, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(NULL, F.stA, fp), DAL_E_STATE, F.stA);
   ST(dal_state_print(F.A, NULL, fp), DAL_E_ARG, NULL);
-  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, NULL);
-  ST(dal_state_print(F.B, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
+  ST(dal_state_print(F.B, F.stA, fp), DAL_E_STATE, F.stA);
   CHECK(ftell(fp) == 0);
   ST(dal_state_print(F.A, F.stA, ro), DAL_E_IO, NULL);
   ST(dal_state_print(F.A, F.stA, fp), DAL_OK, NULL);
