@@ -1102,16 +1102,16 @@ static void sw_dal_linearize(void) {
   CHECK_CLOSE(C[0], 0.0, 1e-14);
   CHECK_CLOSE(K[0], 9.81 * cos(0.3), 1e-13);
 }
-static void sw_dal_flow_jacobian(void) {
+static void sw_dal_vector_field_jacobian(void) {
   double A[4] = {0}, ft[2] = {1, 1};
-  ST(dal_flow_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
-  ST(dal_flow_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_flow_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_flow_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
-  ST(dal_flow_jacobian(F.A, F.stA, A, NULL), DAL_E_UNSUPPORTED, F.stA);
+  ST(dal_vector_field_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
+  ST(dal_vector_field_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_vector_field_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
+  ST(dal_vector_field_jacobian(F.A, F.stA, A, NULL), DAL_E_UNSUPPORTED, F.stA);
   st_intact();
-  ST(dal_flow_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
-  ST(dal_flow_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
   // df/dy = [0 1; -K/M 0] column-major; autonomous: df/dt = 0
   CHECK(A[0] == 0.0 && A[2] == 1.0 && A[3] == 0.0);
   CHECK_CLOSE(A[1], -9.81 * cos(0.3), 1e-13);
@@ -1756,7 +1756,7 @@ static const sweep_row rows[] = {
     ROW(dal_state_print),
     ROW(dal_state_init_report),
     ROW(dal_linearize),
-    ROW(dal_flow_jacobian),
+    ROW(dal_vector_field_jacobian),
     ROW(dal_stability_name),
     ROW(dal_normal_modes),
     ROW(dal_equilibrium_default_opts),
