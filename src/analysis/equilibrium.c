@@ -332,7 +332,10 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
         } else {
           b = c;
         }
-        if (mid.sign == 0) break;
+        if (mid.sign == 0) { // det K is exactly zero at c: the critical point itself
+          a = c;
+          break;
+        }
       }
       if (!rc) {
         double c = 0.5 * (a + b);

@@ -179,16 +179,18 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
 /// Orthonormal basis N (n x k, k = n - m) of the null space of G and the velocity part
 /// Y = -G^+ Pq N (n x k) of the tangent space of the state manifold
 /// {phi = 0, G v + phi_t = 0}: its vectors are (N xi, Y xi + N eta). Y may be
-/// NULL. From the last dal__tangent_eval (by an SVD of G). Returns DAL_OK, DAL_E_SINGULAR
+/// NULL; W (m x k, nullable) = S^-1 U' P N from the SVD G = U S V', so W' W =
+/// N' P' (G G')^-1 P N. From the last dal__tangent_eval (by an SVD of G). Returns DAL_OK, DAL_E_SINGULAR
 /// (rank of G below m, message naming the row) or DAL_E_NOMEM.
 int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
-                       double *Y);
+                       double *Y, double *W);
 /// The reduced first-order Jacobian Ar (2k x 2k) = [0 I; A21 A22] of the full A on the
 /// tangent space (basis N, Y of dal__tangent_basis): Ar = diag(N', N') A Z.
 void dal__tangent_reduce(int n, int k, const double *A, const double *N, const double *Y,
                          double *Ar);
 /// The reduced linearization on the constraint manifold from the last dal__tangent_eval:
-/// N (n x k), Ar (2k x 2k), and M_r = N' M N, C_r, K_r (k x k) with
+/// N (n x k), Ar (2k x 2k) in xi = N' dq, eta = xi' with N carried along the motion by
+/// minimal rotation (tangent_con.c), and M_r = N' M N, C_r, K_r (k x k) with
 /// M_r xi'' + C_r xi' + K_r xi = 0 the second-order form of Ar; each output nullable.
 int dal__tangent_reduced(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
                          double *Ar, double *Mr, double *Cr, double *Kr);

@@ -615,7 +615,7 @@ int dal_linearize_full(const dal_system *sys, dal_state *st, double *M, double *
   if (C) memcpy(C, tg->Ru, nn);
   if (K) memcpy(K, tg->Rq, nn);
   if (G && m > 0) memcpy(G, tg->G, (size_t)m * (size_t)n * sizeof(double));
-  if (N && m > 0) rc = dal__tangent_basis(sys, st, tg, N, NULL);
+  if (N && m > 0) rc = dal__tangent_basis(sys, st, tg, N, NULL, NULL);
   if (N && m == 0) {
     memset(N, 0, nn);
     for (int i = 0; i < n; ++i)

@@ -16,9 +16,14 @@
 // tangent space at the state is {(dq, dv): G dq = 0, G dv + P dq = 0}, P = d(G v + phi_t)/dq:
 // with N an orthonormal basis of null(G) (an SVD of G) its vectors are
 //   (N xi, Y xi + N eta),   Y = -G^+ P N,
-// and since N' G^+ = 0, diag(N', N') recovers (xi, eta): the reduced Jacobian
-// Ar = diag(N', N') A Z is [0 I; A21 A22] (xi' = eta), the linearization in the independent
-// velocities eta.
+// and since N' G^+ = 0, diag(N', N') recovers (xi, eta): the frozen reduced Jacobian
+// diag(N', N') A Z is [0 I; A21 A22] (xi' = eta).
+// The basis is carried along the motion (xi = N(t)' dq, eta = xi'), not frozen: where G
+// changes along the motion (moving constraints, or qdot != 0) a frozen N turns against the
+// motion and its eigenvalues are not the tangent flow's (the bead on a turning circle at its
+// bottom: g/R frozen, g/R - w^2 carried). With the minimal-rotation transport
+// Ndot = -G^+ Gdot N (G N and N' N stay constant; Gdot = P, the same jets) xi' = N' dv = eta
+// still, and eta' = N' da + Ndot' dv adds N' P' (G G')^-1 P N to A21.
 #include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
@@ -97,7 +102,7 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
 }
 
 int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
-                       double *Y) {
+                       double *Y, double *W) {
   int n = tg->n, m = tg->m, k = n - m;
   size_t sn = (size_t)n, sm = (size_t)m;
   // G = U S V' (full V: its last k columns span null(G))
@@ -133,8 +138,8 @@ int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, do
   for (int j = 0; j < k; ++j)
     for (int i = 0; i < n; ++i)
       N[(size_t)j * n + i] = Vt[(size_t)i * n + (m + j)];
-  if (Y) {
-    // T = P N (m x k); Y = -V_1 S^-1 U' T (n x k)
+  if (Y || W) {
+    // T = P N (m x k); W = S^-1 U' T (m x k); Y = -V_1 W (n x k)
     for (int j = 0; j < k; ++j)
       for (int r = 0; r < m; ++r) {
         double x = 0.0;
@@ -149,8 +154,9 @@ int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, do
         for (int r = 0; r < m; ++r)
           x += U[(size_t)l * m + r] * T[(size_t)j * m + r];
         zz[l] = x / s[l];
+        if (W) W[(size_t)j * m + l] = zz[l];
       }
-      for (int i = 0; i < n; ++i) {
+      for (int i = 0; Y && i < n; ++i) {
         double x = 0.0;
         for (int l = 0; l < m; ++l)
           x += Vt[(size_t)i * n + l] * zz[l];
@@ -215,16 +221,28 @@ int dal__tangent_reduced(const dal_system *sys, dal_state *st, dal_tangent *tg, 
                          double *Ar, double *Mr, double *Cr, double *Kr) {
   int n = tg->n, k = n - tg->m;
   size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
-  double *buf = malloc((n2 * n2 + 2 * sn * sk + k2 * k2 + sn * sk + 1) * sizeof(double));
+  size_t sm = (size_t)tg->m;
+  double *buf =
+      malloc((n2 * n2 + 2 * sn * sk + k2 * k2 + sn * sk + sm * sk + 1) * sizeof(double));
   if (!buf) return DAL_FAIL(st, DAL_E_NOMEM, "tangent: out of memory for the reduction");
   double *A = buf, *Nb = A + n2 * n2, *Y = Nb + sn * sk, *R = Y + sn * sk, *MN = R + k2 * k2;
+  double *W = MN + sn * sk;
   int rc = dal__tangent_kkt(sys, st, tg, A, NULL, NULL);
-  if (!rc) rc = dal__tangent_basis(sys, st, tg, Nb, Y);
+  if (!rc) rc = dal__tangent_basis(sys, st, tg, Nb, Y, W);
   if (rc) {
     free(buf);
     return rc;
   }
   dal__tangent_reduce(n, k, A, Nb, Y, R);
+  // the basis carried along the motion (minimal rotation, Ndot = -G^+ Gdot N, Gdot = P):
+  // eta' = N' dv' + Ndot' dv adds N' P' (G G')^-1 P N = W' W to A21; zero where G is steady
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      double x = 0.0;
+      for (size_t r = 0; r < sm; ++r)
+        x += W[(size_t)i * sm + r] * W[(size_t)j * sm + r];
+      R[(size_t)j * k2 + k + i] += x;
+    }
   if (N) memcpy(N, Nb, sn * sk * sizeof(double));
   if (Ar) memcpy(Ar, R, k2 * k2 * sizeof(double));
   // M_r = N' M N; then C_r = -M_r A22, K_r = -M_r A21 (M_r xi'' + C_r xi' + K_r xi = 0)
