@@ -140,6 +140,9 @@ typedef struct dal_modes {
 ///  out (may be NULL): verdict and diagnostics.
 /// The modes describe small oscillations only where accel ~ 0 and qdot = 0 (an equilibrium or
 /// a steady relative equilibrium); elsewhere they are those of the frozen linearization.
+/// With m constraint rows the sizes are k = n - m: omega2 (k), lambda_re / lambda_im (2k),
+/// from the reduced matrices of dal_linearize, and shapes (n x k) are mapped back to the
+/// coordinates (x = N xi, still M-orthonormal); the state must be on the manifold.
 /// Statuses of dal_linearize; DAL_E_SINGULAR if LAPACK fails (named in the message).
 DAL_API int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
                              double *lambda_re, double *lambda_im, dal_modes *out);
@@ -174,8 +177,15 @@ typedef struct dal_equilibrium_report {
 /// a constant rate, q measured in the ring) this is a relative equilibrium: the report's
 /// `unsteady` tells whether it holds at all times. On success the state holds (t, q*, 0),
 /// evaluated. `o` may be NULL (defaults); `rep` may be NULL.
-/// Returns DAL_OK; DAL_E_SINGULAR when K is singular (a bifurcation point or a neutral
-/// direction; the message names the coordinate); DAL_E_CONV after max_iter iterations or a
+/// With m constraint rows, Newton runs on (q, lambda) for the static KKT system
+/// c - Q - G' lambda = 0, phi = 0 with the exact Jacobian [K - sum lambda_i Hess phi_i, -G';
+/// G, 0] (the start need not be on the manifold); on success dal_state_lambda(st) holds the
+/// multipliers at the equilibrium: the static loads (lambda = -T for a rod in tension T). A
+/// point that a moving constraint carries along (dphi/dt != 0 there: a relative equilibrium in
+/// redundant coordinates) is DAL_E_UNSUPPORTED; a moving constraint that leaves the point in
+/// place (a turning ring's bottom) is fine.
+/// Returns DAL_OK; DAL_E_SINGULAR when K (or the KKT Newton matrix) is singular (a bifurcation
+/// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter iterations or a
 /// non-finite step (the state then holds the last iterate); DAL_E_ARG for bad options; the
 /// statuses of dal_linearize.
 DAL_API int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
@@ -229,6 +239,8 @@ typedef struct dal_continuation_report {
 /// previous ones after that), classify it by dal_normal_modes and report it to `point`.
 /// Between grid points where det K changes sign the critical parameter is located by
 /// bisection (every trial point an exact Newton solve) and reported as DAL_BRANCH_CRITICAL.
+/// With constraint rows q0 and the states hold all n coordinates and det K is that of the
+/// reduced k x k stiffness of dal_linearize.
 /// A branch that folds back (a turning point in p) cannot be followed past the fold: the
 /// continuation then stops with DAL_E_CONV and says where. To follow another branch through a
 /// pitchfork, start a second continuation from a point on it.
