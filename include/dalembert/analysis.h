@@ -98,6 +98,34 @@ DAL_API int dal_linearize_full(const dal_system *sys, dal_state *st, double *M, 
 DAL_API int dal_vector_field_jacobian(const dal_system *sys, dal_state *st, double *A, double *ft);
 
 // ---------------------------------------------------------------------------------------------
+// the flow map: state-transition matrix and parameter sensitivities
+
+/// Integrate from the state's (t0, q, qdot) to t1 > t0 with the variational equations
+/// Phi' = A Phi, Phi(t0) = I and S' = A S + df/dp, S(t0) = 0 (A = df/dy, the exact tangent of
+/// dal_vector_field_jacobian) carried along as one first-order problem through the library's
+/// integrator opts->method (DOPRI5 for AUTO; FEHLBERG78, BS and RK4 too; the implicit and
+/// structure-preserving ones are DAL_E_UNSUPPORTED), whose error control with opts->rtol and
+/// atol covers Phi and S as well as the trajectory. opts may be NULL (defaults).
+///  Phi (2n x 2n, column-major, caller-owned, nullable): dy(t1)/dy(t0), y = (q, qdot).
+///  params (nparam names in the syntax of params.h: "mass:bob", "gravity:1", "spring:0:k",
+///    "spring:0:L", "damper:0:c"), S (2n x nparam, caller-owned): dy(t1)/dp, the derivative
+///    with respect to each parameter at the state's values (nparam = 0 and S = NULL for none).
+///    Primitive and constraint parameters ("place:...", "con:...") and Lagrangian systems have
+///    no exact derivative: DAL_E_UNSUPPORTED.
+/// With constraint rows the trajectory runs the index-1 vector field in the full space (no
+/// Baumgarte terms) from a consistent state; Phi z for z in the tangent space of the manifold
+/// (see dal_linearize_full's N) is the derivative of the constrained flow, and S stays in it;
+/// Phi on other directions is that of the index-1 field (linear drift of phi).
+/// On success the state holds (t1, q, qdot), evaluated; its integrator history is dropped.
+/// Cost: 2n + nparam tangent columns (the full tangent at every stage).
+/// Returns DAL_OK; DAL_E_ARG (sizes, t1, options, unknown parameter, a state off the
+/// manifold); DAL_E_UNSUPPORTED (method, parameter, or see the file comment); the integrator's
+/// statuses (DAL_E_STEP, DAL_E_MAXSTEPS, ...) and those of dal_vector_field_jacobian.
+DAL_API int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                                 double t1, double *Phi, int nparam, const char *const *params,
+                                 double *S);
+
+// ---------------------------------------------------------------------------------------------
 // normal modes and stability
 
 /// Stability verdict of a linearization, from the eigenvalues lambda of df/dy (LAPACK dgeev)

@@ -85,6 +85,9 @@ typedef struct dal_ode_problem {
   void (*from_state)(const dal_system *sys, const dal_state *st, double *y);
   /// the state's (t, q, qdot) from y (does not evaluate)
   void (*to_state)(const dal_system *sys, dal_state *st, double t, const double *y);
+  /// size of y when > 0 (a problem built at run time, e.g. the variational equations, whose
+  /// size depends on the request); 0: size(sys)
+  int ny;
   /// factor on the method's local tolerance for this problem (the projection of the index-1
   /// form adds its own error: measured 30 x rtol with DOPRI5's factor alone, 0.2 brings it
   /// under 16)
@@ -148,6 +151,9 @@ typedef struct dal_tangent {
   double *Pq;         // m x n: d(G v + phi_t)/dq
   double *Aq, *Av;    // m x n: d(G a + gamma_phi)/dq, /dqdot at fixed a
   double *At;         // m: d(G a + gamma_phi)/dt at fixed a
+  double *kkt;        // (n + m)^2 LU factors of [M G'; G 0] after dal__tangent_kkt, then
+                      // (n + m) x (2n + 1) right-hand sides
+  void *kpiv;         // (n + m) pivots (lapack_int)
 } dal_tangent;
 /// Allocate the workspace of sys. Returns DAL_OK or DAL_E_NOMEM (*out NULL then).
 int dal__tangent_create(const dal_system *sys, dal_tangent **out);
@@ -176,6 +182,9 @@ void dal__tangent_flow(dal_tangent *tg, double *A, double *ft);
 /// the KKT matrix is singular) or DAL_E_NOMEM.
 int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, double *A,
                      double *ft, double *dlam);
+/// Solve [M G'; G 0] x = b for nrhs columns b (n + m each, in place) with the LU factors of the
+/// last dal__tangent_kkt.
+void dal__tangent_kkt_solve(dal_tangent *tg, int nrhs, double *b);
 /// Orthonormal basis N (n x k, k = n - m) of the null space of G and the velocity part
 /// Y = -G^+ Pq N (n x k) of the tangent space of the state manifold
 /// {phi = 0, G v + phi_t = 0}: its vectors are (N xi, Y xi + N eta). Y may be

@@ -72,7 +72,12 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   tg->Aq = calloc(sm * sn + 1, sizeof(double));
   tg->Av = calloc(sm * sn + 1, sizeof(double));
   tg->At = calloc(sm, sizeof(double));
-  int ok = tg->jc && tg->ccp && tg->ccm && tg->c3diag && tg->G && tg->phit && tg->cres &&
+  size_t snk = sn + (size_t)sys->m;
+  if (sys->m > 0) {
+    tg->kkt = calloc(snk * snk + snk * (2 * sn + 1), sizeof(double));
+    tg->kpiv = calloc(snk, sizeof(lapack_int));
+  }
+  int ok = (sys->m == 0 || (tg->kkt && tg->kpiv)) && tg->jc && tg->ccp && tg->ccm && tg->c3diag && tg->G && tg->phit && tg->cres &&
            tg->Pq && tg->Aq && tg->Av && tg->At;
   ok = ok && tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
            tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link &&
@@ -94,7 +99,7 @@ void dal__tangent_free(dal_tangent *tg) {
                tg->dF,   tg->H,    tg->res,  tg->M,    tg->Rq, tg->Ru, tg->Rt,     tg->L,
                tg->link, tg->Habs, tg->Kabs, tg->Cabs, tg->jv, tg->HL, tg->HLabs,
                tg->jc,   tg->ccp,  tg->ccm,  tg->c3diag, tg->G, tg->phit, tg->cres, tg->Pq,
-               tg->Aq,   tg->Av,   tg->At};
+               tg->Aq,   tg->Av,   tg->At, tg->kkt, tg->kpiv};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(tg);

@@ -36,13 +36,8 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
                      double *ft, double *dlam) {
   int n = tg->n, m = tg->m, nk = n + m, ncol = 2 * n + (ft ? 1 : 0);
   size_t snk = (size_t)nk, n2 = 2 * (size_t)n;
-  double *K = malloc((snk * snk + snk * (size_t)ncol) * sizeof(double));
-  lapack_int *ipiv = malloc(snk * sizeof(lapack_int));
-  if (!K || !ipiv) {
-    free(K);
-    free(ipiv);
-    return DAL_FAIL(st, DAL_E_NOMEM, "tangent: out of memory for the KKT system");
-  }
+  double *K = tg->kkt; // allocated with the workspace: nothing is allocated here
+  lapack_int *ipiv = tg->kpiv;
   double *B = K + snk * snk;
   // [M G'; G 0]
   for (int j = 0; j < nk; ++j)
@@ -69,9 +64,7 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
       b[n + r] = -bot[r];
   }
   lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, nk, ncol, K, nk, ipiv, B, nk);
-  free(ipiv);
   if (info != 0) {
-    free(K);
     char qs[256];
     dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_SINGULAR,
@@ -97,8 +90,14 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
     for (int c = 0; c < ncol; ++c)
       for (int r = 0; r < m; ++r)
         dlam[(size_t)c * m + r] = -B[(size_t)c * snk + n + r];
-  free(K);
   return DAL_OK;
+}
+
+void dal__tangent_kkt_solve(dal_tangent *tg, int nrhs, double *b) {
+  int nk = tg->n + tg->m;
+  if (nrhs > 0)
+    LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', nk, nrhs, tg->kkt, nk, (lapack_int *)tg->kpiv, b,
+                        nk);
 }
 
 int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,

@@ -254,7 +254,7 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->method = meth;
   // with opts.work the work W of the forces and moving constraints is integrated as the last
   // component of y, under the same error control
-  ig->ny = prob->size(sys) + (o->work ? 1 : 0);
+  ig->ny = (prob->ny > 0 ? prob->ny : prob->size(sys)) + (o->work ? 1 : 0);
   double c = dal__tol_factor(meth) * prob->tol_factor;
   ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
   ig->atol = c * o->atol;
