@@ -1145,6 +1145,46 @@ static void sw_dal_vector_field_jacobian(void) {
   CHECK_CLOSE(A[1], -9.81 * cos(0.3), 1e-13);
   CHECK(ft[0] == 0.0 && ft[1] == 0.0);
 }
+// B at theta = 0.3 at rest with a force on theta: B = 1, Bf = (0, 1/M) = (0, 1)
+static void sw_dal_linearize_inputs(void) {
+  const char *in[1] = {"force:theta"}, *bad[1] = {"place:bob:0"}, *none[1] = {"force:zz"};
+  double B[1] = {0}, Af[4], Bf[2];
+  ST(dal_linearize_inputs(F.B, NULL, 1, in, B, Af, Bf), DAL_E_ARG, NULL);
+  ST(dal_linearize_inputs(NULL, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST(dal_linearize_inputs(F.A, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, NULL, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, -1, in, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, none, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, bad, B, Af, Bf), DAL_E_UNSUPPORTED, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 0, NULL, NULL, NULL, NULL), DAL_OK, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, in, B, Af, Bf), DAL_OK, F.stB);
+  CHECK(B[0] == 1.0 && Bf[0] == 0.0);
+  CHECK_CLOSE(Bf[1], 1.0, 1e-14);
+  CHECK_CLOSE(Af[1], -9.81 * cos(0.3), 1e-13);
+  st_intact();
+}
+// from theta = 0.3 at rest to t = 0.5 (a fresh state: the call moves it)
+static void sw_dal_state_transition(void) {
+  double Phi[4], S[2];
+  const char *in[1] = {"gravity:1"}, *bad[1] = {"place:bob:0"};
+  dal_solve_opts o;
+  dal_solve_default_opts(&o);
+  ST(dal_state_transition(F.B, NULL, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_transition(NULL, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_state_transition(F.A, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, NULL, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.0, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, NAN, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, Phi, 1, NULL, S), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, Phi, 1, bad, S), DAL_E_UNSUPPORTED, F.stB);
+  o.method = DAL_METHOD_BDF;
+  ST(dal_state_transition(F.B, F.stB, &o, 0.5, Phi, 0, NULL, NULL), DAL_E_UNSUPPORTED, F.stB);
+  st_intact();
+  dal_state *st = state_b();
+  ST(dal_state_transition(F.B, st, NULL, 0.5, Phi, 1, in, S), DAL_OK, NULL);
+  CHECK(dal_state_time(st) == 0.5 && Phi[0] != 0.0 && S[0] != 0.0);
+  dal_state_destroy(st);
+}
 static void sw_dal_stability_name(void) {
   CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
   CHECK(strcmp(dal_stability_name((dal_stability)-2), "unknown") == 0);
@@ -1795,6 +1835,8 @@ static const sweep_row rows[] = {
     ROW(dal_state_init_report),
     ROW(dal_linearize),
     ROW(dal_linearize_full),
+    ROW(dal_linearize_inputs),
+    ROW(dal_state_transition),
     ROW(dal_vector_field_jacobian),
     ROW(dal_stability_name),
     ROW(dal_normal_modes),

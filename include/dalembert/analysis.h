@@ -88,6 +88,21 @@ DAL_API int dal_linearize(const dal_system *sys, dal_state *st, double *M, doubl
 DAL_API int dal_linearize_full(const dal_system *sys, dal_state *st, double *M, double *C,
                                double *K, double *G, double *N);
 
+/// Linearization with inputs u: M dq'' + C dq' + K dq = B du (the matrices of dal_linearize)
+/// and the first-order x' = Af x + Bf u, x = (dq, dqdot), at the state. Inputs are named:
+/// "force:<coordinate>" (a generalized force added to Q on that coordinate, by name or 0-based
+/// index; units of Q) or a parameter with an exact derivative in the syntax of params.h
+/// ("mass:<particle>", "gravity:<i>", "spring:<j>:k", "spring:<j>:L", "damper:<j>:c").
+///  B (k x ninput), Af (2k x 2k), Bf (2k x ninput): column-major, caller-owned, nullable;
+///  k = n without constraints (Af is dal_vector_field_jacobian's A), k = n - m with them: the
+///  reduced coordinates of dal_linearize (x = (xi, eta), dq = N xi), B = N' b and
+///  Bf = (0, N' da) with da the KKT response to the input.
+/// Primitive and constraint parameters (a prescribed drive's amplitude) have no exact
+/// derivative: DAL_E_UNSUPPORTED naming the input. Statuses of dal_linearize; DAL_E_ARG for
+/// an unknown input.
+DAL_API int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
+                                 const char *const *inputs, double *B, double *Af, double *Bf);
+
 /// Jacobian of the vector field f(t, y) = (qdot, qddot), y = (q, qdot), at the state (not the
 /// Jacobian of the flow map):
 /// A = df/dy (2n x 2n, column-major, caller-owned) and, if ft is not NULL, ft = df/dt (2n):

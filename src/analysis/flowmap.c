@@ -63,11 +63,9 @@ static void var_to_state(const dal_system *sys, dal_state *st, double t, const d
 }
 
 // dR/dp for one parameter at the evaluated tangent (n values into out)
-static void residual_dp(const dal_system *sys, const dal_state *st, var_problem *vp,
+static void residual_dp(const dal_system *sys, const dal_state *st, dal_tangent *tg, double *f,
                         const dal_param_ref *ref, double *out) {
-  dal_tangent *tg = vp->tg;
   int d = sys->dim, nd = tg->nd, n = tg->n;
-  double *f = vp->f;
   memset(f, 0, (size_t)nd * sizeof(double));
   const double *g = st->prm.g;
   switch (ref->kind) {
@@ -135,7 +133,7 @@ static int var_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *o
   // df/dp = (0, a_p): M a_p = -dR/dp, or the KKT system with zero constraint rows
   for (int j = 0; j < np; ++j) {
     double *b = vp->B + (size_t)j * nk;
-    residual_dp(sys, st, vp, &vp->ref[j], b);
+    residual_dp(sys, st, vp->tg, vp->f, &vp->ref[j], b);
     for (size_t i = 0; i < nk; ++i)
       b[i] = i < (size_t)n ? -b[i] : 0.0;
   }
@@ -269,5 +267,127 @@ done:
   free(vp.A);
   free(vp.B);
   free(vp.f);
+  return rc;
+}
+
+// ---------------------------------------------------------------------------------------------
+// linearization with inputs
+
+// resolve one input name: "force:<coordinate>" (*coord >= 0) or a parameter with an exact
+// derivative (*ref)
+static int resolve_input(const dal_system *sys, dal_state *st, const char *name, int *coord,
+                         dal_param_ref *ref) {
+  *coord = -1;
+  if (!name) return DAL_FAIL(st, DAL_E_ARG, "linearize_inputs: an input name is NULL");
+  if (strncmp(name, "force:", 6) == 0) {
+    const char *c = name + 6;
+    for (int i = 0; i < sys->n; ++i)
+      if (strcmp(sys->coord_names[i], c) == 0) *coord = i;
+    if (*coord < 0) {
+      char *end = NULL;
+      long v = strtol(c, &end, 10);
+      if (end != c && *end == '\0' && v >= 0 && v < sys->n) *coord = (int)v;
+    }
+    if (*coord < 0)
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "linearize_inputs: input '%s': no coordinate '%s' (a name given to the "
+                      "builder or a 0-based index below %d)",
+                      name, c, sys->n);
+    return DAL_OK;
+  }
+  char msg[256];
+  int rc = dal_param_find(sys, name, ref, msg, sizeof msg);
+  if (rc) return DAL_FAIL(st, rc, "linearize_inputs: input '%s': %s", name, msg);
+  if (ref->kind == DAL_PARAM_PLACE || ref->kind == DAL_PARAM_CONSTRAINT || sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "linearize_inputs: input '%s' has no exact derivative (%s); inputs are "
+                    "generalized forces \"force:<coordinate>\", masses, gravity, springs and "
+                    "dampers",
+                    name,
+                    sys->lag ? "the system is a Lagrangian"
+                             : "primitive parameters enter the jet functions as plain doubles");
+  return DAL_OK;
+}
+
+int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
+                         const char *const *inputs, double *B, double *Af, double *Bf) {
+  int rc = dal__check_pair(sys, st, "linearize_inputs");
+  if (rc) return rc;
+  if (ninput < 0 || (ninput > 0 && !inputs))
+    return DAL_FAIL(st, DAL_E_ARG, "linearize_inputs: ninput = %d needs %d names", ninput,
+                    ninput);
+  if ((rc = dal__tangent_supported(sys, st, "linearize_inputs")) != 0) return rc;
+  if ((rc = dal_forward(sys, st)) != 0) return rc;
+  int n = sys->n, m = sys->m, k = n - m;
+  size_t sn = (size_t)n, sk = (size_t)k, nk = sn + (size_t)m, k2 = 2 * sk, ni = (size_t)ninput;
+  dal_tangent *tg = NULL;
+  double *buf = calloc(nk * (ni + 1) + k2 * k2 + sk * sk + sn * sk + ni * sk +
+                           (size_t)(sys->N * sys->dim) + 1,
+                       sizeof(double));
+  if (!buf || dal__tangent_create(sys, &tg)) {
+    free(buf);
+    return DAL_FAIL(st, DAL_E_NOMEM, "linearize_inputs: out of memory");
+  }
+  double *R = buf, *Ar = R + nk * (ni + 1), *Mr = Ar + k2 * k2, *N = Mr + sk * sk;
+  double *Br = N + sn * sk, *f = Br + ni * sk;
+  if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) goto done;
+  if (m > 0 && (rc = dal__tangent_on_manifold(sys, st, tg, "linearize_inputs")) != 0) goto done;
+  // the input columns of the full residual: dR/du = -e_j for a generalized force, dR/dp else
+  for (int j = 0; j < ninput; ++j) {
+    int coord;
+    dal_param_ref ref;
+    if ((rc = resolve_input(sys, st, inputs[j], &coord, &ref)) != 0) goto done;
+    double *col = R + (size_t)j * nk;
+    if (coord >= 0)
+      col[coord] = 1.0;
+    else {
+      residual_dp(sys, st, tg, f, &ref, col);
+      for (int i = 0; i < n; ++i)
+        col[i] = -col[i];
+    }
+  }
+  // R columns now hold b_j = -dR/du_j: M dq'' + C dq' + K dq = b du (full space)
+  if (m == 0) {
+    if ((rc = dal__tangent_factor(sys, st, tg)) != 0) goto done;
+    if (B) memcpy(B, R, sn * ni * sizeof(double));
+    if (Af) dal__tangent_flow(tg, Af, NULL);
+    if (Bf) {
+      for (size_t j = 0; j < ni; ++j) {
+        double *c = Bf + j * 2 * sn;
+        memset(c, 0, sn * sizeof(double));
+        memcpy(c + sn, R + j * nk, sn * sizeof(double));
+        dal__tangent_msolve(tg, 1, c + sn);
+      }
+    }
+  } else {
+    // reduced: B_r = N' b, and the first-order Bf = (0, M_r^-1 B_r) = (0, N' da) with da from
+    // the KKT system [M G'; G 0] (da; -dlambda) = (b; 0)
+    if ((rc = dal__tangent_reduced(sys, st, tg, N, Ar, Mr, NULL, NULL)) != 0) goto done;
+    for (size_t j = 0; j < ni; ++j)
+      for (size_t i = 0; i < sk; ++i) {
+        double x = 0.0;
+        for (size_t l = 0; l < sn; ++l)
+          x += N[i * sn + l] * R[j * nk + l];
+        Br[j * sk + i] = x;
+      }
+    if (B) memcpy(B, Br, sk * ni * sizeof(double));
+    if (Af) memcpy(Af, Ar, k2 * k2 * sizeof(double));
+    if (Bf) {
+      dal__tangent_kkt_solve(tg, ninput, R); // tg's LU factors are the reduction's
+      for (size_t j = 0; j < ni; ++j) {
+        double *c = Bf + j * k2;
+        for (size_t i = 0; i < sk; ++i) {
+          double x = 0.0;
+          for (size_t l = 0; l < sn; ++l)
+            x += N[i * sn + l] * R[j * nk + l];
+          c[i] = 0.0;
+          c[sk + i] = x;
+        }
+      }
+    }
+  }
+done:
+  free(buf);
+  dal__tangent_free(tg);
   return rc;
 }
