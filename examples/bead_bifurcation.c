@@ -35,10 +35,16 @@ static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
   dal_builder *b = NULL;
   int th, bead, rc = dal_builder_create(3, &b);
-  double par[3] = {R, w, 0.0}, grav[3] = {0, 0, -g};
+  double grav[3] = {0, 0, -g};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  if (!rc) rc = dal_builder_place(b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def ring = dal_default_place_def();
+  ring.prim = &dal_map_ring;
+  ring.coords = &th;
+  ring.ncoords = 1;
+  ring.param[DAL_RING_R] = R;
+  ring.param[DAL_RING_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bead, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (!rc) rc = dal_builder_compile(b, out);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));

@@ -48,10 +48,15 @@ static dal_system *build(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, p, rc = dal_builder_create(3, &b);
-  double par[3] = {R, 0.0, 0.0}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def ring = dal_default_place_def();
+  ring.prim = &dal_map_ring;
+  ring.coords = &th;
+  ring.ncoords = 1;
+  ring.param[DAL_RING_R] = R;
+  if (!rc) rc = dal_builder_place_def(b, p, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));

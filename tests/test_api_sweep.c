@@ -445,22 +445,6 @@ static void sw_dal_builder_add_particle(void) {
   BL(dal_builder_add_particle(F.bld, NULL, 0.0, NULL), DAL_E_ARG, F.bld);
   BL(dal_builder_add_particle(F.bld, NULL, -INFINITY, NULL), DAL_E_NONFINITE, F.bld);
 }
-static void sw_dal_builder_place(void) {
-  int c[2] = {0, 1}, bad[2] = {0, 7};
-  double par[1] = {1.0};
-  BL(dal_builder_place(NULL, 0, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, NULL);
-  BL(dal_builder_place(F.bld, 0, NULL, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, -1, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 9, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, NULL, 0, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, bad, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, -1, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, 0, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_hanging, 5, 1, c, 1, par, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_hanging, -1, 1, c, 1, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, c, -1, NULL, NULL), DAL_E_ARG, F.bld);
-}
 static void sw_dal_builder_set_map(void) {
   BL(dal_builder_set_map(NULL, map_fn, NULL), DAL_E_ARG, NULL);
   BL(dal_builder_set_map(F.bld, NULL, NULL), DAL_E_ARG, F.bld);
@@ -470,68 +454,11 @@ static void sw_dal_builder_set_lagrangian(void) {
   BL(dal_builder_set_lagrangian(F.bld, NULL, NULL), DAL_E_ARG, F.bld);
   BL(dal_builder_set_lagrangian(F.bld, lag_fn, NULL), DAL_E_ARG, F.bld); // has a particle
 }
-static void sw_dal_builder_add_constraint(void) {
-  int p[1] = {0}, pbad[1] = {5}, c[1] = {0};
-  double par[3] = {1.0, 0.0, 0.0}, nan3[3] = {NAN, 0.0, 0.0};
-  const dal_primitive *a2 = &dal_con_anchor2;
-  BL(dal_builder_add_constraint(NULL, "r", a2, 1, p, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG, NULL);
-  BL(dal_builder_add_constraint(F.bld, "r", NULL, 1, p, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, NULL, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, pbad, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, -1, p, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 0, NULL, 3, NULL, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 1, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 0, c, 3, nan3, NULL, NULL), DAL_E_NONFINITE,
-     F.bld);
-  // a NULL name is documented to give "c<i>": accepted (on a scratch builder, F.bld stays bare)
-  dal_builder *b = scratch(1);
-  BL(dal_builder_add_constraint(b, NULL, a2, 1, p, 0, NULL, 2, par, NULL, NULL), DAL_OK, b);
-  dal_builder_destroy(b);
-}
 static void sw_dal_builder_set_gravity(void) {
   double g[3] = {0.0, -9.81, 0.0}, gn[3] = {0.0, NAN, 0.0};
   BL(dal_builder_set_gravity(NULL, g), DAL_E_ARG, NULL);
   BL(dal_builder_set_gravity(F.bld, NULL), DAL_E_ARG, F.bld);
   BL(dal_builder_set_gravity(F.bld, gn), DAL_E_NONFINITE, F.bld);
-}
-static void sw_dal_builder_add_spring(void) {
-  BL(dal_builder_add_spring(NULL, 0, 0, 1.0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_spring(F.bld, -1, 0, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_spring(F.bld, 0, -1, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_spring(F.bld, 0, 9, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_spring(F.bld, 0, 0, 1.0, 1.0), DAL_E_ARG, F.bld);
-}
-static void sw_dal_builder_add_anchor_spring(void) {
-  double x0[2] = {0.0, 0.0};
-  BL(dal_builder_add_anchor_spring(NULL, 0, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_anchor_spring(F.bld, 1, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_spring(F.bld, 9, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_spring(F.bld, 0, x0, NULL, NULL, NAN, 1.0), DAL_E_NONFINITE, F.bld);
-  BL(dal_builder_add_anchor_spring(F.bld, 0, x0, NULL, NULL, -1.0, 1.0), DAL_E_ARG, F.bld);
-  dal_builder *b = scratch(1); // x0 NULL is documented as the origin
-  BL(dal_builder_add_anchor_spring(b, 0, NULL, NULL, NULL, 1.0, 1.0), DAL_OK, b);
-  dal_builder_destroy(b);
-}
-static void sw_dal_builder_add_damper(void) {
-  BL(dal_builder_add_damper(NULL, 0, 0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_damper(F.bld, 0, -1, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_damper(F.bld, INT_MAX, 0, 1.0), DAL_E_ARG, F.bld);
-}
-static void sw_dal_builder_add_anchor_damper(void) {
-  double x0[2] = {0.0, 0.0};
-  BL(dal_builder_add_anchor_damper(NULL, 0, x0, NULL, NULL, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_anchor_damper(F.bld, 1, x0, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_damper(F.bld, -5, x0, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_damper(F.bld, 0, x0, NULL, NULL, INFINITY), DAL_E_NONFINITE, F.bld);
-  dal_builder *b = scratch(1); // x0 NULL is documented as the origin
-  BL(dal_builder_add_anchor_damper(b, 0, NULL, NULL, NULL, 1.0), DAL_OK, b);
-  dal_builder_destroy(b);
 }
 static void sw_dal_builder_add_potential_r(void) {
   BL(dal_builder_add_potential_r(NULL, pot_r, NULL), DAL_E_ARG, NULL);
@@ -1424,6 +1351,28 @@ static void sw_dal_builder_place_def(void) {
   e.param[DAL_PENDULUM_L] = 1.0;
   e.param[DAL_PENDULUM_W] = INFINITY;
   BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_NONFINITE, F.bld);
+  // the parameter list: longer than the primitive's count, NULL with a count, a negative
+  // count, beside a set param[] entry, a non-finite value in it
+  double list[8] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, nan1 = NAN;
+  e = dal_default_place_def();
+  e.prim = &dal_map_pendulum;
+  e.coords = c;
+  e.ncoords = 1;
+  e.param_list = list;
+  e.nparam_list = 8;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.param_list = NULL;
+  e.nparam_list = 1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.param_list = list;
+  e.nparam_list = -1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.nparam_list = 1;
+  e.param[DAL_PENDULUM_W] = 1.0;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.param[DAL_PENDULUM_W] = d.param[DAL_PENDULUM_W]; // unset again
+  e.param_list = &nan1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_NONFINITE, F.bld);
   dal_builder *b = scratch(0);
   BL(dal_builder_place_def(b, 0, &d), DAL_OK, b);
   BL(dal_builder_place_def(b, 0, &d), DAL_E_ARG, b); // placed once
@@ -1464,6 +1413,12 @@ static void sw_dal_builder_add_constraint_def(void) {
   BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_NONFINITE, F.bld);
   e = d;
   e.param[DAL_MAX_PARAM - 1] = 1.0; // beyond the primitive's parameters
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  double four[4] = {1.0, 0.0, 0.0, 0.0};
+  e.param[0] = e.param[1]; // unset: the list gives the parameters, one too many for anchor2
+  e.param_list = four;
+  e.nparam_list = 4;
   BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
   CHECK(idx == -1);
   dal_builder *b = scratch(1);
@@ -1785,15 +1740,9 @@ static const sweep_row rows[] = {
     ROW(dal_builder_errmsg),
     ROW(dal_builder_add_coord),
     ROW(dal_builder_add_particle),
-    ROW(dal_builder_place),
     ROW(dal_builder_set_map),
     ROW(dal_builder_set_lagrangian),
-    ROW(dal_builder_add_constraint),
     ROW(dal_builder_set_gravity),
-    ROW(dal_builder_add_spring),
-    ROW(dal_builder_add_anchor_spring),
-    ROW(dal_builder_add_damper),
-    ROW(dal_builder_add_anchor_damper),
     ROW(dal_builder_add_potential_r),
     ROW(dal_builder_add_potential_q),
     ROW(dal_builder_add_force),

@@ -118,7 +118,7 @@ int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *wha
                     "%s: the system has %d force callback(s) and %d generalized force "
                     "callback(s) given as plain doubles, which have no exact derivative; write "
                     "a conservative force as a jet potential (dal_builder_add_potential_r/q), "
-                    "a linear damper with dal_builder_add_damper",
+                    "a linear damper with dal_builder_add_damper_def",
                     what, sys->nforce, sys->ngenforce);
   return DAL_OK;
 }
