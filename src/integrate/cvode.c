@@ -36,7 +36,7 @@ typedef struct cv_mem {
   SUNNonlinearSolver NLS;
   long netf, nsf, nje, nni; // counters already added to the state's statistics
   dal_tangent *tg; // exact Newton matrix for BDF in minimal coordinates (NULL: differences)
-  double *Af;      // its flow Jacobian (2n x 2n, column-major)
+  double *Af;      // its vector-field Jacobian (2n x 2n, column-major)
   int ahead;       // CVODE's time is beyond the state's (cv_advance_ahead)
 } cv_mem;
 
@@ -50,7 +50,7 @@ static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
 // Hindmarsh et al. 2005, sec. 2.1). Written here so that a step allocates nothing (CVODE's
 // own dense difference quotient clones a vector per Jacobian).
 // The exact Jacobian df/dy of f = (qdot, qddot) from the jets (analysis_tangent.c, the same
-// tangent as dal_flow_jacobian); nonzero when it cannot be had at this point (a jet without a
+// tangent as dal_vector_field_jacobian); nonzero when it cannot be had at this point (a jet without a
 // third derivative, a singular M): the caller falls back to differences
 static int cv_jac_exact(dal_ode_integ *ig, cv_mem *m, double t, const double *y, SUNMatrix J) {
   dal_state *st = ig->st;
