@@ -107,8 +107,7 @@ static int cart_pendulum(scene *s, double th, dal_force_fn *force, void *fctx) {
 }
 
 static dal_solve_opts opts_for(dal_method m) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = m;
   return o;
 }
@@ -486,7 +485,14 @@ static int lift(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
   out[0] = dal_sub(in[1], t);
   return 0;
 }
-static const dal_primitive prim_lift = {.name = "lift", .version = 1, .nin = 2, .nout = 1, .nparam = 0, .eval = lift, .doc = "y - t", .flags = 0};
+static const dal_primitive prim_lift = {.name = "lift",
+                                        .version = 1,
+                                        .nin = 2,
+                                        .nout = 1,
+                                        .nparam = 0,
+                                        .eval = lift,
+                                        .doc = "y - t",
+                                        .flags = 0};
 
 static int row_ida_unsatisfiable(char *msg) {
   scene s;
@@ -753,8 +759,22 @@ static int row_nan_tolerance(char *msg) {
 static int row_malformed_primitive(char *msg) {
   scene s;
   int bob = 0, x = 0;
-  const dal_primitive neg_param = {.name = "neg_param", .version = 1, .nin = 1, .nout = 1, .nparam = -1, .eval = user_prim_eval, .doc = "", .flags = 0};
-  const dal_primitive neg_in = {.name = "neg_in", .version = 1, .nin = -1, .nout = 1, .nparam = 0, .eval = user_prim_eval, .doc = "", .flags = 0};
+  const dal_primitive neg_param = {.name = "neg_param",
+                                   .version = 1,
+                                   .nin = 1,
+                                   .nout = 1,
+                                   .nparam = -1,
+                                   .eval = user_prim_eval,
+                                   .doc = "",
+                                   .flags = 0};
+  const dal_primitive neg_in = {.name = "neg_in",
+                                .version = 1,
+                                .nin = -1,
+                                .nout = 1,
+                                .nparam = 0,
+                                .eval = user_prim_eval,
+                                .doc = "",
+                                .flags = 0};
   CHECK_OK(free2(&s, 1.0, 0));
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "c";
