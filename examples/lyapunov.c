@@ -91,8 +91,7 @@ static int check_mode(const dal_system *sys) {
   double q = 1.0, v = 0.0, ex[2], er[2], y0[4] = {0.0, 1.0, 1.0, 0.0};
   if (dal_state_create(sys, &st) || dal_state_set(sys, st, 0.0, &q, &v)) return 1;
   // the spectrum by the variational equations, the first tangent vector along the velocity
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.t_end = T;
   o.method = DAL_METHOD_RK4;
   o.h = h;
@@ -114,8 +113,7 @@ static int check_mode(const dal_system *sys) {
     fprintf(stderr, "lyapunov: %s\n", dal_state_errmsg(st));
     return 1;
   }
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.method = DAL_METHOD_RK4;
   so.fixed_step = h;
   double l2 = two_orbit(sys, &so, T, o.renorm, 1e-7);
@@ -170,8 +168,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
   double q = 1.0, v = 0.0, ex[2], er[2], y0[2] = {0.0, 1.0};
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, &q, &v);
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.transient = 100.0;
   o.t_end = 3100.0;
   conv c = {csv, o.transient, o.transient, 0.0};

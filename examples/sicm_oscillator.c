@@ -60,8 +60,7 @@ static int advance_and_compare(const dal_system *sys, dal_method m) {
   dal_state *st = NULL;
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, q0, v0);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = m;
   o.rtol = o.atol = 1e-12;
   double E0 = 0;
@@ -111,8 +110,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
   dal_state *st = NULL;
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, q0, v0);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = 1e-12;
   dal_csv csv = {fp, 0, 0};

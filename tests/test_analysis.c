@@ -924,8 +924,7 @@ static void expect_refusal(const char *what, dal_system *sys, int status, const 
             dal_status_name(rc), dal_state_errmsg(st));
   rc = dal_vector_field_jacobian(sys, st, buf, NULL);
   CHECK_MSG(rc == status, "%s: vector_field_jacobian %s", what, dal_status_name(rc));
-  dal_lyapunov_opts lo;
-  dal_lyapunov_default_opts(&lo);
+  dal_lyapunov_opts lo = dal_default_lyapunov_opts();
   lo.t_end = 1.0;
   rc = dal_lyapunov(sys, st, &lo, buf, NULL, NULL, NULL);
   CHECK_MSG(rc == status, "%s: lyapunov %s", what, dal_status_name(rc));

@@ -13,7 +13,7 @@
 // Conventions checked (README, errors section): a NULL object that could hold a message is
 // DAL_E_ARG without one; any other bad argument is reported with a message in the object
 // given; a state of another system (or a NULL system with a state) is DAL_E_STATE; a
-// non-finite real is DAL_E_NONFINITE; destroy(NULL) and default_opts(NULL) do nothing;
+// non-finite real is DAL_E_NONFINITE; destroy(NULL) does nothing;
 // accessors answer NULL (pointers), NaN (reals) or 0 (counts) to a NULL object.
 #include <ctype.h>
 #include <dirent.h>
@@ -137,7 +137,7 @@ static void fix_make(void) {
   CHECK_OK(dal_builder_add_coord(F.bld, "u", NULL));
   CHECK_OK(dal_builder_add_coord(F.bld, "w", NULL));
   CHECK_OK(dal_builder_add_particle(F.bld, "p", 1.0, NULL));
-  dal_solve_default_opts(&F.o);
+  F.o = dal_default_solve_opts();
 }
 
 static void fix_free(void) {
@@ -271,11 +271,10 @@ static void sw_dal_primitive_find(void) {
 }
 
 // ---------------------------------------------------------------- rows: solve.h
-static void sw_dal_solve_default_opts(void) {
-  dal_solve_default_opts(NULL); // a no-op
+static void sw_dal_default_solve_opts(void) {
   dal_solve_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts(); // every field written, the cookie too
   CHECK(o.rtol == 1e-8 && o.method == DAL_METHOD_AUTO);
 }
 static void sw_dal_method_name(void) {
@@ -560,11 +559,10 @@ static void stA_restore(void) {
 }
 
 // ---------------------------------------------------------------- rows: ensemble.h
-static void sw_dal_sweep_default_opts(void) {
-  dal_sweep_default_opts(NULL); // a no-op
+static void sw_dal_default_sweep_opts(void) {
   dal_sweep_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_sweep_default_opts(&o);
+  o = dal_default_sweep_opts(); // every field written, the cookie too
   CHECK(o.nthreads == 1 && o.schedule == DAL_SCHEDULE_DYNAMIC && o.chunk == 1);
   CHECK(o.progress == NULL && o.part == 0 && o.nparts == 1 && o.part_block == 1);
 }
@@ -611,7 +609,7 @@ static void sweep_make(sweep_fix *s) {
                       .qdot0 = &s->qd0,
                       .nresult = 2,
                       .reduce = reduce_q_mass};
-  dal_sweep_default_opts(&s->o);
+  s->o = dal_default_sweep_opts();
   s->out =
       (dal_sweep_out){.results = s->results, .status = s->status, .msgs = s->msgs, .msg_len = 64};
 }
@@ -894,24 +892,23 @@ static void sw_dal_state_copy_params(void) {
 }
 
 // ---------------------------------------------------------------- rows: verify.h
-static void sw_dal_verify_default_opts(void) {
-  dal_verify_default_opts(NULL); // a no-op
+static void sw_dal_default_verify_opts(void) {
   dal_verify_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_verify_default_opts(&o);
+  o = dal_default_verify_opts(); // every field written, the cookie too
   CHECK(o.nsamples == 16 && o.lo == -1.0 && o.hi == 1.0 && o.in_lo == NULL && o.in_hi == NULL);
   CHECK(o.t_lo == 0.0 && o.t_hi == 1.0 && o.h == 1e-3 && o.tol_factor == 10.0 && o.seed == 1);
 }
 // options every jet check refuses (DAL_E_ARG with the report's message)
 static void verify_bad_opts(dal_verify_opts *few, dal_verify_opts *nan_lo, dal_verify_opts *inf_t,
                             dal_verify_opts *zero_h) {
-  dal_verify_default_opts(few);
+  *few = dal_default_verify_opts();
   few->nsamples = 0;
-  dal_verify_default_opts(nan_lo);
+  *nan_lo = dal_default_verify_opts();
   nan_lo->lo = NAN;
-  dal_verify_default_opts(inf_t);
+  *inf_t = dal_default_verify_opts();
   inf_t->t_hi = INFINITY;
-  dal_verify_default_opts(zero_h);
+  *zero_h = dal_default_verify_opts();
   zero_h->h = 0.0;
 }
 static void sw_dal_verify_primitive(void) {
@@ -932,6 +929,10 @@ static void sw_dal_verify_primitive(void) {
   MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &nan_lo, &rep), DAL_E_ARG, m);
   MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &inf_t, &rep), DAL_E_ARG, m);
   MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &zero_h, NULL), DAL_E_ARG, NULL);
+  dal_verify_opts raw; // not from dal_default_verify_opts: refused by its cookie
+  memset(&raw, 0, sizeof raw);
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &raw, &rep), DAL_E_ARG, m);
+  CHECK(strstr(m, "dal_default_verify_opts") != NULL);
   double pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
   MS(dal_verify_primitive(&dal_map_pendulum, pend, NULL, NULL, &rep), DAL_OK, m);
   CHECK(rep.samples == 16 && rep.checks > 0 && rep.failures == 0);
@@ -1010,6 +1011,10 @@ static void sw_dal_verify_model(void) {
   ST(dal_verify_model(F.B, F.stB, NULL, &rep), DAL_OK, F.stB);
   CHECK(rep.passed == 1 && rep.mass_checked == 1 && rep.path_checked == 1 && rep.m == 0);
   ST(dal_verify_model(F.B, F.stB, NULL, NULL), DAL_OK, F.stB);
+  dal_verify_opts raw; // not from dal_default_verify_opts: refused by its cookie
+  memset(&raw, 0, sizeof raw);
+  CHECK(dal_verify_model(F.B, F.stB, &raw, &rep) == DAL_E_ARG);
+  CHECK(strstr(rep.msg, "dal_default_verify_opts") != NULL && rep.passed == 0);
   st_intact();
 }
 
@@ -1136,17 +1141,16 @@ static void sw_dal_normal_modes(void) {
   CHECK_CLOSE(im[1], sqrt(9.81 * cos(0.3)), 1e-12);
   CHECK(md.verdict == DAL_NEUTRAL);
 }
-static void sw_dal_equilibrium_default_opts(void) {
-  dal_equilibrium_default_opts(NULL); // a no-op
+static void sw_dal_default_equilibrium_opts(void) {
   dal_equilibrium_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_equilibrium_default_opts(&o);
+  o = dal_default_equilibrium_opts(); // every field written, the cookie too
   CHECK(o.xtol == 1e-12 && o.max_iter == 50 && o.max_step == 0.0);
 }
 static void sw_dal_equilibrium(void) {
   dal_equilibrium_opts o, raw, nan_tol, no_iter;
   dal_equilibrium_report rep;
-  dal_equilibrium_default_opts(&o);
+  o = dal_default_equilibrium_opts();
   memset(&raw, 0, sizeof raw);
   nan_tol = no_iter = o;
   nan_tol.xtol = NAN;
@@ -1174,11 +1178,10 @@ static void sw_dal_equilibrium(void) {
   CHECK(dal_state_qdot(st)[0] == 0.0);
   dal_state_destroy(st);
 }
-static void sw_dal_continuation_default_opts(void) {
-  dal_continuation_default_opts(NULL); // a no-op
+static void sw_dal_default_continuation_opts(void) {
   dal_continuation_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_continuation_default_opts(&o);
+  o = dal_default_continuation_opts(); // every field written, the cookie too
   CHECK(o.p0 == 0.0 && o.p1 == 1.0 && o.npoints == 41 && o.t == 0.0 && o.locate == 1);
   CHECK(o.newton.xtol == 1e-12 && o.newton.max_iter == 50);
 }
@@ -1220,7 +1223,7 @@ static void sw_dal_continue(void) {
   char *m = rep.msg;
   double q0 = 0.3;
   branch_rec rec = {0, 0, 0};
-  dal_continuation_default_opts(&o);
+  o = dal_default_continuation_opts();
   o.npoints = 3;
   memset(&raw, 0, sizeof raw);
   same = nan_p = one = bad_newton = o;
@@ -1246,18 +1249,17 @@ static void sw_dal_continue(void) {
   CHECK(rec.points == 3 && rec.bad == 0 && rep.npoints == 3 && rep.ncritical == 0);
   CHECK(rep.p_end == 1.0 && rep.msg[0] == 0);
 }
-static void sw_dal_lyapunov_default_opts(void) {
-  dal_lyapunov_default_opts(NULL); // a no-op
+static void sw_dal_default_lyapunov_opts(void) {
   dal_lyapunov_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_lyapunov_default_opts(&o);
+  o = dal_default_lyapunov_opts(); // every field written, the cookie too
   CHECK(isnan(o.t_end) && o.nexp == 0 && o.renorm == 1.0 && o.method == DAL_METHOD_DOPRI5);
   CHECK(o.rtol == 1e-10 && o.atol == 1e-10 && o.y0 == NULL && o.nblocks == 10);
 }
 static void sw_dal_lyapunov(void) {
   dal_lyapunov_opts o, raw, no_end, behind, bs, many, no_renorm, nan_y0;
   double ex[2] = {0, 0}, err[2], y0n[4] = {1, 0, NAN, 1};
-  dal_lyapunov_default_opts(&o);
+  o = dal_default_lyapunov_opts();
   o.t_end = 0.05;
   o.renorm = 0.01;
   o.nblocks = 2;
@@ -1717,7 +1719,7 @@ static const sweep_row rows[] = {
     ROW(dal_primitive_count),
     ROW(dal_primitive_get),
     ROW(dal_primitive_find),
-    ROW(dal_solve_default_opts),
+    ROW(dal_default_solve_opts),
     ROW(dal_method_name),
     ROW(dal_formulation_name),
     ROW(dal_state_stats),
@@ -1783,7 +1785,7 @@ static const sweep_row rows[] = {
     ROW(dal_system_particle_name),
     ROW(dal_system_constraint_name),
     ROW(dal_system_mass),
-    ROW(dal_sweep_default_opts),
+    ROW(dal_default_sweep_opts),
     ROW(dal_sweep_part_of),
     ROW(dal_sweep_run),
     ROW(dal_sweep_grid),
@@ -1799,7 +1801,7 @@ static const sweep_row rows[] = {
     ROW(dal_state_set_gravity),
     ROW(dal_state_reset_params),
     ROW(dal_state_copy_params),
-    ROW(dal_verify_default_opts),
+    ROW(dal_default_verify_opts),
     ROW(dal_verify_primitive),
     ROW(dal_verify_map),
     ROW(dal_verify_potential_r),
@@ -1815,11 +1817,11 @@ static const sweep_row rows[] = {
     ROW(dal_vector_field_jacobian),
     ROW(dal_stability_name),
     ROW(dal_normal_modes),
-    ROW(dal_equilibrium_default_opts),
+    ROW(dal_default_equilibrium_opts),
     ROW(dal_equilibrium),
-    ROW(dal_continuation_default_opts),
+    ROW(dal_default_continuation_opts),
     ROW(dal_continue),
-    ROW(dal_lyapunov_default_opts),
+    ROW(dal_default_lyapunov_opts),
     ROW(dal_lyapunov),
     ROW(dal_default_place_def),
     ROW(dal_place_def_set),
