@@ -10,6 +10,7 @@
 #include "dalembert/dae.h"
 #include "dalembert/ensemble.h"
 #include "dalembert/events.h"
+#include "dalembert/expr.h"
 #include "dalembert/jet.h"
 #include "dalembert/params.h"
 #include "dalembert/primitives.h"

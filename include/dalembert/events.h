@@ -19,8 +19,10 @@
 /// 4 sqrt(l/g) K(sin^2(theta0/2)) to 1e-12 relative at rtol 1e-12).
 /// Limits: two crossings of the same g inside one step cancel and are not seen (a g that
 /// oscillates faster than the steps: bound the step with opts.hmax); a g that only touches
-/// zero is not a crossing. A g that is exactly 0 at the start of a call takes its sign from its
-/// first nonzero value without an event.
+/// zero is not a crossing. A g that is exactly 0 at a step's end is decided by the next step (a
+/// sign change is a crossing located at the zero, a return to the old sign a touch), also when
+/// a call ends there and the next call continues from it. A g that is exactly 0 at the start
+/// of a call (a state just set) takes its sign from its first nonzero value without an event.
 ///
 /// Poincare sections: a surface section is a non-terminal event with a direction (theta = 0
 /// crossed upwards, say); its log is the section (dal_events_write_csv). A stroboscopic section

@@ -23,7 +23,7 @@ extern "C" {
 // Parameter indices. Each built-in primitive's parameters have names (prim->param_names, used
 // in error messages) and an index enum, so a def reads as what it means:
 //   d.param[DAL_PENDULUM_L] = 1.0;
-// A parameter left unset in a def (or omitted at the end of a positional list) takes its
+// A parameter left unset in a def (or omitted at the end of its param_list) takes its
 // default, listed here; "required" ones have none and must be given.
 // Moving points follow one convention everywhere: the point is x0 + x(t), a fixed part x0 (a
 // parameter or def field, default the origin) plus an optional motion x(t) from a callback.
@@ -205,7 +205,7 @@ typedef struct dal_prescribed {
   void *ctx;       ///< passed to fn (borrowed)
 } dal_prescribed;
 
-// Constraints phi(u, t) = 0 for dal_builder_add_constraint. Inputs are particle positions
+// Constraints phi(u, t) = 0 for dal_builder_add_constraint_def. Inputs are particle positions
 // (d values each, in the order of `parts`) then coordinates. Every residual is in length
 // units (a signed distance), so tolerances mean the same for a rod of 1e-3 and of 1e3; only
 // dal_con_prescribed is in the units of its coordinate. The multiplier of a row is the

@@ -132,7 +132,8 @@ DAL_API int dal_state_energies(const dal_state *st, dal_energies *out);
 /// Print the state to fp (like MuJoCo's mj_printData): t; per coordinate q, qdot, qddot, Q, c;
 /// the mass matrix M; per constraint row lambda, phi and phidot; particle positions;
 /// energies; the last consistent start's report. Quantities that need dal_forward are printed
-/// only when the state is evaluated. %.17g throughout. Returns DAL_OK, DAL_E_ARG or DAL_E_IO.
+/// only when the state is evaluated. %.17g throughout. Returns DAL_OK, DAL_E_ARG (a NULL
+/// argument), DAL_E_STATE (a state of another system, with a message) or DAL_E_IO.
 DAL_API int dal_state_print(const dal_system *sys, const dal_state *st, FILE *fp);
 
 /// A proposed path q(t) over jets: write q[0..n-1] as jets in t (its first and second

@@ -7,8 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/base.h"
 #include "dalembert/params.h"
+#include "model.h"
 
 void dal__params_init(dal_state *st) {
   const dal_system *sys = st->sys;
@@ -421,41 +421,30 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
   return DAL_OK;
 }
 
-// validate a value as the builder does; the message names the owner and the remedy
+// validate a value with the builder's checks and messages (validate.c)
 static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r, double v) {
-  int t = r->target, i = r->index;
+  int t = r->target, i = r->index, rc;
+  char what[96];
   switch (r->kind) {
-  case DAL_PARAM_MASS: {
-    const char *nm = sys->part_names[t];
-    if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "particle '%s': mass is %g; give a finite positive "
-                      "mass",
-                      nm, v);
-    if (v <= 0)
-      return DAL_FAIL(st, DAL_E_ARG,
-                      "particle '%s': mass %g is not positive; a massless point belongs in a "
-                      "constraint or a coordinate map, not a particle",
-                      nm, v);
-    return DAL_OK;
-  }
+  case DAL_PARAM_MASS:
+    return dal__check_mass(st->err, sys->part_names[t], v);
   case DAL_PARAM_PLACE:
-    if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "placing particle '%s': parameter %d of primitive "
-                      "'%s' is %g",
-                      sys->part_names[t], i, sys->place[t].prim->name, v);
-    return DAL_OK;
-  case DAL_PARAM_CONSTRAINT:
-    if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "constraint '%s': parameter %d of primitive '%s' is "
-                      "%g",
-                      sys->con[t].name, i, sys->con[t].prim->name, v);
-    return DAL_OK;
+  case DAL_PARAM_CONSTRAINT: {
+    int place = r->kind == DAL_PARAM_PLACE;
+    const dal_primitive *prim = place ? sys->place[t].prim : sys->con[t].prim;
+    const double *cur = st->prm.ppool + (place ? sys->place[t].param_off : sys->con[t].param_off);
+    snprintf(what, sizeof what, place ? "placing particle '%s'" : "constraint '%s'",
+             place ? sys->part_names[t] : sys->con[t].name);
+    if ((rc = dal__check_prim_value(st->err, what, prim, i, v)) != 0) return rc;
+    // the instance's whole vector with the new value in its domain (a rod of length 0)
+    double p[DAL_MAX_PARAM];
+    int np = prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
+    for (int j = 0; j < np; ++j)
+      p[j] = j == i ? v : cur[j];
+    return np == prim->nparam ? dal__check_prim_domain(st->err, what, prim, p) : DAL_OK;
+  }
   case DAL_PARAM_GRAVITY:
-    if (!isfinite(v)) return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, v);
-    return DAL_OK;
+    return dal__check_gravity(st->err, i, v);
   case DAL_PARAM_SPRING_K:
   case DAL_PARAM_SPRING_L:
   case DAL_PARAM_DAMPER_C: {
@@ -465,17 +454,7 @@ static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r
         damper ? (l->b < 0 ? "anchor damper" : "damper") : (l->b < 0 ? "anchor spring" : "spring");
     double k = r->kind == DAL_PARAM_SPRING_L ? l->k : v;
     double L = r->kind == DAL_PARAM_SPRING_L ? v : l->L;
-    if (!isfinite(k) || !isfinite(L))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "%s on particle '%s': coefficient %g or length %g is "
-                      "not finite",
-                      kind, sys->part_names[l->a], k, L);
-    if (k < 0 || L < 0)
-      return DAL_FAIL(st, DAL_E_ARG,
-                      "%s on particle '%s': coefficient %g and length %g must be "
-                      ">= 0",
-                      kind, sys->part_names[l->a], k, L);
-    return DAL_OK;
+    return dal__check_link(st->err, kind, sys->part_names[l->a], k, L);
   }
   case DAL_PARAM_NONE:
     break;
@@ -488,6 +467,7 @@ int dal_state_set_param(const dal_system *sys, dal_state *st, const dal_param_re
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
+  if (dal__check_idle(st, "set_param")) return DAL_E_STATE;
   char msg[DAL_ERRMSG_LEN];
   if (dal_param_check(sys, ref, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
   int rc = validate(sys, st, ref, value);
@@ -533,6 +513,7 @@ int dal_state_set_param_named(const dal_system *sys, dal_state *st, const char *
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
+  if (dal__check_idle(st, "set_param")) return DAL_E_STATE;
   dal_param_ref r;
   char msg[DAL_ERRMSG_LEN];
   if (dal_param_find(sys, name, &r, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
@@ -548,6 +529,7 @@ int dal_state_set_gravity(const dal_system *sys, dal_state *st, const double *g)
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "set_gravity: the state belongs to another system");
+  if (dal__check_idle(st, "set_gravity")) return DAL_E_STATE;
   if (!g) return DAL_FAIL(st, DAL_E_ARG, "set_gravity: g is NULL");
   for (int i = 0; i < sys->dim; ++i)
     if (!isfinite(g[i]))
@@ -582,6 +564,7 @@ int dal_state_reset_params(const dal_system *sys, dal_state *st) {
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "reset_params: the state belongs to another system");
+  if (dal__check_idle(st, "reset_params")) return DAL_E_STATE;
   dal__params_free(st);
   dal__params_init(st);
   dal__integ_reset(st);
@@ -593,6 +576,7 @@ int dal_state_copy_params(const dal_system *sys, dal_state *dst, const dal_state
   if (!dst || !src) return DAL_E_ARG;
   if (!sys || dst->sys != sys || src->sys != sys)
     return DAL_FAIL(dst, DAL_E_STATE, "copy_params: the states belong to different systems");
+  if (dal__check_idle(dst, "copy_params")) return DAL_E_STATE;
   if (dst == src) return DAL_OK;
   const dal_params *s = &src->prm;
   // reserve every copy first so that a failure leaves dst unchanged

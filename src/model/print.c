@@ -118,7 +118,9 @@ static void print_vec(FILE *fp, const char *label, const double *x, int n) {
 }
 
 int dal_state_print(const dal_system *sys, const dal_state *st, FILE *fp) {
-  if (!sys || !st || !fp || st->sys != sys) return DAL_E_ARG;
+  int pair = dal__check_pair(sys, st, "state_print");
+  if (pair) return pair;
+  if (!fp) return DAL_FAIL_C(st, DAL_E_ARG, "state_print: fp is NULL");
   dal__lazy_eval(st);
   int n = sys->n, m = sys->m;
   fprintf(fp, "state at t=%.17g\n", st->t);
