@@ -254,7 +254,7 @@ static void test_tight_irregular(void) {
     }
     printf("\n");
   }
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }

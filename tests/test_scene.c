@@ -24,6 +24,21 @@
 #include "dalembert/dalembert.h"
 #include "dalembert/scene.h"
 
+// a placement and a constraint from positional arguments, through the defs (the first
+// nparam parameters as a list; the rest take the primitive's defaults)
+static int place_list(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                      const int *coords, int nparam, const double *param, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = param;
+  d.nparam_list = nparam;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, p, &d);
+}
+
 #define PI 3.14159265358979323846
 
 static dal_scene *load(const char *name) {
@@ -73,7 +88,7 @@ static void c_route(const dal_primitive *prim, int dim, const double *param, int
   dal_builder_create(dim, &b);
   dal_builder_add_coord(b, "theta", &th);
   dal_builder_add_particle(b, "p", 1.0, &p);
-  CHECK_OK(dal_builder_place(b, p, prim, -1, 1, &th, np, param, NULL));
+  CHECK_OK(place_list(b, p, prim, -1, 1, &th, np, param, NULL));
   dal_builder_set_gravity(b, g);
   CHECK_OK(dal_builder_compile(b, &sys));
   dal_builder_destroy(b);
@@ -94,10 +109,9 @@ static void driven(void) {
   double y[2], yc[2];
   run_scene(sc, 10.0, y);
   double param[7] = {1, 0, 0, 0, 0.1, 2 * sqrt(9.8), 0}, g[2] = {0, -9.8};
-  c_route(&dal_map_pendulum, 2, param, 7, g, dal_scene_opts(sc, NULL, NULL, NULL), 1.0, 10.0,
-          yc);
-  printf("driven pendulum at t = 10: scene %.15f %.15f, C route %.15f %.15f\n", y[0], y[1],
-         yc[0], yc[1]);
+  c_route(&dal_map_pendulum, 2, param, 7, g, dal_scene_opts(sc, NULL, NULL, NULL), 1.0, 10.0, yc);
+  printf("driven pendulum at t = 10: scene %.15f %.15f, C route %.15f %.15f\n", y[0], y[1], yc[0],
+         yc[1]);
   CHECK_CLOSE(y[0], yc[0], 1e-10);
   CHECK_CLOSE(y[1], yc[1], 1e-10);
   dal_scene_destroy(sc);
@@ -190,7 +204,8 @@ static void errors(void) {
           "1 formulas for dimension 2");
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b pendulum th\n", "bad.scene:4",
           "parameter 'l' of 'pendulum' is required");
-  refused("dim 2\ncoord th\nparticle b mass=m\n", "bad.scene:3: particle mass", "unknown symbol 'm'");
+  refused("dim 2\ncoord th\nparticle b mass=m\n", "bad.scene:3: particle mass",
+          "unknown symbol 'm'");
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b = sin(th); -cos(th)\nrun method=euler\n",
           "bad.scene:5", "unknown method 'euler'");
   refused("dim 2\ncoord th\nparticle b mass=1\n", "bad.scene", "'b'"); // never placed
@@ -212,8 +227,8 @@ int main(void) {
   driven();
   bead("bead_ring_below.scene", 2.0);
   bead("bead_ring_above.scene", 5.0);
-  const char *seeds[] = {"sicm_oscillator.scene", "driven_pendulum.scene",
-                         "bead_ring_below.scene", "bead_ring_above.scene"};
+  const char *seeds[] = {"sicm_oscillator.scene", "driven_pendulum.scene", "bead_ring_below.scene",
+                         "bead_ring_above.scene"};
   for (int i = 0; i < 4; ++i)
     write_back(seeds[i]);
   errors();

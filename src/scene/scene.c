@@ -11,6 +11,36 @@
 
 #include "scene.h"
 
+// a placement and a constraint from positional arguments, through the defs (the first
+// nparam parameters as a list; the rest take the primitive's defaults)
+static int place_list(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                      const int *coords, int nparam, const double *param, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = param;
+  d.nparam_list = nparam;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, p, &d);
+}
+
+static int constraint_list(dal_builder *b, const char *name, const dal_primitive *prim, int np,
+                           const int *parts, int nc, const int *coords, int nparam,
+                           const double *param, void *ctx, int *index) {
+  dal_constraint_def d = dal_default_constraint_def();
+  d.name = name;
+  d.prim = prim;
+  d.nparts = np;
+  d.parts = parts;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = param;
+  d.nparam_list = nparam;
+  d.ctx = ctx;
+  return dal_builder_add_constraint_def(b, &d, index);
+}
 
 static char *dup(const char *s) {
   size_t n = strlen(s) + 1;
@@ -28,8 +58,7 @@ static char *dupn(const char *s, size_t n) {
   return r;
 }
 
-static int err(const dal_scene *sc, int line, char *msg, size_t len, int rc, const char *fmt,
-               ...) {
+static int err(const dal_scene *sc, int line, char *msg, size_t len, int rc, const char *fmt, ...) {
   if (msg && len) {
     int k = snprintf(msg, len, "%s:%d: ", sc->name, line);
     if (k < 0) k = 0;
@@ -155,8 +184,7 @@ static int keep_expr(dal_scene *sc, dal_expr *e) {
 
 // compile formulas over the named inputs and every parameter; the scene keeps the expression
 static int mkexpr(dal_scene *sc, const sline *l, const char *what, const char *const *f, int nf,
-                  const char *const *in, int nin, int vel, dal_expr **out, char *msg,
-                  size_t len) {
+                  const char *const *in, int nin, int vel, dal_expr **out, char *msg, size_t len) {
   dal_expr_def d = dal_default_expr_def();
   d.name = what;
   d.formulas = f;
@@ -183,8 +211,8 @@ static int constval(dal_scene *sc, const sline *l, const char *what, const char 
   dal_expr_eval(e, NULL, dal_const(0.0), NULL, &out);
   *v = out.v;
   if (!isfinite(*v))
-    return err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)", what,
-               text, *v);
+    return err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)", what, text,
+               *v);
   return DAL_OK;
 }
 
@@ -236,7 +264,7 @@ static int element_expr(dal_scene *sc, const sline *l, const char *what, const i
   for (int k = 0; k < nparts && !rc; ++k)
     for (int i = 0; i < d && !rc; ++i) {
       char nm[80];
-      snprintf(nm, sizeof nm, "%c_%s", "xyz"[i], sc->partname[parts[k]]);
+      snprintf(nm, sizeof nm, "%c_%s", "xyz"[i], sc -> partname[parts[k]]);
       in[k * d + i] = dup(nm);
       if (!in[k * d + i]) rc = DAL_E_NOMEM;
     }
@@ -300,8 +328,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
   int rc = DAL_OK;
   if (!strcmp(k, "param")) return DAL_OK; // taken before the build
   if (!strcmp(k, "dim")) {
-    if (l->ntok != 2 || sc->b || (strcmp(l->tok[1], "0") && strcmp(l->tok[1], "2") &&
-                                  strcmp(l->tok[1], "3")))
+    if (l->ntok != 2 || sc->b ||
+        (strcmp(l->tok[1], "0") && strcmp(l->tok[1], "2") && strcmp(l->tok[1], "3")))
       return err(sc, l->line, msg, len, DAL_E_ARG,
                  "dim: one of 0, 2, 3, before every coordinate and particle");
     sc->dim = atoi(l->tok[1]);
@@ -369,12 +397,12 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       int nc2;
       int *cs = malloc(((size_t)sc->ncoord + 1) * sizeof *cs);
       if (!cs) return DAL_E_NOMEM;
-      rc = element_expr(sc, l, what, parent >= 0 ? &parent : NULL, parent >= 0, &e, cs, &nc2,
-                        msg, len);
+      rc = element_expr(sc, l, what, parent >= 0 ? &parent : NULL, parent >= 0, &e, cs, &nc2, msg,
+                        len);
       if (!rc)
         rc = bcheck(sc, l,
-                    dal_builder_place(sc->b, p, dal_expr_primitive(e), parent, nc2, cs,
-                                      dal_expr_nparam(e), dal_expr_values(e), e),
+                    place_list(sc->b, p, dal_expr_primitive(e), parent, nc2, cs, dal_expr_nparam(e),
+                               dal_expr_values(e), e),
                     msg, len);
       free(cs);
       return rc;
@@ -385,8 +413,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
                  l->tok[1]);
     const dal_primitive *prim = dal_primitive_find(l->tok[2]);
     if (!prim)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown primitive '%s'",
-                 l->tok[1], l->tok[2]);
+      return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown primitive '%s'", l->tok[1],
+                 l->tok[2]);
     double param[64];
     if (prim->nparam > 64) return err(sc, l->line, msg, len, DAL_E_ARG, "too many parameters");
     for (int i = 0; i < prim->nparam; ++i)
@@ -414,12 +442,9 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
     }
     for (int i = 0; i < prim->nparam; ++i)
       if (param[i] != param[i])
-        return err(sc, l->line, msg, len, DAL_E_ARG,
-                   "place %s: parameter '%s' of '%s' is required",
+        return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parameter '%s' of '%s' is required",
                    l->tok[1], prim->param_names ? prim->param_names[i] : "?", prim->name);
-    return bcheck(sc, l,
-                  dal_builder_place(sc->b, p, prim, parent, nc, coords, prim->nparam, param,
-                                    NULL),
+    return bcheck(sc, l, place_list(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL),
                   msg, len);
   }
   if (!strcmp(k, "constraint")) {
@@ -438,9 +463,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       rc = element_expr(sc, l, what, parts, np, &e, cs, &nc2, msg, len);
       if (!rc)
         rc = bcheck(sc, l,
-                    dal_builder_add_constraint(sc->b, l->tok[1], dal_expr_primitive(e), np, parts,
-                                               nc2, cs, dal_expr_nparam(e), dal_expr_values(e),
-                                               e, NULL),
+                    constraint_list(sc->b, l->tok[1], dal_expr_primitive(e), np, parts, nc2, cs,
+                                    dal_expr_nparam(e), dal_expr_values(e), e, NULL),
                     msg, len);
       free(cs);
       return rc;
@@ -463,8 +487,7 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
         int c = dal__scene_find(sc->cname, sc->ncoord, l->tok[i]);
         if (c < 0)
           return err(sc, l->line, msg, len, DAL_E_ARG,
-                     "constraint %s: '%s' is not a coordinate defined above", l->tok[1],
-                     l->tok[i]);
+                     "constraint %s: '%s' is not a coordinate defined above", l->tok[1], l->tok[i]);
         coords[nc++] = c;
         continue;
       }
@@ -474,9 +497,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
             !strncmp(prim->param_names[q], l->tok[i], (size_t)(eq - l->tok[i])))
           j = q;
       if (j < 0)
-        return err(sc, l->line, msg, len, DAL_E_ARG,
-                   "constraint %s: '%s' has no parameter '%.*s'", l->tok[1], prim->name,
-                   (int)(eq - l->tok[i]), l->tok[i]);
+        return err(sc, l->line, msg, len, DAL_E_ARG, "constraint %s: '%s' has no parameter '%.*s'",
+                   l->tok[1], prim->name, (int)(eq - l->tok[i]), l->tok[i]);
       if ((rc = number(sc, l, prim->param_names[j], eq + 1, &param[j], msg, len))) return rc;
     }
     for (int i = 0; i < prim->nparam; ++i)
@@ -485,8 +507,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
                    "constraint %s: parameter '%s' of '%s' is required", l->tok[1],
                    prim->param_names ? prim->param_names[i] : "?", prim->name);
     return bcheck(sc, l,
-                  dal_builder_add_constraint(sc->b, l->tok[1], prim, np, parts, nc, coords,
-                                             prim->nparam, param, NULL, NULL),
+                  constraint_list(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam,
+                                  param, NULL, NULL),
                   msg, len);
   }
   if (!strcmp(k, "spring") || !strcmp(k, "damper")) {
@@ -502,8 +524,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
     if (!strchr(l->tok[2], '=')) {
       bb = dal__scene_find(sc->partname, sc->npart, l->tok[2]);
       if (bb < 0)
-        return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above",
-                   k, l->tok[2]);
+        return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
+                   l->tok[2]);
       from = 3;
     }
     double anchor[3] = {0, 0, 0};
@@ -517,7 +539,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
     }
     double kk = 0, LL = 0;
     const char *s;
-    if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) && (rc = number(sc, l, "k", s, &kk, msg, len)))
+    if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) &&
+        (rc = number(sc, l, "k", s, &kk, msg, len)))
       return rc;
     if (spring && (s = dal__scene_kv(l, from, "L")) && (rc = number(sc, l, "L", s, &LL, msg, len)))
       return rc;
@@ -539,8 +562,7 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
   }
   if (!strcmp(k, "gravity")) {
     if (!sc->b || l->ntok != 1 + sc->dim)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)",
-                 sc->dim);
+      return err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)", sc->dim);
     double g[3];
     for (int i = 0; i < sc->dim; ++i)
       if ((rc = number(sc, l, "component", l->tok[1 + i], &g[i], msg, len))) return rc;
@@ -549,8 +571,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (!strcmp(k, "potential") || !strcmp(k, "lagrangian")) {
     int lag = k[0] == 'l';
     if (!sc->b || l->nf != 1 || l->ntok != 1)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates",
-                 k, k);
+      return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates", k,
+                 k);
     dal_expr *e;
     if ((rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
                      sc->ncoord, lag, &e, msg, len)))
@@ -564,7 +586,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
     sc->has_run = 1;
     for (int i = 1; i < l->ntok; ++i) {
       const char *eq = strchr(l->tok[i], '=');
-      if (!eq) return err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", l->tok[i]);
+      if (!eq)
+        return err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", l->tok[i]);
       size_t n = (size_t)(eq - l->tok[i]);
       char key[32];
       snprintf(key, sizeof key, "%.*s", (int)(n < 31 ? n : 31), l->tok[i]);
@@ -619,8 +642,7 @@ static int build(dal_scene *sc, char *msg, size_t len) {
   return rc;
 }
 
-int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *msg,
-                    size_t msglen) {
+int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (!out) return DAL_E_ARG;
   *out = NULL;
@@ -765,8 +787,7 @@ int dal_scene_write(const dal_scene *sc, FILE *fp) {
   return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
-int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg,
-                        size_t msglen) {
+int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (!sc || !name) return DAL_E_ARG;
   int j = dal__scene_find(sc->pname, sc->nparam, name);
@@ -807,7 +828,8 @@ int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, si
   dal_state *st;
   int rc = dal_scene_state(sc, &st);
   if (rc) {
-    if (msg && msglen) snprintf(msg, msglen, "%s: the initial state: %s", sc->name, dal_status_string(rc));
+    if (msg && msglen)
+      snprintf(msg, msglen, "%s: the initial state: %s", sc->name, dal_status_string(rc));
     return rc;
   }
   dal_csv c = {csv, 0, 0};
