@@ -177,19 +177,19 @@ DAL_API int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out,
 /// A model of particles given by formulas, from which T, U and L are derived symbolically.
 /// Start from dal_default_expr_model_def().
 typedef struct dal_expr_model_def {
-  const char *name;                ///< name in messages (copied); default "model"
-  int dim;                         ///< spatial dimension d (1, 2 or 3). Required
-  const char *const *coords;       ///< names of the ncoords generalized coordinates
-  int ncoords;                     ///< number of coordinates n (>= 1)
-  const char *const *masses;       ///< nparticles formulas of the masses ("m", "2")
-  int nparticles;                  ///< number of particles N (>= 1)
-  const char *const *positions;    ///< N d formulas r_k(q, t), particle by particle
-  const char *const *gravity;      ///< d formulas of the gravity vector ("0", "-g"); NULL: none
-  const char *potential;           ///< a further potential U(q, t); NULL: none
-  const char *const *params;       ///< names of the nparam parameters
-  const double *values;            ///< their values (NULL: all 0)
-  int nparam;                      ///< number of parameters
-  int cookie;                      ///< set by dal_default_expr_model_def; do not touch
+  const char *name;             ///< name in messages (copied); default "model"
+  int dim;                      ///< spatial dimension d (1, 2 or 3). Required
+  const char *const *coords;    ///< names of the ncoords generalized coordinates
+  int ncoords;                  ///< number of coordinates n (>= 1)
+  const char *const *masses;    ///< nparticles formulas of the masses ("m", "2")
+  int nparticles;               ///< number of particles N (>= 1)
+  const char *const *positions; ///< N d formulas r_k(q, t), particle by particle
+  const char *const *gravity;   ///< d formulas of the gravity vector ("0", "-g"); NULL: none
+  const char *potential;        ///< a further potential U(q, t); NULL: none
+  const char *const *params;    ///< names of the nparam parameters
+  const double *values;         ///< their values (NULL: all 0)
+  int nparam;                   ///< number of parameters
+  int cookie;                   ///< set by dal_default_expr_model_def; do not touch
 } dal_expr_model_def;
 
 /// A model def with no coordinates, particles or parameters, dim 0 (to be set), name "model".
@@ -208,19 +208,18 @@ DAL_API int dal_expr_model_energies(const dal_expr_model_def *def, dal_expr **T,
 /// (coordinates with velocities), t and parameters; the caller owns them
 /// (dal_expr_equations_destroy).
 typedef struct dal_expr_equations {
-  int n;               ///< number of coordinates
-  dal_expr *momentum;  ///< p_i = dL/dqdot_i (n formulas)
-  dal_expr *mass;      ///< M_ij = d2L/dqdot_i dqdot_j (n x n formulas, row-major)
-  dal_expr *force;     ///< F_i = dL/dq_i - sum_j d2L/dqdot_i dq_j qdot_j - d2L/dqdot_i dt (n)
-  dal_expr *accel;     ///< qddot = M^-1 F when n == 1 (the state derivative's last part), NULL
-                       ///< for n > 1
+  int n;              ///< number of coordinates
+  dal_expr *momentum; ///< p_i = dL/dqdot_i (n formulas)
+  dal_expr *mass;     ///< M_ij = d2L/dqdot_i dqdot_j (n x n formulas, row-major)
+  dal_expr *force;    ///< F_i = dL/dq_i - sum_j d2L/dqdot_i dq_j qdot_j - d2L/dqdot_i dt (n)
+  dal_expr *accel;    ///< qddot = M^-1 F when n == 1 (the state derivative's last part), NULL
+                      ///< for n > 1
 } dal_expr_equations;
 
 /// Derive Lagrange's equations from L (one formula, velocities = 1) into *eq. Returns DAL_OK,
 /// DAL_E_ARG (L not a Lagrangian expression), DAL_E_NOMEM; on failure *eq holds no
 /// expression.
-DAL_API int dal_expr_lagrange(const dal_expr *L, dal_expr_equations *eq, char *msg,
-                              size_t msglen);
+DAL_API int dal_expr_lagrange(const dal_expr *L, dal_expr_equations *eq, char *msg, size_t msglen);
 
 /// Free the expressions of eq (NULL members are skipped) and zero it.
 DAL_API void dal_expr_equations_destroy(dal_expr_equations *eq);

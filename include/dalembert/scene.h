@@ -65,7 +65,7 @@ DAL_API int dal_scene_write(const dal_scene *sc, FILE *fp);
 
 /// Override parameter `name` (a `param` line's value) and rebuild the system. States of the
 /// old system must be destroyed first. Returns DAL_OK, DAL_E_ARG (unknown name; msg says),
-/// or the rebuild's status.
+/// DAL_E_NONFINITE, or the rebuild's status (the scene then keeps the old value and system).
 DAL_API int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg,
                                 size_t msglen);
 
@@ -83,8 +83,7 @@ DAL_API int dal_scene_state(const dal_scene *sc, dal_state **out);
 /// Run the scene: from its initial state to t1 with output every dt, written as CSV to `csv`
 /// (nullable: no output). `st` (nullable) receives the final state (else it is destroyed).
 /// Returns the status of dal_evolve (its message in msg).
-DAL_API int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **st, char *msg,
-                          size_t msglen);
+DAL_API int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **st, char *msg, size_t msglen);
 
 /// Print the scene's equations: r_k(q, t) of every particle, T, U, L, the mass matrix, the
 /// forces and (one coordinate) the state derivative, in format fmt. Particles placed by the
