@@ -1276,7 +1276,47 @@ static int reentrant_monitor(const dal_system *sys, const dal_state *st, void *c
   return 0;
 }
 
+// an event function that adds an event to its own set during the run (the items it is
+// scanned from would move): refused with DAL_E_STATE, the set unchanged
+typedef struct adder {
+  dal_events *ev;
+  int rc, calls;
+} adder;
+
+static double g_adder(double t, const double *q, const double *qd, void *ctx) {
+  (void)q;
+  (void)qd;
+  adder *a = ctx;
+  if (a->calls++ == 3) {
+    dal_event_def d = dal_default_event_def();
+    d.g = g_cross;
+    a->rc = dal_events_add(a->ev, &d);
+  }
+  return t - 0.7;
+}
+
 static int row_monitor_reentrant(char *msg) {
+  {
+    scene s;
+    CHECK_OK(pendulum(&s, 0.3));
+    adder a = {NULL, 99, 0};
+    CHECK_OK(dal_events_create(s.sys, &a.ev));
+    dal_event_def d = dal_default_event_def();
+    d.g = g_adder;
+    d.ctx = &a;
+    CHECK_OK(dal_events_add(a.ev, &d));
+    CHECK_OK(dal_state_set_events(s.st, a.ev));
+    dal_solve_opts o = opts_for(DAL_METHOD_DOPRI5);
+    CHECK_OK(dal_advance(s.sys, s.st, &o, 1.0));
+    CHECK_MSG(a.rc == DAL_E_STATE && dal_events_size(a.ev) == 1 &&
+                  strstr(dal_events_errmsg(a.ev), "in use"),
+              "events_add from an event function: %s (%s), %d events", dal_status_name(a.rc),
+              dal_events_errmsg(a.ev), dal_events_size(a.ev));
+    CHECK(dal_events_count(a.ev) == 1); // t = 0.7 crossed once
+    CHECK_OK(dal_state_set_events(s.st, NULL));
+    dal_events_free(a.ev);
+    scene_free(&s);
+  }
   int rc = DAL_OK;
   for (int which = 0; which < 2; ++which) {
     scene s;
