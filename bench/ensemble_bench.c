@@ -37,10 +37,16 @@ static dal_system *driven(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, p, rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, 0.0, 0, 1.0, 0}, g[2] = {0, -9.81};
+  double g[2] = {0, -9.81};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // a drive of zero amplitude at w = 1
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_W] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);

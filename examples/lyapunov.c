@@ -37,10 +37,17 @@ static dal_system *build(void) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double par[7] = {l, 0, 0, 0, a, 2 * sqrt(g), 0}, grav[2] = {0, -g};
+  double grav[2] = {0, -g};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pend = dal_default_place_def(); /* the pivot driven vertically */
+  pend.prim = &dal_map_pendulum;
+  pend.coords = &th;
+  pend.ncoords = 1;
+  pend.param[DAL_PENDULUM_L] = l;
+  pend.param[DAL_PENDULUM_AY] = a;
+  pend.param[DAL_PENDULUM_W] = 2 * sqrt(g);
+  if (!rc) rc = dal_builder_place_def(b, bob, &pend);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (!rc) rc = dal_builder_compile(b, &sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));

@@ -15,7 +15,7 @@
 // (parameter 1 of dal_map_ring, "place:bead:1") per trajectory. The reducer finds the
 // equilibria of its rate with the analysis API: dal_equilibrium (Newton with the exact
 // stiffness K) from 16 starts spread over the circle, the distinct solutions kept, and
-// dal_normal_modes classifies each (verdict from the eigenvalues of the exact flow Jacobian,
+// dal_normal_modes classifies each (verdict from the eigenvalues of the exact vector-field Jacobian,
 // Omega^2 from K x = Omega^2 M x). No time integration at all.
 // Checks (--check: 20 rates over [0, 2.5 w_c] and 4 within 1% of w_c; full mode: 250 rates
 // over [0, 2.5 w_c], CSV + PNG chart):
@@ -48,10 +48,15 @@ static dal_system *build(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, p, rc = dal_builder_create(3, &b);
-  double par[3] = {R, 0.0, 0.0}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def ring = dal_default_place_def();
+  ring.prim = &dal_map_ring;
+  ring.coords = &th;
+  ring.ncoords = 1;
+  ring.param[DAL_RING_R] = R;
+  if (!rc) rc = dal_builder_place_def(b, p, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));

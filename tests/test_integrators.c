@@ -501,7 +501,9 @@ static void test_unrecoverable(void) {
     double ts = dal_state_time(st);
     const char *msg = dal_state_errmsg(st);
     CHECK_MSG(rc == DAL_E_CALLBACK, "%s: rc %d", dal_method_name(o.method), rc);
-    CHECK_MSG(ts > 2.0 && ts < 3.6, "%s: stopped at t=%g", dal_method_name(o.method), ts);
+    // (Bulirsch-Stoer's steps at this tolerance are 1.5 s long)
+    CHECK_MSG(ts > (ms[mi] == DAL_METHOD_BS ? 1.5 : 2.0) && ts < 3.6, "%s: stopped at t=%g",
+              dal_method_name(o.method), ts);
     CHECK(strstr(msg, "generalized force callback") != NULL);
     CHECK(strstr(msg, "last accepted step") != NULL);
     // the state is evaluated at the accepted step
@@ -603,8 +605,8 @@ static void test_index1(void) {
       CHECK(proj ? r.s.projections == r.s.steps && r.s.steps > 0 : r.s.projections == 0);
     }
     CHECK_MSG(drift[1] < 1e-9 && (drift[0] < 1e-9 || drift[1] < drift[0]),
-              "index1 %s: drift %.3g projected, %.3g not",
-              dal_method_name(ms[mi]), drift[1], drift[0]);
+              "index1 %s: drift %.3g projected, %.3g not", dal_method_name(ms[mi]), drift[1],
+              drift[0]);
   }
   dal_system_destroy(sys);
 }

@@ -1219,7 +1219,7 @@ static long events_logged(dal_event_fn *g, int split, double *t_first) {
   dal_event_record rec;
   *t_first = n > 0 && dal_events_get(ev, 0, &rec, NULL, NULL) == 0 ? rec.t : NAN;
   dal_state_set_events(s.st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   scene_free(&s);
   return n;
 }

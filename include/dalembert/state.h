@@ -1,17 +1,18 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// State of one trajectory: (t, q, qdot), the computed physics, and the evaluation pipeline.
-//
-// A state belongs to one system and is used by one thread at a time; the system may be
-// shared. Pointers returned by accessors are borrowed views into the state, valid until the
-// next call that changes the state, and NULL when the quantity does not exist for the system
-// or is not current: a product is handed out only while it was evaluated at the state's
-// (t, q, qdot), so it is NULL before the first dal_forward (or integration), after
-// dal_state_set, and after an evaluation that failed before producing it. The status calls
-// (dal_state_energies, dal_state_jacobian, dal_constraint_forces ...) answer DAL_E_STATE with a
-// message then. Every (system, state) call refuses a state of another system (or a NULL
-// system) with DAL_E_STATE and a message; the state keeps its message, which a const accessor
-// may update too (the text is not part of the state's value).
+/// @file
+/// @brief State of one trajectory: (t, q, qdot), the computed physics, and the evaluation pipeline.
+///
+/// A state belongs to one system and is used by one thread at a time; the system may be
+/// shared. Pointers returned by accessors are borrowed views into the state, valid until the
+/// next call that changes the state, and NULL when the quantity does not exist for the system
+/// or is not current: a product is handed out only while it was evaluated at the state's
+/// (t, q, qdot), so it is NULL before the first dal_forward (or integration), after
+/// dal_state_set, and after an evaluation that failed before producing it. The status calls
+/// (dal_state_energies, dal_state_jacobian, dal_constraint_forces ...) answer DAL_E_STATE with a
+/// message then. Every (system, state) call refuses a state of another system (or a NULL
+/// system) with DAL_E_STATE and a message; the state keeps its message, which a const accessor
+/// may update too (the text is not part of the state's value).
 #ifndef DAL_STATE_H
 #define DAL_STATE_H
 

@@ -221,6 +221,7 @@ int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_
   int rc = check_eq_opts(o, err, sizeof err);
   if (rc) return DAL_FAIL(st, rc, "%s", err);
   if ((rc = dal__tangent_supported(sys, st, "equilibrium")) != 0) return rc;
+  if (sys->m > 0) return dal__equilibrium_manifold(sys, st, o, rep);
   newton_ws w;
   if (newton_alloc(sys, &w))
     return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory for the Newton workspace");
@@ -304,7 +305,7 @@ static int solve_point(dal_rebuild_fn *rebuild, double p, const double *guess, i
 
 // det K sign at the point's solution (the state is evaluated at the equilibrium)
 static int point_sign(cont_point *pt, double *work, lapack_int *ipiv) {
-  int n = pt->sys->n;
+  int n = pt->sys->n - pt->sys->m; // K is k x k on the constraint manifold
   double *K = work + (size_t)n * n;
   int rc = dal_linearize(pt->sys, pt->st, NULL, NULL, K);
   if (rc) return rc;
@@ -387,7 +388,10 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
         } else {
           b = c;
         }
-        if (mid.sign == 0) break;
+        if (mid.sign == 0) { // det K is exactly zero at c: the critical point itself
+          a = c;
+          break;
+        }
       }
       if (!rc) {
         double c = 0.5 * (a + b);

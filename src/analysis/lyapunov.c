@@ -277,6 +277,12 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
   int rc = check_opts(sys, st, o);
   if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
+  if (!rc && sys->m > 0)
+    rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                  "lyapunov: the system has %d constraint row(s) (first: '%s'); Lyapunov "
+                  "spectra cover minimal coordinates only: describe the scene by coordinate "
+                  "maps without constraints",
+                  sys->m, sys->con[0].name);
   if (rc) return rc;
 
   lyap L;

@@ -64,7 +64,7 @@ int dal_events_create(const dal_system *sys, dal_events **out) {
   return DAL_OK;
 }
 
-void dal_events_free(dal_events *ev) {
+void dal_events_destroy(dal_events *ev) {
   if (!ev) return;
   free(ev->it);
   free(ev->log);

@@ -296,13 +296,6 @@ static int place(dal_builder *b, int particle, const dal_primitive *prim, int pa
   return DAL_OK;
 }
 
-int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, int parent,
-                      int ncoords, const int *coords, int nparam, const double *param, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return place(b, particle, prim, parent, ncoords, coords, nparam, param, ctx);
-}
-
 int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
   if (!b) return DAL_E_ARG;
   b->err[0] = 0; // the message is always that of the last call
@@ -379,14 +372,6 @@ static int add_constraint(dal_builder *b, const char *name, const dal_primitive 
   return DAL_OK;
 }
 
-int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primitive *prim,
-                               int nparts, const int *parts, int ncoords, const int *coords,
-                               int nparam, const double *param, void *ctx, int *index) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return add_constraint(b, name, prim, nparts, parts, ncoords, coords, nparam, param, ctx, index);
-}
-
 // ---------------------------------------------------------------------------------------
 // element definitions
 
@@ -429,22 +414,41 @@ dal_damper_def dal_default_damper_def(void) {
   return d;
 }
 
-// a def's parameters beyond the primitive's count must be left unset
-static int check_def_params(dal_builder *b, const char *what, const dal_primitive *prim,
-                            const double *param) {
+// a def's parameters: param[] entries beyond the primitive's count left unset, or all of them
+// unset when the def gives a param_list; *np and *par receive the list the instance reads
+static int def_params(dal_builder *b, const char *what, const dal_primitive *prim,
+                      const double *param, const double *list, int nlist, int *np,
+                      const double **par) {
+  *np = prim && prim->nparam > 0 ? prim->nparam : 0;
+  *par = param;
   // a malformed count (nparam < 0) is reported by check_instance; never index param[-1]
-  if (prim && prim->nparam < 0) return DAL_OK;
-  int np = prim && prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
-  for (int i = np; i < DAL_MAX_PARAM && prim; ++i)
+  if (!prim || prim->nparam < 0) return DAL_OK;
+  if (list || nlist) {
+    for (int i = 0; i < DAL_MAX_PARAM; ++i)
+      if (!is_unset(param[i]))
+        return BFAIL(DAL_E_ARG,
+                     "%s: both param[%d] and a param_list are given; give the parameters in "
+                     "one of them",
+                     what, i);
+    if (nlist < 0 || nlist > prim->nparam || (nlist > 0 && !list))
+      return BFAIL(
+          DAL_E_ARG, "%s: param_list holds %d values%s but primitive '%s' takes %d parameters",
+          what, nlist, list ? "" : " at NULL", prim->name ? prim->name : "(unnamed)", prim->nparam);
+    *np = nlist;
+    *par = list;
+    return DAL_OK;
+  }
+  int np_in = prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
+  for (int i = np_in; i < DAL_MAX_PARAM; ++i)
     if (!is_unset(param[i]))
       return BFAIL(DAL_E_ARG,
                    "%s: param[%d] is set but primitive '%s' takes only %d parameters; check the "
                    "index enum used",
                    what, i, prim->name ? prim->name : "(unnamed)", prim->nparam);
-  if (prim && prim->nparam > DAL_MAX_PARAM)
+  if (prim->nparam > DAL_MAX_PARAM)
     return BFAIL(DAL_E_ARG,
-                 "%s: primitive '%s' takes %d parameters, more than a def holds (%d); use the "
-                 "positional form with a parameter array",
+                 "%s: primitive '%s' takes %d parameters, more than param[] holds (%d); give "
+                 "them in the def's param_list",
                  what, prim->name ? prim->name : "(unnamed)", prim->nparam, DAL_MAX_PARAM);
   return DAL_OK;
 }
@@ -467,11 +471,11 @@ int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def
   snprintf(what, sizeof what, "placing particle %d", particle);
   if (particle >= 0 && particle < b->parts.len)
     snprintf(what, sizeof what, "placing particle '%s'", ((char **)b->parts.data)[particle]);
-  int rc = check_def_params(b, what, def->prim, def->param);
+  int np;
+  const double *par;
+  int rc = def_params(b, what, def->prim, def->param, def->param_list, def->nparam_list, &np, &par);
   if (rc) return rc;
-  int np = def->prim ? def->prim->nparam : 0;
-  return place(b, particle, def->prim, def->parent, def->ncoords, def->coords, np, def->param,
-               def->ctx);
+  return place(b, particle, def->prim, def->parent, def->ncoords, def->coords, np, par, def->ctx);
 }
 
 int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def, int *index) {
@@ -480,11 +484,12 @@ int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def
   DEF_CHECK(def, "constraint_def");
   char what[96];
   snprintf(what, sizeof what, "constraint '%s'", def->name ? def->name : "(unnamed)");
-  int rc = check_def_params(b, what, def->prim, def->param);
+  int np;
+  const double *par;
+  int rc = def_params(b, what, def->prim, def->param, def->param_list, def->nparam_list, &np, &par);
   if (rc) return rc;
-  int np = def->prim ? def->prim->nparam : 0;
   return add_constraint(b, def->name, def->prim, def->nparts, def->parts, def->ncoords, def->coords,
-                        np, def->param, def->ctx, index);
+                        np, par, def->ctx, index);
 }
 
 int dal_builder_set_gravity(dal_builder *b, const double *g) {
@@ -559,34 +564,6 @@ int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def) {
   if (def->b < -1) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", def->b);
   return add_link(b, &b->dampers, anchored ? "anchor damper" : "damper", def->a, def->b,
                   anchored ? def->anchor : NULL, def->path, def->ctx, def->c, 0.0);
-}
-
-int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  if (pb < 0) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", pb);
-  return add_link(b, &b->springs, "spring", pa, pb, NULL, NULL, NULL, k, L);
-}
-
-int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
-                                  void *ctx, double k, double L) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return add_link(b, &b->springs, "anchor spring", p, -1, x0, fn, ctx, k, L);
-}
-
-int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  if (pb < 0) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", pb);
-  return add_link(b, &b->dampers, "damper", pa, pb, NULL, NULL, NULL, c, 0.0);
-}
-
-int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
-                                  void *ctx, double c) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return add_link(b, &b->dampers, "anchor damper", p, -1, x0, fn, ctx, c, 0.0);
 }
 
 static int add_cb(dal_builder *b, dal_vec *v, const char *kind, int isnull, dal_cb cb) {

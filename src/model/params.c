@@ -279,6 +279,53 @@ static int find_name(char *const *names, int count, const char *s, size_t n) {
   return v < count ? v : -1;
 }
 
+// a primitive's parameter by its decimal index or its name (tables of version 2); -1 if neither
+static int prim_param_index(const dal_primitive *prim, const char *s, size_t n) {
+  int v = parse_index(s, n);
+  if (v >= 0 || !prim || prim->version < 2 || !prim->param_names) return v;
+  for (int i = 0; i < prim->nparam && i < DAL_MAX_PARAM; ++i) {
+    const char *nm = prim->param_names[i];
+    if (nm && strlen(nm) == n && memcmp(nm, s, n) == 0) return i;
+  }
+  return -1;
+}
+
+// the primitive whose parameters r addresses (place or con with a valid target), or NULL
+static const dal_primitive *ref_prim(const dal_system *sys, const dal_param_ref *r) {
+  if (r->kind == DAL_PARAM_PLACE && r->target >= 0 && sys->place) return sys->place[r->target].prim;
+  if (r->kind == DAL_PARAM_CONSTRAINT && r->target >= 0) return sys->con[r->target].prim;
+  return NULL;
+}
+
+// "l, x0, y0" (the names of a primitive's parameters) into buf
+static void list_param_names(const dal_primitive *prim, char *buf, size_t len) {
+  size_t used = 0;
+  buf[0] = 0;
+  for (int i = 0; prim && i < prim->nparam && i < DAL_MAX_PARAM && used + 1 < len; ++i) {
+    char nb[16];
+    int w = snprintf(buf + used, len - used, "%s%s", i ? ", " : "",
+                     dal__param_name(prim, i, nb, sizeof nb));
+    if (w < 0) break;
+    used += (size_t)w;
+  }
+}
+
+static int set_def_param(const dal_primitive *prim, double *param, const char *name, double value) {
+  if (!prim || !name || !param) return DAL_E_ARG;
+  int i = prim_param_index(prim, name, strlen(name));
+  if (i < 0 || i >= prim->nparam || i >= DAL_MAX_PARAM) return DAL_E_ARG;
+  param[i] = value;
+  return DAL_OK;
+}
+
+int dal_place_def_set(dal_place_def *def, const char *name, double value) {
+  return def ? set_def_param(def->prim, def->param, name, value) : DAL_E_ARG;
+}
+
+int dal_constraint_def_set(dal_constraint_def *def, const char *name, double value) {
+  return def ? set_def_param(def->prim, def->param, name, value) : DAL_E_ARG;
+}
+
 int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, char *msg,
                    size_t len) {
   if (msg && len) msg[0] = 0;
@@ -302,7 +349,8 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
     }
   }
   dal_param_ref r = {DAL_PARAM_NONE, 0, 0};
-  const char *kinds = "mass:<particle>, place:<particle>:<i>, con:<constraint>:<i>, "
+  const char *kinds = "mass:<particle>, place:<particle>:<i or name>, "
+                      "con:<constraint>:<i or name>, "
                       "gravity:<i>, spring:<j>:k, spring:<j>:L, damper:<j>:c";
 #define KIND_IS(s) (fl[0] == strlen(s) && memcmp(f[0], s, fl[0]) == 0)
   if (KIND_IS("mass") && nf == 2) {
@@ -311,7 +359,6 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
   } else if (KIND_IS("place") && nf == 3) {
     r.kind = DAL_PARAM_PLACE;
     r.target = find_name(sys->part_names, sys->N, f[1], fl[1]);
-    r.index = parse_index(f[2], fl[2]);
   } else if (KIND_IS("con") && nf == 3) {
     r.kind = DAL_PARAM_CONSTRAINT;
     r.target = -1;
@@ -322,7 +369,6 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
       int v = parse_index(f[1], fl[1]);
       r.target = v < sys->ncon ? v : -1;
     }
-    r.index = parse_index(f[2], fl[2]);
   } else if (KIND_IS("gravity") && nf == 2) {
     r.kind = DAL_PARAM_GRAVITY;
     r.index = parse_index(f[1], fl[1]);
@@ -349,9 +395,21 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
                name, what, (int)fl[1], f[1]);
     return DAL_E_ARG;
   }
+  if (r.kind == DAL_PARAM_PLACE || r.kind == DAL_PARAM_CONSTRAINT)
+    r.index = prim_param_index(ref_prim(sys, &r), f[2], fl[2]);
   if (r.index < 0) {
-    if (msg && len)
-      snprintf(msg, len, "parameter '%s': the index must be a non-negative integer", name);
+    const dal_primitive *prim = ref_prim(sys, &r);
+    char names[256];
+    list_param_names(prim, names, sizeof names);
+    if (msg && len) {
+      if (prim && names[0])
+        snprintf(msg, len,
+                 "parameter '%s': '%.*s' is neither a parameter of '%s' (%s) nor a 0-based "
+                 "index",
+                 name, (int)fl[nf - 1], f[nf - 1], prim->name ? prim->name : "(unnamed)", names);
+      else
+        snprintf(msg, len, "parameter '%s': the index must be a non-negative integer", name);
+    }
     return DAL_E_ARG;
   }
   char m2[DAL_ERRMSG_LEN];

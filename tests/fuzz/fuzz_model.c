@@ -350,20 +350,62 @@ static int u_callback(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
 }
 
 static const dal_primitive u_prims[] = {
-    {.name = "u_circle2", .version = 1, .nin = 2, .nout = 1, .nparam = 1, .eval = u_circle2,
-     .doc = "x^2 + y^2 - R^2", .flags = 0},
-    {.name = "u_dist2", .version = 1, .nin = 4, .nout = 1, .nparam = 1, .eval = u_dist2,
-     .doc = "|b - a| - L (2D)", .flags = 0},
-    {.name = "u_dist3", .version = 1, .nin = 6, .nout = 1, .nparam = 1, .eval = u_dist3,
-     .doc = "|b - a| - L (3D)", .flags = 0},
-    {.name = "u_lin", .version = 1, .nin = 1, .nout = 1, .nparam = 2, .eval = u_lin,
-     .doc = "a u - b sin t", .flags = 0},
-    {.name = "u_pair", .version = 1, .nin = 2, .nout = 2, .nparam = 0, .eval = u_pair,
-     .doc = "(u0 - u1, u0 + sin u1)", .flags = 0},
-    {.name = "u_callback", .version = 1, .nin = 1, .nout = 2, .nparam = 0, .eval = u_callback,
-     .doc = "(u^2 + ct, sin u), may fail", .flags = 0},
-    {.name = "u_broken", .version = 1, .nin = 1, .nout = 2, .nparam = 0, .eval = NULL,
-     .doc = "no eval function", .flags = 0},
+    {.name = "u_circle2",
+     .version = 1,
+     .nin = 2,
+     .nout = 1,
+     .nparam = 1,
+     .eval = u_circle2,
+     .doc = "x^2 + y^2 - R^2",
+     .flags = 0},
+    {.name = "u_dist2",
+     .version = 1,
+     .nin = 4,
+     .nout = 1,
+     .nparam = 1,
+     .eval = u_dist2,
+     .doc = "|b - a| - L (2D)",
+     .flags = 0},
+    {.name = "u_dist3",
+     .version = 1,
+     .nin = 6,
+     .nout = 1,
+     .nparam = 1,
+     .eval = u_dist3,
+     .doc = "|b - a| - L (3D)",
+     .flags = 0},
+    {.name = "u_lin",
+     .version = 1,
+     .nin = 1,
+     .nout = 1,
+     .nparam = 2,
+     .eval = u_lin,
+     .doc = "a u - b sin t",
+     .flags = 0},
+    {.name = "u_pair",
+     .version = 1,
+     .nin = 2,
+     .nout = 2,
+     .nparam = 0,
+     .eval = u_pair,
+     .doc = "(u0 - u1, u0 + sin u1)",
+     .flags = 0},
+    {.name = "u_callback",
+     .version = 1,
+     .nin = 1,
+     .nout = 2,
+     .nparam = 0,
+     .eval = u_callback,
+     .doc = "(u^2 + ct, sin u), may fail",
+     .flags = 0},
+    {.name = "u_broken",
+     .version = 1,
+     .nin = 1,
+     .nout = 2,
+     .nparam = 0,
+     .eval = NULL,
+     .doc = "no eval function",
+     .flags = 0},
 };
 #define FZ_NUPRIM ((int)(sizeof u_prims / sizeof u_prims[0]))
 
@@ -488,6 +530,62 @@ static const dal_primitive *fz_map_prim(fz *f, int d) {
 }
 
 // place particle k; counts derived from the primitive, sometimes deliberately wrong
+// the builder's defs filled from positional arguments (the harness draws them in this order)
+static int fz_place_def(dal_builder *b, int particle, const dal_primitive *prim, int parent, int nc,
+                        const int *coords, int np, const double *par, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = par;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, particle, &d);
+}
+
+static int fz_add_constraint(dal_builder *b, const char *name, const dal_primitive *prim,
+                             int nparts, const int *parts, int nc, const int *coords, int np,
+                             const double *par, void *ctx, int *row) {
+  dal_constraint_def d = dal_default_constraint_def();
+  d.name = name;
+  d.prim = prim;
+  d.nparts = nparts;
+  d.parts = parts;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = par;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_add_constraint_def(b, &d, row);
+}
+
+// a spring (k, L) or damper (k as c, L unused) between pa and pb, or to x0 + path(t) if pb < 0
+static int fz_link(dal_builder *b, int damper, int pa, int pb, const double *x0, dal_path_fn *path,
+                   void *ctx, double k, double L) {
+  if (damper) {
+    dal_damper_def dd = dal_default_damper_def();
+    dd.a = pa;
+    dd.b = pb;
+    for (int i = 0; x0 && i < 3; ++i) // the builder reads d of them
+      dd.anchor[i] = x0[i];
+    dd.path = path;
+    dd.ctx = ctx;
+    dd.c = k;
+    return dal_builder_add_damper_def(b, &dd);
+  }
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = pa;
+  sd.b = pb;
+  for (int i = 0; x0 && i < 3; ++i) // the builder reads d of them
+    sd.anchor[i] = x0[i];
+  sd.path = path;
+  sd.ctx = ctx;
+  sd.k = k;
+  sd.length = L;
+  return dal_builder_add_spring_def(b, &sd);
+}
+
 static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
   const dal_primitive *prim = fz_map_prim(f, m->dim);
   int parent = -1;
@@ -513,8 +611,8 @@ static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
   int pk = fz_pick(f, 24) == 23 ? k + FZ_MAX_PARTS : k;
   int with_coords = fz_pick(f, 20) != 19;
   int with_par = fz_pick(f, 20) != 19;
-  int rc = dal_builder_place(b, pk, prim, parent, nc, with_coords ? coords : NULL, np,
-                             with_par ? par : NULL, ctx);
+  int rc = fz_place_def(b, pk, prim, parent, nc, with_coords ? coords : NULL, np,
+                        with_par ? par : NULL, ctx);
   fz_b(f, b, "place", rc);
   if (!rc && pk == k) m->placed[k] = 1;
   // mostly fall back to a valid placement so that the model compiles
@@ -522,8 +620,8 @@ static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
     int d = m->dim, cc[3];
     for (int a = 0; a < d; ++a)
       cc[a] = (k * d + a) % m->n;
-    rc = dal_builder_place(b, k, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, cc, 0,
-                           NULL, NULL);
+    rc = fz_place_def(b, k, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, cc, 0, NULL,
+                      NULL);
     fz_b(f, b, "place (fallback)", rc);
     if (!rc) m->placed[k] = 1;
   }
@@ -555,8 +653,8 @@ static void fz_constraint(fz *f, dal_builder *b, fz_model *m, int i) {
   int row = -1;
   int named = fz_pick(f, 8);
   void *ctx = fz_ctx(f, m, prim);
-  int rc = dal_builder_add_constraint(b, named ? name : NULL, prim, nparts, parts, nc, coords, np,
-                                      par, ctx, &row);
+  int rc = fz_add_constraint(b, named ? name : NULL, prim, nparts, parts, nc, coords, np, par, ctx,
+                             &row);
   fz_b(f, b, "add_constraint", rc);
 }
 
@@ -587,27 +685,26 @@ static void fz_forces(fz *f, dal_builder *b, fz_model *m) {
     case 1: {
       double k = fz_pos(f, 10.0);
       double L = fz_pos(f, 1.0);
-      fz_b(f, b, "add_spring", dal_builder_add_spring(b, pa, pb, k, L));
+      fz_b(f, b, "add_spring", fz_link(b, 0, pa, pb, NULL, NULL, NULL, k, L));
       break;
     }
     case 2: {
       double cd = fz_pos(f, 0.5);
-      fz_b(f, b, "add_damper", dal_builder_add_damper(b, pa, pb, cd));
+      fz_b(f, b, "add_damper", fz_link(b, 1, pa, pb, NULL, NULL, NULL, cd, 0.0));
       break;
     }
     case 3: {
       int with_x0 = fz_pick(f, 8) != 7;
       double k = fz_pos(f, 5.0);
       double L = fz_pos(f, 0.5);
-      fz_b(f, b, "add_anchor_spring",
-           dal_builder_add_anchor_spring(b, pa, with_x0 ? x0 : NULL, NULL, NULL, k, L));
+      fz_b(f, b, "add_anchor_spring", fz_link(b, 0, pa, -1, with_x0 ? x0 : NULL, NULL, NULL, k, L));
       break;
     }
     case 4: {
       int moving = fz_pick(f, 2);
       double cd = fz_pos(f, 0.5);
       fz_b(f, b, "add_anchor_damper",
-           dal_builder_add_anchor_damper(b, pa, x0, moving ? fz_path : NULL, c, cd));
+           fz_link(b, 1, pa, -1, x0, moving ? fz_path : NULL, c, cd, 0.0));
       break;
     }
     case 5: {
@@ -646,8 +743,8 @@ static void fz_chain(fz *f, dal_builder *b, fz_model *m) {
     if (fz_b(f, b, "add_particle", dal_builder_add_particle(b, name, mass, &p)))
       fz_b(f, b, "add_particle", dal_builder_add_particle(b, name, 1.0, &p));
     fz_b(f, b, "place",
-         dal_builder_place(b, p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c, 0,
-                           NULL, NULL));
+         fz_place_def(b, p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c, 0, NULL,
+                      NULL));
   }
   double g[3] = {0.0, 0.0, 0.0};
   g[d - 1] = -9.81;
@@ -659,20 +756,20 @@ static void fz_chain(fz *f, dal_builder *b, fz_model *m) {
     if (k == 0) {
       double par[4] = {L, 0.0, 0.0, 0.0};
       fz_b(f, b, "add_constraint",
-           dal_builder_add_constraint(b, name, d == 2 ? &dal_con_anchor2 : &dal_con_anchor3, 1, &k,
-                                      0, NULL, d + 1, par, NULL, NULL));
+           fz_add_constraint(b, name, d == 2 ? &dal_con_anchor2 : &dal_con_anchor3, 1, &k, 0, NULL,
+                             d + 1, par, NULL, NULL));
     } else {
       int parts[2] = {k - 1, k};
       fz_b(f, b, "add_constraint",
-           dal_builder_add_constraint(b, name, d == 2 ? &dal_con_distance2 : &dal_con_distance3, 2,
-                                      parts, 0, NULL, 1, &L, NULL, NULL));
+           fz_add_constraint(b, name, d == 2 ? &dal_con_distance2 : &dal_con_distance3, 2, parts, 0,
+                             NULL, 1, &L, NULL, NULL));
     }
   }
   // now and then a damper along the chain or a force callback on it
   int extra = fz_pick(f, 4);
   if (extra == 1) {
     double cd = fz_pos(f, 0.5);
-    fz_b(f, b, "add_damper", dal_builder_add_damper(b, 0, N - 1, cd));
+    fz_b(f, b, "add_damper", fz_link(b, 1, 0, N - 1, NULL, NULL, NULL, cd, 0.0));
   } else if (extra == 2) {
     fz_cb *c = fz_new_cb(f, m);
     c->N = N;
@@ -1387,7 +1484,7 @@ static int fz_foreign_make(dal_builder **b, dal_system **sys, dal_state **st) {
   int rc = dal_builder_create(2, b);
   if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(*b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(*b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  if (!rc) rc = fz_place_def(*b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (!rc) rc = dal_state_create(*sys, st);
   if (!rc) rc = dal_state_set(*sys, *st, 0.0, &q, &qd);
