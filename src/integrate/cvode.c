@@ -285,6 +285,16 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
     if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
     if (flag < 0) return cv_failure(ig, m, flag);
     ig->st->stats.foreign_code = flag;
+    {
+      // the time moved by the step integrated: CVODE snaps its time to a stop time within
+      // 100 ulps of it, which at large |t| is seconds of motion that did not happen
+      realtype hlast = 0, tn = tret;
+      CVodeGetLastStep(m->cv, &hlast);
+      CVodeGetCurrentTime(m->cv, &tn);
+      if (flag == CV_TSTOP_RETURN || tn > tret) tn = ig->t + hlast;
+      int gap = dal__ode_tstop_gap(ig, tn, flag == CV_TSTOP_RETURN ? tout : tret);
+      if (gap) return gap;
+    }
     if (flag == CV_TSTOP_RETURN) tret = tout;
     if (tret > tout) return cv_failure(ig, m, CV_BAD_T);
     int projected = 0;
