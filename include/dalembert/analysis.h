@@ -229,9 +229,9 @@ typedef struct dal_equilibrium_report {
 /// redundant coordinates) is DAL_E_UNSUPPORTED; a moving constraint that leaves the point in
 /// place (a turning ring's bottom) is fine.
 /// Returns DAL_OK; DAL_E_SINGULAR when K (or the KKT Newton matrix) is singular (a bifurcation
-/// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter iterations or a
-/// non-finite step (the state then holds the last iterate); DAL_E_ARG for bad options; the
-/// statuses of dal_linearize.
+/// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter
+/// iterations or a non-finite step (the state then holds the last iterate); DAL_E_ARG for bad
+/// options; the statuses of dal_linearize.
 DAL_API int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                             dal_equilibrium_report *rep);
 
