@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Umbrella header: everything a dalembert user needs.
+/// @file
+/// @brief Umbrella header: everything a dalembert user needs.
 #ifndef DAL_DALEMBERT_H
 #define DAL_DALEMBERT_H
 

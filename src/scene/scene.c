@@ -11,6 +11,36 @@
 
 #include "scene.h"
 
+// a placement and a constraint from their parts, through the defs
+static int place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                    const int *coords, int np, const double *param, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.coords = coords;
+  d.ncoords = nc;
+  d.param_list = param;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, p, &d);
+}
+
+static int constrain_by(dal_builder *b, const char *name, const dal_primitive *prim, int np,
+                        const int *parts, int nc, const int *coords, int npar, const double *param,
+                        void *ctx) {
+  dal_constraint_def d = dal_default_constraint_def();
+  d.name = name;
+  d.prim = prim;
+  d.parts = parts;
+  d.nparts = np;
+  d.coords = coords;
+  d.ncoords = nc;
+  d.param_list = param;
+  d.nparam_list = npar;
+  d.ctx = ctx;
+  return dal_builder_add_constraint_def(b, &d, NULL);
+}
+
 static char *dup(const char *s) {
   size_t n = strlen(s) + 1;
   char *r = malloc(n);
@@ -368,11 +398,17 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       if (!cs) return DAL_E_NOMEM;
       rc = element_expr(sc, l, what, parent >= 0 ? &parent : NULL, parent >= 0, &e, cs, &nc2, msg,
                         len);
-      if (!rc)
-        rc = bcheck(sc, l,
-                    dal_builder_place(sc->b, p, dal_expr_primitive(e), parent, nc2, cs,
-                                      dal_expr_nparam(e), dal_expr_values(e), e),
-                    msg, len);
+      if (!rc) {
+        dal_place_def pd = dal_default_place_def();
+        pd.prim = dal_expr_primitive(e);
+        pd.parent = parent;
+        pd.coords = cs;
+        pd.ncoords = nc2;
+        pd.param_list = dal_expr_values(e);
+        pd.nparam_list = dal_expr_nparam(e);
+        pd.ctx = e;
+        rc = bcheck(sc, l, dal_builder_place_def(sc->b, p, &pd), msg, len);
+      }
       free(cs);
       return rc;
     }
@@ -413,8 +449,7 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       if (param[i] != param[i])
         return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parameter '%s' of '%s' is required",
                    l->tok[1], prim->param_names ? prim->param_names[i] : "?", prim->name);
-    return bcheck(sc, l,
-                  dal_builder_place(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL),
+    return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL),
                   msg, len);
   }
   if (!strcmp(k, "constraint")) {
@@ -431,12 +466,19 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       int *cs = malloc(((size_t)sc->ncoord + 1) * sizeof *cs);
       if (!cs) return DAL_E_NOMEM;
       rc = element_expr(sc, l, what, parts, np, &e, cs, &nc2, msg, len);
-      if (!rc)
-        rc = bcheck(sc, l,
-                    dal_builder_add_constraint(sc->b, l->tok[1], dal_expr_primitive(e), np, parts,
-                                               nc2, cs, dal_expr_nparam(e), dal_expr_values(e), e,
-                                               NULL),
-                    msg, len);
+      if (!rc) {
+        dal_constraint_def cd = dal_default_constraint_def();
+        cd.name = l->tok[1];
+        cd.prim = dal_expr_primitive(e);
+        cd.parts = parts;
+        cd.nparts = np;
+        cd.coords = cs;
+        cd.ncoords = nc2;
+        cd.param_list = dal_expr_values(e);
+        cd.nparam_list = dal_expr_nparam(e);
+        cd.ctx = e;
+        rc = bcheck(sc, l, dal_builder_add_constraint_def(sc->b, &cd, NULL), msg, len);
+      }
       free(cs);
       return rc;
     }
@@ -477,10 +519,10 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
         return err(sc, l->line, msg, len, DAL_E_ARG,
                    "constraint %s: parameter '%s' of '%s' is required", l->tok[1],
                    prim->param_names ? prim->param_names[i] : "?", prim->name);
-    return bcheck(sc, l,
-                  dal_builder_add_constraint(sc->b, l->tok[1], prim, np, parts, nc, coords,
-                                             prim->nparam, param, NULL, NULL),
-                  msg, len);
+    return bcheck(
+        sc, l,
+        constrain_by(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam, param, NULL), msg,
+        len);
   }
   if (!strcmp(k, "spring") || !strcmp(k, "damper")) {
     int spring = k[0] == 's';
@@ -595,7 +637,7 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
 static int build(dal_scene *sc, char *msg, size_t len) {
   unbuild(sc);
   sc->dim = 2;
-  dal_solve_default_opts(&sc->opts);
+  sc->opts = dal_default_solve_opts();
   sc->t0 = 0;
   sc->t1 = 10;
   sc->dt = 0.01;
