@@ -1314,7 +1314,7 @@ static int row_monitor_reentrant(char *msg) {
               dal_events_errmsg(a.ev), dal_events_size(a.ev));
     CHECK(dal_events_count(a.ev) == 1); // t = 0.7 crossed once
     CHECK_OK(dal_state_set_events(s.st, NULL));
-    dal_events_free(a.ev);
+    dal_events_destroy(a.ev);
     scene_free(&s);
   }
   int rc = DAL_OK;
