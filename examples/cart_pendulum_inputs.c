@@ -82,8 +82,7 @@ int main(int argc, char **argv) {
   }
   printf("reduced A (x = (xi, eta), dq = N xi):\n");
   for (int i = 0; i < 4; ++i)
-    printf("  %10.5f %10.5f %10.5f %10.5f   B %10.5f\n", A[i], A[4 + i], A[8 + i], A[12 + i],
-           B[i]);
+    printf("  %10.5f %10.5f %10.5f %10.5f   B %10.5f\n", A[i], A[4 + i], A[8 + i], A[12 + i], B[i]);
   double pole = sqrt((MC + MB) * G / (MC * L));
   printf("open-loop poles: %.10f %.10f %.10f %.10f (textbook +-%.10f and a double zero)\n", re[0],
          re[1], re[2], re[3], pole);

@@ -82,8 +82,8 @@ int main(void) {
   dal_jet in[2] = {dal_const(dal_state_q(st)[0]), dal_const(dal_state_qdot(st)[0])}, acc;
   dal_expr_eval(eq.accel, in, dal_const(10.0), NULL, &acc);
   double diff = fabs(acc.v - dal_state_qddot(st)[0]);
-  printf("theta(10) = %.12f, thetaddot: derived %.15f, library %.15f\n", dal_state_q(st)[0],
-         acc.v, dal_state_qddot(st)[0]);
+  printf("theta(10) = %.12f, thetaddot: derived %.15f, library %.15f\n", dal_state_q(st)[0], acc.v,
+         dal_state_qddot(st)[0]);
   dal_state_destroy(st);
   dal_expr_equations_destroy(&eq);
   dal_expr_destroy(L);

@@ -100,8 +100,7 @@ static double theta_zero(double t, const double *q, const double *qd, void *ctx)
 }
 
 static dal_solve_opts options(void) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-10;
   return o;

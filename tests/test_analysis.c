@@ -3,7 +3,8 @@
 // Exact linearization and normal modes against finite differences and hand derivations.
 //
 // References, all independent of the code under test:
-//  - the vector-field Jacobian df/dy and df/dt of seven scenes at generic states (double pendulum on a
+//  - the vector-field Jacobian df/dy and df/dt of seven scenes at generic states (double pendulum
+//  on a
 //    tree of maps, SICM's driven pendulum, bead on a turning ring, two particles with moving
 //    anchors, springs, dampers, gravity and potentials U(r, t), U(q, t), a rheonomic
 //    whole-system map, a spherical pendulum, a rotating anisotropic trap in its rotating
@@ -338,7 +339,8 @@ static void check_flow_fd(const char *name, const dal_system *sys, double t, con
   CHECK_OK(dal_state_set(sys, st, t, q, qd));
   double A[64], ft[8], worst = 0.0;
   int rc = dal_vector_field_jacobian(sys, st, A, ft);
-  CHECK_MSG(rc == 0, "%s: vector_field_jacobian %s: %s", name, dal_status_name(rc), dal_state_errmsg(st));
+  CHECK_MSG(rc == 0, "%s: vector_field_jacobian %s: %s", name, dal_status_name(rc),
+            dal_state_errmsg(st));
   if (rc) goto done;
   // the state is left evaluated at (t, q, qdot); the upper rows are exactly [0 I] and 0
   CHECK(dal_state_time(st) == t && dal_state_q(st)[0] == q[0]);
@@ -379,8 +381,8 @@ static void check_flow_fd(const char *name, const dal_system *sys, double t, con
     }
   CHECK_MSG(nvalid >= n * (2 * n + 1) - 1, "%s: FD oracle valid for %d of %d entries", name, nvalid,
             n * (2 * n + 1));
-  printf("  %-22s vector-field Jacobian vs FD: %2d entries, worst |exact - FD| / bound %.3f%s\n", name,
-         nvalid, worst, check_failures > fails0 ? "  FAILED" : "");
+  printf("  %-22s vector-field Jacobian vs FD: %2d entries, worst |exact - FD| / bound %.3f%s\n",
+         name, nvalid, worst, check_failures > fails0 ? "  FAILED" : "");
 done:
   dal_state_destroy(st);
   dal_state_destroy(aux);
@@ -924,8 +926,7 @@ static void expect_refusal(const char *what, dal_system *sys, int status, const 
             dal_status_name(rc), dal_state_errmsg(st));
   rc = dal_vector_field_jacobian(sys, st, buf, NULL);
   CHECK_MSG(rc == status, "%s: vector_field_jacobian %s", what, dal_status_name(rc));
-  dal_lyapunov_opts lo;
-  dal_lyapunov_default_opts(&lo);
+  dal_lyapunov_opts lo = dal_default_lyapunov_opts();
   lo.t_end = 1.0;
   rc = dal_lyapunov(sys, st, &lo, buf, NULL, NULL, NULL);
   CHECK_MSG(rc == status, "%s: lyapunov %s", what, dal_status_name(rc));

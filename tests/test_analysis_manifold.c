@@ -139,15 +139,16 @@ static void cart_double_pendulum(void) {
   rc = dal_normal_modes(sys, st, w2, x, NULL, NULL, &md);
   CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
   double lo = G0 / l * (2 - sqrt(2.0)), hi = G0 / l * (2 + sqrt(2.0));
-  printf("  omega^2 = %.17g, %.17g; closed form %.17g, %.17g (diff %.3g, %.3g)\n", w2[0], w2[1],
-         lo, hi, w2[0] - lo, w2[1] - hi);
+  printf("  omega^2 = %.17g, %.17g; closed form %.17g, %.17g (diff %.3g, %.3g)\n", w2[0], w2[1], lo,
+         hi, w2[0] - lo, w2[1] - hi);
   CHECK_CLOSE(w2[0], lo, 1e-12);
   CHECK_CLOSE(w2[1], hi, 1e-12);
   CHECK(md.verdict == DAL_NEUTRAL);
   // shapes: horizontal motions only, angles theta2 = sqrt 2 theta1 (in phase), then -sqrt 2
   CHECK_CLOSE(x[1], 0.0, 1e-12);
   CHECK_CLOSE(x[3], 0.0, 1e-12);
-  CHECK_CLOSE(x[2] / x[0], 1 + sqrt(2.0), 1e-12); // x2 = l (theta1 + theta2), theta2 = +-sqrt 2 theta1
+  CHECK_CLOSE(x[2] / x[0], 1 + sqrt(2.0),
+              1e-12); // x2 = l (theta1 + theta2), theta2 = +-sqrt 2 theta1
   CHECK_CLOSE(x[6] / x[4], 1 - sqrt(2.0), 1e-12);
   // at the static point the reduced matrices are N' M N and N' K_full N
   double M[16], K[16], N[8], Mr[4], Kr[4];

@@ -55,8 +55,7 @@ static void test_period(void) {
     double q = th0, qd = 0.0;
     CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
     dal_events_clear(ev);
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = cases[c].m;
     o.rtol = cases[c].rtol;
     CHECK_OK(dal_advance(s, st, &o, 5.2 * T));
@@ -112,8 +111,7 @@ static void test_bead_turning(void) {
   double c1 = (G0 * R + sqrt(disc)) / (2.0 * A), c2 = (G0 * R - sqrt(disc)) / (2.0 * A);
   double th_a = acos(fmin(c1, 1.0)), th_b = acos(c2); // the two turning angles (th_a = 0.2)
   CHECK_CLOSE(th_a, 0.2, 1e-12);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   CHECK_OK(dal_advance(s, st, &o, 10.0));
   long n = dal_events_count(ev);
@@ -167,8 +165,7 @@ static void test_leaving_circle(void) {
   CHECK_OK(dal_state_set_events(st, ev));
   double q = PI, qd = v0 / R;
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   int rc = dal_advance(s, st, &o, 5.0);
   CHECK_MSG(rc == DAL_EVENT, "status %s: %s", dal_status_name(rc), dal_state_errmsg(st));
@@ -205,7 +202,7 @@ static void test_leaving_circle(void) {
     double x[2] = {0.0, R}, v[2] = {v0, 0.0};
     CHECK_OK(dal_state_set(s, st, 0.0, x, v));
     dal_events_clear(ev);
-    dal_solve_default_opts(&o);
+    o = dal_default_solve_opts();
     o.form = forms[f];
     o.project = 1;
     o.rtol = 1e-9;
@@ -264,8 +261,7 @@ static void test_every_method(void) {
     double q = th0, qd = 0.0;
     CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
     dal_events_clear(ev);
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[k];
     o.rtol = 1e-9;
     o.fixed_step = 1e-3;
@@ -341,8 +337,7 @@ static void test_failures_and_csv(void) {
   CHECK_OK(dal_state_set_events(st, ev));
   double q = 1.0, qd = 0.0;
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   int rc = dal_advance(s, st, &o, 2.0);
   CHECK(rc == DAL_E_CALLBACK && strstr(dal_state_errmsg(st), "'broken'") != NULL);
   CHECK(dal_state_time(st) > 0.5 && dal_state_time(st) < 2.0 && dal_state_qddot(st) != NULL);

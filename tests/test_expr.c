@@ -36,8 +36,8 @@ typedef struct case_ {
 #define TOLF 2e-14
 
 // largest |expr - C| / (TOLF (1 + |C coefficients|)) over outputs and the four coefficients
-static double compare(const dal_primitive *prim, const dal_expr *e, const dal_jet *in,
-                      dal_jet t, const double *param, double worst[4]) {
+static double compare(const dal_primitive *prim, const dal_expr *e, const dal_jet *in, dal_jet t,
+                      const double *param, double worst[4]) {
   dal_jet a[8], b[8];
   CHECK(prim->eval(in, t, param, a, NULL) == 0);
   CHECK_OK(dal_expr_eval(e, in, t, param, b));
@@ -263,8 +263,8 @@ static void errors(void) {
   double xv = 1.7;
   CHECK_CLOSE(out.v, -xv * xv + 0.5 * xv * xv * xv - 0.15 / xv + sqrt(xv) + xv * xv - xv * xv * xv,
               1e-14);
-  CHECK_CLOSE(out.d, -2 * xv + 1.5 * xv * xv + 0.15 / (xv * xv) + 0.5 / sqrt(xv) + 2 * xv -
-                         3 * xv * xv,
+  CHECK_CLOSE(out.d,
+              -2 * xv + 1.5 * xv * xv + 0.15 / (xv * xv) + 0.5 / sqrt(xv) + 2 * xv - 3 * xv * xv,
               1e-14);
   dal_expr_destroy(e);
 }
@@ -299,8 +299,8 @@ static dal_system *pendulum_system(const dal_expr *e, double l, double a, double
   return sys;
 }
 
-static void run_to(const dal_system *sys, const char *override, double value, double q0,
-                   double T, double *q) {
+static void run_to(const dal_system *sys, const char *override, double value, double q0, double T,
+                   double *q) {
   dal_state *st;
   dal_state_create(sys, &st);
   if (override) CHECK_OK(dal_state_set_param_named(sys, st, override, value));
@@ -364,8 +364,8 @@ static void systems(void) {
   double y1[2], y2[2];
   run_to(sc, NULL, 0, 1.0, 10.0, y1);
   run_to(se, NULL, 0, 1.0, 10.0, y2);
-  printf("driven pendulum at t = 10: C %.15f %.15f, expression %.15f %.15f\n", y1[0], y1[1],
-         y2[0], y2[1]);
+  printf("driven pendulum at t = 10: C %.15f %.15f, expression %.15f %.15f\n", y1[0], y1[1], y2[0],
+         y2[1]);
   CHECK_CLOSE(y2[0], y1[0], 1e-10);
   CHECK_CLOSE(y2[1], y1[1], 1e-10);
   // a per-trajectory override: the pivot amplitude (C parameter ay = 4, expression a = 1)

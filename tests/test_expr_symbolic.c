@@ -65,10 +65,12 @@ static const char *sx_read(const char *s, char *out, size_t *k, size_t cap) {
   while (*s && !isspace((unsigned char)*s) && n < 31)
     op[n++] = *s++;
   op[n] = 0;
-  const char *sep = !strcmp(op, "+") ? "+" : !strcmp(op, "*") ? "*" : !strcmp(op, "/") ? "/"
-                    : !strcmp(op, "-")                          ? "-"
-                    : !strcmp(op, "expt")                       ? "^"
-                                                                : ",";
+  const char *sep = !strcmp(op, "+")      ? "+"
+                    : !strcmp(op, "*")    ? "*"
+                    : !strcmp(op, "/")    ? "/"
+                    : !strcmp(op, "-")    ? "-"
+                    : !strcmp(op, "expt") ? "^"
+                                          : ",";
   int call = !strcmp(sep, ",");
   if (call) {
     emit(out, k, cap, op);
@@ -203,8 +205,7 @@ static void driven_pendulum(void) {
 static void ring_and_double_pendulum(void) {
   // the bead on the ring turning at omega about the vertical: closed form of the acceleration
   const char *coords[] = {"theta"}, *masses[] = {"m"};
-  const char *pos[] = {"R*sin(theta)*cos(omega*t)", "R*sin(theta)*sin(omega*t)",
-                       "-R*cos(theta)"};
+  const char *pos[] = {"R*sin(theta)*cos(omega*t)", "R*sin(theta)*sin(omega*t)", "-R*cos(theta)"};
   const char *grav[] = {"0", "0", "-g"};
   const char *par[] = {"m", "R", "omega", "g"};
   double val[] = {0.3, 0.5, 5.0, 9.81};
@@ -346,8 +347,8 @@ static void derivatives(void) {
         dal_jet cin[2] = {dal_const(x), dal_const(y)};
         dal_expr_eval(de, cin, dal_const(t), NULL, &dout);
         CHECK_MSG(fabs(dout.v - out.d) <= 1e-12 * (1 + fabs(out.d)),
-                  "d(%s)/d%s at (%g, %g, %g): symbolic %.17g, jet %.17g", f[i],
-                  j < 0 ? "t" : in[j], x, y, t, dout.v, out.d);
+                  "d(%s)/d%s at (%g, %g, %g): symbolic %.17g, jet %.17g", f[i], j < 0 ? "t" : in[j],
+                  x, y, t, dout.v, out.d);
       }
       dal_expr_destroy(de);
     }
@@ -360,8 +361,7 @@ static void derivatives(void) {
       dal_jet jin[2] = {dal_const(rnd(0.2, 1.2)), dal_const(rnd(0.2, 1.2))}, o1, o2;
       dal_expr_eval(e, jin, dal_const(0.5), NULL, &o1);
       dal_expr_eval(back, jin, dal_const(0.5), NULL, &o2);
-      CHECK_MSG(fabs(o1.v - o2.v) <= 1e-13 * (1 + fabs(o1.v)), "'%s' printed as '%s'", f[i],
-                text);
+      CHECK_MSG(fabs(o1.v - o2.v) <= 1e-13 * (1 + fabs(o1.v)), "'%s' printed as '%s'", f[i], text);
     }
     dal_expr_destroy(back);
     dal_expr_destroy(e);

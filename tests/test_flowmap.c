@@ -66,8 +66,8 @@ static dal_system *dp_angles(int with_links) {
 
 // the flow y(t1) from (t0, q, v) with the state's parameters, by BS at rtol 1e-13 (index-1
 // form with projection when constrained)
-static void flow(const dal_system *sys, dal_state *st, double t0, const double *q,
-                 const double *v, double t1, double *y) {
+static void flow(const dal_system *sys, dal_state *st, double t0, const double *q, const double *v,
+                 double t1, double *y) {
   int n = dal_system_ncoords(sys);
   dal_solve_opts o;
   dal_solve_default_opts(&o);
@@ -259,24 +259,28 @@ static void redundant_phi(void) {
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double a1 = 0.9, a2 = -0.5, w1 = 1.2, w2 = 0.4;
-  double y0[8] = {0.9 * sin(a1), -0.9 * cos(a1), 0.9 * sin(a1) + 0.6 * sin(a2),
-                  -0.9 * cos(a1) - 0.6 * cos(a2), 0.9 * cos(a1) * w1, 0.9 * sin(a1) * w1,
-                  0.9 * cos(a1) * w1 + 0.6 * cos(a2) * w2, 0.9 * sin(a1) * w1 + 0.6 * sin(a2) * w2};
+  double y0[8] = {0.9 * sin(a1),
+                  -0.9 * cos(a1),
+                  0.9 * sin(a1) + 0.6 * sin(a2),
+                  -0.9 * cos(a1) - 0.6 * cos(a2),
+                  0.9 * cos(a1) * w1,
+                  0.9 * sin(a1) * w1,
+                  0.9 * cos(a1) * w1 + 0.6 * cos(a2) * w2,
+                  0.9 * sin(a1) * w1 + 0.6 * sin(a2) * w2};
   const double t1 = 1.5;
   // tangent directions of the state manifold: the angle variations mapped to (dq, dv)
   double Z[4][8];
   for (int j = 0; j < 4; ++j) {
     double da1 = j == 0, da2 = j == 1, dw1 = j == 2, dw2 = j == 3;
-    double z[8] = {0.9 * cos(a1) * da1,
-                   0.9 * sin(a1) * da1,
-                   0.9 * cos(a1) * da1 + 0.6 * cos(a2) * da2,
-                   0.9 * sin(a1) * da1 + 0.6 * sin(a2) * da2,
-                   0.9 * (cos(a1) * dw1 - sin(a1) * w1 * da1),
-                   0.9 * (sin(a1) * dw1 + cos(a1) * w1 * da1),
-                   0.9 * (cos(a1) * dw1 - sin(a1) * w1 * da1) +
-                       0.6 * (cos(a2) * dw2 - sin(a2) * w2 * da2),
-                   0.9 * (sin(a1) * dw1 + cos(a1) * w1 * da1) +
-                       0.6 * (sin(a2) * dw2 + cos(a2) * w2 * da2)};
+    double z[8] = {
+        0.9 * cos(a1) * da1,
+        0.9 * sin(a1) * da1,
+        0.9 * cos(a1) * da1 + 0.6 * cos(a2) * da2,
+        0.9 * sin(a1) * da1 + 0.6 * sin(a2) * da2,
+        0.9 * (cos(a1) * dw1 - sin(a1) * w1 * da1),
+        0.9 * (sin(a1) * dw1 + cos(a1) * w1 * da1),
+        0.9 * (cos(a1) * dw1 - sin(a1) * w1 * da1) + 0.6 * (cos(a2) * dw2 - sin(a2) * w2 * da2),
+        0.9 * (sin(a1) * dw1 + cos(a1) * w1 * da1) + 0.6 * (sin(a2) * dw2 + cos(a2) * w2 * da2)};
     memcpy(Z[j], z, sizeof z);
   }
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 4));

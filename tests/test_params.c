@@ -128,8 +128,7 @@ static dal_system *loop(double L, double x0, double R, double link, double m) {
 // advance st from (q0, v0) to t1; write the final (q, qdot) into out (2n); returns status
 static int run(const dal_system *sys, dal_state *st, const double *q0, const double *v0,
                dal_method method, double t1, double *out) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = method;
   o.rtol = 1e-9;
   o.atol = 1e-11;
@@ -262,8 +261,7 @@ static void test_dae(void) {
   CHECK_CLOSE(hypot(xa[0] - xa[2], xa[1] - xa[3]), 0.9, 1e-7);
   // a rod that cannot close the loop: the distance from the anchor to the ring is at most 2.5
   CHECK_OK(dal_state_set_param_named(s0, a, "con:rod:0", 5.0));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_state_set(s0, a, 0.0, q0, v0));
   int rc = dal_advance(s0, a, &o, 1.0);
   CHECK_MSG(rc == DAL_E_INIT || rc == DAL_E_CONSTRAINT, "rod too long: %s (%s)",

@@ -107,8 +107,7 @@ static int cart_pendulum(scene *s, double th, dal_force_fn *force, void *fctx) {
 }
 
 static dal_solve_opts opts_for(dal_method m) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = m;
   return o;
 }

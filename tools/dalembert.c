@@ -20,9 +20,10 @@
 #include "dalembert/scene.h"
 
 static int usage(void) {
-  fprintf(stderr, "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--set NAME=VALUE]...\n"
-                  "       dalembert show SCENE [--text | --latex | --scheme] [--set NAME=VALUE]...\n"
-                  "       dalembert write SCENE [--set NAME=VALUE]...\n");
+  fprintf(stderr,
+          "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--set NAME=VALUE]...\n"
+          "       dalembert show SCENE [--text | --latex | --scheme] [--set NAME=VALUE]...\n"
+          "       dalembert write SCENE [--set NAME=VALUE]...\n");
   return 64;
 }
 
@@ -36,8 +37,9 @@ static int chart(const dal_scene *sc, const char *csv, const char *png) {
     fprintf(stderr, "dalembert: gnuplot not found; no chart\n");
     return DAL_E_IO;
   }
-  fprintf(gp, "set terminal pngcairo size 900,500\nset output '%s'\nset datafile separator ','\n"
-              "set key autotitle columnhead\nset xlabel 't'\nplot ",
+  fprintf(gp,
+          "set terminal pngcairo size 900,500\nset output '%s'\nset datafile separator ','\n"
+          "set key autotitle columnhead\nset xlabel 't'\nplot ",
           png);
   int n = dal_system_ncoords(sys);
   for (int i = 0; i < n; ++i)

@@ -194,16 +194,16 @@ DAL_API int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega
 // ---------------------------------------------------------------------------------------------
 // equilibria
 
-/// Options of dal_equilibrium. Always start from dal_equilibrium_default_opts().
+/// Options of dal_equilibrium. Always start from dal_default_equilibrium_opts().
 typedef struct dal_equilibrium_opts {
-  int magic;       ///< set by dal_equilibrium_default_opts; do not touch
+  int cookie;      ///< set by dal_default_equilibrium_opts; do not touch
   double xtol;     ///< converged when every Newton step |dq_i| <= xtol (1 + |q_i|); 1e-12
   int max_iter;    ///< Newton iterations at most; 50
   double max_step; ///< largest |dq_i| of one step (the step is scaled down to it); 0: none
 } dal_equilibrium_opts;
 
 /// Fill *o with the defaults (xtol 1e-12, 50 iterations, no step bound).
-DAL_API void dal_equilibrium_default_opts(dal_equilibrium_opts *o);
+DAL_API dal_equilibrium_opts dal_default_equilibrium_opts(void);
 
 /// What dal_equilibrium found.
 typedef struct dal_equilibrium_report {
@@ -229,9 +229,9 @@ typedef struct dal_equilibrium_report {
 /// redundant coordinates) is DAL_E_UNSUPPORTED; a moving constraint that leaves the point in
 /// place (a turning ring's bottom) is fine.
 /// Returns DAL_OK; DAL_E_SINGULAR when K (or the KKT Newton matrix) is singular (a bifurcation
-/// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter iterations or a
-/// non-finite step (the state then holds the last iterate); DAL_E_ARG for bad options; the
-/// statuses of dal_linearize.
+/// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter
+/// iterations or a non-finite step (the state then holds the last iterate); DAL_E_ARG for bad
+/// options; the statuses of dal_linearize.
 DAL_API int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                             dal_equilibrium_report *rep);
 
@@ -256,9 +256,9 @@ typedef enum dal_branch_kind {
 typedef int dal_branch_fn(double p, const dal_system *sys, const dal_state *st,
                           dal_stability verdict, dal_branch_kind kind, void *ctx);
 
-/// Options of dal_continue. Always start from dal_continuation_default_opts().
+/// Options of dal_continue. Always start from dal_default_continuation_opts().
 typedef struct dal_continuation_opts {
-  int magic;                   ///< set by dal_continuation_default_opts; do not touch
+  int cookie;                  ///< set by dal_default_continuation_opts; do not touch
   double p0;                   ///< first parameter value
   double p1;                   ///< last parameter value (may be below p0)
   int npoints;                 ///< grid points from p0 to p1, both included (>= 2); 41
@@ -269,7 +269,7 @@ typedef struct dal_continuation_opts {
 } dal_continuation_opts;
 
 /// Fill *o with the defaults (see the fields), p0 = 0, p1 = 1.
-DAL_API void dal_continuation_default_opts(dal_continuation_opts *o);
+DAL_API dal_continuation_opts dal_default_continuation_opts(void);
 
 /// Report of a continuation.
 typedef struct dal_continuation_report {
@@ -299,9 +299,9 @@ DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_co
 // ---------------------------------------------------------------------------------------------
 // Lyapunov exponents
 
-/// Options of dal_lyapunov. Always start from dal_lyapunov_default_opts().
+/// Options of dal_lyapunov. Always start from dal_default_lyapunov_opts().
 typedef struct dal_lyapunov_opts {
-  int magic;         ///< set by dal_lyapunov_default_opts; do not touch
+  int cookie;        ///< set by dal_default_lyapunov_opts; do not touch
   int nexp;          ///< exponents wanted, 1 .. 2n (the largest ones); 0 (default): all 2n
   double t_end;      ///< integrate from the state's t to t_end (> t); required
   double transient;  ///< time discarded before the averages start (the tangent vectors align
@@ -320,7 +320,7 @@ typedef struct dal_lyapunov_opts {
 } dal_lyapunov_opts;
 
 /// Fill *o with the defaults (see the fields); t_end must still be set.
-DAL_API void dal_lyapunov_default_opts(dal_lyapunov_opts *o);
+DAL_API dal_lyapunov_opts dal_default_lyapunov_opts(void);
 
 /// Called after every reorthonormalization that lies past the transient: time t and the
 /// running estimates (nexp), in the order of the QR columns (decreasing once the tangent

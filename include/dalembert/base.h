@@ -26,12 +26,26 @@ extern "C" {
 
 /// Major version of the headers being compiled against (incompatible API changes).
 #define DAL_VERSION_MAJOR 0
-/// Minor version of the headers (additions that keep the API compatible).
-#define DAL_VERSION_MINOR 2
+/// Minor version of the headers: additions that keep the API compatible from 1.0 on; while
+/// MAJOR is 0 a minor step may change the API (CHANGELOG.md says how to port).
+#define DAL_VERSION_MINOR 3
 /// Patch version of the headers (fixes only).
 #define DAL_VERSION_PATCH 0
-/// The version as one comparable integer, e.g. `#if DAL_VERSION_NUMBER >= 200` for 0.2.0.
+/// The version as one comparable integer, e.g. `#if DAL_VERSION_NUMBER >= 300` for 0.3.0.
 #define DAL_VERSION_NUMBER (DAL_VERSION_MAJOR * 10000 + DAL_VERSION_MINOR * 100 + DAL_VERSION_PATCH)
+
+// Conventions of the whole API (0.3 on):
+// - names: dal_<object>_<verb>[_<what>] for a call on an object (dal_builder_add_particle,
+//   dal_state_set), dal_<object>_create/_destroy for its life; an element made from a def is
+//   added by dal_builder_<verb>_def.
+// - defaults: every def and every options struct T (dal_place_def, dal_solve_opts, ...) is
+//   started from `T x = dal_default_<T without dal_>();`, which returns it by value with every
+//   field at its documented default and a `cookie` field set; a struct that did not come from
+//   it is refused (DAL_E_ARG, the message naming the constructor). One form for both kinds:
+//   by value, as Box2D v3's b2Default*Def(), because a def or options struct is small, is
+//   filled once and read during the call only, and `T x = dal_default_x();` cannot leave x
+//   uninitialized (an out-parameter constructor can be forgotten before the first field is
+//   set). The cookie catches a struct written field by field or zeroed by memset.
 
 /// The one list of status codes: X(name, value, description).
 /// 0 is success; every failure is negative. The positive codes are not failures: dal_evolve

@@ -101,9 +101,9 @@ typedef struct dal_sweep {
   void *ctx;                   ///< passed to reduce (borrowed)
 } dal_sweep;
 
-/// Sweep options. Always start from dal_sweep_default_opts().
+/// Sweep options. Always start from dal_default_sweep_opts().
 typedef struct dal_sweep_opts {
-  int magic;                             ///< set by dal_sweep_default_opts; do not touch
+  int cookie;                            ///< set by dal_default_sweep_opts; do not touch
   int nthreads;                          ///< worker threads incl. the caller (default 1;
                                          ///< 0: the number of online processors)
   dal_schedule schedule;                 ///< default DAL_SCHEDULE_DYNAMIC
@@ -133,7 +133,7 @@ typedef struct dal_sweep_out {
 } dal_sweep_out;
 
 /// Fill *o with the defaults (1 thread, dynamic schedule, chunk 1, no progress, all parts).
-DAL_API void dal_sweep_default_opts(dal_sweep_opts *o);
+DAL_API dal_sweep_opts dal_default_sweep_opts(void);
 
 /// The part (0 .. nparts-1) trajectory i belongs to: (i / block) mod nparts, i.e. blocks of
 /// `block` trajectories dealt round-robin (block 1 interleaves neighbours of a grid, which

@@ -1,47 +1,48 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Expressions: formulas compiled to jet programs, usable as primitives and callbacks, and the
-// same formulas differentiated, simplified and printed.
-//
-// A dal_expr is a vector of formulas over named inputs (coordinates, particle positions, and
-// with `velocities` their velocities named input + "dot"), the time `t` and named parameters:
-//
-//   "l*sin(theta)"   "-l*cos(theta) + a*cos(omega*t)"   "1/2*m*(thetadot*l)^2 + m*g*l*cos(theta)"
-//
-// Grammar: numbers (12, 0.5, 1e-3), names, + - * / ^ (also **; right-associative, binding
-// tighter than unary minus: -x^2 = -(x^2)), unary minus and plus, parentheses, and the
-// functions sin cos tan asin acos atan sinh cosh tanh exp log sqrt (one argument), atan2(y, x),
-// hypot(a, b) and pow(a, b). `pi` is the constant unless a name shadows it. Powers with an
-// integer constant exponent are exact for any sign of the base; other exponents need a
-// positive base.
-//
-// Compilation hash-conses the formulas (a repeated subexpression is evaluated once), splits off
-// what depends only on parameters and constants (evaluated in doubles), and allocates registers
-// by last use; evaluation runs the instruction list over dal_jet to order 3 (the order the
-// library uses) on the stack, with no allocation. A compiled expression is immutable: threads
-// may evaluate it at the same time.
-//
-// Where an expression goes (each adapter's ctx is the dal_expr, borrowed: it must outlive the
-// system):
-//   coordinate map of one particle   dal_expr_primitive + dal_expr_place_def (nout = d; inputs
-//                                    the parent's position, if any, then the coordinates)
-//   constraint                       dal_expr_primitive + dal_expr_constraint_def (inputs the
-//                                    particles' positions, d each, then the coordinates)
-//   whole-system map r(q, t)         dal_expr_map (nout = N d, inputs q)
-//   potential U(r, t) / U(q, t)      dal_expr_potential_r / dal_expr_potential_q (nout = 1)
-//   Lagrangian L(t, q, qdot)         dal_expr_lagrangian (nout = 1, velocities = 1, inputs q)
-//   moving point / prescribed f(t)   dal_expr_path / dal_expr_time (no inputs)
-//   event g(t, q, qdot)              dal_expr_event (nout = 1, velocities = 1)
-// As a primitive the parameters are the primitive's named parameters, with the expression's
-// values as defaults: a def may set them (def.param[i], i in the order of the def's `params`)
-// and a state may override them per trajectory ("place:<particle>:<i>", "con:<name>:<i>",
-// params.h). The callback adapters read the expression's own values.
-//
-// Errors: a formula that does not parse is refused with a message naming the formula, the
-// column (1-based) and the unknown symbol or the bad token. At run time a function outside its
-// domain (log of a negative number, ...) produces NaN, which the library reports as
-// DAL_E_DOMAIN naming the primitive (whose name is the def's name); dal_expr_check names the
-// formula, column and function.
+/// @file
+/// @brief Expressions: formulas compiled to jet programs, usable as primitives and callbacks, and the
+/// same formulas differentiated, simplified and printed.
+///
+/// A dal_expr is a vector of formulas over named inputs (coordinates, particle positions, and
+/// with `velocities` their velocities named input + "dot"), the time `t` and named parameters:
+///
+///   "l*sin(theta)"   "-l*cos(theta) + a*cos(omega*t)"   "1/2*m*(thetadot*l)^2 + m*g*l*cos(theta)"
+///
+/// Grammar: numbers (12, 0.5, 1e-3), names, + - * / ^ (also **; right-associative, binding
+/// tighter than unary minus: -x^2 = -(x^2)), unary minus and plus, parentheses, and the
+/// functions sin cos tan asin acos atan sinh cosh tanh exp log sqrt (one argument), atan2(y, x),
+/// hypot(a, b) and pow(a, b). `pi` is the constant unless a name shadows it. Powers with an
+/// integer constant exponent are exact for any sign of the base; other exponents need a
+/// positive base.
+///
+/// Compilation hash-conses the formulas (a repeated subexpression is evaluated once), splits off
+/// what depends only on parameters and constants (evaluated in doubles), and allocates registers
+/// by last use; evaluation runs the instruction list over dal_jet to order 3 (the order the
+/// library uses) on the stack, with no allocation. A compiled expression is immutable: threads
+/// may evaluate it at the same time.
+///
+/// Where an expression goes (each adapter's ctx is the dal_expr, borrowed: it must outlive the
+/// system):
+///   coordinate map of one particle   dal_expr_primitive + dal_expr_place_def (nout = d; inputs
+///                                    the parent's position, if any, then the coordinates)
+///   constraint                       dal_expr_primitive + dal_expr_constraint_def (inputs the
+///                                    particles' positions, d each, then the coordinates)
+///   whole-system map r(q, t)         dal_expr_map (nout = N d, inputs q)
+///   potential U(r, t) / U(q, t)      dal_expr_potential_r / dal_expr_potential_q (nout = 1)
+///   Lagrangian L(t, q, qdot)         dal_expr_lagrangian (nout = 1, velocities = 1, inputs q)
+///   moving point / prescribed f(t)   dal_expr_path / dal_expr_time (no inputs)
+///   event g(t, q, qdot)              dal_expr_event (nout = 1, velocities = 1)
+/// As a primitive the parameters are the primitive's named parameters, with the expression's
+/// values as defaults: a def may set them (def.param[i], i in the order of the def's `params`)
+/// and a state may override them per trajectory ("place:<particle>:<i>", "con:<name>:<i>",
+/// params.h). The callback adapters read the expression's own values.
+///
+/// Errors: a formula that does not parse is refused with a message naming the formula, the
+/// column (1-based) and the unknown symbol or the bad token. At run time a function outside its
+/// domain (log of a negative number, ...) produces NaN, which the library reports as
+/// DAL_E_DOMAIN naming the primitive (whose name is the def's name); dal_expr_check names the
+/// formula, column and function.
 #ifndef DAL_EXPR_H
 #define DAL_EXPR_H
 
@@ -176,19 +177,19 @@ DAL_API int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out,
 /// A model of particles given by formulas, from which T, U and L are derived symbolically.
 /// Start from dal_default_expr_model_def().
 typedef struct dal_expr_model_def {
-  const char *name;                ///< name in messages (copied); default "model"
-  int dim;                         ///< spatial dimension d (1, 2 or 3). Required
-  const char *const *coords;       ///< names of the ncoords generalized coordinates
-  int ncoords;                     ///< number of coordinates n (>= 1)
-  const char *const *masses;       ///< nparticles formulas of the masses ("m", "2")
-  int nparticles;                  ///< number of particles N (>= 1)
-  const char *const *positions;    ///< N d formulas r_k(q, t), particle by particle
-  const char *const *gravity;      ///< d formulas of the gravity vector ("0", "-g"); NULL: none
-  const char *potential;           ///< a further potential U(q, t); NULL: none
-  const char *const *params;       ///< names of the nparam parameters
-  const double *values;            ///< their values (NULL: all 0)
-  int nparam;                      ///< number of parameters
-  int cookie;                      ///< set by dal_default_expr_model_def; do not touch
+  const char *name;             ///< name in messages (copied); default "model"
+  int dim;                      ///< spatial dimension d (1, 2 or 3). Required
+  const char *const *coords;    ///< names of the ncoords generalized coordinates
+  int ncoords;                  ///< number of coordinates n (>= 1)
+  const char *const *masses;    ///< nparticles formulas of the masses ("m", "2")
+  int nparticles;               ///< number of particles N (>= 1)
+  const char *const *positions; ///< N d formulas r_k(q, t), particle by particle
+  const char *const *gravity;   ///< d formulas of the gravity vector ("0", "-g"); NULL: none
+  const char *potential;        ///< a further potential U(q, t); NULL: none
+  const char *const *params;    ///< names of the nparam parameters
+  const double *values;         ///< their values (NULL: all 0)
+  int nparam;                   ///< number of parameters
+  int cookie;                   ///< set by dal_default_expr_model_def; do not touch
 } dal_expr_model_def;
 
 /// A model def with no coordinates, particles or parameters, dim 0 (to be set), name "model".
@@ -207,19 +208,18 @@ DAL_API int dal_expr_model_energies(const dal_expr_model_def *def, dal_expr **T,
 /// (coordinates with velocities), t and parameters; the caller owns them
 /// (dal_expr_equations_destroy).
 typedef struct dal_expr_equations {
-  int n;               ///< number of coordinates
-  dal_expr *momentum;  ///< p_i = dL/dqdot_i (n formulas)
-  dal_expr *mass;      ///< M_ij = d2L/dqdot_i dqdot_j (n x n formulas, row-major)
-  dal_expr *force;     ///< F_i = dL/dq_i - sum_j d2L/dqdot_i dq_j qdot_j - d2L/dqdot_i dt (n)
-  dal_expr *accel;     ///< qddot = M^-1 F when n == 1 (the state derivative's last part), NULL
-                       ///< for n > 1
+  int n;              ///< number of coordinates
+  dal_expr *momentum; ///< p_i = dL/dqdot_i (n formulas)
+  dal_expr *mass;     ///< M_ij = d2L/dqdot_i dqdot_j (n x n formulas, row-major)
+  dal_expr *force;    ///< F_i = dL/dq_i - sum_j d2L/dqdot_i dq_j qdot_j - d2L/dqdot_i dt (n)
+  dal_expr *accel;    ///< qddot = M^-1 F when n == 1 (the state derivative's last part), NULL
+                      ///< for n > 1
 } dal_expr_equations;
 
 /// Derive Lagrange's equations from L (one formula, velocities = 1) into *eq. Returns DAL_OK,
 /// DAL_E_ARG (L not a Lagrangian expression), DAL_E_NOMEM; on failure *eq holds no
 /// expression.
-DAL_API int dal_expr_lagrange(const dal_expr *L, dal_expr_equations *eq, char *msg,
-                              size_t msglen);
+DAL_API int dal_expr_lagrange(const dal_expr *L, dal_expr_equations *eq, char *msg, size_t msglen);
 
 /// Free the expressions of eq (NULL members are skipped) and zero it.
 DAL_API void dal_expr_equations_destroy(dal_expr_equations *eq);

@@ -135,7 +135,9 @@ DAL_API int dal_builder_add_particle(dal_builder *b, const char *name, double ma
 // Element definitions (Box2D v3 style): start from dal_default_*_def(), set the fields the
 // scene needs, pass the def to dal_builder_*_def. The def is read during the call only (its
 // arrays are copied). A def that did not come from its dal_default_*_def() constructor is
-// refused (DAL_E_ARG) by its cookie.
+// refused (DAL_E_ARG) by its cookie. Defs are the only way to add elements (0.3 removed the
+// positional dal_builder_place and friends; CHANGELOG.md shows the port), and options follow
+// the same convention (base.h).
 
 /// Largest number of parameters a def holds inline (param[]); a primitive with more takes
 /// them all from the def's `param_list` instead.

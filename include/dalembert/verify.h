@@ -28,7 +28,8 @@
 extern "C" {
 #endif
 
-/// Options of the jet checks. Start from dal_verify_default_opts().
+/// Options of the jet checks. Always start from dal_default_verify_opts() (options that did not
+/// come from it are refused, DAL_E_ARG); NULL options mean the defaults.
 typedef struct dal_verify_opts {
   int nsamples;            ///< sample points (default 16)
   double lo;               ///< lower end of every input's range (default -1; see in_lo)
@@ -40,10 +41,11 @@ typedef struct dal_verify_opts {
   double h;                ///< finite-difference step relative to max(1, |x|) (default 1e-3)
   double tol_factor;       ///< multiple of the derived bound that still passes (default 10)
   unsigned long long seed; ///< random seed (default 1): the same seed gives the same points
+  int cookie;              ///< set by dal_default_verify_opts; do not touch
 } dal_verify_opts;
 
-/// Fill *o with the defaults listed in dal_verify_opts.
-DAL_API void dal_verify_default_opts(dal_verify_opts *o);
+/// The defaults listed in dal_verify_opts.
+DAL_API dal_verify_opts dal_default_verify_opts(void);
 
 /// What a jet check found. The worst entry is the one with the largest error / bound ratio.
 typedef struct dal_verify_report {

@@ -12,7 +12,4 @@
 int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                               dal_equilibrium_report *rep);
 
-
-
-
 #endif

@@ -11,38 +11,42 @@
 
 #include "analysis.h"
 
-#define DAL_EQ_MAGIC 0x0e9c1b05
+#define DAL_EQ_COOKIE 0x0e9c1b05
 /// Newton's neighbourhood: an iterate farther than this many times (1 + max |q0_i|) from the
 /// start q0 has left any basin the start could be meant for (a nearly singular K sent it there)
 #define DAL_EQ_REACH 1e4
 /// the scaled residual below which a point whose last step met xtol is an equilibrium:
 /// max(xtol, this many ulps)
 #define DAL_EQ_RES_ULPS 1024.0
-#define DAL_CONT_MAGIC 0x0c0a71e5
+#define DAL_CONT_COOKIE 0x0c0a71e5
 
-void dal_equilibrium_default_opts(dal_equilibrium_opts *o) {
-  if (!o) return;
-  o->magic = DAL_EQ_MAGIC;
+dal_equilibrium_opts dal_default_equilibrium_opts(void) {
+  dal_equilibrium_opts d, *o = &d;
+  memset(o, 0, sizeof *o);
+  o->cookie = DAL_EQ_COOKIE;
   o->xtol = 1e-12;
   o->max_iter = 50;
   o->max_step = 0.0;
+  return d;
 }
 
-void dal_continuation_default_opts(dal_continuation_opts *o) {
-  if (!o) return;
-  o->magic = DAL_CONT_MAGIC;
+dal_continuation_opts dal_default_continuation_opts(void) {
+  dal_continuation_opts d, *o = &d;
+  memset(o, 0, sizeof *o);
+  o->cookie = DAL_CONT_COOKIE;
   o->p0 = 0.0;
   o->p1 = 1.0;
   o->npoints = 41;
   o->t = 0.0;
   o->locate = 1;
   o->ptol = 0.0;
-  dal_equilibrium_default_opts(&o->newton);
+  o->newton = dal_default_equilibrium_opts();
+  return d;
 }
 
 static int check_eq_opts(const dal_equilibrium_opts *o, char *err, size_t len) {
-  if (o->magic != DAL_EQ_MAGIC) {
-    snprintf(err, len, "equilibrium options not initialized: call dal_equilibrium_default_opts");
+  if (o->cookie != DAL_EQ_COOKIE) {
+    snprintf(err, len, "equilibrium options not initialized: call dal_default_equilibrium_opts");
     return DAL_E_ARG;
   }
   if (!(o->xtol > 0) || !isfinite(o->xtol) || o->max_iter < 1 || !(o->max_step >= 0) ||
@@ -214,7 +218,7 @@ int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_
   if (dal__check_idle(st, "equilibrium")) return DAL_E_STATE;
   dal_equilibrium_opts def;
   if (!o) {
-    dal_equilibrium_default_opts(&def);
+    def = dal_default_equilibrium_opts();
     o = &def;
   }
   char err[256];
@@ -321,9 +325,9 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
   if (!rebuild || !q0 || !o) {
     snprintf(r.msg, sizeof r.msg, "continue: rebuild, q0 and options are required");
     rc = DAL_E_ARG;
-  } else if (o->magic != DAL_CONT_MAGIC) {
+  } else if (o->cookie != DAL_CONT_COOKIE) {
     snprintf(r.msg, sizeof r.msg,
-             "continuation options not initialized: call dal_continuation_default_opts");
+             "continuation options not initialized: call dal_default_continuation_opts");
     rc = DAL_E_ARG;
   } else if (!isfinite(o->p0) || !isfinite(o->p1) || o->p0 == o->p1 || o->npoints < 2 ||
              !isfinite(o->t) || !(o->ptol >= 0)) {

@@ -96,7 +96,7 @@ static void residual_dp(const dal_system *sys, const dal_state *st, dal_tangent 
       rel += (tg->v[l->a * d + b] - vb) * e[b];
     }
     // -dF_a/dp: U = k/2 (len - L)^2 gives -F_a = k (len - L) e; a damper F_a = -c rel e
-    double s = ref->kind == DAL_PARAM_SPRING_K ? len - l->L
+    double s = ref->kind == DAL_PARAM_SPRING_K   ? len - l->L
                : ref->kind == DAL_PARAM_SPRING_L ? -l->k
                                                  : rel;
     for (int b = 0; b < d; ++b) {
@@ -166,8 +166,7 @@ static int var_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *o
 }
 
 int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                         double t1, double *Phi, int nparam, const char *const *params,
-                         double *S) {
+                         double t1, double *Phi, int nparam, const char *const *params, double *S) {
   int rc = dal__check_pair(sys, st, "state_transition");
   if (rc) return rc;
   if (!Phi && !S) return DAL_FAIL(st, DAL_E_ARG, "state_transition: Phi and S are both NULL");
@@ -176,8 +175,8 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
                     "state_transition: nparam = %d needs %s; S goes with nparam > 0 names", nparam,
                     nparam > 0 ? "the names and S" : "S = NULL");
   if (!isfinite(t1) || !(t1 > st->t))
-    return DAL_FAIL(st, DAL_E_ARG, "state_transition: t1 = %g must be finite and after t = %g",
-                    t1, st->t);
+    return DAL_FAIL(st, DAL_E_ARG, "state_transition: t1 = %g must be finite and after t = %g", t1,
+                    st->t);
   dal_solve_opts o;
   if (opts)
     o = *opts;
@@ -314,8 +313,7 @@ int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
   int rc = dal__check_pair(sys, st, "linearize_inputs");
   if (rc) return rc;
   if (ninput < 0 || (ninput > 0 && !inputs))
-    return DAL_FAIL(st, DAL_E_ARG, "linearize_inputs: ninput = %d needs %d names", ninput,
-                    ninput);
+    return DAL_FAIL(st, DAL_E_ARG, "linearize_inputs: ninput = %d needs %d names", ninput, ninput);
   if ((rc = dal__tangent_supported(sys, st, "linearize_inputs")) != 0) return rc;
   if ((rc = dal_forward(sys, st)) != 0) return rc;
   int n = sys->n, m = sys->m, k = n - m;

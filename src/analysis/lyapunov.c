@@ -16,12 +16,12 @@
 
 #include "analysis.h"
 
-#define DAL_LYAP_MAGIC 0x01a9e0f7
+#define DAL_LYAP_COOKIE 0x01a9e0f7
 
-void dal_lyapunov_default_opts(dal_lyapunov_opts *o) {
-  if (!o) return;
+dal_lyapunov_opts dal_default_lyapunov_opts(void) {
+  dal_lyapunov_opts d, *o = &d;
   memset(o, 0, sizeof *o);
-  o->magic = DAL_LYAP_MAGIC;
+  o->cookie = DAL_LYAP_COOKIE;
   o->nexp = 0;
   o->t_end = NAN;
   o->transient = 0.0;
@@ -33,6 +33,7 @@ void dal_lyapunov_default_opts(dal_lyapunov_opts *o) {
   o->y0 = NULL;
   o->nblocks = 10;
   o->max_steps = 10000000;
+  return d;
 }
 
 /// the run: system, scratch state, tangent workspace and integrator memory
@@ -222,10 +223,10 @@ static void lyap_free(lyap *L) {
 
 static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
   int ny = 2 * sys->n;
-  if (!o || o->magic != DAL_LYAP_MAGIC)
+  if (!o || o->cookie != DAL_LYAP_COOKIE)
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
-                    "dal_lyapunov_default_opts");
+                    "dal_default_lyapunov_opts");
   if (o->method != DAL_METHOD_DOPRI5 && o->method != DAL_METHOD_RK4)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "lyapunov: method '%s' is not available for the variational equations; use "

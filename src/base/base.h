@@ -11,7 +11,7 @@
 #include "dalembert/dalembert.h"
 
 #define DAL_ERRMSG_LEN 512
-#define DAL_OPTS_MAGIC 0x0da1e3b7
+#define DAL_OPTS_COOKIE 0x0da1e3b7
 /// Internal codes > 0 (never returned to the user): a trial point failed in a way that a
 /// smaller step may avoid. Each carries the public status it becomes when no smaller step
 /// helps or there is no step to shrink (dal__public_status):

@@ -13,12 +13,12 @@
 #include "base/base.h"
 #include "dalembert/ensemble.h"
 
-#define DAL_SWEEP_MAGIC 0x5eed0a11
+#define DAL_SWEEP_COOKIE 0x5eed0a11
 
-void dal_sweep_default_opts(dal_sweep_opts *o) {
-  if (!o) return;
+dal_sweep_opts dal_default_sweep_opts(void) {
+  dal_sweep_opts d, *o = &d;
   memset(o, 0, sizeof *o);
-  o->magic = DAL_SWEEP_MAGIC;
+  o->cookie = DAL_SWEEP_COOKIE;
   o->nthreads = 1;
   o->schedule = DAL_SCHEDULE_DYNAMIC;
   o->chunk = 1;
@@ -26,6 +26,7 @@ void dal_sweep_default_opts(dal_sweep_opts *o) {
   o->part = 0;
   o->nparts = 1;
   o->part_block = 1;
+  return d;
 }
 
 int dal_sweep_part_of(long i, int nparts, int block) {
@@ -197,8 +198,8 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
   if (errmsg && errlen) errmsg[0] = 0;
   if (!sys || !sw || !o || !out)
     return SFAIL(DAL_E_ARG, "sweep: system, sweep, options or out is NULL");
-  if (o->magic != DAL_SWEEP_MAGIC)
-    return SFAIL(DAL_E_ARG, "sweep options were not initialized: call dal_sweep_default_opts(&o) "
+  if (o->cookie != DAL_SWEEP_COOKIE)
+    return SFAIL(DAL_E_ARG, "sweep options were not initialized: call dal_default_sweep_opts() "
                             "before setting fields");
   if (sw->ntraj < 1) return SFAIL(DAL_E_ARG, "sweep: ntraj is %ld; give at least 1", sw->ntraj);
   if (sw->nparam < 0 || (sw->nparam > 0 && (!sw->params || !sw->values)))

@@ -254,7 +254,8 @@ int dal__alg_mul(dal_alg *g, const int *f, int n) {
     if (rest >= 0) factors(g, rest, &fs);
   }
   int r = -1;
-  int *base = malloc(((size_t)fs.n + 1) * sizeof *base), *ex = malloc(((size_t)fs.n + 1) * sizeof *ex);
+  int *base = malloc(((size_t)fs.n + 1) * sizeof *base),
+      *ex = malloc(((size_t)fs.n + 1) * sizeof *ex);
   ivec out = {0};
   if (!base || !ex || g->fail) {
     g->fail = 1;
@@ -393,11 +394,14 @@ int dal__alg_fn(dal_alg *g, int op, int a) {
     case X_ASIN:
     case X_ATAN:
     case X_SINH:
-    case X_TANH: return num(g, 0.0);
+    case X_TANH:
+      return num(g, 0.0);
     case X_COS:
     case X_COSH:
-    case X_EXP: return num(g, 1.0);
-    default: break;
+    case X_EXP:
+      return num(g, 1.0);
+    default:
+      break;
     }
   }
   if (op == X_LOG && dal__alg_isnum(g, a, 1.0)) return num(g, 0.0);
@@ -406,8 +410,8 @@ int dal__alg_fn(dal_alg *g, int op, int a) {
   // parity: f(-u) = -f(u) for odd f, f(-u) = f(u) for even f
   int na = N(g, a)->op == X_MUL ? negated(g, a) : -1;
   if (na >= 0) {
-    int odd = op == X_SIN || op == X_TAN || op == X_ASIN || op == X_ATAN || op == X_SINH ||
-              op == X_TANH;
+    int odd =
+        op == X_SIN || op == X_TAN || op == X_ASIN || op == X_ATAN || op == X_SINH || op == X_TANH;
     int even = op == X_COS || op == X_COSH;
     if (odd) {
       int f[2] = {num(g, -1.0), node(g, op, na, -1)};
@@ -450,7 +454,9 @@ int dal__alg_canon(dal_alg *g, int x) {
   case X_NUM:
   case X_IN:
   case X_PAR:
-  case X_TIME: r = x; break;
+  case X_TIME:
+    r = x;
+    break;
   case X_ADD: {
     int t[2] = {a, b};
     r = dal__alg_add(g, t, 2);
@@ -477,10 +483,15 @@ int dal__alg_canon(dal_alg *g, int x) {
     r = dal__alg_mul(g, f, 2);
     break;
   }
-  case X_POW: r = dal__alg_pow(g, a, b); break;
+  case X_POW:
+    r = dal__alg_pow(g, a, b);
+    break;
   case X_ATAN2:
-  case X_HYPOT: r = node(g, n.op, a, b); break;
-  default: r = dal__alg_fn(g, n.op, a);
+  case X_HYPOT:
+    r = node(g, n.op, a, b);
+    break;
+  default:
+    r = dal__alg_fn(g, n.op, a);
   }
   if (g->fail) return -1;
   slot = memo_get(g, &g->canon, &g->ncanon, x);
@@ -547,7 +558,9 @@ int dal__alg_expand(dal_alg *g, int x) {
   case X_NUM:
   case X_IN:
   case X_PAR:
-  case X_TIME: r = x; break;
+  case X_TIME:
+    r = x;
+    break;
   case X_ADD: {
     int *ts, nt;
     dal__alg_terms(g, x, &ts, &nt);
@@ -568,8 +581,7 @@ int dal__alg_expand(dal_alg *g, int x) {
   }
   case X_POW: {
     int b = dal__alg_expand(g, n.a), e = dal__alg_expand(g, n.b);
-    if (!g->fail && N(g, b)->op == X_ADD && is_int(g, e) && N(g, e)->c >= 2 &&
-        N(g, e)->c <= 8) {
+    if (!g->fail && N(g, b)->op == X_ADD && is_int(g, e) && N(g, e)->c >= 2 && N(g, e)->c <= 8) {
       int k = (int)N(g, e)->c, f[8];
       for (int i = 0; i < k; ++i)
         f[i] = b;
@@ -580,8 +592,11 @@ int dal__alg_expand(dal_alg *g, int x) {
     break;
   }
   case X_ATAN2:
-  case X_HYPOT: r = node(g, n.op, dal__alg_expand(g, n.a), dal__alg_expand(g, n.b)); break;
-  default: r = dal__alg_fn(g, n.op, dal__alg_expand(g, n.a));
+  case X_HYPOT:
+    r = node(g, n.op, dal__alg_expand(g, n.a), dal__alg_expand(g, n.b));
+    break;
+  default:
+    r = dal__alg_fn(g, n.op, dal__alg_expand(g, n.a));
   }
   if (g->fail) return -1;
   slot = memo_get(g, &g->expand, &g->nexpand, x);
@@ -615,10 +630,14 @@ static int deriv_node(dal_alg *g, int x, int var) {
   const dal_xnode n = *N(g, x);
   switch (n.op) {
   case X_NUM:
-  case X_PAR: return num(g, 0.0);
-  case X_IN: return num(g, var >= 0 && n.idx == var ? 1.0 : 0.0);
-  case X_TIME: return num(g, var < 0 ? 1.0 : 0.0);
-  case X_ADD: return sum(g, deriv(g, n.a, var), deriv(g, n.b, var));
+  case X_PAR:
+    return num(g, 0.0);
+  case X_IN:
+    return num(g, var >= 0 && n.idx == var ? 1.0 : 0.0);
+  case X_TIME:
+    return num(g, var < 0 ? 1.0 : 0.0);
+  case X_ADD:
+    return sum(g, deriv(g, n.a, var), deriv(g, n.b, var));
   case X_MUL:
     return sum(g, prod(g, deriv(g, n.a, var), n.b), prod(g, n.a, deriv(g, n.b, var)));
   case X_POW: {
@@ -626,8 +645,7 @@ static int deriv_node(dal_alg *g, int x, int var) {
     if (g->fail) return -1;
     // e b^(e-1) b' + b^e log(b) e'
     int r = prod3(g, n.b, dal__alg_pow(g, n.a, sum(g, n.b, num(g, -1.0))), db);
-    if (!dal__alg_isnum(g, de, 0.0))
-      r = sum(g, r, prod3(g, x, dal__alg_fn(g, X_LOG, n.a), de));
+    if (!dal__alg_isnum(g, de, 0.0)) r = sum(g, r, prod3(g, x, dal__alg_fn(g, X_LOG, n.a), de));
     return r;
   }
   case X_ATAN2: {
@@ -640,7 +658,8 @@ static int deriv_node(dal_alg *g, int x, int var) {
     int a = n.a, b = n.b, da = deriv(g, a, var), db = deriv(g, b, var);
     return prod(g, sum(g, prod(g, a, da), prod(g, b, db)), powk(g, x, -1));
   }
-  default: break;
+  default:
+    break;
   }
   // one-argument functions: f'(u) u'
   int u = n.a, du = deriv(g, u, var);
@@ -648,21 +667,43 @@ static int deriv_node(dal_alg *g, int x, int var) {
   if (dal__alg_isnum(g, du, 0.0)) return du;
   int f1;
   switch (n.op) {
-  case X_SIN: f1 = dal__alg_fn(g, X_COS, u); break;
-  case X_COS: f1 = prod(g, num(g, -1.0), dal__alg_fn(g, X_SIN, u)); break;
-  case X_TAN: f1 = powk(g, dal__alg_fn(g, X_COS, u), -2); break;
-  case X_ASIN: f1 = powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5); break;
+  case X_SIN:
+    f1 = dal__alg_fn(g, X_COS, u);
+    break;
+  case X_COS:
+    f1 = prod(g, num(g, -1.0), dal__alg_fn(g, X_SIN, u));
+    break;
+  case X_TAN:
+    f1 = powk(g, dal__alg_fn(g, X_COS, u), -2);
+    break;
+  case X_ASIN:
+    f1 = powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5);
+    break;
   case X_ACOS:
     f1 = prod(g, num(g, -1.0),
               powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5));
     break;
-  case X_ATAN: f1 = powk(g, sum(g, num(g, 1.0), powk(g, u, 2)), -1); break;
-  case X_SINH: f1 = dal__alg_fn(g, X_COSH, u); break;
-  case X_COSH: f1 = dal__alg_fn(g, X_SINH, u); break;
-  case X_TANH: f1 = powk(g, dal__alg_fn(g, X_COSH, u), -2); break;
-  case X_EXP: f1 = x; break;
-  case X_LOG: f1 = powk(g, u, -1); break;
-  default: g->fail = 1; return -1; // SQRT, SUB, DIV, NEG are not canonical
+  case X_ATAN:
+    f1 = powk(g, sum(g, num(g, 1.0), powk(g, u, 2)), -1);
+    break;
+  case X_SINH:
+    f1 = dal__alg_fn(g, X_COSH, u);
+    break;
+  case X_COSH:
+    f1 = dal__alg_fn(g, X_SINH, u);
+    break;
+  case X_TANH:
+    f1 = powk(g, dal__alg_fn(g, X_COSH, u), -2);
+    break;
+  case X_EXP:
+    f1 = x;
+    break;
+  case X_LOG:
+    f1 = powk(g, u, -1);
+    break;
+  default:
+    g->fail = 1;
+    return -1; // SQRT, SUB, DIV, NEG are not canonical
   }
   return prod(g, f1, du);
 }
@@ -712,13 +753,19 @@ int dal__alg_factor(dal_alg *g, int x) {
   case X_NUM:
   case X_IN:
   case X_PAR:
-  case X_TIME: return x;
-  case X_MUL: return prod(g, dal__alg_factor(g, n.a), dal__alg_factor(g, n.b));
-  case X_POW: return dal__alg_pow(g, dal__alg_factor(g, n.a), n.b);
+  case X_TIME:
+    return x;
+  case X_MUL:
+    return prod(g, dal__alg_factor(g, n.a), dal__alg_factor(g, n.b));
+  case X_POW:
+    return dal__alg_pow(g, dal__alg_factor(g, n.a), n.b);
   case X_ATAN2:
-  case X_HYPOT: return node(g, n.op, dal__alg_factor(g, n.a), dal__alg_factor(g, n.b));
-  case X_ADD: break;
-  default: return dal__alg_fn(g, n.op, dal__alg_factor(g, n.a));
+  case X_HYPOT:
+    return node(g, n.op, dal__alg_factor(g, n.a), dal__alg_factor(g, n.b));
+  case X_ADD:
+    break;
+  default:
+    return dal__alg_fn(g, n.op, dal__alg_factor(g, n.a));
   }
   int *ts, nt;
   dal__alg_terms(g, x, &ts, &nt);

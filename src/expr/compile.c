@@ -67,8 +67,8 @@ int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p,
   // which nodes depend on inputs or t (jets), in pool order (children first)
   for (int i = 0; i < n; ++i) {
     const dal_xnode *x = &tr->node[i];
-    jet[i] = x->op == X_IN || x->op == X_TIME || (x->a >= 0 && jet[x->a]) ||
-             (x->b >= 0 && jet[x->b]);
+    jet[i] =
+        x->op == X_IN || x->op == X_TIME || (x->a >= 0 && jet[x->a]) || (x->b >= 0 && jet[x->b]);
   }
   // what the outputs reach; a constant operand of a jet instruction is folded into it
   for (int k = 0; k < nout; ++k)
@@ -148,8 +148,10 @@ int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p,
         in.a = (unsigned short)reg[a];
       }
       // free operands at their last use, then take the result's register
-      if (a >= 0 && reach[a] && !folds(tr, jet, i, a) && last[a] == pos[i]) give(jet[a] ? ja : sa, reg[a]);
-      if (b >= 0 && b != a && reach[b] && !folds(tr, jet, i, b) && last[b] == pos[i]) give(jet[b] ? ja : sa, reg[b]);
+      if (a >= 0 && reach[a] && !folds(tr, jet, i, a) && last[a] == pos[i])
+        give(jet[a] ? ja : sa, reg[a]);
+      if (b >= 0 && b != a && reach[b] && !folds(tr, jet, i, b) && last[b] == pos[i])
+        give(jet[b] ? ja : sa, reg[b]);
       int r = take(pass ? ja : sa);
       if (r < 0) {
         if (msg && msglen)
@@ -188,46 +190,81 @@ done:
 
 static double sfn(int op, double a, double b) {
   switch (op) {
-  case X_ADD: return a + b;
-  case X_SUB: return a - b;
-  case X_MUL: return a * b;
-  case X_DIV: return a / b;
-  case X_POW: return pow(a, b);
-  case X_NEG: return -a;
-  case X_SIN: return sin(a);
-  case X_COS: return cos(a);
-  case X_TAN: return tan(a);
-  case X_ASIN: return asin(a);
-  case X_ACOS: return acos(a);
-  case X_ATAN: return atan(a);
-  case X_SINH: return sinh(a);
-  case X_COSH: return cosh(a);
-  case X_TANH: return tanh(a);
-  case X_EXP: return exp(a);
-  case X_LOG: return log(a);
-  case X_SQRT: return sqrt(a);
-  case X_ATAN2: return atan2(a, b);
-  case X_HYPOT: return hypot(a, b);
-  default: return NAN;
+  case X_ADD:
+    return a + b;
+  case X_SUB:
+    return a - b;
+  case X_MUL:
+    return a * b;
+  case X_DIV:
+    return a / b;
+  case X_POW:
+    return pow(a, b);
+  case X_NEG:
+    return -a;
+  case X_SIN:
+    return sin(a);
+  case X_COS:
+    return cos(a);
+  case X_TAN:
+    return tan(a);
+  case X_ASIN:
+    return asin(a);
+  case X_ACOS:
+    return acos(a);
+  case X_ATAN:
+    return atan(a);
+  case X_SINH:
+    return sinh(a);
+  case X_COSH:
+    return cosh(a);
+  case X_TANH:
+    return tanh(a);
+  case X_EXP:
+    return exp(a);
+  case X_LOG:
+    return log(a);
+  case X_SQRT:
+    return sqrt(a);
+  case X_ATAN2:
+    return atan2(a, b);
+  case X_HYPOT:
+    return hypot(a, b);
+  default:
+    return NAN;
   }
 }
 
 static dal_jet jfn1(int op, dal_jet a) {
   switch (op) {
-  case X_NEG: return dal_neg(a);
-  case X_SIN: return dal_sin(a);
-  case X_COS: return dal_cos(a);
-  case X_TAN: return dal_tan(a);
-  case X_ASIN: return dal_asin(a);
-  case X_ACOS: return dal_acos(a);
-  case X_ATAN: return dal_atan(a);
-  case X_SINH: return dal_sinh(a);
-  case X_COSH: return dal_cosh(a);
-  case X_TANH: return dal_tanh(a);
-  case X_EXP: return dal_exp(a);
-  case X_LOG: return dal_log(a);
-  case X_SQRT: return dal_sqrt(a);
-  default: return dal_const(NAN);
+  case X_NEG:
+    return dal_neg(a);
+  case X_SIN:
+    return dal_sin(a);
+  case X_COS:
+    return dal_cos(a);
+  case X_TAN:
+    return dal_tan(a);
+  case X_ASIN:
+    return dal_asin(a);
+  case X_ACOS:
+    return dal_acos(a);
+  case X_ATAN:
+    return dal_atan(a);
+  case X_SINH:
+    return dal_sinh(a);
+  case X_COSH:
+    return dal_cosh(a);
+  case X_TANH:
+    return dal_tanh(a);
+  case X_EXP:
+    return dal_exp(a);
+  case X_LOG:
+    return dal_log(a);
+  case X_SQRT:
+    return dal_sqrt(a);
+  default:
+    return dal_const(NAN);
   }
 }
 
@@ -238,8 +275,7 @@ static dal_jet jpow(dal_jet a, double k) {
 }
 
 static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2, int split,
-                       dal_jet t, const double *param,
-                       dal_jet *out, int check, int *bad) {
+                       dal_jet t, const double *param, dal_jet *out, int check, int *bad) {
   double S[SREGS];
   dal_jet J[JREGS];
   const dal_xins *ins = p->ins;
@@ -262,8 +298,12 @@ static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2
     const dal_xins *x = &ins[i];
     dal_jet r;
     switch (x->op) {
-    case X_IN: r = x->a < split ? in[x->a] : in2[x->a - split]; break;
-    case X_TIME: r = t; break;
+    case X_IN:
+      r = x->a < split ? in[x->a] : in2[x->a - split];
+      break;
+    case X_TIME:
+      r = t;
+      break;
     case X_ADD:
     case X_SUB:
     case X_MUL:
@@ -302,11 +342,21 @@ static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2
     }
     case X_POW:
       switch (x->mode) {
-      case P_INT: r = x->k == 2.0 ? dal_sq(J[x->a]) : dal_powi(J[x->a], (int)x->k); break;
-      case P_K: r = jpow(J[x->a], x->k); break;
-      case P_S: r = jpow(J[x->a], S[x->b]); break;
-      case P_GEN: r = dal_exp(dal_mul(J[x->b], dal_log(J[x->a]))); break;
-      default: r = dal_exp(dal_scale(J[x->b], log(S[x->a]))); break; // P_SBASE
+      case P_INT:
+        r = x->k == 2.0 ? dal_sq(J[x->a]) : dal_powi(J[x->a], (int)x->k);
+        break;
+      case P_K:
+        r = jpow(J[x->a], x->k);
+        break;
+      case P_S:
+        r = jpow(J[x->a], S[x->b]);
+        break;
+      case P_GEN:
+        r = dal_exp(dal_mul(J[x->b], dal_log(J[x->a])));
+        break;
+      default:
+        r = dal_exp(dal_scale(J[x->b], log(S[x->a])));
+        break; // P_SBASE
       }
       break;
     case X_ATAN2:
@@ -316,7 +366,8 @@ static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2
       r = x->op == X_ATAN2 ? dal_atan2(a, b) : dal_hypot(a, b);
       break;
     }
-    default: r = jfn1(x->op, J[x->a]);
+    default:
+      r = jfn1(x->op, J[x->a]);
     }
     J[x->dst] = r;
     if (check && *bad < 0 && !dal_jet_isfinite(r)) *bad = i;

@@ -66,8 +66,8 @@ static int names(dal_expr *e, const dal_expr_def *d, char *msg, size_t len) {
     char buf[64];
     snprintf(buf, sizeof buf, "%s%s", s, i >= d->nin && i < nin ? "dot" : "");
     if (!strcmp(buf, "t"))
-      return say(msg, len, DAL_E_ARG, "%s: symbol '%s' is the time; choose another name",
-                 e->name, buf);
+      return say(msg, len, DAL_E_ARG, "%s: symbol '%s' is the time; choose another name", e->name,
+                 buf);
     e->tree.names[i] = dup(buf);
     if (!e->tree.names[i]) return DAL_E_NOMEM;
     e->tree.nin = i < nin ? i + 1 : nin;
@@ -85,8 +85,7 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
   *out = NULL;
   if (!d || d->cookie != EXPR_COOKIE)
     return say(msg, len, DAL_E_ARG,
-               "dal_expr_create: the def is NULL or not from dal_default_expr_def()%s%s", "",
-               "");
+               "dal_expr_create: the def is NULL or not from dal_default_expr_def()%s%s", "", "");
   const char *name = d->name ? d->name : "expr";
   if (d->nout < 1 || !d->formulas || d->nin < 0 || (d->nin && !d->inputs) || d->nparam < 0 ||
       (d->nparam && !d->params) || d->nin > 100000 || d->nparam > 100000 || d->nout > 100000)
@@ -96,8 +95,8 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
                name, "");
   for (int i = 0; i < d->nparam && d->values; ++i)
     if (!isfinite(d->values[i]))
-      return say(msg, len, DAL_E_NONFINITE, "%s: the value of parameter '%s' is not finite",
-                 name, d->params[i] ? d->params[i] : "(null)");
+      return say(msg, len, DAL_E_NONFINITE, "%s: the value of parameter '%s' is not finite", name,
+                 d->params[i] ? d->params[i] : "(null)");
   dal_expr *e = calloc(1, sizeof *e);
   if (!e) return DAL_E_NOMEM;
   int rc = DAL_E_NOMEM;
@@ -266,7 +265,8 @@ int dal_expr_depends(const dal_expr *e, int i) {
   if (!e || i < -1 || i >= e->tree.nin) return 0;
   for (int k = 0; k < e->prog.nscalar + e->prog.njet; ++k) {
     const dal_xins *x = &e->prog.ins[k];
-    if (k >= e->prog.nscalar && ((i < 0 && x->op == X_TIME) || (i >= 0 && x->op == X_IN && x->a == i)))
+    if (k >= e->prog.nscalar &&
+        ((i < 0 && x->op == X_TIME) || (i >= 0 && x->op == X_IN && x->a == i)))
       return 1;
   }
   return 0;
@@ -334,8 +334,7 @@ int dal_expr_potential_q(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
   return dal_expr_map(q, t, U, ctx);
 }
 
-int dal_expr_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *L,
-                        void *ctx) {
+int dal_expr_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *L, void *ctx) {
   const dal_expr *e = ctx;
   if (!e || !e->velocities) return -1;
   dal__xrun(&e->prog, q, qdot, e->nin_named, t, e->values, L, NULL);

@@ -11,17 +11,17 @@
 
 /// node operations; the order of X_SIN .. X_SQRT is the order of the function names
 enum dal_xop {
-  X_NUM,   // constant c
-  X_IN,    // input idx
-  X_PAR,   // parameter idx
-  X_TIME,  // t
-  X_ADD,   // a + b
-  X_SUB,   // a - b
-  X_MUL,   // a * b
-  X_DIV,   // a / b
-  X_POW,   // a ^ b
-  X_NEG,   // -a
-  X_SIN,   // one-argument functions, in this order
+  X_NUM,  // constant c
+  X_IN,   // input idx
+  X_PAR,  // parameter idx
+  X_TIME, // t
+  X_ADD,  // a + b
+  X_SUB,  // a - b
+  X_MUL,  // a * b
+  X_DIV,  // a / b
+  X_POW,  // a ^ b
+  X_NEG,  // -a
+  X_SIN,  // one-argument functions, in this order
   X_COS,
   X_TAN,
   X_ASIN,
@@ -75,8 +75,8 @@ int dal__xop_unary_fn(int op);
 /// parse `text` (formula number `which`, called `label` in messages, NULL: "formula <which+1>")
 /// into the tree; *root receives the node. Symbols: tr->names (inputs, then parameters), "t",
 /// "pi". msg names the formula, column and token.
-int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root,
-                char *msg, size_t msglen);
+int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root, char *msg,
+                size_t msglen);
 
 /// a new expression from roots (nout nodes) of tr, whose symbols are nin_named inputs (with
 /// their velocities when `velocities`) and parameters with `values`; formulas are the roots
@@ -99,7 +99,7 @@ typedef struct dal_xprog {
   dal_xins *ins;
   int nscalar, njet; // instructions: ins[0 .. nscalar-1] scalar, then njet jet ones
   int nout;
-  unsigned short *out; // register of output k
+  unsigned short *out;    // register of output k
   unsigned char *out_jet; // 1: output k is a jet register, 0: a scalar one
   int nsreg, njreg;
 } dal_xprog;

@@ -68,8 +68,8 @@ static int mk(parser *p, int op, int a, int b, int idx, double c, size_t col) {
 
 static int expr(parser *p);
 
-static const char *const fn1[] = {"sin",  "cos",  "tan", "asin", "acos", "atan",
-                                  "sinh", "cosh", "tanh", "exp", "log",  "sqrt"};
+static const char *const fn1[] = {"sin",  "cos",  "tan",  "asin", "acos", "atan",
+                                  "sinh", "cosh", "tanh", "exp",  "log",  "sqrt"};
 
 // a bad token, shown as the character found (or "end of formula")
 static int unexpected(parser *p, const char *wanted) {
@@ -159,7 +159,7 @@ static int primary(parser *p) {
           if (args(p, name, 1, x, col)) return -1;
           return mk(p, X_SIN + i, x[0], -1, 0, 0.0, col);
         }
-      int op = !strcmp(name, "atan2") ? X_ATAN2
+      int op = !strcmp(name, "atan2")   ? X_ATAN2
                : !strcmp(name, "hypot") ? X_HYPOT
                : !strcmp(name, "pow")   ? X_POW
                                         : -1;
@@ -270,8 +270,8 @@ static int expr(parser *p) {
   return a;
 }
 
-int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root,
-                char *msg, size_t msglen) {
+int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root, char *msg,
+                size_t msglen) {
   parser p = {tr, text, 0, which, 0, label, msg, msglen, 0};
   int r = expr(&p);
   if (r >= 0) {

@@ -100,12 +100,11 @@ static void number(sb *b, double c, int fmt) {
   }
 }
 
-static const char *const greek[] = {"alpha", "beta",  "gamma", "delta",   "epsilon", "zeta",
-                                    "eta",   "theta", "iota",  "kappa",   "lambda",  "mu",
-                                    "nu",    "xi",    "pi",    "rho",     "sigma",   "tau",
-                                    "upsilon", "phi", "chi",   "psi",     "omega",   "Gamma",
-                                    "Delta", "Theta", "Lambda", "Xi",     "Pi",      "Sigma",
-                                    "Phi",   "Psi",   "Omega"};
+static const char *const greek[] = {"alpha", "beta",  "gamma", "delta",  "epsilon", "zeta",   "eta",
+                                    "theta", "iota",  "kappa", "lambda", "mu",      "nu",     "xi",
+                                    "pi",    "rho",   "sigma", "tau",    "upsilon", "phi",    "chi",
+                                    "psi",   "omega", "Gamma", "Delta",  "Theta",   "Lambda", "Xi",
+                                    "Pi",    "Sigma", "Phi",   "Psi",    "Omega"};
 
 // a name in LaTeX: trailing "dot"s as accents, trailing digits as a subscript, Greek letters
 static void latex_name(sb *b, const char *name) {
@@ -269,9 +268,9 @@ static void power(const pr *p, sb *b, const fact *f) {
     int fn = dal__xop_unary_fn(bn->op) && bn->op != X_SQRT;
     if (fn && f->e == f->e && f->e == floor(f->e)) {
       // sin^{2}(u)
-      static const char *const lf[] = {"\\sin",  "\\cos",  "\\tan",  "\\arcsin", "\\arccos",
-                                       "\\arctan", "\\sinh", "\\cosh", "\\tanh", "\\exp",
-                                       "\\log"};
+      static const char *const lf[] = {"\\sin",    "\\cos",    "\\tan",  "\\arcsin",
+                                       "\\arccos", "\\arctan", "\\sinh", "\\cosh",
+                                       "\\tanh",   "\\exp",    "\\log"};
       put(b, "%s^{%.0f}\\left(", lf[bn->op - X_SIN], f->e);
       expr(p, b, bn->a, 0);
       put(b, "\\right)");
@@ -427,7 +426,9 @@ static void sum(const pr *p, sb *b, int x, int prec) {
     if (prec > 1) put(b, p->fmt == F_LATEX ? "\\left(" : "(");
     for (int i = 0; i < n; ++i) {
       const dal_xnode *tn = N(p, t[i].x);
-      double c = tn->op == X_NUM ? tn->c : tn->op == X_MUL && N(p, tn->a)->op == X_NUM ? N(p, tn->a)->c : 1.0;
+      double c = tn->op == X_NUM                               ? tn->c
+                 : tn->op == X_MUL && N(p, tn->a)->op == X_NUM ? N(p, tn->a)->c
+                                                               : 1.0;
       if (i && c < 0) {
         // a - b: print b's negation
         put(b, " - ");
@@ -474,10 +475,16 @@ static void expr(const pr *p, sb *b, int x, int prec) {
       put(b, "%s", name);
     return;
   }
-  case X_TIME: put(b, "t"); return;
-  case X_ADD: sum(p, b, x, prec); return;
+  case X_TIME:
+    put(b, "t");
+    return;
+  case X_ADD:
+    sum(p, b, x, prec);
+    return;
   case X_MUL:
-  case X_POW: product(p, b, x, prec); return;
+  case X_POW:
+    product(p, b, x, prec);
+    return;
   case X_ATAN2:
   case X_HYPOT:
     if (p->fmt == F_SCHEME) {
@@ -521,7 +528,8 @@ static void expr(const pr *p, sb *b, int x, int prec) {
     if (prec > lp) put(b, ")");
     return;
   }
-  default: break;
+  default:
+    break;
   }
   // one-argument functions
   if (p->fmt == F_SCHEME) {
@@ -529,9 +537,9 @@ static void expr(const pr *p, sb *b, int x, int prec) {
     expr(p, b, n->a, 0);
     put(b, ")");
   } else if (p->fmt == F_LATEX) {
-    static const char *const lf[] = {"\\sin",  "\\cos",  "\\tan",  "\\arcsin", "\\arccos",
-                                     "\\arctan", "\\sinh", "\\cosh", "\\tanh", "\\exp",
-                                     "\\log"};
+    static const char *const lf[] = {"\\sin",    "\\cos",    "\\tan",  "\\arcsin",
+                                     "\\arccos", "\\arctan", "\\sinh", "\\cosh",
+                                     "\\tanh",   "\\exp",    "\\log"};
     if (n->op == X_SQRT) {
       put(b, "\\sqrt{");
       expr(p, b, n->a, 0);

@@ -41,8 +41,7 @@ int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, siz
   return n;
 }
 
-int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *msg,
-                        size_t msglen) {
+int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (!out) return DAL_E_ARG;
   *out = NULL;
@@ -59,8 +58,8 @@ int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *m
   char name[160];
   snprintf(name, sizeof name, "d%s/d%s", e->name, j < 0 ? "t" : e->tree.names[j]);
   int rc = r < 0 ? DAL_E_NOMEM
-                 : dal__expr_from_tree(name, &s, &r, 1, e->nin_named, e->velocities, e->values,
-                                       out, msg, msglen);
+                 : dal__expr_from_tree(name, &s, &r, 1, e->nin_named, e->velocities, e->values, out,
+                                       msg, msglen);
   dal__alg_free(&g);
   scratch_free(&s);
   return rc;
@@ -89,15 +88,15 @@ static int parse_one(dal_xtree *tr, const char *text, const char *label, int *ro
 
 static int in_node(dal_xtree *tr, int i) { return dal__xnode(tr, X_IN, -1, -1, i, 0.0); }
 
-int dal_expr_model_energies(const dal_expr_model_def *d, dal_expr **T, dal_expr **U,
-                            dal_expr **L, char *msg, size_t msglen) {
+int dal_expr_model_energies(const dal_expr_model_def *d, dal_expr **T, dal_expr **U, dal_expr **L,
+                            char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (T) *T = NULL;
   if (U) *U = NULL;
   if (L) *L = NULL;
   const char *name = d && d->name ? d->name : "model";
-  if (!d || d->cookie != MODEL_COOKIE || d->dim < 1 || d->dim > 3 || d->ncoords < 1 ||
-      !d->coords || d->nparticles < 1 || !d->masses || !d->positions || d->nparam < 0 ||
+  if (!d || d->cookie != MODEL_COOKIE || d->dim < 1 || d->dim > 3 || d->ncoords < 1 || !d->coords ||
+      d->nparticles < 1 || !d->masses || !d->positions || d->nparam < 0 ||
       (d->nparam && !d->params) || d->ncoords > 10000 || d->nparticles > 10000) {
     if (msg && msglen)
       snprintf(msg, msglen,
@@ -276,8 +275,7 @@ int dal_expr_lagrange(const dal_expr *Lx, dal_expr_equations *eq, char *msg, siz
     int acc = dal__alg_mul(&g, a, 2);
     snprintf(nm, sizeof nm, "%s.accel", Lx->name);
     rc = acc < 0 ? DAL_E_NOMEM
-                 : dal__expr_from_tree(nm, &s, &acc, 1, n, 1, Lx->values, &eq->accel, msg,
-                                       msglen);
+                 : dal__expr_from_tree(nm, &s, &acc, 1, n, 1, Lx->values, &eq->accel, msg, msglen);
   }
   eq->n = n;
 done:

@@ -8,9 +8,9 @@
 #include "expr.h"
 
 static const char *const op_names[X_NOPS] = {
-    "number", "input", "parameter", "t",    "+",    "-",    "*",    "/",     "^",
-    "-",      "sin",   "cos",       "tan",  "asin", "acos", "atan", "sinh",  "cosh",
-    "tanh",   "exp",   "log",       "sqrt", "atan2", "hypot"};
+    "number", "input", "parameter", "t",   "+",   "-",    "*",     "/",
+    "^",      "-",     "sin",       "cos", "tan", "asin", "acos",  "atan",
+    "sinh",   "cosh",  "tanh",      "exp", "log", "sqrt", "atan2", "hypot"};
 
 const char *dal__xop_name(int op) { return op >= 0 && op < X_NOPS ? op_names[op] : "?"; }
 
@@ -126,8 +126,7 @@ int dal__ximport(dal_xtree *to, const dal_xtree *from, int root) {
   for (int i = 0; i <= root; ++i) {
     if (map[i] == -2) continue;
     const dal_xnode *x = &from->node[i];
-    y = dal__xnode(to, x->op, x->a >= 0 ? map[x->a] : -1, x->b >= 0 ? map[x->b] : -1, x->idx,
-                   x->c);
+    y = dal__xnode(to, x->op, x->a >= 0 ? map[x->a] : -1, x->b >= 0 ? map[x->b] : -1, x->idx, x->c);
     if (y < 0) break;
     if (to->node[y].src < 0 && x->src >= 0) {
       to->node[y].src = x->src;

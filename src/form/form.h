@@ -62,7 +62,6 @@ int dal__dae_newton(dal_dae *f, double t, double cj, const double *y, dal_dae_si
 /// particles, no forces but gravity): then no difference quotients are needed anywhere.
 int dal__dae_newton_exact(const dal_system *sys);
 
-
 /// solve options reach the forms through the first-order problem
 #include "dalembert/solve.h"
 
@@ -180,8 +179,8 @@ void dal__tangent_flow(dal_tangent *tg, double *A, double *ft);
 /// skip), caller-owned; dlam (m x (2n + 1), NULL to skip): the multipliers' derivatives along
 /// q, qdot and t (the t column only with ft). Returns DAL_OK, DAL_E_SINGULAR (message set:
 /// the KKT matrix is singular) or DAL_E_NOMEM.
-int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, double *A,
-                     double *ft, double *dlam);
+int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, double *A, double *ft,
+                     double *dlam);
 /// Solve [M G'; G 0] x = b for nrhs columns b (n + m each, in place) with the LU factors of the
 /// last dal__tangent_kkt.
 void dal__tangent_kkt_solve(dal_tangent *tg, int nrhs, double *b);
@@ -189,10 +188,10 @@ void dal__tangent_kkt_solve(dal_tangent *tg, int nrhs, double *b);
 /// Y = -G^+ Pq N (n x k) of the tangent space of the state manifold
 /// {phi = 0, G v + phi_t = 0}: its vectors are (N xi, Y xi + N eta). Y may be
 /// NULL; W (m x k, nullable) = S^-1 U' P N from the SVD G = U S V', so W' W =
-/// N' P' (G G')^-1 P N. From the last dal__tangent_eval (by an SVD of G). Returns DAL_OK, DAL_E_SINGULAR
-/// (rank of G below m, message naming the row) or DAL_E_NOMEM.
-int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
-                       double *Y, double *W);
+/// N' P' (G G')^-1 P N. From the last dal__tangent_eval (by an SVD of G). Returns DAL_OK,
+/// DAL_E_SINGULAR (rank of G below m, message naming the row) or DAL_E_NOMEM.
+int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N, double *Y,
+                       double *W);
 /// The reduced first-order Jacobian Ar (2k x 2k) = [0 I; A21 A22] of the full A on the
 /// tangent space (basis N, Y of dal__tangent_basis): Ar = diag(N', N') A Z.
 void dal__tangent_reduce(int n, int k, const double *A, const double *N, const double *Y,

@@ -77,11 +77,11 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
     tg->kkt = calloc(snk * snk + snk * (2 * sn + 1), sizeof(double));
     tg->kpiv = calloc(snk, sizeof(lapack_int));
   }
-  int ok = (sys->m == 0 || (tg->kkt && tg->kpiv)) && tg->jc && tg->ccp && tg->ccm && tg->c3diag && tg->G && tg->phit && tg->cres &&
-           tg->Pq && tg->Aq && tg->Av && tg->At;
+  int ok = (sys->m == 0 || (tg->kkt && tg->kpiv)) && tg->jc && tg->ccp && tg->ccm && tg->c3diag &&
+           tg->G && tg->phit && tg->cres && tg->Pq && tg->Aq && tg->Av && tg->At;
   ok = ok && tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
-           tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link &&
-           tg->Habs && tg->Kabs && tg->Cabs && tg->jv && tg->HL && tg->HLabs;
+       tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link && tg->Habs &&
+       tg->Kabs && tg->Cabs && tg->jv && tg->HL && tg->HLabs;
   for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i)
     ok = ok && *nds[i];
   if (!ok) {
@@ -94,12 +94,12 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
 
 void dal__tangent_free(dal_tangent *tg) {
   if (!tg) return;
-  void *p[] = {tg->jq,   tg->jr,   tg->jin,  tg->jout, tg->cp, tg->cm, tg->d3diag, tg->J,
-               tg->r,    tg->v,    tg->A,    tg->w,    tg->Fd, tg->dr, tg->dv,     tg->da,
-               tg->dF,   tg->H,    tg->res,  tg->M,    tg->Rq, tg->Ru, tg->Rt,     tg->L,
-               tg->link, tg->Habs, tg->Kabs, tg->Cabs, tg->jv, tg->HL, tg->HLabs,
-               tg->jc,   tg->ccp,  tg->ccm,  tg->c3diag, tg->G, tg->phit, tg->cres, tg->Pq,
-               tg->Aq,   tg->Av,   tg->At, tg->kkt, tg->kpiv};
+  void *p[] = {tg->jq,   tg->jr,   tg->jin,    tg->jout, tg->cp,   tg->cm,   tg->d3diag, tg->J,
+               tg->r,    tg->v,    tg->A,      tg->w,    tg->Fd,   tg->dr,   tg->dv,     tg->da,
+               tg->dF,   tg->H,    tg->res,    tg->M,    tg->Rq,   tg->Ru,   tg->Rt,     tg->L,
+               tg->link, tg->Habs, tg->Kabs,   tg->Cabs, tg->jv,   tg->HL,   tg->HLabs,  tg->jc,
+               tg->ccp,  tg->ccm,  tg->c3diag, tg->G,    tg->phit, tg->cres, tg->Pq,     tg->Aq,
+               tg->Av,   tg->At,   tg->kkt,    tg->kpiv};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(tg);

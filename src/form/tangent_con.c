@@ -32,8 +32,8 @@
 
 #include "form.h"
 
-int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, double *A,
-                     double *ft, double *dlam) {
+int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, double *A, double *ft,
+                     double *dlam) {
   int n = tg->n, m = tg->m, nk = n + m, ncol = 2 * n + (ft ? 1 : 0);
   size_t snk = (size_t)nk, n2 = 2 * (size_t)n;
   double *K = tg->kkt; // allocated with the workspace: nothing is allocated here
@@ -54,10 +54,12 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
   // right-hand sides -(dR[z]; dA[z]) for z = e_i in q, in qdot, and t
   for (int c = 0; c < ncol; ++c) {
     double *b = B + (size_t)c * snk;
-    const double *top = c < n ? tg->Rq + (size_t)c * n : c < 2 * n ? tg->Ru + (size_t)(c - n) * n
-                                                                   : tg->Rt;
-    const double *bot = c < n ? tg->Aq + (size_t)c * m : c < 2 * n ? tg->Av + (size_t)(c - n) * m
-                                                                   : tg->At;
+    const double *top = c < n       ? tg->Rq + (size_t)c * n
+                        : c < 2 * n ? tg->Ru + (size_t)(c - n) * n
+                                    : tg->Rt;
+    const double *bot = c < n       ? tg->Aq + (size_t)c * m
+                        : c < 2 * n ? tg->Av + (size_t)(c - n) * m
+                                    : tg->At;
     for (int i = 0; i < n; ++i)
       b[i] = -top[i];
     for (int r = 0; r < m; ++r)
@@ -100,8 +102,8 @@ void dal__tangent_kkt_solve(dal_tangent *tg, int nrhs, double *b) {
                         nk);
 }
 
-int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
-                       double *Y, double *W) {
+int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N, double *Y,
+                       double *W) {
   int n = tg->n, m = tg->m, k = n - m;
   size_t sn = (size_t)n, sm = (size_t)m;
   // G = U S V' (full V: its last k columns span null(G))
@@ -210,8 +212,8 @@ int dal__tangent_on_manifold(const dal_system *sys, dal_state *st, dal_tangent *
                       "constraint '%s' has phi = %.3g, G qdot + dphi/dt = %.3g (tolerances "
                       "%.3g, %.3g); the tangent on the manifold needs a consistent state: "
                       "project it first (dal_make_consistent)",
-                      what, st->t, r, sys->con[sys->row_con[r]].name, tg->cres[r],
-                      tg->cres[m + r], ptol, vtol);
+                      what, st->t, r, sys->con[sys->row_con[r]].name, tg->cres[r], tg->cres[m + r],
+                      ptol, vtol);
   }
   return DAL_OK;
 }
@@ -221,8 +223,7 @@ int dal__tangent_reduced(const dal_system *sys, dal_state *st, dal_tangent *tg, 
   int n = tg->n, k = n - tg->m;
   size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
   size_t sm = (size_t)tg->m;
-  double *buf =
-      malloc((n2 * n2 + 2 * sn * sk + k2 * k2 + sn * sk + sm * sk + 1) * sizeof(double));
+  double *buf = malloc((n2 * n2 + 2 * sn * sk + k2 * k2 + sn * sk + sm * sk + 1) * sizeof(double));
   if (!buf) return DAL_FAIL(st, DAL_E_NOMEM, "tangent: out of memory for the reduction");
   double *A = buf, *Nb = A + n2 * n2, *Y = Nb + sn * sk, *R = Y + sn * sk, *MN = R + k2 * k2;
   double *W = MN + sn * sk;

@@ -49,8 +49,8 @@ static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
 // (inc_j = max(sqrt(uround) |y_j|, min_inc / w_j), min_inc from the step, size and |f|;
 // Hindmarsh et al. 2005, sec. 2.1). Written here so that a step allocates nothing (CVODE's
 // own dense difference quotient clones a vector per Jacobian).
-// The exact Jacobian df/dy of f = (qdot, qddot) from the jets (analysis_tangent.c, the same
-// tangent as dal_vector_field_jacobian); nonzero when it cannot be had at this point (a jet without a
+// The exact Jacobian df/dy of f = (qdot, qddot) from the jets (form/tangent.c, the same tangent
+// as dal_vector_field_jacobian); nonzero when it cannot be had at this point (a jet without a
 // third derivative, a singular M): the caller falls back to differences
 static int cv_jac_exact(dal_ode_integ *ig, cv_mem *m, double t, const double *y, SUNMatrix J) {
   dal_state *st = ig->st;

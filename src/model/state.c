@@ -69,7 +69,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     dal_state_destroy(st);
     return DAL_E_NOMEM;
   }
-  dal_solve_default_opts(&st->integ_opts);
+  st->integ_opts = dal_default_solve_opts();
   *out = st;
   return DAL_OK;
 }

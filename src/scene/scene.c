@@ -808,9 +808,19 @@ int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg
     if (msg && msglen) snprintf(msg, msglen, "%s: no parameter '%s'", sc->name, name);
     return DAL_E_ARG;
   }
-  if (!isfinite(value)) return DAL_E_NONFINITE;
+  if (!isfinite(value)) {
+    if (msg && msglen) snprintf(msg, msglen, "%s: parameter '%s' is not finite", sc->name, name);
+    return DAL_E_NONFINITE;
+  }
+  // a value the model refuses leaves the scene as it was
+  double old = sc->pval[j];
   sc->pval[j] = value;
-  return build(sc, msg, msglen);
+  int rc = build(sc, msg, msglen);
+  if (rc) {
+    sc->pval[j] = old;
+    build(sc, NULL, 0);
+  }
+  return rc;
 }
 
 const dal_system *dal_scene_system(const dal_scene *sc) { return sc ? sc->sys : NULL; }
@@ -838,6 +848,7 @@ int dal_scene_state(const dal_scene *sc, dal_state **out) {
 int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (stp) *stp = NULL;
+  if (!sc) return DAL_E_ARG;
   dal_state *st;
   int rc = dal_scene_state(sc, &st);
   if (rc) {

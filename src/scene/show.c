@@ -16,11 +16,11 @@ typedef struct tmpl {
 } tmpl;
 
 static const tmpl maps[] = {
-    {"pendulum", {"$x0 + $ax*cos($w*t + $ph) + $l*sin($0)", "$y0 + $ay*cos($w*t + $ph) - $l*cos($0)"}},
+    {"pendulum",
+     {"$x0 + $ax*cos($w*t + $ph) + $l*sin($0)", "$y0 + $ay*cos($w*t + $ph) - $l*cos($0)"}},
     {"hanging", {"$px + $l*sin($0)", "$py - $l*cos($0)"}},
     {"ring", {"$R*sin($0)*cos($w*t + $phi0)", "$R*sin($0)*sin($w*t + $phi0)", "-$R*cos($0)"}},
-    {"spherical",
-     {"$x0 + $l*sin($0)*cos($1)", "$y0 + $l*sin($0)*sin($1)", "$z0 - $l*cos($0)"}},
+    {"spherical", {"$x0 + $l*sin($0)*cos($1)", "$y0 + $l*sin($0)*sin($1)", "$z0 - $l*cos($0)"}},
     {"sphere", {"$cx + $R*sin($0)*cos($1)", "$cy + $R*sin($0)*sin($1)", "$cz + $R*cos($0)"}},
     {"cartesian2", {"$0", "$1"}},
     {"cartesian3", {"$0", "$1", "$2"}},
@@ -165,8 +165,7 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
     rc = print_eq(fp, lhs, eq.momentum, i, fmt);
   }
   for (int i = 0; i < n * n && !rc; ++i) {
-    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "M_{%d%d}" : "M_%d%d", i / n + 1,
-             i % n + 1);
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "M_{%d%d}" : "M_%d%d", i / n + 1, i % n + 1);
     rc = print_eq(fp, lhs, eq.mass, i, fmt);
   }
   for (int i = 0; i < n && !rc; ++i) {
@@ -176,7 +175,8 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
              fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
     rc = print_eq(fp, lhs, eq.force, i, fmt);
   }
-  if (!rc && n > 1) fprintf(fp, "%s", fmt == DAL_EXPR_LATEX ? "$$M \\ddot{q} = F$$\n" : "M qddot = F\n");
+  if (!rc && n > 1)
+    fprintf(fp, "%s", fmt == DAL_EXPR_LATEX ? "$$M \\ddot{q} = F$$\n" : "M qddot = F\n");
   if (!rc && eq.accel) {
     if (fmt == DAL_EXPR_SCHEME) {
       int k = dal_expr_print(eq.accel, 0, fmt, NULL, 0);
@@ -342,8 +342,8 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
         dal_expr *e;
         rc = dal_expr_create(&ed, &e, msg, msglen);
         char lhs[96];
-        snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "%c_{\\mathrm{%s}}" : "%c_%s",
-                 "xyz"[c], sc->partname[p]);
+        snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "%c_{\\mathrm{%s}}" : "%c_%s", "xyz"[c],
+                 sc -> partname[p]);
         if (!rc) rc = print_eq(fp, lhs, e, 0, fmt);
         dal_expr_destroy(e);
       }

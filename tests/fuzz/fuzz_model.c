@@ -1021,7 +1021,7 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
 }
 
 static void fz_opts(fz *f, dal_solve_opts *o) {
-  dal_solve_default_opts(o);
+  *o = dal_default_solve_opts();
   o->method = (dal_method)fz_pick(f, 7);
   o->form = (dal_formulation)fz_pick(f, 5);
   o->linsol = (dal_linsol)fz_pick(f, 3);
@@ -1056,16 +1056,16 @@ static void fz_opts(fz *f, dal_solve_opts *o) {
   }
   o->project = fz_pick(f, 2);
   o->sparse_threshold = fz_pick(f, 2) ? 200 : fz_pick(f, 40);
-  // options not only from the defaults: raw bytes (refused by the magic check, or with the
-  // magic kept, by the field checks), fixed-step explicit RK, long runs
+  // options not only from the defaults: raw bytes (refused by the cookie check, or with the
+  // cookie kept, by the field checks), fixed-step explicit RK, long runs
   int mode = fz_pick(f, 32);
   if (mode == 31) {
-    int magic = o->magic, keep = fz_pick(f, 2);
+    int cookie = o->cookie, keep = fz_pick(f, 2);
     unsigned char raw[sizeof *o];
     for (size_t i = 0; i < sizeof raw; ++i)
       raw[i] = (unsigned char)fz_u8(f);
     memcpy(o, raw, sizeof raw);
-    if (keep) o->magic = magic;
+    if (keep) o->cookie = cookie;
   } else if (mode == 30) {
     o->fixed_erk = 1;
   } else if (mode == 29) {
@@ -1166,8 +1166,7 @@ static void fz_foreign(fz *f, fz_run_ctx *r, dal_state *st) {
   dal_state *fs = r->fst;
   double t0 = dal_state_time(fs), q0 = dal_state_q(fs)[0];
   static double buf[3 * FZ_NQ];
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   dal_csv csv = {r->devnull, 1, 0};
   switch (which) {
   case 0:
