@@ -969,8 +969,7 @@ static void test_refusals(void) {
     dal_state *cst = NULL;
     double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4];
     CHECK(cs && dal_state_create(cs, &cst) == 0 && dal_state_set(cs, cst, 0.0, z, zv) == 0);
-    dal_lyapunov_opts lo;
-    dal_lyapunov_default_opts(&lo);
+    dal_lyapunov_opts lo = dal_default_lyapunov_opts();
     lo.t_end = 1.0;
     CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_E_UNSUPPORTED);
     CHECK(cst && strstr(dal_state_errmsg(cst), "'rod'") != NULL);

@@ -432,8 +432,7 @@ static void turning_bead(void) {
     dal_system_destroy(sys);
   }
   // continuation in w along the bottom branch: the pitchfork at sqrt(g/R)
-  dal_continuation_opts o;
-  dal_continuation_default_opts(&o);
+  dal_continuation_opts o = dal_default_continuation_opts();
   o.p0 = 0.2 * wc;
   o.p1 = 1.8 * wc;
   o.npoints = 8; // no grid point on the critical rate

@@ -210,8 +210,7 @@ static void test_tight_irregular(void) {
   for (size_t mi = 0; mi < sizeof ms / sizeof ms[0]; ++mi) {
     printf("  %-10s", dal_method_name(ms[mi]));
     for (size_t j = 0; j < sizeof tols / sizeof tols[0]; ++j) {
-      dal_solve_opts o;
-      dal_solve_default_opts(&o);
+      dal_solve_opts o = dal_default_solve_opts();
       o.method = ms[mi];
       o.rtol = tols[j];
       double q = th0, qd = 0, ea = 0, eb = 0;

@@ -69,8 +69,7 @@ static dal_system *dp_angles(int with_links) {
 static void flow(const dal_system *sys, dal_state *st, double t0, const double *q, const double *v,
                  double t1, double *y) {
   int n = dal_system_ncoords(sys);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-13;
   if (dal_system_nconstraints(sys) > 0) {
@@ -138,8 +137,7 @@ static void minimal_phi(void) {
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 2));
   double M0[4], M1[4];
   CHECK_OK(dal_linearize(sys, st, M0, NULL, NULL));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[16];
   int rc = dal_state_transition(sys, st, &o, t1, Phi, 0, NULL, NULL);
@@ -173,8 +171,7 @@ static void minimal_params(void) {
   const double t1 = 1.2, y0[4] = {0.6, -0.3, 0.8, 1.1};
   const char *names[5] = {"mass:b1", "gravity:1", "spring:0:k", "spring:0:L", "damper:0:c"};
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 2));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[16], S[20];
   int rc = dal_state_transition(sys, st, &o, t1, Phi, 5, names, S);
@@ -284,8 +281,7 @@ static void redundant_phi(void) {
     memcpy(Z[j], z, sizeof z);
   }
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 4));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[64], S[16];
   const char *names[2] = {"mass:p2", "gravity:1"};

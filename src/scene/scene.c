@@ -637,7 +637,7 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
 static int build(dal_scene *sc, char *msg, size_t len) {
   unbuild(sc);
   sc->dim = 2;
-  dal_solve_default_opts(&sc->opts);
+  sc->opts = dal_default_solve_opts();
   sc->t0 = 0;
   sc->t1 = 10;
   sc->dt = 0.01;
