@@ -299,7 +299,8 @@ DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_co
 /// Options of dal_lyapunov. Always start from dal_lyapunov_default_opts().
 typedef struct dal_lyapunov_opts {
   int magic;         ///< set by dal_lyapunov_default_opts; do not touch
-  int nexp;          ///< exponents wanted, 1 .. 2n (the largest ones); 0 (default): all 2n
+  int nexp;          ///< exponents wanted, 1 .. 2n (2(n - m) with constraint rows; the
+                     ///< largest ones); 0 (default): all of them
   double t_end;      ///< integrate from the state's t to t_end (> t); required
   double transient;  ///< time discarded before the averages start (the tangent vectors align
                      ///< with the leading directions meanwhile); 0
@@ -336,6 +337,11 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 ///    that decays like 1/time (e.g. the initial alignment; raise `transient` for that).
 ///  monitor (may be NULL): called after each reorthonormalization past the transient with
 ///    the running estimates in the order of the QR columns (decreasing once converged).
+/// With m constraint rows there are 2(n - m) exponents (nexp at most that; 0: all): the
+/// trajectory runs the index-1 vector field with the full-space KKT tangent, the vectors start
+/// as a basis of the manifold's tangent space, and at every reorthonormalization the trajectory
+/// is projected back onto the manifold and the vectors onto its tangent space (y0 must be
+/// NULL: DAL_E_UNSUPPORTED otherwise); the state must be consistent.
 /// On success the state holds the end of the trajectory (evaluated; its integrator history is
 /// dropped); on failure it is unchanged and its message says what failed and when.
 /// The integration allocates nothing per step. Units: 1/time.
