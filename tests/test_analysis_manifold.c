@@ -449,6 +449,37 @@ static void turning_bead(void) {
          br.critical, br.pcrit, wc);
   CHECK(br.regular == 8 && br.critical == 1 && br.bad == 0);
   CHECK(fabs(br.pcrit - wc) <= 2e-10 * (o.p1 - o.p0));
+
+  // above the critical rate, at the relative equilibrium cos(theta*) = g / (R w^2) (closed
+  // form; the particle circles the axis with the ring, qdot = w x r): the carried tangent's
+  // mode is Omega = w sin(theta*). dal_equilibrium seeks static points (qdot = 0) only: from
+  // theta* it finds a point on the axis, which the turning constraint leaves in place
+  double w = 1.4 * wc, th = acos(G0 / (BEAD_R * w * w));
+  dal_system *sys = cart_bead(w);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[3] = {BEAD_R * sin(th), 0.0, -BEAD_R * cos(th)}, v[3] = {0.0, w * q[0], 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  double w2[1], re[2], im[2];
+  dal_modes md;
+  rc = dal_normal_modes(sys, st, w2, NULL, re, im, &md);
+  CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
+  double ref = w * w * sin(th) * sin(th);
+  printf("  relative equilibrium theta* = %.6f at w = 1.4 w_c: Omega^2 = %.17g, (w sin theta*)^2 "
+         "= %.17g; eigenvalues %.3g %+.17g i\n",
+         th, w2[0], ref, re[0], im[0]);
+  CHECK_CLOSE(w2[0], ref, 1e-12);
+  CHECK_CLOSE(fabs(im[0]), sqrt(ref), 1e-12);
+  CHECK(md.verdict == DAL_NEUTRAL);
+  dal_equilibrium_report er;
+  rc = dal_equilibrium(sys, st, NULL, &er);
+  const double *qe = dal_state_q(st);
+  printf("  dal_equilibrium from theta*: rc %d, (%.3g, %.3g, %.17g), accel %.3g\n", rc, qe[0],
+         qe[1], qe[2], er.accel);
+  CHECK(rc == 0 && fabs(qe[0]) < 1e-12 && fabs(qe[1]) < 1e-12 &&
+        fabs(fabs(qe[2]) - BEAD_R) < 1e-12 && er.accel < 1e-12);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
 }
 
 // -------------------------------------------------------------------------------------------

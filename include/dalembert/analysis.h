@@ -223,10 +223,11 @@ typedef struct dal_equilibrium_report {
 /// With m constraint rows, Newton runs on (q, lambda) for the static KKT system
 /// c - Q - G' lambda = 0, phi = 0 with the exact Jacobian [K - sum lambda_i Hess phi_i, -G';
 /// G, 0] (the start need not be on the manifold); on success dal_state_lambda(st) holds the
-/// multipliers at the equilibrium: the static loads (lambda = -T for a rod in tension T). A
-/// point that a moving constraint carries along (dphi/dt != 0 there: a relative equilibrium in
-/// redundant coordinates) is DAL_E_UNSUPPORTED; a moving constraint that leaves the point in
-/// place (a turning ring's bottom) is fine.
+/// multipliers at the equilibrium: the static loads (lambda = -T for a rod in tension T). Only
+/// static points (qdot = 0) are sought: a moving constraint that leaves the point in place (a
+/// turning ring's bottom) is fine, a converged point that it carries along (dphi/dt != 0) is
+/// DAL_E_UNSUPPORTED, and relative equilibria carried by the constraint (a bead off the axis of
+/// a turning ring in Cartesian coordinates) are not sought (use a map in the moving frame).
 /// Returns DAL_OK; DAL_E_SINGULAR when K (or the KKT Newton matrix) is singular (a bifurcation
 /// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter
 /// iterations or a non-finite step (the state then holds the last iterate); DAL_E_ARG for bad
