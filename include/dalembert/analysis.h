@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Analysis: exact linearization, normal modes and stability, equilibria and their
-// continuation in one parameter, Lyapunov exponents (docs/analysis.md).
+// Analysis: exact linearization (with inputs), normal modes and stability, equilibria and
+// their continuation in one parameter, the state-transition matrix and parameter
+// sensitivities, Lyapunov exponents; in minimal coordinates and on the constraint manifold
+// (docs/analysis.md).
 //
 // The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
 // y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
