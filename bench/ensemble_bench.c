@@ -94,7 +94,7 @@ static int make(setup *s) {
     return 1;
   s->q0 = 0.4;
   s->v0 = 0.0;
-  dal_solve_default_opts(&s->so);
+  s->so = dal_default_solve_opts();
   s->so.method = DAL_METHOD_DOPRI5;
   s->so.rtol = 1e-8;
   dal_sweep sw = {.ntraj = NT,
@@ -128,8 +128,7 @@ static int uneven(const dal_system *sys, dal_state *st, const dal_traj *tr, void
 
 static double time_sweep(setup *s, const dal_sweep *sw, int threads, dal_schedule sched) {
   dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = threads;
   o.schedule = sched;
   double t0 = now();
@@ -192,8 +191,7 @@ static int cpu_split(setup *s, double t1, int threads) {
   sw.t1 = t1;
   sw.reduce = keep_timed;
   dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = threads;
   o.worker_create = clock_create;
   o.worker_destroy = clock_destroy;
@@ -330,8 +328,7 @@ int main(int argc, char **argv) {
   int bad = !s || !t || make(s);
   for (int r = 0; r < reps && !bad; ++r) {
     dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
-    dal_sweep_opts o;
-    dal_sweep_default_opts(&o);
+    dal_sweep_opts o = dal_default_sweep_opts();
     MPI_Barrier(MPI_COMM_WORLD);
     double t0 = MPI_Wtime();
     bad |= dal_sweep_run_mpi(s->sys, &s->sw, &o, &out, MPI_COMM_WORLD, NULL, 0) != 0;

@@ -105,8 +105,7 @@ static int on_point(double w, const dal_system *sys, const dal_state *st, dal_st
 
 static int run_branches(FILE *csv, int npoints, int *bad) {
   const double wc = sqrt(g / R);
-  dal_continuation_opts o;
-  dal_continuation_default_opts(&o);
+  dal_continuation_opts o = dal_default_continuation_opts();
   dal_continuation_report rep;
   struct {
     const char *name;

@@ -118,8 +118,7 @@ static double thread_cpu(void) {
 // reducer: the largest exponent(s) and their convergence estimates (block standard errors)
 static int lyapunov(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
   const lyap_cfg *c = ctx;
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.nexp = c->nexp;
   o.transient = T_TRANS;
   o.t_end = dal_state_time(st) + T_TRANS + c->T;
@@ -220,8 +219,7 @@ static int check_override(const dal_system *sys, const dal_param_ref *par, const
                   .reduce = lyapunov,
                   .ctx = &c};
   dal_sweep_out out = {res, &status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   if (dal_sweep_run(sys, &sw, &o, &out, NULL, 0) || status) return 1;
   scene sc;
   dal_system *own = build(&sc, a, w);
@@ -338,8 +336,7 @@ int main(int argc, char **argv) {
                   .reduce = lyapunov,
                   .ctx = &cfg};
   dal_sweep_out out = {res, status, msgs, 200, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = threads;
   if (dal_sweep_run(sys, &sw, &o, &out, err, sizeof err)) {
     fprintf(stderr, "sweep: %s\n", err);

@@ -74,8 +74,7 @@ static double wrap(double th) {
 // the largest |d qddot/dt| of the solutions goes into the message when it is not ~0
 static int equilibria(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
   (void)ctx;
-  dal_equilibrium_opts eo;
-  dal_equilibrium_default_opts(&eo);
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
   eo.max_step = 0.25; // stay in the basin of the nearest solution
   double found[NSTART];
   int nf = 0, rc = DAL_OK, last = DAL_OK;
@@ -222,8 +221,7 @@ int main(int argc, char **argv) {
                   .nresult = NRES,
                   .reduce = equilibria};
   dal_sweep_out out = {res, status, msgs, DAL_SWEEP_MSG_LEN, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = 2;
   if (dal_sweep_run(sys, &sw, &o, &out, err, sizeof err)) {
     fprintf(stderr, "sweep: %s\n", err);

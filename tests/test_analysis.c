@@ -926,8 +926,7 @@ static void expect_refusal(const char *what, dal_system *sys, int status, const 
             dal_status_name(rc), dal_state_errmsg(st));
   rc = dal_vector_field_jacobian(sys, st, buf, NULL);
   CHECK_MSG(rc == status, "%s: vector_field_jacobian %s", what, dal_status_name(rc));
-  dal_lyapunov_opts lo;
-  dal_lyapunov_default_opts(&lo);
+  dal_lyapunov_opts lo = dal_default_lyapunov_opts();
   lo.t_end = 1.0;
   rc = dal_lyapunov(sys, st, &lo, buf, NULL, NULL, NULL);
   CHECK_MSG(rc == status, "%s: lyapunov %s", what, dal_status_name(rc));
@@ -972,7 +971,7 @@ static void test_refusals(void) {
     double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4], y0[4] = {1, 0, 0, 0};
     CHECK(cs && dal_state_create(cs, &cst) == 0 && dal_state_set(cs, cst, 0.0, z, zv) == 0);
     dal_lyapunov_opts lo;
-    dal_lyapunov_default_opts(&lo);
+    lo = dal_default_lyapunov_opts();
     lo.t_end = 1.0;
     lo.nexp = 1;
     lo.y0 = y0;

@@ -436,7 +436,7 @@ static void turning_bead(void) {
   }
   // continuation in w along the bottom branch: the pitchfork at sqrt(g/R)
   dal_continuation_opts o;
-  dal_continuation_default_opts(&o);
+  o = dal_default_continuation_opts();
   o.p0 = 0.2 * wc;
   o.p1 = 1.8 * wc;
   o.npoints = 8; // no grid point on the critical rate
@@ -514,7 +514,7 @@ static dal_system *dp_angles(void) {
 static void lyapunov_manifold(void) {
   const double T = 200.0;
   dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  o = dal_default_lyapunov_opts();
   o.t_end = T;
   double exc[4], erc[4], exm[4], erm[4];
   // Cartesian

@@ -147,8 +147,7 @@ static void test_param_list_defaults(void) {
   double q = 2.0, v = -1.0;
   CHECK_OK(dal_state_set(s1, a, 0.0, &q, &v));
   CHECK_OK(dal_state_set(s2, c, 0.0, &q, &v));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_advance(s1, a, &o, 1.0));
   CHECK_OK(dal_advance(s2, c, &o, 1.0));
   CHECK(dal_state_q(a)[0] == dal_state_q(c)[0]);
@@ -586,8 +585,7 @@ static void test_monitor_papercuts(void) {
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {sin(1.0), -cos(1.0)}, v[2] = {0, 0};
   CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   mon_ctx m = {0, 5, 0, 0.0};
   int rc = dal_evolve(sys, st, &o, 2.0, 0.1, rod_monitor, &m);
   // stopped early: a distinct, non-error status, the state at the 5th output time
@@ -631,7 +629,7 @@ static void test_atol_follows(void) {
   CHECK_OK(dal_state_create(sys, &s3));
   double q0[2] = {1e-3, 0}, v0[2] = {0, 1e-3}; // small amplitude: atol matters
   dal_solve_opts o1, o2, o3;
-  dal_solve_default_opts(&o1);
+  o1 = dal_default_solve_opts();
   o1.rtol = 1e-11; // only rtol
   o2 = o1;
   o2.atol = DAL_ATOL_PER_RTOL * o1.rtol; // the documented rule, explicit
@@ -666,8 +664,7 @@ static void test_init_report(void) {
   // 5 % off the rod length: the projection moves the bob radially by 0.05
   double q[2] = {0.0, -1.05}, v[2] = {0.3, 0.0};
   CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.init_max_move = 0.01;
   int rc = dal_advance(sys, st, &o, 0.5);
   CHECK(rc == DAL_E_INIT);
@@ -719,8 +716,7 @@ static void test_singular_start_message(void) {
   double q[2] = {0, 0}, v[2] = {0, 0};
   const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_BS, DAL_METHOD_ADAMS, DAL_METHOD_RK4};
   for (int i = 0; i < 4; ++i) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[i];
     CHECK_OK(dal_state_set(sys, st, 0, q, v));
     CHECK(dal_advance(sys, st, &o, 1.0) == DAL_E_SINGULAR);
@@ -775,8 +771,7 @@ static void test_lagrangian_energies(void) {
   CHECK_CLOSE(ea.T2, ec.T, 1e-14);
   CHECK(isfinite(ea.T1) && fabs(ea.T1) < 1e-14 && ea.T0 == 0.0);
   // after integration too (the state is evaluated where it stops)
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_advance(sl, a, &o, 1.0));
   CHECK_OK(dal_state_energies(a, &ea));
   CHECK(isfinite(ea.T) && isfinite(ea.U));

@@ -845,8 +845,7 @@ static int osc_make(osc *o, int mode, double t_fail, int n_fail) {
 static void osc_free(osc *o) { destroy_all(o->b, o->sys, o->st); }
 
 static dal_solve_opts tight_opts(dal_method m) {
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.method = m;
   so.rtol = 1e-10;
   so.atol = 1e-12;

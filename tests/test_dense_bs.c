@@ -161,8 +161,7 @@ static run_out run(const dal_system *sys, dal_state *st, const double *q0, const
   run_out out = {0};
   dal_ode_problem prob = dal__problem_minimal;
   prob.rhs = probe_rhs;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = tol;
   dal_ode_integ *ig = NULL;
   CHECK_OK(dal_state_set(sys, st, 0.0, q0, qd0));

@@ -70,7 +70,7 @@ static void flow(const dal_system *sys, dal_state *st, double t0, const double *
                  double t1, double *y) {
   int n = dal_system_ncoords(sys);
   dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-13;
   if (dal_system_nconstraints(sys) > 0) {
@@ -139,7 +139,7 @@ static void minimal_phi(void) {
   double M0[4], M1[4];
   CHECK_OK(dal_linearize(sys, st, M0, NULL, NULL));
   dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[16];
   int rc = dal_state_transition(sys, st, &o, t1, Phi, 0, NULL, NULL);
@@ -174,7 +174,7 @@ static void minimal_params(void) {
   const char *names[5] = {"mass:b1", "gravity:1", "spring:0:k", "spring:0:L", "damper:0:c"};
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 2));
   dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[16], S[20];
   int rc = dal_state_transition(sys, st, &o, t1, Phi, 5, names, S);
@@ -285,7 +285,7 @@ static void redundant_phi(void) {
   }
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 4));
   dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[64], S[16];
   const char *names[2] = {"mass:p2", "gravity:1"};

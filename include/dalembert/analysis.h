@@ -1,51 +1,52 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Analysis: exact linearization (with inputs), normal modes and stability, equilibria and
-// their continuation in one parameter, the state-transition matrix and parameter
-// sensitivities, Lyapunov exponents; in minimal coordinates and on the constraint manifold
-// (docs/analysis.md).
-//
-// The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
-// y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
-// the equations of motion are written R(t, q, qdot, qddot) = M qddot + c - Q = 0, and
-//   K = dR/dq,  C = dR/dqdot  (at fixed qddot),  M = dR/dqddot,
-// so a small variation obeys M dq'' + C dq' + K dq = 0 (with coefficients that depend on time
-// away from a steady state), and df/dy = [0, I; -M^-1 K, -M^-1 C]. No finite differences:
-// K and C come from jets. Their derivatives of M, Q and c need second derivatives of the maps
-// and potentials (by polarization of order-2 coefficients along sums of directions) and the
-// derivative of the curvature terms gamma, a third derivative D^3 r[dq, w, w] with
-// w = (qdot, 1) (by polarization of the order-3 coefficient d3 of dal_jet along the curves
-// s -> (q + s (qdot +- dq) + s^2/2 (qddot +- 2 dqdot), t + s (1 +- dt)); see jet.h).
-//
-// What the tangent covers: particle systems placed by primitives or a whole-system map, in
-// minimal coordinates or with constraint rows phi(q, t) = 0 (redundant coordinates, loops
-// closed by constraints, moving constraints), with gravity, springs, dampers and jet
-// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included; and systems given
-// by a Lagrangian L(t, q, qdot) (with U(q, t)) in minimal coordinates, whose tangent needs third
-// partials of L, taken the same way (polarization of d3 along curves in (q, qdot, t)).
-//
-// With m constraint rows (G = dphi/dq of full rank m) the motion lives on the manifold
-// phi = 0, G qdot + dphi/dt = 0 of dimension 2k, k = n - m. The tangent is exact there too:
-// the residual becomes R - G' lambda (its q-derivative gains the constraint curvature
-// -sum lambda_i Hess phi_i, by polarization of the constraints' order-2 coefficients), and the
-// acceleration-level rows G qddot + gamma_phi = 0 are differentiated along each tangent
-// direction through their order-3 coefficient (the derivative of the constraint curvature).
-// The reduced quantities (dal_linearize, dal_normal_modes) are in independent coordinates
-// xi and velocities eta along an orthonormal basis N (n x k) of the null space of G:
-// dq = N xi, dqdot = N eta + Y xi with Y = -G^+ d(G qdot + dphi/dt)/dq (docs/analysis.md).
-// The state handed to them must be on the manifold (dal_make_consistent); an inconsistent
-// one is DAL_E_ARG naming the row.
-//
-// It refuses, with DAL_E_UNSUPPORTED and a message naming the cause:
-//  - a Lagrangian together with constraint rows;
-//  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
-//    they have no exact derivative; write the force as a potential over jets if it has one.
-// A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
-// third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
-//
-// Every function takes the system and a state; it evaluates the state (as dal_forward does)
-// and reports failures in dal_state_errmsg(st). Matrices are column-major; n = number of
-// coordinates.
+/// @file
+/// @brief Analysis: exact linearization (with inputs), normal modes and stability, equilibria
+/// and their continuation in one parameter, the state-transition matrix and parameter
+/// sensitivities, Lyapunov exponents; in minimal coordinates and on the constraint manifold
+/// (docs/analysis.md).
+///
+/// The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
+/// y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
+/// the equations of motion are written R(t, q, qdot, qddot) = M qddot + c - Q = 0, and
+///   K = dR/dq,  C = dR/dqdot  (at fixed qddot),  M = dR/dqddot,
+/// so a small variation obeys M dq'' + C dq' + K dq = 0 (with coefficients that depend on time
+/// away from a steady state), and df/dy = [0, I; -M^-1 K, -M^-1 C]. No finite differences:
+/// K and C come from jets. Their derivatives of M, Q and c need second derivatives of the maps
+/// and potentials (by polarization of order-2 coefficients along sums of directions) and the
+/// derivative of the curvature terms gamma, a third derivative D^3 r[dq, w, w] with
+/// w = (qdot, 1) (by polarization of the order-3 coefficient d3 of dal_jet along the curves
+/// s -> (q + s (qdot +- dq) + s^2/2 (qddot +- 2 dqdot), t + s (1 +- dt)); see jet.h).
+///
+/// What the tangent covers: particle systems placed by primitives or a whole-system map, in
+/// minimal coordinates or with constraint rows phi(q, t) = 0 (redundant coordinates, loops
+/// closed by constraints, moving constraints), with gravity, springs, dampers and jet
+/// potentials U(r, t), U(q, t), rheonomic maps and moving anchors included; and systems given
+/// by a Lagrangian L(t, q, qdot) (with U(q, t)) in minimal coordinates, whose tangent needs third
+/// partials of L, taken the same way (polarization of d3 along curves in (q, qdot, t)).
+///
+/// With m constraint rows (G = dphi/dq of full rank m) the motion lives on the manifold
+/// phi = 0, G qdot + dphi/dt = 0 of dimension 2k, k = n - m. The tangent is exact there too:
+/// the residual becomes R - G' lambda (its q-derivative gains the constraint curvature
+/// -sum lambda_i Hess phi_i, by polarization of the constraints' order-2 coefficients), and the
+/// acceleration-level rows G qddot + gamma_phi = 0 are differentiated along each tangent
+/// direction through their order-3 coefficient (the derivative of the constraint curvature).
+/// The reduced quantities (dal_linearize, dal_normal_modes) are in independent coordinates
+/// xi and velocities eta along an orthonormal basis N (n x k) of the null space of G:
+/// dq = N xi, dqdot = N eta + Y xi with Y = -G^+ d(G qdot + dphi/dt)/dq (docs/analysis.md).
+/// The state handed to them must be on the manifold (dal_make_consistent); an inconsistent
+/// one is DAL_E_ARG naming the row.
+///
+/// It refuses, with DAL_E_UNSUPPORTED and a message naming the cause:
+///  - a Lagrangian together with constraint rows;
+///  - force callbacks given as plain doubles (dal_builder_add_force, dal_builder_add_genforce):
+///    they have no exact derivative; write the force as a potential over jets if it has one.
+/// A user jet function built with the order-2 constructors dal_jet_make / dal_jet_chain has no
+/// third derivative: the tangent reports it (DAL_E_DOMAIN naming the function).
+///
+/// Every function takes the system and a state; it evaluates the state (as dal_forward does)
+/// and reports failures in dal_state_errmsg(st). Matrices are column-major; n = number of
+/// coordinates.
 #ifndef DAL_ANALYSIS_H
 #define DAL_ANALYSIS_H
 
@@ -195,16 +196,16 @@ DAL_API int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega
 // ---------------------------------------------------------------------------------------------
 // equilibria
 
-/// Options of dal_equilibrium. Always start from dal_equilibrium_default_opts().
+/// Options of dal_equilibrium. Always start from dal_default_equilibrium_opts().
 typedef struct dal_equilibrium_opts {
-  int magic;       ///< set by dal_equilibrium_default_opts; do not touch
+  int cookie;      ///< set by dal_default_equilibrium_opts; do not touch
   double xtol;     ///< converged when every Newton step |dq_i| <= xtol (1 + |q_i|); 1e-12
   int max_iter;    ///< Newton iterations at most; 50
   double max_step; ///< largest |dq_i| of one step (the step is scaled down to it); 0: none
 } dal_equilibrium_opts;
 
 /// Fill *o with the defaults (xtol 1e-12, 50 iterations, no step bound).
-DAL_API void dal_equilibrium_default_opts(dal_equilibrium_opts *o);
+DAL_API dal_equilibrium_opts dal_default_equilibrium_opts(void);
 
 /// What dal_equilibrium found.
 typedef struct dal_equilibrium_report {
@@ -246,8 +247,10 @@ typedef int dal_rebuild_fn(double p, dal_system **out, void *ctx);
 typedef enum dal_branch_kind {
   DAL_BRANCH_REGULAR = 0,  ///< a point of the parameter grid
   DAL_BRANCH_CRITICAL = 1, ///< a located point where a real eigenvalue of K crosses zero
-                           ///< (det K changes sign: fold, pitchfork, transcritical), between
-                           ///< two grid points whose det K differ in sign
+                           ///< along the branch (det K changes sign: a pitchfork or
+                           ///< transcritical bifurcation), between two grid points whose det K
+                           ///< differ in sign. A fold (the branch turns back in p) is not one:
+                           ///< it ends the continuation with DAL_E_CONV (see dal_continue)
 } dal_branch_kind;
 
 /// Called at every converged point of a branch with the state at the equilibrium
@@ -256,9 +259,9 @@ typedef enum dal_branch_kind {
 typedef int dal_branch_fn(double p, const dal_system *sys, const dal_state *st,
                           dal_stability verdict, dal_branch_kind kind, void *ctx);
 
-/// Options of dal_continue. Always start from dal_continuation_default_opts().
+/// Options of dal_continue. Always start from dal_default_continuation_opts().
 typedef struct dal_continuation_opts {
-  int magic;                   ///< set by dal_continuation_default_opts; do not touch
+  int cookie;                  ///< set by dal_default_continuation_opts; do not touch
   double p0;                   ///< first parameter value
   double p1;                   ///< last parameter value (may be below p0)
   int npoints;                 ///< grid points from p0 to p1, both included (>= 2); 41
@@ -269,7 +272,7 @@ typedef struct dal_continuation_opts {
 } dal_continuation_opts;
 
 /// Fill *o with the defaults (see the fields), p0 = 0, p1 = 1.
-DAL_API void dal_continuation_default_opts(dal_continuation_opts *o);
+DAL_API dal_continuation_opts dal_default_continuation_opts(void);
 
 /// Report of a continuation.
 typedef struct dal_continuation_report {
@@ -299,9 +302,9 @@ DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_co
 // ---------------------------------------------------------------------------------------------
 // Lyapunov exponents
 
-/// Options of dal_lyapunov. Always start from dal_lyapunov_default_opts().
+/// Options of dal_lyapunov. Always start from dal_default_lyapunov_opts().
 typedef struct dal_lyapunov_opts {
-  int magic;         ///< set by dal_lyapunov_default_opts; do not touch
+  int cookie;        ///< set by dal_default_lyapunov_opts; do not touch
   int nexp;          ///< exponents wanted, 1 .. 2n (2(n - m) with constraint rows; the
                      ///< largest ones); 0 (default): all of them
   double t_end;      ///< integrate from the state's t to t_end (> t); required
@@ -321,10 +324,12 @@ typedef struct dal_lyapunov_opts {
 } dal_lyapunov_opts;
 
 /// Fill *o with the defaults (see the fields); t_end must still be set.
-DAL_API void dal_lyapunov_default_opts(dal_lyapunov_opts *o);
+DAL_API dal_lyapunov_opts dal_default_lyapunov_opts(void);
 
 /// Called after every reorthonormalization that lies past the transient: time t and the
-/// running estimates (nexp, largest first), valid during the call. Return 0 to continue,
+/// running estimates (nexp), in the order of the QR columns (decreasing once the tangent
+/// vectors have aligned; only dal_lyapunov's final exponents are sorted largest first), valid
+/// during the call. Return 0 to continue,
 /// non-zero to stop (dal_lyapunov then returns DAL_OK with the estimates so far).
 typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *ctx);
 

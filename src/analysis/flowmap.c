@@ -181,7 +181,7 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
   if (opts)
     o = *opts;
   else
-    dal_solve_default_opts(&o);
+    o = dal_default_solve_opts();
   if ((rc = dal__check_opts(st, &o)) != 0) return rc;
   o = dal__effective_opts(&o); // atol following rtol
   dal_method meth = o.method == DAL_METHOD_AUTO ? DAL_METHOD_DOPRI5 : o.method;
