@@ -13,7 +13,7 @@
 //     imaginary (gyroscopic stabilization, from lambda^4 + (a + b + 4 w^2) lambda^2 + a b = 0);
 //     with k1 = 3, k2 = 0.5 rotation does not help (a b < 0).
 // What is computed: dal_normal_modes at the equilibrium (exact K, C, M by jets; dsygv for the
-// modes, dgeev of the flow Jacobian for the verdict).
+// modes, dgeev of the vector-field Jacobian for the verdict).
 // Checks (--check and full mode alike):
 //  - scene 1 against the closed form (1e-13);
 //  - every mode of scenes 1 and 2 by integration: started from 1e-6 times its shape at rest, the

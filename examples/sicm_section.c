@@ -143,7 +143,7 @@ static int check_mode(void) {
   bad |= rc != DAL_OK || s.n != 101 || nev < 10;
   bad |= !(worst_e < 1e-8 * g) || !(worst_v < 1e-8 * sqrt(g));
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(free_sys);
 
@@ -182,7 +182,7 @@ static int check_mode(void) {
          worst_q, worst_t);
   bad |= rc != DAL_OK || nev != 60 || !(worst_q < 1e-9) || !(worst_t < 1e-13);
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(sys);
   printf("sicm_section: %s\n", bad ? "FAILED" : "ok");
@@ -258,7 +258,7 @@ static int full_mode(const char *dir) {
     else
       printf("gnuplot not found or failed: chart skipped (script in %s)\n", gp);
   }
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(sys);
   return bad;

@@ -1026,7 +1026,13 @@ static void sw_dal_linearize(void) {
   ST(dal_linearize(F.B, NULL, M, C, K), DAL_E_ARG, NULL);
   ST(dal_linearize(NULL, F.stB, M, C, K), DAL_E_STATE, F.stB);
   ST(dal_linearize(F.A, F.stB, M, C, K), DAL_E_STATE, F.stB);
-  ST(dal_linearize(F.A, F.stA, NULL, NULL, NULL), DAL_E_UNSUPPORTED, F.stA); // constraint rows
+  // A on its manifold (one independent coordinate along the circle at sin theta = 0.6, at rest):
+  // the reduced K is the minimal pendulum's g cos theta = 9.81 x 0.8
+  ST(dal_linearize(F.A, F.stA, NULL, NULL, NULL), DAL_OK, F.stA);
+  ST(dal_linearize(F.A, F.stA, M, C, K), DAL_OK, F.stA);
+  CHECK_CLOSE(M[0], 1.0, 1e-14);
+  CHECK_CLOSE(C[0], 0.0, 1e-14);
+  CHECK_CLOSE(K[0], 9.81 * 0.8, 1e-13);
   st_intact();
   ST(dal_linearize(F.B, F.stB, NULL, NULL, NULL), DAL_OK, F.stB);
   ST(dal_linearize(F.B, F.stB, M, C, K), DAL_OK, F.stB);
@@ -1034,20 +1040,81 @@ static void sw_dal_linearize(void) {
   CHECK_CLOSE(C[0], 0.0, 1e-14);
   CHECK_CLOSE(K[0], 9.81 * cos(0.3), 1e-13);
 }
-static void sw_dal_flow_jacobian(void) {
-  double A[4] = {0}, ft[2] = {1, 1};
-  ST(dal_flow_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
-  ST(dal_flow_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_flow_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_flow_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
-  ST(dal_flow_jacobian(F.A, F.stA, A, NULL), DAL_E_UNSUPPORTED, F.stA);
+// The full-space matrices of A at rest: M = I, C = 0, G the rod's unit row (0.6, -0.8), N the
+// tangent (0.8, 0.6) up to sign; B has N = 1 and leaves G alone.
+static void sw_dal_linearize_full(void) {
+  double M[4], C[4], K[4], G[2], N[2];
+  ST(dal_linearize_full(F.A, NULL, M, C, K, G, N), DAL_E_ARG, NULL);
+  ST(dal_linearize_full(NULL, F.stA, M, C, K, G, N), DAL_E_STATE, F.stA);
+  ST(dal_linearize_full(F.B, F.stA, M, C, K, G, N), DAL_E_STATE, F.stA);
+  ST(dal_linearize_full(F.A, F.stA, NULL, NULL, NULL, NULL, NULL), DAL_OK, F.stA);
+  ST(dal_linearize_full(F.A, F.stA, M, C, K, G, N), DAL_OK, F.stA);
+  CHECK(M[0] == 1.0 && M[1] == 0.0 && M[2] == 0.0 && M[3] == 1.0);
+  CHECK(C[0] == 0.0 && C[1] == 0.0 && C[2] == 0.0 && C[3] == 0.0);
+  CHECK_CLOSE(G[0], 0.6, 1e-15);
+  CHECK_CLOSE(G[1], -0.8, 1e-15);
+  CHECK_CLOSE(fabs(N[0]), 0.8, 1e-15);
+  CHECK_CLOSE(N[1] / N[0], 0.75, 1e-15);
+  double g1 = 7.0, n1 = 0.0;
+  ST(dal_linearize_full(F.B, F.stB, M, C, K, &g1, &n1), DAL_OK, F.stB);
+  CHECK(g1 == 7.0 && n1 == 1.0);
   st_intact();
-  ST(dal_flow_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
-  ST(dal_flow_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
+}
+static void sw_dal_vector_field_jacobian(void) {
+  double A[4] = {0}, ft[2] = {1, 1};
+  ST(dal_vector_field_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
+  ST(dal_vector_field_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_vector_field_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
+  double A4[16];
+  ST(dal_vector_field_jacobian(F.A, F.stA, A4, NULL), DAL_OK, F.stA); // full space, 4 x 4
+  CHECK(A4[8] == 1.0 && A4[13] == 1.0 && A4[0] == 0.0 && A4[12] == 0.0);
+  st_intact();
+  ST(dal_vector_field_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
   // df/dy = [0 1; -K/M 0] column-major; autonomous: df/dt = 0
   CHECK(A[0] == 0.0 && A[2] == 1.0 && A[3] == 0.0);
   CHECK_CLOSE(A[1], -9.81 * cos(0.3), 1e-13);
   CHECK(ft[0] == 0.0 && ft[1] == 0.0);
+}
+// B at theta = 0.3 at rest with a force on theta: B = 1, Bf = (0, 1/M) = (0, 1)
+static void sw_dal_linearize_inputs(void) {
+  const char *in[1] = {"force:theta"}, *bad[1] = {"place:bob:0"}, *none[1] = {"force:zz"};
+  double B[1] = {0}, Af[4], Bf[2];
+  ST(dal_linearize_inputs(F.B, NULL, 1, in, B, Af, Bf), DAL_E_ARG, NULL);
+  ST(dal_linearize_inputs(NULL, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST(dal_linearize_inputs(F.A, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, NULL, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, -1, in, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, none, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, bad, B, Af, Bf), DAL_E_UNSUPPORTED, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 0, NULL, NULL, NULL, NULL), DAL_OK, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, in, B, Af, Bf), DAL_OK, F.stB);
+  CHECK(B[0] == 1.0 && Bf[0] == 0.0);
+  CHECK_CLOSE(Bf[1], 1.0, 1e-14);
+  CHECK_CLOSE(Af[1], -9.81 * cos(0.3), 1e-13);
+  st_intact();
+}
+// from theta = 0.3 at rest to t = 0.5 (a fresh state: the call moves it)
+static void sw_dal_state_transition(void) {
+  double Phi[4], S[2];
+  const char *in[1] = {"gravity:1"}, *bad[1] = {"place:bob:0"};
+  dal_solve_opts o = dal_default_solve_opts();
+  ST(dal_state_transition(F.B, NULL, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_transition(NULL, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_state_transition(F.A, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, NULL, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.0, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, NAN, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, Phi, 1, NULL, S), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, Phi, 1, bad, S), DAL_E_UNSUPPORTED, F.stB);
+  o.method = DAL_METHOD_BDF;
+  ST(dal_state_transition(F.B, F.stB, &o, 0.5, Phi, 0, NULL, NULL), DAL_E_UNSUPPORTED, F.stB);
+  st_intact();
+  dal_state *st = state_b();
+  ST(dal_state_transition(F.B, st, NULL, 0.5, Phi, 1, in, S), DAL_OK, NULL);
+  CHECK(dal_state_time(st) == 0.5 && Phi[0] != 0.0 && S[0] != 0.0);
+  dal_state_destroy(st);
 }
 static void sw_dal_stability_name(void) {
   CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
@@ -1061,7 +1128,9 @@ static void sw_dal_normal_modes(void) {
   ST(dal_normal_modes(F.B, NULL, w2, x, re, im, &md), DAL_E_ARG, NULL);
   ST(dal_normal_modes(NULL, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
   ST(dal_normal_modes(F.A, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
-  ST(dal_normal_modes(F.A, F.stA, w2, x, re, im, &md), DAL_E_UNSUPPORTED, F.stA);
+  double xa[2];
+  ST(dal_normal_modes(F.A, F.stA, w2, xa, re, im, &md), DAL_OK, F.stA); // on the manifold
+  CHECK_CLOSE(w2[0], 9.81 * 0.8, 1e-13);
   st_intact();
   ST(dal_normal_modes(F.B, F.stB, NULL, NULL, NULL, NULL, NULL), DAL_OK, F.stB);
   ST(dal_normal_modes(F.B, F.stB, w2, x, re, im, &md), DAL_OK, F.stB);
@@ -1091,7 +1160,15 @@ static void sw_dal_equilibrium(void) {
   ST(dal_equilibrium(F.B, F.stB, &raw, &rep), DAL_E_ARG, F.stB);
   ST(dal_equilibrium(F.B, F.stB, &nan_tol, &rep), DAL_E_ARG, F.stB);
   ST(dal_equilibrium(F.B, F.stB, &no_iter, &rep), DAL_E_ARG, F.stB);
-  ST(dal_equilibrium(F.A, F.stA, NULL, NULL), DAL_E_UNSUPPORTED, F.stA);
+  // A on its manifold (a fresh state: this one moves): hanging, the rod's lambda = -m g
+  dal_state *sa = NULL;
+  CHECK_OK(dal_state_create(F.A, &sa));
+  double qa[2] = {0.6, -0.8}, va[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(F.A, sa, 0.0, qa, va));
+  ST(dal_equilibrium(F.A, sa, NULL, &rep), DAL_OK, NULL);
+  CHECK(fabs(dal_state_q(sa)[0]) < 1e-12 && fabs(dal_state_q(sa)[1] + 1.0) < 1e-12);
+  CHECK(fabs(dal_state_lambda(sa)[0] + 9.81) < 1e-12);
+  dal_state_destroy(sa);
   st_intact();
   // the hanging pendulum: theta* = 0 from theta = 0.3 (a fresh state: this one moves)
   dal_state *st = state_b();
@@ -1226,6 +1303,32 @@ static void sw_dal_default_constraint_def(void) {
   dal_constraint_def d = dal_default_constraint_def();
   CHECK(d.name == NULL && d.prim == NULL && d.parts == NULL && d.nparts == 0);
   CHECK(d.coords == NULL && d.ncoords == 0 && d.ctx == NULL);
+}
+// the name-checked setters: a name of the def's primitive sets that entry only; an unknown
+// name, a name of another primitive, a missing primitive or NULL set nothing
+static void sw_dal_place_def_set(void) {
+  dal_place_def d = dal_default_place_def();
+  double before[DAL_MAX_PARAM];
+  CHECK(dal_place_def_set(&d, "l", 1.0) == DAL_E_ARG); // no primitive yet
+  d.prim = &dal_map_pendulum;
+  memcpy(before, d.param, sizeof before);
+  CHECK(dal_place_def_set(NULL, "l", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "R", 1.0) == DAL_E_ARG); // the ring's radius: not a pendulum's
+  CHECK(dal_place_def_set(&d, "", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "7", 1.0) == DAL_E_ARG); // the pendulum has 7 parameters
+  CHECK(memcmp(before, d.param, sizeof before) == 0);
+  CHECK(dal_place_def_set(&d, "w", 2.5) == DAL_OK && d.param[DAL_PENDULUM_W] == 2.5);
+  CHECK(dal_place_def_set(&d, "0", 0.5) == DAL_OK && d.param[DAL_PENDULUM_L] == 0.5);
+}
+static void sw_dal_constraint_def_set(void) {
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(dal_constraint_def_set(&d, "L", 1.0) == DAL_E_ARG);
+  d.prim = &dal_con_anchor2;
+  CHECK(dal_constraint_def_set(NULL, "L", 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, "z0", 1.0) == DAL_E_ARG); // anchor2 is planar
+  CHECK(dal_constraint_def_set(&d, "y0", -0.5) == DAL_OK && d.param[DAL_ANCHOR_Y0] == -0.5);
 }
 static void sw_dal_default_spring_def(void) {
   dal_spring_def d = dal_default_spring_def();
@@ -1478,10 +1581,10 @@ static void sw_dal_state_print(void) {
   if (!fp || !ro) return;
   // the state is const: no message can be kept; the header documents DAL_E_ARG for a state of
   // another system (the README convention would be DAL_E_STATE)
-  ST(dal_state_print(NULL, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(NULL, F.stA, fp), DAL_E_STATE, F.stA);
   ST(dal_state_print(F.A, NULL, fp), DAL_E_ARG, NULL);
-  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, NULL);
-  ST(dal_state_print(F.B, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
+  ST(dal_state_print(F.B, F.stA, fp), DAL_E_STATE, F.stA);
   CHECK(ftell(fp) == 0);
   ST(dal_state_print(F.A, F.stA, ro), DAL_E_IO, NULL);
   ST(dal_state_print(F.A, F.stA, fp), DAL_OK, NULL);
@@ -1521,9 +1624,9 @@ static void sw_dal_events_create(void) {
   CHECK(dal_events_create(NULL, &ev) == DAL_E_ARG && ev == NULL);
   CHECK(dal_events_create(F.A, NULL) == DAL_E_ARG);
   CHECK(dal_events_create(F.A, &ev) == DAL_OK && ev != NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
-static void sw_dal_events_free(void) { dal_events_free(NULL); }
+static void sw_dal_events_destroy(void) { dal_events_destroy(NULL); }
 static void sw_dal_events_add(void) {
   dal_events *ev = NULL;
   CHECK_OK(dal_events_create(F.A, &ev));
@@ -1552,7 +1655,7 @@ static void sw_dal_events_add(void) {
   d.direction = DAL_EVENT_FALLING;
   CHECK(dal_events_add(ev, &d) == 0);
   CHECK(dal_events_size(ev) == 1);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_errmsg(void) { CHECK(strcmp(dal_events_errmsg(NULL), "") == 0); }
 static void sw_dal_events_size(void) { CHECK(dal_events_size(NULL) == 0); }
@@ -1566,7 +1669,7 @@ static void sw_dal_events_name(void) {
   CHECK(strcmp(dal_events_name(ev, 0), "zero") == 0);
   CHECK(dal_events_name(ev, 1) == NULL && dal_events_name(ev, -1) == NULL);
   CHECK(dal_events_name(NULL, 0) == NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_state_set_events(void) {
   dal_events *ev = NULL;
@@ -1574,7 +1677,7 @@ static void sw_dal_state_set_events(void) {
   CHECK(dal_state_set_events(NULL, ev) == DAL_E_ARG);
   ST(dal_state_set_events(F.stB, ev), DAL_E_STATE, F.stB); // a set of another system
   CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
 static void sw_dal_events_get(void) {
@@ -1584,7 +1687,7 @@ static void sw_dal_events_get(void) {
   CHECK(dal_events_get(NULL, 0, &r, NULL, NULL) == DAL_E_ARG);
   CHECK(dal_events_get(ev, 0, &r, NULL, NULL) == DAL_E_ARG); // empty log
   CHECK(dal_events_get(ev, -1, &r, NULL, NULL) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_clear(void) { dal_events_clear(NULL); }
 static void sw_dal_events_write_csv(void) {
@@ -1594,7 +1697,7 @@ static void sw_dal_events_write_csv(void) {
   CHECK(dal_events_write_csv(ev, NULL, -1, 0) == DAL_E_ARG);
   CHECK(dal_events_write_csv(ev, stdout, 0, 0) == DAL_E_ARG); // no event 0
   CHECK(dal_events_write_csv(ev, stdout, -2, 0) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 
 typedef struct sweep_row {
@@ -1624,7 +1727,7 @@ static const sweep_row rows[] = {
     ROW(dal_csv_monitor),
     ROW(dal_default_event_def),
     ROW(dal_events_create),
-    ROW(dal_events_free),
+    ROW(dal_events_destroy),
     ROW(dal_events_add),
     ROW(dal_events_errmsg),
     ROW(dal_events_size),
@@ -1707,7 +1810,10 @@ static const sweep_row rows[] = {
     ROW(dal_state_print),
     ROW(dal_state_init_report),
     ROW(dal_linearize),
-    ROW(dal_flow_jacobian),
+    ROW(dal_linearize_full),
+    ROW(dal_linearize_inputs),
+    ROW(dal_state_transition),
+    ROW(dal_vector_field_jacobian),
     ROW(dal_stability_name),
     ROW(dal_normal_modes),
     ROW(dal_default_equilibrium_opts),
@@ -1717,6 +1823,8 @@ static const sweep_row rows[] = {
     ROW(dal_default_lyapunov_opts),
     ROW(dal_lyapunov),
     ROW(dal_default_place_def),
+    ROW(dal_place_def_set),
+    ROW(dal_constraint_def_set),
     ROW(dal_default_constraint_def),
     ROW(dal_default_spring_def),
     ROW(dal_default_damper_def),

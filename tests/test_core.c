@@ -250,6 +250,13 @@ static void test_tolerance_table(void) {
         CHECK_MSG(ss.rtol_used > 0.005 * tol, "clamp not reported: %g", ss.rtol_used);
         CHECK_MSG(worst * tol < 100.0 * ss.rtol_used / 0.001, "%s at rtol %g: %g x rtol",
                   rows[r].name, tol, worst);
+      } else if (!dae && rows[r].m == DAL_METHOD_BDF && tol < 1e-11) {
+        // CVODE's BDF honours 1e-11 at most: a tighter request runs as 1e-11 (solve.h), and
+        // the clamp shows in rtol_used (1e-15 instead of 1e-4 x rtol)
+        dal_stats ss;
+        dal_state_stats(so, &ss);
+        CHECK_MSG(ss.rtol_used > 1e-4 * tol, "clamp not reported: %g", ss.rtol_used);
+        CHECK_MSG(worst * tol < 16.0 * 1e-11, "%s at rtol %g: %g x rtol", rows[r].name, tol, worst);
       } else {
         CHECK_MSG(worst < 16.0, "%s at rtol %g: %g x rtol", rows[r].name, tol, worst);
       }

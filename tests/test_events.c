@@ -84,7 +84,7 @@ static void test_period(void) {
               o.rtol, worst);
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -131,7 +131,7 @@ static void test_bead_turning(void) {
   // at a turning point theta is quadratic in time: an error eps in t moves it by ~theta'' eps^2
   CHECK_MSG(worst < 1e-8, "turning points off by %g", worst);
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -183,7 +183,7 @@ static void test_leaving_circle(void) {
   CHECK_MSG(rc == DAL_OK, "restart: %s", dal_state_errmsg(st));
   CHECK(dal_events_count(ev) == 1);
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 
@@ -217,7 +217,7 @@ static void test_leaving_circle(void) {
     CHECK(fabs(dal_state_lambda(st)[0]) < 1e-6 * G0);
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -285,7 +285,7 @@ static void test_every_method(void) {
     printf("  %-12s: 6 crossings, worst time error %.2e s\n", dal_method_name(ms[k]), worst);
     CHECK_MSG(worst < bound, "%s: crossing times off by %g", dal_method_name(ms[k]), worst);
     // a terminal event inside evolve: stops there; the monitor saw only earlier times
-    dal_events_free(ev);
+    dal_events_destroy(ev);
     CHECK_OK(dal_events_create(s, &ev));
     d.name = "stop";
     d.direction = DAL_EVENT_RISING;
@@ -299,7 +299,7 @@ static void test_every_method(void) {
     CHECK(fabs(dal_state_time(st) - 0.75 * T) < bound && cc.tlast < dal_state_time(st));
     CHECK(dal_state_qddot(st) != NULL); // evaluated there
     // rebuild the two-event set for the next method
-    dal_events_free(ev);
+    dal_events_destroy(ev);
     CHECK_OK(dal_events_create(s, &ev));
     d.terminal = 0;
     d.name = "down";
@@ -311,7 +311,7 @@ static void test_every_method(void) {
     CHECK_OK(dal_state_set_events(st, ev));
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -341,7 +341,7 @@ static void test_failures_and_csv(void) {
   int rc = dal_advance(s, st, &o, 2.0);
   CHECK(rc == DAL_E_CALLBACK && strstr(dal_state_errmsg(st), "'broken'") != NULL);
   CHECK(dal_state_time(st) > 0.5 && dal_state_time(st) < 2.0 && dal_state_qddot(st) != NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   // a surface section written to CSV: one header, one row per crossing
   CHECK_OK(dal_events_create(s, &ev));
   d = dal_default_event_def();
@@ -365,7 +365,7 @@ static void test_failures_and_csv(void) {
     fclose(fp);
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }

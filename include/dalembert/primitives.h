@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Built-in primitives: coordinate maps (dal_map_*) and constraints (dal_con_*), and the registry.
-//
-// Each is a dal_primitive (see system.h): inputs, parameters and outputs are listed with it.
-// The builder refuses parameters outside a built-in's domain, naming them: the length or radius
-// of a constraint (rods, circles, spheres) must be > 0, that of a map (pendulums, ring, sphere)
-// nonzero, and a normal or direction (plane, line, circle3) a nonzero vector whose squared
-// length is a normal double.
-// Angles in radians, rates in rad/s. "Pivot motion" parameters describe a point
-// p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph)).
+/// @file
+/// @brief Built-in primitives: coordinate maps (dal_map_*) and constraints (dal_con_*), and the
+/// registry.
+///
+/// Each is a dal_primitive (see system.h): inputs, parameters and outputs are listed with it.
+/// The builder refuses parameters outside a built-in's domain, naming them: the length or radius
+/// of a constraint (rods, circles, spheres) must be > 0, that of a map (pendulums, ring, sphere)
+/// nonzero, and a normal or direction (plane, line, circle3) a nonzero vector whose squared
+/// length is a normal double.
+/// Angles in radians, rates in rad/s. "Pivot motion" parameters describe a point
+/// p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph)).
 #ifndef DAL_PRIMITIVES_H
 #define DAL_PRIMITIVES_H
 

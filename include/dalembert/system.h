@@ -1,20 +1,22 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Model building: coordinates, particles, coordinate maps, constraints and forces -> system.
-//
-// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
-// any number of states (trajectories, threads) may share read-only.
-//
-// Threads: a compiled system is never written after dal_builder_compile, so states of the
-// same system may step in parallel threads (one thread per state); the results are
-// bit-identical to serial runs (tests/test_threads.c). The library keeps no global mutable
-// state. The user's callbacks and the contexts given to the builder are then called from
-// those threads at the same time: they must not write shared data without synchronization.
-// A builder, like a state, is used by one thread at a time.
-//
-// Conventions: spatial dimension d is 2 (x, y) or 3 (x, y, z); gravity is whatever vector the
-// user gives (typically (0, -g) in 2D, (0, 0, -g) in 3D). Units are the user's, consistent
-// (SI suggested). Indices are 0-based. Local matrices are row-major, global ones column-major.
+/// @file
+/// @brief Model building: coordinates, particles, coordinate maps, constraints and forces ->
+/// system.
+///
+/// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
+/// any number of states (trajectories, threads) may share read-only.
+///
+/// Threads: a compiled system is never written after dal_builder_compile, so states of the
+/// same system may step in parallel threads (one thread per state); the results are
+/// bit-identical to serial runs (tests/test_threads.c). The library keeps no global mutable
+/// state. The user's callbacks and the contexts given to the builder are then called from
+/// those threads at the same time: they must not write shared data without synchronization.
+/// A builder, like a state, is used by one thread at a time.
+///
+/// Conventions: spatial dimension d is 2 (x, y) or 3 (x, y, z); gravity is whatever vector the
+/// user gives (typically (0, -g) in 2D, (0, 0, -g) in 3D). Units are the user's, consistent
+/// (SI suggested). Indices are 0-based. Local matrices are row-major, global ones column-major.
 #ifndef DAL_SYSTEM_H
 #define DAL_SYSTEM_H
 
@@ -209,6 +211,16 @@ typedef struct dal_damper_def {
 DAL_API dal_place_def dal_default_place_def(void);
 /// A constraint def with the defaults: no name, no primitive, no inputs, parameters unset.
 DAL_API dal_constraint_def dal_default_constraint_def(void);
+/// Sets the parameter of def->prim called `name` (its name in the primitive's table, e.g. "l"
+/// or "w" of dal_map_pendulum; a 0-based index in decimal works too): the name-checked form
+/// of def->param[DAL_PENDULUM_L] = value, which cannot pick an index of another primitive's
+/// enum by mistake. Set def->prim first. Returns DAL_OK, or DAL_E_ARG (nothing set) when def,
+/// def->prim or name is NULL or the primitive has no parameter of that name (the names are
+/// listed with each primitive in primitives.h and by dal_system_print). The value itself is
+/// checked when the def is placed, as for def->param.
+DAL_API int dal_place_def_set(dal_place_def *def, const char *name, double value);
+/// dal_place_def_set for a constraint def: sets the parameter `name` of def->prim.
+DAL_API int dal_constraint_def_set(dal_constraint_def *def, const char *name, double value);
 /// A spring def with the defaults: a = -1 (must be set), anchored (b = -1) at the origin, no
 /// path, k = 0, length = 0.
 DAL_API dal_spring_def dal_default_spring_def(void);

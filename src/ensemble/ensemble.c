@@ -335,6 +335,11 @@ int dal_sweep_write_csv(FILE *fp, const dal_system *sys, const dal_sweep *sw,
     if (dal_param_name(sys, &sw->params[j], name, sizeof name)) return DAL_E_ARG;
     bad |= fprintf(fp, ",%s", name) < 0;
   }
+  // per-trajectory initial states (state_stride = n): their columns follow the parameters
+  int n = dal_system_ncoords(sys), own_start = sw->state_stride > 0 && sw->q0 && sw->qdot0;
+  for (int w = 0; own_start && w < 2; ++w)
+    for (int j = 0; j < n; ++j)
+      bad |= fprintf(fp, ",%s:%s", w ? "qdot0" : "q0", dal_system_coord_name(sys, j)) < 0;
   bad |= fprintf(fp, ",status") < 0;
   for (int k = 0; k < sw->nresult; ++k)
     bad |= (result_names ? fprintf(fp, ",%s", result_names[k]) : fprintf(fp, ",r%d", k)) < 0;
@@ -343,6 +348,11 @@ int dal_sweep_write_csv(FILE *fp, const dal_system *sys, const dal_sweep *sw,
     bad |= fprintf(fp, "%ld", i) < 0;
     for (int j = 0; j < sw->nparam; ++j)
       bad |= fprintf(fp, ",%.17g", sw->values[(size_t)i * (size_t)sw->nparam + j]) < 0;
+    for (int w = 0; own_start && w < 2; ++w) {
+      const double *x = (w ? sw->qdot0 : sw->q0) + (size_t)i * (size_t)sw->state_stride;
+      for (int j = 0; j < n; ++j)
+        bad |= fprintf(fp, ",%.17g", x[j]) < 0;
+    }
     bad |= fprintf(fp, ",%s", dal_status_name(out->status[i])) < 0;
     for (int k = 0; k < sw->nresult; ++k)
       bad |= fprintf(fp, ",%.17g", out->results[(size_t)i * (size_t)sw->nresult + k]) < 0;

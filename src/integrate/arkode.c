@@ -14,8 +14,8 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-#include "nvec.h"
 #include "integrate.h"
+#include "nvec.h"
 
 /// consecutive recoverable right-hand-side failures tolerated before giving up
 #define ERK_MAX_RECOVER 30

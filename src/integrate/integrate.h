@@ -7,8 +7,6 @@
 
 #include "form/form.h"
 
-
-
 /// DAE integration through SUNDIALS IDA for the GGL, index-3 and BDF index-1 forms
 /// (dae_ida.c). create: allocate and initialize from the state's consistent (q, qdot);
 /// advance: integrate to tout, leaving the state at tout (or at the last accepted step on
@@ -92,12 +90,16 @@ int dal__ode_start_slope(dal_ode_integ *ig);
 /// tracks the requested tolerance (measurements in solve.h; like RADAU5's tolerance
 /// transformation, Hairer-Wanner, Solving ODEs II, sec. IV.8). `ode_create` runs the method
 /// on an ODE problem (NULL: none); `dae` marks the method that runs the DAE forms in IDA.
+/// `min_rtol`: the tightest request the method honours on an ODE problem (0: down to
+/// DAL_TOL_FLOOR / tol_factor); a tighter one runs as min_rtol, atol scaled alike, and the
+/// clamp shows in dal_stats.rtol_used.
 typedef struct dal_method_row {
   dal_method id;
   const char *name;
   double tol_factor;
   int (*ode_create)(dal_ode_integ *ig);
   int dae;
+  double min_rtol;
 } dal_method_row;
 /// the row of a method (AUTO has a row too, with no create function)
 const dal_method_row *dal__method_row(dal_method m);

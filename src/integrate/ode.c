@@ -254,10 +254,14 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->method = meth;
   // with opts.work the work W of the forces and moving constraints is integrated as the last
   // component of y, under the same error control
-  ig->ny = prob->size(sys) + (o->work ? 1 : 0);
-  double c = dal__tol_factor(meth) * prob->tol_factor;
-  ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
-  ig->atol = c * o->atol;
+  ig->ny = (prob->ny > 0 ? prob->ny : prob->size(sys)) + (o->work ? 1 : 0);
+  // the local tolerances: a request below the method's min_rtol runs as min_rtol (atol raised
+  // in proportion, the requested ratio atol / rtol kept, as for IDA); rtol not below the floor
+  const dal_method_row *mrow = dal__method_row(meth);
+  double c = dal__tol_factor(meth) * prob->tol_factor, up = 1.0;
+  if (mrow && o->rtol < mrow->min_rtol) up = mrow->min_rtol / o->rtol;
+  ig->rtol = fmax(c * o->rtol * up, DAL_TOL_FLOOR);
+  ig->atol = c * o->atol * up;
   st->stats.rtol_used = ig->rtol; // the local tolerance, floor included (solve.h)
   ig->t = st->t;
   size_t ny = (size_t)ig->ny + 1;

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "model.h"
 
 // grow a vector to hold one more element of size sz; returns the new slot or NULL
 static void *vec_push(dal_vec *v, size_t sz) {
@@ -69,12 +69,8 @@ const char *dal_builder_errmsg(const dal_builder *b) { return b ? b->err : ""; }
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
 
-// a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits: masses,
-// stiffnesses and lengths made of one give inexact results, so the builder refuses them
+// a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits (validate.c)
 static int subnormal(double x) { return x != 0.0 && fabs(x) < DBL_MIN; }
-#define SUBNORMAL_REMEDY                                                                           \
-  "a subnormal number (|x| < 2.2e-308) carries fewer than 53 significant bits, so results "        \
-  "computed from it are inexact; rescale the units, or give 0 if 0 is meant"
 
 int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
   if (!b) return DAL_E_ARG;
@@ -94,16 +90,8 @@ int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int 
   if (!b) return DAL_E_ARG;
   b->err[0] = 0; // the message is always that of the last call
   const char *nm = name ? name : "(unnamed)";
-  if (!isfinite(mass))
-    return BFAIL(DAL_E_NONFINITE, "particle '%s': mass is %g; give a finite positive mass", nm,
-                 mass);
-  if (mass <= 0)
-    return BFAIL(DAL_E_ARG,
-                 "particle '%s': mass %g is not positive; a massless point belongs in a "
-                 "constraint or a coordinate map, not a particle",
-                 nm, mass);
-  if (subnormal(mass))
-    return BFAIL(DAL_E_ARG, "particle '%s': mass %g is subnormal; " SUBNORMAL_REMEDY, nm, mass);
+  int mrc = dal__check_mass(b->err, nm, mass);
+  if (mrc) return mrc;
   if (b->lag)
     return BFAIL(DAL_E_ARG,
                  "particle '%s': the system is given by a Lagrangian; it has no "
@@ -218,25 +206,12 @@ static int resolve_params(dal_builder *b, const char *what, const dal_primitive 
                      what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i);
       x = dflt;
     }
-    if (!isfinite(x))
-      return BFAIL(DAL_E_NONFINITE,
-                   "%s: parameter '%s' of '%s' (index %d) is %g; give a finite "
-                   "value",
-                   what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i, x);
-    if (subnormal(x))
-      return BFAIL(DAL_E_ARG,
-                   "%s: parameter '%s' of '%s' (index %d) is %g, subnormal; " SUBNORMAL_REMEDY,
-                   what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i, x);
+    int rc = dal__check_prim_value(b->err, what, prim, i, x);
+    if (rc) return rc;
     out[i] = x;
   }
   // a built-in's parameters must lie in their domain (a rod of length 0, a zero normal)
-  int bad = 0;
-  const char *rule = NULL, *quantity = dal__builtin_param_check(prim, out, &bad, &rule);
-  if (quantity)
-    return BFAIL(DAL_E_ARG, "%s: parameter '%s' of '%s' (index %d, %s) is %g; the %s %s", what,
-                 dal__param_name(prim, bad, nb, sizeof nb), prim->name, bad, quantity, out[bad],
-                 quantity, rule);
-  return DAL_OK;
+  return dal__check_prim_domain(b->err, what, prim, out);
 }
 
 // shared validation of a primitive instance: version, counts, coordinate indices
@@ -525,9 +500,8 @@ int dal_builder_set_gravity(dal_builder *b, const double *g) {
     return BFAIL(DAL_E_ARG, "set_gravity: the builder has dim 0 (a Lagrangian system has no "
                             "space); put gravity into the Lagrangian");
   for (int i = 0; i < b->dim; ++i) {
-    if (!isfinite(g[i])) return BFAIL(DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
-    if (subnormal(g[i]))
-      return BFAIL(DAL_E_ARG, "gravity component %d is %g, subnormal; " SUBNORMAL_REMEDY, i, g[i]);
+    int rc = dal__check_gravity(b->err, i, g[i]);
+    if (rc) return rc;
   }
   memcpy(b->g, g, (size_t)b->dim * sizeof(double));
   b->has_gravity = 1;
@@ -551,25 +525,15 @@ static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb
     return BFAIL(DAL_E_ARG, "%s: particle index %d out of range [0, %d)", kind, pa, b->parts.len);
   if (pb >= b->parts.len || pb == pa || (pb < -1))
     return BFAIL(DAL_E_ARG, "%s: second particle index %d invalid", kind, pb);
-  if (!isfinite(k) || !isfinite(L))
-    return BFAIL(DAL_E_NONFINITE,
-                 "%s on particle '%s': coefficient %g or length %g is not "
-                 "finite",
-                 kind, ((char **)b->parts.data)[pa], k, L);
-  if (k < 0 || L < 0)
-    return BFAIL(DAL_E_ARG, "%s on particle '%s': coefficient %g and length %g must be >= 0", kind,
-                 ((char **)b->parts.data)[pa], k, L);
-  if (subnormal(k) || subnormal(L))
-    return BFAIL(DAL_E_ARG, "%s on particle '%s': %s %g is subnormal; " SUBNORMAL_REMEDY, kind,
-                 ((char **)b->parts.data)[pa], subnormal(k) ? "coefficient" : "length",
-                 subnormal(k) ? k : L);
+  int rc = dal__check_link(b->err, kind, ((char **)b->parts.data)[pa], k, L);
+  if (rc) return rc;
   if (pb < 0 && x0)
     for (int i = 0; i < b->dim; ++i)
       if (!isfinite(x0[i]) || subnormal(x0[i]))
         return BFAIL(isfinite(x0[i]) ? DAL_E_ARG : DAL_E_NONFINITE,
                      "%s on particle '%s': anchor component %d is %g%s", kind,
                      ((char **)b->parts.data)[pa], i, x0[i],
-                     isfinite(x0[i]) ? ", subnormal; " SUBNORMAL_REMEDY : "");
+                     isfinite(x0[i]) ? ", subnormal; " DAL__SUBNORMAL_REMEDY : "");
   dal_link *l = vec_push(v, sizeof(dal_link));
   if (!l) return BFAIL(DAL_E_NOMEM, "%s: out of memory", kind);
   l->a = pa;
