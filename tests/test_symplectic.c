@@ -37,6 +37,12 @@ static dal_system *compile(dal_builder *b, int rc) {
   return sys;
 }
 
+// a standard scene, checked as compile() checks the scenes built here
+static dal_system *built(dal_system *sys) {
+  CHECK(sys != NULL);
+  return sys;
+}
+
 static dal_solve_opts fixed(dal_method m, double h) {
   dal_solve_opts o = dal_default_solve_opts();
   o.method = m;
@@ -60,7 +66,7 @@ static dal_system *make_pendulum(int lagrangian) {
   if (!lagrangian) {
     scn_knobs k = scn_default();
     k.g = 9.8;
-    return scn_pendulum(&k);
+    return built(scn_pendulum(&k));
   }
   dal_builder *b = NULL;
   int th, rc = dal_builder_create(2, &b);
@@ -136,7 +142,7 @@ static dal_system *make_cart_pendulum(dal_moving_point *mp) {
   scn_knobs k = scn_default();
   k.g = 9.8;
   k.pivot = mp;
-  return scn_cart_pendulum(&k);
+  return built(scn_cart_pendulum(&k));
 }
 
 // the same driven pendulum in minimal coordinates: pivot (a cos(w t), 0)
@@ -145,7 +151,7 @@ static dal_system *make_driven_minimal(const pivot *pv) {
   k.g = 9.8;
   k.ax = pv->a;
   k.w = pv->w;
-  return scn_pendulum(&k);
+  return built(scn_pendulum(&k));
 }
 
 // double pendulum m1 = 1, m2 = 0.5, l1 = 1, l2 = 0.7, g = 9.81: minimal or Cartesian
@@ -153,7 +159,7 @@ static dal_system *make_double(int cartesian) {
   scn_knobs k = scn_default();
   k.m2 = 0.5;
   k.l2 = 0.7;
-  return cartesian ? scn_cart_double_pendulum(&k) : scn_double_pendulum(&k);
+  return built(cartesian ? scn_cart_double_pendulum(&k) : scn_double_pendulum(&k));
 }
 
 // the Cartesian double pendulum's state for angles th (from the downward vertical), at rest
