@@ -15,6 +15,20 @@
 
 #include "dalembert/dalembert.h"
 
+// a placement and a constraint from their parts, through the defs
+static int place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                    const int *coords, int np, const double *param, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.coords = coords;
+  d.ncoords = nc;
+  d.param_list = param;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, p, &d);
+}
+
 static dal_expr *keep[64];
 static int nkeep;
 
@@ -38,20 +52,6 @@ static dal_expr *mk(const char *const *f, int nout, const char *const *in, int n
   return e;
 }
 
-// a particle placed by prim on its parent (-1: none) and one coordinate, np parameters
-static void place(dal_builder *b, int particle, const dal_primitive *prim, int parent,
-                  const int *coord, int np, const double *par, void *ctx) {
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = prim;
-  pd.parent = parent;
-  pd.coords = coord;
-  pd.ncoords = 1;
-  pd.param_list = par;
-  pd.nparam_list = np;
-  pd.ctx = ctx;
-  dal_builder_place_def(b, particle, &pd);
-}
-
 static dal_system *build(const char *scene, int expr) {
   dal_builder *b;
   dal_system *sys;
@@ -72,9 +72,9 @@ static dal_system *build(const char *scene, int expr) {
                  *pn[] = {"l", "a", "w"};
       double pv[] = {1, 0.1, 6.26};
       dal_expr *e = mk(f, 2, in, 1, pn, pv, 3);
-      place(b, p[0], dal_expr_primitive(e), -1, q, 3, pv, e);
+      place_by(b, p[0], dal_expr_primitive(e), -1, 1, q, 3, pv, e);
     } else {
-      place(b, p[0], &dal_map_pendulum, -1, q, 7, par, NULL);
+      place_by(b, p[0], &dal_map_pendulum, -1, 1, q, 7, par, NULL);
     }
   } else if (!strcmp(scene, "bead")) {
     double par[3] = {1, 5, 0};
@@ -82,9 +82,9 @@ static dal_system *build(const char *scene, int expr) {
       const char *f[] = {"R*sin(theta)*cos(w*t)", "R*sin(theta)*sin(w*t)", "-R*cos(theta)"},
                  *in[] = {"theta"}, *pn[] = {"R", "w"};
       dal_expr *e = mk(f, 3, in, 1, pn, par, 2);
-      place(b, p[0], dal_expr_primitive(e), -1, q, 2, par, e);
+      place_by(b, p[0], dal_expr_primitive(e), -1, 1, q, 2, par, e);
     } else {
-      place(b, p[0], &dal_map_ring, -1, q, 3, par, NULL);
+      place_by(b, p[0], &dal_map_ring, -1, 1, q, 3, par, NULL);
     }
   } else {
     // a chain of 32 links of length 0.1: the first about the origin, each next from its parent
@@ -96,11 +96,11 @@ static dal_system *build(const char *scene, int expr) {
     double par[7] = {l, 0, 0, 0, 0, 0, 0};
     for (int i = 0; i < n; ++i) {
       if (i == 0)
-        place(b, p[0], expr ? dal_expr_primitive(e0) : &dal_map_pendulum, -1, q, expr ? 1 : 7, par,
-              e0);
+        place_by(b, p[0], expr ? dal_expr_primitive(e0) : &dal_map_pendulum, -1, 1, q, expr ? 1 : 7,
+                 par, e0);
       else
-        place(b, p[i], expr ? dal_expr_primitive(e1) : &dal_map_hanging, p[i - 1], &q[i], 1, &l,
-              e1);
+        place_by(b, p[i], expr ? dal_expr_primitive(e1) : &dal_map_hanging, p[i - 1], 1, &q[i], 1,
+                 &l, e1);
     }
   }
   double g3[3] = {0, 0, -9.81}, g2[2] = {0, -9.81};

@@ -8,9 +8,10 @@
 // ring's frame. Analysis: dal_continue follows a branch of equilibria in the parameter w
 // (every point a Newton solve with the exact stiffness, rebuilt system per w) and classifies
 // each by the eigenvalues of the exact vector-field Jacobian; det K changing sign between grid
-// points is bisected to the critical rate. Closed form (Likharev, Essential Graduate Physics, CM
-// sec. 2.1): theta = 0 for all w, stable below w_c = sqrt(g/R) with frequency sqrt(g/R - w^2),
-// unstable above; for w > w_c the pair cos(theta0) = g/(R w^2), stable, frequency w sin(theta0).
+// points is bisected to the critical rate.
+// Closed form (Likharev, Essential Graduate Physics, CM sec. 2.1): theta = 0 for all w, stable
+// below w_c = sqrt(g/R) with frequency sqrt(g/R - w^2), unstable above; for w > w_c the pair
+// cos(theta0) = g/(R w^2), stable, frequency w sin(theta0).
 //
 // Full mode (default; --out DIR, default ./demo-output): writes bead_bifurcation.csv
 // (branch, w, theta, verdict, small-oscillation frequency; the located fork as branch "fork",

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Lyapunov exponents of SICM's driven pendulum, converging.
+// Lyapunov exponents of SICM's driven pendulum: finite-time estimates with their error.
 //
 // Problem (Sussman & Wisdom, SICM sec. 1.7, as in sicm_driven_pendulum.c): a bob of mass 1 on a
 // rod of length 1 whose pivot moves as y = 0.1 cos(2 sqrt(g) t), g = 9.8, released at
@@ -197,15 +197,18 @@ static int full_mode(const dal_system *sys, const char *dir) {
   FILE *f = fopen(gp, "w");
   if (f) {
     fprintf(f,
-            "set terminal pngcairo size 1100,600\nset output '%s'\nset datafile separator ','\n"
-            "set key autotitle columnhead top right\nset xlabel 't (s)'\n"
+            "set terminal pngcairo size 1300,600\nset output '%s'\nset datafile separator ','\n"
+            "set key autotitle columnhead outside right\nset autoscale xfix\nset xlabel 't (s)'\n"
             "set ylabel 'exponent (1/s)'\nset grid\n"
-            "set title 'SICM driven pendulum: Lyapunov exponents (exact tangent, QR every 1 s)'\n"
-            "plot '%s' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'lambda_1 running', "
+            "set title 'SICM driven pendulum: finite-time Lyapunov estimates (exact tangent, QR "
+            "every 1 s); the band: final lambda_1 +- its standard error'\n"
+            "plot %.6f with filledcurves y1=%.6f fs transparent solid 0.25 noborder "
+            "lc rgb '#1f77b4' title 'lambda_1 +- error', "
+            "'%s' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'lambda_1 running', "
             "'' using 1:3 with lines lw 2 lc rgb '#d62728' title 'lambda_2 running', "
             "'' using 1:4 with points pt 7 ps 0.8 lc rgb '#7f7f7f' title '100 s windows', "
             "%.6f with lines dt 2 lc rgb 'black' title 'final lambda_1'\n",
-            png, path, ex[0]);
+            png, ex[0] + er[0], ex[0] - er[0], path, ex[0]);
     fclose(f);
   }
   if (system("command -v gnuplot >/dev/null 2>&1") != 0) {

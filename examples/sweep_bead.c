@@ -16,9 +16,9 @@
 // equilibria of its rate with the analysis API: dal_equilibrium (Newton with the exact
 // stiffness K) from 16 starts spread over the circle, the distinct solutions kept, and
 // dal_normal_modes classifies each (verdict from the eigenvalues of the exact vector-field
-// Jacobian, Omega^2 from K x = Omega^2 M x). No time integration at all. Checks (--check: 20 rates
-// over [0, 2.5 w_c] and 4 within 1% of w_c; full mode: 250 rates over [0, 2.5 w_c], CSV + PNG
-// chart):
+// Jacobian, Omega^2 from K x = Omega^2 M x). No time integration at all.
+// Checks (--check: 20 rates over [0, 2.5 w_c] and 4 within 1% of w_c; full mode: 250 rates
+// over [0, 2.5 w_c], CSV + PNG chart):
 //  1. the set of equilibria of every rate is the closed-form set ({0, pi} below w_c,
 //     {-theta*, 0, theta*, pi} above), each within 1e-10 rad, steady (d qddot/dt = 0);
 //  2. verdicts: 0 neutral below w_c and unstable above, pi unstable, +-theta* neutral;

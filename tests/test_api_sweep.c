@@ -1700,6 +1700,249 @@ static void sw_dal_events_write_csv(void) {
   dal_events_destroy(ev);
 }
 
+// ---------------------------------------------------------------- expressions and scenes
+static dal_expr *sweep_expr(int velocities) {
+  const char *f = "l*sin(x)", *in = "x", *pn = "l";
+  double v = 1.0;
+  dal_expr_def d = dal_default_expr_def();
+  d.formulas = &f;
+  d.nout = 1;
+  d.inputs = &in;
+  d.nin = 1;
+  d.velocities = velocities;
+  d.params = &pn;
+  d.values = &v;
+  d.nparam = 1;
+  dal_expr *e = NULL;
+  CHECK_OK(dal_expr_create(&d, &e, NULL, 0));
+  return e;
+}
+static const char *sweep_scene_text = "dim 2\nparam l = 1\ncoord th q=1\nparticle b mass=1\n"
+                                      "place b = l*sin(th); -l*cos(th)\ngravity 0 -9.8\n"
+                                      "run t1=0.1 dt=0.05\n";
+static void sw_dal_default_expr_def(void) { CHECK(dal_default_expr_def().nout == 0); }
+static void sw_dal_expr_create(void) {
+  dal_expr *e = (dal_expr *)&F;
+  dal_expr_def d = dal_default_expr_def();
+  char msg[256];
+  CHECK(dal_expr_create(NULL, &e, msg, sizeof msg) == DAL_E_ARG && e == NULL && msg[0]);
+  CHECK(dal_expr_create(&d, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_create(&d, &e, msg, sizeof msg) == DAL_E_ARG && msg[0]); // no formulas
+  const char *f = "x";
+  d.formulas = &f;
+  d.nout = 1;
+  d.nin = 1; // inputs NULL
+  CHECK(dal_expr_create(&d, &e, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  double nan = NAN;
+  const char *pn = "p";
+  d.nin = 0;
+  d.formulas = &pn;
+  d.params = &pn;
+  d.values = &nan;
+  d.nparam = 1;
+  CHECK(dal_expr_create(&d, &e, msg, sizeof msg) == DAL_E_NONFINITE && msg[0]);
+  CHECK(dal_expr_create(&d, &e, NULL, 0) == DAL_E_NONFINITE);
+}
+static void sw_dal_expr_destroy(void) { dal_expr_destroy(NULL); }
+static void sw_dal_expr_nout(void) { CHECK(dal_expr_nout(NULL) == 0); }
+static void sw_dal_expr_nin(void) { CHECK(dal_expr_nin(NULL) == 0); }
+static void sw_dal_expr_nparam(void) { CHECK(dal_expr_nparam(NULL) == 0); }
+static void sw_dal_expr_symbol(void) {
+  dal_expr *e = sweep_expr(0);
+  CHECK(dal_expr_symbol(NULL, 0) == NULL);
+  CHECK(dal_expr_symbol(e, -1) == NULL && dal_expr_symbol(e, 2) == NULL);
+  CHECK(!strcmp(dal_expr_symbol(e, 1), "l"));
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_values(void) { CHECK(dal_expr_values(NULL) == NULL); }
+static void sw_dal_expr_depends(void) {
+  dal_expr *e = sweep_expr(0);
+  CHECK(dal_expr_depends(NULL, 0) == 0 && dal_expr_depends(e, 5) == 0 &&
+        dal_expr_depends(e, -2) == 0 && dal_expr_depends(e, -1) == 0 &&
+        dal_expr_depends(e, 0) == 1);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_ninstructions(void) { CHECK(dal_expr_ninstructions(NULL) == 0); }
+static void sw_dal_expr_eval(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_jet in = dal_const(1), out;
+  CHECK(dal_expr_eval(NULL, &in, in, NULL, &out) == DAL_E_ARG);
+  CHECK(dal_expr_eval(e, NULL, in, NULL, &out) == DAL_E_ARG);
+  CHECK(dal_expr_eval(e, &in, in, NULL, NULL) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_check(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_jet in = dal_const(1), out;
+  char msg[64];
+  CHECK(dal_expr_check(NULL, &in, in, NULL, &out, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_check(e, NULL, in, NULL, &out, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_check(e, &in, in, NULL, NULL, NULL, 0) == DAL_E_ARG);
+  in = dal_const(NAN);
+  CHECK(dal_expr_check(e, &in, in, NULL, &out, msg, sizeof msg) == DAL_E_DOMAIN && msg[0]);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_primitive(void) { CHECK(dal_expr_primitive(NULL) == NULL); }
+static void sw_dal_expr_place_def(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_place_def d = dal_default_place_def();
+  CHECK(dal_expr_place_def(NULL, &d) == DAL_E_ARG && dal_expr_place_def(e, NULL) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_constraint_def(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(dal_expr_constraint_def(NULL, &d) == DAL_E_ARG &&
+        dal_expr_constraint_def(e, NULL) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_map(void) {
+  dal_jet q = dal_const(0), r;
+  CHECK(dal_expr_map(&q, q, &r, NULL) < 0);
+}
+static void sw_dal_expr_potential_r(void) {
+  dal_jet q = dal_const(0), r;
+  CHECK(dal_expr_potential_r(&q, q, &r, NULL) < 0);
+}
+static void sw_dal_expr_potential_q(void) {
+  dal_jet q = dal_const(0), r;
+  CHECK(dal_expr_potential_q(&q, q, &r, NULL) < 0);
+}
+static void sw_dal_expr_lagrangian(void) {
+  dal_expr *e = sweep_expr(0); // no velocities: not a Lagrangian
+  dal_jet q = dal_const(0), L;
+  CHECK(dal_expr_lagrangian(q, &q, &q, &L, NULL) < 0);
+  CHECK(dal_expr_lagrangian(q, &q, &q, &L, e) < 0);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_path(void) {
+  dal_jet x;
+  CHECK(dal_expr_path(dal_const(0), &x, NULL) < 0);
+}
+static void sw_dal_expr_time(void) {
+  dal_jet x;
+  CHECK(dal_expr_time(dal_const(0), &x, NULL) < 0);
+}
+static void sw_dal_expr_event(void) {
+  double q = 0;
+  dal_expr *e = sweep_expr(0);
+  CHECK(isnan(dal_expr_event(0, &q, &q, NULL)) && isnan(dal_expr_event(0, &q, &q, e)));
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_print(void) {
+  dal_expr *e = sweep_expr(0);
+  char buf[64];
+  CHECK(dal_expr_print(NULL, 0, DAL_EXPR_TEXT, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 1, DAL_EXPR_TEXT, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, -1, DAL_EXPR_TEXT, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 0, (dal_expr_format)7, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 0, DAL_EXPR_TEXT, NULL, 4) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 0, DAL_EXPR_TEXT, NULL, 0) == (int)strlen("l*sin(x)"));
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_derivative(void) {
+  dal_expr *e = sweep_expr(0), *d = (dal_expr *)&F;
+  char msg[128];
+  CHECK(dal_expr_derivative(NULL, 0, 0, &d, msg, sizeof msg) == DAL_E_ARG && d == NULL);
+  CHECK(dal_expr_derivative(e, 0, 0, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_derivative(e, 1, 0, &d, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_expr_derivative(e, 0, 1, &d, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_expr_derivative(e, 0, -2, &d, NULL, 0) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_default_expr_model_def(void) { CHECK(dal_default_expr_model_def().dim == 0); }
+static void sw_dal_expr_model_energies(void) {
+  dal_expr *T = (dal_expr *)&F;
+  char msg[256];
+  dal_expr_model_def d = dal_default_expr_model_def();
+  CHECK(dal_expr_model_energies(NULL, &T, NULL, NULL, msg, sizeof msg) == DAL_E_ARG && !T &&
+        msg[0]);
+  CHECK(dal_expr_model_energies(&d, &T, NULL, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  const char *c = "q", *m = "1", *pos = "q";
+  d.dim = 1;
+  d.coords = &c;
+  d.ncoords = 1;
+  d.masses = &m;
+  d.nparticles = 1;
+  d.positions = &pos;
+  CHECK_OK(dal_expr_model_energies(&d, NULL, NULL, NULL, NULL, 0));
+  pos = "q +";
+  CHECK(dal_expr_model_energies(&d, &T, NULL, NULL, msg, sizeof msg) == DAL_E_ARG &&
+        strstr(msg, "position x of particle 1"));
+}
+static void sw_dal_expr_lagrange(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_expr_equations eq;
+  char msg[256];
+  CHECK(dal_expr_lagrange(NULL, &eq, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_expr_lagrange(e, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_lagrange(e, &eq, msg, sizeof msg) == DAL_E_ARG && msg[0] && !eq.mass);
+  dal_expr_destroy(e);
+  e = sweep_expr(1);
+  CHECK_OK(dal_expr_lagrange(e, &eq, NULL, 0));
+  dal_expr_equations_destroy(&eq);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_equations_destroy(void) { dal_expr_equations_destroy(NULL); }
+static void sw_dal_scene_parse(void) {
+  dal_scene *sc = (dal_scene *)&F;
+  char msg[256];
+  CHECK(dal_scene_parse(NULL, "x", &sc, msg, sizeof msg) == DAL_E_ARG && sc == NULL);
+  CHECK(dal_scene_parse(sweep_scene_text, "x", NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_parse("dim 7\n", NULL, &sc, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_scene_parse("", NULL, &sc, NULL, 0) == DAL_E_ARG);
+}
+static void sw_dal_scene_read(void) {
+  dal_scene *sc = (dal_scene *)&F;
+  char msg[256];
+  CHECK(dal_scene_read(NULL, &sc, msg, sizeof msg) == DAL_E_ARG && sc == NULL);
+  CHECK(dal_scene_read("/nonexistent/x.scene", NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_read("/nonexistent/x.scene", &sc, msg, sizeof msg) == DAL_E_IO && msg[0]);
+}
+static void sw_dal_scene_destroy(void) { dal_scene_destroy(NULL); }
+static dal_scene *sweep_scene(void) {
+  dal_scene *sc = NULL;
+  CHECK_OK(dal_scene_parse(sweep_scene_text, "sweep", &sc, NULL, 0));
+  return sc;
+}
+static void sw_dal_scene_write(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_write(NULL, stdout) == DAL_E_ARG && dal_scene_write(sc, NULL) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_set_param(void) {
+  dal_scene *sc = sweep_scene();
+  char msg[128];
+  CHECK(dal_scene_set_param(NULL, "l", 1, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_set_param(sc, NULL, 1, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_set_param(sc, "zz", 1, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_scene_set_param(sc, "l", NAN, msg, sizeof msg) == DAL_E_NONFINITE);
+  CHECK_OK(dal_scene_set_param(sc, "l", 2, msg, sizeof msg));
+  CHECK(dal_scene_system(sc) != NULL);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_system(void) { CHECK(dal_scene_system(NULL) == NULL); }
+static void sw_dal_scene_opts(void) { CHECK(dal_scene_opts(NULL, NULL, NULL, NULL) == NULL); }
+static void sw_dal_scene_state(void) {
+  dal_scene *sc = sweep_scene();
+  dal_state *st;
+  CHECK(dal_scene_state(NULL, &st) == DAL_E_ARG && dal_scene_state(sc, NULL) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_run(void) {
+  dal_scene *sc = sweep_scene();
+  dal_state *st = (dal_state *)&F;
+  CHECK(dal_scene_run(NULL, NULL, &st, NULL, 0) == DAL_E_ARG && st == NULL);
+  CHECK_OK(dal_scene_run(sc, NULL, NULL, NULL, 0));
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_show(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_show(NULL, stdout, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
+  CHECK(dal_scene_show(sc, NULL, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+
 typedef struct sweep_row {
   const char *name;
   void (*run)(void);
@@ -1708,6 +1951,44 @@ typedef struct sweep_row {
 #define ROW(f)                                                                                     \
   { #f, sw_##f }
 static const sweep_row rows[] = {
+    ROW(dal_default_expr_def),
+    ROW(dal_expr_create),
+    ROW(dal_expr_destroy),
+    ROW(dal_expr_nout),
+    ROW(dal_expr_nin),
+    ROW(dal_expr_nparam),
+    ROW(dal_expr_symbol),
+    ROW(dal_expr_values),
+    ROW(dal_expr_depends),
+    ROW(dal_expr_ninstructions),
+    ROW(dal_expr_eval),
+    ROW(dal_expr_check),
+    ROW(dal_expr_primitive),
+    ROW(dal_expr_place_def),
+    ROW(dal_expr_constraint_def),
+    ROW(dal_expr_map),
+    ROW(dal_expr_potential_r),
+    ROW(dal_expr_potential_q),
+    ROW(dal_expr_lagrangian),
+    ROW(dal_expr_path),
+    ROW(dal_expr_time),
+    ROW(dal_expr_event),
+    ROW(dal_expr_print),
+    ROW(dal_expr_derivative),
+    ROW(dal_default_expr_model_def),
+    ROW(dal_expr_model_energies),
+    ROW(dal_expr_lagrange),
+    ROW(dal_expr_equations_destroy),
+    ROW(dal_scene_parse),
+    ROW(dal_scene_read),
+    ROW(dal_scene_destroy),
+    ROW(dal_scene_write),
+    ROW(dal_scene_set_param),
+    ROW(dal_scene_system),
+    ROW(dal_scene_opts),
+    ROW(dal_scene_state),
+    ROW(dal_scene_run),
+    ROW(dal_scene_show),
     ROW(dal_status_string),
     ROW(dal_status_name),
     ROW(dal_version),

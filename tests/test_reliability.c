@@ -1010,6 +1010,28 @@ static int row_advance_unresolved(char *msg) {
   CHECK_OK(dal_state_set(s.sys, s.st, 1.0, &q, &qd));
   CHECK_OK(dal_advance(s.sys, s.st, &o, nextafter(1.0, 2.0)));
   CHECK(dal_state_time(s.st) == nextafter(1.0, 2.0) && dal_state_q(s.st)[0] == 0.0);
+  // a longer interval at t0 = 1e15, 3 s = 24 ulps: ARKODE and CVODE take a stop time within
+  // 100 ulps of t as reached and snapped their time to it after one step of 1e-5 s (DAL_OK,
+  // the pendulum where it was). Either the motion happened (against the same run shifted to
+  // t = 0, the autonomous scene's reference) or the call refuses and the state stays
+  const dal_method snap[4] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_ADAMS,
+                              DAL_METHOD_BDF};
+  for (int i = 0; i < 4; ++i) {
+    dal_solve_opts a = opts_for(snap[i]);
+    a.rtol = 1e-6;
+    double q3 = 0.3, ref3;
+    CHECK_OK(dal_state_set(s.sys, s.st, 0.0, &q3, &qd));
+    CHECK_OK(dal_advance(s.sys, s.st, &a, 3.0));
+    ref3 = dal_state_q(s.st)[0];
+    CHECK_OK(dal_state_set(s.sys, s.st, t0, &q3, &qd));
+    int r3 = dal_advance(s.sys, s.st, &a, t0 + 3.0);
+    int honest = r3 == DAL_OK ? fabs(dal_state_q(s.st)[0] - ref3) <= 16e-6
+                              : dal_state_time(s.st) == t0 && dal_state_q(s.st)[0] == 0.3;
+    CHECK_MSG(honest && (r3 == DAL_OK || strstr(dal_state_errmsg(s.st), "restart the clock")),
+              "%s over 3 s at t = 1e15: %s with theta %.17g (reference %.17g): %s",
+              dal_method_name(snap[i]), dal_status_name(r3), dal_state_q(s.st)[0], ref3,
+              dal_state_errmsg(s.st));
+  }
   // ... but not the pendulum swinging at 1 rad/s over 8 ulps of t = 1e15 ...
   // (covered above) and the symplectic driver: a grid point within 8 ulps of the target was
   // taken for it (DAL_OK at t0 + 4 after stopping at t0 + 2.25). The same run shifted to
@@ -1252,7 +1274,47 @@ static int reentrant_monitor(const dal_system *sys, const dal_state *st, void *c
   return 0;
 }
 
+// an event function that adds an event to its own set during the run (the items it is
+// scanned from would move): refused with DAL_E_STATE, the set unchanged
+typedef struct adder {
+  dal_events *ev;
+  int rc, calls;
+} adder;
+
+static double g_adder(double t, const double *q, const double *qd, void *ctx) {
+  (void)q;
+  (void)qd;
+  adder *a = ctx;
+  if (a->calls++ == 3) {
+    dal_event_def d = dal_default_event_def();
+    d.g = g_cross;
+    a->rc = dal_events_add(a->ev, &d);
+  }
+  return t - 0.7;
+}
+
 static int row_monitor_reentrant(char *msg) {
+  {
+    scene s;
+    CHECK_OK(pendulum(&s, 0.3));
+    adder a = {NULL, 99, 0};
+    CHECK_OK(dal_events_create(s.sys, &a.ev));
+    dal_event_def d = dal_default_event_def();
+    d.g = g_adder;
+    d.ctx = &a;
+    CHECK_OK(dal_events_add(a.ev, &d));
+    CHECK_OK(dal_state_set_events(s.st, a.ev));
+    dal_solve_opts o = opts_for(DAL_METHOD_DOPRI5);
+    CHECK_OK(dal_advance(s.sys, s.st, &o, 1.0));
+    CHECK_MSG(a.rc == DAL_E_STATE && dal_events_size(a.ev) == 1 &&
+                  strstr(dal_events_errmsg(a.ev), "in use"),
+              "events_add from an event function: %s (%s), %d events", dal_status_name(a.rc),
+              dal_events_errmsg(a.ev), dal_events_size(a.ev));
+    CHECK(dal_events_count(a.ev) == 1); // t = 0.7 crossed once
+    CHECK_OK(dal_state_set_events(s.st, NULL));
+    dal_events_destroy(a.ev);
+    scene_free(&s);
+  }
   int rc = DAL_OK;
   for (int which = 0; which < 2; ++which) {
     scene s;

@@ -14,6 +14,7 @@
 #include "dalembert/jet.h"
 #include "dalembert/params.h"
 #include "dalembert/primitives.h"
+#include "dalembert/scene.h"
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
 #include "dalembert/system.h"

@@ -1,47 +1,48 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Expressions: formulas compiled to jet programs, usable as primitives and callbacks, and the
-// same formulas differentiated, simplified and printed.
-//
-// A dal_expr is a vector of formulas over named inputs (coordinates, particle positions, and
-// with `velocities` their velocities named input + "dot"), the time `t` and named parameters:
-//
-//   "l*sin(theta)"   "-l*cos(theta) + a*cos(omega*t)"   "1/2*m*(thetadot*l)^2 + m*g*l*cos(theta)"
-//
-// Grammar: numbers (12, 0.5, 1e-3), names, + - * / ^ (also **; right-associative, binding
-// tighter than unary minus: -x^2 = -(x^2)), unary minus and plus, parentheses, and the
-// functions sin cos tan asin acos atan sinh cosh tanh exp log sqrt (one argument), atan2(y, x),
-// hypot(a, b) and pow(a, b). `pi` is the constant unless a name shadows it. Powers with an
-// integer constant exponent are exact for any sign of the base; other exponents need a
-// positive base.
-//
-// Compilation hash-conses the formulas (a repeated subexpression is evaluated once), splits off
-// what depends only on parameters and constants (evaluated in doubles), and allocates registers
-// by last use; evaluation runs the instruction list over dal_jet to order 3 (the order the
-// library uses) on the stack, with no allocation. A compiled expression is immutable: threads
-// may evaluate it at the same time.
-//
-// Where an expression goes (each adapter's ctx is the dal_expr, borrowed: it must outlive the
-// system):
-//   coordinate map of one particle   dal_expr_primitive + dal_expr_place_def (nout = d; inputs
-//                                    the parent's position, if any, then the coordinates)
-//   constraint                       dal_expr_primitive + dal_expr_constraint_def (inputs the
-//                                    particles' positions, d each, then the coordinates)
-//   whole-system map r(q, t)         dal_expr_map (nout = N d, inputs q)
-//   potential U(r, t) / U(q, t)      dal_expr_potential_r / dal_expr_potential_q (nout = 1)
-//   Lagrangian L(t, q, qdot)         dal_expr_lagrangian (nout = 1, velocities = 1, inputs q)
-//   moving point / prescribed f(t)   dal_expr_path / dal_expr_time (no inputs)
-//   event g(t, q, qdot)              dal_expr_event (nout = 1, velocities = 1)
-// As a primitive the parameters are the primitive's named parameters, with the expression's
-// values as defaults: a def may set them (def.param[i], i in the order of the def's `params`)
-// and a state may override them per trajectory ("place:<particle>:<i>", "con:<name>:<i>",
-// params.h). The callback adapters read the expression's own values.
-//
-// Errors: a formula that does not parse is refused with a message naming the formula, the
-// column (1-based) and the unknown symbol or the bad token. At run time a function outside its
-// domain (log of a negative number, ...) produces NaN, which the library reports as
-// DAL_E_DOMAIN naming the primitive (whose name is the def's name); dal_expr_check names the
-// formula, column and function.
+/// @file
+/// @brief Expressions: formulas compiled to jet programs, usable as primitives and callbacks, and the
+/// same formulas differentiated, simplified and printed.
+///
+/// A dal_expr is a vector of formulas over named inputs (coordinates, particle positions, and
+/// with `velocities` their velocities named input + "dot"), the time `t` and named parameters:
+///
+///   "l*sin(theta)"   "-l*cos(theta) + a*cos(omega*t)"   "1/2*m*(thetadot*l)^2 + m*g*l*cos(theta)"
+///
+/// Grammar: numbers (12, 0.5, 1e-3), names, + - * / ^ (also **; right-associative, binding
+/// tighter than unary minus: -x^2 = -(x^2)), unary minus and plus, parentheses, and the
+/// functions sin cos tan asin acos atan sinh cosh tanh exp log sqrt (one argument), atan2(y, x),
+/// hypot(a, b) and pow(a, b). `pi` is the constant unless a name shadows it. Powers with an
+/// integer constant exponent are exact for any sign of the base; other exponents need a
+/// positive base.
+///
+/// Compilation hash-conses the formulas (a repeated subexpression is evaluated once), splits off
+/// what depends only on parameters and constants (evaluated in doubles), and allocates registers
+/// by last use; evaluation runs the instruction list over dal_jet to order 3 (the order the
+/// library uses) on the stack, with no allocation. A compiled expression is immutable: threads
+/// may evaluate it at the same time.
+///
+/// Where an expression goes (each adapter's ctx is the dal_expr, borrowed: it must outlive the
+/// system):
+///   coordinate map of one particle   dal_expr_primitive + dal_expr_place_def (nout = d; inputs
+///                                    the parent's position, if any, then the coordinates)
+///   constraint                       dal_expr_primitive + dal_expr_constraint_def (inputs the
+///                                    particles' positions, d each, then the coordinates)
+///   whole-system map r(q, t)         dal_expr_map (nout = N d, inputs q)
+///   potential U(r, t) / U(q, t)      dal_expr_potential_r / dal_expr_potential_q (nout = 1)
+///   Lagrangian L(t, q, qdot)         dal_expr_lagrangian (nout = 1, velocities = 1, inputs q)
+///   moving point / prescribed f(t)   dal_expr_path / dal_expr_time (no inputs)
+///   event g(t, q, qdot)              dal_expr_event (nout = 1, velocities = 1)
+/// As a primitive the parameters are the primitive's named parameters, with the expression's
+/// values as defaults: a def may set them (def.param[i], i in the order of the def's `params`)
+/// and a state may override them per trajectory ("place:<particle>:<i>", "con:<name>:<i>",
+/// params.h). The callback adapters read the expression's own values.
+///
+/// Errors: a formula that does not parse is refused with a message naming the formula, the
+/// column (1-based) and the unknown symbol or the bad token. At run time a function outside its
+/// domain (log of a negative number, ...) produces NaN, which the library reports as
+/// DAL_E_DOMAIN naming the primitive (whose name is the def's name); dal_expr_check names the
+/// formula, column and function.
 #ifndef DAL_EXPR_H
 #define DAL_EXPR_H
 

@@ -1,32 +1,33 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Scene files: a whole model and its run as text, read into a system, written back, run.
-//
-// One element per line; `#` starts a comment (units go there); formulas are the rest of a line
-// (docs/expressions.md has the grammar and why it is not YAML):
-//
-//   dim 2                                   # spatial dimension (2 or 3; 0: a Lagrangian only)
-//   param g = 9.8                           # named parameters, usable in every formula
-//   coord theta q=1 v=0                     # a coordinate with its initial value and rate
-//   particle bob mass=m                     # mass: a formula of the parameters
-//   place bob = l*sin(theta); a*cos(omega*t) - l*cos(theta)     # r(q, t) by formulas
-//   place bob pendulum theta l=1 ay=a w=omega                    # or by a built-in primitive
-//   place b parent=a = x_a + l*sin(th2); y_a - l*cos(th2)       # parent's position x_a, y_a
-//   constraint rod parts=a,b = sqrt((x_b - x_a)^2 + (y_b - y_a)^2) - l
-//   constraint rod distance2 parts=a,b L=1  # a built-in constraint
-//   spring a b k=10 L=1                     # or: spring a anchor=0,1 k=10 L=0
-//   damper a b c=0.1                        # or: damper a anchor=0,0 c=0.1
-//   gravity 0 -g
-//   potential = 1/2*k*theta^2               # a further U(q, t)
-//   lagrangian = 1/2*m*xdot^2 - 1/2*k*x^2   # instead of particles (dim 0)
-//   run method=bs rtol=1e-12 t1=100 dt=0.01 # method, tolerances, end time, output step
-//
-// Formulas may use the coordinates, t, the parameters and (in `place ... parent=`, and in
-// constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
-// parameters are given by their names (primitives.h) as formulas without spaces; values of
-// masses, gravity, springs and dampers are formulas of the parameters.
-// Messages name the file and line: "pend.scene:7: place bob: formula 1 'l*sin(thet)', column 7:
-// unknown symbol 'thet' ...".
+/// @file
+/// @brief Scene files: a whole model and its run as text, read into a system, written back, run.
+///
+/// One element per line; `#` starts a comment (units go there); formulas are the rest of a line
+/// (docs/expressions.md has the grammar and why it is not YAML):
+///
+///   dim 2                                   # spatial dimension (2 or 3; 0: a Lagrangian only)
+///   param g = 9.8                           # named parameters, usable in every formula
+///   coord theta q=1 v=0                     # a coordinate with its initial value and rate
+///   particle bob mass=m                     # mass: a formula of the parameters
+///   place bob = l*sin(theta); a*cos(omega*t) - l*cos(theta)     # r(q, t) by formulas
+///   place bob pendulum theta l=1 ay=a w=omega                    # or by a built-in primitive
+///   place b parent=a = x_a + l*sin(th2); y_a - l*cos(th2)       # parent's position x_a, y_a
+///   constraint rod parts=a,b = sqrt((x_b - x_a)^2 + (y_b - y_a)^2) - l
+///   constraint rod distance2 parts=a,b L=1  # a built-in constraint
+///   spring a b k=10 L=1                     # or: spring a anchor=0,1 k=10 L=0
+///   damper a b c=0.1                        # or: damper a anchor=0,0 c=0.1
+///   gravity 0 -g
+///   potential = 1/2*k*theta^2               # a further U(q, t)
+///   lagrangian = 1/2*m*xdot^2 - 1/2*k*x^2   # instead of particles (dim 0)
+///   run method=bs rtol=1e-12 t1=100 dt=0.01 # method, tolerances, end time, output step
+///
+/// Formulas may use the coordinates, t, the parameters and (in `place ... parent=`, and in
+/// constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
+/// parameters are given by their names (primitives.h) as formulas without spaces; values of
+/// masses, gravity, springs and dampers are formulas of the parameters.
+/// Messages name the file and line: "pend.scene:7: place bob: formula 1 'l*sin(thet)', column 7:
+/// unknown symbol 'thet' ...".
 #ifndef DAL_SCENE_H
 #define DAL_SCENE_H
 
@@ -64,7 +65,7 @@ DAL_API int dal_scene_write(const dal_scene *sc, FILE *fp);
 
 /// Override parameter `name` (a `param` line's value) and rebuild the system. States of the
 /// old system must be destroyed first. Returns DAL_OK, DAL_E_ARG (unknown name; msg says),
-/// or the rebuild's status.
+/// DAL_E_NONFINITE, or the rebuild's status (the scene then keeps the old value and system).
 DAL_API int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg,
                                 size_t msglen);
 

@@ -442,9 +442,12 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   if (rc) return rc;
   dal_solve_opts eff = dal__effective_opts(opts);
   run r = {.sys = sys, .st = st, .o = &eff, .what = "advance", .t1 = t1, .ev = active_events(st)};
-  // the state belongs to the run until it returns (dal__check_idle refuses its callbacks)
+  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
+  // its callbacks)
   st->busy = 1;
+  if (r.ev) dal__events_hold(r.ev, 1);
   rc = run_to(&r, t1);
+  if (r.ev) dal__events_hold(r.ev, 0);
   st->busy = 0;
   return rc;
 }
@@ -456,9 +459,13 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                double dt, dal_monitor_fn *monitor, void *ctx) {
   int rc = check_call(sys, st, opts, t1, "evolve");
   if (rc) return rc;
-  // the state belongs to the run until it returns (dal__check_idle refuses its callbacks)
+  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
+  // its callbacks)
+  dal_events *ev = active_events(st);
   st->busy = 1;
+  if (ev) dal__events_hold(ev, 1);
   rc = evolve(sys, st, opts, t1, dt, monitor, ctx);
+  if (ev) dal__events_hold(ev, 0);
   st->busy = 0;
   return rc;
 }

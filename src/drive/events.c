@@ -40,6 +40,7 @@ struct dal_events {
   double *logq; // 2n per entry: q, qdot
   int npend;
   dal__pending *pend; // crossings of the current step, in time order (n)
+  int held;           // runs using the set now (dal__events_hold)
   char err[DAL_ERRMSG_LEN];
 };
 
@@ -106,9 +107,15 @@ static int find_row(dal_events *ev, const char *name, int row, int *out) {
                                   "with dal_state_reactions instead");
 }
 
+void dal__events_hold(dal_events *ev, int on) { ev->held += on ? 1 : -1; }
+
 int dal_events_add(dal_events *ev, const dal_event_def *d) {
   if (!ev) return DAL_E_ARG;
   ev->err[0] = 0;
+  if (ev->held)
+    return dal__set_err(ev->err, DAL_E_STATE,
+                        "events_add: the event set is in use by a running dal_advance or "
+                        "dal_evolve (called from one of its callbacks); add events between runs");
   if (!d) return dal__set_err(ev->err, DAL_E_ARG, "events_add: def is NULL");
   if (d->cookie != EVENT_COOKIE)
     return dal__set_err(ev->err, DAL_E_ARG,

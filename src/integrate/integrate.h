@@ -114,6 +114,13 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
                     const dal_ode_problem *prob, dal_ode_integ **out);
 void dal__ode_destroy(void *ig);
 
+/// A SUNDIALS integrator returned at its stop time tout while its own time tn lies more than
+/// a few ulps before it: it takes a stop time within 100 ulps of t as reached and extrapolates
+/// there, which at large |t| is seconds of motion that did not happen. Fails (DAL_E_STEP,
+/// naming the resolution of t and the remedy) with the state at the last accepted step; 0 when
+/// tn is tout to a few ulps, or nothing moves over the gap beyond the tolerances.
+int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout);
+
 /// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the
 /// last component when opts.work is set (not counted; no failure bookkeeping)
 int dal__ode_eval(dal_ode_integ *ig, double t, const double *y, double *ydot, unsigned need);

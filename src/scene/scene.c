@@ -11,6 +11,36 @@
 
 #include "scene.h"
 
+// a placement and a constraint from their parts, through the defs
+static int place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                    const int *coords, int np, const double *param, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.coords = coords;
+  d.ncoords = nc;
+  d.param_list = param;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, p, &d);
+}
+
+static int constrain_by(dal_builder *b, const char *name, const dal_primitive *prim, int np,
+                        const int *parts, int nc, const int *coords, int npar, const double *param,
+                        void *ctx) {
+  dal_constraint_def d = dal_default_constraint_def();
+  d.name = name;
+  d.prim = prim;
+  d.parts = parts;
+  d.nparts = np;
+  d.coords = coords;
+  d.ncoords = nc;
+  d.param_list = param;
+  d.nparam_list = npar;
+  d.ctx = ctx;
+  return dal_builder_add_constraint_def(b, &d, NULL);
+}
+
 static char *dup(const char *s) {
   size_t n = strlen(s) + 1;
   char *r = malloc(n);
@@ -369,12 +399,11 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       rc = element_expr(sc, l, what, parent >= 0 ? &parent : NULL, parent >= 0, &e, cs, &nc2, msg,
                         len);
       if (!rc) {
-        // the expression's parameters as a list: it may hold more than a def's inline array
         dal_place_def pd = dal_default_place_def();
         pd.prim = dal_expr_primitive(e);
         pd.parent = parent;
-        pd.ncoords = nc2;
         pd.coords = cs;
+        pd.ncoords = nc2;
         pd.param_list = dal_expr_values(e);
         pd.nparam_list = dal_expr_nparam(e);
         pd.ctx = e;
@@ -420,14 +449,8 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
       if (param[i] != param[i])
         return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parameter '%s' of '%s' is required",
                    l->tok[1], prim->param_names ? prim->param_names[i] : "?", prim->name);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = prim;
-    pd.parent = parent;
-    pd.ncoords = nc;
-    pd.coords = coords;
-    pd.param_list = param;
-    pd.nparam_list = prim->nparam;
-    return bcheck(sc, l, dal_builder_place_def(sc->b, p, &pd), msg, len);
+    return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL),
+                  msg, len);
   }
   if (!strcmp(k, "constraint")) {
     if (l->ntok < 2 || !sc->b)
@@ -447,10 +470,10 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
         dal_constraint_def cd = dal_default_constraint_def();
         cd.name = l->tok[1];
         cd.prim = dal_expr_primitive(e);
-        cd.nparts = np;
         cd.parts = parts;
-        cd.ncoords = nc2;
+        cd.nparts = np;
         cd.coords = cs;
+        cd.ncoords = nc2;
         cd.param_list = dal_expr_values(e);
         cd.nparam_list = dal_expr_nparam(e);
         cd.ctx = e;
@@ -496,16 +519,10 @@ static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
         return err(sc, l->line, msg, len, DAL_E_ARG,
                    "constraint %s: parameter '%s' of '%s' is required", l->tok[1],
                    prim->param_names ? prim->param_names[i] : "?", prim->name);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = l->tok[1];
-    cd.prim = prim;
-    cd.nparts = np;
-    cd.parts = parts;
-    cd.ncoords = nc;
-    cd.coords = coords;
-    cd.param_list = param;
-    cd.nparam_list = prim->nparam;
-    return bcheck(sc, l, dal_builder_add_constraint_def(sc->b, &cd, NULL), msg, len);
+    return bcheck(
+        sc, l,
+        constrain_by(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam, param, NULL), msg,
+        len);
   }
   if (!strcmp(k, "spring") || !strcmp(k, "damper")) {
     int spring = k[0] == 's';
@@ -791,9 +808,19 @@ int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg
     if (msg && msglen) snprintf(msg, msglen, "%s: no parameter '%s'", sc->name, name);
     return DAL_E_ARG;
   }
-  if (!isfinite(value)) return DAL_E_NONFINITE;
+  if (!isfinite(value)) {
+    if (msg && msglen) snprintf(msg, msglen, "%s: parameter '%s' is not finite", sc->name, name);
+    return DAL_E_NONFINITE;
+  }
+  // a value the model refuses leaves the scene as it was
+  double old = sc->pval[j];
   sc->pval[j] = value;
-  return build(sc, msg, msglen);
+  int rc = build(sc, msg, msglen);
+  if (rc) {
+    sc->pval[j] = old;
+    build(sc, NULL, 0);
+  }
+  return rc;
 }
 
 const dal_system *dal_scene_system(const dal_scene *sc) { return sc ? sc->sys : NULL; }
@@ -821,6 +848,7 @@ int dal_scene_state(const dal_scene *sc, dal_state **out) {
 int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (stp) *stp = NULL;
+  if (!sc) return DAL_E_ARG;
   dal_state *st;
   int rc = dal_scene_state(sc, &st);
   if (rc) {
