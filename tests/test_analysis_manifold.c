@@ -26,16 +26,18 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-static const double G0 = SCENE_G;
+static const double G0 = SCN_G;
 
 // -------------------------------------------------------------------------------------------
 // the Cartesian pendulum
 
 static void cart_pendulum(void) {
   const double l = 1.3;
-  dal_system *sys = scene_cart_pendulum(l);
+  scn_knobs k = scn_default();
+  k.l = l;
+  dal_system *sys = scn_cart_pendulum(&k);
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {0.0, -l}, v[2] = {0.0, 0.0};
@@ -114,7 +116,7 @@ static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
   k2.nparts = 2;
   k2.param[DAL_DISTANCE_L] = l2;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static void cart_double_pendulum(void) {
@@ -220,7 +222,9 @@ static void jacobian_vs_fd(void) {
 
 static void moving_pendulum(void) {
   const double l = 0.8, th = 0.9, w = 2.7;
-  dal_system *sys = scene_cart_pendulum(l);
+  scn_knobs k = scn_default();
+  k.l = l;
+  dal_system *sys = scn_cart_pendulum(&k);
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {l * sin(th), -l * cos(th)}, v[2] = {l * cos(th) * w, l * sin(th) * w};
@@ -287,7 +291,7 @@ static dal_system *fourbar(void) {
   rocker.param[DAL_ANCHOR_L] = FB_C;
   rocker.param[DAL_ANCHOR_X0] = FB_D;
   if (!rc) rc = dal_builder_add_constraint_def(b, &rocker, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // the mechanism in the crank angle th by hand: B = a (cos th, sin th), C on the circles about
@@ -378,7 +382,7 @@ static dal_system *cart_bead(double w) {
   k.param[DAL_TURNING_CIRCLE_R] = BEAD_R;
   k.param[DAL_TURNING_CIRCLE_W] = w;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static int bead_rebuild(double w, dal_system **out, void *ctx) {
