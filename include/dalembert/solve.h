@@ -217,6 +217,14 @@ typedef struct dal_solve_opts {
                           ///< DAL_E_INIT naming the coordinate and the state is unchanged.
                           ///< 0 (default): no limit. Either way the report of the move is
                           ///< kept (dal_state_init_report in dae.h).
+  int no_fallback;        ///< DAE route: if nonzero, a failure of IDA is returned as it is;
+                          ///< 0 (default): with DAL_FORM_AUTO and DAL_METHOD_AUTO, a
+                          ///< convergence failure or step collapse in IDA (DAL_E_CONV,
+                          ///< DAL_E_STEP) restarts from the last accepted step in the index-1
+                          ///< form with projection and Bulirsch-Stoer (the fallback ladder of
+                          ///< docs/dae.md), recorded in dal_stats and in the state's message.
+                          ///< An explicit formulation or method is honoured as asked: its
+                          ///< failure message names this fallback as the remedy.
 } dal_solve_opts;
 
 /// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default).
@@ -234,21 +242,26 @@ DAL_API const char *dal_formulation_name(dal_formulation f);
 
 /// Integration statistics accumulated since the last dal_state_set.
 typedef struct dal_stats {
-  long steps;        ///< accepted steps
-  long rejected;     ///< rejected steps (error test and convergence failures)
-  long rhs_evals;    ///< right-hand-side or residual evaluations
-  long jac_evals;    ///< Jacobian evaluations
-  long nonlin_iters; ///< nonlinear (Newton) iterations
-  long projections;  ///< manifold projections (INDEX1 with project)
-  double last_h;     ///< last step size taken
-  int foreign_code;  ///< last raw return code of the underlying solver (0 if none)
-  double rtol_used;  ///< local relative tolerance the integrator runs at: the calibrated
-                     ///< factor times opts.rtol, raised to the method's floor when the
-                     ///< request is tighter than it can honour (the clamp is visible here)
-  double max_phi;    ///< RATTLE: largest position residual max |phi| at an accepted step
-                     ///< (length units; 0 for the other methods)
-  double max_phidot; ///< RATTLE: largest velocity residual max |G v + dphi/dt| at an accepted
-                     ///< step (length/time; 0 for the other methods)
+  long steps;             ///< accepted steps
+  long rejected;          ///< rejected steps (error test and convergence failures)
+  long rhs_evals;         ///< right-hand-side or residual evaluations
+  long jac_evals;         ///< Jacobian evaluations
+  long nonlin_iters;      ///< nonlinear (Newton) iterations
+  long projections;       ///< manifold projections (INDEX1 with project)
+  double last_h;          ///< last step size taken
+  int foreign_code;       ///< last raw return code of the underlying solver (0 if none)
+  double rtol_used;       ///< local relative tolerance the integrator runs at: the calibrated
+                          ///< factor times opts.rtol, raised to the method's floor when the
+                          ///< request is tighter than it can honour (the clamp is visible here)
+  double max_phi;         ///< RATTLE: largest position residual max |phi| at an accepted step
+                          ///< (length units; 0 for the other methods)
+  double max_phidot;      ///< RATTLE: largest velocity residual max |G v + dphi/dt| at an accepted
+                          ///< step (length/time; 0 for the other methods)
+  dal_method method_used; ///< the method that ran last (AUTO resolved; DAL_METHOD_BDF for IDA)
+  dal_formulation form_used; ///< the formulation that ran last (AUTO resolved)
+  int fallbacks;             ///< switches of the DAE route to the fallback (opts.no_fallback)
+  double fallback_t;         ///< time of the last switch (the last step IDA accepted)
+  int fallback_cause;        ///< status of IDA's failure that caused it (DAL_E_CONV, DAL_E_STEP)
 } dal_stats;
 
 /// Statistics of the state's integration so far.

@@ -50,6 +50,12 @@ int dal__dae_eval(dal_dae *f, double t, const double *y);
 int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, double *F);
 /// Local tolerance factor of a DAE form in IDA (calibrated like the ODE methods' factors).
 double dal__dae_tol_factor(dal_formulation form);
+/// How far one unit of each multiplier moves the differential unknowns per unit of step size,
+/// at the state's current kinematics: sl[r] = max_j |G_rj| / M_jj (v moves by h sl[r] per unit
+/// of lambda_r, from M v' = ... + G' lambda) and smu[r] = max_j |G_rj| (q moves by h smu[r]
+/// per unit of mu_r, from q' = v - G' mu). Both (m); 0 for a row with a zero gradient.
+/// Returns 0 or DAL_E_NOMEM.
+int dal__dae_row_scales(dal_dae *f, double *sl, double *smu);
 /// Error-test mask id (neq): 1 for variables in the error test (q and v; index-3: q only),
 /// 0 for the algebraic ones (lambda, mu).
 void dal__dae_mask(const dal_dae *f, double *id);
@@ -61,7 +67,6 @@ int dal__dae_newton(dal_dae *f, double t, double cj, const double *y, dal_dae_si
 /// true when dal__dae_newton's matrix is the whole Jacobian of the residual (Cartesian
 /// particles, no forces but gravity): then no difference quotients are needed anywhere.
 int dal__dae_newton_exact(const dal_system *sys);
-
 
 /// solve options reach the forms through the first-order problem
 #include "dalembert/solve.h"
