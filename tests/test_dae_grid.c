@@ -170,7 +170,49 @@ static void compare(const tree *tr, const double *q, const double *qd, double rt
   dal_system_destroy(sc);
 }
 
+// what a run did not honour as asked shows in its message and statistics
+static void notes(void) {
+  tree sp = {.d = 3, .N = 1, .parent = {-1}, .len = {1.0}, .mass = {1.0}};
+  dal_system *sc = build(&sp, 1);
+  dal_state *c = NULL;
+  CHECK_OK(dal_state_create(sc, &c));
+  dal_solve_opts o;
+  // a start 27% off the rod's length: moved onto it (0.27 m along the rod), with a note
+  double x[3] = {0.0, 0.0, -1.27}, v[3] = {1.0, 0.0, 0.0};
+  CHECK_OK(dal_state_set(sc, c, 0.0, x, v));
+  dal_solve_default_opts(&o);
+  CHECK_OK(dal_advance(sc, c, &o, 0.1));
+  dal_init_report rep;
+  CHECK_OK(dal_state_init_report(c, &rep));
+  CHECK_CLOSE(rep.dq_max, 0.27, 1e-12);
+  CHECK_MSG(strstr(dal_state_errmsg(c), "moved coordinate 'q0_2' by 0.27") != NULL, "%s",
+            dal_state_errmsg(c));
+  // a forced GGL request below IDA's floor: DAL_OK with the clamp in the message and stats
+  double x1[3] = {0.0, 0.6, -0.8}, v1[3] = {1.0, 0.0, 0.0};
+  CHECK_OK(dal_state_set(sc, c, 0.0, x1, v1));
+  dal_solve_default_opts(&o);
+  o.form = DAL_FORM_GGL;
+  o.rtol = 1e-13;
+  CHECK_OK(dal_advance(sc, c, &o, 0.1));
+  dal_stats s;
+  CHECK_OK(dal_state_stats(c, &s));
+  CHECK(s.rtol_used > 1e-3 * o.rtol);
+  CHECK(s.form_used == DAL_FORM_GGL && s.method_used == DAL_METHOD_BDF && s.fallbacks == 0);
+  CHECK_MSG(strstr(dal_state_errmsg(c), "below what IDA can honour") != NULL, "%s",
+            dal_state_errmsg(c));
+  // AUTO at the same rtol: the index-1 form with Bulirsch-Stoer, no note needed
+  CHECK_OK(dal_state_set(sc, c, 0.0, x1, v1));
+  o.form = DAL_FORM_AUTO;
+  CHECK_OK(dal_advance(sc, c, &o, 0.1));
+  CHECK_OK(dal_state_stats(c, &s));
+  CHECK(s.form_used == DAL_FORM_INDEX1 && s.method_used == DAL_METHOD_BS);
+  CHECK(dal_state_errmsg(c)[0] == 0);
+  dal_state_destroy(c);
+  dal_system_destroy(sc);
+}
+
 int main(void) {
+  notes();
   row sph[NRT], trees[2][NRT];
   memset(sph, 0, sizeof sph);
   memset(trees, 0, sizeof trees);

@@ -106,6 +106,35 @@ static int handle_current(const dal_system *sys, const dal_state *st, const dal_
          memcmp(h->qq + n, st->qdot, n * sizeof(double)) == 0;
 }
 
+// notes for the state's message on success (issue: never silent where a request was not
+// honoured as given): a consistent start that moved the coordinates by more than the
+// tolerance asked for, and an IDA tolerance raised to its floor
+static void start_notes(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                        dal_integ_handle *h, const dal_init_report *before, int before_valid) {
+  size_t used = strlen(h->note);
+  const dal_init_report *r = &st->init_rep;
+  if (st->init_rep_valid && r->dq_coord >= 0 &&
+      (!before_valid || memcmp(before, r, sizeof *r) != 0)) {
+    int j = r->dq_coord;
+    double scale = o->atol + o->rtol * fabs(st->q[j]);
+    if (r->dq_max > scale && used < sizeof h->note)
+      used += (size_t)snprintf(
+          h->note + used, sizeof h->note - used,
+          "%snote: the consistent start at t=%.17g moved coordinate '%s' by %.3g (largest "
+          "constraint residual %.3g on '%s'); set opts.init_max_move to refuse such moves "
+          "(dal_state_init_report has the report)",
+          used ? "; " : "", st->t, sys->coord_names[j], r->dq_max, r->phi_before,
+          r->phi_row >= 0 ? sys->con[sys->row_con[r->phi_row]].name : "-");
+  }
+  if (h->kind == KIND_IDA && st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form) &&
+      used < sizeof h->note)
+    snprintf(h->note + used, sizeof h->note - used,
+             "%snote: rtol %g is below what IDA can honour: it ran at the local tolerance %g "
+             "(its floor, dal_stats.rtol_used), so expect errors above rtol; DAL_FORM_AUTO with "
+             "DAL_METHOD_AUTO runs the index-1 form with projection and Bulirsch-Stoer there",
+             used ? "; " : "", o->rtol, st->stats.rtol_used);
+}
+
 // make sure st->integ is an integrator for these options at the state's current point
 static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_opts *o) {
   dal_integ_handle *h = st->integ;
@@ -117,6 +146,9 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
   int rc = resolve(sys, st, o, &meth, &prob, &tight);
   if (rc) return rc;
   dal_solve_opts oc = *o;
+  // the consistent start's report before this start (to notice a new one)
+  dal_init_report before = st->init_rep;
+  int before_valid = st->init_rep_valid;
   if (tight) {
     // the index-1 form starts from a consistent state too, and projects after every step
     oc.form = DAL_FORM_INDEX1;
@@ -144,6 +176,7 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
     handle_free(h);
     return rc;
   }
+  start_notes(sys, st, o, h, &before, before_valid);
   handle_sync(sys, st, h);
   st->integ = h;
   st->integ_free = handle_free;
@@ -179,9 +212,17 @@ static int fall_back(const dal_system *sys, dal_state *st, const dal_solve_opts 
   if (rc) {
     // no consistent start there (a singular point): IDA's failure stands, with both reasons;
     // the state stays at IDA's last accepted step, evaluated
+    // IDA's message up to a clause boundary, then the start's reason
+    size_t cut = strlen(why);
+    if (cut > 300) {
+      cut = 300;
+      while (cut > 0 && !(why[cut - 1] == ';' || why[cut - 1] == ':'))
+        --cut;
+      if (cut > 0) --cut;
+    }
     char msg[2 * DAL_ERRMSG_LEN];
-    snprintf(msg, sizeof msg, "%.330s; the fallback to the index-1 form could not start there: %s",
-             why, st->err);
+    snprintf(msg, sizeof msg, "%.*s; the fallback to the index-1 form could not start there: %s",
+             (int)cut, why, st->err);
     (void)dal__eval(sys, st, DAL_P_ALL);
     msg[sizeof st->err - 1] = 0; // cut to the state's message length
     memcpy(st->err, msg, sizeof st->err);
