@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The default DAE route never fails spuriously: the spherical pendulum in Cartesian coordinates
 // over a grid of 180 starts, and seeded random 2-D and 3-D rod trees of 1..6 particles, with
-// dal_solve_default_opts at rtol 1e-4 ... 1e-10. Each run must reach t = 2 with DAL_OK and its
+// dal_default_solve_opts at rtol 1e-4 ... 1e-10. Each run must reach t = 2 with DAL_OK and its
 // particle positions within 16 x rtol of the same scene in minimal coordinates (pendulum
 // angles) integrated by Bulirsch-Stoer at rtol 1e-12 (the independent reference); a run that
 // fell back from IDA to the index-1 form (column fb) must say so in dal_stats and its message.
@@ -129,14 +129,14 @@ static void compare(const tree *tr, const double *q, const double *qd, double rt
   memcpy(x, dal_state_positions(a), (size_t)n * sizeof(double));
   memcpy(v, dal_state_velocities(a), (size_t)n * sizeof(double));
   dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.rtol = 1e-12;
   o.method = DAL_METHOD_BS;
   CHECK_OK(dal_advance(sm, a, &o, T_END));
   CHECK_OK(dal_forward(sm, a));
   memcpy(ref, dal_state_positions(a), (size_t)n * sizeof(double));
   CHECK_OK(dal_state_set(sc, c, 0.0, x, v));
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.rtol = rtol;
   int rc = dal_advance(sc, c, &o, T_END);
   double e = 0.0;
@@ -180,7 +180,7 @@ static void notes(void) {
   // a start 27% off the rod's length: moved onto it (0.27 m along the rod), with a note
   double x[3] = {0.0, 0.0, -1.27}, v[3] = {1.0, 0.0, 0.0};
   CHECK_OK(dal_state_set(sc, c, 0.0, x, v));
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   CHECK_OK(dal_advance(sc, c, &o, 0.1));
   dal_init_report rep;
   CHECK_OK(dal_state_init_report(c, &rep));
@@ -190,7 +190,7 @@ static void notes(void) {
   // a forced GGL request below IDA's floor: DAL_OK with the clamp in the message and stats
   double x1[3] = {0.0, 0.6, -0.8}, v1[3] = {1.0, 0.0, 0.0};
   CHECK_OK(dal_state_set(sc, c, 0.0, x1, v1));
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.form = DAL_FORM_GGL;
   o.rtol = 1e-13;
   CHECK_OK(dal_advance(sc, c, &o, 0.1));
