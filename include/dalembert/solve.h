@@ -233,8 +233,10 @@ typedef struct dal_solve_opts {
   double init_max_move;   ///< DAE start: the largest change |delta q_i| (units of q) the
                           ///< consistent initialization may apply; a larger one fails with
                           ///< DAL_E_INIT naming the coordinate and the state is unchanged.
-                          ///< 0 (default): no limit. Either way the report of the move is
-                          ///< kept (dal_state_init_report in dae.h).
+                          ///< 0 (default): no limit, but a move beyond atol + rtol |q_i|
+                          ///< leaves a note in the state's message after DAL_OK (naming the
+                          ///< coordinate, the move and the constraint). Either way the report
+                          ///< of the move is kept (dal_state_init_report in dae.h).
   int no_fallback;        ///< DAE route: if nonzero, a failure of IDA is returned as it is;
                           ///< 0 (default): with DAL_FORM_AUTO and DAL_METHOD_AUTO, a
                           ///< convergence failure or step collapse in IDA (DAL_E_CONV,
