@@ -62,7 +62,6 @@ int dal__dae_newton(dal_dae *f, double t, double cj, const double *y, dal_dae_si
 /// particles, no forces but gravity): then no difference quotients are needed anywhere.
 int dal__dae_newton_exact(const dal_system *sys);
 
-
 /// solve options reach the forms through the first-order problem
 #include "dalembert/solve.h"
 
@@ -70,8 +69,8 @@ int dal__dae_newton_exact(const dal_system *sys);
 /// onto an invariant manifold after each accepted step.
 typedef struct dal_ode_problem {
   const char *name; ///< "minimal", "index1"
-  /// size of y for this system
-  int (*size)(const dal_system *sys);
+  /// size of y for this system (st: the state the integrator runs on)
+  int (*size)(const dal_system *sys, const dal_state *st);
   /// ydot = f(t, y); uses st as workspace (its q, qdot, t are overwritten) and evaluates at
   /// least the products `need` (DAL_P_ACC inside an integrator, DAL_P_ALL where the state
   /// stops). Returns 0, a retry code (DAL__RECOVERABLE, DAL__RETRY_*), or a negative status

@@ -254,7 +254,7 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->method = meth;
   // with opts.work the work W of the forces and moving constraints is integrated as the last
   // component of y, under the same error control
-  ig->ny = prob->size(sys) + (o->work ? 1 : 0);
+  ig->ny = prob->size(sys, st) + (o->work ? 1 : 0);
   // the local tolerances: a request below the method's min_rtol runs as min_rtol (atol raised
   // in proportion, the requested ratio atol / rtol kept, as for IDA); rtol not below the floor
   const dal_method_row *mrow = dal__method_row(meth);
