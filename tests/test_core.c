@@ -16,8 +16,7 @@
 #define PI 3.14159265358979323846
 
 static dal_solve_opts opts(dal_formulation f, dal_method m, double tol) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.form = f;
   o.method = m;
   o.rtol = o.atol = tol;

@@ -85,8 +85,7 @@ static void test_adaptive(void) {
     printf("  %-7s %-10s", cart ? dal_formulation_name(cases[k].f) : "minimal",
            dal_method_name(cases[k].m));
     for (size_t j = 0; j < sizeof tols / sizeof tols[0]; ++j) {
-      dal_solve_opts o;
-      dal_solve_default_opts(&o);
+      dal_solve_opts o = dal_default_solve_opts();
       o.method = cases[k].m;
       o.form = cases[k].f;
       o.project = cases[k].f == DAL_FORM_INDEX1;
@@ -136,8 +135,7 @@ static void test_fixed(void) {
   };
   printf("fixed-step dense output: worst error at outputs every 0.0137 and on the grid (0.1)\n");
   for (size_t k = 0; k < sizeof cases / sizeof cases[0]; ++k) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = cases[k].m;
     o.fixed_step = cases[k].h;
     int cart = cases[k].cart;
@@ -212,8 +210,7 @@ static void test_tight_irregular(void) {
   for (size_t mi = 0; mi < sizeof ms / sizeof ms[0]; ++mi) {
     printf("  %-10s", dal_method_name(ms[mi]));
     for (size_t j = 0; j < sizeof tols / sizeof tols[0]; ++j) {
-      dal_solve_opts o;
-      dal_solve_default_opts(&o);
+      dal_solve_opts o = dal_default_solve_opts();
       o.method = ms[mi];
       o.rtol = tols[j];
       double q = th0, qd = 0, ea = 0, eb = 0;
@@ -254,7 +251,7 @@ static void test_tight_irregular(void) {
     }
     printf("\n");
   }
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }

@@ -120,8 +120,7 @@ static void taylor_reference(double T, long nstep, long double *th, long double 
 }
 
 static dal_solve_opts bs_opts(double rtol) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = rtol;
   return o;

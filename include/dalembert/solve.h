@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Integrating the motion: methods, formulations, options, advance/evolve, statistics.
-//
-// A system without constraints runs as the ODE y = (q, qdot); a system with constraints runs
-// as a DAE (index-2 stabilized GGL through SUNDIALS IDA by default). After any failure the
-// state holds the last accepted step and dal_state_errmsg says what failed, when and why.
+/// @file
+/// @brief Integrating the motion: methods, formulations, options, advance/evolve, statistics.
+///
+/// A system without constraints runs as the ODE y = (q, qdot); a system with constraints runs
+/// as a DAE (index-2 stabilized GGL through SUNDIALS IDA by default). After any failure the
+/// state holds the last accepted step and dal_state_errmsg says what failed, when and why.
 #ifndef DAL_SOLVE_H
 #define DAL_SOLVE_H
 
@@ -191,9 +192,9 @@ typedef enum dal_linsol {
   DAL_LINSOL_KLU,      ///< sparse KLU with a library-assembled Jacobian (DAE forms)
 } dal_linsol;
 
-/// Options for advance/evolve. Always start from dal_solve_default_opts().
+/// Options for advance/evolve. Always start from dal_default_solve_opts().
 typedef struct dal_solve_opts {
-  int magic;              ///< set by dal_solve_default_opts; do not touch
+  int cookie;             ///< set by dal_default_solve_opts; do not touch
   dal_method method;      ///< integration method
   dal_formulation form;   ///< formulation
   dal_linsol linsol;      ///< linear solver for implicit methods
@@ -234,7 +235,7 @@ typedef struct dal_solve_opts {
 
 /// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 0 (follows rtol:
 /// 1e-10), no limit on the consistent start's move.
-DAL_API void dal_solve_default_opts(dal_solve_opts *o);
+DAL_API dal_solve_opts dal_default_solve_opts(void);
 
 /// Short name of a method ("dopri5", "fehlberg78", "bs", "rk4", "adams", "bdf", "variational",
 /// "variational4", "variational6", "rattle", "rattle4", "rattle6", "auto").

@@ -15,10 +15,7 @@
 // ---------------------------------------------------------------------------------------
 // the index-1 ODE y = (q, v), y' = (v, qddot) with optional Baumgarte terms and projection
 
-static int index1_size(const dal_system *sys, const dal_state *st) {
-  (void)st;
-  return 2 * sys->n;
-}
+static int index1_size(const dal_system *sys) { return 2 * sys->n; }
 
 static void index1_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
   st->t = t;

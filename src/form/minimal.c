@@ -5,10 +5,7 @@
 
 #include "form.h"
 
-static int minimal_size(const dal_system *sys, const dal_state *st) {
-  (void)st;
-  return 2 * sys->n;
-}
+static int minimal_size(const dal_system *sys) { return 2 * sys->n; }
 
 static void minimal_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
   size_t n = (size_t)sys->n;

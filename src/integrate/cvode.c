@@ -36,7 +36,7 @@ typedef struct cv_mem {
   SUNNonlinearSolver NLS;
   long netf, nsf, nje, nni; // counters already added to the state's statistics
   dal_tangent *tg; // exact Newton matrix for BDF in minimal coordinates (NULL: differences)
-  double *Af;      // its flow Jacobian (2n x 2n, column-major)
+  double *Af;      // its vector-field Jacobian (2n x 2n, column-major)
   int ahead;       // CVODE's time is beyond the state's (cv_advance_ahead)
 } cv_mem;
 
@@ -49,8 +49,8 @@ static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
 // (inc_j = max(sqrt(uround) |y_j|, min_inc / w_j), min_inc from the step, size and |f|;
 // Hindmarsh et al. 2005, sec. 2.1). Written here so that a step allocates nothing (CVODE's
 // own dense difference quotient clones a vector per Jacobian).
-// The exact Jacobian df/dy of f = (qdot, qddot) from the jets (analysis_tangent.c, the same
-// tangent as dal_flow_jacobian); nonzero when it cannot be had at this point (a jet without a
+// The exact Jacobian df/dy of f = (qdot, qddot) from the jets (form/tangent.c, the same tangent
+// as dal_vector_field_jacobian); nonzero when it cannot be had at this point (a jet without a
 // third derivative, a singular M): the caller falls back to differences
 static int cv_jac_exact(dal_ode_integ *ig, cv_mem *m, double t, const double *y, SUNMatrix J) {
   dal_state *st = ig->st;
@@ -285,6 +285,16 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
     if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
     if (flag < 0) return cv_failure(ig, m, flag);
     ig->st->stats.foreign_code = flag;
+    {
+      // the time moved by the step integrated: CVODE snaps its time to a stop time within
+      // 100 ulps of it, which at large |t| is seconds of motion that did not happen
+      realtype hlast = 0, tn = tret;
+      CVodeGetLastStep(m->cv, &hlast);
+      CVodeGetCurrentTime(m->cv, &tn);
+      if (flag == CV_TSTOP_RETURN || tn > tret) tn = ig->t + hlast;
+      int gap = dal__ode_tstop_gap(ig, tn, flag == CV_TSTOP_RETURN ? tout : tret);
+      if (gap) return gap;
+    }
     if (flag == CV_TSTOP_RETURN) tret = tout;
     if (tret > tout) return cv_failure(ig, m, CV_BAD_T);
     int projected = 0;

@@ -3,14 +3,13 @@
 // A first-order problem y' = F(t, y) of any size run by the library's ODE methods: the
 // tangent and variational integrations of the analysis layer use the same integrators, step
 // control, progress guards and failure naming as dal_advance.
+#include <stdint.h>
 #include <string.h>
 
 #include "integrate.h"
 
-static int fo_size(const dal_system *sys, const dal_state *st) {
-  (void)sys;
-  return st->fo ? st->fo->ny : 0;
-}
+// (the size is the problem's ny, set per run by dal__ode_create_fo)
+static int fo_size(const dal_system *sys) { return 2 * sys->n; }
 
 // the state follows the trajectory part of y (messages, the last accepted step on failure)
 static void fo_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
@@ -68,6 +67,8 @@ int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opt
   o.work = 0;
   o.project = fo->project != NULL;
   st->fo = fo;
-  int rc = dal__ode_create(sys, st, &o, meth, &dal__problem_first_order, out);
-  return rc;
+  dal_first_order *f = (dal_first_order *)(uintptr_t)fo; // its prob is ours to fill
+  f->prob = dal__problem_first_order;
+  f->prob.ny = fo->ny;
+  return dal__ode_create(sys, st, &o, meth, &f->prob, out);
 }

@@ -102,15 +102,17 @@ typedef struct dal_first_order {
   int (*rhs)(void *ctx, dal_state *st, double t, const double *y, double *f);
   /// project y onto the problem's invariant manifold at t, in place (0 or a status); NULL: none
   int (*project)(void *ctx, dal_state *st, double t, double *y);
-  void *ctx; ///< passed to rhs and project
+  void *ctx;            ///< passed to rhs and project
+  dal_ode_problem prob; ///< filled by dal__ode_create_fo (the problem the integrator runs)
 } dal_first_order;
-/// the problem that runs st->fo (first_order.c)
+/// the problem that runs st->fo (first_order.c; its ny is set per run)
 extern const dal_ode_problem dal__problem_first_order;
 /// A fresh ODE integrator for method meth (an adaptive ODE method or RK4) on the first-order
 /// problem fo at time st->t: st is a work state the integrator owns while it lives (it keeps a
-/// pointer to fo; fo must outlive the integrator). opts: tolerances (a global target, the
-/// method's calibrated factor applied as for dal_advance), h0, hmax, fixed_step, max_steps;
-/// the formulation, work and projection options are ignored (fo->project runs when set).
+/// pointer to fo, whose prob it fills and runs; fo must outlive the integrator). opts: tolerances
+/// (a global target, the method's calibrated factor applied as for dal_advance), h0, hmax,
+/// fixed_step, max_steps; the formulation, work and projection options are ignored (fo->project
+/// runs when set).
 int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                        dal_method meth, const dal_first_order *fo, dal_ode_integ **out);
 
@@ -143,6 +145,13 @@ dal_method dal__auto_method(double rtol);
 int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method meth,
                     const dal_ode_problem *prob, dal_ode_integ **out);
 void dal__ode_destroy(void *ig);
+
+/// A SUNDIALS integrator returned at its stop time tout while its own time tn lies more than
+/// a few ulps before it: it takes a stop time within 100 ulps of t as reached and extrapolates
+/// there, which at large |t| is seconds of motion that did not happen. Fails (DAL_E_STEP,
+/// naming the resolution of t and the remedy) with the state at the last accepted step; 0 when
+/// tn is tout to a few ulps, or nothing moves over the gap beyond the tolerances.
+int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout);
 
 /// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the
 /// last component when opts.work is set (not counted; no failure bookkeeping)
