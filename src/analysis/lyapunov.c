@@ -59,6 +59,10 @@ typedef struct lyap {
   dal_ode_integ *ig;  // the integrator kept between segments (methods with changed_y)
   double h;           // the last full step of the previous segment (the next one's first)
   long steps;         // accepted steps
+  int ymoved;         // the projection moved the trajectory at the last QR (constraint rows)
+  // constraint rows: the full-space KKT tangent A (2n x 2n), and the basis N, Yb (n x k) of
+  // the manifold's tangent space where the vectors start and are projected back at every QR
+  double *A, *N, *Yb;
 } lyap;
 
 /// levels of the blocking analysis: blocks of 1, 2, 4, ... segments
@@ -113,10 +117,77 @@ static double blocking_error(const lyap_blocking *b, int nmin) {
   return err >= 0 ? err : INFINITY;
 }
 
+// with constraint rows: F = (f, A V) with the full-space tangent of the index-1 field (the
+// state evaluated, its tangent taken)
+static int aug_rhs_manifold(lyap *L, const double *Y, double *F) {
+  int n = L->n, ny = L->ny, rc = dal__tangent_kkt(L->sys, L->st, L->tg, L->A, NULL, NULL);
+  if (rc) return rc;
+  const double *qdd = dal_state_qddot(L->st);
+  for (int i = 0; i < n; ++i) {
+    F[i] = Y[n + i];
+    F[n + i] = qdd[i];
+  }
+  for (int j = 0; j < L->p; ++j) {
+    const double *v = Y + (size_t)ny * (1 + j);
+    double *f = F + (size_t)ny * (1 + j);
+    for (int i = 0; i < ny; ++i) {
+      double x = 0.0;
+      for (int c = 0; c < ny; ++c)
+        x += L->A[(size_t)c * ny + i] * v[c];
+      f[i] = x;
+    }
+  }
+  return DAL_OK;
+}
+
+// with constraint rows, at a QR time: the trajectory back onto the manifold (its drift is the
+// integrator's error) and the tangent vectors onto the tangent space there,
+// v = (vq, vv) -> (N N' vq, Yb N' vq + N N' vv) (the manifold's tangent space in the basis of
+// dal__tangent_basis); also the start's vectors (init: the first p columns of that basis)
+static int manifold_project(lyap *L, double t, int init) {
+  int n = L->n, ny = L->ny, k = n - L->sys->m, rc;
+  double *Y = L->Y;
+  if ((rc = dal__analysis_eval(L->sys, L->st, t, Y, Y + n)) != 0) return rc;
+  if ((rc = dal__project_state(L->sys, L->st, 1e-13, 20, NULL)) != 0) return rc;
+  if ((rc = dal_forward(L->sys, L->st)) != 0) return rc;
+  memcpy(Y, L->st->q, (size_t)n * sizeof(double));
+  memcpy(Y + n, L->st->qdot, (size_t)n * sizeof(double));
+  L->ymoved = 1; // the integrator's y changed in full
+  if ((rc = dal__tangent_eval(L->sys, L->st, L->tg, 0)) != 0) return rc;
+  if ((rc = dal__tangent_basis(L->sys, L->st, L->tg, L->N, L->Yb, NULL)) != 0) return rc;
+  for (int j = 0; j < L->p; ++j) {
+    double *v = Y + (size_t)ny * (1 + j), *xi = L->Z, *eta = L->Z + k;
+    for (int a = 0; a < k; ++a) {
+      double x = 0.0, e = 0.0;
+      for (int i = 0; i < n; ++i) {
+        x += L->N[(size_t)a * n + i] * v[i];
+        e += L->N[(size_t)a * n + i] * v[n + i];
+      }
+      xi[a] = init ? (j == a) : x;
+      eta[a] = init ? (j == k + a) : e;
+    }
+    for (int i = 0; i < n; ++i) {
+      double vq = 0.0, vv = 0.0;
+      for (int a = 0; a < k; ++a) {
+        vq += L->N[(size_t)a * n + i] * xi[a];
+        vv += L->Yb[(size_t)a * n + i] * xi[a] + L->N[(size_t)a * n + i] * eta[a];
+      }
+      v[i] = vq;
+      v[n + i] = vv;
+    }
+  }
+  return DAL_OK;
+}
+
 // augmented right-hand side F = (f(t, y), (df/dy) V)
 static int aug_rhs(void *ctx, dal_state *st, double t, const double *Y, double *F) {
   lyap *L = ctx;
   int n = L->n, ny = L->ny, rc;
+  if (L->sys->m > 0) {
+    if ((rc = dal__analysis_eval(L->sys, st, t, Y, Y + n)) != 0) return rc;
+    if ((rc = dal__tangent_eval(L->sys, st, L->tg, 0)) != 0) return rc;
+    return aug_rhs_manifold(L, Y, F);
+  }
   // the trajectory point, evaluated (no validation or reset of a public dal_state_set: the
   // integrator's values are finite, its progress guard checks them)
   st->t = t;
@@ -163,8 +234,9 @@ static int segment(lyap *L, double *t, double t1) {
   long left = L->o->max_steps - L->steps;
   dal_ode_integ *ig = L->ig;
   if (ig) {
-    memcpy(ig->y + L->ny, L->Y + L->ny, (size_t)(L->m - L->ny) * sizeof(double));
-    ig->changed_y(ig, L->ny);
+    int i0 = L->ymoved ? 0 : L->ny; // the vectors, and the trajectory when projected
+    memcpy(ig->y + i0, L->Y + i0, (size_t)(L->m - i0) * sizeof(double));
+    ig->changed_y(ig, i0);
     ig->opts.max_steps = left;
   } else {
     dal_solve_opts so = L->so;
@@ -175,6 +247,7 @@ static int segment(lyap *L, double *t, double t1) {
     int rc = dal__ode_create_fo(L->sys, L->st, &so, L->meth, &L->fo, &ig);
     if (rc) return rc;
   }
+  L->ymoved = 0;
   // per call, as the driver does: the target and the progress guard's counters
   ig->tout = t1;
   ig->ncall = 0;
@@ -216,12 +289,15 @@ static void lyap_free(lyap *L) {
   free(L->Z);
   free(L->tau);
   free(L->qrwork);
+  free(L->A);
+  free(L->N);
+  free(L->Yb);
   dal__tangent_free(L->tg);
   dal_state_destroy(L->st);
 }
 
 static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
-  int ny = 2 * sys->n;
+  int ny = 2 * (sys->n - sys->m); // the manifold's dimension with constraint rows
   if (!o || o->cookie != DAL_LYAP_COOKIE)
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
@@ -235,7 +311,13 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
                     "DOPRI5, Fehlberg 7(8), Bulirsch-Stoer, Adams, BDF, RK4 or AUTO",
                     dal_method_name(o->method));
   if (o->nexp < 0 || o->nexp > ny)
-    return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2n = %d", o->nexp, ny);
+    return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2(n - m) = %d", o->nexp,
+                    ny);
+  if (o->y0 && sys->m > 0)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "lyapunov: initial vectors y0 with constraint rows: the vectors start on the "
+                    "manifold's tangent space; leave y0 NULL");
+
   if (!isfinite(o->t_end) || !(o->t_end > st->t))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: t_end = %g must be finite and after t = %.17g",
                     o->t_end, st->t);
@@ -280,12 +362,6 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
   int rc = check_opts(sys, st, o);
   if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
-  if (!rc && sys->m > 0)
-    rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                  "lyapunov: the system has %d constraint row(s) (first: '%s'); Lyapunov "
-                  "spectra cover minimal coordinates only: describe the scene by coordinate "
-                  "maps without constraints",
-                  sys->m, sys->con[0].name);
   if (rc) return rc;
 
   lyap L;
@@ -294,7 +370,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   L.o = o;
   L.n = sys->n;
   L.ny = 2 * sys->n;
-  L.p = o->nexp ? o->nexp : L.ny;
+  L.p = o->nexp ? o->nexp : 2 * (sys->n - sys->m);
   L.m = L.ny * (1 + L.p);
   lyap_blocking *bk = NULL;
   int nb = o->nblocks, ny = L.ny, p = L.p;
@@ -304,10 +380,14 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   int ok = dal_state_create(sys, &L.st) == 0 && dal_state_copy_params(sys, L.st, st) == 0 &&
            dal__tangent_create(sys, &L.tg) == 0;
   ok = ok && (L.Y = calloc(m, sizeof(double))) &&
-       (L.Z = calloc((size_t)L.n * p + 1, sizeof(double))) &&
+       (L.Z = calloc((size_t)L.n * p + 2 * (size_t)L.n + 1, sizeof(double))) &&
        (L.tau = calloc((size_t)p, sizeof(double))) && (sum = calloc((size_t)p, sizeof(double))) &&
        (bk = calloc((size_t)p, sizeof *bk)) && (lg = calloc((size_t)p, sizeof(double))) &&
        (est = calloc((size_t)p, sizeof(double)));
+  if (ok && sys->m > 0)
+    ok = (L.A = calloc((size_t)ny * ny, sizeof(double))) &&
+         (L.N = calloc((size_t)L.n * L.n + 1, sizeof(double))) &&
+         (L.Yb = calloc((size_t)L.n * L.n + 1, sizeof(double)));
   if (ok) {
     // workspace of the QR factorization and of forming Q
     double q1 = 0.0, q2 = 0.0;
@@ -339,6 +419,15 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   for (int j = 0; j < p; ++j)
     for (int i = 0; i < ny; ++i)
       L.Y[(size_t)ny * (1 + j) + i] = o->y0 ? o->y0[(size_t)j * ny + i] : (i == j ? 1.0 : 0.0);
+  if (sys->m > 0) { // a consistent start, the vectors on the manifold's tangent space
+    if ((rc = dal__analysis_eval(sys, L.st, t, L.Y, L.Y + L.n)) != 0 ||
+        (rc = dal__tangent_eval(sys, L.st, L.tg, 0)) != 0 ||
+        (rc = dal__tangent_on_manifold(sys, L.st, L.tg, "lyapunov")) != 0 ||
+        (rc = manifold_project(&L, t, 1)) != 0) {
+      memcpy(st->err, L.st->err, sizeof st->err);
+      goto done;
+    }
+  }
   if (orthonormalize(&L, lg) != 0) {
     rc = DAL_FAIL(st, DAL_E_ARG, "lyapunov: the initial tangent vectors could not be factored");
     goto done;
@@ -368,6 +457,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     if (rc == DAL_E_MAXSTEPS)
       rc = DAL_FAIL(L.st, DAL_E_MAXSTEPS, "lyapunov: more than %ld steps before t=%.17g",
                     o->max_steps, o->t_end);
+    if (!rc && sys->m > 0) rc = manifold_project(&L, t, 0);
     if (rc) {
       memcpy(st->err, L.st->err, sizeof st->err);
       goto done;
