@@ -30,8 +30,8 @@
 #include <time.h>
 
 #include "check.h"
-#include "scenes.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 static dal_system *compile(dal_builder *b, int rc) {
   dal_system *sys = NULL;
