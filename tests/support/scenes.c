@@ -151,6 +151,30 @@ dal_system *scn_bead(const scn_knobs *k) {
   return scn_finish(b, rc);
 }
 
+dal_system *scn_cart_bead(const scn_knobs *k) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int c[3], p, rc = start(k, 3, &b);
+  const char *nm[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(b, nm[i], &c[i]);
+  if (!rc) rc = dal_builder_add_particle(b, "bead", k->m, &p);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian3;
+  pd.coords = c;
+  pd.ncoords = 3;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_turning_circle;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_TURNING_CIRCLE_R] = k->R;
+  cd.param[DAL_TURNING_CIRCLE_W] = k->spin;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  return scn_finish(b, rc);
+}
+
 dal_system *scn_oscillator(const scn_knobs *k) {
   KNOBS(k);
   scn_knobs free = *k;

@@ -19,18 +19,18 @@
 
 /// The knobs of the standard scenes. Start from scn_default() and change what the test needs.
 typedef struct scn_knobs {
-  double g;               ///< gravity magnitude (m/s^2), default SCN_G
-  double m, m2;           ///< masses of the first and the second particle (every chain
-                          ///< particle: m), default 1
-  double l, l2;           ///< rod lengths (first, second; every chain link: l), default 1
-  double ax, ay, w;       ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
-                          ///< default 0 (fixed)
+  double g;         ///< gravity magnitude (m/s^2), default SCN_G
+  double m, m2;     ///< masses of the first and the second particle (every chain
+                    ///< particle: m), default 1
+  double l, l2;     ///< rod lengths (first, second; every chain link: l), default 1
+  double ax, ay, w; ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
+                    ///< default 0 (fixed)
   const dal_moving_point *pivot; ///< Cartesian scenes: the moving anchor of the first rod,
                                  ///< default NULL (fixed at the origin)
-  double R, spin;         ///< bead: ring radius (default 1) and turning rate (default 0)
-  double k;               ///< oscillator: spring stiffness to the origin, default 1
-  int N;                  ///< chain: number of particles, default 4
-  dal_dynamics dynamics;  ///< the dynamics route, default DAL_DYNAMICS_AUTO
+  double R, spin;                ///< bead: ring radius (default 1) and turning rate (default 0)
+  double k;                      ///< oscillator: spring stiffness to the origin, default 1
+  int N;                         ///< chain: number of particles, default 4
+  dal_dynamics dynamics;         ///< the dynamics route, default DAL_DYNAMICS_AUTO
 } scn_knobs;
 
 /// The defaults listed in scn_knobs.
@@ -57,6 +57,9 @@ dal_system *scn_double_pendulum(const scn_knobs *k);
 dal_system *scn_cart_double_pendulum(const scn_knobs *k);
 /// Likharev's bead (m) on a ring of radius R turning at `spin` about the vertical (3D, theta).
 dal_system *scn_bead(const scn_knobs *k);
+/// The same bead in Cartesian coordinates (x, y, z) on the turning circle "ring"
+/// (dal_con_turning_circle, radius R, rate spin; two constraint rows).
+dal_system *scn_cart_bead(const scn_knobs *k);
 /// The 2D isotropic oscillator: "bob" (m) in Cartesian (x, y) on a zero-length spring of
 /// stiffness k to the origin, no gravity.
 dal_system *scn_oscillator(const scn_knobs *k);
