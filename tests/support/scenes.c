@@ -189,6 +189,23 @@ dal_system *scn_oscillator(const scn_knobs *k) {
   return scn_finish(b, rc);
 }
 
+dal_system *scn_hanging_spring(const scn_knobs *k) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int p, rc = start(k, 2, &b);
+  if (!rc) rc = free_particle(b, "bob", k->m, "x", "y", &p);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = k->k;
+  sd.length = k->l;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.c = k->c;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
+  return scn_finish(b, rc);
+}
+
 dal_system *scn_chain(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;

@@ -28,7 +28,8 @@ typedef struct scn_knobs {
   const dal_moving_point *pivot; ///< Cartesian scenes: the moving anchor of the first rod,
                                  ///< default NULL (fixed at the origin)
   double R, spin;                ///< bead: ring radius (default 1) and turning rate (default 0)
-  double k;                      ///< oscillator: spring stiffness to the origin, default 1
+  double k;                      ///< oscillator, hanging spring: stiffness, default 1
+  double c;                      ///< hanging spring: damping coefficient, default 0
   int N;                         ///< chain: number of particles, default 4
   dal_dynamics dynamics;         ///< the dynamics route, default DAL_DYNAMICS_AUTO
 } scn_knobs;
@@ -63,6 +64,9 @@ dal_system *scn_cart_bead(const scn_knobs *k);
 /// The 2D isotropic oscillator: "bob" (m) in Cartesian (x, y) on a zero-length spring of
 /// stiffness k to the origin, no gravity.
 dal_system *scn_oscillator(const scn_knobs *k);
+/// A mass hanging on a spring: "bob" (m) in Cartesian (x, y) on a spring of stiffness k and
+/// rest length l to the origin, with a damper c to the origin, under gravity.
+dal_system *scn_hanging_spring(const scn_knobs *k);
 /// A chain of N pendulums in their angles th0 ... : "p0" on l about the origin, each next
 /// hanging from its parent on l.
 dal_system *scn_chain(const scn_knobs *k);
