@@ -24,6 +24,8 @@ typedef struct scn_knobs {
                     ///< particle: m), default 1
   double l, l2;     ///< rod lengths (first, second; every chain link: l), default 1
   double ax, ay, w; ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
+  double ph;        ///< phase of that drive (rad), default 0
+  double x0, y0;    ///< the (first) pivot or rod anchor, default the origin
                     ///< default 0 (fixed)
   const dal_moving_point *pivot; ///< Cartesian scenes: the moving anchor of the first rod,
                                  ///< default NULL (fixed at the origin)
@@ -45,10 +47,10 @@ dal_system *scn_finish(dal_builder *b, int rc);
 // system (NULL after printing the builder's message when it cannot be built).
 
 /// A pendulum in its angle theta from the downward vertical: "bob" (m) on a rod l about the
-/// origin, the pivot driven by (ax, ay, w).
+/// pivot (x0, y0), driven by (ax, ay, w, ph).
 dal_system *scn_pendulum(const scn_knobs *k);
 /// The same circle in Cartesian coordinates (x, y): "bob" on the rod "rod" (dal_con_anchor2,
-/// length l) to the origin, or to k->pivot when set.
+/// length l) to (x0, y0), plus k->pivot's motion when set.
 dal_system *scn_cart_pendulum(const scn_knobs *k);
 /// The double pendulum in its angles theta1, theta2: "upper" (m) on l about the origin (driven
 /// as scn_pendulum), "lower" (m2) hanging from it on l2.
