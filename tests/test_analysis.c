@@ -929,16 +929,24 @@ static void test_refusals(void) {
   cd.nparts = 1;
   cd.param[DAL_ANCHOR_L] = 1.0;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  // constraints are covered by every tool but the Lyapunov spectrum (test_analysis_manifold)
+  // constraints are covered by every tool (test_analysis_manifold); Lyapunov vectors start on
+  // the manifold's tangent space, so initial vectors y0 are refused
   {
     dal_system *cs = compile(b, rc);
     dal_state *cst = NULL;
-    double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4];
+    double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4], y0[4] = {1, 0, 0, 0};
     CHECK(cs && dal_state_create(cs, &cst) == 0 && dal_state_set(cs, cst, 0.0, z, zv) == 0);
     dal_lyapunov_opts lo = dal_default_lyapunov_opts();
     lo.t_end = 1.0;
+    lo.nexp = 1;
+    lo.y0 = y0;
     CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_E_UNSUPPORTED);
-    CHECK(cst && strstr(dal_state_errmsg(cst), "'rod'") != NULL);
+    CHECK(cst && strstr(dal_state_errmsg(cst), "y0") != NULL);
+    lo.y0 = NULL;
+    lo.nexp = 3; // 2 (n - m) = 2 exponents at most
+    CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_E_ARG);
+    lo.nexp = 0;
+    CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_OK);
     dal_state_destroy(cst);
     dal_system_destroy(cs);
   }
