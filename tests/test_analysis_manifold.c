@@ -67,6 +67,12 @@ static void cart_pendulum(void) {
   CHECK_CLOSE(qs[1], -l, 1e-13);
   CHECK_CLOSE(lam[0], -G0, 1e-12); // lambda = -T for a rod in tension T = m g
   CHECK(rep.accel <= 1e-12 && rep.unsteady == 0.0);
+  // too few iterations: DAL_E_CONV with the residual in the message, the state at the iterate
+  dal_equilibrium_opts few = dal_default_equilibrium_opts();
+  few.max_iter = 1;
+  CHECK_OK(dal_state_set(sys, st, 0.0, q0, v));
+  rc = dal_equilibrium(sys, st, &few, NULL);
+  CHECK(rc == DAL_E_CONV && strstr(dal_state_errmsg(st), "scaled residual") != NULL);
   // the inverted equilibrium: unstable, omega^2 = -g/l, compression -m g (lambda = +m g)
   double q1[2] = {0.2, 0.8 * l};
   CHECK_OK(dal_state_set(sys, st, 0.0, q1, v));
