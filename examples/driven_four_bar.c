@@ -141,8 +141,7 @@ int main(int argc, char **argv) {
   double q[3] = {0.0, B[0] + a * dx / dd - h * dy / dd, B[1] + a * dy / dd + h * dx / dd};
   double v[3] = {W, 0.0, 0.0};
   dal_state_set(sys, st, 0.0, q, v);
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   o.form = DAL_FORM_INDEX1;
   o.project = 1;

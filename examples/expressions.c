@@ -74,8 +74,7 @@ int main(void) {
   dal_state_create(sys, &st);
   double q = 1.0, qdot = 0.0;
   dal_state_set(sys, st, 0.0, &q, &qdot);
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-12;
   int rc = dal_advance(sys, st, &o, 10.0) || dal_forward(sys, st);

@@ -68,8 +68,7 @@ static double det(int n, const double *A) { // Gaussian elimination with partial
 
 // y(t1) from y0 with the state's parameters (Bulirsch-Stoer, rtol 1e-13)
 static void run(const dal_system *sys, dal_state *st, const double *y0, double t1, double *y) {
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-13;
   dal_state_set(sys, st, 0.0, y0, y0 + 2);
@@ -88,8 +87,7 @@ int main(int argc, char **argv) {
   double M0[4], M1[4], Phi[16], S[8];
   dal_state_set(sys, st, 0.0, y0, y0 + 2);
   dal_linearize(sys, st, M0, NULL, NULL);
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   if (dal_state_transition(sys, st, &o, t1, Phi, 2, params, S)) {
     printf("state_transition: %s\n", dal_state_errmsg(st));

@@ -178,8 +178,7 @@ int main(int argc, char **argv) {
 
   // (4) the turning bead's pitchfork by continuation along the bottom point
   double wc = sqrt(G / R), found = 0.0, q0[3] = {0.0, 0.0, -R};
-  dal_continuation_opts o;
-  o = dal_default_continuation_opts();
+  dal_continuation_opts o = dal_default_continuation_opts();
   o.p0 = 0.5 * wc;
   o.p1 = 1.5 * wc;
   o.npoints = check ? 6 : 21;

@@ -26,16 +26,18 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-static const double G0 = SCENE_G;
+static const double G0 = SCN_G;
 
 // -------------------------------------------------------------------------------------------
 // the Cartesian pendulum
 
 static void cart_pendulum(void) {
   const double l = 1.3;
-  dal_system *sys = scene_cart_pendulum(l);
+  scn_knobs k = scn_default();
+  k.l = l;
+  dal_system *sys = scn_cart_pendulum(&k);
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {0.0, -l}, v[2] = {0.0, 0.0};
@@ -120,7 +122,7 @@ static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
   k2.nparts = 2;
   k2.param[DAL_DISTANCE_L] = l2;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static void cart_double_pendulum(void) {
@@ -226,7 +228,9 @@ static void jacobian_vs_fd(void) {
 
 static void moving_pendulum(void) {
   const double l = 0.8, th = 0.9, w = 2.7;
-  dal_system *sys = scene_cart_pendulum(l);
+  scn_knobs k = scn_default();
+  k.l = l;
+  dal_system *sys = scn_cart_pendulum(&k);
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {l * sin(th), -l * cos(th)}, v[2] = {l * cos(th) * w, l * sin(th) * w};
@@ -293,7 +297,7 @@ static dal_system *fourbar(void) {
   rocker.param[DAL_ANCHOR_L] = FB_C;
   rocker.param[DAL_ANCHOR_X0] = FB_D;
   if (!rc) rc = dal_builder_add_constraint_def(b, &rocker, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // the mechanism in the crank angle th by hand: B = a (cos th, sin th), C on the circles about
@@ -384,7 +388,7 @@ static dal_system *cart_bead(double w) {
   k.param[DAL_TURNING_CIRCLE_R] = BEAD_R;
   k.param[DAL_TURNING_CIRCLE_W] = w;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static int bead_rebuild(double w, dal_system **out, void *ctx) {
@@ -441,8 +445,7 @@ static void turning_bead(void) {
     dal_system_destroy(sys);
   }
   // continuation in w along the bottom branch: the pitchfork at sqrt(g/R)
-  dal_continuation_opts o;
-  o = dal_default_continuation_opts();
+  dal_continuation_opts o = dal_default_continuation_opts();
   o.p0 = 0.2 * wc;
   o.p1 = 1.8 * wc;
   o.npoints = 8; // no grid point on the critical rate
@@ -492,30 +495,6 @@ static void turning_bead(void) {
 // Lyapunov spectrum on the manifold: the double pendulum (unit masses and rods) released at
 // rest from (2, 2) rad, in Cartesian coordinates and in its angles
 
-static dal_system *dp_angles(void) {
-  dal_builder *b = NULL;
-  int q[2], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "p1", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "p2", 1.0, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &q[0];
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &q[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return scene_finish(b, rc);
-}
 
 static void lyapunov_manifold(void) {
   const double T = 200.0;
@@ -537,7 +516,7 @@ static void lyapunov_manifold(void) {
   dal_state_destroy(st);
   dal_system_destroy(sys);
   // minimal coordinates
-  sys = dp_angles();
+  sys = scn_double_pendulum(NULL); // unit masses and rods, g = 9.81
   CHECK_OK(dal_state_create(sys, &st));
   double th[2] = {2.0, 2.0}, z[2] = {0, 0};
   CHECK_OK(dal_state_set(sys, st, 0.0, th, z));

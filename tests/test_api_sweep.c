@@ -1099,8 +1099,7 @@ static void sw_dal_linearize_inputs(void) {
 static void sw_dal_state_transition(void) {
   double Phi[4], S[2];
   const char *in[1] = {"gravity:1"}, *bad[1] = {"place:bob:0"};
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   ST(dal_state_transition(F.B, NULL, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_ARG, NULL);
   ST(dal_state_transition(NULL, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
   ST(dal_state_transition(F.A, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);

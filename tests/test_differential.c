@@ -211,8 +211,7 @@ static int run(const tree *t, const config *c, double rtol, double h, double *r,
   dal_state *st = NULL;
   int rc = c->cart ? build_cartesian(t, &sys, &st) : build_minimal(t, &sys, &st);
   if (!rc) {
-    dal_solve_opts o;
-    o = dal_default_solve_opts();
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = c->method;
     o.form = c->form;
     o.rtol = rtol;

@@ -306,8 +306,7 @@ static void run_to(const dal_system *sys, const char *override, double value, do
   if (override) CHECK_OK(dal_state_set_param_named(sys, st, override, value));
   double v0 = 0.0;
   CHECK_OK(dal_state_set(sys, st, 0.0, &q0, &v0));
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-12;
   CHECK_OK(dal_advance(sys, st, &o, T));

@@ -18,9 +18,9 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-static const double G0 = SCENE_G;
+static const double G0 = SCN_G;
 
 // double pendulum in angles (th1, th2), bob 1 on l1 about the origin, bob 2 on l2 from bob 1;
 // with_links: an anchored spring on bob 2 and a damper from bob 1 to an anchor
@@ -61,7 +61,7 @@ static dal_system *dp_angles(int with_links) {
     dm.anchor[1] = -0.3;
     if (!rc) rc = dal_builder_add_damper_def(b, &dm);
   }
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // the flow y(t1) from (t0, q, v) with the state's parameters, by BS at rtol 1e-13 (index-1
@@ -69,8 +69,7 @@ static dal_system *dp_angles(int with_links) {
 static void flow(const dal_system *sys, dal_state *st, double t0, const double *q, const double *v,
                  double t1, double *y) {
   int n = dal_system_ncoords(sys);
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-13;
   if (dal_system_nconstraints(sys) > 0) {
@@ -138,8 +137,7 @@ static void minimal_phi(void) {
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 2));
   double M0[4], M1[4];
   CHECK_OK(dal_linearize(sys, st, M0, NULL, NULL));
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[16];
   int rc = dal_state_transition(sys, st, &o, t1, Phi, 0, NULL, NULL);
@@ -173,8 +171,7 @@ static void minimal_params(void) {
   const double t1 = 1.2, y0[4] = {0.6, -0.3, 0.8, 1.1};
   const char *names[5] = {"mass:b1", "gravity:1", "spring:0:k", "spring:0:L", "damper:0:c"};
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 2));
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[16], S[20];
   int rc = dal_state_transition(sys, st, &o, t1, Phi, 5, names, S);
@@ -251,7 +248,7 @@ static dal_system *dp_cartesian(void) {
   k2.nparts = 2;
   k2.param[DAL_DISTANCE_L] = 0.6;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static void redundant_phi(void) {
@@ -284,8 +281,7 @@ static void redundant_phi(void) {
     memcpy(Z[j], z, sizeof z);
   }
   CHECK_OK(dal_state_set(sys, st, 0.0, y0, y0 + 4));
-  dal_solve_opts o;
-  o = dal_default_solve_opts();
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   double Phi[64], S[16];
   const char *names[2] = {"mass:p2", "gravity:1"};

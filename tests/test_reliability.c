@@ -1069,8 +1069,7 @@ static int row_lyapunov_no_progress(char *msg) {
   CHECK_OK(pendulum(&s, 0.3));
   double q = 0.3, qd = 0.0, ex[2], er[2];
   CHECK_OK(dal_state_set(s.sys, s.st, 1e16, &q, &qd));
-  dal_lyapunov_opts o;
-  o = dal_default_lyapunov_opts();
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.t_end = 1e16 + 1e4;
   long calls = 0;
   int rc = dal_lyapunov(s.sys, s.st, &o, ex, er, lyap_calls, &calls);

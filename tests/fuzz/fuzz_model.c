@@ -1000,8 +1000,7 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   if (mo->reenter) {
     // the state belongs to the run: a call that would move it is refused, by name
     dal_state *w = (dal_state *)st; // what a careless monitor does
-    dal_solve_opts o;
-    o = dal_default_solve_opts();
+    dal_solve_opts o = dal_default_solve_opts();
     int rc = mo->reenter == 1 ? dal_state_set(sys, w, t, q, dal_state_qdot(st))
                               : dal_advance(sys, w, &o, t + 1.0);
     if (rc != DAL_E_STATE || !dal_state_errmsg(st)[0])
@@ -1304,8 +1303,7 @@ static void fz_analysis(fz *f, fz_run_ctx *r, dal_state *st) {
   int which = fz_pick(f, 3), n = r->n, rc;
   if (r->m->chain || n > NA) return;
   if (which == 0) {
-    dal_equilibrium_opts o;
-    o = dal_default_equilibrium_opts();
+    dal_equilibrium_opts o = dal_default_equilibrium_opts();
     o.max_iter = 1 + fz_pick(f, 30);
     if (fz_pick(f, 4) == 3) o.max_step = fz_num(f);
     if (fz_pick(f, 8) == 7) o.xtol = fz_num(f);
@@ -1336,8 +1334,7 @@ static void fz_analysis(fz *f, fz_run_ctx *r, dal_state *st) {
          !fz_finite(lim, 2 * n) || md.verdict < DAL_UNSTABLE || md.verdict > DAL_ASYMPTOTIC))
       fz_die("normal modes: DAL_OK with non-finite values or an unknown verdict", rc, NULL);
   } else {
-    dal_lyapunov_opts o;
-    o = dal_default_lyapunov_opts();
+    dal_lyapunov_opts o = dal_default_lyapunov_opts();
     double t = dal_state_time(st);
     o.t_end = t + 0.02 * (1 + fz_pick(f, 5));
     o.nexp = 1 + fz_pick(f, 2);
