@@ -495,7 +495,6 @@ static void turning_bead(void) {
 // Lyapunov spectrum on the manifold: the double pendulum (unit masses and rods) released at
 // rest from (2, 2) rad, in Cartesian coordinates and in its angles
 
-
 static void lyapunov_manifold(void) {
   const double T = 200.0;
   dal_lyapunov_opts o;
