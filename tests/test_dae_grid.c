@@ -55,7 +55,7 @@ static dal_system *build(const tree *tr, int cartesian) {
   if (d == 3) g[1] = 0.0, g[2] = -9.81;
   if (!rc) rc = dal_builder_set_gravity(b, g);
   for (int k = 0; k < tr->N && !rc; ++k) {
-    char name[16];
+    char name[32];
     int c[3], nc = cartesian ? d : d - 1;
     for (int i = 0; i < nc && !rc; ++i) {
       snprintf(name, sizeof name, "q%d_%d", k, i);
