@@ -18,7 +18,8 @@ static char **dup_names(const dal_vec *v) {
     size_t len = strlen(s);
     out[i] = malloc(len + 1);
     if (!out[i]) {
-      for (int j = 0; j < i; ++j) free(out[j]);
+      for (int j = 0; j < i; ++j)
+        free(out[j]);
       free(out);
       return NULL;
     }
@@ -38,8 +39,10 @@ static int merge_union(const int *a, int na, const int *b, int nb, int *out) {
   int i = 0, j = 0, k = 0;
   while (i < na || j < nb) {
     int x;
-    if (j >= nb || (i < na && a[i] < b[j])) x = a[i++];
-    else if (i >= na || b[j] < a[i]) x = b[j++];
+    if (j >= nb || (i < na && a[i] < b[j]))
+      x = a[i++];
+    else if (i >= na || b[j] < a[i])
+      x = b[j++];
     else {
       x = a[i++];
       j++;
@@ -53,7 +56,8 @@ static int merge_union(const int *a, int na, const int *b, int nb, int *out) {
 static int reserve_ints(int **p, size_t *cap, size_t need) {
   if (need <= *cap) return 0;
   size_t nc = *cap ? *cap : 64;
-  while (nc < need) nc *= 2;
+  while (nc < need)
+    nc *= 2;
   int *q = realloc(*p, nc * sizeof(int));
   if (!q) return -1;
   *p = q;
@@ -99,7 +103,8 @@ static int recursion_applies(const dal_builder *b, const int *ip, char *why, siz
     snprintf(why, len, "out of memory");
     return -1;
   }
-  for (int j = 0; j < n; ++j) owner[j] = -1;
+  for (int j = 0; j < n; ++j)
+    owner[j] = -1;
   int ok = 1;
   for (int k = 0; k < N && ok; ++k)
     for (int i = 0; i < places[k].ncoord && ok; ++i) {
@@ -132,13 +137,13 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
 
   // validate the model as a whole
   if (n == 0) return BFAIL(DAL_E_ARG, "the model has no generalized coordinates");
-  if (!b->lag && N == 0)
-    return BFAIL(DAL_E_ARG, "the model has no particles and no Lagrangian");
+  if (!b->lag && N == 0) return BFAIL(DAL_E_ARG, "the model has no particles and no Lagrangian");
   if (!b->map)
     for (int k = 0; k < N; ++k)
       if (!places[k].prim)
-        return BFAIL(DAL_E_ARG, "particle '%s' has no position: place it with a primitive "
-                                "(dal_builder_place) or set a whole-system map",
+        return BFAIL(DAL_E_ARG,
+                     "particle '%s' has no position: place it with a primitive "
+                     "(dal_builder_place) or set a whole-system map",
                      ((char **)b->parts.data)[k]);
   // a primitive table must still be one this library reads (it may have changed since)
   for (int k = 0; k < N && !b->map; ++k) {
@@ -152,16 +157,17 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     if (dal__prim_version_ok(cons[i].prim, b->err, what)) return DAL_E_ARG;
   }
   if (b->lag && b->cons.len)
-    return BFAIL(DAL_E_ARG, "constraint '%s': constraints need particles or coordinates of a "
-                            "particle system, not a Lagrangian system", cons[0].name);
+    return BFAIL(DAL_E_ARG,
+                 "constraint '%s': constraints need particles or coordinates of a "
+                 "particle system, not a Lagrangian system",
+                 cons[0].name);
 
   char why[DAL_ERRMSG_LEN / 2];
   int recursive = recursion_applies(b, ip, why, sizeof why);
   if (recursive < 0) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
   if (b->dynamics == DAL_DYNAMICS_RECURSIVE && !recursive)
     return BFAIL(DAL_E_UNSUPPORTED,
-                 "DAL_DYNAMICS_RECURSIVE does not apply: %s; use DAL_DYNAMICS_AUTO or _DENSE",
-                 why);
+                 "DAL_DYNAMICS_RECURSIVE does not apply: %s; use DAL_DYNAMICS_AUTO or _DENSE", why);
 
   dal_system *s = calloc(1, sizeof *s);
   if (!s) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
@@ -200,15 +206,16 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   for (int k = 0; k < N; ++k) {
     int len;
     if (b->map) {
-      for (int j = 0; j < n; ++j) tmp[j] = j;
+      for (int j = 0; j < n; ++j)
+        tmp[j] = j;
       len = n;
     } else {
       const dal_place *pl = &places[k];
       int nc = sorted_unique(ip + pl->coord_off, pl->ncoord, tmp2);
       if (pl->parent >= 0) {
         int p = pl->parent;
-        len = merge_union(s->pdep + s->pdep_off[p], s->pdep_off[p + 1] - s->pdep_off[p], tmp2,
-                          nc, tmp);
+        len = merge_union(s->pdep + s->pdep_off[p], s->pdep_off[p + 1] - s->pdep_off[p], tmp2, nc,
+                          tmp);
       } else {
         memcpy(tmp, tmp2, (size_t)nc * sizeof(int));
         len = nc;
@@ -230,7 +237,8 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   s->con = calloc((size_t)s->ncon + 1, sizeof(dal_con));
   if (!s->con) goto nomem;
   int m = 0, cdep_total = 0;
-  for (int i = 0; i < s->ncon; ++i) m += cons[i].prim->nout;
+  for (int i = 0; i < s->ncon; ++i)
+    m += cons[i].prim->nout;
   s->m = m;
   s->row_con = malloc(((size_t)m + 1) * sizeof(int));
   s->con_loff = calloc((size_t)s->ncon + 1, sizeof(int));
@@ -247,8 +255,8 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     int nd = sorted_unique(ip + c->coord_off, c->ncoord, tmp);
     for (int a = 0; a < c->npart; ++a) {
       int p = ip[c->part_off + a];
-      nd = merge_union(tmp, nd, s->pdep + s->pdep_off[p], s->pdep_off[p + 1] - s->pdep_off[p],
-                       tmp2);
+      nd =
+          merge_union(tmp, nd, s->pdep + s->pdep_off[p], s->pdep_off[p + 1] - s->pdep_off[p], tmp2);
       memcpy(tmp, tmp2, (size_t)nd * sizeof(int));
     }
     if (reserve_ints(&s->cdep, &ccap, (size_t)cdep_total + (size_t)nd)) goto nomem;
@@ -259,7 +267,8 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     c->g_off = s->g_total;
     s->g_total += c->prim->nout * nd;
     s->con_loff[i + 1] = s->con_loff[i] + c->prim->nout * c->prim->nin;
-    for (int r = 0; r < c->prim->nout; ++r) s->row_con[c->row + r] = i;
+    for (int r = 0; r < c->prim->nout; ++r)
+      s->row_con[c->row + r] = i;
     if (c->prim->nin > s->max_in) s->max_in = c->prim->nin;
     if (c->prim->nout > s->max_out) s->max_out = c->prim->nout;
   }
@@ -279,15 +288,23 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   s->potq = dup_mem(b->potq.data, (size_t)s->npotq * sizeof(dal_cb));
   s->forces = dup_mem(b->forces.data, (size_t)s->nforce * sizeof(dal_cb));
   s->genforces = dup_mem(b->genforces.data, (size_t)s->ngenforce * sizeof(dal_cb));
-  if (!s->springs || !s->dampers || !s->potr || !s->potq || !s->forces || !s->genforces)
-    goto nomem;
+  if (!s->springs || !s->dampers || !s->potr || !s->potq || !s->forces || !s->genforces) goto nomem;
 
   // the route (solve.h, "Dynamics routes"): the recursion where it applies, unless there are
   // so many constraint rows that the KKT matrix is cheaper than the m x m loop system
   // (base/bounds.h). (A placement moving more than d coordinates leaves M singular whatever the
   // route: its subtree moves only through its particle's position.)
+  // (with a mass matrix that couples few coordinates the sparse KKT matrix wins from
+  // DAL_LOOP_ROWS_LOCAL_MAX rows on: base/bounds.h)
+  double coupling = 0.0;
+  for (int p = 0; p < N; ++p) {
+    double nd = s->pdep_off[p + 1] - s->pdep_off[p];
+    coupling += nd * nd;
+  }
+  s->kkt_local = coupling <= DAL_KKT_LOCAL_COUPLING * n;
+  int loop_rows_max = s->kkt_local ? DAL_LOOP_ROWS_LOCAL_MAX : DAL_LOOP_ROWS_MAX;
   s->aba = recursive && (b->dynamics == DAL_DYNAMICS_RECURSIVE ||
-                         (b->dynamics == DAL_DYNAMICS_AUTO && m <= DAL_LOOP_ROWS_MAX));
+                         (b->dynamics == DAL_DYNAMICS_AUTO && m <= loop_rows_max));
   // dense mass matrix unless the system is large and needs none (a redundant system applies M
   // through J; the recursion needs no M); large recursive trees without constraints keep no
   // global Jacobians either (dal_state_jacobian forms them from the local blocks)
@@ -312,18 +329,21 @@ nomem:
   free(tmp);
   free(tmp2);
   dal_system_destroy(s);
-  return BFAIL(DAL_E_NOMEM, "out of memory compiling the system (%d coordinates, %d particles)",
-               n, N);
+  return BFAIL(DAL_E_NOMEM, "out of memory compiling the system (%d coordinates, %d particles)", n,
+               N);
 }
 
 void dal_system_destroy(dal_system *s) {
   if (!s) return;
   if (s->coord_names)
-    for (int i = 0; i < s->n; ++i) free(s->coord_names[i]);
+    for (int i = 0; i < s->n; ++i)
+      free(s->coord_names[i]);
   if (s->part_names)
-    for (int i = 0; i < s->N; ++i) free(s->part_names[i]);
+    for (int i = 0; i < s->N; ++i)
+      free(s->part_names[i]);
   if (s->con)
-    for (int i = 0; i < s->ncon; ++i) free(s->con[i].name);
+    for (int i = 0; i < s->ncon; ++i)
+      free(s->con[i].name);
   free(s->coord_names);
   free(s->part_names);
   free(s->mass);
