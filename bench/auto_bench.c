@@ -168,8 +168,7 @@ static int cmd_sweep(const char *refs, int quick, const char *only) {
         if (methods[mi] == DAL_METHOD_AUTO && rule == 1) continue;
         if (only && strcmp(only, dal_method_name(methods[mi])) != 0) continue;
         for (int ti = 0; ti < COUNT(tols); ++ti) {
-          dal_solve_opts o;
-          dal_solve_default_opts(&o);
+          dal_solve_opts o = dal_default_solve_opts();
           o.method = methods[mi];
           o.form = DAL_FORM_ODE;
           o.rtol = tols[ti];

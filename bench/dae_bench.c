@@ -204,7 +204,7 @@ static const dae_config *config_find(const char *form, const char *linsol, const
 }
 
 static void config_opts(const dae_config *c, double rtol, dal_solve_opts *o) {
-  dal_solve_default_opts(o);
+  *o = dal_default_solve_opts();
   o->rtol = rtol;
   o->max_steps = 2000000;
   if (c->dflt) return;
@@ -232,8 +232,7 @@ static BENCH_NOINLINE int ir_region(chain_model *m, const dal_solve_opts *o, dou
 static int mode_ir_hand(int N, double rtol, double t1) {
   chain_model m;
   if (chain_build(N, 0, &m)) return 1;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.form = DAL_FORM_ODE;
   o.method = DAL_METHOD_ADAMS;
   o.rtol = o.atol = rtol;

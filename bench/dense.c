@@ -93,8 +93,7 @@ int main(int argc, char **argv) {
     if (!s || dal_state_create(s, &st)) return 1;
     for (int mi = 0; mi < 2; ++mi)
       for (int ti = 0; ti < 2; ++ti) {
-        dal_solve_opts o;
-        dal_solve_default_opts(&o);
+        dal_solve_opts o = dal_default_solve_opts();
         o.method = ms[mi];
         o.rtol = tols[ti];
         double t[3][99];

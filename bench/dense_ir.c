@@ -91,8 +91,7 @@ int main(void) {
     for (size_t mi = 0; mi < sizeof ms / sizeof ms[0]; ++mi)
       for (size_t ti = 0; ti < sizeof tols / sizeof tols[0]; ++ti)
         for (int mode = 0; mode < 3; ++mode) {
-          dal_solve_opts o;
-          dal_solve_default_opts(&o);
+          dal_solve_opts o = dal_default_solve_opts();
           o.method = ms[mi];
           o.rtol = tols[ti];
           double q[2] = {2.0, 1.0}, qd[2] = {0, 0}, acc = 0;

@@ -37,10 +37,16 @@ static dal_system *driven(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, p, rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, 0.0, 0, 1.0, 0}, g[2] = {0, -9.81};
+  double g[2] = {0, -9.81};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def(); // a drive of zero amplitude at w = 1
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_W] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   dal_builder_destroy(b);
@@ -88,7 +94,7 @@ static int make(setup *s) {
     return 1;
   s->q0 = 0.4;
   s->v0 = 0.0;
-  dal_solve_default_opts(&s->so);
+  s->so = dal_default_solve_opts();
   s->so.method = DAL_METHOD_DOPRI5;
   s->so.rtol = 1e-8;
   dal_sweep sw = {.ntraj = NT,
@@ -122,8 +128,7 @@ static int uneven(const dal_system *sys, dal_state *st, const dal_traj *tr, void
 
 static double time_sweep(setup *s, const dal_sweep *sw, int threads, dal_schedule sched) {
   dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = threads;
   o.schedule = sched;
   double t0 = now();
@@ -186,8 +191,7 @@ static int cpu_split(setup *s, double t1, int threads) {
   sw.t1 = t1;
   sw.reduce = keep_timed;
   dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = threads;
   o.worker_create = clock_create;
   o.worker_destroy = clock_destroy;
@@ -324,8 +328,7 @@ int main(int argc, char **argv) {
   int bad = !s || !t || make(s);
   for (int r = 0; r < reps && !bad; ++r) {
     dal_sweep_out out = {s->res, s->status, NULL, 0, 0, 0};
-    dal_sweep_opts o;
-    dal_sweep_default_opts(&o);
+    dal_sweep_opts o = dal_default_sweep_opts();
     MPI_Barrier(MPI_COMM_WORLD);
     double t0 = MPI_Wtime();
     bad |= dal_sweep_run_mpi(s->sys, &s->sw, &o, &out, MPI_COMM_WORLD, NULL, 0) != 0;

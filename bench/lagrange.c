@@ -113,8 +113,7 @@ int main(int argc, char **argv) {
         double q0[2] = {1, 2}, v0[2] = {3, 4}, p0 = 0.2, w0 = 0.0;
         if (driven ? dal_state_set(sys, st, 0.0, &p0, &w0) : dal_state_set(sys, st, 0.0, q0, v0))
           return 1;
-        dal_solve_opts o;
-        dal_solve_default_opts(&o);
+        dal_solve_opts o = dal_default_solve_opts();
         o.method = meths[mi];
         o.rtol = 1e-8;
         int rc = lagrange_region(sys, st, &o, 10.0);

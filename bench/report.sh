@@ -354,8 +354,9 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
   for c in overhead cost_growth drift energy dae_tolerance stiff singular; do
     [[ -s $dir/$c.png ]] && echo "![$c]($rel/$c.png)" && echo
   done
-  echo "SVG versions of every chart and one chart per scene with its own legend"
-  echo "(\`wp_<scene>.svg\`) are beside the PNGs."
+  echo "The overview shows the minimal ODE, GGL, index-1 with projection and the hand-written"
+  echo "reference; one chart per scene with every formulation and its own legend"
+  echo "(\`wp_<scene>.png\`, \`.svg\`) and SVG versions of every chart are beside the PNGs."
 } >"$out"
 
 # copy into the README between the markers (append the section if it has none)

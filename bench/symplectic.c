@@ -167,8 +167,7 @@ static double ring_period(double w, double th0) {
   double v = 0.0, tprev = -1, first = -1, last = -1, pv = 0.0;
   int count = 0;
   dal_state_set(sys, st, 0.0, &th0, &v);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = 1e-12;
   for (int k = 1; k <= 40000; ++k) {
@@ -269,7 +268,7 @@ static int is_fixed(dal_method m) {
 }
 
 static void cfg_opts(const run_cfg *c, dal_solve_opts *o) {
-  dal_solve_default_opts(o);
+  *o = dal_default_solve_opts();
   o->method = c->m;
   o->form = c->form;
   o->project = c->project;
@@ -631,8 +630,7 @@ static void fail_stiff(void) {
   dal_state *st = NULL;
   dal_state_create(sys, &st);
   double q0[4] = {1.0, 0, 2.0 + 1e-3, 0}, v0[4] = {0, 0, 0, 0}, T = 20.0, ref[4];
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = 1e-13;
   o.max_steps = 100000000;
@@ -684,7 +682,7 @@ static void fail_drive(void) {
   dal_state_create(sys, &b);
   double th = 1.0, thd = 0.0;
   dal_solve_opts orf, oa, ob;
-  dal_solve_default_opts(&orf);
+  orf = dal_default_solve_opts();
   orf.method = DAL_METHOD_BS;
   orf.rtol = orf.atol = 1e-13;
   run_cfg cv = {DAL_METHOD_VARIATIONAL, h, DAL_FORM_AUTO, 0};
@@ -896,8 +894,7 @@ static void rounding(void) {
           seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
           y0[i] = -2.0 + 4.0 * (double)(seed >> 11) / 9007199254740992.0;
         }
-        dal_solve_opts o;
-        dal_solve_default_opts(&o);
+        dal_solve_opts o = dal_default_solve_opts();
         o.method = DAL_METHOD_RK4;
         o.fixed_step = H;
         o.max_steps = 100000000;
@@ -947,8 +944,7 @@ static void rounding(void) {
                   "t = 10 against the closed form:");
   const double qs[2] = {1, 2}, vs[2] = {3, 4}, w = sqrt(0.5);
   for (int k = 10; k <= 13; ++k) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = DAL_METHOD_BS;
     o.rtol = o.atol = pow(10.0, -k);
     dal_state_set(sys, st, 0, qs, vs);

@@ -55,7 +55,7 @@ const char *bench_form_name(bench_form f) {
 }
 
 void bench_opts(dal_solve_opts *o, bench_form f, dal_method m, double rtol) {
-  dal_solve_default_opts(o);
+  *o = dal_default_solve_opts();
   o->method = m;
   o->rtol = rtol;
   o->atol = rtol;

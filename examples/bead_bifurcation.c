@@ -7,8 +7,8 @@
 // in the turning ring (dal_map_ring), so the equilibria are relative equilibria, steady in the
 // ring's frame. Analysis: dal_continue follows a branch of equilibria in the parameter w
 // (every point a Newton solve with the exact stiffness, rebuilt system per w) and classifies
-// each by the eigenvalues of the exact flow Jacobian; det K changing sign between grid points
-// is bisected to the critical rate.
+// each by the eigenvalues of the exact vector-field Jacobian; det K changing sign between grid
+// points is bisected to the critical rate.
 // Closed form (Likharev, Essential Graduate Physics, CM sec. 2.1): theta = 0 for all w, stable
 // below w_c = sqrt(g/R) with frequency sqrt(g/R - w^2), unstable above; for w > w_c the pair
 // cos(theta0) = g/(R w^2), stable, frequency w sin(theta0).
@@ -35,10 +35,16 @@ static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
   dal_builder *b = NULL;
   int th, bead, rc = dal_builder_create(3, &b);
-  double par[3] = {R, w, 0.0}, grav[3] = {0, 0, -g};
+  double grav[3] = {0, 0, -g};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  if (!rc) rc = dal_builder_place(b, bead, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def ring = dal_default_place_def();
+  ring.prim = &dal_map_ring;
+  ring.coords = &th;
+  ring.ncoords = 1;
+  ring.param[DAL_RING_R] = R;
+  ring.param[DAL_RING_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bead, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (!rc) rc = dal_builder_compile(b, out);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
@@ -99,8 +105,7 @@ static int on_point(double w, const dal_system *sys, const dal_state *st, dal_st
 
 static int run_branches(FILE *csv, int npoints, int *bad) {
   const double wc = sqrt(g / R);
-  dal_continuation_opts o;
-  dal_continuation_default_opts(&o);
+  dal_continuation_opts o = dal_default_continuation_opts();
   dal_continuation_report rep;
   struct {
     const char *name;

@@ -116,7 +116,8 @@ static int study(double w, int verbose) {
          thstar, sqrt(Om2));
   // 1. equation of motion at sample states, and equilibria
   double worst = 0;
-  for (int i = 0; i < 6; ++i) worst = fmax(worst, eom_err(&r, 0.3 * i, -2.5 + i, 1.5 - 0.6 * i));
+  for (int i = 0; i < 6; ++i)
+    worst = fmax(worst, eom_err(&r, 0.3 * i, -2.5 + i, 1.5 - 0.6 * i));
   double eq = fabs(eom_err(&r, 0.7, thstar, 0.0));
   double eq_acc = fabs(dal_state_qddot(r.st)[0]);
   printf("  theta'' vs sin(theta)(w^2 cos(theta) - g/R), both routes: max error %.1e; at theta* "
@@ -125,8 +126,7 @@ static int study(double w, int verbose) {
   bad |= !(worst <= 1e-13) || !(eq <= 1e-13) || !(eq_acc <= 1e-13);
 
   // 2. a small oscillation returns after 2 pi / Omega
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = rtol;
   double eps = 1e-4, th0 = thstar + eps, z = 0.0, T = 2 * PI / sqrt(Om2);
   int rc = dal_state_set(r.sys, r.st, 0.0, &th0, &z);
@@ -176,7 +176,8 @@ int main(int argc, char **argv) {
   const double ws_full[] = {0.0, 0.5, 0.9, 1.1, 2.0, 4.0};
   const double *ws = check ? ws_check : ws_full;
   int n = check ? 2 : 6;
-  for (int i = 0; i < n; ++i) bad |= study(ws[i] * wc, !check);
+  for (int i = 0; i < n; ++i)
+    bad |= study(ws[i] * wc, !check);
   printf("%s\n", bad ? "FAILED" : "ok");
   return bad;
 }

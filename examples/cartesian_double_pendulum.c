@@ -96,10 +96,10 @@ int main(int argc, char **argv) {
   dal_energies e0, e;
   dal_state_energies(b, &e0);
   dal_solve_opts om, od;
-  dal_solve_default_opts(&om);
+  om = dal_default_solve_opts();
   om.method = DAL_METHOD_BS;
   om.rtol = om.atol = 1e-13;
-  dal_solve_default_opts(&od); // GGL in IDA
+  od = dal_default_solve_opts(); // GGL in IDA
   od.rtol = od.atol = tol;
   double pmax = 0, fmaxd = 0, tmax = 0, rmax = 0, Emax = 0;
   if (!check)

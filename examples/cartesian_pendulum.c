@@ -160,12 +160,11 @@ int main(int argc, char **argv) {
   double q[2] = {0.0, -l}, qd[2] = {0, 0};
   int fails =
       dal_state_set(sys, st, 0.0, q, qd) || dal_check_constraints(sys, st, &rep) || rep.rank != 1;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o); // GGL in IDA
+  dal_solve_opts o = dal_default_solve_opts(); // GGL in IDA
   o.rtol = o.atol = 1e-10;
   fails += run(sys, st, &o, "GGL (IDA BDF)", T, 1000.0, !check);
   if (!(rep.m == 1 && fabs(dal_state_phi(st)[0]) < 1e-12)) ++fails;
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.form = DAL_FORM_INDEX1;
   o.method = DAL_METHOD_BS;
   o.project = 1;

@@ -124,8 +124,7 @@ static result run(const dal_system *sys, int N, double T, double rtol, dal_linso
   r.rc = dal_state_set(sys, st, 0.0, q, qd);
   if (!r.rc) r.rc = dal_forward(sys, st);
   dal_state_energies(st, &e0);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o); // GGL in IDA
+  dal_solve_opts o = dal_default_solve_opts(); // GGL in IDA
   o.rtol = o.atol = rtol;
   o.linsol = ls;
   if (!r.rc) r.rc = dal_advance(sys, st, &o, T);
@@ -174,8 +173,7 @@ static int check(void) {
   double th[NS], thd[NS];
   for (int k = 0; k < NS; ++k)
     th[k] = PI / 4, thd[k] = 0.0;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = 1e-13;
   if (dal_state_set(ms, st, 0.0, th, thd) || dal_advance(ms, st, &o, T)) {

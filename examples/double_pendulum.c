@@ -118,7 +118,8 @@ int main(int argc, char **argv) {
       worst = fmax(worst, fabs(cl[j] - c[j]) / sc);
       worst = fmax(worst, fabs(Ql[j] - Q[j]) / sc);
     }
-    for (int j = 0; j < 4; ++j) worst = fmax(worst, fabs(Ml[j] - M[j]));
+    for (int j = 0; j < 4; ++j)
+      worst = fmax(worst, fabs(Ml[j] - M[j]));
     if (i < 2)
       printf("  th = (%5.2f, %5.2f) w = (%5.2f, %5.2f): qdd = (%.12f, %.12f), hand (%.12f, "
              "%.12f)\n",
@@ -129,8 +130,7 @@ int main(int argc, char **argv) {
   bad |= !(worst <= 1e-13);
 
   // 2. normal modes
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = rtol;
   for (int mode = 0; mode < 2; ++mode) {
     double sg = mode ? -1.0 : 1.0, eps = 1e-5;

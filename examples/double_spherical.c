@@ -79,8 +79,7 @@ int main(int argc, char **argv) {
     dal_state *st = NULL;
     dal_state_create(sys, &st);
     dal_state_set(sys, st, 0, q, v);
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     if (f == 0) {
       o.form = DAL_FORM_INDEX1;
       o.project = 1;

@@ -79,8 +79,7 @@ static int upright_run(drive *D, double tend, double *maxdev, double *period, in
   int rc = sys ? dal_state_create(sys, &st) : -1;
   double th0 = PI - 0.2, z = 0.0, dt = 0.002, last_cross = -1, first_cross = -1;
   int ncross = 0;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = 1e-9;
   if (!rc) rc = dal_state_set(sys, st, 0.0, &th0, &z);
   *maxdev = 0.0;

@@ -131,8 +131,7 @@ int main(int argc, char **argv) {
   sys = build(0, 0);
   dal_state_create(sys, &st);
   dal_state_set(sys, st, 0, q, v);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-9;
   dal_energies en0, en1;
   dal_make_consistent(sys, st, 0, NULL);

@@ -37,7 +37,8 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 static int path(dal_jet t, dal_jet *q, void *ctx) {
   double w = *(const double *)ctx;
   dal_jet c = dal_cos(dal_scale(t, w)), s = dal_sin(dal_scale(t, w));
-  for (int i = 0; i < 2; ++i) q[i] = dal_add(dal_scale(c, q0[i]), dal_scale(s, v0[i] / w));
+  for (int i = 0; i < 2; ++i)
+    q[i] = dal_add(dal_scale(c, q0[i]), dal_scale(s, v0[i] / w));
   return 0;
 }
 
@@ -87,7 +88,8 @@ static int monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   double t = dal_state_time(st), qe[2], ve[2], err = 0;
   const double *q = dal_state_q(st), *v = dal_state_qdot(st);
   exact(t, qe, ve);
-  for (int i = 0; i < 2; ++i) err = fmax(err, fmax(fabs(q[i] - qe[i]), fabs(v[i] - ve[i])));
+  for (int i = 0; i < 2; ++i)
+    err = fmax(err, fmax(fabs(q[i] - qe[i]), fabs(v[i] - ve[i])));
   dal_energies e;
   dal_state_energies(st, &e);
   if (tr->rows == 0) tr->E0 = e.E;
@@ -154,8 +156,7 @@ int main(int argc, char **argv) {
 
   // 3. integration against the closed form
   int periods = check ? 2 : 10;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = rtol;
   o.atol = rtol;
   for (int r = 0; r < 2; ++r) {

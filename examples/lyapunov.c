@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Lyapunov exponents of SICM's driven pendulum, converging.
+// Lyapunov exponents of SICM's driven pendulum: finite-time estimates with their error.
 //
 // Problem (Sussman & Wisdom, SICM sec. 1.7, as in sicm_driven_pendulum.c): a bob of mass 1 on a
 // rod of length 1 whose pivot moves as y = 0.1 cos(2 sqrt(g) t), g = 9.8, released at
@@ -37,10 +37,17 @@ static dal_system *build(void) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int th, bob, rc = dal_builder_create(2, &b);
-  double par[7] = {l, 0, 0, 0, a, 2 * sqrt(g), 0}, grav[2] = {0, -g};
+  double grav[2] = {0, -g};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &bob);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  dal_place_def pend = dal_default_place_def(); /* the pivot driven vertically */
+  pend.prim = &dal_map_pendulum;
+  pend.coords = &th;
+  pend.ncoords = 1;
+  pend.param[DAL_PENDULUM_L] = l;
+  pend.param[DAL_PENDULUM_AY] = a;
+  pend.param[DAL_PENDULUM_W] = 2 * sqrt(g);
+  if (!rc) rc = dal_builder_place_def(b, bob, &pend);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (!rc) rc = dal_builder_compile(b, &sys);
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
@@ -84,8 +91,7 @@ static int check_mode(const dal_system *sys) {
   double q = 1.0, v = 0.0, ex[2], er[2], y0[4] = {0.0, 1.0, 1.0, 0.0};
   if (dal_state_create(sys, &st) || dal_state_set(sys, st, 0.0, &q, &v)) return 1;
   // the spectrum by the variational equations, the first tangent vector along the velocity
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.t_end = T;
   o.method = DAL_METHOD_RK4;
   o.h = h;
@@ -107,8 +113,7 @@ static int check_mode(const dal_system *sys) {
     fprintf(stderr, "lyapunov: %s\n", dal_state_errmsg(st));
     return 1;
   }
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.method = DAL_METHOD_RK4;
   so.fixed_step = h;
   double l2 = two_orbit(sys, &so, T, o.renorm, 1e-7);
@@ -163,8 +168,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
   double q = 1.0, v = 0.0, ex[2], er[2], y0[2] = {0.0, 1.0};
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, &q, &v);
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.transient = 100.0;
   o.t_end = 3100.0;
   conv c = {csv, o.transient, o.transient, 0.0};
@@ -193,15 +197,18 @@ static int full_mode(const dal_system *sys, const char *dir) {
   FILE *f = fopen(gp, "w");
   if (f) {
     fprintf(f,
-            "set terminal pngcairo size 1100,600\nset output '%s'\nset datafile separator ','\n"
-            "set key autotitle columnhead top right\nset xlabel 't (s)'\n"
+            "set terminal pngcairo size 1300,600\nset output '%s'\nset datafile separator ','\n"
+            "set key autotitle columnhead outside right\nset autoscale xfix\nset xlabel 't (s)'\n"
             "set ylabel 'exponent (1/s)'\nset grid\n"
-            "set title 'SICM driven pendulum: Lyapunov exponents (exact tangent, QR every 1 s)'\n"
-            "plot '%s' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'lambda_1 running', "
+            "set title 'SICM driven pendulum: finite-time Lyapunov estimates (exact tangent, QR "
+            "every 1 s); the band: final lambda_1 +- its standard error'\n"
+            "plot %.6f with filledcurves y1=%.6f fs transparent solid 0.25 noborder "
+            "lc rgb '#1f77b4' title 'lambda_1 +- error', "
+            "'%s' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'lambda_1 running', "
             "'' using 1:3 with lines lw 2 lc rgb '#d62728' title 'lambda_2 running', "
             "'' using 1:4 with points pt 7 ps 0.8 lc rgb '#7f7f7f' title '100 s windows', "
             "%.6f with lines dt 2 lc rgb 'black' title 'final lambda_1'\n",
-            png, path, ex[0]);
+            png, ex[0] + er[0], ex[0] - er[0], path, ex[0]);
     fclose(f);
   }
   if (system("command -v gnuplot >/dev/null 2>&1") != 0) {

@@ -67,18 +67,35 @@ static dal_system *build(scene *sc, double a, double w) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, bob, rack, rc = dal_builder_create(2, &b);
-  double par[7] = {1.0, 0, 0, a, 0, w, 0}, g[2] = {0, -1.0}, far[2] = {-1e6, -2.0};
+  double g[2] = {0, -1.0};
   sc->rho = rho;
   sc->rail.fn = rail;
   sc->rail.ctx = &sc->rho;
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
   if (!rc) rc = dal_builder_add_particle(b, "rack", m_rack, &rack);
-  if (!rc) rc = dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
-  if (!rc) rc = dal_builder_place(b, rack, &dal_map_curve2, -1, 1, &th, 0, NULL, &sc->rail);
+  dal_place_def pd = dal_default_place_def(); // the pivot driven along x
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  pd.param[DAL_PENDULUM_AX] = a;
+  pd.param[DAL_PENDULUM_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_curve2;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.ctx = &sc->rail;
+  if (!rc) rc = dal_builder_place_def(b, rack, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   // the dashpot on the rack, anchored 1e6 along the rail: its line of action is the rail
-  if (!rc) rc = dal_builder_add_anchor_damper(b, rack, far, NULL, NULL, drag / (rho * rho));
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = rack;
+  dd.anchor[0] = -1e6;
+  dd.anchor[1] = -2.0;
+  dd.c = drag / (rho * rho);
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
   dal_builder_destroy(b);
@@ -101,8 +118,7 @@ static double thread_cpu(void) {
 // reducer: the largest exponent(s) and their convergence estimates (block standard errors)
 static int lyapunov(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
   const lyap_cfg *c = ctx;
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.nexp = c->nexp;
   o.transient = T_TRANS;
   o.t_end = dal_state_time(st) + T_TRANS + c->T;
@@ -203,8 +219,7 @@ static int check_override(const dal_system *sys, const dal_param_ref *par, const
                   .reduce = lyapunov,
                   .ctx = &c};
   dal_sweep_out out = {res, &status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   if (dal_sweep_run(sys, &sw, &o, &out, NULL, 0) || status) return 1;
   scene sc;
   dal_system *own = build(&sc, a, w);
@@ -321,8 +336,7 @@ int main(int argc, char **argv) {
                   .reduce = lyapunov,
                   .ctx = &cfg};
   dal_sweep_out out = {res, status, msgs, 200, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = threads;
   if (dal_sweep_run(sys, &sw, &o, &out, err, sizeof err)) {
     fprintf(stderr, "sweep: %s\n", err);

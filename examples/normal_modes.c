@@ -13,7 +13,7 @@
 //     imaginary (gyroscopic stabilization, from lambda^4 + (a + b + 4 w^2) lambda^2 + a b = 0);
 //     with k1 = 3, k2 = 0.5 rotation does not help (a b < 0).
 // What is computed: dal_normal_modes at the equilibrium (exact K, C, M by jets; dsygv for the
-// modes, dgeev of the flow Jacobian for the verdict).
+// modes, dgeev of the vector-field Jacobian for the verdict).
 // Checks (--check and full mode alike):
 //  - scene 1 against the closed form (1e-13);
 //  - every mode of scenes 1 and 2 by integration: started from 1e-6 times its shape at rest, the
@@ -82,8 +82,7 @@ static int chain_modes(const dal_system *sys, const char *name, int verbose, dou
   printf("%s: %s at rest (max Re lambda %.1e)\n", name, dal_stability_name(md.verdict),
          md.max_real);
   bad |= md.verdict != DAL_NEUTRAL;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = 1e-12;
   for (int i = 0; i < n; ++i) {
@@ -193,8 +192,7 @@ static int trap_scene(const trap *tr, dal_stability expect) {
     bad |= !found;
   }
   // 30 s of motion from 1e-3 off the centre
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = 1e-10;
   double q0[2] = {1e-3, 0.0}, big = 0.0;
   rc = dal_state_set(sys, st, 0.0, q0, z);

@@ -88,8 +88,7 @@ int main(int argc, char **argv) {
   dal_state_create(sys, &st);
   double s0 = 1e-3, v0 = 0.0;
   dal_state_set(sys, st, 0, &s0, &v0);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   period p = {s0, 0.0, 0.0, 0.0, 0};
   if (dal_evolve(sys, st, &o, 20.0, 1e-3, monitor, &p)) return 1;

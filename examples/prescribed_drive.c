@@ -92,8 +92,7 @@ int main(int argc, char **argv) {
     dal_state_create(sys, &st);
     double q[2] = {0.7, 0.3}, v[2] = {0.0, 1.2}; // phidot = f'(0) = 1.2 rad/s
     dal_state_set(sys, st, 0, q, v);
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.rtol = 1e-10;
     if (f == 1) {
       o.form = DAL_FORM_INDEX1;

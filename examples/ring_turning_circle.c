@@ -91,10 +91,10 @@ int main(int argc, char **argv) {
   dal_state_energies(b, &e);
   E0 = e.E;
   dal_solve_opts om, od;
-  dal_solve_default_opts(&om);
+  om = dal_default_solve_opts();
   om.method = DAL_METHOD_BS;
   om.rtol = om.atol = 1e-13;
-  dal_solve_default_opts(&od);
+  od = dal_default_solve_opts();
   od.rtol = od.atol = tol;
   if (!check) printf("    t     theta    |r - r_min|  h - h0      E - E0    |phi|\n");
   int steps = (int)(T / dt + 0.5);

@@ -81,8 +81,7 @@ static int run(const dal_system *sys, dal_method m, double theta0, double thetad
   dal_state *st = NULL;
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, &theta0, &thetadot0);
-  dal_solve_opts opts;
-  dal_solve_default_opts(&opts);
+  dal_solve_opts opts = dal_default_solve_opts();
   opts.method = m;
   opts.rtol = opts.atol = 1e-12;
   if (!rc) rc = dal_evolve(sys, st, &opts, T, dt, record, o);
@@ -220,8 +219,8 @@ static int full_mode(const dal_system *sys, const char *dir) {
   if (nfit > 2) {
     slope = (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx);
     icpt = (sy - slope * sx) / nfit;
-    printf("slope of log|dtheta| on [5, %.1f]: %.4f 1/s (the finite-time divergence rate)\n",
-           tfit1, slope);
+    printf("slope of log|dtheta| on [5, %.1f]: %.4f 1/s (the finite-time divergence rate)\n", tfit1,
+           slope);
   }
   // the chart: the orbits, then log |delta theta| with its fitted line
   FILE *gf = fopen(gp, "w");
@@ -245,15 +244,16 @@ static int full_mode(const dal_system *sys, const char *dir) {
             "part%s'\n",
             p1, p2, slope, tsep >= 0 ? " (dashed: 0.1 rad apart)" : "");
     if (tsep >= 0)
-      fprintf(gf, "set arrow 2 from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb 'gray40'\n",
-              tsep, tsep);
+      fprintf(gf, "set arrow 2 from %g, graph 0 to %g, graph 1 nohead dt 2 lc rgb 'gray40'\n", tsep,
+              tsep);
     fprintf(gf,
             "plot '%s' using 1:2 every ::1 with linespoints pt 7 ps 0.5 pi 200 lw 1 lc rgb "
             "'#9467bd' title '|theta_b - theta_a|'",
             p3);
     if (isfinite(slope))
-      fprintf(gf, ", (x >= 5 && x <= %g) ? exp(%.17g + %.17g * x) : 1/0 with lines lw 3 dt 2 lc "
-                  "rgb 'black' title 'fit: slope %.3f 1/s'",
+      fprintf(gf,
+              ", (x >= 5 && x <= %g) ? exp(%.17g + %.17g * x) : 1/0 with lines lw 3 dt 2 lc "
+              "rgb 'black' title 'fit: slope %.3f 1/s'",
               tfit1, icpt, slope, slope);
     fprintf(gf, "\nunset multiplot\n");
     fclose(gf);

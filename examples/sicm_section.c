@@ -100,8 +100,7 @@ static double theta_zero(double t, const double *q, const double *qd, void *ctx)
 }
 
 static dal_solve_opts options(void) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = 1e-10;
   return o;
@@ -144,7 +143,7 @@ static int check_mode(void) {
   bad |= rc != DAL_OK || s.n != 101 || nev < 10;
   bad |= !(worst_e < 1e-8 * g) || !(worst_v < 1e-8 * sqrt(g));
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(free_sys);
 
@@ -183,7 +182,7 @@ static int check_mode(void) {
          worst_q, worst_t);
   bad |= rc != DAL_OK || nev != 60 || !(worst_q < 1e-9) || !(worst_t < 1e-13);
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(sys);
   printf("sicm_section: %s\n", bad ? "FAILED" : "ok");
@@ -259,7 +258,7 @@ static int full_mode(const char *dir) {
     else
       printf("gnuplot not found or failed: chart skipped (script in %s)\n", gp);
   }
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(sys);
   return bad;

@@ -51,8 +51,7 @@ static int run(const dal_system *sys, dal_state *st, double th0, int verbose) {
   int bad = 0;
   double kk = sin(th0 / 2), K = ellipk(kk), T = 4 * K * sqrt(len / grav), z = 0.0;
   double T0 = 2 * PI * sqrt(len / grav);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = rtol;
   if (dal_state_set(sys, st, 0.0, &th0, &z) || dal_forward(sys, st)) {
     printf("set failed: %s\n", dal_state_errmsg(st));
@@ -121,7 +120,8 @@ int main(int argc, char **argv) {
     const double amps_full[] = {0.1, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 3.1};
     const double *amps = check ? amps_check : amps_full;
     int na = check ? 2 : 8;
-    for (int i = 0; i < na; ++i) bad |= run(sys, st, amps[i], 1);
+    for (int i = 0; i < na; ++i)
+      bad |= run(sys, st, amps[i], 1);
   }
   dal_state_destroy(st);
   dal_system_destroy(sys);

@@ -97,8 +97,7 @@ int main(int argc, char **argv) {
   printf("  particles / Lagrangian / hand equations: max rel difference %.1e\n", worst);
   bad |= !(worst <= 1e-13);
 
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = rtol;
 
   // 2. conical pendulum

@@ -105,8 +105,7 @@ int main(int argc, char **argv) {
   int check = argc > 1 && strcmp(argv[1], "--check") == 0, bad = 0;
   // 1. the potential and the model
   dal_verify_report vr;
-  dal_verify_opts vo;
-  dal_verify_default_opts(&vo);
+  dal_verify_opts vo = dal_default_verify_opts();
   if (dal_verify_potential_r(attract, 2, 2, &vo, &vr, NULL)) bad = 1;
   printf("%s\n", vr.msg);
   dal_system *sys = build(0);
@@ -118,8 +117,7 @@ int main(int argc, char **argv) {
   if (dal_verify_model(sys, st, NULL, &mr)) bad = 1;
   printf("%s\n", mr.msg);
   // 2. conservation of E
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   dal_energies e0, e1;
   dal_forward(sys, st);

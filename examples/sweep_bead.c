@@ -15,8 +15,8 @@
 // (parameter 1 of dal_map_ring, "place:bead:1") per trajectory. The reducer finds the
 // equilibria of its rate with the analysis API: dal_equilibrium (Newton with the exact
 // stiffness K) from 16 starts spread over the circle, the distinct solutions kept, and
-// dal_normal_modes classifies each (verdict from the eigenvalues of the exact flow Jacobian,
-// Omega^2 from K x = Omega^2 M x). No time integration at all.
+// dal_normal_modes classifies each (verdict from the eigenvalues of the exact vector-field
+// Jacobian, Omega^2 from K x = Omega^2 M x). No time integration at all.
 // Checks (--check: 20 rates over [0, 2.5 w_c] and 4 within 1% of w_c; full mode: 250 rates
 // over [0, 2.5 w_c], CSV + PNG chart):
 //  1. the set of equilibria of every rate is the closed-form set ({0, pi} below w_c,
@@ -48,10 +48,15 @@ static dal_system *build(void) {
   dal_builder *b = NULL;
   dal_system *s = NULL;
   int th, p, rc = dal_builder_create(3, &b);
-  double par[3] = {R, 0.0, 0.0}, g[3] = {0, 0, -grav};
+  double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_ring, -1, 1, &th, 3, par, NULL);
+  dal_place_def ring = dal_default_place_def();
+  ring.prim = &dal_map_ring;
+  ring.coords = &th;
+  ring.ncoords = 1;
+  ring.param[DAL_RING_R] = R;
+  if (!rc) rc = dal_builder_place_def(b, p, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_compile(b, &s);
   if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
@@ -69,8 +74,7 @@ static double wrap(double th) {
 // the largest |d qddot/dt| of the solutions goes into the message when it is not ~0
 static int equilibria(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
   (void)ctx;
-  dal_equilibrium_opts eo;
-  dal_equilibrium_default_opts(&eo);
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
   eo.max_step = 0.25; // stay in the basin of the nearest solution
   double found[NSTART];
   int nf = 0, rc = DAL_OK, last = DAL_OK;
@@ -217,8 +221,7 @@ int main(int argc, char **argv) {
                   .nresult = NRES,
                   .reduce = equilibria};
   dal_sweep_out out = {res, status, msgs, DAL_SWEEP_MSG_LEN, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = 2;
   if (dal_sweep_run(sys, &sw, &o, &out, err, sizeof err)) {
     fprintf(stderr, "sweep: %s\n", err);

@@ -81,8 +81,7 @@ int main(int argc, char **argv) {
   printf("user map vs dal_map_ring: max difference of M, Q, c, theta'' = %.3g\n", worst);
   if (worst > 1e-13) bad = 1;
   // 3. the same trajectory
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-11;
   double q0 = 0.3, v0 = 0.0;
   dal_state_set(mine, a, 0, &q0, &v0);

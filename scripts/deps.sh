@@ -7,6 +7,7 @@ pkgs=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev liblap
       libopenblas-dev gnuplot-nox libopenmpi-dev openmpi-bin doxygen)
 [[ "${DAL_WITH_FUZZ:-0}" == 1 ]] && pkgs+=(clang libclang-rt-14-dev valgrind)
 [[ "${DAL_WITH_VALGRIND:-0}" == 1 ]] && pkgs+=(valgrind)
+[[ "${DAL_WITH_FORMAT:-0}" == 1 ]] && pkgs+=(clang-format)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

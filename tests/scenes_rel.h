@@ -13,8 +13,8 @@
 #include "dalembert/dalembert.h"
 
 /// |r - anchor| - L for one particle (inputs its d = 2 position; param (L, ax, ay))
-static inline int rel_rod_fixed(const dal_jet *in, dal_jet t, const double *p,
-                                dal_jet *out, void *ctx) {
+static inline int rel_rod_fixed(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
+                                void *ctx) {
   (void)t;
   (void)ctx;
   out[0] = dal_addc(dal_hypot(dal_addc(in[0], -p[1]), dal_addc(in[1], -p[2])), -p[0]);
@@ -22,8 +22,8 @@ static inline int rel_rod_fixed(const dal_jet *in, dal_jet t, const double *p,
 }
 
 /// |r_b - r_a| - L for two particles (inputs 2 + 2 positions; param (L))
-static inline int rel_rod_pair(const dal_jet *in, dal_jet t, const double *p,
-                               dal_jet *out, void *ctx) {
+static inline int rel_rod_pair(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
+                               void *ctx) {
   (void)t;
   (void)ctx;
   out[0] = dal_addc(dal_hypot(dal_sub(in[2], in[0]), dal_sub(in[3], in[1])), -p[0]);
@@ -52,11 +52,11 @@ typedef struct rel_drag {
   double c;
 } rel_drag;
 
-static inline int rel_drag_force(double t, const double *r, const double *v, double *F,
-                                 void *ctx) {
+static inline int rel_drag_force(double t, const double *r, const double *v, double *F, void *ctx) {
   const rel_drag *d = ctx;
   (void)r;
-  for (int i = 0; i < 4; ++i) F[i] -= d->c * v[i] * (1.0 + 0.1 * sin(t));
+  for (int i = 0; i < 4; ++i)
+    F[i] -= d->c * v[i] * (1.0 + 0.1 * sin(t));
   return 0;
 }
 
@@ -73,24 +73,49 @@ static inline dal_system *rel_double_pendulum(int dae) {
   if (!rc) rc = dal_builder_add_particle(b, "lower", 0.5, &p[1]);
   if (!dae) {
     int th[2] = {0, 0};
-    double par[7] = {1.0, 0, 0, 0, 0, 0, 0}, l2 = 0.7;
     if (!rc) rc = dal_builder_add_coord(b, "th1", &th[0]);
     if (!rc) rc = dal_builder_add_coord(b, "th2", &th[1]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_pendulum, -1, 1, &th[0], 7, par, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_hanging, p[0], 1, &th[1], 1, &l2, NULL);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &th[0];
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = 1.0;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd = dal_default_place_def();
+    pd.prim = &dal_map_hanging;
+    pd.parent = p[0];
+    pd.coords = &th[1];
+    pd.ncoords = 1;
+    pd.param[DAL_HANGING_L] = 0.7;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   } else {
     int c[4] = {0, 0, 0, 0};
     const char *names[4] = {"x1", "y1", "x2", "y2"};
     double rod1[3] = {1.0, 0.0, 0.0}, rod2 = 0.7;
-    for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(b, names[i], &c[i]);
-    if (!rc) rc = dal_builder_place(b, p[0], &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-    if (!rc) rc = dal_builder_place(b, p[1], &dal_map_cartesian2, -1, 2, c + 2, 0, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod1", &rel_prim_rod_fixed, 1, &p[0], 0, NULL, 3,
-                                      rod1, NULL, NULL);
-    if (!rc)
-      rc = dal_builder_add_constraint(b, "rod2", &rel_prim_rod_pair, 2, p, 0, NULL, 1, &rod2,
-                                      NULL, NULL);
+    for (int i = 0; i < 4 && !rc; ++i)
+      rc = dal_builder_add_coord(b, names[i], &c[i]);
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = c;
+    pd.ncoords = 2;
+    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+    pd.coords = c + 2;
+    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod1";
+    cd.prim = &rel_prim_rod_fixed;
+    cd.parts = &p[0];
+    cd.nparts = 1;
+    cd.param_list = rod1;
+    cd.nparam_list = 3;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    cd.name = "rod2";
+    cd.prim = &rel_prim_rod_pair;
+    cd.parts = p;
+    cd.nparts = 2;
+    cd.param_list = &rod2;
+    cd.nparam_list = 1;
+    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
   if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_add_force(b, rel_drag_force, (void *)&rel_drag_ctx);
@@ -100,8 +125,8 @@ static inline dal_system *rel_double_pendulum(int dae) {
 }
 
 /// a consistent initial state from the two angles and their rates
-static inline int rel_set(const dal_system *sys, dal_state *st, int dae, double th1,
-                          double th2, double w1, double w2) {
+static inline int rel_set(const dal_system *sys, dal_state *st, int dae, double th1, double th2,
+                          double w1, double w2) {
   if (!dae) {
     double q[2] = {th1, th2}, qd[2] = {w1, w2};
     return dal_state_set(sys, st, 0.0, q, qd);

@@ -612,7 +612,8 @@ static void test_singular(void) {
     CHECK_MSG(strcmp(dal_state_errmsg(st[0]), dal_state_errmsg(st[1])) == 0,
               "messages differ:\n    %s\n    %s", dal_state_errmsg(st[0]), dal_state_errmsg(st[1]));
     CHECK(strstr(dal_state_errmsg(st[0]), which == 0 ? "'phi'" : "'b'") != NULL);
-    printf("  %s: %s / %s (%s)\n", which == 0 ? "pole" : "massless", dal_status_name(status[0]), dal_status_name(status[1]), dal_state_errmsg(st[0]));
+    printf("  %s: %s / %s (%s)\n", which == 0 ? "pole" : "massless", dal_status_name(status[0]),
+           dal_status_name(status[1]), dal_state_errmsg(st[0]));
     for (int r = 0; r < 2; ++r) {
       dal_state_destroy(st[r]);
       dal_system_destroy(s[r]);
@@ -816,8 +817,7 @@ static void test_integration(void) {
   random_state(&a, q, qd, &t);
   for (int j = 0; j < a.n; ++j)
     qd[j] *= 0.3;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_DOPRI5;
   o.rtol = 1e-10;
   o.atol = 1e-10;
@@ -847,8 +847,7 @@ static void run_scene(dal_system *s, const double *q, const double *qd, int n, d
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
   (void)n;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.form = form;
   o.method = meth;
   o.rtol = o.atol = rtol;

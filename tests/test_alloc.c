@@ -241,8 +241,7 @@ static int scenario(const scen *sc) {
       if (!r.rc) note(&r, dal_make_consistent(sys, st, 0.0, NULL), dal_state_errmsg(st));
     }
     if (!r.rc && sc->integrate) {
-      dal_solve_opts o;
-      dal_solve_default_opts(&o);
+      dal_solve_opts o = dal_default_solve_opts();
       o.method = sc->method;
       o.form = sc->form;
       o.linsol = sc->linsol;
@@ -287,8 +286,7 @@ static void steps_allocate(const scen *sc) {
   CHECK_OK(build(&r, sc->N, sc->minimal, &b, &sys));
   CHECK_OK(dal_state_create(sys, &st));
   chain_state(sys, st, sc->N, sc->minimal, &r);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = sc->method;
   o.form = sc->form;
   o.linsol = sc->linsol;

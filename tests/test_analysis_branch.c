@@ -68,8 +68,7 @@ static int record(double p, const dal_system *sys, const dal_state *st, dal_stab
 static void test_pitchfork(void) {
   int fails0 = check_failures;
   const double wc = sqrt(grav / R);
-  dal_continuation_opts o;
-  dal_continuation_default_opts(&o);
+  dal_continuation_opts o = dal_default_continuation_opts();
   dal_continuation_report rep;
   // the trivial branch from 0.5 w_c to 2 w_c (w_c is not a grid point)
   static branch tb;
@@ -179,8 +178,7 @@ static int stop_after(double p, const dal_system *sys, const dal_state *st, dal_
 }
 
 static void test_errors(void) {
-  dal_continuation_opts o;
-  dal_continuation_default_opts(&o);
+  dal_continuation_opts o = dal_default_continuation_opts();
   dal_continuation_report rep;
   double q0 = 0.0;
   o.p0 = o.p1 = 1.0;
@@ -193,10 +191,10 @@ static void test_errors(void) {
   o.newton.xtol = -1;
   CHECK(dal_continue(build_ring, &q0, &o, NULL, &rep, NULL) == DAL_E_ARG);
   CHECK(strstr(rep.msg, "xtol") != NULL);
-  dal_continuation_default_opts(&o);
-  o.magic = 1;
+  o = dal_default_continuation_opts();
+  o.cookie = 1;
   CHECK(dal_continue(build_ring, &q0, &o, NULL, &rep, NULL) == DAL_E_ARG);
-  dal_continuation_default_opts(&o);
+  o = dal_default_continuation_opts();
   o.p0 = 1.0;
   o.p1 = 2.0;
   o.npoints = 5;
@@ -214,12 +212,11 @@ static void test_errors(void) {
   dal_state *st = NULL;
   CHECK_OK(build_ring(1.0, &sys, NULL));
   CHECK_OK(dal_state_create(sys, &st));
-  dal_equilibrium_opts eo;
-  dal_equilibrium_default_opts(&eo);
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
   eo.max_iter = 0;
   CHECK(dal_equilibrium(sys, st, &eo, NULL) == DAL_E_ARG);
   // too few iterations from far away: DAL_E_CONV naming the iteration count
-  dal_equilibrium_default_opts(&eo);
+  eo = dal_default_equilibrium_opts();
   eo.max_iter = 1;
   double th = 1.0, z = 0.0;
   CHECK_OK(dal_state_set(sys, st, 0.0, &th, &z));
@@ -227,7 +224,7 @@ static void test_errors(void) {
   CHECK_MSG(rc == DAL_E_CONV && strstr(dal_state_errmsg(st), "1 iterations"), "%s: %s",
             dal_status_name(rc), dal_state_errmsg(st));
   // a step bound slows Newton down but it still converges
-  dal_equilibrium_default_opts(&eo);
+  eo = dal_default_equilibrium_opts();
   eo.max_step = 0.1;
   dal_equilibrium_report er;
   CHECK_OK(dal_state_set(sys, st, 0.0, &th, &z));

@@ -164,8 +164,7 @@ static int run(const dal_system *sys, dal_state *st, double t0, const double *q,
 static void test_linear(void) {
   int fails0 = check_failures;
   double z[2] = {0, 0}, ex[4], er[4];
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   const double T = 200.0;
   o.t_end = T;
   // rotating saddle a b < 0: real pair +-sqrt(mu1) and an imaginary pair
@@ -221,8 +220,7 @@ static void test_hamiltonian(void) {
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {2.0, 2.0}, z[2] = {0, 0}, ex[4], er[4];
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.t_end = 200.0;
   CHECK_OK(dal_state_set(sys, st, 0.0, q, z));
   CHECK_OK(dal_forward(sys, st));
@@ -289,8 +287,7 @@ static void test_driven(void) {
   static track tk;
 
   // (a) RK4 at h = 2^-8: tangent vector = (orbit 2 - orbit 1) / delta
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   o.method = DAL_METHOD_RK4;
   o.h = ldexp(1.0, -8);
   o.nexp = 1;
@@ -301,8 +298,7 @@ static void test_driven(void) {
   CHECK_OK(dal_state_set(sys, st, 0.0, &q, &z));
   int rc = dal_lyapunov(sys, st, &o, ex, NULL, record, &tk);
   CHECK_MSG(rc == 0, "driven RK4: %s", dal_state_errmsg(st));
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.method = DAL_METHOD_RK4;
   so.fixed_step = o.h;
   const double d8 = 1e-8; // a larger offset than the demo's: rounding matters less
@@ -335,8 +331,7 @@ static void test_driven(void) {
          4 * 2.2e-16 * ymax * sqrt(o.t_end / o.h) / dmin);
 
   // (b) Bulirsch-Stoer orbits 1e-10 apart: slope of log |dtheta| until they separate
-  dal_solve_opts bs;
-  dal_solve_default_opts(&bs);
+  dal_solve_opts bs = dal_default_solve_opts();
   bs.method = DAL_METHOD_BS;
   bs.rtol = bs.atol = 1e-12;
   CHECK_OK(dal_state_set(sys, s1, 0.0, &q, &z));
@@ -382,7 +377,7 @@ static void test_driven(void) {
   sys = driven(0.1, 2.5 * sqrt(9.8));
   CHECK_OK(dal_state_create(sys, &st));
   double q0 = 0.05, e100[2], e400[2];
-  dal_lyapunov_default_opts(&o);
+  o = dal_default_lyapunov_opts();
   o.t_end = 100.0;
   run(sys, st, 0.0, &q0, &z, &o, e100, NULL);
   o.t_end = 400.0;
@@ -404,8 +399,7 @@ static void test_errors(void) {
   CHECK_OK(dal_state_create(sys, &st));
   double q = 0.3, z = 0.0, ex[2];
   CHECK_OK(dal_state_set(sys, st, 0.0, &q, &z));
-  dal_lyapunov_opts o;
-  dal_lyapunov_default_opts(&o);
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
   CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG); // t_end unset
   CHECK(strstr(dal_state_errmsg(st), "t_end") != NULL);
   o.t_end = 1.0;
@@ -426,7 +420,7 @@ static void test_errors(void) {
   o.transient = 2.0;
   CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG);
   dal_lyapunov_opts bad = o;
-  bad.magic = 0;
+  bad.cookie = 0;
   CHECK(dal_lyapunov(sys, st, &bad, ex, NULL, NULL, NULL) == DAL_E_ARG);
   CHECK(dal_state_time(st) == 0.0 && dal_state_q(st)[0] == q); // untouched by refusals
   dal_state_destroy(st);

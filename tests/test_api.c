@@ -121,15 +121,23 @@ static void test_def_errors(void) {
   dal_builder_destroy(b);
 }
 
-// positional form with omitted trailing parameters = def with the defaults (bit-identical)
-static void test_positional_defaults(void) {
+// a def's param_list with omitted trailing parameters = the def's param[] with the defaults
+// (bit-identical); a list longer than the primitive's count, or a list beside a set param[],
+// is refused by name
+static void test_param_list_defaults(void) {
   dal_builder *b = NULL;
   int th, bob;
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
   double l = 1.3, g[2] = {0, -G};
-  CHECK_OK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 1, &l, NULL));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param_list = &l;
+  pd.nparam_list = 1;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
   CHECK_OK(dal_builder_set_gravity(b, g));
   dal_system *s1 = NULL, *s2 = pendulum_def(1.3, 1.0);
   CHECK_OK(dal_builder_compile(b, &s1));
@@ -139,8 +147,7 @@ static void test_positional_defaults(void) {
   double q = 2.0, v = -1.0;
   CHECK_OK(dal_state_set(s1, a, 0.0, &q, &v));
   CHECK_OK(dal_state_set(s2, c, 0.0, &q, &v));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_advance(s1, a, &o, 1.0));
   CHECK_OK(dal_advance(s2, c, &o, 1.0));
   CHECK(dal_state_q(a)[0] == dal_state_q(c)[0]);
@@ -150,8 +157,15 @@ static void test_positional_defaults(void) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
-  CHECK(dal_builder_place(b, bob, &dal_map_pendulum, -1, 1, &th, 8, many, NULL) == DAL_E_ARG);
+  pd.param_list = many;
+  pd.nparam_list = 8;
+  CHECK(dal_builder_place_def(b, bob, &pd) == DAL_E_ARG);
   CHECK(has(dal_builder_errmsg(b), "takes 7 parameters"));
+  // a list beside a set param[] entry: which one is meant is not guessed
+  pd.nparam_list = 1;
+  pd.param[DAL_PENDULUM_L] = 1.3;
+  CHECK(dal_builder_place_def(b, bob, &pd) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "both param[0] and a param_list"));
   dal_state_destroy(a);
   dal_state_destroy(c);
   dal_system_destroy(s1);
@@ -159,9 +173,63 @@ static void test_positional_defaults(void) {
   dal_builder_destroy(b);
 }
 
-// the positional wrappers (kept, thin) build exactly what the defs build: one scene through
-// all six of them and through the defs, compared by the printed model (every parameter with
-// %.17g) and by the accelerations, multipliers and forces at a state, bit for bit
+// a primitive with more parameters than param[] holds (20): its parameters come through
+// param_list, the inline array refuses it naming the list; r = p[19] (sin th, -cos th), a
+// pendulum of length p[19], checked against that closed form
+#define WIDE_NPARAM 20
+static int wide_eval(const dal_jet *in, dal_jet t, const double *param, dal_jet *out, void *ctx) {
+  (void)t;
+  (void)ctx;
+  out[0] = dal_scale(dal_sin(in[0]), param[WIDE_NPARAM - 1]);
+  out[1] = dal_scale(dal_cos(in[0]), -param[WIDE_NPARAM - 1]);
+  return 0;
+}
+static const dal_primitive wide_prim = {.name = "wide",
+                                        .version = DAL_PRIMITIVE_VERSION,
+                                        .nin = 1,
+                                        .nout = 2,
+                                        .nparam = WIDE_NPARAM,
+                                        .eval = wide_eval};
+
+static void test_param_list_wide(void) {
+  dal_builder *b = NULL;
+  int th, bob;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &th));
+  CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &wide_prim;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  CHECK(dal_builder_place_def(b, bob, &pd) == DAL_E_ARG);
+  CHECK(has(dal_builder_errmsg(b), "param_list"));
+  double par[WIDE_NPARAM];
+  for (int i = 0; i < WIDE_NPARAM; ++i)
+    par[i] = 0.1 * (i + 1); // the last, the length, is 2.0
+  pd.param_list = par;
+  pd.nparam_list = WIDE_NPARAM;
+  CHECK_OK(dal_builder_place_def(b, bob, &pd));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q = 0.7, v = 0.0;
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &v));
+  CHECK_OK(dal_forward(sys, st));
+  const double *r = dal_state_positions(st);
+  CHECK(r != NULL);
+  if (r) {
+    CHECK_CLOSE(r[0], 2.0 * sin(0.7), 1e-15);
+    CHECK_CLOSE(r[1], -2.0 * cos(0.7), 1e-15);
+  }
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+}
+
+// parameters given through param_list build exactly what param[] builds: one scene with its
+// placements and its constraint through each, compared by the printed model (every parameter
+// with %.17g) and by the accelerations, multipliers and forces at a state, bit for bit
 static int wobble(dal_jet t, dal_jet *x, void *ctx) {
   (void)ctx;
   x[0] = dal_scale(dal_sin(t), 0.2);
@@ -170,7 +238,7 @@ static int wobble(dal_jet t, dal_jet *x, void *ctx) {
 }
 static const dal_moving_point wobble_point = {wobble, NULL};
 
-static dal_system *wrapper_scene(int positional) {
+static dal_system *list_scene(int listed) {
   // a: Cartesian (x, y) on a rod to the moving point (0.3, 0.1) + x(t); b: pendulum (theta)
   // about a driven pivot; c hanging from b (phi); springs a-b and c-anchor, dampers a-c and
   // b-anchor (moving anchors x0 + x(t))
@@ -185,17 +253,34 @@ static dal_system *wrapper_scene(int positional) {
   CHECK_OK(dal_builder_add_particle(b, "b", 0.8, &pb));
   CHECK_OK(dal_builder_add_particle(b, "c", 0.6, &c));
   CHECK_OK(dal_builder_set_gravity(b, g));
-  if (positional) {
+  if (listed) {
     double rod[3] = {1.2, 0.3, 0.1}, pend[6] = {0.9, -0.5, 0.2, 0.1, 0.05, 2.0}, hang = 0.7;
-    CHECK_OK(dal_builder_place(b, a, &dal_map_cartesian2, -1, 2, q, 0, NULL, NULL));
-    CHECK_OK(dal_builder_place(b, pb, &dal_map_pendulum, -1, 1, &q[2], 6, pend, NULL));
-    CHECK_OK(dal_builder_place(b, c, &dal_map_hanging, pb, 1, &q[3], 1, &hang, NULL));
-    CHECK_OK(dal_builder_add_constraint(b, "rod", &dal_con_anchor2, 1, &a, 0, NULL, 3, rod,
-                                        (void *)&wobble_point, NULL));
-    CHECK_OK(dal_builder_add_spring(b, a, pb, 20.0, 0.4));
-    CHECK_OK(dal_builder_add_anchor_spring(b, c, x0, wobble, NULL, 15.0, 0.3));
-    CHECK_OK(dal_builder_add_damper(b, a, c, 0.3));
-    CHECK_OK(dal_builder_add_anchor_damper(b, pb, x0, wobble, NULL, 0.2));
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_cartesian2;
+    pd.coords = q;
+    pd.ncoords = 2;
+    CHECK_OK(dal_builder_place_def(b, a, &pd));
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &q[2];
+    pd.ncoords = 1;
+    pd.param_list = pend;
+    pd.nparam_list = 6;
+    CHECK_OK(dal_builder_place_def(b, pb, &pd));
+    pd.prim = &dal_map_hanging;
+    pd.parent = pb;
+    pd.coords = &q[3];
+    pd.param_list = &hang;
+    pd.nparam_list = 1;
+    CHECK_OK(dal_builder_place_def(b, c, &pd));
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &a;
+    cd.nparts = 1;
+    cd.param_list = rod;
+    cd.nparam_list = 3;
+    cd.ctx = (void *)&wobble_point;
+    CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
   } else {
     dal_place_def pd = dal_default_place_def();
     pd.prim = &dal_map_cartesian2;
@@ -230,33 +315,33 @@ static dal_system *wrapper_scene(int positional) {
     cd.param[DAL_ANCHOR_Y0] = 0.1;
     cd.ctx = (void *)&wobble_point;
     CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
-    dal_spring_def sd = dal_default_spring_def();
-    sd.a = a;
-    sd.b = pb;
-    sd.k = 20.0;
-    sd.length = 0.4;
-    CHECK_OK(dal_builder_add_spring_def(b, &sd));
-    sd = dal_default_spring_def();
-    sd.a = c;
-    sd.anchor[0] = x0[0];
-    sd.anchor[1] = x0[1];
-    sd.path = wobble;
-    sd.k = 15.0;
-    sd.length = 0.3;
-    CHECK_OK(dal_builder_add_spring_def(b, &sd));
-    dal_damper_def dd = dal_default_damper_def();
-    dd.a = a;
-    dd.b = c;
-    dd.c = 0.3;
-    CHECK_OK(dal_builder_add_damper_def(b, &dd));
-    dd = dal_default_damper_def();
-    dd.a = pb;
-    dd.anchor[0] = x0[0];
-    dd.anchor[1] = x0[1];
-    dd.path = wobble;
-    dd.c = 0.2;
-    CHECK_OK(dal_builder_add_damper_def(b, &dd));
   }
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = a;
+  sd.b = pb;
+  sd.k = 20.0;
+  sd.length = 0.4;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
+  sd = dal_default_spring_def();
+  sd.a = c;
+  sd.anchor[0] = x0[0];
+  sd.anchor[1] = x0[1];
+  sd.path = wobble;
+  sd.k = 15.0;
+  sd.length = 0.3;
+  CHECK_OK(dal_builder_add_spring_def(b, &sd));
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = a;
+  dd.b = c;
+  dd.c = 0.3;
+  CHECK_OK(dal_builder_add_damper_def(b, &dd));
+  dd = dal_default_damper_def();
+  dd.a = pb;
+  dd.anchor[0] = x0[0];
+  dd.anchor[1] = x0[1];
+  dd.path = wobble;
+  dd.c = 0.2;
+  CHECK_OK(dal_builder_add_damper_def(b, &dd));
   dal_system *sys = NULL;
   CHECK_OK(dal_builder_compile(b, &sys));
   dal_builder_destroy(b);
@@ -277,17 +362,17 @@ static char *printed(const dal_system *sys) {
   return s;
 }
 
-static void test_positional_wrappers(void) {
-  dal_system *sp = wrapper_scene(1), *sd = wrapper_scene(0);
+static void test_param_list_scene(void) {
+  dal_system *sp = list_scene(1), *sd = list_scene(0);
   if (!sp || !sd) {
     dal_system_destroy(sp);
     dal_system_destroy(sd);
     return;
   }
   char *tp = printed(sp), *td = printed(sd);
-  CHECK_MSG(tp && td && strcmp(tp, td) == 0, "positional model:\n%s\ndef model:\n%s", tp ? tp : "",
-            td ? td : "");
-  // the wrappers' moving anchors and springs are in it (a print that omitted them could agree)
+  CHECK_MSG(tp && td && strcmp(tp, td) == 0, "param_list model:\n%s\nparam[] model:\n%s",
+            tp ? tp : "", td ? td : "");
+  // the moving anchors and springs are in it (a print that omitted them could agree)
   CHECK(tp && has(tp, "rod") && has(tp, "l=0.69999999999999996") && has(tp, "k=15"));
   free(tp);
   free(td);
@@ -305,7 +390,7 @@ static void test_positional_wrappers(void) {
   same &= dal_state_lambda(a)[0] == dal_state_lambda(c)[0];
   for (int i = 0; i < 6; ++i)
     same &= dal_state_forces(a)[i] == dal_state_forces(c)[i];
-  CHECK_MSG(same, "positional and def scenes differ at a state");
+  CHECK_MSG(same, "param_list and param[] scenes differ at a state");
   CHECK(dal_state_qddot(a)[0] != 0.0 && dal_state_lambda(a)[0] != 0.0);
   dal_state_destroy(a);
   dal_state_destroy(c);
@@ -500,8 +585,7 @@ static void test_monitor_papercuts(void) {
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {sin(1.0), -cos(1.0)}, v[2] = {0, 0};
   CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   mon_ctx m = {0, 5, 0, 0.0};
   int rc = dal_evolve(sys, st, &o, 2.0, 0.1, rod_monitor, &m);
   // stopped early: a distinct, non-error status, the state at the 5th output time
@@ -545,7 +629,7 @@ static void test_atol_follows(void) {
   CHECK_OK(dal_state_create(sys, &s3));
   double q0[2] = {1e-3, 0}, v0[2] = {0, 1e-3}; // small amplitude: atol matters
   dal_solve_opts o1, o2, o3;
-  dal_solve_default_opts(&o1);
+  o1 = dal_default_solve_opts();
   o1.rtol = 1e-11; // only rtol
   o2 = o1;
   o2.atol = DAL_ATOL_PER_RTOL * o1.rtol; // the documented rule, explicit
@@ -580,8 +664,7 @@ static void test_init_report(void) {
   // 5 % off the rod length: the projection moves the bob radially by 0.05
   double q[2] = {0.0, -1.05}, v[2] = {0.3, 0.0};
   CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.init_max_move = 0.01;
   int rc = dal_advance(sys, st, &o, 0.5);
   CHECK(rc == DAL_E_INIT);
@@ -633,8 +716,7 @@ static void test_singular_start_message(void) {
   double q[2] = {0, 0}, v[2] = {0, 0};
   const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_BS, DAL_METHOD_ADAMS, DAL_METHOD_RK4};
   for (int i = 0; i < 4; ++i) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[i];
     CHECK_OK(dal_state_set(sys, st, 0, q, v));
     CHECK(dal_advance(sys, st, &o, 1.0) == DAL_E_SINGULAR);
@@ -689,8 +771,7 @@ static void test_lagrangian_energies(void) {
   CHECK_CLOSE(ea.T2, ec.T, 1e-14);
   CHECK(isfinite(ea.T1) && fabs(ea.T1) < 1e-14 && ea.T0 == 0.0);
   // after integration too (the state is evaluated where it stops)
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_advance(sl, a, &o, 1.0));
   CHECK_OK(dal_state_energies(a, &ea));
   CHECK(isfinite(ea.T) && isfinite(ea.U));
@@ -709,9 +790,6 @@ static void test_lagrangian_energies(void) {
 // that is not the last parameter fails, except the documented exceptions below (each must
 // still exist, so the list cannot rot).
 static const char *const ctx_exceptions[][2] = {
-    {"dal_builder_add_constraint", "positional wrapper kept for compatibility; the def holds ctx"},
-    {"dal_builder_add_anchor_spring", "positional wrapper kept; the def holds ctx"},
-    {"dal_builder_add_anchor_damper", "positional wrapper kept; the def holds ctx"},
     {"dal_verify_primitive", "ctx is the primitive instance's data (as param), not a callback's"},
     {"dal_worker_create_fn", "an out-parameter (data) follows the context"},
 };
@@ -831,8 +909,9 @@ static void test_version(void) {
 int main(void) {
   test_place_def();
   test_def_errors();
-  test_positional_defaults();
-  test_positional_wrappers();
+  test_param_list_defaults();
+  test_param_list_wide();
+  test_param_list_scene();
   test_registry_names();
   test_versions();
   test_anchor_convention();

@@ -13,7 +13,7 @@
 // Conventions checked (README, errors section): a NULL object that could hold a message is
 // DAL_E_ARG without one; any other bad argument is reported with a message in the object
 // given; a state of another system (or a NULL system with a state) is DAL_E_STATE; a
-// non-finite real is DAL_E_NONFINITE; destroy(NULL) and default_opts(NULL) do nothing;
+// non-finite real is DAL_E_NONFINITE; destroy(NULL) does nothing;
 // accessors answer NULL (pointers), NaN (reals) or 0 (counts) to a NULL object.
 #include <ctype.h>
 #include <dirent.h>
@@ -137,7 +137,7 @@ static void fix_make(void) {
   CHECK_OK(dal_builder_add_coord(F.bld, "u", NULL));
   CHECK_OK(dal_builder_add_coord(F.bld, "w", NULL));
   CHECK_OK(dal_builder_add_particle(F.bld, "p", 1.0, NULL));
-  dal_solve_default_opts(&F.o);
+  F.o = dal_default_solve_opts();
 }
 
 static void fix_free(void) {
@@ -271,11 +271,10 @@ static void sw_dal_primitive_find(void) {
 }
 
 // ---------------------------------------------------------------- rows: solve.h
-static void sw_dal_solve_default_opts(void) {
-  dal_solve_default_opts(NULL); // a no-op
+static void sw_dal_default_solve_opts(void) {
   dal_solve_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts(); // every field written, the cookie too
   CHECK(o.rtol == 1e-8 && o.method == DAL_METHOD_AUTO);
 }
 static void sw_dal_method_name(void) {
@@ -445,22 +444,6 @@ static void sw_dal_builder_add_particle(void) {
   BL(dal_builder_add_particle(F.bld, NULL, 0.0, NULL), DAL_E_ARG, F.bld);
   BL(dal_builder_add_particle(F.bld, NULL, -INFINITY, NULL), DAL_E_NONFINITE, F.bld);
 }
-static void sw_dal_builder_place(void) {
-  int c[2] = {0, 1}, bad[2] = {0, 7};
-  double par[1] = {1.0};
-  BL(dal_builder_place(NULL, 0, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, NULL);
-  BL(dal_builder_place(F.bld, 0, NULL, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, -1, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 9, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, NULL, 0, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, bad, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, -1, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, 0, 2, c, 0, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_hanging, 5, 1, c, 1, par, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_hanging, -1, 1, c, 1, NULL, NULL), DAL_E_ARG, F.bld);
-  BL(dal_builder_place(F.bld, 0, &dal_map_cartesian2, -1, 2, c, -1, NULL, NULL), DAL_E_ARG, F.bld);
-}
 static void sw_dal_builder_set_map(void) {
   BL(dal_builder_set_map(NULL, map_fn, NULL), DAL_E_ARG, NULL);
   BL(dal_builder_set_map(F.bld, NULL, NULL), DAL_E_ARG, F.bld);
@@ -470,68 +453,11 @@ static void sw_dal_builder_set_lagrangian(void) {
   BL(dal_builder_set_lagrangian(F.bld, NULL, NULL), DAL_E_ARG, F.bld);
   BL(dal_builder_set_lagrangian(F.bld, lag_fn, NULL), DAL_E_ARG, F.bld); // has a particle
 }
-static void sw_dal_builder_add_constraint(void) {
-  int p[1] = {0}, pbad[1] = {5}, c[1] = {0};
-  double par[3] = {1.0, 0.0, 0.0}, nan3[3] = {NAN, 0.0, 0.0};
-  const dal_primitive *a2 = &dal_con_anchor2;
-  BL(dal_builder_add_constraint(NULL, "r", a2, 1, p, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG, NULL);
-  BL(dal_builder_add_constraint(F.bld, "r", NULL, 1, p, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, NULL, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, pbad, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, -1, p, 0, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 0, NULL, 3, NULL, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 1, NULL, 3, par, NULL, NULL), DAL_E_ARG,
-     F.bld);
-  BL(dal_builder_add_constraint(F.bld, "r", a2, 1, p, 0, c, 3, nan3, NULL, NULL), DAL_E_NONFINITE,
-     F.bld);
-  // a NULL name is documented to give "c<i>": accepted (on a scratch builder, F.bld stays bare)
-  dal_builder *b = scratch(1);
-  BL(dal_builder_add_constraint(b, NULL, a2, 1, p, 0, NULL, 2, par, NULL, NULL), DAL_OK, b);
-  dal_builder_destroy(b);
-}
 static void sw_dal_builder_set_gravity(void) {
   double g[3] = {0.0, -9.81, 0.0}, gn[3] = {0.0, NAN, 0.0};
   BL(dal_builder_set_gravity(NULL, g), DAL_E_ARG, NULL);
   BL(dal_builder_set_gravity(F.bld, NULL), DAL_E_ARG, F.bld);
   BL(dal_builder_set_gravity(F.bld, gn), DAL_E_NONFINITE, F.bld);
-}
-static void sw_dal_builder_add_spring(void) {
-  BL(dal_builder_add_spring(NULL, 0, 0, 1.0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_spring(F.bld, -1, 0, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_spring(F.bld, 0, -1, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_spring(F.bld, 0, 9, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_spring(F.bld, 0, 0, 1.0, 1.0), DAL_E_ARG, F.bld);
-}
-static void sw_dal_builder_add_anchor_spring(void) {
-  double x0[2] = {0.0, 0.0};
-  BL(dal_builder_add_anchor_spring(NULL, 0, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_anchor_spring(F.bld, 1, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_spring(F.bld, 9, x0, NULL, NULL, 1.0, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_spring(F.bld, 0, x0, NULL, NULL, NAN, 1.0), DAL_E_NONFINITE, F.bld);
-  BL(dal_builder_add_anchor_spring(F.bld, 0, x0, NULL, NULL, -1.0, 1.0), DAL_E_ARG, F.bld);
-  dal_builder *b = scratch(1); // x0 NULL is documented as the origin
-  BL(dal_builder_add_anchor_spring(b, 0, NULL, NULL, NULL, 1.0, 1.0), DAL_OK, b);
-  dal_builder_destroy(b);
-}
-static void sw_dal_builder_add_damper(void) {
-  BL(dal_builder_add_damper(NULL, 0, 0, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_damper(F.bld, 0, -1, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_damper(F.bld, INT_MAX, 0, 1.0), DAL_E_ARG, F.bld);
-}
-static void sw_dal_builder_add_anchor_damper(void) {
-  double x0[2] = {0.0, 0.0};
-  BL(dal_builder_add_anchor_damper(NULL, 0, x0, NULL, NULL, 1.0), DAL_E_ARG, NULL);
-  BL(dal_builder_add_anchor_damper(F.bld, 1, x0, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_damper(F.bld, -5, x0, NULL, NULL, 1.0), DAL_E_ARG, F.bld);
-  BL(dal_builder_add_anchor_damper(F.bld, 0, x0, NULL, NULL, INFINITY), DAL_E_NONFINITE, F.bld);
-  dal_builder *b = scratch(1); // x0 NULL is documented as the origin
-  BL(dal_builder_add_anchor_damper(b, 0, NULL, NULL, NULL, 1.0), DAL_OK, b);
-  dal_builder_destroy(b);
 }
 static void sw_dal_builder_add_potential_r(void) {
   BL(dal_builder_add_potential_r(NULL, pot_r, NULL), DAL_E_ARG, NULL);
@@ -633,11 +559,10 @@ static void stA_restore(void) {
 }
 
 // ---------------------------------------------------------------- rows: ensemble.h
-static void sw_dal_sweep_default_opts(void) {
-  dal_sweep_default_opts(NULL); // a no-op
+static void sw_dal_default_sweep_opts(void) {
   dal_sweep_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_sweep_default_opts(&o);
+  o = dal_default_sweep_opts(); // every field written, the cookie too
   CHECK(o.nthreads == 1 && o.schedule == DAL_SCHEDULE_DYNAMIC && o.chunk == 1);
   CHECK(o.progress == NULL && o.part == 0 && o.nparts == 1 && o.part_block == 1);
 }
@@ -684,7 +609,7 @@ static void sweep_make(sweep_fix *s) {
                       .qdot0 = &s->qd0,
                       .nresult = 2,
                       .reduce = reduce_q_mass};
-  dal_sweep_default_opts(&s->o);
+  s->o = dal_default_sweep_opts();
   s->out =
       (dal_sweep_out){.results = s->results, .status = s->status, .msgs = s->msgs, .msg_len = 64};
 }
@@ -967,24 +892,23 @@ static void sw_dal_state_copy_params(void) {
 }
 
 // ---------------------------------------------------------------- rows: verify.h
-static void sw_dal_verify_default_opts(void) {
-  dal_verify_default_opts(NULL); // a no-op
+static void sw_dal_default_verify_opts(void) {
   dal_verify_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_verify_default_opts(&o);
+  o = dal_default_verify_opts(); // every field written, the cookie too
   CHECK(o.nsamples == 16 && o.lo == -1.0 && o.hi == 1.0 && o.in_lo == NULL && o.in_hi == NULL);
   CHECK(o.t_lo == 0.0 && o.t_hi == 1.0 && o.h == 1e-3 && o.tol_factor == 10.0 && o.seed == 1);
 }
 // options every jet check refuses (DAL_E_ARG with the report's message)
 static void verify_bad_opts(dal_verify_opts *few, dal_verify_opts *nan_lo, dal_verify_opts *inf_t,
                             dal_verify_opts *zero_h) {
-  dal_verify_default_opts(few);
+  *few = dal_default_verify_opts();
   few->nsamples = 0;
-  dal_verify_default_opts(nan_lo);
+  *nan_lo = dal_default_verify_opts();
   nan_lo->lo = NAN;
-  dal_verify_default_opts(inf_t);
+  *inf_t = dal_default_verify_opts();
   inf_t->t_hi = INFINITY;
-  dal_verify_default_opts(zero_h);
+  *zero_h = dal_default_verify_opts();
   zero_h->h = 0.0;
 }
 static void sw_dal_verify_primitive(void) {
@@ -1005,6 +929,10 @@ static void sw_dal_verify_primitive(void) {
   MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &nan_lo, &rep), DAL_E_ARG, m);
   MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &inf_t, &rep), DAL_E_ARG, m);
   MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &zero_h, NULL), DAL_E_ARG, NULL);
+  dal_verify_opts raw; // not from dal_default_verify_opts: refused by its cookie
+  memset(&raw, 0, sizeof raw);
+  MS(dal_verify_primitive(&dal_map_cartesian2, NULL, NULL, &raw, &rep), DAL_E_ARG, m);
+  CHECK(strstr(m, "dal_default_verify_opts") != NULL);
   double pend[7] = {1.0, 0, 0, 0, 0, 0, 0};
   MS(dal_verify_primitive(&dal_map_pendulum, pend, NULL, NULL, &rep), DAL_OK, m);
   CHECK(rep.samples == 16 && rep.checks > 0 && rep.failures == 0);
@@ -1083,6 +1011,10 @@ static void sw_dal_verify_model(void) {
   ST(dal_verify_model(F.B, F.stB, NULL, &rep), DAL_OK, F.stB);
   CHECK(rep.passed == 1 && rep.mass_checked == 1 && rep.path_checked == 1 && rep.m == 0);
   ST(dal_verify_model(F.B, F.stB, NULL, NULL), DAL_OK, F.stB);
+  dal_verify_opts raw; // not from dal_default_verify_opts: refused by its cookie
+  memset(&raw, 0, sizeof raw);
+  CHECK(dal_verify_model(F.B, F.stB, &raw, &rep) == DAL_E_ARG);
+  CHECK(strstr(rep.msg, "dal_default_verify_opts") != NULL && rep.passed == 0);
   st_intact();
 }
 
@@ -1094,7 +1026,13 @@ static void sw_dal_linearize(void) {
   ST(dal_linearize(F.B, NULL, M, C, K), DAL_E_ARG, NULL);
   ST(dal_linearize(NULL, F.stB, M, C, K), DAL_E_STATE, F.stB);
   ST(dal_linearize(F.A, F.stB, M, C, K), DAL_E_STATE, F.stB);
-  ST(dal_linearize(F.A, F.stA, NULL, NULL, NULL), DAL_E_UNSUPPORTED, F.stA); // constraint rows
+  // A on its manifold (one independent coordinate along the circle at sin theta = 0.6, at rest):
+  // the reduced K is the minimal pendulum's g cos theta = 9.81 x 0.8
+  ST(dal_linearize(F.A, F.stA, NULL, NULL, NULL), DAL_OK, F.stA);
+  ST(dal_linearize(F.A, F.stA, M, C, K), DAL_OK, F.stA);
+  CHECK_CLOSE(M[0], 1.0, 1e-14);
+  CHECK_CLOSE(C[0], 0.0, 1e-14);
+  CHECK_CLOSE(K[0], 9.81 * 0.8, 1e-13);
   st_intact();
   ST(dal_linearize(F.B, F.stB, NULL, NULL, NULL), DAL_OK, F.stB);
   ST(dal_linearize(F.B, F.stB, M, C, K), DAL_OK, F.stB);
@@ -1102,20 +1040,81 @@ static void sw_dal_linearize(void) {
   CHECK_CLOSE(C[0], 0.0, 1e-14);
   CHECK_CLOSE(K[0], 9.81 * cos(0.3), 1e-13);
 }
-static void sw_dal_flow_jacobian(void) {
-  double A[4] = {0}, ft[2] = {1, 1};
-  ST(dal_flow_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
-  ST(dal_flow_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_flow_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_flow_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
-  ST(dal_flow_jacobian(F.A, F.stA, A, NULL), DAL_E_UNSUPPORTED, F.stA);
+// The full-space matrices of A at rest: M = I, C = 0, G the rod's unit row (0.6, -0.8), N the
+// tangent (0.8, 0.6) up to sign; B has N = 1 and leaves G alone.
+static void sw_dal_linearize_full(void) {
+  double M[4], C[4], K[4], G[2], N[2];
+  ST(dal_linearize_full(F.A, NULL, M, C, K, G, N), DAL_E_ARG, NULL);
+  ST(dal_linearize_full(NULL, F.stA, M, C, K, G, N), DAL_E_STATE, F.stA);
+  ST(dal_linearize_full(F.B, F.stA, M, C, K, G, N), DAL_E_STATE, F.stA);
+  ST(dal_linearize_full(F.A, F.stA, NULL, NULL, NULL, NULL, NULL), DAL_OK, F.stA);
+  ST(dal_linearize_full(F.A, F.stA, M, C, K, G, N), DAL_OK, F.stA);
+  CHECK(M[0] == 1.0 && M[1] == 0.0 && M[2] == 0.0 && M[3] == 1.0);
+  CHECK(C[0] == 0.0 && C[1] == 0.0 && C[2] == 0.0 && C[3] == 0.0);
+  CHECK_CLOSE(G[0], 0.6, 1e-15);
+  CHECK_CLOSE(G[1], -0.8, 1e-15);
+  CHECK_CLOSE(fabs(N[0]), 0.8, 1e-15);
+  CHECK_CLOSE(N[1] / N[0], 0.75, 1e-15);
+  double g1 = 7.0, n1 = 0.0;
+  ST(dal_linearize_full(F.B, F.stB, M, C, K, &g1, &n1), DAL_OK, F.stB);
+  CHECK(g1 == 7.0 && n1 == 1.0);
   st_intact();
-  ST(dal_flow_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
-  ST(dal_flow_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
+}
+static void sw_dal_vector_field_jacobian(void) {
+  double A[4] = {0}, ft[2] = {1, 1};
+  ST(dal_vector_field_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
+  ST(dal_vector_field_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_vector_field_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
+  double A4[16];
+  ST(dal_vector_field_jacobian(F.A, F.stA, A4, NULL), DAL_OK, F.stA); // full space, 4 x 4
+  CHECK(A4[8] == 1.0 && A4[13] == 1.0 && A4[0] == 0.0 && A4[12] == 0.0);
+  st_intact();
+  ST(dal_vector_field_jacobian(F.B, F.stB, A, NULL), DAL_OK, F.stB);
+  ST(dal_vector_field_jacobian(F.B, F.stB, A, ft), DAL_OK, F.stB);
   // df/dy = [0 1; -K/M 0] column-major; autonomous: df/dt = 0
   CHECK(A[0] == 0.0 && A[2] == 1.0 && A[3] == 0.0);
   CHECK_CLOSE(A[1], -9.81 * cos(0.3), 1e-13);
   CHECK(ft[0] == 0.0 && ft[1] == 0.0);
+}
+// B at theta = 0.3 at rest with a force on theta: B = 1, Bf = (0, 1/M) = (0, 1)
+static void sw_dal_linearize_inputs(void) {
+  const char *in[1] = {"force:theta"}, *bad[1] = {"place:bob:0"}, *none[1] = {"force:zz"};
+  double B[1] = {0}, Af[4], Bf[2];
+  ST(dal_linearize_inputs(F.B, NULL, 1, in, B, Af, Bf), DAL_E_ARG, NULL);
+  ST(dal_linearize_inputs(NULL, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST(dal_linearize_inputs(F.A, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, NULL, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, -1, in, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, none, B, Af, Bf), DAL_E_ARG, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, bad, B, Af, Bf), DAL_E_UNSUPPORTED, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 0, NULL, NULL, NULL, NULL), DAL_OK, F.stB);
+  ST(dal_linearize_inputs(F.B, F.stB, 1, in, B, Af, Bf), DAL_OK, F.stB);
+  CHECK(B[0] == 1.0 && Bf[0] == 0.0);
+  CHECK_CLOSE(Bf[1], 1.0, 1e-14);
+  CHECK_CLOSE(Af[1], -9.81 * cos(0.3), 1e-13);
+  st_intact();
+}
+// from theta = 0.3 at rest to t = 0.5 (a fresh state: the call moves it)
+static void sw_dal_state_transition(void) {
+  double Phi[4], S[2];
+  const char *in[1] = {"gravity:1"}, *bad[1] = {"place:bob:0"};
+  dal_solve_opts o = dal_default_solve_opts();
+  ST(dal_state_transition(F.B, NULL, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_ARG, NULL);
+  ST(dal_state_transition(NULL, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_state_transition(F.A, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, NULL, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.0, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, NAN, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, Phi, 1, NULL, S), DAL_E_ARG, F.stB);
+  ST(dal_state_transition(F.B, F.stB, NULL, 0.5, Phi, 1, bad, S), DAL_E_UNSUPPORTED, F.stB);
+  o.method = DAL_METHOD_BDF;
+  ST(dal_state_transition(F.B, F.stB, &o, 0.5, Phi, 0, NULL, NULL), DAL_E_UNSUPPORTED, F.stB);
+  st_intact();
+  dal_state *st = state_b();
+  ST(dal_state_transition(F.B, st, NULL, 0.5, Phi, 1, in, S), DAL_OK, NULL);
+  CHECK(dal_state_time(st) == 0.5 && Phi[0] != 0.0 && S[0] != 0.0);
+  dal_state_destroy(st);
 }
 static void sw_dal_stability_name(void) {
   CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
@@ -1129,7 +1128,9 @@ static void sw_dal_normal_modes(void) {
   ST(dal_normal_modes(F.B, NULL, w2, x, re, im, &md), DAL_E_ARG, NULL);
   ST(dal_normal_modes(NULL, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
   ST(dal_normal_modes(F.A, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
-  ST(dal_normal_modes(F.A, F.stA, w2, x, re, im, &md), DAL_E_UNSUPPORTED, F.stA);
+  double xa[2];
+  ST(dal_normal_modes(F.A, F.stA, w2, xa, re, im, &md), DAL_OK, F.stA); // on the manifold
+  CHECK_CLOSE(w2[0], 9.81 * 0.8, 1e-13);
   st_intact();
   ST(dal_normal_modes(F.B, F.stB, NULL, NULL, NULL, NULL, NULL), DAL_OK, F.stB);
   ST(dal_normal_modes(F.B, F.stB, w2, x, re, im, &md), DAL_OK, F.stB);
@@ -1139,17 +1140,16 @@ static void sw_dal_normal_modes(void) {
   CHECK_CLOSE(im[1], sqrt(9.81 * cos(0.3)), 1e-12);
   CHECK(md.verdict == DAL_NEUTRAL);
 }
-static void sw_dal_equilibrium_default_opts(void) {
-  dal_equilibrium_default_opts(NULL); // a no-op
+static void sw_dal_default_equilibrium_opts(void) {
   dal_equilibrium_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_equilibrium_default_opts(&o);
+  o = dal_default_equilibrium_opts(); // every field written, the cookie too
   CHECK(o.xtol == 1e-12 && o.max_iter == 50 && o.max_step == 0.0);
 }
 static void sw_dal_equilibrium(void) {
   dal_equilibrium_opts o, raw, nan_tol, no_iter;
   dal_equilibrium_report rep;
-  dal_equilibrium_default_opts(&o);
+  o = dal_default_equilibrium_opts();
   memset(&raw, 0, sizeof raw);
   nan_tol = no_iter = o;
   nan_tol.xtol = NAN;
@@ -1160,7 +1160,15 @@ static void sw_dal_equilibrium(void) {
   ST(dal_equilibrium(F.B, F.stB, &raw, &rep), DAL_E_ARG, F.stB);
   ST(dal_equilibrium(F.B, F.stB, &nan_tol, &rep), DAL_E_ARG, F.stB);
   ST(dal_equilibrium(F.B, F.stB, &no_iter, &rep), DAL_E_ARG, F.stB);
-  ST(dal_equilibrium(F.A, F.stA, NULL, NULL), DAL_E_UNSUPPORTED, F.stA);
+  // A on its manifold (a fresh state: this one moves): hanging, the rod's lambda = -m g
+  dal_state *sa = NULL;
+  CHECK_OK(dal_state_create(F.A, &sa));
+  double qa[2] = {0.6, -0.8}, va[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(F.A, sa, 0.0, qa, va));
+  ST(dal_equilibrium(F.A, sa, NULL, &rep), DAL_OK, NULL);
+  CHECK(fabs(dal_state_q(sa)[0]) < 1e-12 && fabs(dal_state_q(sa)[1] + 1.0) < 1e-12);
+  CHECK(fabs(dal_state_lambda(sa)[0] + 9.81) < 1e-12);
+  dal_state_destroy(sa);
   st_intact();
   // the hanging pendulum: theta* = 0 from theta = 0.3 (a fresh state: this one moves)
   dal_state *st = state_b();
@@ -1169,11 +1177,10 @@ static void sw_dal_equilibrium(void) {
   CHECK(dal_state_qdot(st)[0] == 0.0);
   dal_state_destroy(st);
 }
-static void sw_dal_continuation_default_opts(void) {
-  dal_continuation_default_opts(NULL); // a no-op
+static void sw_dal_default_continuation_opts(void) {
   dal_continuation_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_continuation_default_opts(&o);
+  o = dal_default_continuation_opts(); // every field written, the cookie too
   CHECK(o.p0 == 0.0 && o.p1 == 1.0 && o.npoints == 41 && o.t == 0.0 && o.locate == 1);
   CHECK(o.newton.xtol == 1e-12 && o.newton.max_iter == 50);
 }
@@ -1215,7 +1222,7 @@ static void sw_dal_continue(void) {
   char *m = rep.msg;
   double q0 = 0.3;
   branch_rec rec = {0, 0, 0};
-  dal_continuation_default_opts(&o);
+  o = dal_default_continuation_opts();
   o.npoints = 3;
   memset(&raw, 0, sizeof raw);
   same = nan_p = one = bad_newton = o;
@@ -1241,18 +1248,17 @@ static void sw_dal_continue(void) {
   CHECK(rec.points == 3 && rec.bad == 0 && rep.npoints == 3 && rep.ncritical == 0);
   CHECK(rep.p_end == 1.0 && rep.msg[0] == 0);
 }
-static void sw_dal_lyapunov_default_opts(void) {
-  dal_lyapunov_default_opts(NULL); // a no-op
+static void sw_dal_default_lyapunov_opts(void) {
   dal_lyapunov_opts o;
   memset(&o, 0xff, sizeof o);
-  dal_lyapunov_default_opts(&o);
+  o = dal_default_lyapunov_opts(); // every field written, the cookie too
   CHECK(isnan(o.t_end) && o.nexp == 0 && o.renorm == 1.0 && o.method == DAL_METHOD_DOPRI5);
   CHECK(o.rtol == 1e-10 && o.atol == 1e-10 && o.y0 == NULL && o.nblocks == 10);
 }
 static void sw_dal_lyapunov(void) {
   dal_lyapunov_opts o, raw, no_end, behind, bs, many, no_renorm, nan_y0;
   double ex[2] = {0, 0}, err[2], y0n[4] = {1, 0, NAN, 1};
-  dal_lyapunov_default_opts(&o);
+  o = dal_default_lyapunov_opts();
   o.t_end = 0.05;
   o.renorm = 0.01;
   o.nblocks = 2;
@@ -1297,6 +1303,32 @@ static void sw_dal_default_constraint_def(void) {
   dal_constraint_def d = dal_default_constraint_def();
   CHECK(d.name == NULL && d.prim == NULL && d.parts == NULL && d.nparts == 0);
   CHECK(d.coords == NULL && d.ncoords == 0 && d.ctx == NULL);
+}
+// the name-checked setters: a name of the def's primitive sets that entry only; an unknown
+// name, a name of another primitive, a missing primitive or NULL set nothing
+static void sw_dal_place_def_set(void) {
+  dal_place_def d = dal_default_place_def();
+  double before[DAL_MAX_PARAM];
+  CHECK(dal_place_def_set(&d, "l", 1.0) == DAL_E_ARG); // no primitive yet
+  d.prim = &dal_map_pendulum;
+  memcpy(before, d.param, sizeof before);
+  CHECK(dal_place_def_set(NULL, "l", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "R", 1.0) == DAL_E_ARG); // the ring's radius: not a pendulum's
+  CHECK(dal_place_def_set(&d, "", 1.0) == DAL_E_ARG);
+  CHECK(dal_place_def_set(&d, "7", 1.0) == DAL_E_ARG); // the pendulum has 7 parameters
+  CHECK(memcmp(before, d.param, sizeof before) == 0);
+  CHECK(dal_place_def_set(&d, "w", 2.5) == DAL_OK && d.param[DAL_PENDULUM_W] == 2.5);
+  CHECK(dal_place_def_set(&d, "0", 0.5) == DAL_OK && d.param[DAL_PENDULUM_L] == 0.5);
+}
+static void sw_dal_constraint_def_set(void) {
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(dal_constraint_def_set(&d, "L", 1.0) == DAL_E_ARG);
+  d.prim = &dal_con_anchor2;
+  CHECK(dal_constraint_def_set(NULL, "L", 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, NULL, 1.0) == DAL_E_ARG);
+  CHECK(dal_constraint_def_set(&d, "z0", 1.0) == DAL_E_ARG); // anchor2 is planar
+  CHECK(dal_constraint_def_set(&d, "y0", -0.5) == DAL_OK && d.param[DAL_ANCHOR_Y0] == -0.5);
 }
 static void sw_dal_default_spring_def(void) {
   dal_spring_def d = dal_default_spring_def();
@@ -1346,6 +1378,28 @@ static void sw_dal_builder_place_def(void) {
   e.param[DAL_PENDULUM_L] = 1.0;
   e.param[DAL_PENDULUM_W] = INFINITY;
   BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_NONFINITE, F.bld);
+  // the parameter list: longer than the primitive's count, NULL with a count, a negative
+  // count, beside a set param[] entry, a non-finite value in it
+  double list[8] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0}, nan1 = NAN;
+  e = dal_default_place_def();
+  e.prim = &dal_map_pendulum;
+  e.coords = c;
+  e.ncoords = 1;
+  e.param_list = list;
+  e.nparam_list = 8;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.param_list = NULL;
+  e.nparam_list = 1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.param_list = list;
+  e.nparam_list = -1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.nparam_list = 1;
+  e.param[DAL_PENDULUM_W] = 1.0;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_ARG, F.bld);
+  e.param[DAL_PENDULUM_W] = d.param[DAL_PENDULUM_W]; // unset again
+  e.param_list = &nan1;
+  BL(dal_builder_place_def(F.bld, 0, &e), DAL_E_NONFINITE, F.bld);
   dal_builder *b = scratch(0);
   BL(dal_builder_place_def(b, 0, &d), DAL_OK, b);
   BL(dal_builder_place_def(b, 0, &d), DAL_E_ARG, b); // placed once
@@ -1386,6 +1440,12 @@ static void sw_dal_builder_add_constraint_def(void) {
   BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_NONFINITE, F.bld);
   e = d;
   e.param[DAL_MAX_PARAM - 1] = 1.0; // beyond the primitive's parameters
+  BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
+  e = d;
+  double four[4] = {1.0, 0.0, 0.0, 0.0};
+  e.param[0] = e.param[1]; // unset: the list gives the parameters, one too many for anchor2
+  e.param_list = four;
+  e.nparam_list = 4;
   BL(dal_builder_add_constraint_def(F.bld, &e, &idx), DAL_E_ARG, F.bld);
   CHECK(idx == -1);
   dal_builder *b = scratch(1);
@@ -1521,10 +1581,10 @@ static void sw_dal_state_print(void) {
   if (!fp || !ro) return;
   // the state is const: no message can be kept; the header documents DAL_E_ARG for a state of
   // another system (the README convention would be DAL_E_STATE)
-  ST(dal_state_print(NULL, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(NULL, F.stA, fp), DAL_E_STATE, F.stA);
   ST(dal_state_print(F.A, NULL, fp), DAL_E_ARG, NULL);
-  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, NULL);
-  ST(dal_state_print(F.B, F.stA, fp), DAL_E_ARG, NULL);
+  ST(dal_state_print(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
+  ST(dal_state_print(F.B, F.stA, fp), DAL_E_STATE, F.stA);
   CHECK(ftell(fp) == 0);
   ST(dal_state_print(F.A, F.stA, ro), DAL_E_IO, NULL);
   ST(dal_state_print(F.A, F.stA, fp), DAL_OK, NULL);
@@ -1564,9 +1624,9 @@ static void sw_dal_events_create(void) {
   CHECK(dal_events_create(NULL, &ev) == DAL_E_ARG && ev == NULL);
   CHECK(dal_events_create(F.A, NULL) == DAL_E_ARG);
   CHECK(dal_events_create(F.A, &ev) == DAL_OK && ev != NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
-static void sw_dal_events_free(void) { dal_events_free(NULL); }
+static void sw_dal_events_destroy(void) { dal_events_destroy(NULL); }
 static void sw_dal_events_add(void) {
   dal_events *ev = NULL;
   CHECK_OK(dal_events_create(F.A, &ev));
@@ -1595,7 +1655,7 @@ static void sw_dal_events_add(void) {
   d.direction = DAL_EVENT_FALLING;
   CHECK(dal_events_add(ev, &d) == 0);
   CHECK(dal_events_size(ev) == 1);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_errmsg(void) { CHECK(strcmp(dal_events_errmsg(NULL), "") == 0); }
 static void sw_dal_events_size(void) { CHECK(dal_events_size(NULL) == 0); }
@@ -1609,7 +1669,7 @@ static void sw_dal_events_name(void) {
   CHECK(strcmp(dal_events_name(ev, 0), "zero") == 0);
   CHECK(dal_events_name(ev, 1) == NULL && dal_events_name(ev, -1) == NULL);
   CHECK(dal_events_name(NULL, 0) == NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_state_set_events(void) {
   dal_events *ev = NULL;
@@ -1617,7 +1677,7 @@ static void sw_dal_state_set_events(void) {
   CHECK(dal_state_set_events(NULL, ev) == DAL_E_ARG);
   ST(dal_state_set_events(F.stB, ev), DAL_E_STATE, F.stB); // a set of another system
   CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
 static void sw_dal_events_get(void) {
@@ -1627,7 +1687,7 @@ static void sw_dal_events_get(void) {
   CHECK(dal_events_get(NULL, 0, &r, NULL, NULL) == DAL_E_ARG);
   CHECK(dal_events_get(ev, 0, &r, NULL, NULL) == DAL_E_ARG); // empty log
   CHECK(dal_events_get(ev, -1, &r, NULL, NULL) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
 }
 static void sw_dal_events_clear(void) { dal_events_clear(NULL); }
 static void sw_dal_events_write_csv(void) {
@@ -1637,7 +1697,250 @@ static void sw_dal_events_write_csv(void) {
   CHECK(dal_events_write_csv(ev, NULL, -1, 0) == DAL_E_ARG);
   CHECK(dal_events_write_csv(ev, stdout, 0, 0) == DAL_E_ARG); // no event 0
   CHECK(dal_events_write_csv(ev, stdout, -2, 0) == DAL_E_ARG);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
+}
+
+// ---------------------------------------------------------------- expressions and scenes
+static dal_expr *sweep_expr(int velocities) {
+  const char *f = "l*sin(x)", *in = "x", *pn = "l";
+  double v = 1.0;
+  dal_expr_def d = dal_default_expr_def();
+  d.formulas = &f;
+  d.nout = 1;
+  d.inputs = &in;
+  d.nin = 1;
+  d.velocities = velocities;
+  d.params = &pn;
+  d.values = &v;
+  d.nparam = 1;
+  dal_expr *e = NULL;
+  CHECK_OK(dal_expr_create(&d, &e, NULL, 0));
+  return e;
+}
+static const char *sweep_scene_text = "dim 2\nparam l = 1\ncoord th q=1\nparticle b mass=1\n"
+                                      "place b = l*sin(th); -l*cos(th)\ngravity 0 -9.8\n"
+                                      "run t1=0.1 dt=0.05\n";
+static void sw_dal_default_expr_def(void) { CHECK(dal_default_expr_def().nout == 0); }
+static void sw_dal_expr_create(void) {
+  dal_expr *e = (dal_expr *)&F;
+  dal_expr_def d = dal_default_expr_def();
+  char msg[256];
+  CHECK(dal_expr_create(NULL, &e, msg, sizeof msg) == DAL_E_ARG && e == NULL && msg[0]);
+  CHECK(dal_expr_create(&d, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_create(&d, &e, msg, sizeof msg) == DAL_E_ARG && msg[0]); // no formulas
+  const char *f = "x";
+  d.formulas = &f;
+  d.nout = 1;
+  d.nin = 1; // inputs NULL
+  CHECK(dal_expr_create(&d, &e, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  double nan = NAN;
+  const char *pn = "p";
+  d.nin = 0;
+  d.formulas = &pn;
+  d.params = &pn;
+  d.values = &nan;
+  d.nparam = 1;
+  CHECK(dal_expr_create(&d, &e, msg, sizeof msg) == DAL_E_NONFINITE && msg[0]);
+  CHECK(dal_expr_create(&d, &e, NULL, 0) == DAL_E_NONFINITE);
+}
+static void sw_dal_expr_destroy(void) { dal_expr_destroy(NULL); }
+static void sw_dal_expr_nout(void) { CHECK(dal_expr_nout(NULL) == 0); }
+static void sw_dal_expr_nin(void) { CHECK(dal_expr_nin(NULL) == 0); }
+static void sw_dal_expr_nparam(void) { CHECK(dal_expr_nparam(NULL) == 0); }
+static void sw_dal_expr_symbol(void) {
+  dal_expr *e = sweep_expr(0);
+  CHECK(dal_expr_symbol(NULL, 0) == NULL);
+  CHECK(dal_expr_symbol(e, -1) == NULL && dal_expr_symbol(e, 2) == NULL);
+  CHECK(!strcmp(dal_expr_symbol(e, 1), "l"));
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_values(void) { CHECK(dal_expr_values(NULL) == NULL); }
+static void sw_dal_expr_depends(void) {
+  dal_expr *e = sweep_expr(0);
+  CHECK(dal_expr_depends(NULL, 0) == 0 && dal_expr_depends(e, 5) == 0 &&
+        dal_expr_depends(e, -2) == 0 && dal_expr_depends(e, -1) == 0 &&
+        dal_expr_depends(e, 0) == 1);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_ninstructions(void) { CHECK(dal_expr_ninstructions(NULL) == 0); }
+static void sw_dal_expr_eval(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_jet in = dal_const(1), out;
+  CHECK(dal_expr_eval(NULL, &in, in, NULL, &out) == DAL_E_ARG);
+  CHECK(dal_expr_eval(e, NULL, in, NULL, &out) == DAL_E_ARG);
+  CHECK(dal_expr_eval(e, &in, in, NULL, NULL) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_check(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_jet in = dal_const(1), out;
+  char msg[64];
+  CHECK(dal_expr_check(NULL, &in, in, NULL, &out, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_check(e, NULL, in, NULL, &out, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_check(e, &in, in, NULL, NULL, NULL, 0) == DAL_E_ARG);
+  in = dal_const(NAN);
+  CHECK(dal_expr_check(e, &in, in, NULL, &out, msg, sizeof msg) == DAL_E_DOMAIN && msg[0]);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_primitive(void) { CHECK(dal_expr_primitive(NULL) == NULL); }
+static void sw_dal_expr_place_def(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_place_def d = dal_default_place_def();
+  CHECK(dal_expr_place_def(NULL, &d) == DAL_E_ARG && dal_expr_place_def(e, NULL) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_constraint_def(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_constraint_def d = dal_default_constraint_def();
+  CHECK(dal_expr_constraint_def(NULL, &d) == DAL_E_ARG &&
+        dal_expr_constraint_def(e, NULL) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_map(void) {
+  dal_jet q = dal_const(0), r;
+  CHECK(dal_expr_map(&q, q, &r, NULL) < 0);
+}
+static void sw_dal_expr_potential_r(void) {
+  dal_jet q = dal_const(0), r;
+  CHECK(dal_expr_potential_r(&q, q, &r, NULL) < 0);
+}
+static void sw_dal_expr_potential_q(void) {
+  dal_jet q = dal_const(0), r;
+  CHECK(dal_expr_potential_q(&q, q, &r, NULL) < 0);
+}
+static void sw_dal_expr_lagrangian(void) {
+  dal_expr *e = sweep_expr(0); // no velocities: not a Lagrangian
+  dal_jet q = dal_const(0), L;
+  CHECK(dal_expr_lagrangian(q, &q, &q, &L, NULL) < 0);
+  CHECK(dal_expr_lagrangian(q, &q, &q, &L, e) < 0);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_path(void) {
+  dal_jet x;
+  CHECK(dal_expr_path(dal_const(0), &x, NULL) < 0);
+}
+static void sw_dal_expr_time(void) {
+  dal_jet x;
+  CHECK(dal_expr_time(dal_const(0), &x, NULL) < 0);
+}
+static void sw_dal_expr_event(void) {
+  double q = 0;
+  dal_expr *e = sweep_expr(0);
+  CHECK(isnan(dal_expr_event(0, &q, &q, NULL)) && isnan(dal_expr_event(0, &q, &q, e)));
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_print(void) {
+  dal_expr *e = sweep_expr(0);
+  char buf[64];
+  CHECK(dal_expr_print(NULL, 0, DAL_EXPR_TEXT, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 1, DAL_EXPR_TEXT, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, -1, DAL_EXPR_TEXT, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 0, (dal_expr_format)7, buf, sizeof buf) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 0, DAL_EXPR_TEXT, NULL, 4) == DAL_E_ARG);
+  CHECK(dal_expr_print(e, 0, DAL_EXPR_TEXT, NULL, 0) == (int)strlen("l*sin(x)"));
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_derivative(void) {
+  dal_expr *e = sweep_expr(0), *d = (dal_expr *)&F;
+  char msg[128];
+  CHECK(dal_expr_derivative(NULL, 0, 0, &d, msg, sizeof msg) == DAL_E_ARG && d == NULL);
+  CHECK(dal_expr_derivative(e, 0, 0, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_derivative(e, 1, 0, &d, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_expr_derivative(e, 0, 1, &d, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_expr_derivative(e, 0, -2, &d, NULL, 0) == DAL_E_ARG);
+  dal_expr_destroy(e);
+}
+static void sw_dal_default_expr_model_def(void) { CHECK(dal_default_expr_model_def().dim == 0); }
+static void sw_dal_expr_model_energies(void) {
+  dal_expr *T = (dal_expr *)&F;
+  char msg[256];
+  dal_expr_model_def d = dal_default_expr_model_def();
+  CHECK(dal_expr_model_energies(NULL, &T, NULL, NULL, msg, sizeof msg) == DAL_E_ARG && !T &&
+        msg[0]);
+  CHECK(dal_expr_model_energies(&d, &T, NULL, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  const char *c = "q", *m = "1", *pos = "q";
+  d.dim = 1;
+  d.coords = &c;
+  d.ncoords = 1;
+  d.masses = &m;
+  d.nparticles = 1;
+  d.positions = &pos;
+  CHECK_OK(dal_expr_model_energies(&d, NULL, NULL, NULL, NULL, 0));
+  pos = "q +";
+  CHECK(dal_expr_model_energies(&d, &T, NULL, NULL, msg, sizeof msg) == DAL_E_ARG &&
+        strstr(msg, "position x of particle 1"));
+}
+static void sw_dal_expr_lagrange(void) {
+  dal_expr *e = sweep_expr(0);
+  dal_expr_equations eq;
+  char msg[256];
+  CHECK(dal_expr_lagrange(NULL, &eq, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_expr_lagrange(e, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_expr_lagrange(e, &eq, msg, sizeof msg) == DAL_E_ARG && msg[0] && !eq.mass);
+  dal_expr_destroy(e);
+  e = sweep_expr(1);
+  CHECK_OK(dal_expr_lagrange(e, &eq, NULL, 0));
+  dal_expr_equations_destroy(&eq);
+  dal_expr_destroy(e);
+}
+static void sw_dal_expr_equations_destroy(void) { dal_expr_equations_destroy(NULL); }
+static void sw_dal_scene_parse(void) {
+  dal_scene *sc = (dal_scene *)&F;
+  char msg[256];
+  CHECK(dal_scene_parse(NULL, "x", &sc, msg, sizeof msg) == DAL_E_ARG && sc == NULL);
+  CHECK(dal_scene_parse(sweep_scene_text, "x", NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_parse("dim 7\n", NULL, &sc, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_scene_parse("", NULL, &sc, NULL, 0) == DAL_E_ARG);
+}
+static void sw_dal_scene_read(void) {
+  dal_scene *sc = (dal_scene *)&F;
+  char msg[256];
+  CHECK(dal_scene_read(NULL, &sc, msg, sizeof msg) == DAL_E_ARG && sc == NULL);
+  CHECK(dal_scene_read("/nonexistent/x.scene", NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_read("/nonexistent/x.scene", &sc, msg, sizeof msg) == DAL_E_IO && msg[0]);
+}
+static void sw_dal_scene_destroy(void) { dal_scene_destroy(NULL); }
+static dal_scene *sweep_scene(void) {
+  dal_scene *sc = NULL;
+  CHECK_OK(dal_scene_parse(sweep_scene_text, "sweep", &sc, NULL, 0));
+  return sc;
+}
+static void sw_dal_scene_write(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_write(NULL, stdout) == DAL_E_ARG && dal_scene_write(sc, NULL) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_set_param(void) {
+  dal_scene *sc = sweep_scene();
+  char msg[128];
+  CHECK(dal_scene_set_param(NULL, "l", 1, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_set_param(sc, NULL, 1, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_set_param(sc, "zz", 1, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_scene_set_param(sc, "l", NAN, msg, sizeof msg) == DAL_E_NONFINITE);
+  CHECK_OK(dal_scene_set_param(sc, "l", 2, msg, sizeof msg));
+  CHECK(dal_scene_system(sc) != NULL);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_system(void) { CHECK(dal_scene_system(NULL) == NULL); }
+static void sw_dal_scene_opts(void) { CHECK(dal_scene_opts(NULL, NULL, NULL, NULL) == NULL); }
+static void sw_dal_scene_state(void) {
+  dal_scene *sc = sweep_scene();
+  dal_state *st;
+  CHECK(dal_scene_state(NULL, &st) == DAL_E_ARG && dal_scene_state(sc, NULL) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_run(void) {
+  dal_scene *sc = sweep_scene();
+  dal_state *st = (dal_state *)&F;
+  CHECK(dal_scene_run(NULL, NULL, &st, NULL, 0) == DAL_E_ARG && st == NULL);
+  CHECK_OK(dal_scene_run(sc, NULL, NULL, NULL, 0));
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_show(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_show(NULL, stdout, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
+  CHECK(dal_scene_show(sc, NULL, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
+  dal_scene_destroy(sc);
 }
 
 typedef struct sweep_row {
@@ -1648,6 +1951,44 @@ typedef struct sweep_row {
 #define ROW(f)                                                                                     \
   { #f, sw_##f }
 static const sweep_row rows[] = {
+    ROW(dal_default_expr_def),
+    ROW(dal_expr_create),
+    ROW(dal_expr_destroy),
+    ROW(dal_expr_nout),
+    ROW(dal_expr_nin),
+    ROW(dal_expr_nparam),
+    ROW(dal_expr_symbol),
+    ROW(dal_expr_values),
+    ROW(dal_expr_depends),
+    ROW(dal_expr_ninstructions),
+    ROW(dal_expr_eval),
+    ROW(dal_expr_check),
+    ROW(dal_expr_primitive),
+    ROW(dal_expr_place_def),
+    ROW(dal_expr_constraint_def),
+    ROW(dal_expr_map),
+    ROW(dal_expr_potential_r),
+    ROW(dal_expr_potential_q),
+    ROW(dal_expr_lagrangian),
+    ROW(dal_expr_path),
+    ROW(dal_expr_time),
+    ROW(dal_expr_event),
+    ROW(dal_expr_print),
+    ROW(dal_expr_derivative),
+    ROW(dal_default_expr_model_def),
+    ROW(dal_expr_model_energies),
+    ROW(dal_expr_lagrange),
+    ROW(dal_expr_equations_destroy),
+    ROW(dal_scene_parse),
+    ROW(dal_scene_read),
+    ROW(dal_scene_destroy),
+    ROW(dal_scene_write),
+    ROW(dal_scene_set_param),
+    ROW(dal_scene_system),
+    ROW(dal_scene_opts),
+    ROW(dal_scene_state),
+    ROW(dal_scene_run),
+    ROW(dal_scene_show),
     ROW(dal_status_string),
     ROW(dal_status_name),
     ROW(dal_version),
@@ -1658,7 +1999,7 @@ static const sweep_row rows[] = {
     ROW(dal_primitive_count),
     ROW(dal_primitive_get),
     ROW(dal_primitive_find),
-    ROW(dal_solve_default_opts),
+    ROW(dal_default_solve_opts),
     ROW(dal_method_name),
     ROW(dal_formulation_name),
     ROW(dal_state_stats),
@@ -1667,7 +2008,7 @@ static const sweep_row rows[] = {
     ROW(dal_csv_monitor),
     ROW(dal_default_event_def),
     ROW(dal_events_create),
-    ROW(dal_events_free),
+    ROW(dal_events_destroy),
     ROW(dal_events_add),
     ROW(dal_events_errmsg),
     ROW(dal_events_size),
@@ -1707,15 +2048,9 @@ static const sweep_row rows[] = {
     ROW(dal_builder_errmsg),
     ROW(dal_builder_add_coord),
     ROW(dal_builder_add_particle),
-    ROW(dal_builder_place),
     ROW(dal_builder_set_map),
     ROW(dal_builder_set_lagrangian),
-    ROW(dal_builder_add_constraint),
     ROW(dal_builder_set_gravity),
-    ROW(dal_builder_add_spring),
-    ROW(dal_builder_add_anchor_spring),
-    ROW(dal_builder_add_damper),
-    ROW(dal_builder_add_anchor_damper),
     ROW(dal_builder_add_potential_r),
     ROW(dal_builder_add_potential_q),
     ROW(dal_builder_add_force),
@@ -1730,7 +2065,7 @@ static const sweep_row rows[] = {
     ROW(dal_system_particle_name),
     ROW(dal_system_constraint_name),
     ROW(dal_system_mass),
-    ROW(dal_sweep_default_opts),
+    ROW(dal_default_sweep_opts),
     ROW(dal_sweep_part_of),
     ROW(dal_sweep_run),
     ROW(dal_sweep_grid),
@@ -1746,7 +2081,7 @@ static const sweep_row rows[] = {
     ROW(dal_state_set_gravity),
     ROW(dal_state_reset_params),
     ROW(dal_state_copy_params),
-    ROW(dal_verify_default_opts),
+    ROW(dal_default_verify_opts),
     ROW(dal_verify_primitive),
     ROW(dal_verify_map),
     ROW(dal_verify_potential_r),
@@ -1756,16 +2091,21 @@ static const sweep_row rows[] = {
     ROW(dal_state_print),
     ROW(dal_state_init_report),
     ROW(dal_linearize),
-    ROW(dal_flow_jacobian),
+    ROW(dal_linearize_full),
+    ROW(dal_linearize_inputs),
+    ROW(dal_state_transition),
+    ROW(dal_vector_field_jacobian),
     ROW(dal_stability_name),
     ROW(dal_normal_modes),
-    ROW(dal_equilibrium_default_opts),
+    ROW(dal_default_equilibrium_opts),
     ROW(dal_equilibrium),
-    ROW(dal_continuation_default_opts),
+    ROW(dal_default_continuation_opts),
     ROW(dal_continue),
-    ROW(dal_lyapunov_default_opts),
+    ROW(dal_default_lyapunov_opts),
     ROW(dal_lyapunov),
     ROW(dal_default_place_def),
+    ROW(dal_place_def_set),
+    ROW(dal_constraint_def_set),
     ROW(dal_default_constraint_def),
     ROW(dal_default_spring_def),
     ROW(dal_default_damper_def),

@@ -76,7 +76,8 @@ static int compiles_and_runs(dal_builder *b) {
   int rc = dal_builder_compile(b, &sys);
   if (!rc) rc = dal_state_create(sys, &st);
   double q[8], qd[8];
-  for (int i = 0; i < 8; ++i) q[i] = qd[i] = 0.1 * (i + 1);
+  for (int i = 0; i < 8; ++i)
+    q[i] = qd[i] = 0.1 * (i + 1);
   if (!rc) rc = dal_state_set(sys, st, 0.0, q, qd);
   if (!rc) rc = dal_forward(sys, st);
   dal_state_destroy(st);
@@ -121,8 +122,8 @@ static int row_mass_inf(char *msg) { return mass_row(msg, INFINITY); }
 static int row_mass_zero(char *msg) { return mass_row(msg, 0.0); }
 static int row_mass_negative(char *msg) { return mass_row(msg, -1.0); }
 
-// the positional dal_builder_place with one thing wrong (its own rows: the wrapper is kept and
-// tested here), then the right call, by a def
+// a placement with one thing wrong (its parameters in a param_list of nparam values), then
+// the right one
 typedef struct place_case {
   int particle, ncoords, coord0, nparam;
   double l;
@@ -137,11 +138,16 @@ static int place_row(char *msg, place_case pc) {
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
   double par[8] = {pc.l, 0, 0, 0, 0, 0, 0, 0};
   int coords[2] = {pc.coord0, th};
-  int rc = dal_builder_place(b, pc.particle, pc.prim, -1, pc.ncoords, coords, pc.nparam, par,
-                             NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = pc.prim;
+  pd.coords = coords;
+  pd.ncoords = pc.ncoords;
+  pd.param_list = par;
+  pd.nparam_list = pc.nparam;
+  int rc = dal_builder_place_def(b, pc.particle, &pd);
   copy_msg(msg, dal_builder_errmsg(b));
   // the failed placement left no trace: the particle can still be placed, once
-  dal_place_def pd = dal_default_place_def();
+  pd = dal_default_place_def();
   pd.prim = &dal_map_pendulum;
   pd.coords = &th;
   pd.ncoords = 1;
@@ -237,7 +243,8 @@ static int two_free(dal_builder **b, int *pa, int *pb) {
   int c[4];
   const char *names[4] = {"xa", "ya", "xb", "yb"};
   int rc = dal_builder_create(2, b);
-  for (int i = 0; i < 4 && !rc; ++i) rc = dal_builder_add_coord(*b, names[i], &c[i]);
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = dal_builder_add_coord(*b, names[i], &c[i]);
   if (!rc) rc = dal_builder_add_particle(*b, "a", 1.0, pa);
   if (!rc) rc = dal_builder_add_particle(*b, "b", 1.0, pb);
   dal_place_def pd = dal_default_place_def();
@@ -261,12 +268,20 @@ static int constraint_row(char *msg, con_case cc) {
   CHECK_OK(two_free(&b, &pa, &pb));
   int parts[2] = {pa, cc.part1};
   double L = cc.L;
-  int rc = dal_builder_add_constraint(b, "rod", &user_rod2, cc.nparts, parts, cc.ncoords,
-                                      &coord, cc.nparam, &L, NULL, &row);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &user_rod2;
+  cd.parts = parts;
+  cd.nparts = cc.nparts;
+  cd.coords = &coord;
+  cd.ncoords = cc.ncoords;
+  cd.param_list = &L;
+  cd.nparam_list = cc.nparam;
+  int rc = dal_builder_add_constraint_def(b, &cd, &row);
   copy_msg(msg, dal_builder_errmsg(b));
   CHECK(row == -5);
   parts[1] = pb;
-  dal_constraint_def cd = dal_default_constraint_def();
+  cd = dal_default_constraint_def();
   cd.name = "rod";
   cd.prim = &user_rod2;
   cd.parts = parts;
@@ -284,15 +299,9 @@ static int constraint_row(char *msg, con_case cc) {
 static int row_con_particle_index(char *msg) {
   return constraint_row(msg, (con_case){9, 2, 0, 1, 1.0});
 }
-static int row_con_ninputs(char *msg) {
-  return constraint_row(msg, (con_case){1, 2, 1, 1, 1.0});
-}
-static int row_con_nan_param(char *msg) {
-  return constraint_row(msg, (con_case){1, 2, 0, 1, NAN});
-}
-static int row_con_nparams(char *msg) {
-  return constraint_row(msg, (con_case){1, 2, 0, 0, 1.0});
-}
+static int row_con_ninputs(char *msg) { return constraint_row(msg, (con_case){1, 2, 1, 1, 1.0}); }
+static int row_con_nan_param(char *msg) { return constraint_row(msg, (con_case){1, 2, 0, 1, NAN}); }
+static int row_con_nparams(char *msg) { return constraint_row(msg, (con_case){1, 2, 0, 0, 1.0}); }
 
 static int row_gravity_nan(char *msg) {
   dal_builder *b = NULL;
@@ -317,9 +326,17 @@ static int link_row(char *msg, link_case lc) {
   int pa, pb;
   CHECK_OK(two_free(&b, &pa, &pb));
   double x0[2] = {lc.x0, 0.0};
-  int rc = lc.kind == 0   ? dal_builder_add_spring(b, pa, lc.pb, lc.k, lc.L)
-           : lc.kind == 1 ? dal_builder_add_anchor_spring(b, pa, x0, NULL, NULL, lc.k, lc.L)
-                          : dal_builder_add_damper(b, pa, lc.pb, lc.k);
+  dal_spring_def bad = dal_default_spring_def();
+  bad.a = pa;
+  bad.b = lc.kind == 1 ? -1 : lc.pb;
+  bad.k = lc.k;
+  bad.length = lc.L;
+  memcpy(bad.anchor, x0, sizeof x0);
+  dal_damper_def badd = dal_default_damper_def();
+  badd.a = pa;
+  badd.b = lc.pb;
+  badd.c = lc.k;
+  int rc = lc.kind < 2 ? dal_builder_add_spring_def(b, &bad) : dal_builder_add_damper_def(b, &badd);
   copy_msg(msg, dal_builder_errmsg(b));
   dal_spring_def sd = dal_default_spring_def();
   sd.a = pa;
@@ -341,9 +358,7 @@ static int row_spring_self(char *msg) { return link_row(msg, (link_case){0, 0, 3
 static int row_anchor_inf(char *msg) {
   return link_row(msg, (link_case){1, -1, 3.0, 1.0, INFINITY});
 }
-static int row_damper_index(char *msg) {
-  return link_row(msg, (link_case){2, 7, 0.5, 0.0, 0.0});
-}
+static int row_damper_index(char *msg) { return link_row(msg, (link_case){2, 7, 0.5, 0.0, 0.0}); }
 static int row_damper_inf(char *msg) {
   return link_row(msg, (link_case){2, 1, INFINITY, 0.0, 0.0});
 }
@@ -494,9 +509,9 @@ static int row_forward_pole(char *msg) {
 
 // a force callback whose behaviour the row controls
 typedef struct force_ctx {
-  int mode;       // 0 fine, 1 NaN, 2 recoverable (> 0), 3 stop (< 0)
-  double t_fail;  // misbehave only at t >= t_fail
-  int n_fail;     // misbehave at most this many times (-1: always)
+  int mode;      // 0 fine, 1 NaN, 2 recoverable (> 0), 3 stop (< 0)
+  double t_fail; // misbehave only at t >= t_fail
+  int n_fail;    // misbehave at most this many times (-1: always)
   int calls, fails;
 } force_ctx;
 
@@ -830,8 +845,7 @@ static int osc_make(osc *o, int mode, double t_fail, int n_fail) {
 static void osc_free(osc *o) { destroy_all(o->b, o->sys, o->st); }
 
 static dal_solve_opts tight_opts(dal_method m) {
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.method = m;
   so.rtol = 1e-10;
   so.atol = 1e-12;
@@ -1047,8 +1061,7 @@ static int row_pole_in_flight(char *msg) {
 
 // a force ~ 1/|r|^3 attracting 'bob' to the origin, hit head-on: the speed blows up in finite
 // time, the step size collapses; the message names the time and the coordinate 'x'
-static int force_inverse_cube(double t, const double *r, const double *v, double *F,
-                              void *ctx) {
+static int force_inverse_cube(double t, const double *r, const double *v, double *F, void *ctx) {
   (void)t;
   (void)v;
   (void)ctx;
@@ -1131,8 +1144,10 @@ static int ctl_row(char *msg, int map, int mode, int n_fail) {
   int rc = dal_advance(o.sys, o.st, &so, 2.0);
   copy_msg(msg, dal_state_errmsg(o.st));
   double t = dal_state_time(o.st);
-  if (rc) CHECK_MSG(t > 0.0 && t <= 0.7, "stopped at t=%.17g", t);
-  else CHECK(t == 2.0 && ctl.fails == n_fail);
+  if (rc)
+    CHECK_MSG(t > 0.0 && t <= 0.7, "stopped at t=%.17g", t);
+  else
+    CHECK(t == 2.0 && ctl.fails == n_fail);
   check_on_oscillator(o.st, 1e-7);
   ctl.mode = 0;
   CHECK_OK(dal_advance(o.sys, o.st, &so, 3.0));
@@ -1149,8 +1164,8 @@ static int row_map_transient(char *msg) { return ctl_row(msg, 1, 2, 2); }
 // the Cartesian pendulum: 'bob' at (x, y), rods from the origin; scene options:
 // dup: a second rod identical to the first (redundant); far: a second anchor 3 m away (no
 // common point: conflicting)
-static int cart_pendulum(dal_builder **b, dal_system **sys, dal_state **st, int second,
-                         double ax, force_ctx *fc) {
+static int cart_pendulum(dal_builder **b, dal_system **sys, dal_state **st, int second, double ax,
+                         force_ctx *fc) {
   int c[2], bob;
   int rc = free2(b, &bob);
   if (!rc) rc = dal_builder_set_gravity(*b, g2);
@@ -1458,8 +1473,7 @@ static const bad_row rows[] = {
     {"mass zero", DAL_E_ARG, "'bob'", "mass", row_mass_zero},
     {"mass negative", DAL_E_ARG, "'bob'", "mass", row_mass_negative},
     {"place: particle index", DAL_E_ARG, "particle index 5", NULL, row_place_particle_index},
-    {"place: coordinate index", DAL_E_ARG, "'bob'", "coordinate index 3",
-     row_place_coord_index},
+    {"place: coordinate index", DAL_E_ARG, "'bob'", "coordinate index 3", row_place_coord_index},
     {"place: negative coordinate index", DAL_E_ARG, "'bob'", "coordinate index -1",
      row_place_negative_coord},
     {"place: wrong number of inputs", DAL_E_ARG, "'bob'", "'pendulum' takes 1 inputs",
@@ -1472,8 +1486,7 @@ static const bad_row rows[] = {
     {"place: 3D primitive in 2D", DAL_E_ARG, "'bob'", "'spherical'", row_place_wrong_dim},
     {"place: NULL primitive", DAL_E_ARG, "'bob'", "primitive", row_place_null_prim},
     {"place: parent not placed", DAL_E_ARG, "'lower'", "'upper'", row_place_parent_order},
-    {"constraint: particle index", DAL_E_ARG, "'rod'", "particle index 9",
-     row_con_particle_index},
+    {"constraint: particle index", DAL_E_ARG, "'rod'", "particle index 9", row_con_particle_index},
     {"constraint: wrong number of inputs", DAL_E_ARG, "'rod'", "'user_rod2' takes 4 inputs",
      row_con_ninputs},
     {"constraint: wrong number of parameters", DAL_E_ARG, "'rod'", "required and was not set",
@@ -1489,8 +1502,7 @@ static const bad_row rows[] = {
     {"compile: unplaced particle", DAL_E_ARG, "'stray'", "no position", row_compile_unplaced},
     {"compile: no coordinates", DAL_E_ARG, "no generalized coordinates", NULL,
      row_compile_no_coords},
-    {"particle in a Lagrangian system", DAL_E_ARG, "'bob'", "Lagrangian",
-     row_lagrangian_particle},
+    {"particle in a Lagrangian system", DAL_E_ARG, "'bob'", "Lagrangian", row_lagrangian_particle},
     {"state: NaN coordinate", DAL_E_NONFINITE, "'theta'", "nan", row_set_nan_q},
     {"state: inf velocity", DAL_E_NONFINITE, "velocity of coordinate 'theta'", "inf",
      row_set_inf_qdot},
@@ -1499,8 +1511,8 @@ static const bad_row rows[] = {
     {"forward: spherical pendulum at its pole", DAL_E_SINGULAR, "'phi'", "t=0.25",
      row_forward_pole},
     {"forward: force callback NaN", DAL_E_NONFINITE, "'bob'", "t=", row_force_nan},
-    {"forward: force callback > 0", DAL_E_CALLBACK, "force callback", "t=",
-     row_force_recoverable_forward},
+    {"forward: force callback > 0", DAL_E_CALLBACK, "force callback",
+     "t=", row_force_recoverable_forward},
     {"forward: force callback < 0", DAL_E_CALLBACK, "force callback", "t=", row_force_stop},
     {"forward: potential U(r) at its pole", DAL_E_DOMAIN, "U(r,t)", "'bob'",
      row_potential_r_domain},
@@ -1511,10 +1523,10 @@ static const bad_row rows[] = {
      row_map_domain},
     {"forward: curve primitive without its curve", DAL_E_CALLBACK, "'curve2'", "'bead'",
      row_curve_no_ctx},
-    {"forward: whole-system map stops", DAL_E_CALLBACK, "coordinate map", "t=",
-     row_map_callback_stop},
-    {"forward: Lagrangian with singular d2L/dqdot2", DAL_E_SINGULAR, "'y'", "t=",
-     row_lagrangian_singular},
+    {"forward: whole-system map stops", DAL_E_CALLBACK, "coordinate map",
+     "t=", row_map_callback_stop},
+    {"forward: Lagrangian with singular d2L/dqdot2", DAL_E_SINGULAR, "'y'",
+     "t=", row_lagrangian_singular},
     {"lagrange_residual: path outside its domain", DAL_E_DOMAIN, "'theta'", "t=0.5",
      row_path_domain},
     {"advance: rtol NaN", DAL_E_NONFINITE, "rtol", "nan", row_rtol_nan},
@@ -1528,37 +1540,32 @@ static const bad_row rows[] = {
     {"advance: target time NaN", DAL_E_NONFINITE, "target time", "nan", row_time_nan},
     {"evolve: dt below the resolution of t", DAL_E_ARG, "dt", "resolution",
      row_evolve_dt_unresolvable},
-    {"advance: too many steps", DAL_E_MAXSTEPS, "t=", "fastest-changing variable",
-     row_max_steps},
-    {"advance: force callback < 0 (6 methods)", DAL_E_CALLBACK, "force callback", "t=",
-     row_callback_stop},
-    {"advance: force callback NaN (6 methods)", DAL_E_NONFINITE, "'bob'", "t=",
-     row_callback_nan},
-    {"advance: force callback > 0 forever (6 methods)", DAL_E_CALLBACK, "force callback", "t=",
-     row_callback_recoverable_always},
+    {"advance: too many steps", DAL_E_MAXSTEPS, "t=", "fastest-changing variable", row_max_steps},
+    {"advance: force callback < 0 (6 methods)", DAL_E_CALLBACK, "force callback",
+     "t=", row_callback_stop},
+    {"advance: force callback NaN (6 methods)", DAL_E_NONFINITE, "'bob'", "t=", row_callback_nan},
+    {"advance: force callback > 0 forever (6 methods)", DAL_E_CALLBACK, "force callback",
+     "t=", row_callback_recoverable_always},
     {"advance: force callback > 0 transient (6 methods)", DAL_OK, NULL, NULL,
      row_callback_recoverable_transient},
-    {"advance: potential leaves its domain", DAL_E_DOMAIN, "U(r,t)", "t=",
-     row_potential_domain_in_flight},
-    {"advance: potential U(r) callback < 0", DAL_E_CALLBACK, "potential U(r,t)", "t=",
-     row_potential_stop},
-    {"advance: potential U(r) callback > 0 transient", DAL_OK, NULL, NULL,
-     row_potential_transient},
-    {"advance: coordinate map callback < 0", DAL_E_CALLBACK, "coordinate map", "t=",
-     row_map_stop_in_flight},
+    {"advance: potential leaves its domain", DAL_E_DOMAIN, "U(r,t)",
+     "t=", row_potential_domain_in_flight},
+    {"advance: potential U(r) callback < 0", DAL_E_CALLBACK, "potential U(r,t)",
+     "t=", row_potential_stop},
+    {"advance: potential U(r) callback > 0 transient", DAL_OK, NULL, NULL, row_potential_transient},
+    {"advance: coordinate map callback < 0", DAL_E_CALLBACK, "coordinate map",
+     "t=", row_map_stop_in_flight},
     {"advance: coordinate map callback > 0 transient", DAL_OK, NULL, NULL, row_map_transient},
-    {"advance: spherical pendulum into its pole", DAL_E_SINGULAR, "'phi'", "t=",
-     row_pole_in_flight},
-    {"advance: step size collapse (1/r^3 head-on)", DAL_E_STEP, "t=", "'x'",
-     row_step_collapse},
-    {"dae: redundant constraints", DAL_E_CONSTRAINT, "'rodA'", "'rodB'",
-     row_redundant_constraints},
+    {"advance: spherical pendulum into its pole", DAL_E_SINGULAR, "'phi'",
+     "t=", row_pole_in_flight},
+    {"advance: step size collapse (1/r^3 head-on)", DAL_E_STEP, "t=", "'x'", row_step_collapse},
+    {"dae: redundant constraints", DAL_E_CONSTRAINT, "'rodA'", "'rodB'", row_redundant_constraints},
     {"dae: conflicting constraints", DAL_E_CONSTRAINT, "'rodA'", "'rodB'",
      row_conflicting_constraints},
-    {"dae: initial guess where the rod is undefined", DAL_E_DOMAIN, "'rodA'", "t=",
-     row_init_at_anchor},
-    {"dae: no position satisfies a constraint", DAL_E_INIT, "'unreachable'", "t=",
-     row_init_unassemblable},
+    {"dae: initial guess where the rod is undefined", DAL_E_DOMAIN, "'rodA'",
+     "t=", row_init_at_anchor},
+    {"dae: no position satisfies a constraint", DAL_E_INIT, "'unreachable'",
+     "t=", row_init_unassemblable},
     {"dae: force callback < 0", DAL_E_CALLBACK, "force callback", "t=", row_dae_callback_stop},
     {"dae: force callback > 0 transient", DAL_OK, NULL, NULL, row_dae_callback_transient},
     {"dae: too many steps", DAL_E_MAXSTEPS, "t=", "dominated by", row_dae_max_steps},

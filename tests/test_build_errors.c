@@ -135,12 +135,18 @@ static void test_masses_and_indices(void) {
   e.coords = NULL;
   e.ncoords = 0;
   EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "'pendulum'", "inputs");
-  // the positional wrapper's own checks: more parameters than the primitive has, none given
+  // a parameter list's own checks: more parameters than the primitive has, none given
   double par[8] = {1.0, 0, 0, 0, 0, 0, 0, 0};
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 8, par, NULL), DAL_E_ARG, "bob",
-           "'pendulum'", "parameters");
-  EXPECT_B(dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &th, 7, NULL, NULL), DAL_E_ARG, "bob",
-           "'pendulum'", "parameters");
+  e = dal_default_place_def();
+  e.prim = &dal_map_pendulum;
+  e.coords = &th;
+  e.ncoords = 1;
+  e.param_list = par;
+  e.nparam_list = 8;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "'pendulum'", "parameters");
+  e.param_list = NULL;
+  e.nparam_list = 7;
+  EXPECT_B(dal_builder_place_def(b, p, &e), DAL_E_ARG, "bob", "'pendulum'", "parameters");
   // NaN and infinite parameters
   for (int i = 0; i < DAL_PENDULUM_NPARAM; ++i) {
     e = pd;
@@ -420,7 +426,8 @@ static void test_status_strings(void) {
   for (int i = 0; i < n; ++i) {
     CHECK(strcmp(dal_status_string(codes[i]), "unknown status") != 0);
     CHECK(strncmp(dal_status_name(codes[i]), "DAL_", 4) == 0);
-    for (int j = 0; j < i; ++j) CHECK(strcmp(dal_status_name(codes[i]), dal_status_name(codes[j])));
+    for (int j = 0; j < i; ++j)
+      CHECK(strcmp(dal_status_name(codes[i]), dal_status_name(codes[j])));
   }
   CHECK(strcmp(dal_status_name(DAL_E_SINGULAR), "DAL_E_SINGULAR") == 0);
   CHECK(strcmp(dal_status_string(12345), "unknown status") == 0);

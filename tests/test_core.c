@@ -16,8 +16,7 @@
 #define PI 3.14159265358979323846
 
 static dal_solve_opts opts(dal_formulation f, dal_method m, double tol) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.form = f;
   o.method = m;
   o.rtol = o.atol = tol;
@@ -251,6 +250,13 @@ static void test_tolerance_table(void) {
         CHECK_MSG(ss.rtol_used > 0.005 * tol, "clamp not reported: %g", ss.rtol_used);
         CHECK_MSG(worst * tol < 100.0 * ss.rtol_used / 0.001, "%s at rtol %g: %g x rtol",
                   rows[r].name, tol, worst);
+      } else if (!dae && rows[r].m == DAL_METHOD_BDF && tol < 1e-11) {
+        // CVODE's BDF honours 1e-11 at most: a tighter request runs as 1e-11 (solve.h), and
+        // the clamp shows in rtol_used (1e-15 instead of 1e-4 x rtol)
+        dal_stats ss;
+        dal_state_stats(so, &ss);
+        CHECK_MSG(ss.rtol_used > 1e-4 * tol, "clamp not reported: %g", ss.rtol_used);
+        CHECK_MSG(worst * tol < 16.0 * 1e-11, "%s at rtol %g: %g x rtol", rows[r].name, tol, worst);
       } else {
         CHECK_MSG(worst < 16.0, "%s at rtol %g: %g x rtol", rows[r].name, tol, worst);
       }

@@ -18,8 +18,8 @@
 //  - KLU with the assembled Newton matrix vs the dense difference-quotient one; a chain of 300
 //    particles without a dense mass matrix; failures leave the last accepted step.
 #include <math.h>
-#include <stdlib.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "check.h"
@@ -30,8 +30,7 @@
 #define PI 3.14159265358979323846
 
 static dal_solve_opts opts_of(dal_formulation f, dal_method m, double tol) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.form = f;
   o.method = m;
   o.rtol = tol;

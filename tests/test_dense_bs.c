@@ -17,8 +17,8 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "ref_elliptic.h"
 #include "integrate/integrate.h"
+#include "ref_elliptic.h"
 
 #define G0 9.81
 #define PI 3.14159265358979323846
@@ -36,10 +36,15 @@ static dal_system *finish(dal_builder *b, int rc) {
 static dal_system *pendulum(void) {
   dal_builder *b = NULL;
   int c, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0}, par[7] = {1.0, 0, 0, 0, 0, 0, 0};
+  double g[2] = {0.0, -G0};
   if (!rc) rc = dal_builder_add_coord(b, "th", &c);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_pendulum, -1, 1, &c, 7, par, NULL);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
   return finish(b, rc);
 }
@@ -48,12 +53,18 @@ static dal_system *pendulum(void) {
 static dal_system *oscillator(void) {
   dal_builder *b = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
-  double x0[2] = {0, 0};
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  if (!rc) rc = dal_builder_place(b, p, &dal_map_cartesian2, -1, 2, c, 0, NULL, NULL);
-  if (!rc) rc = dal_builder_add_anchor_spring(b, p, x0, NULL, NULL, 1.0, 0.0);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian2;
+  pd.coords = c;
+  pd.ncoords = 2;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_spring_def sd = dal_default_spring_def(); // to the origin
+  sd.a = p;
+  sd.k = 1.0;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
   return finish(b, rc);
 }
 
@@ -150,8 +161,7 @@ static run_out run(const dal_system *sys, dal_state *st, const double *q0, const
   run_out out = {0};
   dal_ode_problem prob = dal__problem_minimal;
   prob.rhs = probe_rhs;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = tol;
   dal_ode_integ *ig = NULL;
   CHECK_OK(dal_state_set(sys, st, 0.0, q0, qd0));

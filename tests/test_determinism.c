@@ -61,8 +61,7 @@ static run evolve(const config *c, const dal_system *sys, dal_state *st) {
   r.rec.cap = CAP;
   r.rec.buf = malloc(CAP * sizeof(double));
   r.rc = r.rec.buf ? rel_set(sys, st, c->dae, 2.0, -1.0, 0.5, 0.0) : DAL_E_NOMEM;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = c->method;
   o.form = c->form;
   o.rtol = c->rtol;
@@ -90,7 +89,8 @@ static run evolve_fresh(const config *c) {
 static uint64_t fnv1a(const void *p, size_t len) {
   const unsigned char *b = p;
   uint64_t h = 1469598103934665603ULL;
-  for (size_t i = 0; i < len; ++i) h = (h ^ b[i]) * 1099511628211ULL;
+  for (size_t i = 0; i < len; ++i)
+    h = (h ^ b[i]) * 1099511628211ULL;
   return h;
 }
 
@@ -131,9 +131,11 @@ int main(int argc, char **argv) {
                    (width - 1) * sizeof(double)) != 0);
     // run 2: another compiled system, the heap perturbed by live blocks of odd sizes
     void *junk[16];
-    for (int k = 0; k < 16; ++k) junk[k] = malloc((size_t)(17 * k + 3 + 40 * i));
+    for (int k = 0; k < 16; ++k)
+      junk[k] = malloc((size_t)(17 * k + 3 + 40 * i));
     run r2 = evolve_fresh(c);
-    for (int k = 0; k < 16; ++k) free(junk[k]);
+    for (int k = 0; k < 16; ++k)
+      free(junk[k]);
     // run 3: the first state reset and reused
     run r3 = evolve(c, sys, st);
     CHECK_MSG(same_run(&r1, &r2), "%s: a second system gives a different trajectory", c->name);

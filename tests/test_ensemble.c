@@ -173,8 +173,7 @@ static void test_determinism(void) {
   dal_param_ref par[2];
   CHECK_OK(dal_param_find(sys, "place:bob:3", &par[0], NULL, 0));
   CHECK_OK(dal_param_find(sys, "place:bob:5", &par[1], NULL, 0));
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.method = DAL_METHOD_DOPRI5;
   dal_sweep sw = {.ntraj = NT,
                   .nparam = 2,
@@ -210,8 +209,7 @@ static void test_determinism(void) {
         int status[NT];
         char msgs[NT * 64];
         dal_sweep_out out = {res, status, msgs, 64, 0, 0};
-        dal_sweep_opts o;
-        dal_sweep_default_opts(&o);
+        dal_sweep_opts o = dal_default_sweep_opts();
         o.nthreads = threads[ti];
         o.schedule = sched ? DAL_SCHEDULE_STATIC : DAL_SCHEDULE_DYNAMIC;
         o.chunk = chunk;
@@ -239,8 +237,7 @@ static void test_determinism(void) {
   dal_sweep_out out = {res, status, msgs, 64, 0, 0};
   long total = 0;
   for (int part = 0; part < 3; ++part) {
-    dal_sweep_opts o;
-    dal_sweep_default_opts(&o);
+    dal_sweep_opts o = dal_default_sweep_opts();
     o.nthreads = 2;
     o.part = part;
     o.nparts = 3;
@@ -251,8 +248,17 @@ static void test_determinism(void) {
   CHECK(total == NT);
   char *csv = csv_of(sys, &sw, &out);
   CHECK(csv && first && strcmp(csv, first) == 0);
-  CHECK(first &&
-        strncmp(first, "index,place:bob:3,place:bob:5,status,r0,r1,r2,r3,message\n", 57) == 0);
+  // per-trajectory initial states: their columns follow the parameters, each row holds its own
+  const char *head = "index,place:bob:3,place:bob:5,q0:theta,qdot0:theta,status,r0,r1,r2,r3,"
+                     "message\n";
+  CHECK_MSG(first && strncmp(first, head, strlen(head)) == 0, "CSV header: %.80s",
+            first ? first : "(none)");
+  for (int i = 0; first && i < NT; i += 7) {
+    char want[160];
+    snprintf(want, sizeof want, "\n%d,%.17g,%.17g,%.17g,%.17g,DAL_OK,", i, values[2 * i],
+             values[2 * i + 1], q0[i], v0[i]);
+    CHECK_MSG(strstr(first, want) != NULL, "CSV row %d lacks its start: %s", i, want + 1);
+  }
   free(csv);
   free(first);
   dal_system_destroy(sys);
@@ -278,8 +284,7 @@ static void test_closed_form(void) {
   CHECK_OK(dal_param_find(sys, "spring:0:k", &par[0], NULL, 0));
   CHECK_OK(dal_param_find(sys, "mass:m", &par[1], NULL, 0));
   double q0[2] = {1.0, 0.0}, v0[2] = {0.0, 0.0};
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.rtol = 1e-11;
   so.atol = 1e-13;
   dal_sweep sw = {.ntraj = NT,
@@ -293,8 +298,7 @@ static void test_closed_form(void) {
                   .nresult = 1,
                   .reduce = keep_x};
   dal_sweep_out out = {res, status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = 2;
   CHECK_OK(dal_sweep_run(sys, &sw, &o, &out, NULL, 0));
   for (int i = 0; i < NT; ++i) {
@@ -336,8 +340,7 @@ static void test_failures(void) {
   double q0[4] = {0.9, -0.9, 0.3, -0.9}, v0[4] = {0, 0, 0, 0}, res[NT * 2];
   int status[NT];
   char msgs[NT * 512];
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   dal_sweep sw = {.ntraj = NT,
                   .nparam = 2,
                   .params = par,
@@ -349,8 +352,7 @@ static void test_failures(void) {
                   .nresult = 2,
                   .reduce = failing_reducer};
   dal_sweep_out out = {res, status, msgs, 512, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = 2;
   CHECK_OK(dal_sweep_run(sys, &sw, &o, &out, NULL, 0));
   CHECK(out.nfailed == 6 && out.nrun == NT);
@@ -390,8 +392,7 @@ static void test_progress(void) {
     values[i] = 1.0 + i;
   dal_param_ref par;
   CHECK_OK(dal_param_find(sys, "spring:0:k", &par, NULL, 0));
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   dal_sweep sw = {.ntraj = NT,
                   .nparam = 1,
                   .params = &par,
@@ -405,8 +406,7 @@ static void test_progress(void) {
   dal_sweep_out out = {res, status, msgs, 128, 0, 0};
   for (int threads = 1; threads <= 4; threads *= 2) {
     progress_log lg = {0, 0, 0, 0};
-    dal_sweep_opts o;
-    dal_sweep_default_opts(&o);
+    dal_sweep_opts o = dal_default_sweep_opts();
     o.nthreads = threads;
     o.progress = on_progress;
     o.progress_ctx = &lg;
@@ -415,8 +415,7 @@ static void test_progress(void) {
   }
   // cancel after 5 of 12 (one thread: exactly 5 run)
   progress_log lg = {0, 0, 0, 5};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.progress = on_progress;
   o.progress_ctx = &lg;
   char err[256];
@@ -431,7 +430,7 @@ static void test_progress(void) {
   dal_param_ref badp = {DAL_PARAM_MASS, 4, 0};
   dal_sweep bad = sw;
   bad.params = &badp;
-  dal_sweep_default_opts(&o);
+  o = dal_default_sweep_opts();
   CHECK(dal_sweep_run(sys, &bad, &o, &out, err, sizeof err) == DAL_E_ARG);
   CHECK(strstr(err, "particle index 4 out of range") != NULL);
   bad = sw;
@@ -462,7 +461,7 @@ static void test_progress(void) {
   dal_sweep_opts raw;
   memset(&raw, 0, sizeof raw);
   CHECK(dal_sweep_run(sys, &sw, &raw, &out, err, sizeof err) == DAL_E_ARG);
-  CHECK(strstr(err, "dal_sweep_default_opts") != NULL);
+  CHECK(strstr(err, "dal_default_sweep_opts") != NULL);
   dal_system_destroy(sys);
 }
 
@@ -487,8 +486,7 @@ static int pair(const dal_system *sys, dal_state *st, const dal_traj *tr, void *
   dal_state *other = tr->worker;
   double k = tr->values[0], w = sqrt(k);
   double q[2] = {cos(w * 0.3), 0}, v[2] = {-w * sin(w * 0.3), 0};
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   so.rtol = 1e-11;
   so.atol = 1e-13;
   int rc = dal_state_copy_params(sys, other, st);
@@ -518,8 +516,7 @@ static void test_workers(void) {
                   .nresult = 1,
                   .reduce = pair};
   dal_sweep_out out = {res, status, NULL, 0, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = 3;
   o.worker_create = make_state;
   o.worker_destroy = free_state;

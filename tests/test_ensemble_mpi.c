@@ -78,8 +78,7 @@ int main(int argc, char **argv) {
   CHECK_OK(dal_param_find(sys, "place:bob:3", &par[0], NULL, 0));
   CHECK_OK(dal_param_find(sys, "place:bob:5", &par[1], NULL, 0));
   CHECK_OK(dal_param_find(sys, "mass:bob", &par[2], NULL, 0));
-  dal_solve_opts so;
-  dal_solve_default_opts(&so);
+  dal_solve_opts so = dal_default_solve_opts();
   dal_sweep sw = {.ntraj = NT,
                   .nparam = 3,
                   .params = par,
@@ -94,8 +93,7 @@ int main(int argc, char **argv) {
   int status[NT];
   char msgs[NT * 200];
   dal_sweep_out out = {res, status, msgs, 200, 0, 0};
-  dal_sweep_opts o;
-  dal_sweep_default_opts(&o);
+  dal_sweep_opts o = dal_default_sweep_opts();
   o.nthreads = 1;
   char err[256];
   CHECK_OK(dal_sweep_run_mpi(sys, &sw, &o, &out, MPI_COMM_WORLD, err, sizeof err));

@@ -55,8 +55,7 @@ static void test_period(void) {
     double q = th0, qd = 0.0;
     CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
     dal_events_clear(ev);
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = cases[c].m;
     o.rtol = cases[c].rtol;
     CHECK_OK(dal_advance(s, st, &o, 5.2 * T));
@@ -85,7 +84,7 @@ static void test_period(void) {
               o.rtol, worst);
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -112,8 +111,7 @@ static void test_bead_turning(void) {
   double c1 = (G0 * R + sqrt(disc)) / (2.0 * A), c2 = (G0 * R - sqrt(disc)) / (2.0 * A);
   double th_a = acos(fmin(c1, 1.0)), th_b = acos(c2); // the two turning angles (th_a = 0.2)
   CHECK_CLOSE(th_a, 0.2, 1e-12);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   CHECK_OK(dal_advance(s, st, &o, 10.0));
   long n = dal_events_count(ev);
@@ -133,7 +131,7 @@ static void test_bead_turning(void) {
   // at a turning point theta is quadratic in time: an error eps in t moves it by ~theta'' eps^2
   CHECK_MSG(worst < 1e-8, "turning points off by %g", worst);
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -167,8 +165,7 @@ static void test_leaving_circle(void) {
   CHECK_OK(dal_state_set_events(st, ev));
   double q = PI, qd = v0 / R;
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-10;
   int rc = dal_advance(s, st, &o, 5.0);
   CHECK_MSG(rc == DAL_EVENT, "status %s: %s", dal_status_name(rc), dal_state_errmsg(st));
@@ -186,7 +183,7 @@ static void test_leaving_circle(void) {
   CHECK_MSG(rc == DAL_OK, "restart: %s", dal_state_errmsg(st));
   CHECK(dal_events_count(ev) == 1);
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 
@@ -205,7 +202,7 @@ static void test_leaving_circle(void) {
     double x[2] = {0.0, R}, v[2] = {v0, 0.0};
     CHECK_OK(dal_state_set(s, st, 0.0, x, v));
     dal_events_clear(ev);
-    dal_solve_default_opts(&o);
+    o = dal_default_solve_opts();
     o.form = forms[f];
     o.project = 1;
     o.rtol = 1e-9;
@@ -220,7 +217,7 @@ static void test_leaving_circle(void) {
     CHECK(fabs(dal_state_lambda(st)[0]) < 1e-6 * G0);
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -264,8 +261,7 @@ static void test_every_method(void) {
     double q = th0, qd = 0.0;
     CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
     dal_events_clear(ev);
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[k];
     o.rtol = 1e-9;
     o.fixed_step = 1e-3;
@@ -289,7 +285,7 @@ static void test_every_method(void) {
     printf("  %-12s: 6 crossings, worst time error %.2e s\n", dal_method_name(ms[k]), worst);
     CHECK_MSG(worst < bound, "%s: crossing times off by %g", dal_method_name(ms[k]), worst);
     // a terminal event inside evolve: stops there; the monitor saw only earlier times
-    dal_events_free(ev);
+    dal_events_destroy(ev);
     CHECK_OK(dal_events_create(s, &ev));
     d.name = "stop";
     d.direction = DAL_EVENT_RISING;
@@ -303,7 +299,7 @@ static void test_every_method(void) {
     CHECK(fabs(dal_state_time(st) - 0.75 * T) < bound && cc.tlast < dal_state_time(st));
     CHECK(dal_state_qddot(st) != NULL); // evaluated there
     // rebuild the two-event set for the next method
-    dal_events_free(ev);
+    dal_events_destroy(ev);
     CHECK_OK(dal_events_create(s, &ev));
     d.terminal = 0;
     d.name = "down";
@@ -315,7 +311,7 @@ static void test_every_method(void) {
     CHECK_OK(dal_state_set_events(st, ev));
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }
@@ -341,12 +337,11 @@ static void test_failures_and_csv(void) {
   CHECK_OK(dal_state_set_events(st, ev));
   double q = 1.0, qd = 0.0;
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   int rc = dal_advance(s, st, &o, 2.0);
   CHECK(rc == DAL_E_CALLBACK && strstr(dal_state_errmsg(st), "'broken'") != NULL);
   CHECK(dal_state_time(st) > 0.5 && dal_state_time(st) < 2.0 && dal_state_qddot(st) != NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   // a surface section written to CSV: one header, one row per crossing
   CHECK_OK(dal_events_create(s, &ev));
   d = dal_default_event_def();
@@ -370,7 +365,7 @@ static void test_failures_and_csv(void) {
     fclose(fp);
   }
   dal_state_set_events(st, NULL);
-  dal_events_free(ev);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_system_destroy(s);
 }

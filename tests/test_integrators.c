@@ -244,8 +244,7 @@ static void test_tolerance_honesty(void) {
         osc_exact(T, ref);
       double prev = INFINITY;
       for (int e = 4; e <= 12; e += 2) {
-        dal_solve_opts o;
-        dal_solve_default_opts(&o);
+        dal_solve_opts o = dal_default_solve_opts();
         o.method = adaptive[mi];
         o.rtol = o.atol = pow(10.0, -e);
         run_out r = p < 3 ? run(sys, &q0, &v0, &o, T) : run(sys, osc_q0, osc_v0, &o, T);
@@ -271,8 +270,7 @@ static void test_tolerance_honesty(void) {
       CHECK_OK(dal_state_create(pend, &st));
       double q0 = th0, v0 = 0;
       CHECK_OK(dal_state_set(pend, st, 0, &q0, &v0));
-      dal_solve_opts o;
-      dal_solve_default_opts(&o);
+      dal_solve_opts o = dal_default_solve_opts();
       o.method = adaptive[mi];
       o.rtol = o.atol = pow(10.0, -e);
       CHECK_OK(dal_evolve(pend, st, &o, T, 0.1, NULL, NULL));
@@ -295,8 +293,7 @@ static double richardson_order(const dal_system *sys, const double *q0, const do
   double y[3][4];
   int ny = 2 * dal_system_ncoords(sys);
   for (int i = 0; i < 3; ++i) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = m;
     o.fixed_erk = 1;
     o.fixed_step = h / (1 << i);
@@ -328,8 +325,7 @@ static void test_orders(void) {
   double ref[4], e[3];
   osc_exact(10.0, ref);
   for (int i = 0; i < 3; ++i) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = DAL_METHOD_RK4;
     o.fixed_step = 0.1 / (1 << i);
     run_out r = run(osc, osc_q0, osc_v0, &o, 10.0);
@@ -351,8 +347,7 @@ static void test_bs_vs_dopri(void) {
   dal_system *osc = make_oscillator(NULL);
   double ref[4];
   osc_exact(10.0, ref);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = 1e-12;
   o.method = DAL_METHOD_BS;
   run_out bs = run(osc, osc_q0, osc_v0, &o, 10.0);
@@ -412,8 +407,7 @@ static void test_evolve(void) {
     memcpy(qa, ex, sizeof qa);
     memcpy(va, ex + 2, sizeof va);
     CHECK_OK(dal_state_set(osc, st, 0.3, qa, va));
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[mi];
     o.rtol = o.atol = 1e-9;
     o.fixed_step = 1e-3;
@@ -434,8 +428,7 @@ static void test_evolve(void) {
     CHECK(m.n == 4 && dal_state_time(st) == 0.75);
   }
   // a negative monitor return is a callback failure naming the time
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_state_set(osc, st, 0.0, osc_q0, osc_v0));
   int rc = dal_evolve(osc, st, &o, 2.0, 0.25, failing_monitor, NULL);
   CHECK(rc == DAL_E_CALLBACK);
@@ -464,8 +457,7 @@ static void test_recoverable(void) {
   const dal_method ms[6] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
                             DAL_METHOD_ADAMS,  DAL_METHOD_BDF,        DAL_METHOD_RK4};
   for (int mi = 0; mi < 6; ++mi) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[mi];
     o.rtol = o.atol = 1e-8;
     o.h0 = 3.0;         // a first step far too long: trial states leave the energy shell
@@ -490,8 +482,7 @@ static void test_unrecoverable(void) {
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(osc, &st));
   for (int mi = 0; mi < 6; ++mi) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = ms[mi];
     o.rtol = o.atol = 1e-10;
     o.fixed_step = 0.01;
@@ -501,7 +492,9 @@ static void test_unrecoverable(void) {
     double ts = dal_state_time(st);
     const char *msg = dal_state_errmsg(st);
     CHECK_MSG(rc == DAL_E_CALLBACK, "%s: rc %d", dal_method_name(o.method), rc);
-    CHECK_MSG(ts > 2.0 && ts < 3.6, "%s: stopped at t=%g", dal_method_name(o.method), ts);
+    // (Bulirsch-Stoer's steps at this tolerance are 1.5 s long)
+    CHECK_MSG(ts > (ms[mi] == DAL_METHOD_BS ? 1.5 : 2.0) && ts < 3.6, "%s: stopped at t=%g",
+              dal_method_name(o.method), ts);
     CHECK(strstr(msg, "generalized force callback") != NULL);
     CHECK(strstr(msg, "last accepted step") != NULL);
     // the state is evaluated at the accepted step
@@ -532,8 +525,7 @@ static void test_step_failure(void) {
     dal_state *st = NULL;
     CHECK_OK(dal_state_create(sys, &st));
     CHECK_OK(dal_state_set(sys, st, 0, q0, v0));
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = adaptive[mi];
     int rc = dal_advance(sys, st, &o, 2.0);
     const char *msg = dal_state_errmsg(st);
@@ -587,8 +579,7 @@ static void test_index1(void) {
   for (int mi = 0; mi < 5; ++mi) {
     double q0[2] = {sin(th0), -cos(th0)}, v0[2] = {0, 0}, drift[2];
     for (int proj = 0; proj < 2; ++proj) {
-      dal_solve_opts o;
-      dal_solve_default_opts(&o);
+      dal_solve_opts o = dal_default_solve_opts();
       o.method = ms[mi];
       o.form = DAL_FORM_INDEX1;
       o.project = proj;
@@ -603,8 +594,8 @@ static void test_index1(void) {
       CHECK(proj ? r.s.projections == r.s.steps && r.s.steps > 0 : r.s.projections == 0);
     }
     CHECK_MSG(drift[1] < 1e-9 && (drift[0] < 1e-9 || drift[1] < drift[0]),
-              "index1 %s: drift %.3g projected, %.3g not",
-              dal_method_name(ms[mi]), drift[1], drift[0]);
+              "index1 %s: drift %.3g projected, %.3g not", dal_method_name(ms[mi]), drift[1],
+              drift[0]);
   }
   dal_system_destroy(sys);
 }
@@ -620,7 +611,7 @@ static void test_options(void) {
   dal_solve_opts o;
   memset(&o, 0, sizeof o);
   CHECK(dal_advance(osc, st, &o, 1.0) == DAL_E_ARG);
-  CHECK(strstr(dal_state_errmsg(st), "dal_solve_default_opts") != NULL);
+  CHECK(strstr(dal_state_errmsg(st), "dal_default_solve_opts") != NULL);
   CHECK(dal_advance(osc, st, NULL, 1.0) == DAL_E_ARG);
   struct {
     double *field;
@@ -634,15 +625,15 @@ static void test_options(void) {
                {&o.fixed_step, 0.0, "fixed_step", DAL_E_ARG},
                {&o.hmax, -1.0, "hmax", DAL_E_ARG}};
   for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
-    dal_solve_default_opts(&o);
+    o = dal_default_solve_opts();
     *cases[i].field = cases[i].bad;
     CHECK(dal_advance(osc, st, &o, 1.0) == cases[i].code);
     CHECK_MSG(strstr(dal_state_errmsg(st), cases[i].name) != NULL, "%s", dal_state_errmsg(st));
   }
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   o.method = (dal_method)42;
   CHECK(dal_advance(osc, st, &o, 1.0) == DAL_E_ARG);
-  dal_solve_default_opts(&o);
+  o = dal_default_solve_opts();
   CHECK(dal_advance(osc, st, &o, -1.0) == DAL_E_TIME);
   CHECK(strstr(dal_state_errmsg(st), "behind") != NULL);
   CHECK(dal_advance(osc, st, &o, NAN) == DAL_E_NONFINITE);
@@ -680,8 +671,7 @@ static void test_determinism(void) {
   dal_system *pend = make_pendulum();
   double th0 = 2.9, v0 = 0.1;
   for (int mi = 0; mi < NADAPT; ++mi) {
-    dal_solve_opts o;
-    dal_solve_default_opts(&o);
+    dal_solve_opts o = dal_default_solve_opts();
     o.method = adaptive[mi];
     run_out a = run(pend, &th0, &v0, &o, 7.3), b = run(pend, &th0, &v0, &o, 7.3);
     CHECK(memcmp(a.y, b.y, sizeof a.y) == 0);
@@ -700,8 +690,7 @@ static void test_csv(void) {
   CHECK(fp != NULL);
   if (!fp) return;
   dal_csv csv = {fp, 0, 1};
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_evolve(pend, st, &o, 2.0, 0.5, dal_csv_monitor, &csv));
   double last_q = dal_state_q(st)[0];
   dal_energies en;

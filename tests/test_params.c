@@ -128,8 +128,7 @@ static dal_system *loop(double L, double x0, double R, double link, double m) {
 // advance st from (q0, v0) to t1; write the final (q, qdot) into out (2n); returns status
 static int run(const dal_system *sys, dal_state *st, const double *q0, const double *v0,
                dal_method method, double t1, double *out) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = method;
   o.rtol = 1e-9;
   o.atol = 1e-11;
@@ -166,6 +165,21 @@ static void test_chain(void) {
   CHECK_OK(dal_state_set_param_named(s0, a, "spring:0:k", P1.k));
   CHECK_OK(dal_state_set_param_named(s0, a, "spring:0:L", P1.L));
   CHECK_OK(dal_state_set_param_named(s0, a, "damper:0:c", P1.c));
+  {
+    // a primitive's parameter by the name in its table addresses what its index does (the
+    // names of dal_map_pendulum: l, x0, y0, ax, ay, w, ph); another primitive's name is
+    // refused with the names this one has
+    dal_param_ref rn, ri;
+    char msg[256];
+    CHECK_OK(dal_param_find(s0, "place:a:w", &rn, NULL, 0));
+    CHECK_OK(dal_param_find(s0, "place:a:5", &ri, NULL, 0));
+    CHECK(rn.kind == DAL_PARAM_PLACE && rn.target == ri.target && rn.index == DAL_PENDULUM_W &&
+          ri.index == DAL_PENDULUM_W);
+    CHECK_OK(dal_param_find(s0, "place:0:ax", &rn, NULL, 0));
+    CHECK(rn.index == DAL_PENDULUM_AX && rn.target == 0);
+    CHECK(dal_param_find(s0, "place:a:R", &rn, msg, sizeof msg) == DAL_E_ARG);
+    CHECK_MSG(strstr(msg, "'R'") && strstr(msg, "(l, x0, y0, ax, ay, w, ph)"), "%s", msg);
+  }
   dal_param_ref r;
   double v = 0;
   CHECK_OK(dal_param_find(s0, "place:a:5", &r, NULL, 0));
@@ -225,7 +239,16 @@ static void test_dae(void) {
   dal_state *a = NULL, *ref = NULL;
   CHECK_OK(dal_state_create(s0, &a));
   CHECK_OK(dal_state_create(s1, &ref));
-  CHECK_OK(dal_state_set_param_named(s0, a, "con:rod:0", 1.1));
+  {
+    dal_param_ref rn, ri; // dal_con_anchor2's parameters: L, x0, y0
+    CHECK_OK(dal_param_find(s0, "con:rod:L", &rn, NULL, 0));
+    CHECK_OK(dal_param_find(s0, "con:rod:0", &ri, NULL, 0));
+    CHECK(rn.kind == DAL_PARAM_CONSTRAINT && rn.target == ri.target && rn.index == 0 &&
+          ri.index == 0);
+    CHECK_OK(dal_param_find(s0, "con:rod:y0", &rn, NULL, 0));
+    CHECK(rn.index == DAL_ANCHOR_Y0);
+  }
+  CHECK_OK(dal_state_set_param_named(s0, a, "con:rod:L", 1.1));
   CHECK_OK(dal_state_set_param_named(s0, a, "con:link:0", 0.9));
   CHECK_OK(dal_state_set_param_named(s0, a, "mass:p", 2.5));
   // a rough guess: dal_advance makes it consistent first (for its own constraints)
@@ -238,8 +261,7 @@ static void test_dae(void) {
   CHECK_CLOSE(hypot(xa[0] - xa[2], xa[1] - xa[3]), 0.9, 1e-7);
   // a rod that cannot close the loop: the distance from the anchor to the ring is at most 2.5
   CHECK_OK(dal_state_set_param_named(s0, a, "con:rod:0", 5.0));
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_state_set(s0, a, 0.0, q0, v0));
   int rc = dal_advance(s0, a, &o, 1.0);
   CHECK_MSG(rc == DAL_E_INIT || rc == DAL_E_CONSTRAINT, "rod too long: %s (%s)",
@@ -288,7 +310,9 @@ static void test_validation(void) {
   CHECK(strstr(dal_state_errmsg(st), "particle index 3 out of range"));
   // primitive parameters, gravity, links
   CHECK(dal_state_set_param_named(s, st, "place:a:3", INFINITY) == DAL_E_NONFINITE);
-  CHECK(strstr(dal_state_errmsg(st), "placing particle 'a': parameter 3 of primitive 'pendulum'"));
+  // the builder's message (the same checks, validate.c)
+  CHECK(strstr(dal_state_errmsg(st), "placing particle 'a': parameter '") &&
+        strstr(dal_state_errmsg(st), "of 'pendulum' (index 3) is inf"));
   CHECK(dal_state_set_param_named(s, st, "place:a:7", 1.0) == DAL_E_ARG);
   CHECK(strstr(dal_state_errmsg(st), "takes 7 parameters; index 7"));
   CHECK(dal_state_set_param_named(s, st, "gravity:1", NAN) == DAL_E_NONFINITE);

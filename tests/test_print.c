@@ -32,7 +32,47 @@ static int has_value(const char *s, const char *label, double x) {
   return has(s, want);
 }
 
+// L = v^2 / 2 - k q^2 / 2 with k = 4 (a unit-mass oscillator)
+static int osc_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *L, void *ctx) {
+  (void)t, (void)ctx;
+  *L = dal_sub(dal_scale(dal_sq(qdot[0]), 0.5), dal_scale(dal_sq(q[0]), 2.0));
+  return 0;
+}
+
+// the number printed after "label=" (NaN if none)
+static double value_of(const char *s, const char *label) {
+  const char *p = s ? strstr(s, label) : NULL;
+  return p ? strtod(p + strlen(label), NULL) : NAN;
+}
+
+// a Lagrangian system has no separate Q and c: the printer shows A qddot, which the closed
+// form gives (A = 1, qddot = -k q), and the forces from outside L (none here)
+static void test_lagrangian(void) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  dal_state *st = NULL;
+  int x;
+  CHECK_OK(dal_builder_create(0, &b));
+  CHECK_OK(dal_builder_add_coord(b, "x", &x));
+  CHECK_OK(dal_builder_set_lagrangian(b, osc_lagrangian, NULL));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  CHECK_OK(dal_state_create(sys, &st));
+  double q = 0.3, v = 0.2;
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &v));
+  CHECK_OK(dal_forward(sys, st));
+  char *txt = capture(sys, st);
+  CHECK(has(txt, "Lagrangian system") && !has(txt, " c=") && !has(txt, " Q="));
+  double aq = value_of(txt, "Aqddot="), qdd = value_of(txt, "qddot="), qe = value_of(txt, "Q_ext=");
+  CHECK_MSG(fabs(aq - (-4.0 * q)) <= 1e-14 && fabs(qdd - (-4.0 * q)) <= 1e-14 && qe == 0.0,
+            "Lagrangian printout: Aqddot=%g qddot=%g Q_ext=%g (want -1.2, -1.2, 0)", aq, qdd, qe);
+  free(txt);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  dal_builder_destroy(b);
+}
+
 int main(void) {
+  test_lagrangian();
   // a double pendulum hanging from a spring-mounted cart, plus a rod to a wall point
   dal_builder *b = NULL;
   int xc, th1, th2, cart, b1, b2;

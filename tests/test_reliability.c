@@ -107,8 +107,7 @@ static int cart_pendulum(scene *s, double th, dal_force_fn *force, void *fctx) {
 }
 
 static dal_solve_opts opts_for(dal_method m) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = m;
   return o;
 }
@@ -486,7 +485,14 @@ static int lift(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, voi
   out[0] = dal_sub(in[1], t);
   return 0;
 }
-static const dal_primitive prim_lift = {.name = "lift", .version = 1, .nin = 2, .nout = 1, .nparam = 0, .eval = lift, .doc = "y - t", .flags = 0};
+static const dal_primitive prim_lift = {.name = "lift",
+                                        .version = 1,
+                                        .nin = 2,
+                                        .nout = 1,
+                                        .nparam = 0,
+                                        .eval = lift,
+                                        .doc = "y - t",
+                                        .flags = 0};
 
 static int row_ida_unsatisfiable(char *msg) {
   scene s;
@@ -753,8 +759,22 @@ static int row_nan_tolerance(char *msg) {
 static int row_malformed_primitive(char *msg) {
   scene s;
   int bob = 0, x = 0;
-  const dal_primitive neg_param = {.name = "neg_param", .version = 1, .nin = 1, .nout = 1, .nparam = -1, .eval = user_prim_eval, .doc = "", .flags = 0};
-  const dal_primitive neg_in = {.name = "neg_in", .version = 1, .nin = -1, .nout = 1, .nparam = 0, .eval = user_prim_eval, .doc = "", .flags = 0};
+  const dal_primitive neg_param = {.name = "neg_param",
+                                   .version = 1,
+                                   .nin = 1,
+                                   .nout = 1,
+                                   .nparam = -1,
+                                   .eval = user_prim_eval,
+                                   .doc = "",
+                                   .flags = 0};
+  const dal_primitive neg_in = {.name = "neg_in",
+                                .version = 1,
+                                .nin = -1,
+                                .nout = 1,
+                                .nparam = 0,
+                                .eval = user_prim_eval,
+                                .doc = "",
+                                .flags = 0};
   CHECK_OK(free2(&s, 1.0, 0));
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "c";
@@ -825,6 +845,495 @@ static int row_rtol_huge(char *msg) {
   return rc;
 }
 
+// ---------------------------------------------------------------- issue 22: the edges
+// 1. dal_equilibrium from theta = pi/2 (K = m g l cos q about 6e-16): the Newton step jumped
+// to theta = -1.6e16, where |dq| <= xtol (1 + |q|) held, and it returned DAL_OK with an
+// acceleration of 8.5. A step that leaves the start's neighbourhood is refused; and from a
+// start where the step cannot move q (theta = 1e16, spacing 2), the residual decides
+static int row_equilibrium_far_step(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 1.5707963267948966));
+  dal_equilibrium_report rep = {0, 0, 0, 0};
+  int rc = dal_equilibrium(s.sys, s.st, NULL, &rep);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  CHECK(fabs(dal_state_q(s.st)[0]) < 10.0); // the state is not left at the far point
+  // theta = 1e16: sin(1e16) != 0 (the acceleration there is -9.81 sin q), not an equilibrium
+  double q = 1e16, qd = 0.0;
+  CHECK_OK(dal_state_set(s.sys, s.st, 0.0, &q, &qd));
+  int rc2 = dal_equilibrium(s.sys, s.st, NULL, &rep);
+  CHECK_MSG(rc2 == DAL_E_CONV, "theta = 1e16: %s (%s)", dal_status_name(rc2),
+            dal_state_errmsg(s.st));
+  // a true equilibrium still converges (theta = 0.3 -> 0, the reference is exact)
+  q = 0.3;
+  CHECK_OK(dal_state_set(s.sys, s.st, 0.0, &q, &qd));
+  CHECK_OK(dal_equilibrium(s.sys, s.st, NULL, &rep));
+  CHECK(fabs(dal_state_q(s.st)[0]) < 1e-14 && rep.accel < 1e-13);
+  scene_free(&s);
+  return rc;
+}
+
+// 2. per-trajectory overrides: dal_state_set_param_named accepted a subnormal mass (then
+// dal_forward gave qddot = -5 instead of -9.81 sin 0.3 = -2.899), a rod length 0 or -1 and a
+// subnormal gravity; now each is refused with the builder's own message, and the state keeps
+// its values (qddot = -g sin theta afterwards)
+static int builder_msg_pendulum(double mass, double L, const double *g, char *out) {
+  dal_builder *b;
+  int c, bob, rc;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, "theta", &c));
+  rc = dal_builder_add_particle(b, "bob", mass, &bob);
+  if (!rc) {
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = &dal_map_pendulum;
+    pd.coords = &c;
+    pd.ncoords = 1;
+    pd.param[DAL_PENDULUM_L] = L;
+    rc = dal_builder_place_def(b, bob, &pd);
+  }
+  if (!rc && g) rc = dal_builder_set_gravity(b, g);
+  copy_msg(out, dal_builder_errmsg(b));
+  dal_builder_destroy(b);
+  return rc;
+}
+
+static int row_param_override_checks(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 0.3));
+  const double sub = 4.9e-324;
+  struct {
+    const char *name;
+    double v, mass, L, g1;
+  } cases[] = {
+      {"mass:bob", sub, sub, 1.0, -9.81},      {"mass:bob", 0.0, 0.0, 1.0, -9.81},
+      {"mass:bob", -1.0, -1.0, 1.0, -9.81},    {"place:bob:0", 0.0, 1.0, 0.0, -9.81},
+      {"place:bob:0", -1.0, 1.0, -1.0, -9.81}, {"place:bob:0", sub, 1.0, sub, -9.81},
+      {"gravity:1", sub, 1.0, 1.0, sub},
+  };
+  int rc = DAL_OK;
+  for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+    char want[MSG_LEN];
+    double g[2] = {0.0, cases[i].g1};
+    int brc = builder_msg_pendulum(cases[i].mass, cases[i].L, g, want);
+    int prc = dal_state_set_param_named(s.sys, s.st, cases[i].name, cases[i].v);
+    // a pendulum's length may be negative (the bob above the pivot): accepted by both
+    CHECK_MSG(prc == brc, "%s = %g: %s, the builder %s", cases[i].name, cases[i].v,
+              dal_status_name(prc), dal_status_name(brc));
+    if (brc != DAL_OK)
+      CHECK_MSG(strcmp(dal_state_errmsg(s.st), want) == 0, "%s = %g: message '%s', builder's '%s'",
+                cases[i].name, cases[i].v, dal_state_errmsg(s.st), want);
+    CHECK_OK(dal_state_reset_params(s.sys, s.st));
+    if (i == 0) {
+      rc = prc;
+      copy_msg(msg, dal_state_errmsg(s.st));
+    }
+  }
+  // a refused value leaves the state's values: qddot = -9.81 sin 0.3
+  CHECK(dal_state_set_param_named(s.sys, s.st, "mass:bob", sub) == DAL_E_ARG);
+  CHECK(dal_state_set_param_named(s.sys, s.st, "place:bob:0", 0.0) == DAL_E_ARG);
+  CHECK_OK(dal_forward(s.sys, s.st));
+  const double *acc = dal_state_qddot(s.st);
+  CHECK(acc && fabs(acc[0] + 9.81 * sin(0.3)) < 1e-14);
+  scene_free(&s);
+  // a rod (a constraint's parameter) of length 0 or -1, as the builder says
+  for (int i = 0; i < 2; ++i) {
+    double L = i ? -1.0 : 0.0;
+    scene c;
+    CHECK_OK(cart_pendulum(&c, 0.3, NULL, NULL));
+    int prc = dal_state_set_param_named(c.sys, c.st, "con:rod:0", L);
+    char got[MSG_LEN];
+    copy_msg(got, dal_state_errmsg(c.st));
+    scene_free(&c);
+    // the builder's message for the same rod
+    int rod = 0;
+    CHECK_OK(free2(&c, 2.0, 1));
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor2;
+    cd.parts = &rod;
+    cd.nparts = 1;
+    cd.param[DAL_ANCHOR_L] = L;
+    int brc = dal_builder_add_constraint_def(c.b, &cd, NULL);
+    CHECK_MSG(prc == DAL_E_ARG && brc == prc && strcmp(got, dal_builder_errmsg(c.b)) == 0,
+              "rod length %g: %s '%s', the builder %s '%s'", L, dal_status_name(prc), got,
+              dal_status_name(brc), dal_builder_errmsg(c.b));
+    scene_free(&c);
+  }
+  // springs: a subnormal coefficient and length, refused as by the builder
+  scene f;
+  double q[2] = {0.5, 0.0}, qd[2] = {0.0, 0.0};
+  CHECK_OK(free2(&f, 1.0, 0));
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = 0;
+  sd.k = 2.0;
+  sd.length = 0.25;
+  CHECK_OK(dal_builder_add_spring_def(f.b, &sd));
+  CHECK_OK(scene_finish(&f, 0.0, q, qd));
+  CHECK(dal_state_set_param_named(f.sys, f.st, "spring:0:k", sub) == DAL_E_ARG);
+  CHECK(strstr(dal_state_errmsg(f.st), "subnormal") != NULL);
+  CHECK(dal_state_set_param_named(f.sys, f.st, "spring:0:L", sub) == DAL_E_ARG);
+  CHECK(strstr(dal_state_errmsg(f.st), "subnormal") != NULL);
+  // the force is still -k (|x| - L) = -2 (0.5 - 0.25) along x: qddot = -0.5
+  CHECK_OK(dal_forward(f.sys, f.st));
+  acc = dal_state_qddot(f.st);
+  CHECK(acc && fabs(acc[0] + 0.5) < 1e-15);
+  scene_free(&f);
+  return rc;
+}
+
+// 3. time that cannot be resolved: at t0 = 1e15 (spacing 0.125 s) a 1 s advance is 8 ulps of
+// t; it returned DAL_OK with the pendulum where it was. Refused now, the state untouched
+static int count_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  (void)st;
+  ++*(int *)ctx;
+  return 0;
+}
+
+static int row_advance_unresolved(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 0.3));
+  double q = 0.3, qd = 0.0, t0 = 1e15;
+  CHECK_OK(dal_state_set(s.sys, s.st, t0, &q, &qd));
+  dal_solve_opts o = opts_for(DAL_METHOD_DOPRI5);
+  int rc = dal_advance(s.sys, s.st, &o, t0 + 1.0);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  CHECK(dal_state_time(s.st) == t0 && dal_state_q(s.st)[0] == 0.3);
+  // dal_evolve over the same interval with dt = 0.125 (one ulp): refused before any output
+  // (it called the monitor twice, at t0 and t0 + 1, for nine output times)
+  int calls = 0;
+  int rc2 = dal_evolve(s.sys, s.st, &o, t0 + 1.0, 0.125, count_monitor, &calls);
+  CHECK_MSG(rc2 == DAL_E_ARG && calls == 0, "evolve: %s with %d monitor calls",
+            dal_status_name(rc2), calls);
+  // an interval of a few ulps over which nothing moves at double precision is still fine:
+  // at t = 1 (spacing 2.2e-16) the pendulum at rest at theta = 0 ...
+  q = 0.0;
+  CHECK_OK(dal_state_set(s.sys, s.st, 1.0, &q, &qd));
+  CHECK_OK(dal_advance(s.sys, s.st, &o, nextafter(1.0, 2.0)));
+  CHECK(dal_state_time(s.st) == nextafter(1.0, 2.0) && dal_state_q(s.st)[0] == 0.0);
+  // a longer interval at t0 = 1e15, 3 s = 24 ulps: ARKODE and CVODE take a stop time within
+  // 100 ulps of t as reached and snapped their time to it after one step of 1e-5 s (DAL_OK,
+  // the pendulum where it was). Either the motion happened (against the same run shifted to
+  // t = 0, the autonomous scene's reference) or the call refuses and the state stays
+  const dal_method snap[4] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_ADAMS,
+                              DAL_METHOD_BDF};
+  for (int i = 0; i < 4; ++i) {
+    dal_solve_opts a = opts_for(snap[i]);
+    a.rtol = 1e-6;
+    double q3 = 0.3, ref3;
+    CHECK_OK(dal_state_set(s.sys, s.st, 0.0, &q3, &qd));
+    CHECK_OK(dal_advance(s.sys, s.st, &a, 3.0));
+    ref3 = dal_state_q(s.st)[0];
+    CHECK_OK(dal_state_set(s.sys, s.st, t0, &q3, &qd));
+    int r3 = dal_advance(s.sys, s.st, &a, t0 + 3.0);
+    int honest = r3 == DAL_OK ? fabs(dal_state_q(s.st)[0] - ref3) <= 16e-6
+                              : dal_state_time(s.st) == t0 && dal_state_q(s.st)[0] == 0.3;
+    CHECK_MSG(honest && (r3 == DAL_OK || strstr(dal_state_errmsg(s.st), "restart the clock")),
+              "%s over 3 s at t = 1e15: %s with theta %.17g (reference %.17g): %s",
+              dal_method_name(snap[i]), dal_status_name(r3), dal_state_q(s.st)[0], ref3,
+              dal_state_errmsg(s.st));
+  }
+  // ... but not the pendulum swinging at 1 rad/s over 8 ulps of t = 1e15 ...
+  // (covered above) and the symplectic driver: a grid point within 8 ulps of the target was
+  // taken for it (DAL_OK at t0 + 4 after stopping at t0 + 2.25). The same run shifted to
+  // t = 0 (an autonomous scene: the same arithmetic on the same grid) is the reference
+  dal_solve_opts v = opts_for(DAL_METHOD_VARIATIONAL);
+  v.fixed_step = 2.25;                    // 18 ulps of t0: a grid t0 + 2.25 k of exact times
+  const double gslow[2] = {0.0, -0.0981}; // omega = 0.31 rad/s: omega h = 0.7 per step
+  CHECK_OK(dal_state_set_gravity(s.sys, s.st, gslow));
+  double q0 = 0.3, qref;
+  CHECK_OK(dal_state_set(s.sys, s.st, 0.0, &q0, &qd));
+  CHECK_OK(dal_advance(s.sys, s.st, &v, 4.0));
+  qref = dal_state_q(s.st)[0];
+  CHECK_OK(dal_state_set(s.sys, s.st, t0, &q0, &qd));
+  CHECK_OK(dal_advance(s.sys, s.st, &v, t0 + 4.0));
+  CHECK(dal_state_time(s.st) == t0 + 4.0);
+  CHECK_MSG(fabs(dal_state_q(s.st)[0] - qref) < 1e-13,
+            "symplectic at t0 = 1e15: q = %.17g, "
+            "shifted reference %.17g",
+            dal_state_q(s.st)[0], qref);
+  scene_free(&s);
+  return rc;
+}
+
+// 4. dal_lyapunov looped forever when t + renorm rounds to t (t = 1e16, renorm 1), and ran
+// 1e7 RK4 steps of h = 1e-300 that did not move t before DAL_E_MAXSTEPS
+static int lyap_calls(double t, const double *e, int p, void *ctx) {
+  (void)t;
+  (void)e;
+  (void)p;
+  return ++*(long *)ctx >= 1000; // a watchdog: stop a loop that makes no progress
+}
+
+static int row_lyapunov_no_progress(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 0.3));
+  double q = 0.3, qd = 0.0, ex[2], er[2];
+  CHECK_OK(dal_state_set(s.sys, s.st, 1e16, &q, &qd));
+  dal_lyapunov_opts o = dal_default_lyapunov_opts();
+  o.t_end = 1e16 + 1e4;
+  long calls = 0;
+  int rc = dal_lyapunov(s.sys, s.st, &o, ex, er, lyap_calls, &calls);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  CHECK(calls == 0);
+  // renorm 1e-20 at t = 1
+  CHECK_OK(dal_state_set(s.sys, s.st, 1.0, &q, &qd));
+  o.t_end = 2.0;
+  o.renorm = 1e-20;
+  calls = 0;
+  int rc2 = dal_lyapunov(s.sys, s.st, &o, ex, er, lyap_calls, &calls);
+  CHECK_MSG(rc2 == DAL_E_ARG && calls == 0, "renorm 1e-20: %s after %ld segments",
+            dal_status_name(rc2), calls);
+  // RK4 with h = 1e-300: refused at once, not after max_steps steps that do not move t
+  o.renorm = 1.0;
+  o.method = DAL_METHOD_RK4;
+  o.h = 1e-300;
+  o.max_steps = 100000;
+  calls = 0;
+  int rc3 = dal_lyapunov(s.sys, s.st, &o, ex, er, lyap_calls, &calls);
+  CHECK_MSG(rc3 == DAL_E_ARG && strstr(dal_state_errmsg(s.st), "resolution"),
+            "rk4 h = 1e-300: %s (%s)", dal_status_name(rc3), dal_state_errmsg(s.st));
+  scene_free(&s);
+  return rc;
+}
+
+// 5. the symplectic methods at a fixed step of a few ulps of t (2 ulps at t = 1e8) ran to
+// max_steps and advised raising it; RK4 refuses the same at once
+static int row_symplectic_tiny_step(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 0.3));
+  double q = 0.3, qd = 0.0, t0 = 1e8;
+  int rc = DAL_OK;
+  const dal_method ms[2] = {DAL_METHOD_VARIATIONAL, DAL_METHOD_VARIATIONAL4};
+  for (int i = 0; i < 2; ++i) {
+    CHECK_OK(dal_state_set(s.sys, s.st, t0, &q, &qd));
+    dal_solve_opts o = opts_for(ms[i]);
+    o.fixed_step = 2.0 * (nextafter(t0, 2 * t0) - t0);
+    o.max_steps = 20000;
+    int r = dal_advance(s.sys, s.st, &o, t0 + 1e-3);
+    if (i == 0) {
+      rc = r;
+      copy_msg(msg, dal_state_errmsg(s.st));
+    }
+    CHECK_MSG(r == DAL_E_ARG && steps_of(s.st) == 0, "%s: %s after %ld steps",
+              dal_method_name(ms[i]), dal_status_name(r), steps_of(s.st));
+    CHECK(dal_state_time(s.st) == t0 && dal_state_q(s.st)[0] == 0.3);
+  }
+  scene_free(&s);
+  return rc;
+}
+
+// 6. a variational step failing (a force callback failing from t = 0.507) left the state at
+// the start of the call, t = 0, "stopped at t=0 (last accepted step)"; the last accepted
+// grid point is t = 0.51 (the step to it evaluates the forces at 0.505), and a later call
+// continues from there
+typedef struct fail_after {
+  double t_fail;
+} fail_after;
+
+static int force_fails_after(double t, const double *r, const double *v, double *F, void *ctx) {
+  (void)r;
+  (void)v;
+  (void)F;
+  return t >= ((const fail_after *)ctx)->t_fail ? -1 : 0;
+}
+
+static int pendulum_forced(scene *s, double th, fail_after *fa) {
+  int c, bob;
+  double qd = 0.0;
+  memset(s, 0, sizeof *s);
+  int rc = dal_builder_create(2, &s->b);
+  if (!rc) rc = dal_builder_add_coord(s->b, "theta", &c);
+  if (!rc) rc = dal_builder_add_particle(s->b, "bob", 1.0, &bob);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(s->b, bob, &pd);
+  if (!rc) rc = dal_builder_set_gravity(s->b, g2);
+  if (!rc) rc = dal_builder_add_force(s->b, force_fails_after, fa);
+  if (!rc) rc = scene_finish(s, 0.0, &th, &qd);
+  return rc;
+}
+
+static int row_variational_last_step(char *msg) {
+  fail_after fa = {0.507};
+  scene s;
+  CHECK_OK(pendulum_forced(&s, 0.3, &fa));
+  dal_solve_opts o = opts_for(DAL_METHOD_VARIATIONAL);
+  o.fixed_step = 0.01;
+  int rc = dal_advance(s.sys, s.st, &o, 1.0);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  double t_stop = dal_state_time(s.st), q_stop = dal_state_q(s.st)[0];
+  // the reference: the same grid run without failure to the grid point t = 0.51 (51 steps)
+  scene r;
+  fail_after never = {INFINITY};
+  CHECK_OK(pendulum_forced(&r, 0.3, &never));
+  CHECK_OK(dal_advance(r.sys, r.st, &o, 51 * 0.01));
+  CHECK_MSG(t_stop == 51 * 0.01 && fabs(q_stop - dal_state_q(r.st)[0]) < 1e-14 &&
+                fabs(dal_state_qdot(s.st)[0] - dal_state_qdot(r.st)[0]) < 1e-13,
+            "stopped at t=%.17g q=%.17g; the grid point 0.51 has q=%.17g", t_stop, q_stop,
+            dal_state_q(r.st)[0]);
+  // once the callback recovers the next call continues from there to t = 1
+  fa.t_fail = INFINITY;
+  CHECK_OK(dal_advance(s.sys, s.st, &o, 1.0));
+  CHECK(dal_state_time(s.st) == 1.0);
+  scene_free(&r);
+  scene_free(&s);
+  return rc;
+}
+
+// 7. a g that touches zero at a step end, (t - 0.5)^2 with a grid point at 0.5 or a call
+// ending there, was logged as a crossing; events.h: a touch is not a crossing. A g that does
+// cross there, t - 0.5, is logged once, at 0.5
+static double g_touch(double t, const double *q, const double *qd, void *ctx) {
+  (void)q;
+  (void)qd;
+  (void)ctx;
+  return (t - 0.5) * (t - 0.5);
+}
+
+static double g_cross(double t, const double *q, const double *qd, void *ctx) {
+  (void)q;
+  (void)qd;
+  (void)ctx;
+  return t - 0.5;
+}
+
+static long events_logged(dal_event_fn *g, int split, double *t_first) {
+  scene s;
+  CHECK_OK(pendulum(&s, 0.3));
+  dal_events *ev;
+  CHECK_OK(dal_events_create(s.sys, &ev));
+  dal_event_def d = dal_default_event_def();
+  d.g = g;
+  CHECK_OK(dal_events_add(ev, &d));
+  CHECK_OK(dal_state_set_events(s.st, ev));
+  dal_solve_opts o = opts_for(DAL_METHOD_RK4);
+  o.fixed_step = 0.125; // grid 0, 0.125, ..., 0.5 exactly
+  if (split) CHECK_OK(dal_advance(s.sys, s.st, &o, 0.5));
+  CHECK_OK(dal_advance(s.sys, s.st, &o, 1.0));
+  long n = dal_events_count(ev);
+  dal_event_record rec;
+  *t_first = n > 0 && dal_events_get(ev, 0, &rec, NULL, NULL) == 0 ? rec.t : NAN;
+  dal_state_set_events(s.st, NULL);
+  dal_events_destroy(ev);
+  scene_free(&s);
+  return n;
+}
+
+static int row_event_touch(char *msg) {
+  double tf;
+  long touch_grid = events_logged(g_touch, 0, &tf), touch_call = events_logged(g_touch, 1, &tf);
+  snprintf(msg, MSG_LEN, "touch: %ld logged on the grid, %ld at a call's end", touch_grid,
+           touch_call);
+  CHECK(touch_grid == 0 && touch_call == 0);
+  for (int split = 0; split < 2; ++split) {
+    long n = events_logged(g_cross, split, &tf);
+    CHECK_MSG(n == 1 && fabs(tf - 0.5) <= 4 * DBL_EPSILON, "crossing (split %d): %ld at %.17g",
+              split, n, tf);
+  }
+  return touch_grid + touch_call == 0 ? DAL_OK : DAL_E_ARG;
+}
+
+// 8. dal_state_print with a state of another system gave DAL_E_ARG with no message
+static int row_print_foreign(char *msg) {
+  scene small, big;
+  double q[2] = {0.1, 0.2}, qd[2] = {0.0, 0.0};
+  CHECK_OK(pendulum(&small, 0.3));
+  CHECK_OK(free2(&big, 1.0, 1));
+  CHECK_OK(scene_finish(&big, 0.0, q, qd));
+  FILE *fp = tmpfile();
+  CHECK(fp != NULL);
+  int rc = dal_state_print(big.sys, small.st, fp);
+  copy_msg(msg, dal_state_errmsg(small.st));
+  CHECK(ftell(fp) == 0);
+  fclose(fp);
+  scene_free(&small);
+  scene_free(&big);
+  return rc;
+}
+
+// a monitor that casts away const and calls dal_state_set or dal_advance on the state being
+// integrated freed the integrator under the driver (a read of freed memory); refused with a
+// status and the run goes on to its end
+typedef struct reenter {
+  int which, rc;
+  char msg[MSG_LEN];
+} reenter;
+
+static int reentrant_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
+  reenter *r = ctx;
+  dal_state *w = (dal_state *)st;
+  if (dal_state_time(st) < 0.45 || r->rc) return 0;
+  double q = 0.1, qd = 0.0;
+  dal_solve_opts o = opts_for(DAL_METHOD_DOPRI5);
+  r->rc = r->which == 0 ? dal_state_set(sys, w, 0.0, &q, &qd) : dal_advance(sys, w, &o, 2.0);
+  copy_msg(r->msg, dal_state_errmsg(st));
+  if (r->rc == DAL_OK) r->rc = 99; // not refused
+  return 0;
+}
+
+// an event function that adds an event to its own set during the run (the items it is
+// scanned from would move): refused with DAL_E_STATE, the set unchanged
+typedef struct adder {
+  dal_events *ev;
+  int rc, calls;
+} adder;
+
+static double g_adder(double t, const double *q, const double *qd, void *ctx) {
+  (void)q;
+  (void)qd;
+  adder *a = ctx;
+  if (a->calls++ == 3) {
+    dal_event_def d = dal_default_event_def();
+    d.g = g_cross;
+    a->rc = dal_events_add(a->ev, &d);
+  }
+  return t - 0.7;
+}
+
+static int row_monitor_reentrant(char *msg) {
+  {
+    scene s;
+    CHECK_OK(pendulum(&s, 0.3));
+    adder a = {NULL, 99, 0};
+    CHECK_OK(dal_events_create(s.sys, &a.ev));
+    dal_event_def d = dal_default_event_def();
+    d.g = g_adder;
+    d.ctx = &a;
+    CHECK_OK(dal_events_add(a.ev, &d));
+    CHECK_OK(dal_state_set_events(s.st, a.ev));
+    dal_solve_opts o = opts_for(DAL_METHOD_DOPRI5);
+    CHECK_OK(dal_advance(s.sys, s.st, &o, 1.0));
+    CHECK_MSG(a.rc == DAL_E_STATE && dal_events_size(a.ev) == 1 &&
+                  strstr(dal_events_errmsg(a.ev), "in use"),
+              "events_add from an event function: %s (%s), %d events", dal_status_name(a.rc),
+              dal_events_errmsg(a.ev), dal_events_size(a.ev));
+    CHECK(dal_events_count(a.ev) == 1); // t = 0.7 crossed once
+    CHECK_OK(dal_state_set_events(s.st, NULL));
+    dal_events_destroy(a.ev);
+    scene_free(&s);
+  }
+  int rc = DAL_OK;
+  for (int which = 0; which < 2; ++which) {
+    scene s;
+    CHECK_OK(pendulum(&s, 0.3));
+    reenter r = {which, 0, ""};
+    dal_solve_opts o = opts_for(DAL_METHOD_DOPRI5);
+    CHECK_OK(dal_evolve(s.sys, s.st, &o, 1.0, 0.1, reentrant_monitor, &r));
+    CHECK(dal_state_time(s.st) == 1.0);
+    if (which == 0) {
+      rc = r.rc;
+      copy_msg(msg, r.msg);
+    }
+    CHECK_MSG(r.rc == DAL_E_STATE && strstr(r.msg, "monitor"), "%s: %d (%s)",
+              which ? "dal_advance" : "dal_state_set", r.rc, r.msg);
+    scene_free(&s);
+  }
+  return rc;
+}
+
 // ---------------------------------------------------------------- the table
 static const rel_row rows[] = {
     {"csv monitor: state of a smaller system", DAL_E_STATE, "csv_monitor", "another system", NULL,
@@ -872,6 +1381,23 @@ static const rel_row rows[] = {
      row_malformed_primitive},
     {"rod of length 0", DAL_E_ARG, "'rod'", "rod length L", "'bad'", row_rod_length_zero},
     {"rtol = 100", DAL_E_ARG, "rtol", "100", NULL, row_rtol_huge},
+    {"22.1 equilibrium: a Newton step to theta = -1.6e16", DAL_E_CONV, "Newton step", "max_step",
+     NULL, row_equilibrium_far_step},
+    {"22.2 per-trajectory overrides checked like the builder", DAL_E_ARG, "'bob'", "subnormal",
+     NULL, row_param_override_checks},
+    {"22.3 advance over 8 ulps of t = 1e15", DAL_E_ARG, "resolution", "restart the clock", NULL,
+     row_advance_unresolved},
+    {"22.4 lyapunov: t + renorm == t, h = 1e-300", DAL_E_ARG, "renorm", "resolution", NULL,
+     row_lyapunov_no_progress},
+    {"22.5 symplectic: fixed step of 2 ulps of t", DAL_E_ARG, "fixed_step", "resolution", NULL,
+     row_symplectic_tiny_step},
+    {"22.6 variational failure: back to the last grid point", DAL_E_CALLBACK, "t=0.51",
+     "last accepted step", NULL, row_variational_last_step},
+    {"22.7 a touch of zero at a step end", DAL_OK, NULL, NULL, NULL, row_event_touch},
+    {"22.8 print: state of another system", DAL_E_STATE, "state_print", "another system", NULL,
+     row_print_foreign},
+    {"22.8 monitor calls dal_state_set / dal_advance", DAL_E_STATE, "state_set", "monitor", NULL,
+     row_monitor_reentrant},
 };
 
 int main(void) {

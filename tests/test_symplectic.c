@@ -37,8 +37,7 @@ static dal_system *compile(dal_builder *b, int rc) {
 }
 
 static dal_solve_opts fixed(dal_method m, double h) {
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = m;
   o.fixed_step = h;
   o.max_steps = 100000000;
@@ -544,8 +543,7 @@ static void test_rheonomic(void) {
   CHECK_OK(dal_state_create(ms, &a));
   CHECK_OK(dal_state_create(cs, &b));
   double th0 = 1.0, thd0 = 0.0, T = 3.0;
-  dal_solve_opts om;
-  dal_solve_default_opts(&om);
+  dal_solve_opts om = dal_default_solve_opts();
   om.method = DAL_METHOD_BS;
   om.rtol = om.atol = 1e-13;
   CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &thd0));
@@ -765,8 +763,7 @@ static void test_noether(void) {
   dal_solve_opts o = fixed(DAL_METHOD_VARIATIONAL, 0.01);
   double d = run_invariant(sys, q, qd, 0, 0, &o, 50.0, 0.5, &m);
   CHECK_MSG(d <= 1e-14 * Lz, "spherical pendulum, variational: L_z drifts by %.3g", d);
-  dal_solve_opts oa;
-  dal_solve_default_opts(&oa);
+  dal_solve_opts oa = dal_default_solve_opts();
   oa.method = DAL_METHOD_DOPRI5;
   double da = run_invariant(sys, q, qd, 0, 0, &oa, 50.0, 0.5, &m);
   CHECK_MSG(da > 1e-10, "DOPRI5 keeps L_z to %.3g: the check cannot tell", da);
@@ -793,8 +790,7 @@ static void test_bounded_energy(void) {
   CHECK_MSG(m.win[9] <= 1.05 * m.win[0] && m.win[9] > 0,
             "variational pendulum: energy error %.3g in the first tenth, %.3g in the last",
             m.win[0], m.win[9]);
-  dal_solve_opts oa;
-  dal_solve_default_opts(&oa);
+  dal_solve_opts oa = dal_default_solve_opts();
   oa.method = DAL_METHOD_DOPRI5;
   oa.rtol = oa.atol = 1e-6;
   run_invariant(sys, &th, &thd, 1, 0, &oa, T, 0.5, &m);
@@ -1120,8 +1116,7 @@ static void test_compensated(void) {
   sys = make_oscillator(&s, 0);
   CHECK_OK(dal_state_create(sys, &st));
   const double qs[2] = {1, 2}, vs[2] = {3, 4}, w = sqrt(0.5);
-  dal_solve_opts op;
-  dal_solve_default_opts(&op);
+  dal_solve_opts op = dal_default_solve_opts();
   op.method = DAL_METHOD_BS;
   op.rtol = op.atol = 1e-12;
   CHECK_OK(dal_state_set(sys, st, 0.0, qs, vs));

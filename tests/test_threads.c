@@ -42,8 +42,7 @@ static void *run_job(void *arg) {
   j->rc = dal_state_create(j->sys, &st);
   if (j->barrier) pthread_barrier_wait(j->barrier);
   if (!j->rc) j->rc = rel_set(j->sys, st, j->dae, j->th1, -0.5, 0.0, 1.0);
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.method = j->method;
   o.form = j->form;
   o.rtol = 1e-8;
@@ -62,8 +61,8 @@ int main(void) {
   dal_system *ode = rel_double_pendulum(0), *dae = rel_double_pendulum(1);
   CHECK(ode != NULL && dae != NULL);
   if (!ode || !dae) return check_summary("test_threads");
-  const dal_method methods[] = {DAL_METHOD_DOPRI5, DAL_METHOD_BS, DAL_METHOD_BDF,
-                                DAL_METHOD_ADAMS, DAL_METHOD_FEHLBERG78, DAL_METHOD_RK4};
+  const dal_method methods[] = {DAL_METHOD_DOPRI5, DAL_METHOD_BS,         DAL_METHOD_BDF,
+                                DAL_METHOD_ADAMS,  DAL_METHOD_FEHLBERG78, DAL_METHOD_RK4};
   job ref[JOBS], par[JOBS];
   for (int i = 0; i < JOBS; ++i) {
     memset(&ref[i], 0, sizeof ref[i]);
@@ -95,7 +94,8 @@ int main(void) {
       par[i].barrier = &barrier;
       CHECK(pthread_create(&tid[i], NULL, run_job, &par[i]) == 0);
     }
-    for (int i = 0; i < JOBS; ++i) pthread_join(tid[i], NULL);
+    for (int i = 0; i < JOBS; ++i)
+      pthread_join(tid[i], NULL);
     pthread_barrier_destroy(&barrier);
     for (int i = 0; i < JOBS; ++i) {
       const job *a = &ref[i], *b = &par[i];

@@ -1,42 +1,45 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Redundant coordinates: consistent initialization, constraint diagnostics, constraint forces.
-//
-// A system with constraints phi(q, t) = 0 (m rows, G = dphi/dq, m x n) moves by
-//   M qddot = Q - c + G' lambda,   phi(q, t) = 0,
-// so G' lambda (n) is the generalized force the constraints exert and lambda (m) holds one
-// multiplier per row. Sign: a row pushes along +grad phi when its multiplier is positive. For
-// a rod |r_b - r_a| - L the force on b is lambda e (e the unit vector from a to b): a rod in
-// tension T has lambda = -T, a strut in compression C has lambda = +C. Forces are in the
-// world frame of the particle positions.
-//
-// dal_advance/dal_evolve run such a system as a DAE in SUNDIALS IDA (index-2 GGL by default,
-// see solve.h for the formulations). They first check the constraints (dal_check_constraints)
-// and make the state consistent (dal_make_consistent); users may call both themselves to see
-// the report. After every DAE step the state's lambda, qddot and reactions are those of the
-// KKT system at the step's (t, q, qdot), and dal_state_phi / dal_state_phidot give the
-// position- and velocity-level residuals there.
-//
-// Baumgarte terms of the index-1 form (opts.baumgarte_alpha = alpha in 1/s,
-// opts.baumgarte_beta = beta in 1/s): the acceleration-level constraint becomes
-//   G qddot + gamma_phi + 2 alpha (G qdot + dphi/dt) + beta^2 phi = 0,
-// i.e. the residual obeys phi'' + 2 alpha phi' + beta^2 phi = 0 (critically damped for
-// alpha = beta). Both 0 (the default) is the unstabilized index-1 form, which drifts.
-//
-// What a tolerance buys (Cartesian pendulum released at 120 degrees, 10 s, against the exact
-// elliptic solution; measured, see tests/test_dae.c and examples/cartesian_pendulum.c):
-//  - GGL in IDA: global error 400-900 x rtol for rtol = 1e-4 ... 1e-10 (IDA on the same
-//    pendulum in minimal coordinates gives 50-1200 x, so this is IDA's step-size control, not
-//    the formulation); the residuals phi and G v + dphi/dt stay below rtol (Newton level);
-//  - index-1 in IDA without stabilization: the residuals drift (phi ~ t^2, phidot ~ t) and the
-//    error grows to 1e3-1e4 x rtol; Baumgarte terms bound the drift;
-//  - index-3 in IDA: only q is in the error test; 1e4-1e6 x rtol;
-//  - index-1 as an ODE with projection under Bulirsch-Stoer: within 10 x rtol down to 1e-12
-//    (DOPRI5 with projection ~13 x at 1e-12). Use it when accuracy matters more than cost;
-//    projection needs an ODE method (BDF in IDA takes Baumgarte terms instead).
-// Large systems (no dense M: n > 512 with constraints) use a sparse KKT factorization by KLU
-// and the KLU solver in IDA with a Newton matrix assembled from M, G and the constraints'
-// geometric stiffness; cost per step grows about linearly in the number of particles.
+/// @file
+/// @brief Redundant coordinates: consistent initialization, constraint diagnostics, constraint
+/// forces.
+///
+/// A system with constraints phi(q, t) = 0 (m rows, G = dphi/dq, m x n) moves by
+///   M qddot = Q - c + G' lambda,   phi(q, t) = 0,
+/// so G' lambda (n) is the generalized force the constraints exert and lambda (m) holds one
+/// multiplier per row. Sign: a row pushes along +grad phi when its multiplier is positive. For
+/// a rod |r_b - r_a| - L the force on b is lambda e (e the unit vector from a to b): a rod in
+/// tension T has lambda = -T, a strut in compression C has lambda = +C. Forces are in the
+/// world frame of the particle positions.
+///
+/// dal_advance/dal_evolve run such a system as a DAE in SUNDIALS IDA (index-2 GGL by default,
+/// see solve.h for the formulations). They first check the constraints (dal_check_constraints)
+/// and make the state consistent (dal_make_consistent); users may call both themselves to see
+/// the report. After every DAE step the state's lambda, qddot and reactions are those of the
+/// KKT system at the step's (t, q, qdot), and dal_state_phi / dal_state_phidot give the
+/// position- and velocity-level residuals there.
+///
+/// Baumgarte terms of the index-1 form (opts.baumgarte_alpha = alpha in 1/s,
+/// opts.baumgarte_beta = beta in 1/s): the acceleration-level constraint becomes
+///   G qddot + gamma_phi + 2 alpha (G qdot + dphi/dt) + beta^2 phi = 0,
+/// i.e. the residual obeys phi'' + 2 alpha phi' + beta^2 phi = 0 (critically damped for
+/// alpha = beta). Both 0 (the default) is the unstabilized index-1 form, which drifts.
+///
+/// What a tolerance buys (Cartesian pendulum released at 120 degrees, 10 s, against the exact
+/// elliptic solution; measured, see tests/test_dae.c and examples/cartesian_pendulum.c):
+///  - GGL in IDA: global error at most 4 x rtol for rtol = 1e-4 ... 1e-9 (IDA's local error
+///    control runs at 0.001 x rtol; the table in solve.h, printed by tests/test_core.c); below
+///    1e-9 IDA's clamp shows (23 x rtol at 1e-10, solve.h); the residuals phi and
+///    G v + dphi/dt stay below rtol (Newton level);
+///  - index-1 in IDA without stabilization: the residuals drift (phi ~ t^2, phidot ~ t) and the
+///    error grows to 1e3-1e4 x rtol; Baumgarte terms bound the drift;
+///  - index-3 in IDA: only q is in the error test; 1e4-1e6 x rtol;
+///  - index-1 as an ODE with projection under Bulirsch-Stoer: within 10 x rtol down to 1e-12
+///    (DOPRI5 with projection ~13 x at 1e-12). Use it when accuracy matters more than cost;
+///    projection needs an ODE method (BDF in IDA takes Baumgarte terms instead).
+/// Large systems (no dense M: n > 512 with constraints) use a sparse KKT factorization by KLU
+/// and the KLU solver in IDA with a Newton matrix assembled from M, G and the constraints'
+/// geometric stiffness; cost per step grows about linearly in the number of particles.
 #ifndef DAL_DAE_H
 #define DAL_DAE_H
 

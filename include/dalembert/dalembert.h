@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Umbrella header: everything a dalembert user needs.
+/// @file
+/// @brief Umbrella header: everything a dalembert user needs.
 #ifndef DAL_DALEMBERT_H
 #define DAL_DALEMBERT_H
 
@@ -9,9 +10,11 @@
 #include "dalembert/dae.h"
 #include "dalembert/ensemble.h"
 #include "dalembert/events.h"
+#include "dalembert/expr.h"
 #include "dalembert/jet.h"
 #include "dalembert/params.h"
 #include "dalembert/primitives.h"
+#include "dalembert/scene.h"
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
 #include "dalembert/system.h"

@@ -1,30 +1,31 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Ensembles and parameter sweeps: one compiled system, many trajectories, on a thread pool.
-//
-// A sweep runs `ntraj` independent trajectories of one shared, immutable system. Trajectory i
-// starts from its parameter values (row i of a table, see params.h for what can be set) and
-// its initial state, is optionally advanced to t1, and is handed to a user reducer that
-// writes whatever it wants to keep (a final state, a Lyapunov exponent, an equilibrium, a
-// section) into its own result slot of `nresult` doubles. The library records a status and a
-// message per trajectory; a failing trajectory (invalid parameter, inconsistent constraints,
-// step failure, reducer failure) never stops the others.
-//
-// Threads: POSIX threads, not OpenMP. The library already links pthreads (its thread-safety
-// tests use them), a pthread pool needs no compiler flag or runtime in the user's program
-// (OpenMP would add -fopenmp and a runtime to every consumer and nest badly with a user's own
-// OpenMP regions), and the pool's schedule is explicit. Each worker owns one dal_state
-// (created once, reused for its trajectories); the calling thread is worker 0.
-//
-// Determinism: the result slot of trajectory i is out->results + i * nresult, whatever
-// thread computes it, and every trajectory starts from a state rewound to the same condition
-// (parameters reset to the system's, integrator history and statistics dropped), so the
-// results and dal_sweep_write_csv's output are identical bit for bit for any thread count,
-// schedule or (with dalembert/mpi.h) number of MPI ranks. Any aggregate the caller forms
-// from the slots afterwards has a fixed order too. tests/test_ensemble.c checks it.
-//
-// Callbacks run in worker threads concurrently: the reducer and the system's own callbacks
-// must not write shared data without synchronization (per-worker data: opts.worker_create).
+/// @file
+/// @brief Ensembles and parameter sweeps: one compiled system, many trajectories, on a thread pool.
+///
+/// A sweep runs `ntraj` independent trajectories of one shared, immutable system. Trajectory i
+/// starts from its parameter values (row i of a table, see params.h for what can be set) and
+/// its initial state, is optionally advanced to t1, and is handed to a user reducer that
+/// writes whatever it wants to keep (a final state, a Lyapunov exponent, an equilibrium, a
+/// section) into its own result slot of `nresult` doubles. The library records a status and a
+/// message per trajectory; a failing trajectory (invalid parameter, inconsistent constraints,
+/// step failure, reducer failure) never stops the others.
+///
+/// Threads: POSIX threads, not OpenMP. The library already links pthreads (its thread-safety
+/// tests use them), a pthread pool needs no compiler flag or runtime in the user's program
+/// (OpenMP would add -fopenmp and a runtime to every consumer and nest badly with a user's own
+/// OpenMP regions), and the pool's schedule is explicit. Each worker owns one dal_state
+/// (created once, reused for its trajectories); the calling thread is worker 0.
+///
+/// Determinism: the result slot of trajectory i is out->results + i * nresult, whatever
+/// thread computes it, and every trajectory starts from a state rewound to the same condition
+/// (parameters reset to the system's, integrator history and statistics dropped), so the
+/// results and dal_sweep_write_csv's output are identical bit for bit for any thread count,
+/// schedule or (with dalembert/mpi.h) number of MPI ranks. Any aggregate the caller forms
+/// from the slots afterwards has a fixed order too. tests/test_ensemble.c checks it.
+///
+/// Callbacks run in worker threads concurrently: the reducer and the system's own callbacks
+/// must not write shared data without synchronization (per-worker data: opts.worker_create).
 #ifndef DAL_ENSEMBLE_H
 #define DAL_ENSEMBLE_H
 
@@ -100,9 +101,9 @@ typedef struct dal_sweep {
   void *ctx;                   ///< passed to reduce (borrowed)
 } dal_sweep;
 
-/// Sweep options. Always start from dal_sweep_default_opts().
+/// Sweep options. Always start from dal_default_sweep_opts().
 typedef struct dal_sweep_opts {
-  int magic;                             ///< set by dal_sweep_default_opts; do not touch
+  int cookie;                            ///< set by dal_default_sweep_opts; do not touch
   int nthreads;                          ///< worker threads incl. the caller (default 1;
                                          ///< 0: the number of online processors)
   dal_schedule schedule;                 ///< default DAL_SCHEDULE_DYNAMIC
@@ -132,7 +133,7 @@ typedef struct dal_sweep_out {
 } dal_sweep_out;
 
 /// Fill *o with the defaults (1 thread, dynamic schedule, chunk 1, no progress, all parts).
-DAL_API void dal_sweep_default_opts(dal_sweep_opts *o);
+DAL_API dal_sweep_opts dal_default_sweep_opts(void);
 
 /// The part (0 .. nparts-1) trajectory i belongs to: (i / block) mod nparts, i.e. blocks of
 /// `block` trajectories dealt round-robin (block 1 interleaves neighbours of a grid, which
@@ -158,7 +159,9 @@ DAL_API long dal_sweep_grid(int naxes, const int *count, const double *lo, const
                             double *values);
 
 /// Write the sweep as CSV, one row per trajectory in index order: index, the parameter
-/// values (columns named by dal_param_name), status (dal_status_name), the results (columns
+/// values (columns named by dal_param_name), with per-trajectory initial states
+/// (state_stride = n) the trajectory's q0 and qdot0 (columns "q0:<coordinate>", then
+/// "qdot0:<coordinate>"), status (dal_status_name), the results (columns
 /// result_names[0..nresult-1], or r0, r1, ... when result_names is NULL) and the message
 /// (quoted). Numbers are printed with %.17g, so equal results give equal bytes. Returns
 /// DAL_OK or DAL_E_IO / DAL_E_ARG.

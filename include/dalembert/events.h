@@ -1,30 +1,34 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Events and Poincare sections: functions of the motion whose zero crossings are located on
-// the integrator's dense output, logged, and optionally stop the run.
-//
-// An event is a function g of the motion; it occurs where g changes sign between two
-// accepted steps. dal_advance and dal_evolve check every event attached to the state
-// (dal_state_set_events) after each accepted step, locate each crossing on the method's dense
-// output to rounding (Anderson-Bjorck regula falsi on the interpolant: the bracket is closed
-// to a few ulps of t), record it in the event log (time, event, direction, q and qdot there)
-// and, for a terminal event, stop there: the state is then exactly at the crossing (on the
-// side after it), evaluated as after dal_forward, and the call returns DAL_EVENT (a positive
-// status, not an error; dal_state_errmsg names the event and the time). Calling again continues
-// from there without finding the same crossing again.
-//
-// Accuracy: the crossing time is as accurate as the dense output, i.e. the method's tolerance
-// (tests/test_events.c: the pendulum's period from its zero crossings against
-// 4 sqrt(l/g) K(sin^2(theta0/2)) to 1e-12 relative at rtol 1e-12).
-// Limits: two crossings of the same g inside one step cancel and are not seen (a g that
-// oscillates faster than the steps: bound the step with opts.hmax); a g that only touches
-// zero is not a crossing. A g that is exactly 0 at the start of a call takes its sign from its
-// first nonzero value without an event.
-//
-// Poincare sections: a surface section is a non-terminal event with a direction (theta = 0
-// crossed upwards, say); its log is the section (dal_events_write_csv). A stroboscopic section
-// (the state once per period T of a drive) is dal_evolve with dt = T and a monitor, e.g.
-// dal_csv_monitor (docs/analysis.md).
+/// @file
+/// @brief Events and Poincare sections: functions of the motion whose zero crossings are located on
+/// the integrator's dense output, logged, and optionally stop the run.
+///
+/// An event is a function g of the motion; it occurs where g changes sign between two
+/// accepted steps. dal_advance and dal_evolve check every event attached to the state
+/// (dal_state_set_events) after each accepted step, locate each crossing on the method's dense
+/// output to rounding (Anderson-Bjorck regula falsi on the interpolant: the bracket is closed
+/// to a few ulps of t), record it in the event log (time, event, direction, q and qdot there)
+/// and, for a terminal event, stop there: the state is then exactly at the crossing (on the
+/// side after it), evaluated as after dal_forward, and the call returns DAL_EVENT (a positive
+/// status, not an error; dal_state_errmsg names the event and the time). Calling again continues
+/// from there without finding the same crossing again.
+///
+/// Accuracy: the crossing time is as accurate as the dense output, i.e. the method's tolerance
+/// (tests/test_events.c: the pendulum's period from its zero crossings against
+/// 4 sqrt(l/g) K(sin^2(theta0/2)) to 1e-12 relative at rtol 1e-12).
+/// Limits: two crossings of the same g inside one step cancel and are not seen (a g that
+/// oscillates faster than the steps: bound the step with opts.hmax); a g that only touches
+/// zero is not a crossing. A g that is exactly 0 at a step's end is decided by the next step (a
+/// sign change is a crossing located at the zero, a return to the old sign a touch), also when
+/// a call ends there and the next call continues from it. A g that is exactly 0 at the start
+/// of a call (a state just set) takes its sign from its first nonzero value without an event.
+///
+/// Poincare sections: a surface section is a non-terminal event with a direction (theta = 0
+/// crossed upwards, say); its log is the section (dal_events_write_csv). A stroboscopic section
+/// (the state once per period T of a drive) is dal_evolve with dt = T and a monitor, e.g.
+/// dal_csv_monitor (docs/events.md: sections, their accuracy and cost;
+/// examples/sicm_section.c draws both kinds).
 #ifndef DAL_EVENTS_H
 #define DAL_EVENTS_H
 
@@ -82,7 +86,7 @@ typedef struct dal_events dal_events;
 DAL_API int dal_events_create(const dal_system *sys, dal_events **out);
 
 /// Free the set (NULL is fine). Detach it from any state first (dal_state_set_events).
-DAL_API void dal_events_free(dal_events *ev);
+DAL_API void dal_events_destroy(dal_events *ev);
 
 /// Add an event; returns its index (0, 1, ...) or a negative status: DAL_E_ARG (a def not
 /// made by dal_default_event_def, none or several of g / g_state / constraint, a direction

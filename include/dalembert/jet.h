@@ -1,31 +1,32 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Jets: order-3 truncated Taylor numbers along one direction, for exact derivatives.
-//
-// A jet x = (v, d, dd, d3) stands for the function s -> x(s) near s = 0 with x(0) = v,
-// x'(0) = d, x''(0) = dd and x'''(0) = d3. Every smooth user function (coordinate map,
-// constraint, potential, Lagrangian, path) is written once over jets; evaluating it along a
-// chosen direction gives the directional derivatives exactly up to rounding.
-//
-// Orders: the equations of motion read v, d and dd; the third coefficient d3 serves the exact
-// tangent (linearization, normal modes, equilibria, Lyapunov exponents: analysis.h), which
-// needs the derivative of the curvature terms gamma along a tangent direction. The lower
-// coefficients never read d3, so a function is exact to order 2 whatever its d3 holds.
-//
-// Third derivatives of user functions (version 2 of this header appended d3): a function
-// written with the operations below (dal_add ... dal_norm, dal_const, dal_var) is exact to
-// order 3 without change. Jets built from explicit derivative values with the order-2
-// constructors dal_jet_make and dal_jet_chain carry d3 = NaN ("unknown"): ordinary evaluation
-// is unaffected, and the tangent routines report the function (DAL_E_DOMAIN) instead of
-// using a wrong third derivative; use dal_jet_make3 / dal_jet_chain3 to give it. A jet built
-// by a struct initializer with three values, {v, d, dd}, has d3 = 0 by the C rules: correct
-// only when the third derivative really is 0 (GCC and clang warn about it under -Wextra,
-// -Wmissing-field-initializers).
-//
-// Domain errors are not trapped here: sqrt or log of a negative number, a derivative of
-// sqrt at 0, division by zero, asin outside [-1, 1] all produce NaN or inf in the jet.
-// The library checks every output of a user or primitive jet function and reports the
-// object that produced a non-finite value (status DAL_E_DOMAIN) at the call that made it.
+/// @file
+/// @brief Jets: order-3 truncated Taylor numbers along one direction, for exact derivatives.
+///
+/// A jet x = (v, d, dd, d3) stands for the function s -> x(s) near s = 0 with x(0) = v,
+/// x'(0) = d, x''(0) = dd and x'''(0) = d3. Every smooth user function (coordinate map,
+/// constraint, potential, Lagrangian, path) is written once over jets; evaluating it along a
+/// chosen direction gives the directional derivatives exactly up to rounding.
+///
+/// Orders: the equations of motion read v, d and dd; the third coefficient d3 serves the exact
+/// tangent (linearization, normal modes, equilibria, Lyapunov exponents: analysis.h), which
+/// needs the derivative of the curvature terms gamma along a tangent direction. The lower
+/// coefficients never read d3, so a function is exact to order 2 whatever its d3 holds.
+///
+/// Third derivatives of user functions (version 2 of this header appended d3): a function
+/// written with the operations below (dal_add ... dal_norm, dal_const, dal_var) is exact to
+/// order 3 without change. Jets built from explicit derivative values with the order-2
+/// constructors dal_jet_make and dal_jet_chain carry d3 = NaN ("unknown"): ordinary evaluation
+/// is unaffected, and the tangent routines report the function (DAL_E_DOMAIN) instead of
+/// using a wrong third derivative; use dal_jet_make3 / dal_jet_chain3 to give it. A jet built
+/// by a struct initializer with three values, {v, d, dd}, has d3 = 0 by the C rules: correct
+/// only when the third derivative really is 0 (GCC and clang warn about it under -Wextra,
+/// -Wmissing-field-initializers).
+///
+/// Domain errors are not trapped here: sqrt or log of a negative number, a derivative of
+/// sqrt at 0, division by zero, asin outside [-1, 1] all produce NaN or inf in the jet.
+/// The library checks every output of a user or primitive jet function and reports the
+/// object that produced a non-finite value (status DAL_E_DOMAIN) at the call that made it.
 #ifndef DAL_JET_H
 #define DAL_JET_H
 
@@ -180,7 +181,7 @@ static inline dal_jet dal_powi(dal_jet a, int n) {
   if (n == 1) return a;
   double f0 = 1.0, f1, f2, f3;
   unsigned m = n < 0 ? 0u - (unsigned)n : (unsigned)n; // |n| without overflow at INT_MIN
-  double pm2 = 1.0; // a^(m-2) by repeated squaring when m >= 2
+  double pm2 = 1.0;                                    // a^(m-2) by repeated squaring when m >= 2
   if (m >= 2) {
     double base = a.v;
     unsigned e = m - 2;

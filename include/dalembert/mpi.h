@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Sweeps over MPI ranks (library dalembert_mpi): each rank runs its part, rank 0 gathers.
-//
-// Every rank compiles the same system and calls dal_sweep_run_mpi collectively with the same
-// sweep and options. Rank r runs the trajectories of part r of `size` (dal_sweep_part_of with
-// opts.part_block: blocks dealt round-robin), on opts.nthreads threads of its own; rank 0
-// then receives every rank's slots and holds the whole sweep in index order, so
-// dal_sweep_write_csv on rank 0 writes the same bytes as a single-process run. Build with
-// -DDAL_WITH_MPI=AUTO|ON (CMake target dalembert::dalembert_mpi); the core library and
-// dalembert.h do not depend on MPI. See docs/ensembles.md for clusters.
+/// @file
+/// @brief Sweeps over MPI ranks (library dalembert_mpi): each rank runs its part, rank 0 gathers.
+///
+/// Every rank compiles the same system and calls dal_sweep_run_mpi collectively with the same
+/// sweep and options. Rank r runs the trajectories of part r of `size` (dal_sweep_part_of with
+/// opts.part_block: blocks dealt round-robin), on opts.nthreads threads of its own; rank 0
+/// then receives every rank's slots and holds the whole sweep in index order, so
+/// dal_sweep_write_csv on rank 0 writes the same bytes as a single-process run. Build with
+/// -DDAL_WITH_MPI=AUTO|ON (CMake target dalembert::dalembert_mpi); the core library and
+/// dalembert.h do not depend on MPI. See docs/ensembles.md for clusters.
 #ifndef DAL_MPI_H
 #define DAL_MPI_H
 

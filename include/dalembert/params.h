@@ -1,35 +1,42 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Per-trajectory parameters: a state overrides masses, primitive parameters, gravity, springs.
-//
-// A compiled system is immutable and shared; a state may override its parameters for its own
-// trajectory without a new builder or compile. Until the first override a state reads the
-// system's values; an override copies the affected array into the state (copy-on-write, one
-// allocation the first time, none after) and changes only that state. Overrides are validated
-// like the builder's calls, with the same messages (kept in dal_state_errmsg), and on failure
-// the state is unchanged. A successful override discards the integrator history (as
-// dal_state_set does) and marks the state's outputs stale: call dal_state_set or dal_forward
-// before reading them. dal_state_set keeps the overrides; dal_state_reset_params drops them.
-//
-// Addressing. A parameter is a dal_param_ref (kind, target, index) or a name:
-//   "mass:<particle>"              mass of a particle (> 0)
-//   "place:<particle>:<i>"         parameter i of the primitive placing that particle, in
-//                                  the primitive's documented order (primitives.h); e.g. the
-//                                  drive of dal_map_pendulum (l, x0, y0, ax, ay, w, ph) is
-//                                  "place:bob:3" (ax), "place:bob:5" (w)
-//   "con:<constraint>:<i>"         parameter i of a constraint, e.g. "con:rod:0" (its length)
-//   "gravity:<i>"                  component i (0 = x, 1 = y, 2 = z) of gravity
-//   "spring:<j>:k", "spring:<j>:L" stiffness / rest length of the j-th spring (anchor springs
-//                                  included, in the order they were added)
-//   "damper:<j>:c"                 coefficient of the j-th damper (anchor dampers included)
-// <particle> and <constraint> are the names given to the builder, or 0-based indices.
-// A primitive's parameter is addressed by its index, the value of its named index enum in
-// primitives.h (DAL_PENDULUM_W = 5: "place:bob:5"), in dal_param_ref.index as well.
-//
-// What cannot be overridden (it is not data of the compiled system): the structure (counts,
-// inputs, which primitive), user callbacks and their contexts (a force callback's constants
-// live in the caller's ctx; give each thread its own system or read per-trajectory values
-// from a context the caller indexes), anchor positions and anchor paths.
+/// @file
+/// @brief Per-trajectory parameters: a state overrides masses, primitive parameters, gravity,
+/// springs.
+///
+/// A compiled system is immutable and shared; a state may override its parameters for its own
+/// trajectory without a new builder or compile. Until the first override a state reads the
+/// system's values; an override copies the affected array into the state (copy-on-write, one
+/// allocation the first time, none after) and changes only that state. Overrides are validated
+/// like the builder's calls, with the same messages (kept in dal_state_errmsg), and on failure
+/// the state is unchanged. A successful override discards the integrator history (as
+/// dal_state_set does) and marks the state's outputs stale: call dal_state_set or dal_forward
+/// before reading them. dal_state_set keeps the overrides; dal_state_reset_params drops them.
+///
+/// Addressing. A parameter is a dal_param_ref (kind, target, index) or a name:
+/// @verbatim
+///   "mass:<particle>"              mass of a particle (> 0)
+///   "place:<particle>:<p>"         parameter p of the primitive placing that particle: its
+///                                  name in the primitive's table or its 0-based index in the
+///                                  documented order (primitives.h); e.g. the drive of
+///                                  dal_map_pendulum (l, x0, y0, ax, ay, w, ph) is
+///                                  "place:bob:ax" or "place:bob:3", "place:bob:w" or
+///                                  "place:bob:5"
+///   "con:<constraint>:<p>"         parameter p of a constraint, e.g. "con:rod:l" or "con:rod:0"
+///   "gravity:<i>"                  component i (0 = x, 1 = y, 2 = z) of gravity
+///   "spring:<j>:k", "spring:<j>:L" stiffness / rest length of the j-th spring (anchor springs
+///                                  included, in the order they were added)
+///   "damper:<j>:c"                 coefficient of the j-th damper (anchor dampers included)
+/// @endverbatim
+/// `<particle>` and `<constraint>` are the names given to the builder, or 0-based indices.
+/// In a dal_param_ref a primitive's parameter is its index, the value of its named index enum
+/// in primitives.h (DAL_PENDULUM_W = 5). An unknown parameter name is refused with a message
+/// that lists the primitive's parameter names.
+///
+/// What cannot be overridden (it is not data of the compiled system): the structure (counts,
+/// inputs, which primitive), user callbacks and their contexts (a force callback's constants
+/// live in the caller's ctx; give each thread its own system or read per-trajectory values
+/// from a context the caller indexes), anchor positions and anchor paths.
 #ifndef DAL_PARAMS_H
 #define DAL_PARAMS_H
 

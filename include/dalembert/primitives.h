@@ -1,14 +1,16 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Built-in primitives: coordinate maps (dal_map_*) and constraints (dal_con_*), and the registry.
-//
-// Each is a dal_primitive (see system.h): inputs, parameters and outputs are listed with it.
-// The builder refuses parameters outside a built-in's domain, naming them: the length or radius
-// of a constraint (rods, circles, spheres) must be > 0, that of a map (pendulums, ring, sphere)
-// nonzero, and a normal or direction (plane, line, circle3) a nonzero vector whose squared
-// length is a normal double.
-// Angles in radians, rates in rad/s. "Pivot motion" parameters describe a point
-// p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph)).
+/// @file
+/// @brief Built-in primitives: coordinate maps (dal_map_*) and constraints (dal_con_*), and the
+/// registry.
+///
+/// Each is a dal_primitive (see system.h): inputs, parameters and outputs are listed with it.
+/// The builder refuses parameters outside a built-in's domain, naming them: the length or radius
+/// of a constraint (rods, circles, spheres) must be > 0, that of a map (pendulums, ring, sphere)
+/// nonzero, and a normal or direction (plane, line, circle3) a nonzero vector whose squared
+/// length is a normal double.
+/// Angles in radians, rates in rad/s. "Pivot motion" parameters describe a point
+/// p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph)).
 #ifndef DAL_PRIMITIVES_H
 #define DAL_PRIMITIVES_H
 
@@ -21,7 +23,7 @@ extern "C" {
 // Parameter indices. Each built-in primitive's parameters have names (prim->param_names, used
 // in error messages) and an index enum, so a def reads as what it means:
 //   d.param[DAL_PENDULUM_L] = 1.0;
-// A parameter left unset in a def (or omitted at the end of a positional list) takes its
+// A parameter left unset in a def (or omitted at the end of its param_list) takes its
 // default, listed here; "required" ones have none and must be given.
 // Moving points follow one convention everywhere: the point is x0 + x(t), a fixed part x0 (a
 // parameter or def field, default the origin) plus an optional motion x(t) from a callback.
@@ -203,7 +205,7 @@ typedef struct dal_prescribed {
   void *ctx;       ///< passed to fn (borrowed)
 } dal_prescribed;
 
-// Constraints phi(u, t) = 0 for dal_builder_add_constraint. Inputs are particle positions
+// Constraints phi(u, t) = 0 for dal_builder_add_constraint_def. Inputs are particle positions
 // (d values each, in the order of `parts`) then coordinates. Every residual is in length
 // units (a signed distance), so tolerances mean the same for a rod of 1e-3 and of 1e3; only
 // dal_con_prescribed is in the units of its coordinate. The multiplier of a row is the

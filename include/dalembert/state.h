@@ -1,17 +1,18 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// State of one trajectory: (t, q, qdot), the computed physics, and the evaluation pipeline.
-//
-// A state belongs to one system and is used by one thread at a time; the system may be
-// shared. Pointers returned by accessors are borrowed views into the state, valid until the
-// next call that changes the state, and NULL when the quantity does not exist for the system
-// or is not current: a product is handed out only while it was evaluated at the state's
-// (t, q, qdot), so it is NULL before the first dal_forward (or integration), after
-// dal_state_set, and after an evaluation that failed before producing it. The status calls
-// (dal_state_energies, dal_state_jacobian, dal_constraint_forces ...) answer DAL_E_STATE with a
-// message then. Every (system, state) call refuses a state of another system (or a NULL
-// system) with DAL_E_STATE and a message; the state keeps its message, which a const accessor
-// may update too (the text is not part of the state's value).
+/// @file
+/// @brief State of one trajectory: (t, q, qdot), the computed physics, and the evaluation pipeline.
+///
+/// A state belongs to one system and is used by one thread at a time; the system may be
+/// shared. Pointers returned by accessors are borrowed views into the state, valid until the
+/// next call that changes the state, and NULL when the quantity does not exist for the system
+/// or is not current: a product is handed out only while it was evaluated at the state's
+/// (t, q, qdot), so it is NULL before the first dal_forward (or integration), after
+/// dal_state_set, and after an evaluation that failed before producing it. The status calls
+/// (dal_state_energies, dal_state_jacobian, dal_constraint_forces ...) answer DAL_E_STATE with a
+/// message then. Every (system, state) call refuses a state of another system (or a NULL
+/// system) with DAL_E_STATE and a message; the state keeps its message, which a const accessor
+/// may update too (the text is not part of the state's value).
 #ifndef DAL_STATE_H
 #define DAL_STATE_H
 
@@ -131,7 +132,8 @@ DAL_API int dal_state_energies(const dal_state *st, dal_energies *out);
 /// Print the state to fp (like MuJoCo's mj_printData): t; per coordinate q, qdot, qddot, Q, c;
 /// the mass matrix M; per constraint row lambda, phi and phidot; particle positions;
 /// energies; the last consistent start's report. Quantities that need dal_forward are printed
-/// only when the state is evaluated. %.17g throughout. Returns DAL_OK, DAL_E_ARG or DAL_E_IO.
+/// only when the state is evaluated. %.17g throughout. Returns DAL_OK, DAL_E_ARG (a NULL
+/// argument), DAL_E_STATE (a state of another system, with a message) or DAL_E_IO.
 DAL_API int dal_state_print(const dal_system *sys, const dal_state *st, FILE *fp);
 
 /// A proposed path q(t) over jets: write q[0..n-1] as jets in t (its first and second

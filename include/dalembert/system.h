@@ -1,20 +1,22 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Model building: coordinates, particles, coordinate maps, constraints and forces -> system.
-//
-// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
-// any number of states (trajectories, threads) may share read-only.
-//
-// Threads: a compiled system is never written after dal_builder_compile, so states of the
-// same system may step in parallel threads (one thread per state); the results are
-// bit-identical to serial runs (tests/test_threads.c). The library keeps no global mutable
-// state. The user's callbacks and the contexts given to the builder are then called from
-// those threads at the same time: they must not write shared data without synchronization.
-// A builder, like a state, is used by one thread at a time.
-//
-// Conventions: spatial dimension d is 2 (x, y) or 3 (x, y, z); gravity is whatever vector the
-// user gives (typically (0, -g) in 2D, (0, 0, -g) in 3D). Units are the user's, consistent
-// (SI suggested). Indices are 0-based. Local matrices are row-major, global ones column-major.
+/// @file
+/// @brief Model building: coordinates, particles, coordinate maps, constraints and forces ->
+/// system.
+///
+/// A scene is built in a mutable dal_builder and compiled into an immutable dal_system that
+/// any number of states (trajectories, threads) may share read-only.
+///
+/// Threads: a compiled system is never written after dal_builder_compile, so states of the
+/// same system may step in parallel threads (one thread per state); the results are
+/// bit-identical to serial runs (tests/test_threads.c). The library keeps no global mutable
+/// state. The user's callbacks and the contexts given to the builder are then called from
+/// those threads at the same time: they must not write shared data without synchronization.
+/// A builder, like a state, is used by one thread at a time.
+///
+/// Conventions: spatial dimension d is 2 (x, y) or 3 (x, y, z); gravity is whatever vector the
+/// user gives (typically (0, -g) in 2D, (0, 0, -g) in 3D). Units are the user's, consistent
+/// (SI suggested). Indices are 0-based. Local matrices are row-major, global ones column-major.
 #ifndef DAL_SYSTEM_H
 #define DAL_SYSTEM_H
 
@@ -31,8 +33,7 @@ extern "C" {
 /// `param` holds the instance's `nparam` parameters (borrowed); `ctx` is the instance's
 /// user pointer. Return 0 on success, > 0 for a recoverable failure (the integrator retries
 /// with a smaller step), < 0 to stop.
-typedef int dal_jet_fn(const dal_jet *in, dal_jet t, const double *param, dal_jet *out,
-                       void *ctx);
+typedef int dal_jet_fn(const dal_jet *in, dal_jet t, const double *param, dal_jet *out, void *ctx);
 
 /// Newest layout of the dal_primitive table this library knows. A table declares the layout it
 /// was written for in `version`; the library reads only the fields that layout has, so a
@@ -57,8 +58,8 @@ typedef struct dal_primitive {
   /// Version 2: names of the nparam parameters, e.g. {"l", "x0", ...} (borrowed; NULL: the
   /// library calls them "p0", "p1", ...). Error messages and dal_system_print use them.
   const char *const *param_names;
-  /// Version 2: defaults (nparam values, borrowed) taken by parameters a def leaves unset or a
-  /// positional call omits at the end; NaN marks a required parameter. NULL: all required.
+  /// Version 2: defaults (nparam values, borrowed) taken by parameters a def leaves unset or omits
+  /// at the end of its param_list; NaN marks a required parameter. NULL: all required.
   const double *param_defaults;
 } dal_primitive;
 
@@ -98,8 +99,7 @@ typedef int dal_lagrangian_fn(dal_jet t, const dal_jet *q, const dal_jet *qdot, 
 typedef int dal_force_fn(double t, const double *r, const double *v, double *F, void *ctx);
 
 /// Generalized forces: given t, q (n), qdot (n), ADD into Q (n). Same return convention.
-typedef int dal_genforce_fn(double t, const double *q, const double *qdot, double *Q,
-                            void *ctx);
+typedef int dal_genforce_fn(double t, const double *q, const double *qdot, double *Q, void *ctx);
 
 /// Mutable model under construction.
 typedef struct dal_builder dal_builder;
@@ -128,17 +128,19 @@ DAL_API int dal_builder_add_coord(dal_builder *b, const char *name, int *index);
 
 /// Add a particle of mass `mass` (> 0, finite, not subnormal) named `name` (copied; NULL gives
 /// "p<k>").
-/// Its position must be given by dal_builder_place or a whole-system map.
+/// Its position must be given by dal_builder_place_def or a whole-system map.
 DAL_API int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index);
 
 // ---------------------------------------------------------------------------------------
 // Element definitions (Box2D v3 style): start from dal_default_*_def(), set the fields the
 // scene needs, pass the def to dal_builder_*_def. The def is read during the call only (its
 // arrays are copied). A def that did not come from its dal_default_*_def() constructor is
-// refused (DAL_E_ARG) by its cookie.
+// refused (DAL_E_ARG) by its cookie. Defs are the only way to add elements (0.3 removed the
+// positional dal_builder_place and friends; CHANGELOG.md shows the port), and options follow
+// the same convention (base.h).
 
-/// Largest number of parameters a def holds inline; primitives with more parameters are
-/// placed with the positional dal_builder_place / dal_builder_add_constraint.
+/// Largest number of parameters a def holds inline (param[]); a primitive with more takes
+/// them all from the def's `param_list` instead.
 #define DAL_MAX_PARAM 16
 
 /// How a particle is placed: r = prim(parent position, q[coords], t; param).
@@ -153,8 +155,14 @@ typedef struct dal_place_def {
   /// Parameters by the primitive's index enum, e.g. param[DAL_PENDULUM_L]. Entries left as
   /// set by the constructor take prim->param_defaults; a required one must be set.
   double param[DAL_MAX_PARAM];
-  void *ctx;  ///< passed to prim->eval (borrowed), default NULL
-  int cookie; ///< set by dal_default_place_def; do not touch
+  /// Or: the first nparam_list parameters as an array (copied; at most prim->nparam values,
+  /// those after it take prim->param_defaults), for a primitive with more than DAL_MAX_PARAM
+  /// parameters or values kept in an array. NULL (default): param[] is read. Giving both an
+  /// array and a set param[] entry is refused (DAL_E_ARG).
+  const double *param_list;
+  int nparam_list; ///< number of values in param_list, default 0
+  void *ctx;       ///< passed to prim->eval (borrowed), default NULL
+  int cookie;      ///< set by dal_default_place_def; do not touch
 } dal_place_def;
 
 /// A constraint phi(u, t) = 0 of prim->nout rows; inputs: positions of parts (d values each),
@@ -167,6 +175,8 @@ typedef struct dal_constraint_def {
   const int *coords;           ///< the ncoords coordinate indices (copied); NULL when 0
   int ncoords;                 ///< number of coordinate inputs, default 0
   double param[DAL_MAX_PARAM]; ///< as in dal_place_def (unset entries take the defaults)
+  const double *param_list;    ///< or: parameters as an array, as in dal_place_def
+  int nparam_list;             ///< number of values in param_list, default 0
   void *ctx;                   ///< passed to prim->eval (borrowed), default NULL
   int cookie;                  ///< set by dal_default_constraint_def; do not touch
 } dal_constraint_def;
@@ -201,22 +211,40 @@ typedef struct dal_damper_def {
 DAL_API dal_place_def dal_default_place_def(void);
 /// A constraint def with the defaults: no name, no primitive, no inputs, parameters unset.
 DAL_API dal_constraint_def dal_default_constraint_def(void);
+/// Sets the parameter of def->prim called `name` (its name in the primitive's table, e.g. "l"
+/// or "w" of dal_map_pendulum; a 0-based index in decimal works too): the name-checked form
+/// of def->param[DAL_PENDULUM_L] = value, which cannot pick an index of another primitive's
+/// enum by mistake. Set def->prim first. Returns DAL_OK, or DAL_E_ARG (nothing set) when def,
+/// def->prim or name is NULL or the primitive has no parameter of that name (the names are
+/// listed with each primitive in primitives.h and by dal_system_print). The value itself is
+/// checked when the def is placed, as for def->param.
+DAL_API int dal_place_def_set(dal_place_def *def, const char *name, double value);
+/// dal_place_def_set for a constraint def: sets the parameter `name` of def->prim.
+DAL_API int dal_constraint_def_set(dal_constraint_def *def, const char *name, double value);
 /// A spring def with the defaults: a = -1 (must be set), anchored (b = -1) at the origin, no
 /// path, k = 0, length = 0.
 DAL_API dal_spring_def dal_default_spring_def(void);
 /// A damper def with the defaults: a = -1 (must be set), anchored at the origin, c = 0.
 DAL_API dal_damper_def dal_default_damper_def(void);
 
-/// Place particle `particle` as `def` says. Checks, each by name: the cookie, the particle
-/// and parent indices, the primitive's table version (1 ... DAL_PRIMITIVE_VERSION), its input
-/// count against (parent ? d : 0) + ncoords, its output count against d, coordinate indices,
-/// every parameter finite and every required parameter set ("parameter 'l' of 'pendulum'
-/// ..."). Returns DAL_OK, DAL_E_ARG, DAL_E_NONFINITE or DAL_E_NOMEM; on failure nothing
-/// changes and dal_builder_errmsg says why.
+/// Place particle `particle` as `def` says: local inputs are, in order, the position of
+/// def->parent (d values; the parent must have been added before and placed first), then the
+/// coordinates def->coords, so prim->nin == (parent >= 0 ? d : 0) + ncoords. Each particle is
+/// placed once. Checks, each by name: the cookie, the particle and parent indices, that the
+/// primitive is well formed (a name, nin >= 0, nout >= 1, nparam >= 0, an eval), its table
+/// version (1 ... DAL_PRIMITIVE_VERSION), its input count, its output count against d,
+/// coordinate indices, every parameter finite, every required parameter set ("parameter 'l'
+/// of 'pendulum' ...") and a built-in's parameters in their domain (lengths and radii of
+/// constraints > 0, those of maps nonzero, normals and directions of representable nonzero
+/// length; primitives.h). Returns DAL_OK, DAL_E_ARG, DAL_E_NONFINITE or DAL_E_NOMEM; on
+/// failure nothing changes and dal_builder_errmsg says why.
 DAL_API int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def);
 
-/// Add the constraint `def`; *index (nullable) receives the index of its first row. Checks as
-/// dal_builder_place_def, with particle indices for the inputs.
+/// Add the holonomic constraint phi(u, t) = 0 of `def`: local inputs are the positions of
+/// def->parts (d values each), then the coordinates def->coords, so prim->nin == nparts * d +
+/// ncoords; prim->nout rows are added. Residuals should be in length units (built-ins are).
+/// *index (nullable) receives the index of its first row. Checks as dal_builder_place_def,
+/// with particle indices for the inputs.
 DAL_API int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def,
                                            int *index);
 
@@ -227,30 +255,8 @@ DAL_API int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def
 /// Add the damper `def`. Errors as dal_builder_add_spring_def.
 DAL_API int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def);
 
-// ---------------------------------------------------------------------------------------
-// Positional forms (the first API), kept as thin wrappers over the same code as the defs: a
-// scene built with them is the scene built with the defs, bit for bit (tests/test_api.c
-// builds one through all six and compares), and their own argument checks keep their rows in
-// tests/test_api_sweep.c and tests/test_bad_input.c. New code should use the defs above, whose
-// contexts sit inside the def; the examples, tests and benchmarks do.
-
-/// Place particle `particle` by primitive `prim` (a dal_map_*, nout == d; borrowed, must
-/// outlive the system). Local inputs are, in order: the position of particle `parent`
-/// (d values; parent < 0 for none; the parent must have been added (parent < particle) and
-/// placed first), then the coordinates coords[0..ncoords-1]. Hence
-/// prim->nin == (parent >= 0 ? d : 0) + ncoords. `param` (nparam values, copied): at most
-/// prim->nparam; parameters omitted at the end take prim->param_defaults (an error names a
-/// required one). `ctx` is passed to prim->eval (borrowed). Each particle is placed once.
-/// A primitive must be well formed (a name, nin >= 0, nout >= 1, nparam >= 0, an eval), and a
-/// built-in's parameters must lie in their domain (lengths and radii of constraints > 0, those
-/// of maps nonzero, normals and directions of representable nonzero length; primitives.h):
-/// DAL_E_ARG naming the parameter otherwise.
-DAL_API int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim,
-                              int parent, int ncoords, const int *coords, int nparam,
-                              const double *param, void *ctx);
-
 /// Give all particle positions at once by a user map r(q, t) (r is N x d row-major).
-/// Exclusive with dal_builder_place.
+/// Exclusive with dal_builder_place_def.
 DAL_API int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx);
 
 /// Describe the system by a Lagrangian L(t, q, qdot) instead of particles (SICM's
@@ -260,17 +266,6 @@ DAL_API int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx);
 /// dqdot2) qdot, T1 = T - T2, T0 = 0 (a velocity-free term of L counts in U), and h the exact
 /// Jacobi integral. For L = T - V with T quadratic in qdot these are the usual T and V.
 DAL_API int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx);
-
-/// Add the holonomic constraint phi(u, t) = 0 named `name` (copied; NULL gives "c<i>").
-/// Local inputs: positions of particles parts[0..nparts-1] (d values each), then coordinates
-/// coords[0..ncoords-1]; prim->nin must equal nparts * d + ncoords. prim->nout rows are
-/// added. Parameters as in dal_builder_place. (The context is not last here, for
-/// compatibility; dal_builder_add_constraint_def holds it in the def.) Residuals should be in
-/// length units (built-ins are). *index receives the index of the first row (may be NULL).
-DAL_API int dal_builder_add_constraint(dal_builder *b, const char *name,
-                                       const dal_primitive *prim, int nparts, const int *parts,
-                                       int ncoords, const int *coords, int nparam,
-                                       const double *param, void *ctx, int *index);
 
 /// Uniform gravity: acceleration vector g (d values, copied), force m_k g on every particle.
 DAL_API int dal_builder_set_gravity(dal_builder *b, const double *g);
@@ -292,26 +287,6 @@ typedef enum dal_dynamics {
 /// for trees whose mass matrix is singular where constraints make the KKT matrix regular.
 /// Returns DAL_E_ARG for an unknown value.
 DAL_API int dal_builder_set_dynamics(dal_builder *b, dal_dynamics how);
-
-/// Linear spring between particles a and b: stiffness k (>= 0), rest length L (>= 0),
-/// U = k/2 (|r_b - r_a| - L)^2.
-DAL_API int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L);
-
-/// Linear spring from particle p to the anchor point x0 + x(t): x0 (d values, copied; NULL:
-/// the origin), x(t) from fn (NULL: none). U = k/2 (|r_p - (x0 + x(t))| - L)^2. Same as
-/// dal_builder_add_spring_def with b = -1 (the context is not last here, for compatibility;
-/// the def holds it).
-DAL_API int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0,
-                                          dal_path_fn *fn, void *ctx, double k, double L);
-
-/// Linear damper between particles a and b: F_b = -c ((v_b - v_a) . e) e, e = unit vector
-/// from a to b; F_a = -F_b. c >= 0.
-DAL_API int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c);
-
-/// Linear damper from particle p to the anchor point x0 + x(t) (x0 NULL: the origin; fn NULL:
-/// fixed), as above. Same as dal_builder_add_damper_def with b = -1.
-DAL_API int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0,
-                                          dal_path_fn *fn, void *ctx, double c);
 
 /// Add a user potential U(r, t) over all particle positions; F = -grad U is exact.
 DAL_API int dal_builder_add_potential_r(dal_builder *b, dal_potential_r_fn *fn, void *ctx);

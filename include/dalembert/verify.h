@@ -1,21 +1,22 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Verification kit for users' own models: jets against finite differences, model checks.
-//
-// The library trusts every jet function it is given: a wrong derivative in a user primitive,
-// map, potential or Lagrangian gives wrong dynamics, quietly. These checks are what the
-// library's own registry test does, made available: call them from a small program and
-// register it as a ctest of your project (cmake/dalembertVerify.cmake:
-// dalembert_add_verify_test). Finite differences are used here only as an oracle.
-//
-// Jet checks: at `nsamples` random points (inputs uniform in [lo, hi] per input, t uniform in
-// [t_lo, t_hi]) and random unit directions u over (inputs, t), the jet's first and second
-// directional derivatives are compared with central differences D1(h) = (f(x + h u) - f(x -
-// h u)) / 2h and D2(h) = (f(x + h u) - 2 f(x) + f(x - h u)) / h^2. The error bound is derived,
-// not guessed: the truncation error of the h/2 estimate is |D(h) - D(h/2)| / 3 (both are
-// O(h^2), Richardson), plus the rounding of f, taken as 64 eps max(1, |f|, |x|) and divided by
-// h (D1) or h^2 (D2). An entry passes when |jet - D(h/2)| <= tol_factor * bound. Every jet
-// output (value and both derivatives) must also be finite at every sample point.
+/// @file
+/// @brief Verification kit for users' own models: jets against finite differences, model checks.
+///
+/// The library trusts every jet function it is given: a wrong derivative in a user primitive,
+/// map, potential or Lagrangian gives wrong dynamics, quietly. These checks are what the
+/// library's own registry test does, made available: call them from a small program and
+/// register it as a ctest of your project (cmake/dalembertVerify.cmake:
+/// dalembert_add_verify_test). Finite differences are used here only as an oracle.
+///
+/// Jet checks: at `nsamples` random points (inputs uniform in [lo, hi] per input, t uniform in
+/// [t_lo, t_hi]) and random unit directions u over (inputs, t), the jet's first and second
+/// directional derivatives are compared with central differences D1(h) = (f(x + h u) - f(x -
+/// h u)) / 2h and D2(h) = (f(x + h u) - 2 f(x) + f(x - h u)) / h^2. The error bound is derived,
+/// not guessed: the truncation error of the h/2 estimate is |D(h) - D(h/2)| / 3 (both are
+/// O(h^2), Richardson), plus the rounding of f, taken as 64 eps max(1, |f|, |x|) and divided by
+/// h (D1) or h^2 (D2). An entry passes when |jet - D(h/2)| <= tol_factor * bound. Every jet
+/// output (value and both derivatives) must also be finite at every sample point.
 #ifndef DAL_VERIFY_H
 #define DAL_VERIFY_H
 
@@ -27,7 +28,8 @@
 extern "C" {
 #endif
 
-/// Options of the jet checks. Start from dal_verify_default_opts().
+/// Options of the jet checks. Always start from dal_default_verify_opts() (options that did not
+/// come from it are refused, DAL_E_ARG); NULL options mean the defaults.
 typedef struct dal_verify_opts {
   int nsamples;            ///< sample points (default 16)
   double lo;               ///< lower end of every input's range (default -1; see in_lo)
@@ -39,10 +41,11 @@ typedef struct dal_verify_opts {
   double h;                ///< finite-difference step relative to max(1, |x|) (default 1e-3)
   double tol_factor;       ///< multiple of the derived bound that still passes (default 10)
   unsigned long long seed; ///< random seed (default 1): the same seed gives the same points
+  int cookie;              ///< set by dal_default_verify_opts; do not touch
 } dal_verify_opts;
 
-/// Fill *o with the defaults listed in dal_verify_opts.
-DAL_API void dal_verify_default_opts(dal_verify_opts *o);
+/// The defaults listed in dal_verify_opts.
+DAL_API dal_verify_opts dal_default_verify_opts(void);
 
 /// What a jet check found. The worst entry is the one with the largest error / bound ratio.
 typedef struct dal_verify_report {

@@ -2,6 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Equilibria by Newton's method with the exact stiffness K, and their natural-parameter
 // continuation with stability and located critical points (sign changes of det K).
+#include <float.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
@@ -10,32 +11,42 @@
 
 #include "analysis.h"
 
-#define DAL_EQ_MAGIC 0x0e9c1b05
-#define DAL_CONT_MAGIC 0x0c0a71e5
+#define DAL_EQ_COOKIE 0x0e9c1b05
+/// Newton's neighbourhood: an iterate farther than this many times (1 + max |q0_i|) from the
+/// start q0 has left any basin the start could be meant for (a nearly singular K sent it there)
+#define DAL_EQ_REACH 1e4
+/// the scaled residual below which a point whose last step met xtol is an equilibrium:
+/// max(xtol, this many ulps)
+#define DAL_EQ_RES_ULPS 1024.0
+#define DAL_CONT_COOKIE 0x0c0a71e5
 
-void dal_equilibrium_default_opts(dal_equilibrium_opts *o) {
-  if (!o) return;
-  o->magic = DAL_EQ_MAGIC;
+dal_equilibrium_opts dal_default_equilibrium_opts(void) {
+  dal_equilibrium_opts d, *o = &d;
+  memset(o, 0, sizeof *o);
+  o->cookie = DAL_EQ_COOKIE;
   o->xtol = 1e-12;
   o->max_iter = 50;
   o->max_step = 0.0;
+  return d;
 }
 
-void dal_continuation_default_opts(dal_continuation_opts *o) {
-  if (!o) return;
-  o->magic = DAL_CONT_MAGIC;
+dal_continuation_opts dal_default_continuation_opts(void) {
+  dal_continuation_opts d, *o = &d;
+  memset(o, 0, sizeof *o);
+  o->cookie = DAL_CONT_COOKIE;
   o->p0 = 0.0;
   o->p1 = 1.0;
   o->npoints = 41;
   o->t = 0.0;
   o->locate = 1;
   o->ptol = 0.0;
-  dal_equilibrium_default_opts(&o->newton);
+  o->newton = dal_default_equilibrium_opts();
+  return d;
 }
 
 static int check_eq_opts(const dal_equilibrium_opts *o, char *err, size_t len) {
-  if (o->magic != DAL_EQ_MAGIC) {
-    snprintf(err, len, "equilibrium options not initialized: call dal_equilibrium_default_opts");
+  if (o->cookie != DAL_EQ_COOKIE) {
+    snprintf(err, len, "equilibrium options not initialized: call dal_default_equilibrium_opts");
     return DAL_E_ARG;
   }
   if (!(o->xtol > 0) || !isfinite(o->xtol) || o->max_iter < 1 || !(o->max_step >= 0) ||
@@ -82,34 +93,65 @@ static int newton_alloc(const dal_system *sys, newton_ws *w) {
   return DAL_OK;
 }
 
+// the residual R = M qddot (= Q - c at qdot = 0, in w->x) scaled per coordinate by the size of
+// the forces that make it: |Q_j| <= sqrt(M_jj) sum_k |F_k| / sqrt(m_k) bounds the particle
+// forces' part (|J_kj|^2 m_k <= M_jj), sum_i |K_ji| the part that changes by a unit move
+static double scaled_residual(const dal_system *sys, const dal_state *st, const newton_ws *w) {
+  int n = sys->n, d = sys->dim;
+  double fs = 0.0, worst = 0.0;
+  for (int k = 0; k < sys->N; ++k) {
+    double f2 = 0.0, m = st->prm.mass[k];
+    for (int a = 0; a < d; ++a)
+      f2 += st->F[k * d + a] * st->F[k * d + a];
+    if (m > 0) fs += sqrt(f2 / m);
+  }
+  for (int j = 0; j < n; ++j) {
+    double s = sqrt(fabs(w->tg->M[(size_t)j * n + j])) * fs;
+    for (int i = 0; i < n; ++i)
+      s += fabs(w->tg->Rq[(size_t)i * n + j]);
+    double r = fabs(w->x[j]);
+    if (r > 0) worst = fmax(worst, s > 0 ? r / s : INFINITY);
+    if (!isfinite(r)) worst = INFINITY;
+  }
+  return worst;
+}
+
 // the equilibrium solve on a prepared workspace; on success the state is at (t, q*, 0),
 // evaluated, with the tangent (and dR/dt) of the solution in w->tg
 static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o, newton_ws *w,
                  dal_equilibrium_report *rep) {
   int n = sys->n, rc;
-  double t = st->t, step = INFINITY;
+  double t = st->t, step = INFINITY, reach = 0.0, res = INFINITY;
   memcpy(w->q, st->q, (size_t)n * sizeof(double));
+  for (int i = 0; i < n; ++i)
+    reach = fmax(reach, fabs(w->q[i]));
+  reach = DAL_EQ_REACH * (1.0 + reach);
+  double res_tol = fmax(o->xtol, DAL_EQ_RES_ULPS * DBL_EPSILON);
   dal_equilibrium_report r = {0, 0.0, 0.0, 0.0};
   for (int it = 1;; ++it) {
     if ((rc = dal__analysis_eval(sys, st, t, w->q, w->zero)) != 0) return rc;
     if ((rc = dal__tangent_eval(sys, st, w->tg, 0)) != 0) return rc;
-    if (step <= 0.0) break; // the last step was below xtol: converged at this evaluation
-    if (it > o->max_iter) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      return DAL_FAIL(st, DAL_E_CONV,
-                      "equilibrium: Newton did not converge in %d iterations at t=%.17g (last "
-                      "step %.3g, now at %s); start closer to the equilibrium, bound the step "
-                      "(max_step) or raise max_iter",
-                      o->max_iter, t, r.step, qs);
-    }
-    // K dq = M qddot (= Q - c at qdot = 0)
+    // the residual R = M qddot (= Q - c at qdot = 0), scaled by the forces that make it
     for (int i = 0; i < n; ++i) {
       double s = 0.0;
       for (int j = 0; j < n; ++j)
         s += w->tg->M[(size_t)j * n + i] * st->qddot[j];
       w->x[i] = s;
     }
+    res = scaled_residual(sys, st, w);
+    // converged: the last step was below xtol and the residual is small here (a step that
+    // cannot move q, at |q| where the spacing of doubles exceeds it, is not convergence)
+    if (step <= 0.0 && res <= res_tol) break;
+    if (it > o->max_iter) {
+      char qs[256];
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_CONV,
+                      "equilibrium: Newton did not converge in %d iterations at t=%.17g (last "
+                      "step %.3g, scaled residual %.3g against %.3g, now at %s); start closer to "
+                      "the equilibrium, bound the step (max_step) or raise max_iter",
+                      o->max_iter, t, r.step, res, res_tol, qs);
+    }
+    // K dq = R
     memcpy(w->K, w->tg->Rq, (size_t)n * (size_t)n * sizeof(double));
     lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, 1, w->K, n, w->ipiv, w->x, n);
     if (info != 0) {
@@ -130,6 +172,23 @@ static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opt
     if (!isfinite(big))
       return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
     double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
+    // a step that leaves the start's neighbourhood (K nearly singular: a turning point of
+    // the potential) lands on no equilibrium the start was meant for
+    int far = -1;
+    for (int i = 0; i < n && far < 0; ++i)
+      if (!(fabs(w->q[i] + f * w->x[i]) <= reach)) // |q0| <= reach / 1e4
+        far = i;
+    if (far >= 0) {
+      char qs[256];
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(
+          st, DAL_E_CONV,
+          "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
+          "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the stiffness K is "
+          "nearly singular there (a turning point of the potential); start closer to "
+          "the equilibrium or bound the step (max_step)",
+          t, qs, sys->coord_names[far], w->q[far] + f * w->x[far], reach);
+    }
     for (int i = 0; i < n; ++i) {
       w->q[i] += f * w->x[i];
       conv = fmax(conv, fabs(f * w->x[i]) / (1.0 + fabs(w->q[i])));
@@ -156,15 +215,17 @@ int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "equilibrium: the state belongs to another system");
+  if (dal__check_idle(st, "equilibrium")) return DAL_E_STATE;
   dal_equilibrium_opts def;
   if (!o) {
-    dal_equilibrium_default_opts(&def);
+    def = dal_default_equilibrium_opts();
     o = &def;
   }
   char err[256];
   int rc = check_eq_opts(o, err, sizeof err);
   if (rc) return DAL_FAIL(st, rc, "%s", err);
   if ((rc = dal__tangent_supported(sys, st, "equilibrium")) != 0) return rc;
+  if (sys->m > 0) return dal__equilibrium_manifold(sys, st, o, rep);
   newton_ws w;
   if (newton_alloc(sys, &w))
     return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory for the Newton workspace");
@@ -248,7 +309,7 @@ static int solve_point(dal_rebuild_fn *rebuild, double p, const double *guess, i
 
 // det K sign at the point's solution (the state is evaluated at the equilibrium)
 static int point_sign(cont_point *pt, double *work, lapack_int *ipiv) {
-  int n = pt->sys->n;
+  int n = pt->sys->n - pt->sys->m; // K is k x k on the constraint manifold
   double *K = work + (size_t)n * n;
   int rc = dal_linearize(pt->sys, pt->st, NULL, NULL, K);
   if (rc) return rc;
@@ -264,9 +325,9 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
   if (!rebuild || !q0 || !o) {
     snprintf(r.msg, sizeof r.msg, "continue: rebuild, q0 and options are required");
     rc = DAL_E_ARG;
-  } else if (o->magic != DAL_CONT_MAGIC) {
+  } else if (o->cookie != DAL_CONT_COOKIE) {
     snprintf(r.msg, sizeof r.msg,
-             "continuation options not initialized: call dal_continuation_default_opts");
+             "continuation options not initialized: call dal_default_continuation_opts");
     rc = DAL_E_ARG;
   } else if (!isfinite(o->p0) || !isfinite(o->p1) || o->p0 == o->p1 || o->npoints < 2 ||
              !isfinite(o->t) || !(o->ptol >= 0)) {
@@ -331,7 +392,10 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
         } else {
           b = c;
         }
-        if (mid.sign == 0) break;
+        if (mid.sign == 0) { // det K is exactly zero at c: the critical point itself
+          a = c;
+          break;
+        }
       }
       if (!rc) {
         double c = 0.5 * (a + b);

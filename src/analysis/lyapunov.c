@@ -16,12 +16,12 @@
 
 #include "analysis.h"
 
-#define DAL_LYAP_MAGIC 0x01a9e0f7
+#define DAL_LYAP_COOKIE 0x01a9e0f7
 
-void dal_lyapunov_default_opts(dal_lyapunov_opts *o) {
-  if (!o) return;
+dal_lyapunov_opts dal_default_lyapunov_opts(void) {
+  dal_lyapunov_opts d, *o = &d;
   memset(o, 0, sizeof *o);
-  o->magic = DAL_LYAP_MAGIC;
+  o->cookie = DAL_LYAP_COOKIE;
   o->nexp = 0;
   o->t_end = NAN;
   o->transient = 0.0;
@@ -33,6 +33,7 @@ void dal_lyapunov_default_opts(dal_lyapunov_opts *o) {
   o->y0 = NULL;
   o->nblocks = 10;
   o->max_steps = 10000000;
+  return d;
 }
 
 /// the run: system, scratch state, tangent workspace and integrator memory
@@ -222,10 +223,10 @@ static void lyap_free(lyap *L) {
 
 static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
   int ny = 2 * sys->n;
-  if (!o || o->magic != DAL_LYAP_MAGIC)
+  if (!o || o->cookie != DAL_LYAP_COOKIE)
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
-                    "dal_lyapunov_default_opts");
+                    "dal_default_lyapunov_opts");
   if (o->method != DAL_METHOD_DOPRI5 && o->method != DAL_METHOD_RK4)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "lyapunov: method '%s' is not available for the variational equations; use "
@@ -247,6 +248,15 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
                     o->renorm, o->nblocks, o->max_steps);
   if (o->method == DAL_METHOD_RK4 && (!(o->h > 0) || !isfinite(o->h)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: RK4 step h = %g must be finite and > 0", o->h);
+  // the progress guard: a segment or step of a few ulps of t cannot advance t
+  double tmax = fmax(fabs(st->t), fabs(o->t_end)), tiny = DAL_TINY_STEP(tmax);
+  if (o->renorm <= tiny || (o->method == DAL_METHOD_RK4 && o->h <= tiny))
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "lyapunov: %s = %g is below the floating-point resolution of t near %g (%g, "
+                    "a few ulps): t would not advance; use a larger value or restart the clock "
+                    "near 0",
+                    o->renorm <= tiny ? "renorm" : "RK4 step h",
+                    o->renorm <= tiny ? o->renorm : o->h, tmax, tiny);
   if (o->method == DAL_METHOD_DOPRI5 &&
       (!(o->rtol > 0) || !(o->atol > 0) || !isfinite(o->rtol) || !isfinite(o->atol)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: rtol = %g and atol = %g must be finite and > 0",
@@ -264,9 +274,16 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "lyapunov: the state belongs to another system");
+  if (dal__check_idle(st, "lyapunov")) return DAL_E_STATE;
   if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
   int rc = check_opts(sys, st, o);
   if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
+  if (!rc && sys->m > 0)
+    rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                  "lyapunov: the system has %d constraint row(s) (first: '%s'); Lyapunov "
+                  "spectra cover minimal coordinates only: describe the scene by coordinate "
+                  "maps without constraints",
+                  sys->m, sys->con[0].name);
   if (rc) return rc;
 
   lyap L;
@@ -333,7 +350,10 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     if (averaging && block == nb - 1) bound = o->t_end;
     double t1 = fmin(t + o->renorm, bound);
     if (bound - t1 < 1e-9 * o->renorm) t1 = bound;
+    double t_seg = t;
     rc = o->method == DAL_METHOD_RK4 ? rk4_segment(&L, &t, t1) : dopri_segment(&L, &t, t1);
+    if (!rc && !(t > t_seg))
+      rc = DAL_FAIL(L.st, DAL_E_STEP, "lyapunov: no progress at t=%.17g (segment to %.17g)", t, t1);
     if (rc == DAL_E_MAXSTEPS)
       rc = DAL_FAIL(L.st, DAL_E_MAXSTEPS, "lyapunov: more than %ld steps before t=%.17g",
                     o->max_steps, o->t_end);

@@ -10,8 +10,10 @@
 
 #include "base/base.h"
 
-void dal_verify_default_opts(dal_verify_opts *o) {
-  if (!o) return;
+#define DAL_VERIFY_COOKIE 0x0fe41f1e
+
+dal_verify_opts dal_default_verify_opts(void) {
+  dal_verify_opts d, *o = &d;
   memset(o, 0, sizeof *o);
   o->nsamples = 16;
   o->lo = -1.0;
@@ -21,6 +23,8 @@ void dal_verify_default_opts(dal_verify_opts *o) {
   o->h = 1e-3;
   o->tol_factor = 10.0;
   o->seed = 1;
+  o->cookie = DAL_VERIFY_COOKIE;
+  return d;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -99,10 +103,15 @@ static int check_fun(const vfun *f, const dal_verify_opts *opts, dal_verify_repo
   if (opts)
     o = *opts;
   else
-    dal_verify_default_opts(&o);
+    o = dal_default_verify_opts();
   dal_verify_report local, *rep = out ? out : &local;
   memset(rep, 0, sizeof *rep);
   rep->worst_output = -1;
+  if (o.cookie != DAL_VERIFY_COOKIE) {
+    snprintf(rep->msg, sizeof rep->msg,
+             "%s: options were not initialized: start from dal_default_verify_opts()", f->what);
+    return DAL_E_ARG;
+  }
   if (f->nin < 0 || f->nout < 1 || o.nsamples < 1 || !(o.h > 0) || !(o.tol_factor > 0) ||
       !isfinite(o.lo) || !isfinite(o.hi) || !isfinite(o.t_lo) || !isfinite(o.t_hi)) {
     snprintf(rep->msg, sizeof rep->msg, "%s: invalid sizes or options", f->what);
@@ -330,8 +339,7 @@ static int check_path(const dal_system *sys, const dal_state *st, dal_state *w,
   double *qc = malloc((2 * sz + (PATH_K + 1) + 3 * (size_t)n) * sizeof(double));
   if (!qc) return DAL_E_NOMEM;
   double *Qc = qc + sz, *scale = Qc + sz, *fd1 = scale + PATH_K + 1, *fd2 = fd1 + n, *res = fd2 + n;
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   o.rtol = 1e-12;
   o.method = DAL_METHOD_BS;
   if (sys->m) {
@@ -412,6 +420,11 @@ int dal_verify_model(const dal_system *sys, dal_state *st, const dal_verify_opts
   if (pair) {
     snprintf(rep->msg, sizeof rep->msg, "model check: %.290s", dal_state_errmsg(st));
     return pair;
+  }
+  if (opts && opts->cookie != DAL_VERIFY_COOKIE) {
+    snprintf(rep->msg, sizeof rep->msg,
+             "model check: options were not initialized: start from dal_default_verify_opts()");
+    return DAL_E_ARG;
   }
   double tolf = opts && opts->tol_factor > 0 ? opts->tol_factor : 10.0;
   int n = sys->n, rc = dal_forward(sys, st);

@@ -11,7 +11,7 @@
 #include "dalembert/dalembert.h"
 
 #define DAL_ERRMSG_LEN 512
-#define DAL_OPTS_MAGIC 0x0da1e3b7
+#define DAL_OPTS_COOKIE 0x0da1e3b7
 /// Internal codes > 0 (never returned to the user): a trial point failed in a way that a
 /// smaller step may avoid. Each carries the public status it becomes when no smaller step
 /// helps or there is no step to shrink (dal__public_status):
@@ -234,6 +234,7 @@ struct dal_state {
   int lazy;    // a callback holds the state at an output time, not yet evaluated: the public
                // accessors evaluate it on first use (dal__lazy_eval)
   int lazy_rc; // status of that evaluation when it failed (the driver then stops the run)
+  int busy;    // dal_advance / dal_evolve is running on this state (its callbacks see it)
   char err[DAL_ERRMSG_LEN];
 };
 
@@ -271,6 +272,10 @@ int dal__set_err(char *buf, int status, const char *fmt, ...)
 /// kept); a NULL system or a state of another system is DAL_E_STATE with the message
 /// "<what>: the state belongs to another system ...". Returns 0 when they match.
 int dal__check_pair(const dal_system *sys, const dal_state *st, const char *what);
+/// Calls that move a state or replace its integrator refuse a state that dal_advance or
+/// dal_evolve is integrating (a monitor or event function that cast away const): DAL_E_STATE
+/// with "<what>: ..."; 0 when the state is idle.
+int dal__check_idle(dal_state *st, const char *what);
 
 /// format "(q0=..., q1=...)" of the state's coordinates into buf
 void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len);

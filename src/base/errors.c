@@ -77,6 +77,16 @@ int dal__public_status(int rc) {
   }
 }
 
+int dal__check_idle(dal_state *st, const char *what) {
+  if (!st->busy) return DAL_OK;
+  return DAL_FAIL(st, DAL_E_STATE,
+                  "%s: the state is being integrated (called from a monitor or event function "
+                  "of dal_advance / dal_evolve on this state, which would pull it from under the "
+                  "integrator); return 1 from the monitor to stop the run, then call it, or work "
+                  "on a copy",
+                  what);
+}
+
 int dal__check_pair(const dal_system *sys, const dal_state *st, const char *what) {
   if (!st) return DAL_E_ARG;
   if (sys && st->sys == sys) return DAL_OK;

@@ -6,10 +6,10 @@
 
 #include "base.h"
 
-void dal_solve_default_opts(dal_solve_opts *o) {
-  if (!o) return;
+dal_solve_opts dal_default_solve_opts(void) {
+  dal_solve_opts d, *o = &d;
   memset(o, 0, sizeof *o);
-  o->magic = DAL_OPTS_MAGIC;
+  o->cookie = DAL_OPTS_COOKIE;
   o->method = DAL_METHOD_AUTO;
   o->form = DAL_FORM_AUTO;
   o->linsol = DAL_LINSOL_AUTO;
@@ -20,6 +20,7 @@ void dal_solve_default_opts(dal_solve_opts *o) {
   o->max_steps = 1000000;
   o->sparse_threshold = DAL_SPARSE_THRESHOLD;
   o->fixed_erk = 0;
+  return d;
 }
 
 const char *dal_formulation_name(dal_formulation f) {
@@ -47,10 +48,10 @@ int dal_state_stats(const dal_state *st, dal_stats *out) {
 
 // validate options; a message names the field and the remedy
 int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
-  if (!o) return DAL_FAIL(st, DAL_E_ARG, "solve options are NULL; pass dal_solve_default_opts()");
-  if (o->magic != DAL_OPTS_MAGIC)
+  if (!o) return DAL_FAIL(st, DAL_E_ARG, "solve options are NULL; pass dal_default_solve_opts()");
+  if (o->cookie != DAL_OPTS_COOKIE)
     return DAL_FAIL(st, DAL_E_ARG,
-                    "solve options were not initialized: call dal_solve_default_opts(&opts) "
+                    "solve options were not initialized: call dal_default_solve_opts() "
                     "before setting fields");
   if ((int)o->method < DAL_METHOD_AUTO || (int)o->method > DAL_METHOD_RATTLE6)
     return DAL_FAIL(st, DAL_E_ARG, "opts.method = %d is not a dal_method", (int)o->method);
@@ -123,8 +124,9 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
 
 // every option field: the integrator is reused only while all of them are unchanged
 #define DAL_OPTS_FIELDS(X)                                                                         \
-  X(magic)                                                                                         \
-  X(method) X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step) X(max_steps)     \
+  X(cookie)                                                                                        \
+  X(method)                                                                                        \
+  X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step) X(max_steps)               \
       X(baumgarte_alpha) X(baumgarte_beta) X(project) X(sparse_threshold) X(fixed_erk) X(work)     \
           X(init_max_move)
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)

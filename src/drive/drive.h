@@ -33,5 +33,8 @@ int dal__events_terminal(const dal_events *ev, int i);
 const char *dal__events_item_name(const dal_events *ev, int i);
 /// log event i (direction dir) at the state's (t, q, qdot)
 int dal__events_record(dal_events *ev, const dal_state *st, int i, int dir);
+/// a run holds the set (on = 1) or lets it go (0): dal_events_add refuses while it is held
+/// (an event function adding an event would move the items under the scan)
+void dal__events_hold(dal_events *ev, int on);
 
 #endif

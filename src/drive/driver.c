@@ -155,6 +155,35 @@ static int evaluate_here(const dal_system *sys, dal_state *st) {
   return dal__public_status(dal__eval(sys, st, DAL_P_ALL));
 }
 
+// Over an interval [t, t1] of a few ulps of t no method can take a step. The state may stay
+// where it is only when it does not move there beyond the tolerances (|qdot| h + |qddot| h^2/2
+// and |qddot| h within atol + rtol |x|, at the evaluated state): at t = 1 a few ulps are
+// 1e-15 s, at t = 1e15 they are seconds. Otherwise the interval is refused (never reported as
+// motion that did not happen). 0 when the state may stay.
+static int check_unresolved(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                            double t1, const char *what) {
+  int rc = evaluate_here(sys, st);
+  if (rc) return rc;
+  double h = t1 - st->t, worst = 0.0;
+  int bad = -1;
+  for (int i = 0; i < sys->n; ++i) {
+    double a = fabs(st->qddot[i]), dq = fabs(st->qdot[i]) * h + 0.5 * a * h * h, dv = a * h;
+    double r = fmax(dq / (o->atol + o->rtol * fabs(st->q[i])),
+                    dv / (o->atol + o->rtol * fabs(st->qdot[i])));
+    if (!(r <= 1.0) && !(r <= worst)) {
+      worst = r;
+      bad = i;
+    }
+  }
+  if (bad < 0) return DAL_OK;
+  return DAL_FAIL(st, DAL_E_ARG,
+                  "%s: the interval from t=%.17g to %.17g (%.3g) is a few ulps of t, below the "
+                  "floating-point resolution of t at this magnitude: no step can be taken over "
+                  "it, and coordinate '%s' moves there (%.3g times its tolerance); restart the "
+                  "clock near 0 (shift the time origin) to integrate it",
+                  what, st->t, t1, h, sys->coord_names[bad], worst);
+}
+
 // ---------------------------------------------------------------------------------------------
 // a run of advance or evolve: the integrator steps freely towards the end time; after every
 // accepted step the hook serves the output times and the events inside the step from the
@@ -164,6 +193,7 @@ typedef struct run {
   const dal_system *sys;
   dal_state *st;
   const dal_solve_opts *o;
+  const char *what; // "advance" or "evolve" (messages)
   dal_integ_handle *h;
   int outputs;       // evolve: the output grid below is served
   double t0, dt, t1; // output times t0 + k dt (k <= K), then t1
@@ -320,8 +350,9 @@ static int run_to(run *r, double t1) {
   r->h = h;
   if (t1 == st->t) return evaluate_here(sys, st);
   if (t1 - st->t <= DAL_TINY_STEP(st->t)) {
-    // an interval of a few ulps: the solution does not change at double precision; restart
-    // the integrator at the new time rather than asking it for a step it cannot take
+    // an interval of a few ulps: no step can be taken over it. When the state does not move
+    // there beyond the tolerances, restart the integrator at the new time; else refuse
+    if ((rc = check_unresolved(sys, st, r->o, t1, r->what)) != 0) return rc;
     dal__integ_reset(st);
     r->h = NULL; // freed with it
     st->t = t1;
@@ -381,6 +412,7 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
                       const char *what) {
   int pair = dal__check_pair(sys, st, what);
   if (pair) return pair;
+  if ((pair = dal__check_idle(st, what)) != 0) return pair;
   int rc = dal__check_opts(st, o);
   if (rc) return rc;
   if (!isfinite(t1))
@@ -388,7 +420,7 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
   // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
   // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
   int fixed =
-      o->method == DAL_METHOD_RK4 ||
+      o->method == DAL_METHOD_RK4 || dal__symplectic_method(o->method) ||
       (o->fixed_erk && (o->method == DAL_METHOD_DOPRI5 || o->method == DAL_METHOD_FEHLBERG78));
   const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
   const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
@@ -410,14 +442,39 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   int rc = check_call(sys, st, opts, t1, "advance");
   if (rc) return rc;
   dal_solve_opts eff = dal__effective_opts(opts);
-  run r = {.sys = sys, .st = st, .o = &eff, .t1 = t1, .ev = active_events(st)};
-  return run_to(&r, t1);
+  run r = {.sys = sys, .st = st, .o = &eff, .what = "advance", .t1 = t1, .ev = active_events(st)};
+  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
+  // its callbacks)
+  st->busy = 1;
+  if (r.ev) dal__events_hold(r.ev, 1);
+  rc = run_to(&r, t1);
+  if (r.ev) dal__events_hold(r.ev, 0);
+  st->busy = 0;
+  return rc;
 }
+
+static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                  double dt, dal_monitor_fn *monitor, void *ctx);
 
 int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
                double dt, dal_monitor_fn *monitor, void *ctx) {
   int rc = check_call(sys, st, opts, t1, "evolve");
   if (rc) return rc;
+  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
+  // its callbacks)
+  dal_events *ev = active_events(st);
+  st->busy = 1;
+  if (ev) dal__events_hold(ev, 1);
+  rc = evolve(sys, st, opts, t1, dt, monitor, ctx);
+  if (ev) dal__events_hold(ev, 0);
+  st->busy = 0;
+  return rc;
+}
+
+// dal_evolve with checked (system, state, options, t1)
+static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                  double dt, dal_monitor_fn *monitor, void *ctx) {
+  int rc;
   if (!isfinite(dt))
     return DAL_FAIL(st, DAL_E_NONFINITE,
                     "evolve: output interval dt = %g is not finite; give a positive finite dt", dt);
@@ -444,6 +501,7 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
   run r = {.sys = sys,
            .st = st,
            .o = &eff,
+           .what = "evolve",
            .outputs = 1,
            .t0 = t0,
            .dt = dt,
@@ -456,6 +514,10 @@ int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
            .ev = active_events(st)};
   // the start (made consistent first in redundant coordinates), evaluated, is output 0
   if ((rc = run_to(&r, t0)) != 0) return rc;
+  // an interval of a few ulps that cannot be integrated is refused before any output
+  if (t1 > t0 && t1 - t0 <= DAL_TINY_STEP(t0) &&
+      (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
+    return rc;
   if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
   // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state

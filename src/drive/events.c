@@ -26,8 +26,9 @@ typedef struct ev_item {
   int row; // global constraint row of a multiplier event, or -1
   void *ctx;
   int dir, terminal;
-  int sign;  // sign of g at the last point checked (0: not yet known)
-  double gv; // g there
+  int sign;  // sign of g at the last point where it was nonzero (0: not yet known)
+  double gv; // g at the last point checked (0 there: a crossing or a touch, decided later)
+  double tv; // time of that point (a call continuing from it keeps the sign; NaN: none)
 } ev_item;
 
 struct dal_events {
@@ -39,6 +40,7 @@ struct dal_events {
   double *logq; // 2n per entry: q, qdot
   int npend;
   dal__pending *pend; // crossings of the current step, in time order (n)
+  int held;           // runs using the set now (dal__events_hold)
   char err[DAL_ERRMSG_LEN];
 };
 
@@ -62,7 +64,7 @@ int dal_events_create(const dal_system *sys, dal_events **out) {
   return DAL_OK;
 }
 
-void dal_events_free(dal_events *ev) {
+void dal_events_destroy(dal_events *ev) {
   if (!ev) return;
   free(ev->it);
   free(ev->log);
@@ -105,9 +107,15 @@ static int find_row(dal_events *ev, const char *name, int row, int *out) {
                                   "with dal_state_reactions instead");
 }
 
+void dal__events_hold(dal_events *ev, int on) { ev->held += on ? 1 : -1; }
+
 int dal_events_add(dal_events *ev, const dal_event_def *d) {
   if (!ev) return DAL_E_ARG;
   ev->err[0] = 0;
+  if (ev->held)
+    return dal__set_err(ev->err, DAL_E_STATE,
+                        "events_add: the event set is in use by a running dal_advance or "
+                        "dal_evolve (called from one of its callbacks); add events between runs");
   if (!d) return dal__set_err(ev->err, DAL_E_ARG, "events_add: def is NULL");
   if (d->cookie != EVENT_COOKIE)
     return dal__set_err(ev->err, DAL_E_ARG,
@@ -142,6 +150,7 @@ int dal_events_add(dal_events *ev, const dal_event_def *d) {
   }
   ev_item *e = &ev->it[ev->n];
   memset(e, 0, sizeof *e);
+  e->tv = NAN;
   snprintf(e->name, sizeof e->name, "%s", name);
   e->g = d->g;
   e->gs = d->g_state;
@@ -154,6 +163,7 @@ int dal_events_add(dal_events *ev, const dal_event_def *d) {
 
 int dal_state_set_events(dal_state *st, dal_events *ev) {
   if (!st) return DAL_E_ARG;
+  if (dal__check_idle(st, "state_set_events")) return DAL_E_STATE;
   if (ev && ev->sys != st->sys)
     return DAL_FAIL(st, DAL_E_STATE,
                     "state_set_events: the event set belongs to another system; create it "
@@ -249,8 +259,12 @@ int dal__events_begin(dal_events *ev, dal_state *st) {
     double g = 0.0;
     int rc = value(ev, i, st, &g);
     if (rc) return rc;
-    ev->it[i].sign = sgn(g);
-    ev->it[i].gv = g;
+    ev_item *e = &ev->it[i];
+    // a zero where the previous call ended (a step end exactly on it) is still undecided:
+    // keep the sign from before it, so that a crossing there is logged and a touch is not
+    if (!(g == 0.0 && e->sign != 0 && e->tv == st->t)) e->sign = sgn(g);
+    e->gv = g;
+    e->tv = st->t;
   }
   ev->npend = 0;
   return DAL_OK;
@@ -305,14 +319,13 @@ int dal__events_scan(dal_events *ev, dal_state *st, double a, double b, dal__pla
     ev_item *e = &ev->it[i];
     int s0 = e->sign, s1 = sgn(g);
     double g0 = e->gv;
-    if (s1 != 0 || s0 == 0) {
-      // a zero at the end counts as a crossing now; the next nonzero sign is taken silently
-      e->sign = s1;
-      e->gv = g;
-    } else {
-      e->sign = 0;
-    }
-    if (s0 == 0 || s1 == s0) continue;
+    // a zero at the step's end is not a crossing yet: g may only touch zero there (events.h).
+    // The sign from before it is kept; the next step's end decides (a crossing is then
+    // located at the zero, the start of that step)
+    if (s1 != 0 || s0 == 0) e->sign = s1;
+    e->gv = g;
+    e->tv = b;
+    if (s0 == 0 || s1 == 0 || s1 == s0) continue;
     int dir = s1 != 0 ? s1 : -s0;
     if (e->dir != DAL_EVENT_BOTH && e->dir != dir) continue;
     ev->pend[ev->npend].event = i;

@@ -10,15 +10,15 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "dalembert/ensemble.h"
 #include "base/base.h"
+#include "dalembert/ensemble.h"
 
-#define DAL_SWEEP_MAGIC 0x5eed0a11
+#define DAL_SWEEP_COOKIE 0x5eed0a11
 
-void dal_sweep_default_opts(dal_sweep_opts *o) {
-  if (!o) return;
+dal_sweep_opts dal_default_sweep_opts(void) {
+  dal_sweep_opts d, *o = &d;
   memset(o, 0, sizeof *o);
-  o->magic = DAL_SWEEP_MAGIC;
+  o->cookie = DAL_SWEEP_COOKIE;
   o->nthreads = 1;
   o->schedule = DAL_SCHEDULE_DYNAMIC;
   o->chunk = 1;
@@ -26,6 +26,7 @@ void dal_sweep_default_opts(dal_sweep_opts *o) {
   o->part = 0;
   o->nparts = 1;
   o->part_block = 1;
+  return d;
 }
 
 int dal_sweep_part_of(long i, int nparts, int block) {
@@ -197,8 +198,8 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
   if (errmsg && errlen) errmsg[0] = 0;
   if (!sys || !sw || !o || !out)
     return SFAIL(DAL_E_ARG, "sweep: system, sweep, options or out is NULL");
-  if (o->magic != DAL_SWEEP_MAGIC)
-    return SFAIL(DAL_E_ARG, "sweep options were not initialized: call dal_sweep_default_opts(&o) "
+  if (o->cookie != DAL_SWEEP_COOKIE)
+    return SFAIL(DAL_E_ARG, "sweep options were not initialized: call dal_default_sweep_opts() "
                             "before setting fields");
   if (sw->ntraj < 1) return SFAIL(DAL_E_ARG, "sweep: ntraj is %ld; give at least 1", sw->ntraj);
   if (sw->nparam < 0 || (sw->nparam > 0 && (!sw->params || !sw->values)))
@@ -334,6 +335,11 @@ int dal_sweep_write_csv(FILE *fp, const dal_system *sys, const dal_sweep *sw,
     if (dal_param_name(sys, &sw->params[j], name, sizeof name)) return DAL_E_ARG;
     bad |= fprintf(fp, ",%s", name) < 0;
   }
+  // per-trajectory initial states (state_stride = n): their columns follow the parameters
+  int n = dal_system_ncoords(sys), own_start = sw->state_stride > 0 && sw->q0 && sw->qdot0;
+  for (int w = 0; own_start && w < 2; ++w)
+    for (int j = 0; j < n; ++j)
+      bad |= fprintf(fp, ",%s:%s", w ? "qdot0" : "q0", dal_system_coord_name(sys, j)) < 0;
   bad |= fprintf(fp, ",status") < 0;
   for (int k = 0; k < sw->nresult; ++k)
     bad |= (result_names ? fprintf(fp, ",%s", result_names[k]) : fprintf(fp, ",r%d", k)) < 0;
@@ -342,6 +348,11 @@ int dal_sweep_write_csv(FILE *fp, const dal_system *sys, const dal_sweep *sw,
     bad |= fprintf(fp, "%ld", i) < 0;
     for (int j = 0; j < sw->nparam; ++j)
       bad |= fprintf(fp, ",%.17g", sw->values[(size_t)i * (size_t)sw->nparam + j]) < 0;
+    for (int w = 0; own_start && w < 2; ++w) {
+      const double *x = (w ? sw->qdot0 : sw->q0) + (size_t)i * (size_t)sw->state_stride;
+      for (int j = 0; j < n; ++j)
+        bad |= fprintf(fp, ",%.17g", x[j]) < 0;
+    }
     bad |= fprintf(fp, ",%s", dal_status_name(out->status[i])) < 0;
     for (int k = 0; k < sw->nresult; ++k)
       bad |= fprintf(fp, ",%.17g", out->results[(size_t)i * (size_t)sw->nresult + k]) < 0;

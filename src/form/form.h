@@ -62,7 +62,6 @@ int dal__dae_newton(dal_dae *f, double t, double cj, const double *y, dal_dae_si
 /// particles, no forces but gravity): then no difference quotients are needed anywhere.
 int dal__dae_newton_exact(const dal_system *sys);
 
-
 /// solve options reach the forms through the first-order problem
 #include "dalembert/solve.h"
 
@@ -85,6 +84,9 @@ typedef struct dal_ode_problem {
   void (*from_state)(const dal_system *sys, const dal_state *st, double *y);
   /// the state's (t, q, qdot) from y (does not evaluate)
   void (*to_state)(const dal_system *sys, dal_state *st, double t, const double *y);
+  /// size of y when > 0 (a problem built at run time, e.g. the variational equations, whose
+  /// size depends on the request); 0: size(sys)
+  int ny;
   /// factor on the method's local tolerance for this problem (the projection of the index-1
   /// form adds its own error: measured 30 x rtol with DOPRI5's factor alone, 0.2 brings it
   /// under 16)
@@ -134,6 +136,23 @@ typedef struct dal_tangent {
   double *HL, *HLabs; // (2n + 1)^2: Hessian of L in (q, qdot, t) (Lagrangian systems)
   double *L;          // n x n Cholesky factor of M
   double *link;       // per spring and damper: anchor x, x', x'' (3 x 3)
+  // constraint rows (m > 0; tangent_con.c): the residual is R - G' lambda, W gains
+  // -lambda . phi, and the constraints' own derivatives along each direction are kept
+  int m;              // constraint rows
+  const double *acc;  // accelerations the weights use (n); NULL: the state's qddot
+  const double *lam;  // multipliers the weights use (m); NULL: the state's lambda
+  dal_jet *jc;        // m: constraint jets along the current curve
+  dal_jet *ccp, *ccm; // m: constraint jets along the curves lambda = +1 and -1
+  double *c3diag;     // (n + 1) x m: third derivatives of phi along e_i (i = n: time)
+  double *G;          // m x n column-major: G = dphi/dq
+  double *phit;       // m: dphi/dt (when want_t)
+  double *cres;       // 3 x m: phi, G v + phi_t, G a + gamma_phi at the state
+  double *Pq;         // m x n: d(G v + phi_t)/dq
+  double *Aq, *Av;    // m x n: d(G a + gamma_phi)/dq, /dqdot at fixed a
+  double *At;         // m: d(G a + gamma_phi)/dt at fixed a
+  double *kkt;        // (n + m)^2 LU factors of [M G'; G 0] after dal__tangent_kkt, then
+                      // (n + m) x (2n + 1) right-hand sides
+  void *kpiv;         // (n + m) pivots (lapack_int)
 } dal_tangent;
 /// Allocate the workspace of sys. Returns DAL_OK or DAL_E_NOMEM (*out NULL then).
 int dal__tangent_create(const dal_system *sys, dal_tangent **out);
@@ -151,9 +170,42 @@ int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *t
 int dal__tangent_factor(const dal_system *sys, dal_state *st, dal_tangent *tg);
 /// B (n x k, column-major) = M^-1 B with the factor of dal__tangent_factor.
 void dal__tangent_msolve(dal_tangent *tg, int k, double *B);
-/// The flow Jacobian A = df/dy (2n x 2n) and ft = df/dt (2n; NULL to skip) from the last
+/// The vector-field Jacobian A = df/dy (2n x 2n) and ft = df/dt (2n; NULL to skip) from the last
 /// evaluation (factor first). Uses tg->dr.. as no scratch; A, ft caller-owned.
 void dal__tangent_flow(dal_tangent *tg, double *A, double *ft);
+/// Constrained systems (tangent_con.c). The tangent of the index-1 vector field
+/// f(q, v) = (v, a) with (a, lambda) from the KKT system [M G'; G 0] (a; -lambda) =
+/// (Q - c; -gamma_phi), from the last dal__tangent_eval: A (2n x 2n) and ft (2n; NULL to
+/// skip), caller-owned; dlam (m x (2n + 1), NULL to skip): the multipliers' derivatives along
+/// q, qdot and t (the t column only with ft). Returns DAL_OK, DAL_E_SINGULAR (message set:
+/// the KKT matrix is singular) or DAL_E_NOMEM.
+int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, double *A, double *ft,
+                     double *dlam);
+/// Solve [M G'; G 0] x = b for nrhs columns b (n + m each, in place) with the LU factors of the
+/// last dal__tangent_kkt.
+void dal__tangent_kkt_solve(dal_tangent *tg, int nrhs, double *b);
+/// Orthonormal basis N (n x k, k = n - m) of the null space of G and the velocity part
+/// Y = -G^+ Pq N (n x k) of the tangent space of the state manifold
+/// {phi = 0, G v + phi_t = 0}: its vectors are (N xi, Y xi + N eta). Y may be
+/// NULL; W (m x k, nullable) = S^-1 U' P N from the SVD G = U S V', so W' W =
+/// N' P' (G G')^-1 P N. From the last dal__tangent_eval (by an SVD of G). Returns DAL_OK,
+/// DAL_E_SINGULAR (rank of G below m, message naming the row) or DAL_E_NOMEM.
+int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N, double *Y,
+                       double *W);
+/// The reduced first-order Jacobian Ar (2k x 2k) = [0 I; A21 A22] of the full A on the
+/// tangent space (basis N, Y of dal__tangent_basis): Ar = diag(N', N') A Z.
+void dal__tangent_reduce(int n, int k, const double *A, const double *N, const double *Y,
+                         double *Ar);
+/// The reduced linearization on the constraint manifold from the last dal__tangent_eval:
+/// N (n x k), Ar (2k x 2k) in xi = N' dq, eta = xi' with N carried along the motion by
+/// minimal rotation (tangent_con.c), and M_r = N' M N, C_r, K_r (k x k) with
+/// M_r xi'' + C_r xi' + K_r xi = 0 the second-order form of Ar; each output nullable.
+int dal__tangent_reduced(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
+                         double *Ar, double *Mr, double *Cr, double *Kr);
+/// The manifold check of the tangent: the state must satisfy phi = 0 and G v + phi_t = 0
+/// (relative to the scale of the rows); DAL_E_ARG naming the row otherwise.
+int dal__tangent_on_manifold(const dal_system *sys, dal_state *st, dal_tangent *tg,
+                             const char *what);
 /// Evaluate sys at (t, q, qdot) into st (state set and forward; the integrator memory of st
 /// is dropped). Returns the status of dal_state_set / dal_forward.
 int dal__analysis_eval(const dal_system *sys, dal_state *st, double t, const double *q,

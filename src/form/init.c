@@ -17,7 +17,6 @@
 /// position iterations of the consistent initialization
 #define INIT_MAXIT 50
 
-
 double dal__max_abs(const double *x, int n, int *at) {
   double mx = 0.0;
   if (at) *at = n > 0 ? 0 : -1;
@@ -206,13 +205,12 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dou
     memcpy(st->qdot, save + n, (size_t)n * sizeof(double));
     dal__state_moved(st);
     rc = DAL_FAIL(st, DAL_E_INIT,
-                    "consistent start at t=%.17g would move coordinate '%s' by %.3g (from %.9g to "
-                    "%.9g), more than opts.init_max_move = %g; the largest constraint residual "
-                    "was %.3g on '%s'. Start closer to the constraints or raise the limit; the "
-                    "state is unchanged (dal_state_init_report has the full report)",
-                    st->t, sys->coord_names[j], rep->dq_max, save[j], qnew, max_move,
-                    rep->phi_before,
-                    rep->phi_row >= 0 ? sys->con[sys->row_con[rep->phi_row]].name : "-");
+                  "consistent start at t=%.17g would move coordinate '%s' by %.3g (from %.9g to "
+                  "%.9g), more than opts.init_max_move = %g; the largest constraint residual "
+                  "was %.3g on '%s'. Start closer to the constraints or raise the limit; the "
+                  "state is unchanged (dal_state_init_report has the full report)",
+                  st->t, sys->coord_names[j], rep->dq_max, save[j], qnew, max_move, rep->phi_before,
+                  rep->phi_row >= 0 ? sys->con[sys->row_con[rep->phi_row]].name : "-");
     free(save);
     return rc;
   }
@@ -223,6 +221,7 @@ static int make_consistent(const dal_system *sys, dal_state *st, double tol, dou
 int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_init_report *rep) {
   int pair = dal__check_pair(sys, st, "make_consistent");
   if (pair) return pair;
+  if ((pair = dal__check_idle(st, "make_consistent")) != 0) return pair;
   if (!isfinite(tol))
     return DAL_FAIL(st, DAL_E_NONFINITE,
                     "make_consistent: tolerance %g is not finite; give a finite tolerance (<= 0: "

@@ -59,9 +59,29 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
   tg->Cabs = calloc(sn * sn + 1, sizeof(double));
   tg->L = calloc(sn * sn + 1, sizeof(double));
   tg->link = calloc(9 * (size_t)nlink + 1, sizeof(double));
-  int ok = tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
-           tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link &&
-           tg->Habs && tg->Kabs && tg->Cabs && tg->jv && tg->HL && tg->HLabs;
+  size_t sm = (size_t)sys->m + 1;
+  tg->m = sys->m;
+  tg->jc = calloc(sm, sizeof(dal_jet));
+  tg->ccp = calloc(sm, sizeof(dal_jet));
+  tg->ccm = calloc(sm, sizeof(dal_jet));
+  tg->c3diag = calloc(nt * sm, sizeof(double));
+  tg->G = calloc(sm * sn + 1, sizeof(double));
+  tg->phit = calloc(sm, sizeof(double));
+  tg->cres = calloc(3 * sm, sizeof(double));
+  tg->Pq = calloc(sm * sn + 1, sizeof(double));
+  tg->Aq = calloc(sm * sn + 1, sizeof(double));
+  tg->Av = calloc(sm * sn + 1, sizeof(double));
+  tg->At = calloc(sm, sizeof(double));
+  size_t snk = sn + (size_t)sys->m;
+  if (sys->m > 0) {
+    tg->kkt = calloc(snk * snk + snk * (2 * sn + 1), sizeof(double));
+    tg->kpiv = calloc(snk, sizeof(lapack_int));
+  }
+  int ok = (sys->m == 0 || (tg->kkt && tg->kpiv)) && tg->jc && tg->ccp && tg->ccm && tg->c3diag &&
+           tg->G && tg->phit && tg->cres && tg->Pq && tg->Aq && tg->Av && tg->At;
+  ok = ok && tg->jq && tg->jr && tg->jin && tg->jout && tg->cp && tg->cm && tg->d3diag && tg->J &&
+       tg->H && tg->res && tg->M && tg->Rq && tg->Ru && tg->Rt && tg->L && tg->link && tg->Habs &&
+       tg->Kabs && tg->Cabs && tg->jv && tg->HL && tg->HLabs;
   for (size_t i = 0; i < sizeof nds / sizeof nds[0]; ++i)
     ok = ok && *nds[i];
   if (!ok) {
@@ -74,28 +94,31 @@ int dal__tangent_create(const dal_system *sys, dal_tangent **out) {
 
 void dal__tangent_free(dal_tangent *tg) {
   if (!tg) return;
-  void *p[] = {tg->jq,   tg->jr,   tg->jin,  tg->jout, tg->cp, tg->cm, tg->d3diag, tg->J,
-               tg->r,    tg->v,    tg->A,    tg->w,    tg->Fd, tg->dr, tg->dv,     tg->da,
-               tg->dF,   tg->H,    tg->res,  tg->M,    tg->Rq, tg->Ru, tg->Rt,     tg->L,
-               tg->link, tg->Habs, tg->Kabs, tg->Cabs, tg->jv, tg->HL, tg->HLabs};
+  void *p[] = {tg->jq,   tg->jr,   tg->jin,    tg->jout, tg->cp,   tg->cm,   tg->d3diag, tg->J,
+               tg->r,    tg->v,    tg->A,      tg->w,    tg->Fd,   tg->dr,   tg->dv,     tg->da,
+               tg->dF,   tg->H,    tg->res,    tg->M,    tg->Rq,   tg->Ru,   tg->Rt,     tg->L,
+               tg->link, tg->Habs, tg->Kabs,   tg->Cabs, tg->jv,   tg->HL,   tg->HLabs,  tg->jc,
+               tg->ccp,  tg->ccm,  tg->c3diag, tg->G,    tg->phit, tg->cres, tg->Pq,     tg->Aq,
+               tg->Av,   tg->At,   tg->kkt,    tg->kpiv};
   for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
     free(p[i]);
   free(tg);
 }
 
 int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *what) {
-  if (sys->m > 0)
+  if (sys->m > 0 && sys->lag)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "%s: the system has %d constraint row(s) (first: '%s'); the exact tangent "
-                    "covers minimal coordinates only: describe the scene by coordinate maps "
-                    "without constraints",
+                    "%s: the system is given by a Lagrangian and has %d constraint row(s) "
+                    "(first: '%s'); the exact tangent covers constraints on particle systems "
+                    "and Lagrangians in minimal coordinates: place particles by maps, or drop "
+                    "the constraints",
                     what, sys->m, sys->con[0].name);
   if (sys->nforce > 0 || sys->ngenforce > 0)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "%s: the system has %d force callback(s) and %d generalized force "
                     "callback(s) given as plain doubles, which have no exact derivative; write "
                     "a conservative force as a jet potential (dal_builder_add_potential_r/q), "
-                    "a linear damper with dal_builder_add_damper",
+                    "a linear damper with dal_builder_add_damper_def",
                     what, sys->nforce, sys->ngenforce);
   return DAL_OK;
 }
@@ -130,7 +153,8 @@ static int jet_fail(const dal_system *sys, dal_state *st, dal_jet x, const char 
 
 // particle jets tg->jr along the curve given by the coordinate jets tg->jq and the time jet tj;
 // order3: the third derivatives are needed (and checked)
-static int curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj, int order3) {
+static int particle_curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj,
+                          int order3) {
   int d = sys->dim;
   char what[200];
   if (sys->map) {
@@ -171,6 +195,45 @@ static int curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet 
     }
   }
   return DAL_OK;
+}
+
+// constraint jets tg->jc along the current curve (particle jets tg->jr and coordinate jets tg->jq
+// set): every constraint block with its particle positions, then its coordinates, as inputs
+static int constraint_curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj,
+                            int order3) {
+  int d = sys->dim;
+  char what[200];
+  for (int c = 0; c < sys->ncon; ++c) {
+    const dal_con *con = &sys->con[c];
+    const int *parts = sys->ipool + con->part_off, *coords = sys->ipool + con->coord_off;
+    int k = 0;
+    for (int p = 0; p < con->npart; ++p)
+      for (int b = 0; b < d; ++b)
+        tg->jin[k++] = tg->jr[parts[p] * d + b];
+    for (int i = 0; i < con->ncoord; ++i)
+      tg->jin[k++] = tg->jq[coords[i]];
+    int rc = con->prim->eval(tg->jin, tj, st->prm.ppool + con->param_off, tg->jout, con->ctx);
+    if (rc) {
+      snprintf(what, sizeof what, "constraint '%s' (%s)", con->name, con->prim->name);
+      return cb_fail(sys, st, rc, what);
+    }
+    for (int o = 0; o < con->prim->nout; ++o) {
+      dal_jet x = tg->jout[o];
+      if (!(order3 ? dal_jet_isfinite3(x) : dal_jet_isfinite(x))) {
+        snprintf(what, sizeof what, "constraint '%s' (%s)", con->name, con->prim->name);
+        return jet_fail(sys, st, x, what);
+      }
+      tg->jc[con->row + o] = x;
+    }
+  }
+  return DAL_OK;
+}
+
+// particle jets and, with constraint rows, constraint jets along the current curve
+static int curve(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_jet tj, int order3) {
+  int rc = particle_curve(sys, st, tg, tj, order3);
+  if (!rc && tg->m > 0) rc = constraint_curve(sys, st, tg, tj, order3);
+  return rc;
 }
 
 // anchor of a spring or damper along the time jet tj (fixed point x0 or the path x(t))
@@ -295,6 +358,13 @@ static int weighted(const dal_system *sys, dal_state *st, dal_tangent *tg, dal_j
     s1 += tg->jr[c].d * tg->w[c];
     sa += fabs(tg->jr[c].dd * tg->w[c]);
   }
+  // the constraint forces G' lambda at frozen multipliers: W gains -lambda . phi
+  const double *lam = tg->lam ? tg->lam : st->lambda;
+  for (int r = 0; r < tg->m; ++r) {
+    s2 -= tg->jc[r].dd * lam[r];
+    s1 -= tg->jc[r].d * lam[r];
+    sa += fabs(tg->jc[r].dd * lam[r]);
+  }
   *W2 = s2;
   *Wabs = sa;
   if (W1) *W1 = s1;
@@ -313,8 +383,9 @@ static dal_jet line(dal_tangent *tg, const double *q, double t, int i, int j) {
 
 int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t) {
   int n = tg->n, nd = tg->nd, d = sys->dim, nt = want_t ? n + 1 : n, rc;
-  const double t = st->t, *q = st->q, *u = st->qdot, *a = st->qddot;
+  const double t = st->t, *q = st->q, *u = st->qdot, *a = tg->acc ? tg->acc : st->qddot;
   double *H = tg->H;
+  int m = tg->m;
   size_t ldh = (size_t)n + 1;
   if (sys->lag) return dal__tangent_lagrangian(sys, st, tg, want_t);
 
@@ -342,6 +413,11 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     tg->v[c] = tg->jr[c].d;
     tg->A[c] = tg->jr[c].dd;
   }
+  for (int r = 0; r < m; ++r) {
+    tg->cres[r] = tg->jc[r].v;
+    tg->cres[m + r] = tg->jc[r].d;
+    tg->cres[2 * m + r] = tg->jc[r].dd;
+  }
   dampers(sys, st, tg, NULL, NULL, 0.0, tg->Fd, NULL);
   for (int c = 0; c < nd; ++c)
     tg->w[c] = st->prm.mass[c / d] * tg->A[c] - tg->Fd[c];
@@ -361,6 +437,13 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
     }
     for (int c = 0; c < nd; ++c)
       tg->d3diag[(size_t)i * nd + c] = tg->jr[c].d3;
+    for (int r = 0; r < m; ++r) {
+      tg->c3diag[(size_t)i * m + r] = tg->jc[r].d3;
+      if (i < n)
+        tg->G[(size_t)i * m + r] = tg->jc[r].d;
+      else
+        tg->phit[r] = tg->jc[r].d;
+    }
   }
   for (int i = 0; i < nt; ++i)
     for (int j = i + 1; j < nt; ++j) {
@@ -396,8 +479,22 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
       dal_jet tj = dal_var(t, udir || qdir ? 1.0 : 1.0 + lam);
       if ((rc = curve(sys, st, tg, tj, 1)) != 0) return rc;
       memcpy(l ? tg->cm : tg->cp, tg->jr, (size_t)nd * sizeof(dal_jet));
+      if (m > 0) memcpy(l ? tg->ccm : tg->ccp, tg->jc, (size_t)m * sizeof(dal_jet));
     }
     const double *pure = udir ? NULL : tg->d3diag + (size_t)i * nd;
+    // the constraint rows' velocity and acceleration residuals along the direction
+    for (int r = 0; r < m; ++r) {
+      double cpure = udir ? 0.0 : tg->c3diag[(size_t)i * m + r];
+      double dacc = (0.5 * (tg->ccp[r].d3 - tg->ccm[r].d3) - cpure) / 3.0;
+      if (qdir) {
+        tg->Pq[(size_t)i * m + r] = 0.25 * (tg->ccp[r].dd - tg->ccm[r].dd);
+        tg->Aq[(size_t)i * m + r] = dacc;
+      } else if (udir) {
+        tg->Av[(size_t)i * m + r] = dacc;
+      } else {
+        tg->At[r] = dacc;
+      }
+    }
     for (int c = 0; c < nd; ++c) {
       tg->dr[c] = 0.5 * (tg->cp[c].d - tg->cm[c].d);
       tg->dv[c] = 0.25 * (tg->cp[c].dd - tg->cm[c].dd);
@@ -473,7 +570,8 @@ int dal__analysis_eval(const dal_system *sys, dal_state *st, double t, const dou
   return rc;
 }
 
-// common start of the public calls: checks, evaluation at the state, workspace, tangent
+// common start of the public calls: checks, evaluation at the state, workspace, tangent; with
+// constraint rows the state must be on the manifold
 static int start(const dal_system *sys, dal_state *st, const char *what, int want_t,
                  dal_tangent **tg) {
   *tg = NULL;
@@ -486,6 +584,7 @@ static int start(const dal_system *sys, dal_state *st, const char *what, int wan
   if (dal__tangent_create(sys, tg))
     return DAL_FAIL(st, DAL_E_NOMEM, "%s: out of memory for the tangent workspace", what);
   rc = dal__tangent_eval(sys, st, *tg, want_t);
+  if (!rc && sys->m > 0) rc = dal__tangent_on_manifold(sys, st, *tg, what);
   if (rc) {
     dal__tangent_free(*tg);
     *tg = NULL;
@@ -497,6 +596,11 @@ int dal_linearize(const dal_system *sys, dal_state *st, double *M, double *C, do
   dal_tangent *tg;
   int rc = start(sys, st, "linearize", 0, &tg);
   if (rc) return rc;
+  if (sys->m > 0) {
+    rc = dal__tangent_reduced(sys, st, tg, NULL, NULL, M, C, K);
+    dal__tangent_free(tg);
+    return rc;
+  }
   size_t nn = (size_t)tg->n * (size_t)tg->n * sizeof(double);
   if (M) memcpy(M, tg->M, nn);
   if (C) memcpy(C, tg->Ru, nn);
@@ -505,13 +609,38 @@ int dal_linearize(const dal_system *sys, dal_state *st, double *M, double *C, do
   return DAL_OK;
 }
 
-int dal_flow_jacobian(const dal_system *sys, dal_state *st, double *A, double *ft) {
-  if (st && !A) return DAL_FAIL(st, DAL_E_ARG, "flow_jacobian: A is NULL");
+int dal_linearize_full(const dal_system *sys, dal_state *st, double *M, double *C, double *K,
+                       double *G, double *N) {
   dal_tangent *tg;
-  int rc = start(sys, st, "flow_jacobian", ft != NULL, &tg);
+  int rc = start(sys, st, "linearize_full", 0, &tg);
   if (rc) return rc;
-  rc = dal__tangent_factor(sys, st, tg);
-  if (!rc) dal__tangent_flow(tg, A, ft);
+  int n = tg->n, m = tg->m;
+  size_t nn = (size_t)n * (size_t)n * sizeof(double);
+  if (M) memcpy(M, tg->M, nn);
+  if (C) memcpy(C, tg->Ru, nn);
+  if (K) memcpy(K, tg->Rq, nn);
+  if (G && m > 0) memcpy(G, tg->G, (size_t)m * (size_t)n * sizeof(double));
+  if (N && m > 0) rc = dal__tangent_basis(sys, st, tg, N, NULL, NULL);
+  if (N && m == 0) {
+    memset(N, 0, nn);
+    for (int i = 0; i < n; ++i)
+      N[(size_t)i * n + i] = 1.0;
+  }
+  dal__tangent_free(tg);
+  return rc;
+}
+
+int dal_vector_field_jacobian(const dal_system *sys, dal_state *st, double *A, double *ft) {
+  if (st && !A) return DAL_FAIL(st, DAL_E_ARG, "vector_field_jacobian: A is NULL");
+  dal_tangent *tg;
+  int rc = start(sys, st, "vector_field_jacobian", ft != NULL, &tg);
+  if (rc) return rc;
+  if (sys->m > 0) {
+    rc = dal__tangent_kkt(sys, st, tg, A, ft, NULL);
+  } else {
+    rc = dal__tangent_factor(sys, st, tg);
+    if (!rc) dal__tangent_flow(tg, A, ft);
+  }
   dal__tangent_free(tg);
   return rc;
 }

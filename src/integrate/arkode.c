@@ -14,8 +14,8 @@
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 
-#include "nvec.h"
 #include "integrate.h"
+#include "nvec.h"
 
 /// consecutive recoverable right-hand-side failures tolerated before giving up
 #define ERK_MAX_RECOVER 30
@@ -227,6 +227,16 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     recover = 0;
     ig->st->stats.foreign_code = flag;
     // a step that reached the stop time within rounding lands exactly on tout
+    {
+      // the time moved by the step integrated: ERKStep snaps its time to a stop time within
+      // 100 ulps of it, which at large |t| is seconds of motion that did not happen
+      realtype hlast = 0, tn = tret;
+      ERKStepGetLastStep(m->ark, &hlast);
+      ERKStepGetCurrentTime(m->ark, &tn);
+      if (flag == ARK_TSTOP_RETURN || tn > tret) tn = ig->t + hlast;
+      int gap = dal__ode_tstop_gap(ig, tn, flag == ARK_TSTOP_RETURN ? tout : tret);
+      if (gap) return gap;
+    }
     if (flag == ARK_TSTOP_RETURN) tret = tout;
     if (tret > tout) return erk_failure(ig, m, ARK_BAD_T);
     int projected = 0;

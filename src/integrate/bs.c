@@ -13,8 +13,17 @@
 // initial order k = 0.6 (-log10 rtol) + 1.5 follow the description of the code ODEX there.
 // No smoothing step. Written for this library from the book's description.
 // Round-off: the midpoint rule and the extrapolation run on increments z - y (whose rounding
-// is relative to the increment, not to y), and the accepted increment is added to y by
-// compensated (Kahan) summation, so that round-off does not accumulate linearly in the steps.
+// is relative to the increment, not to y), the midpoint rule's sums are compensated, and the
+// accepted increment is added to y by compensated (Kahan) summation, so that round-off does
+// not accumulate linearly in the steps. Without dense output and at local tolerances below
+// BS_BULIRSCH_RTOL (requests below 2e-10), the step numbers are Bulirsch's sequence
+// n_j = 2, 4, 6, 8, 12, 16, 24, 32, 48 (HNW (9.7')): the extrapolated value is
+// sum_j c_j T_{j,1} with sum |c_j| <= 9.1 for every column, where the harmonic sequence
+// 2, 4, 6, ... has 26 in column 6 and 119 in column 8; the rounding of each T_{j,1} is
+// amplified by that sum, which set a floor of 4e-14 ... 1.7e-13 on SICM's oscillator at t = 10
+// (now 3e-15 ... 1e-14, tests/test_rounding.c). A step's length is the difference of the two
+// representable times it joins (t + H rounded, minus t), so that y and t do not drift apart
+// by the rounding of t + H in every step.
 //
 // Dense output (an advance call that starts with an after-step hook set, ig->hook): the
 // extrapolated dense output of Hairer & Ostermann (1990), HNW sec. II.9 "dense output for
@@ -28,11 +37,11 @@
 // step's f0) and the scaled derivatives H^l y^(l)(mid), l = 0 .. mu, with mu = 2 kappa - 3
 // (kappa the accepted column; ODEX's default). Its last term a_{mu+4} (s^2 - 1/4)^2 s^mu
 // estimates the interpolation error; a step whose estimate exceeds the tolerance (the norm of
-// err) is rejected, and the next step is limited by it. Without a hook the sequence n_j = 2j
-// runs, bit for bit the integration the tolerance factor was calibrated with, and no dense
-// data is kept (measured on the pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs
-// about the same right-hand sides but takes longer steps whose error at the step points
-// between 0 and 10 reaches 127 x rtol; the interpolation error control keeps it below 16).
+// err) is rejected, and the next step is limited by it. Without a hook n_j = 2j runs (or
+// Bulirsch's sequence at tight tolerances, above), and no dense data is kept (measured on the
+// pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs about the same right-hand sides but
+// takes longer steps whose error at the step points between 0 and 10 reaches 127 x rtol; the
+// interpolation error control keeps it below 16).
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -43,6 +52,11 @@
 
 /// number of columns (the largest T_{j,1}); the target order column k stays below it
 #define BS_KMAX 9
+/// local rtol below which the steps without dense output use Bulirsch's sequence (rounding
+/// matters there); above it, the harmonic sequence whose Jacobi-integral drift on the turning
+/// bead the tolerance factor was calibrated with (Bulirsch's gives 28 and 51 x rtol over 1000
+/// periods at rtol 1e-6 and 1e-8, against the table's 20; tests/test_core.c)
+#define BS_BULIRSCH_RTOL 1e-12
 /// halvings tolerated for one step (recoverable failures, stability check) before giving up
 #define BS_MAX_REJECT 60
 /// largest step number with the dense sequence n_j = 4j - 2 (j <= BS_KMAX)
@@ -69,6 +83,8 @@ typedef struct bs_mem {
   double *ynew;     // accepted value (ny)
   double *c, *cnew; // compensation of ig->y and of ynew (ny each)
   double *yz;       // y + increment, where f is evaluated (ny)
+  double *ca, *cb;  // compensations of za and zb (ny each)
+  int bulirsch;     // Bulirsch's sequence without dense output (local rtol < BS_BULIRSCH_RTOL)
   int nseq[BS_KMAX + 2];
   double A[BS_KMAX + 2];    // work A_j (9.26)
   double hopt[BS_KMAX + 2]; // optimal step of column j (9.25)
@@ -108,6 +124,8 @@ static void bs_free(void *p) {
   free(m->c);
   free(m->cnew);
   free(m->yz);
+  free(m->ca);
+  free(m->cb);
   free(m->F);
   free(m->D);
   free(m->f1);
@@ -123,8 +141,10 @@ static void bs_free(void *p) {
 // A_j = A_{j-1} + n_j (9.26)
 static void bs_sequence(bs_mem *m, int dense) {
   m->dense = dense;
+  // Bulirsch's sequence: n_j = 2, 4, 6 and then n_{j-2} doubled
+  static const int bulirsch[BS_KMAX + 2] = {0, 2, 4, 6, 8, 12, 16, 24, 32, 48, 64};
   for (int j = 1; j <= BS_KMAX + 1; ++j)
-    m->nseq[j] = dense ? 4 * j - 2 : 2 * j;
+    m->nseq[j] = dense ? 4 * j - 2 : m->bulirsch ? bulirsch[j] : 2 * j;
   m->A[1] = m->nseq[1] + 1;
   for (int j = 2; j <= BS_KMAX + 1; ++j)
     m->A[j] = m->A[j - 1] + m->nseq[j];
@@ -172,10 +192,12 @@ static void bs_dense_row(dal_ode_integ *ig, bs_mem *m, double H, int j, int N) {
 static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
   int ny = ig->ny, n = m->nseq[j], rc;
   double h = H / n, *z0 = m->za, *z1 = m->zb, *F = m->dense ? m->F : NULL;
+  double *c0 = m->ca, *c1 = m->cb;
   const double *y = ig->y;
   for (int i = 0; i < ny; ++i) {
     z0[i] = 0.0;
     z1[i] = h * m->f0[i];
+    c0[i] = c1[i] = 0.0;
   }
   if (F) memcpy(F, m->f0, (size_t)ny * sizeof(double));
   for (int s = 1; s < n; ++s) {
@@ -195,11 +217,15 @@ static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
     }
     // the midpoint value of the row (an increment), for the dense output
     if (F && 2 * s == n) memcpy(m->D + (size_t)(j * j - 1) * ny, z1, (size_t)ny * sizeof(double));
+    // z_{s+1} = z_{s-1} + 2h f_s, compensated (the compensations swap with the iterates)
     for (int i = 0; i < ny; ++i)
-      z0[i] += 2.0 * h * fs[i];
+      dal__ksum(&z0[i], &c0[i], 2.0 * h * fs[i]);
     double *sw = z0;
     z0 = z1;
     z1 = sw;
+    sw = c0;
+    c0 = c1;
+    c1 = sw;
   }
   if (F) {
     // f at the end point of the row gives the derivative of order 2j (not needed in the last
@@ -215,7 +241,7 @@ static int bs_column(dal_ode_integ *ig, bs_mem *m, double t, double H, int j) {
   }
   // Aitken-Neville in h^2: T_{j,l+1} = T_{j,l} + (T_{j,l} - T_{j-1,l}) / ((n_j/n_{j-l})^2 - 1)
   for (int i = 0; i < ny; ++i) {
-    double cur = z1[i];
+    double cur = z1[i] - c1[i];
     for (int l = 1; l < j; ++l) {
       double r = (double)n / m->nseq[j - l], prev = m->T[(size_t)(l - 1) * ny + i];
       m->T[(size_t)(l - 1) * ny + i] = cur;
@@ -520,6 +546,10 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
     // kept for the next full step
     int shortened = last && H < Hprop, kc = 0, b = -1;
     double t1 = last ? tout : ig->t + H;
+    // the step actually taken is the difference of the representable times (exact: t1 is
+    // t + H rounded); integrating H itself would shift the solution against t by the rounding
+    // of t + H, up to half an ulp of t in every step
+    H = t1 - ig->t;
     rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, &kc);
     if (rc == BS_ACCEPT && m->dense) {
       // the interpolant needs f(t1, y1) (the next step's f0); its error estimate can still
@@ -618,11 +648,13 @@ int dal__bs_create(dal_ode_integ *ig) {
   m->c = calloc(ny, sizeof(double));
   m->cnew = calloc(ny, sizeof(double));
   m->yz = calloc(ny, sizeof(double));
+  m->ca = calloc(ny, sizeof(double));
+  m->cb = calloc(ny, sizeof(double));
   m->F = calloc((BS_NMAX + 1) * ny, sizeof(double));
   m->D = calloc((size_t)(BS_KMAX * BS_KMAX + 2 * BS_KMAX) * ny, sizeof(double));
   m->f1 = calloc(ny, sizeof(double));
-  int ok = m->f0 && m->za && m->zb && m->fz && m->ynew && m->T && m->c && m->cnew && m->yz &&
-           m->F && m->D && m->f1;
+  int ok = m->f0 && m->za && m->zb && m->ca && m->cb && m->fz && m->ynew && m->T && m->c &&
+           m->cnew && m->yz && m->F && m->D && m->f1;
   for (int b = 0; b < 2; ++b) {
     m->dd[b].y0 = calloc(ny, sizeof(double));
     m->dd[b].y1 = calloc(ny, sizeof(double));
@@ -632,6 +664,7 @@ int dal__bs_create(dal_ode_integ *ig) {
   if (!ok) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
   ig->interp = bs_interp;
   m->cur = -1;
+  m->bulirsch = ig->rtol < BS_BULIRSCH_RTOL;
   bs_sequence(m, 0);
   int k = (int)(-log10(ig->rtol) * 0.6 + 1.5);
   m->k = k < 2 ? 2 : k > BS_KMAX - 1 ? BS_KMAX - 1 : k;

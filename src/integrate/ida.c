@@ -20,8 +20,8 @@
 #include <sunmatrix/sunmatrix_sparse.h>
 
 #include "form/form.h"
-#include "nvec.h"
 #include "integrate.h"
+#include "nvec.h"
 
 typedef struct ida_mem {
   const dal_system *sys;

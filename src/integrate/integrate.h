@@ -90,12 +90,16 @@ int dal__ode_start_slope(dal_ode_integ *ig);
 /// tracks the requested tolerance (measurements in solve.h; like RADAU5's tolerance
 /// transformation, Hairer-Wanner, Solving ODEs II, sec. IV.8). `ode_create` runs the method
 /// on an ODE problem (NULL: none); `dae` marks the method that runs the DAE forms in IDA.
+/// `min_rtol`: the tightest request the method honours on an ODE problem (0: down to
+/// DAL_TOL_FLOOR / tol_factor); a tighter one runs as min_rtol, atol scaled alike, and the
+/// clamp shows in dal_stats.rtol_used.
 typedef struct dal_method_row {
   dal_method id;
   const char *name;
   double tol_factor;
   int (*ode_create)(dal_ode_integ *ig);
   int dae;
+  double min_rtol;
 } dal_method_row;
 /// the row of a method (AUTO has a row too, with no create function)
 const dal_method_row *dal__method_row(dal_method m);
@@ -110,6 +114,13 @@ dal_method dal__auto_method(double rtol, int n, int dense);
 int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method meth,
                     const dal_ode_problem *prob, dal_ode_integ **out);
 void dal__ode_destroy(void *ig);
+
+/// A SUNDIALS integrator returned at its stop time tout while its own time tn lies more than
+/// a few ulps before it: it takes a stop time within 100 ulps of t as reached and extrapolates
+/// there, which at large |t| is seconds of motion that did not happen. Fails (DAL_E_STEP,
+/// naming the resolution of t and the remedy) with the state at the last accepted step; 0 when
+/// tn is tout to a few ulps, or nothing moves over the gap beyond the tolerances.
+int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout);
 
 /// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the
 /// last component when opts.work is set (not counted; no failure bookkeeping)

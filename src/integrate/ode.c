@@ -96,6 +96,27 @@ static int ode_progress(dal_ode_integ *ig, double t, const double *y) {
                         stalled ? "the step does not advance t" : "steps of a few ulps of t");
 }
 
+int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout) {
+  double gap = tout - tn;
+  if (!(gap > DAL_TINY_STEP(tout))) return DAL_OK;
+  // a gap over which nothing moves beyond the tolerances (the last step of a fixed-step run
+  // that fell a few ulps short) is closed honestly by the snap
+  if (dal__ode_eval(ig, ig->t, ig->y, ig->ydot, DAL_P_ACC) == 0) {
+    int moves = 0;
+    for (int i = 0; i < ig->ny && !moves; ++i)
+      moves = !(fabs(ig->ydot[i]) * gap <= ig->atol + ig->rtol * fabs(ig->y[i]));
+    if (!moves) return DAL_OK;
+  }
+  return dal__ode_fail(ig, DAL_E_STEP,
+                       "%s stopped at t=%.17g, %.3g before the target t=%.17g, and would "
+                       "extrapolate the rest: an interval of %.0f x DBL_EPSILON |t| is below its "
+                       "resolution of time at this magnitude (it takes a stop time within 100 "
+                       "ulps of t as reached); restart the clock near 0 (shift the time origin); "
+                       "the state holds the last accepted step t=%.17g",
+                       dal_method_name(ig->method), tn, tout - tn, tout,
+                       (tout - tn) / (DBL_EPSILON * fabs(tout)), ig->t);
+}
+
 int dal__ode_stall(dal_ode_integ *ig, double h, const char *what) {
   char var[128];
   if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
@@ -254,10 +275,14 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->method = meth;
   // with opts.work the work W of the forces and moving constraints is integrated as the last
   // component of y, under the same error control
-  ig->ny = prob->size(sys) + (o->work ? 1 : 0);
-  double c = dal__tol_factor(meth) * prob->tol_factor;
-  ig->rtol = fmax(c * o->rtol, DAL_TOL_FLOOR);
-  ig->atol = c * o->atol;
+  ig->ny = (prob->ny > 0 ? prob->ny : prob->size(sys)) + (o->work ? 1 : 0);
+  // the local tolerances: a request below the method's min_rtol runs as min_rtol (atol raised
+  // in proportion, the requested ratio atol / rtol kept, as for IDA); rtol not below the floor
+  const dal_method_row *mrow = dal__method_row(meth);
+  double c = dal__tol_factor(meth) * prob->tol_factor, up = 1.0;
+  if (mrow && o->rtol < mrow->min_rtol) up = mrow->min_rtol / o->rtol;
+  ig->rtol = fmax(c * o->rtol * up, DAL_TOL_FLOOR);
+  ig->atol = c * o->atol * up;
   st->stats.rtol_used = ig->rtol; // the local tolerance, floor included (solve.h)
   ig->t = st->t;
   size_t ny = (size_t)ig->ny + 1;

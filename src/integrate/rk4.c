@@ -60,7 +60,7 @@ static int rk4_step(dal_ode_integ *ig, rk4_mem *m, double t, const double *y, do
     // each stage divided before the sum (a sum of large stages must not overflow where the
     // result is representable), by 6 and 3 per value: no rounded coefficient h / 6 repeats
     dal__ksum(&y1[i], &m->c1[i],
-         h * (m->k1[i] / 6.0 + m->k2[i] / 3.0 + m->k3[i] / 3.0 + m->k4[i] / 6.0));
+              h * (m->k1[i] / 6.0 + m->k2[i] / 3.0 + m->k3[i] / 3.0 + m->k4[i] / 6.0));
     if (bad < 0 && !isfinite(y1[i])) bad = i;
   }
   if (bad >= 0) {

@@ -26,8 +26,10 @@
 
 #include "symplectic.h"
 
-/// spacing test of grid and output times: within a few ulps of the larger one
+/// spacing test of grid and output times: within a few ulps of the larger one, and within
+/// a negligible fraction of the step (at large |t| a few ulps are a long time)
 #define SYMP_NEAR_ULPS 8.0
+#define SYMP_NEAR_STEP 1e-9
 
 // composition coefficients; the triple jump is exact in closed form (filled at create)
 static const double kahan_li6[9] = {
@@ -95,8 +97,11 @@ int dal__symplectic_resolve(const dal_system *sys, dal_state *st, const dal_solv
   return DAL_OK;
 }
 
-static int near_time(double a, double b) {
-  return fabs(a - b) <= SYMP_NEAR_ULPS * DBL_EPSILON * fmax(fabs(a), fabs(b));
+// a grid time and an output time within rounding of each other, where the time between them
+// moves nothing: a few ulps that are also a negligible fraction of the step H
+static int near_time(double a, double b, double H) {
+  double d = fabs(a - b);
+  return d <= SYMP_NEAR_ULPS * DBL_EPSILON * fmax(fabs(a), fabs(b)) && d <= SYMP_NEAR_STEP * H;
 }
 
 static double grid_time(const symp_mem *m, long k) { return m->tb + (double)k * m->H; }
@@ -169,14 +174,15 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
   int rc;
   for (;;) {
     double tk = grid_time(m, m->k), tn = grid_time(m, m->k + 1);
-    if (near_time(tk, tout) || (tn > tout && !near_time(tn, tout))) break;
-    if (!(tn > tk)) {
+    if (near_time(tk, tout, m->H) || (tn > tout && !near_time(tn, tout, m->H))) break;
+    // the progress guard (as RK4's): a grid step of a few ulps of t does not resolve time
+    if (!(tn - tk > DAL_TINY_STEP(tk))) {
       back_to_grid(ig, m);
       return dal__ode_fail(ig, DAL_E_ARG,
                            "opts.fixed_step = %.3g is below the floating-point resolution of t "
-                           "near t=%.17g: the grid does not advance; use a larger step or "
-                           "restart the clock near 0",
-                           m->H, tk);
+                           "near t=%.17g (grid steps of %.3g, a few ulps): the grid does not "
+                           "advance; use a larger step or restart the clock near 0",
+                           m->H, tk, tn - tk);
     }
     if (ig->ncall >= ig->opts.max_steps) {
       back_to_grid(ig, m);
@@ -210,7 +216,7 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     }
   }
   double tk = grid_time(m, m->k);
-  if (near_time(tk, tout)) {
+  if (near_time(tk, tout, m->H)) {
     rc = m->base.to_y(ig, m->base.mem, tk, m->x, ig->ydot);
   } else {
     // off the grid: one composed step of the remaining length into a copy
@@ -222,7 +228,7 @@ static int symp_advance(dal_ode_integ *ig, double tout) {
     rc = m->base.to_y(ig, m->base.mem, tout, m->xw, ig->ydot);
   }
   if (rc) return fail_step(ig, m, rc);
-  if (ig->hook && tout > ig->t && !near_time(tk, tout)) {
+  if (ig->hook && tout > ig->t && !near_time(tk, tout, m->H)) {
     // the last piece [t_k, tout] is a step of its own for dense output and events
     if ((rc = m->base.to_y(ig, m->base.mem, tk, m->x, ig->y)) != 0) return fail_step(ig, m, rc);
     ig->t = tk;

@@ -450,7 +450,17 @@ static int var_to_y(dal_ode_integ *ig, void *mem, double t, const double *x, dou
   memcpy(qd, m->qdot, (size_t)n * sizeof(double));
   if (!m->lag) {
     // M qdot = p - b, b = sum m_k J_k' dr_k/dt (independent of qdot)
-    if ((rc = part_point(sys, st, t, q, qd, 1)) != 0) return rc;
+    if ((rc = part_point(sys, st, t, q, qd, 1)) != 0) {
+      // the forces failed here (a callback failing from some time on): the velocities of
+      // the momenta need only M, which the kinematics give; so a failure can fall back to
+      // this point, the last accepted one (a cold path: M column by column)
+      if (!st->M || part_point(sys, st, t, q, qd, 0) != 0) return rc;
+      for (int j = 0; j < n; ++j) {
+        memset(qd, 0, (size_t)n * sizeof(double));
+        qd[j] = 1.0;
+        dal__mass_apply(sys, st, qd, st->M + (size_t)j * n);
+      }
+    }
     jt_mass_apply(sys, st, st->drdt, qd);
     for (int i = 0; i < n; ++i)
       qd[i] = p[i] - qd[i];

@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "model.h"
 
 // grow a vector to hold one more element of size sz; returns the new slot or NULL
 static void *vec_push(dal_vec *v, size_t sz) {
@@ -69,12 +69,8 @@ const char *dal_builder_errmsg(const dal_builder *b) { return b ? b->err : ""; }
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
 
-// a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits: masses,
-// stiffnesses and lengths made of one give inexact results, so the builder refuses them
+// a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits (validate.c)
 static int subnormal(double x) { return x != 0.0 && fabs(x) < DBL_MIN; }
-#define SUBNORMAL_REMEDY                                                                          \
-  "a subnormal number (|x| < 2.2e-308) carries fewer than 53 significant bits, so results "      \
-  "computed from it are inexact; rescale the units, or give 0 if 0 is meant"
 
 int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
   if (!b) return DAL_E_ARG;
@@ -94,16 +90,8 @@ int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int 
   if (!b) return DAL_E_ARG;
   b->err[0] = 0; // the message is always that of the last call
   const char *nm = name ? name : "(unnamed)";
-  if (!isfinite(mass))
-    return BFAIL(DAL_E_NONFINITE, "particle '%s': mass is %g; give a finite positive mass", nm,
-                 mass);
-  if (mass <= 0)
-    return BFAIL(DAL_E_ARG,
-                 "particle '%s': mass %g is not positive; a massless point belongs in a "
-                 "constraint or a coordinate map, not a particle",
-                 nm, mass);
-  if (subnormal(mass))
-    return BFAIL(DAL_E_ARG, "particle '%s': mass %g is subnormal; " SUBNORMAL_REMEDY, nm, mass);
+  int mrc = dal__check_mass(b->err, nm, mass);
+  if (mrc) return mrc;
   if (b->lag)
     return BFAIL(DAL_E_ARG,
                  "particle '%s': the system is given by a Lagrangian; it has no "
@@ -218,24 +206,12 @@ static int resolve_params(dal_builder *b, const char *what, const dal_primitive 
                      what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i);
       x = dflt;
     }
-    if (!isfinite(x))
-      return BFAIL(DAL_E_NONFINITE,
-                   "%s: parameter '%s' of '%s' (index %d) is %g; give a finite "
-                   "value",
-                   what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i, x);
-    if (subnormal(x))
-      return BFAIL(DAL_E_ARG, "%s: parameter '%s' of '%s' (index %d) is %g, subnormal; " SUBNORMAL_REMEDY,
-                   what, dal__param_name(prim, i, nb, sizeof nb), prim->name, i, x);
+    int rc = dal__check_prim_value(b->err, what, prim, i, x);
+    if (rc) return rc;
     out[i] = x;
   }
   // a built-in's parameters must lie in their domain (a rod of length 0, a zero normal)
-  int bad = 0;
-  const char *rule = NULL, *quantity = dal__builtin_param_check(prim, out, &bad, &rule);
-  if (quantity)
-    return BFAIL(DAL_E_ARG, "%s: parameter '%s' of '%s' (index %d, %s) is %g; the %s %s", what,
-                 dal__param_name(prim, bad, nb, sizeof nb), prim->name, bad, quantity, out[bad],
-                 quantity, rule);
-  return DAL_OK;
+  return dal__check_prim_domain(b->err, what, prim, out);
 }
 
 // shared validation of a primitive instance: version, counts, coordinate indices
@@ -248,8 +224,7 @@ static int check_instance(dal_builder *b, const char *what, const dal_primitive 
     return BFAIL(DAL_E_ARG,
                  "%s: primitive '%s' is malformed (nin = %d, nout = %d, nparam = %d): it needs a "
                  "name, nin >= 0, nout >= 1 and nparam >= 0",
-                 what, prim->name ? prim->name : "(no name)", prim->nin, prim->nout,
-                 prim->nparam);
+                 what, prim->name ? prim->name : "(no name)", prim->nin, prim->nout, prim->nparam);
   int rc = dal__prim_version_ok(prim, b->err, what);
   if (rc) return rc;
   if (ncoords < 0 || (ncoords > 0 && !coords))
@@ -319,13 +294,6 @@ static int place(dal_builder *b, int particle, const dal_primitive *prim, int pa
   pl->coord_off = coff;
   pl->param_off = poff;
   return DAL_OK;
-}
-
-int dal_builder_place(dal_builder *b, int particle, const dal_primitive *prim, int parent,
-                      int ncoords, const int *coords, int nparam, const double *param, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return place(b, particle, prim, parent, ncoords, coords, nparam, param, ctx);
 }
 
 int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
@@ -404,14 +372,6 @@ static int add_constraint(dal_builder *b, const char *name, const dal_primitive 
   return DAL_OK;
 }
 
-int dal_builder_add_constraint(dal_builder *b, const char *name, const dal_primitive *prim,
-                               int nparts, const int *parts, int ncoords, const int *coords,
-                               int nparam, const double *param, void *ctx, int *index) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return add_constraint(b, name, prim, nparts, parts, ncoords, coords, nparam, param, ctx, index);
-}
-
 // ---------------------------------------------------------------------------------------
 // element definitions
 
@@ -454,22 +414,41 @@ dal_damper_def dal_default_damper_def(void) {
   return d;
 }
 
-// a def's parameters beyond the primitive's count must be left unset
-static int check_def_params(dal_builder *b, const char *what, const dal_primitive *prim,
-                            const double *param) {
+// a def's parameters: param[] entries beyond the primitive's count left unset, or all of them
+// unset when the def gives a param_list; *np and *par receive the list the instance reads
+static int def_params(dal_builder *b, const char *what, const dal_primitive *prim,
+                      const double *param, const double *list, int nlist, int *np,
+                      const double **par) {
+  *np = prim && prim->nparam > 0 ? prim->nparam : 0;
+  *par = param;
   // a malformed count (nparam < 0) is reported by check_instance; never index param[-1]
-  if (prim && prim->nparam < 0) return DAL_OK;
-  int np = prim && prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
-  for (int i = np; i < DAL_MAX_PARAM && prim; ++i)
+  if (!prim || prim->nparam < 0) return DAL_OK;
+  if (list || nlist) {
+    for (int i = 0; i < DAL_MAX_PARAM; ++i)
+      if (!is_unset(param[i]))
+        return BFAIL(DAL_E_ARG,
+                     "%s: both param[%d] and a param_list are given; give the parameters in "
+                     "one of them",
+                     what, i);
+    if (nlist < 0 || nlist > prim->nparam || (nlist > 0 && !list))
+      return BFAIL(
+          DAL_E_ARG, "%s: param_list holds %d values%s but primitive '%s' takes %d parameters",
+          what, nlist, list ? "" : " at NULL", prim->name ? prim->name : "(unnamed)", prim->nparam);
+    *np = nlist;
+    *par = list;
+    return DAL_OK;
+  }
+  int np_in = prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
+  for (int i = np_in; i < DAL_MAX_PARAM; ++i)
     if (!is_unset(param[i]))
       return BFAIL(DAL_E_ARG,
                    "%s: param[%d] is set but primitive '%s' takes only %d parameters; check the "
                    "index enum used",
                    what, i, prim->name ? prim->name : "(unnamed)", prim->nparam);
-  if (prim && prim->nparam > DAL_MAX_PARAM)
+  if (prim->nparam > DAL_MAX_PARAM)
     return BFAIL(DAL_E_ARG,
-                 "%s: primitive '%s' takes %d parameters, more than a def holds (%d); use the "
-                 "positional form with a parameter array",
+                 "%s: primitive '%s' takes %d parameters, more than param[] holds (%d); give "
+                 "them in the def's param_list",
                  what, prim->name ? prim->name : "(unnamed)", prim->nparam, DAL_MAX_PARAM);
   return DAL_OK;
 }
@@ -492,11 +471,11 @@ int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def
   snprintf(what, sizeof what, "placing particle %d", particle);
   if (particle >= 0 && particle < b->parts.len)
     snprintf(what, sizeof what, "placing particle '%s'", ((char **)b->parts.data)[particle]);
-  int rc = check_def_params(b, what, def->prim, def->param);
+  int np;
+  const double *par;
+  int rc = def_params(b, what, def->prim, def->param, def->param_list, def->nparam_list, &np, &par);
   if (rc) return rc;
-  int np = def->prim ? def->prim->nparam : 0;
-  return place(b, particle, def->prim, def->parent, def->ncoords, def->coords, np, def->param,
-               def->ctx);
+  return place(b, particle, def->prim, def->parent, def->ncoords, def->coords, np, par, def->ctx);
 }
 
 int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def, int *index) {
@@ -505,11 +484,12 @@ int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def
   DEF_CHECK(def, "constraint_def");
   char what[96];
   snprintf(what, sizeof what, "constraint '%s'", def->name ? def->name : "(unnamed)");
-  int rc = check_def_params(b, what, def->prim, def->param);
+  int np;
+  const double *par;
+  int rc = def_params(b, what, def->prim, def->param, def->param_list, def->nparam_list, &np, &par);
   if (rc) return rc;
-  int np = def->prim ? def->prim->nparam : 0;
   return add_constraint(b, def->name, def->prim, def->nparts, def->parts, def->ncoords, def->coords,
-                        np, def->param, def->ctx, index);
+                        np, par, def->ctx, index);
 }
 
 int dal_builder_set_gravity(dal_builder *b, const double *g) {
@@ -520,9 +500,8 @@ int dal_builder_set_gravity(dal_builder *b, const double *g) {
     return BFAIL(DAL_E_ARG, "set_gravity: the builder has dim 0 (a Lagrangian system has no "
                             "space); put gravity into the Lagrangian");
   for (int i = 0; i < b->dim; ++i) {
-    if (!isfinite(g[i])) return BFAIL(DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
-    if (subnormal(g[i]))
-      return BFAIL(DAL_E_ARG, "gravity component %d is %g, subnormal; " SUBNORMAL_REMEDY, i, g[i]);
+    int rc = dal__check_gravity(b->err, i, g[i]);
+    if (rc) return rc;
   }
   memcpy(b->g, g, (size_t)b->dim * sizeof(double));
   b->has_gravity = 1;
@@ -532,37 +511,29 @@ int dal_builder_set_gravity(dal_builder *b, const double *g) {
 int dal_builder_set_dynamics(dal_builder *b, dal_dynamics how) {
   if (!b) return DAL_E_ARG;
   if (how != DAL_DYNAMICS_AUTO && how != DAL_DYNAMICS_DENSE && how != DAL_DYNAMICS_RECURSIVE)
-    return BFAIL(DAL_E_ARG, "set_dynamics: unknown route %d (DAL_DYNAMICS_AUTO, _DENSE or "
-                            "_RECURSIVE)", (int)how);
+    return BFAIL(DAL_E_ARG,
+                 "set_dynamics: unknown route %d (DAL_DYNAMICS_AUTO, _DENSE or "
+                 "_RECURSIVE)",
+                 (int)how);
   b->dynamics = how;
   return DAL_OK;
 }
 
-static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb,
-                    const double *x0, dal_path_fn *fn, void *ctx, double k, double L) {
+static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb, const double *x0,
+                    dal_path_fn *fn, void *ctx, double k, double L) {
   if (pa < 0 || pa >= b->parts.len)
     return BFAIL(DAL_E_ARG, "%s: particle index %d out of range [0, %d)", kind, pa, b->parts.len);
   if (pb >= b->parts.len || pb == pa || (pb < -1))
     return BFAIL(DAL_E_ARG, "%s: second particle index %d invalid", kind, pb);
-  if (!isfinite(k) || !isfinite(L))
-    return BFAIL(DAL_E_NONFINITE,
-                 "%s on particle '%s': coefficient %g or length %g is not "
-                 "finite",
-                 kind, ((char **)b->parts.data)[pa], k, L);
-  if (k < 0 || L < 0)
-    return BFAIL(DAL_E_ARG, "%s on particle '%s': coefficient %g and length %g must be >= 0", kind,
-                 ((char **)b->parts.data)[pa], k, L);
-  if (subnormal(k) || subnormal(L))
-    return BFAIL(DAL_E_ARG, "%s on particle '%s': %s %g is subnormal; " SUBNORMAL_REMEDY, kind,
-                 ((char **)b->parts.data)[pa], subnormal(k) ? "coefficient" : "length",
-                 subnormal(k) ? k : L);
+  int rc = dal__check_link(b->err, kind, ((char **)b->parts.data)[pa], k, L);
+  if (rc) return rc;
   if (pb < 0 && x0)
     for (int i = 0; i < b->dim; ++i)
       if (!isfinite(x0[i]) || subnormal(x0[i]))
         return BFAIL(isfinite(x0[i]) ? DAL_E_ARG : DAL_E_NONFINITE,
                      "%s on particle '%s': anchor component %d is %g%s", kind,
                      ((char **)b->parts.data)[pa], i, x0[i],
-                     isfinite(x0[i]) ? ", subnormal; " SUBNORMAL_REMEDY : "");
+                     isfinite(x0[i]) ? ", subnormal; " DAL__SUBNORMAL_REMEDY : "");
   dal_link *l = vec_push(v, sizeof(dal_link));
   if (!l) return BFAIL(DAL_E_NOMEM, "%s: out of memory", kind);
   l->a = pa;
@@ -593,34 +564,6 @@ int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def) {
   if (def->b < -1) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", def->b);
   return add_link(b, &b->dampers, anchored ? "anchor damper" : "damper", def->a, def->b,
                   anchored ? def->anchor : NULL, def->path, def->ctx, def->c, 0.0);
-}
-
-int dal_builder_add_spring(dal_builder *b, int pa, int pb, double k, double L) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  if (pb < 0) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", pb);
-  return add_link(b, &b->springs, "spring", pa, pb, NULL, NULL, NULL, k, L);
-}
-
-int dal_builder_add_anchor_spring(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
-                                  void *ctx, double k, double L) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return add_link(b, &b->springs, "anchor spring", p, -1, x0, fn, ctx, k, L);
-}
-
-int dal_builder_add_damper(dal_builder *b, int pa, int pb, double c) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  if (pb < 0) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", pb);
-  return add_link(b, &b->dampers, "damper", pa, pb, NULL, NULL, NULL, c, 0.0);
-}
-
-int dal_builder_add_anchor_damper(dal_builder *b, int p, const double *x0, dal_path_fn *fn,
-                                  void *ctx, double c) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
-  return add_link(b, &b->dampers, "anchor damper", p, -1, x0, fn, ctx, c, 0.0);
 }
 
 static int add_cb(dal_builder *b, dal_vec *v, const char *kind, int isnull, dal_cb cb) {

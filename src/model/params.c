@@ -8,7 +8,7 @@
 #include <string.h>
 
 #include "dalembert/params.h"
-#include "base/base.h"
+#include "model.h"
 
 void dal__params_init(dal_state *st) {
   const dal_system *sys = st->sys;
@@ -279,6 +279,53 @@ static int find_name(char *const *names, int count, const char *s, size_t n) {
   return v < count ? v : -1;
 }
 
+// a primitive's parameter by its decimal index or its name (tables of version 2); -1 if neither
+static int prim_param_index(const dal_primitive *prim, const char *s, size_t n) {
+  int v = parse_index(s, n);
+  if (v >= 0 || !prim || prim->version < 2 || !prim->param_names) return v;
+  for (int i = 0; i < prim->nparam && i < DAL_MAX_PARAM; ++i) {
+    const char *nm = prim->param_names[i];
+    if (nm && strlen(nm) == n && memcmp(nm, s, n) == 0) return i;
+  }
+  return -1;
+}
+
+// the primitive whose parameters r addresses (place or con with a valid target), or NULL
+static const dal_primitive *ref_prim(const dal_system *sys, const dal_param_ref *r) {
+  if (r->kind == DAL_PARAM_PLACE && r->target >= 0 && sys->place) return sys->place[r->target].prim;
+  if (r->kind == DAL_PARAM_CONSTRAINT && r->target >= 0) return sys->con[r->target].prim;
+  return NULL;
+}
+
+// "l, x0, y0" (the names of a primitive's parameters) into buf
+static void list_param_names(const dal_primitive *prim, char *buf, size_t len) {
+  size_t used = 0;
+  buf[0] = 0;
+  for (int i = 0; prim && i < prim->nparam && i < DAL_MAX_PARAM && used + 1 < len; ++i) {
+    char nb[16];
+    int w = snprintf(buf + used, len - used, "%s%s", i ? ", " : "",
+                     dal__param_name(prim, i, nb, sizeof nb));
+    if (w < 0) break;
+    used += (size_t)w;
+  }
+}
+
+static int set_def_param(const dal_primitive *prim, double *param, const char *name, double value) {
+  if (!prim || !name || !param) return DAL_E_ARG;
+  int i = prim_param_index(prim, name, strlen(name));
+  if (i < 0 || i >= prim->nparam || i >= DAL_MAX_PARAM) return DAL_E_ARG;
+  param[i] = value;
+  return DAL_OK;
+}
+
+int dal_place_def_set(dal_place_def *def, const char *name, double value) {
+  return def ? set_def_param(def->prim, def->param, name, value) : DAL_E_ARG;
+}
+
+int dal_constraint_def_set(dal_constraint_def *def, const char *name, double value) {
+  return def ? set_def_param(def->prim, def->param, name, value) : DAL_E_ARG;
+}
+
 int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, char *msg,
                    size_t len) {
   if (msg && len) msg[0] = 0;
@@ -302,7 +349,8 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
     }
   }
   dal_param_ref r = {DAL_PARAM_NONE, 0, 0};
-  const char *kinds = "mass:<particle>, place:<particle>:<i>, con:<constraint>:<i>, "
+  const char *kinds = "mass:<particle>, place:<particle>:<i or name>, "
+                      "con:<constraint>:<i or name>, "
                       "gravity:<i>, spring:<j>:k, spring:<j>:L, damper:<j>:c";
 #define KIND_IS(s) (fl[0] == strlen(s) && memcmp(f[0], s, fl[0]) == 0)
   if (KIND_IS("mass") && nf == 2) {
@@ -311,7 +359,6 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
   } else if (KIND_IS("place") && nf == 3) {
     r.kind = DAL_PARAM_PLACE;
     r.target = find_name(sys->part_names, sys->N, f[1], fl[1]);
-    r.index = parse_index(f[2], fl[2]);
   } else if (KIND_IS("con") && nf == 3) {
     r.kind = DAL_PARAM_CONSTRAINT;
     r.target = -1;
@@ -322,7 +369,6 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
       int v = parse_index(f[1], fl[1]);
       r.target = v < sys->ncon ? v : -1;
     }
-    r.index = parse_index(f[2], fl[2]);
   } else if (KIND_IS("gravity") && nf == 2) {
     r.kind = DAL_PARAM_GRAVITY;
     r.index = parse_index(f[1], fl[1]);
@@ -349,9 +395,21 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
                name, what, (int)fl[1], f[1]);
     return DAL_E_ARG;
   }
+  if (r.kind == DAL_PARAM_PLACE || r.kind == DAL_PARAM_CONSTRAINT)
+    r.index = prim_param_index(ref_prim(sys, &r), f[2], fl[2]);
   if (r.index < 0) {
-    if (msg && len)
-      snprintf(msg, len, "parameter '%s': the index must be a non-negative integer", name);
+    const dal_primitive *prim = ref_prim(sys, &r);
+    char names[256];
+    list_param_names(prim, names, sizeof names);
+    if (msg && len) {
+      if (prim && names[0])
+        snprintf(msg, len,
+                 "parameter '%s': '%.*s' is neither a parameter of '%s' (%s) nor a 0-based "
+                 "index",
+                 name, (int)fl[nf - 1], f[nf - 1], prim->name ? prim->name : "(unnamed)", names);
+      else
+        snprintf(msg, len, "parameter '%s': the index must be a non-negative integer", name);
+    }
     return DAL_E_ARG;
   }
   char m2[DAL_ERRMSG_LEN];
@@ -363,41 +421,30 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
   return DAL_OK;
 }
 
-// validate a value as the builder does; the message names the owner and the remedy
+// validate a value with the builder's checks and messages (validate.c)
 static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r, double v) {
-  int t = r->target, i = r->index;
+  int t = r->target, i = r->index, rc;
+  char what[96];
   switch (r->kind) {
-  case DAL_PARAM_MASS: {
-    const char *nm = sys->part_names[t];
-    if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "particle '%s': mass is %g; give a finite positive "
-                      "mass",
-                      nm, v);
-    if (v <= 0)
-      return DAL_FAIL(st, DAL_E_ARG,
-                      "particle '%s': mass %g is not positive; a massless point belongs in a "
-                      "constraint or a coordinate map, not a particle",
-                      nm, v);
-    return DAL_OK;
-  }
+  case DAL_PARAM_MASS:
+    return dal__check_mass(st->err, sys->part_names[t], v);
   case DAL_PARAM_PLACE:
-    if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "placing particle '%s': parameter %d of primitive "
-                      "'%s' is %g",
-                      sys->part_names[t], i, sys->place[t].prim->name, v);
-    return DAL_OK;
-  case DAL_PARAM_CONSTRAINT:
-    if (!isfinite(v))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "constraint '%s': parameter %d of primitive '%s' is "
-                      "%g",
-                      sys->con[t].name, i, sys->con[t].prim->name, v);
-    return DAL_OK;
+  case DAL_PARAM_CONSTRAINT: {
+    int place = r->kind == DAL_PARAM_PLACE;
+    const dal_primitive *prim = place ? sys->place[t].prim : sys->con[t].prim;
+    const double *cur = st->prm.ppool + (place ? sys->place[t].param_off : sys->con[t].param_off);
+    snprintf(what, sizeof what, place ? "placing particle '%s'" : "constraint '%s'",
+             place ? sys->part_names[t] : sys->con[t].name);
+    if ((rc = dal__check_prim_value(st->err, what, prim, i, v)) != 0) return rc;
+    // the instance's whole vector with the new value in its domain (a rod of length 0)
+    double p[DAL_MAX_PARAM];
+    int np = prim->nparam < DAL_MAX_PARAM ? prim->nparam : DAL_MAX_PARAM;
+    for (int j = 0; j < np; ++j)
+      p[j] = j == i ? v : cur[j];
+    return np == prim->nparam ? dal__check_prim_domain(st->err, what, prim, p) : DAL_OK;
+  }
   case DAL_PARAM_GRAVITY:
-    if (!isfinite(v)) return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, v);
-    return DAL_OK;
+    return dal__check_gravity(st->err, i, v);
   case DAL_PARAM_SPRING_K:
   case DAL_PARAM_SPRING_L:
   case DAL_PARAM_DAMPER_C: {
@@ -407,17 +454,7 @@ static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r
         damper ? (l->b < 0 ? "anchor damper" : "damper") : (l->b < 0 ? "anchor spring" : "spring");
     double k = r->kind == DAL_PARAM_SPRING_L ? l->k : v;
     double L = r->kind == DAL_PARAM_SPRING_L ? v : l->L;
-    if (!isfinite(k) || !isfinite(L))
-      return DAL_FAIL(st, DAL_E_NONFINITE,
-                      "%s on particle '%s': coefficient %g or length %g is "
-                      "not finite",
-                      kind, sys->part_names[l->a], k, L);
-    if (k < 0 || L < 0)
-      return DAL_FAIL(st, DAL_E_ARG,
-                      "%s on particle '%s': coefficient %g and length %g must be "
-                      ">= 0",
-                      kind, sys->part_names[l->a], k, L);
-    return DAL_OK;
+    return dal__check_link(st->err, kind, sys->part_names[l->a], k, L);
   }
   case DAL_PARAM_NONE:
     break;
@@ -430,6 +467,7 @@ int dal_state_set_param(const dal_system *sys, dal_state *st, const dal_param_re
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
+  if (dal__check_idle(st, "set_param")) return DAL_E_STATE;
   char msg[DAL_ERRMSG_LEN];
   if (dal_param_check(sys, ref, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
   int rc = validate(sys, st, ref, value);
@@ -475,6 +513,7 @@ int dal_state_set_param_named(const dal_system *sys, dal_state *st, const char *
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
+  if (dal__check_idle(st, "set_param")) return DAL_E_STATE;
   dal_param_ref r;
   char msg[DAL_ERRMSG_LEN];
   if (dal_param_find(sys, name, &r, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
@@ -490,6 +529,7 @@ int dal_state_set_gravity(const dal_system *sys, dal_state *st, const double *g)
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "set_gravity: the state belongs to another system");
+  if (dal__check_idle(st, "set_gravity")) return DAL_E_STATE;
   if (!g) return DAL_FAIL(st, DAL_E_ARG, "set_gravity: g is NULL");
   for (int i = 0; i < sys->dim; ++i)
     if (!isfinite(g[i]))
@@ -524,6 +564,7 @@ int dal_state_reset_params(const dal_system *sys, dal_state *st) {
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "reset_params: the state belongs to another system");
+  if (dal__check_idle(st, "reset_params")) return DAL_E_STATE;
   dal__params_free(st);
   dal__params_init(st);
   dal__integ_reset(st);
@@ -535,6 +576,7 @@ int dal_state_copy_params(const dal_system *sys, dal_state *dst, const dal_state
   if (!dst || !src) return DAL_E_ARG;
   if (!sys || dst->sys != sys || src->sys != sys)
     return DAL_FAIL(dst, DAL_E_STATE, "copy_params: the states belong to different systems");
+  if (dal__check_idle(dst, "copy_params")) return DAL_E_STATE;
   if (dst == src) return DAL_OK;
   const dal_params *s = &src->prm;
   // reserve every copy first so that a failure leaves dst unchanged

@@ -118,14 +118,37 @@ static void print_vec(FILE *fp, const char *label, const double *x, int n) {
 }
 
 int dal_state_print(const dal_system *sys, const dal_state *st, FILE *fp) {
-  if (!sys || !st || !fp || st->sys != sys) return DAL_E_ARG;
+  int pair = dal__check_pair(sys, st, "state_print");
+  if (pair) return pair;
+  if (!fp) return DAL_FAIL_C(st, DAL_E_ARG, "state_print: fp is NULL");
   dal__lazy_eval(st);
   int n = sys->n, m = sys->m;
   fprintf(fp, "state at t=%.17g\n", st->t);
-  for (int i = 0; i < n; ++i)
-    fprintf(fp, "  '%s': q=%.17g qdot=%.17g qddot=%.17g Q=%.17g c=%.17g\n", sys->coord_names[i],
-            st->q[i], st->qdot[i], (st->have & DAL_P_ACC) ? st->qddot[i] : NAN,
-            (st->have & DAL_P_DYN) ? st->Q[i] : NAN, (st->have & DAL_P_DYN) ? st->c[i] : NAN);
+  if (sys->lag) {
+    // a Lagrangian system has no separate Q and c: the forces and velocity terms are inside L.
+    // Shown: A qddot (A = d2L/dqdot2), the whole generalized force the motion balances, and
+    // Q_ext, the part from outside L (force callbacks, U(q, t))
+    int acc = (st->have & DAL_P_ACC) && (st->have & DAL_P_M);
+    fprintf(fp, "  (Lagrangian system: d/dt dL/dqdot - dL/dq = Q_ext; Aqddot, with "
+                "A = d2L/dqdot2, is the generalized force the motion balances, Q_ext the part from "
+                "outside L: force callbacks, U(q, t); the velocity terms are inside L)\n");
+    for (int i = 0; i < n; ++i) {
+      double aq = NAN;
+      if (acc) {
+        aq = 0.0;
+        for (int j = 0; j < n; ++j)
+          aq += st->M[(size_t)j * n + i] * st->qddot[j];
+      }
+      fprintf(fp, "  '%s': q=%.17g qdot=%.17g qddot=%.17g Aqddot=%.17g Q_ext=%.17g\n",
+              sys->coord_names[i], st->q[i], st->qdot[i], acc ? st->qddot[i] : NAN, aq,
+              (st->have & DAL_P_DYN) ? st->Q[i] : NAN);
+    }
+  } else {
+    for (int i = 0; i < n; ++i)
+      fprintf(fp, "  '%s': q=%.17g qdot=%.17g qddot=%.17g Q=%.17g c=%.17g\n", sys->coord_names[i],
+              st->q[i], st->qdot[i], (st->have & DAL_P_ACC) ? st->qddot[i] : NAN,
+              (st->have & DAL_P_DYN) ? st->Q[i] : NAN, (st->have & DAL_P_DYN) ? st->c[i] : NAN);
+  }
   if (!(st->have & DAL_P_ACC)) {
     fprintf(fp, "  (not evaluated: call dal_forward for M, Q, c, lambda and energies)\n");
     return ferror(fp) ? DAL_E_IO : DAL_OK;

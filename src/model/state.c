@@ -69,7 +69,7 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
     dal_state_destroy(st);
     return DAL_E_NOMEM;
   }
-  dal_solve_default_opts(&st->integ_opts);
+  st->integ_opts = dal_default_solve_opts();
   *out = st;
   return DAL_OK;
 }
@@ -100,6 +100,7 @@ int dal_state_set(const dal_system *sys, dal_state *st, double t, const double *
                   const double *qdot) {
   int pair = dal__check_pair(sys, st, "state_set");
   if (pair) return pair;
+  if ((pair = dal__check_idle(st, "state_set")) != 0) return pair;
   if (!q || !qdot) return DAL_FAIL(st, DAL_E_ARG, "state_set: q or qdot is NULL");
   if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "state_set: time is %g", t);
   for (int i = 0; i < sys->n; ++i) {
@@ -309,6 +310,7 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
                           double *res, void *ctx) {
   int pair = dal__check_pair(sys, st, "lagrange_residual");
   if (pair) return pair;
+  if ((pair = dal__check_idle(st, "lagrange_residual")) != 0) return pair;
   if (!path || !res) return DAL_FAIL(st, DAL_E_ARG, "lagrange_residual: path or res is NULL");
   if (!isfinite(t)) return DAL_FAIL(st, DAL_E_NONFINITE, "lagrange_residual: t is %g", t);
   int n = sys->n, rc;
@@ -398,5 +400,25 @@ int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F)
       F[parts[i / d] * d + i % d] += f;
     }
   }
+  return DAL_OK;
+}
+
+// the integrator memory kept in a state: dropping it, with the factorization history it holds
+void dal__integ_reset(dal_state *st) {
+  if (st->integ && st->integ_free) st->integ_free(st->integ);
+  st->integ = NULL;
+  st->integ_free = NULL;
+  dal__kkt_reset(st->kkt);
+}
+
+// the last consistent start's report, kept for the user
+int dal_state_init_report(const dal_state *st, dal_init_report *out) {
+  if (!st || !out) return DAL_E_ARG;
+  if (!st->init_rep_valid) {
+    memset(out, 0, sizeof *out);
+    out->phi_row = out->phidot_row = out->dq_coord = out->dqdot_coord = -1;
+    return DAL_E_STATE;
+  }
+  *out = st->init_rep;
   return DAL_OK;
 }

@@ -143,7 +143,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
       if (!places[k].prim)
         return BFAIL(DAL_E_ARG,
                      "particle '%s' has no position: place it with a primitive "
-                     "(dal_builder_place) or set a whole-system map",
+                     "(dal_builder_place_def) or set a whole-system map",
                      ((char **)b->parts.data)[k]);
   // a primitive table must still be one this library reads (it may have changed since)
   for (int k = 0; k < N && !b->map; ++k) {

@@ -25,6 +25,21 @@ if [ "$mode" = install ]; then
   exit 0
 fi
 
+if [ "$mode" = embed ]; then
+  # run.sh embed <source dir> <work dir> <cc> [<extra flags>]: dalembert inside another
+  # project (FetchContent from the source folder, i.e. add_subdirectory): the library builds,
+  # its tests, examples and benchmarks do not, and the README's program runs
+  src=$2 work=$3 cc=$4 flags=${5:-}
+  rm -rf "$work"
+  cmake -S "$here/embed" -B "$work" -DDAL_SOURCE_DIR="$src" -DDAL_WITH_MPI=OFF \
+    -DCMAKE_C_COMPILER="$cc" -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
+    -DCMAKE_BUILD_TYPE=Release
+  cmake --build "$work" -j 2
+  "$work/first_program" >"$work/first_program.out"
+  "$work/check_first" <"$work/first_program.out"
+  exit 0
+fi
+
 prefix=$2 work=$3 libdir=$4 cc=$5 kind=$6 flags=${7:-}
 rm -rf "$work"
 mkdir -p "$work"
@@ -41,9 +56,10 @@ case "$mode" in
   cmake)
     cmake -S "$here" -B "$work" -DCMAKE_PREFIX_PATH="$prefix" -DDAL_CONSUMER_PREFIX="$prefix" \
       -DCMAKE_C_COMPILER="$cc" -DCMAKE_C_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" \
-      -DCMAKE_BUILD_TYPE=Release
+      -DCMAKE_BUILD_TYPE=Release -DDAL_CONSUMER_MPI="${DAL_CONSUMER_MPI:-0}"
     cmake --build "$work"
     "$work/consumer"
+    if [ "${DAL_CONSUMER_MPI:-0}" = 1 ]; then "$work/consumer_mpi"; fi
     first_program
     ctest --test-dir "$work" -L dalembert_verify --output-on-failure --no-tests=error
     ;;
@@ -71,9 +87,21 @@ case "$mode" in
     "$cc" -std=c11 -Wall -Wextra -pedantic -Werror $flags -I"$here/.." "$here/check_first.c" \
       -o "$work/check_first" -lm
     first_program
+    # the MPI library's own .pc file (dalembert_mpi: Requires dalembert, and MPI's flags)
+    if [ "${DAL_CONSUMER_MPI:-0}" = 1 ]; then
+      mpi_flags=$(pkg-config --cflags --libs dalembert_mpi)
+      echo "pkg-config dalembert_mpi: '$mpi_flags'"
+      # shellcheck disable=SC2086
+      "$cc" -std=c11 -Wall -Wextra -Werror $flags "$here/mpi_main.c" $mpi_flags \
+        -o "$work/consumer_mpi"
+      "$work/consumer_mpi"
+    elif pkg-config --exists dalembert_mpi; then
+      echo "dalembert_mpi.pc installed by a build without MPI"
+      exit 1
+    fi
     ;;
   *)
-    echo "usage: run.sh install|cmake|pkgconfig ..." >&2
+    echo "usage: run.sh install|cmake|pkgconfig|embed ..." >&2
     exit 2
     ;;
 esac

@@ -30,7 +30,15 @@
 //   - make_consistent leaves max |phi| within its tolerance; check_constraints reports a rank
 //     consistent with its status; a monitor sees evaluated states at increasing times;
 //   - two states of the same (pure) system given the same inputs end bit-identical;
-//   - a failed state can be reset and evaluated again.
+//   - a failed state can be reset and evaluated again;
+//   - per-trajectory parameters: a value is accepted only when finite, normal and (a mass)
+//     positive, and then read back exactly; a refused one leaves the state's value;
+//   - analysis: dal_equilibrium's DAL_OK is a point at rest with a consistent report, inside
+//     the neighbourhood it promises; normal modes and Lyapunov exponents are finite on DAL_OK,
+//     and a Lyapunov run takes no more segments than its span allows (no zero-progress loop);
+//   - symplectic methods (any of the six, any step) and every integration: DAL_E_ARG leaves
+//     the state's time where it was; a monitor that calls dal_state_set or dal_advance on its
+//     own state gets DAL_E_STATE with a message, and the run goes on.
 #include <float.h>
 #include <math.h>
 #include <stdint.h>
@@ -342,20 +350,62 @@ static int u_callback(const dal_jet *in, dal_jet t, const double *p, dal_jet *ou
 }
 
 static const dal_primitive u_prims[] = {
-    {.name = "u_circle2", .version = 1, .nin = 2, .nout = 1, .nparam = 1, .eval = u_circle2,
-     .doc = "x^2 + y^2 - R^2", .flags = 0},
-    {.name = "u_dist2", .version = 1, .nin = 4, .nout = 1, .nparam = 1, .eval = u_dist2,
-     .doc = "|b - a| - L (2D)", .flags = 0},
-    {.name = "u_dist3", .version = 1, .nin = 6, .nout = 1, .nparam = 1, .eval = u_dist3,
-     .doc = "|b - a| - L (3D)", .flags = 0},
-    {.name = "u_lin", .version = 1, .nin = 1, .nout = 1, .nparam = 2, .eval = u_lin,
-     .doc = "a u - b sin t", .flags = 0},
-    {.name = "u_pair", .version = 1, .nin = 2, .nout = 2, .nparam = 0, .eval = u_pair,
-     .doc = "(u0 - u1, u0 + sin u1)", .flags = 0},
-    {.name = "u_callback", .version = 1, .nin = 1, .nout = 2, .nparam = 0, .eval = u_callback,
-     .doc = "(u^2 + ct, sin u), may fail", .flags = 0},
-    {.name = "u_broken", .version = 1, .nin = 1, .nout = 2, .nparam = 0, .eval = NULL,
-     .doc = "no eval function", .flags = 0},
+    {.name = "u_circle2",
+     .version = 1,
+     .nin = 2,
+     .nout = 1,
+     .nparam = 1,
+     .eval = u_circle2,
+     .doc = "x^2 + y^2 - R^2",
+     .flags = 0},
+    {.name = "u_dist2",
+     .version = 1,
+     .nin = 4,
+     .nout = 1,
+     .nparam = 1,
+     .eval = u_dist2,
+     .doc = "|b - a| - L (2D)",
+     .flags = 0},
+    {.name = "u_dist3",
+     .version = 1,
+     .nin = 6,
+     .nout = 1,
+     .nparam = 1,
+     .eval = u_dist3,
+     .doc = "|b - a| - L (3D)",
+     .flags = 0},
+    {.name = "u_lin",
+     .version = 1,
+     .nin = 1,
+     .nout = 1,
+     .nparam = 2,
+     .eval = u_lin,
+     .doc = "a u - b sin t",
+     .flags = 0},
+    {.name = "u_pair",
+     .version = 1,
+     .nin = 2,
+     .nout = 2,
+     .nparam = 0,
+     .eval = u_pair,
+     .doc = "(u0 - u1, u0 + sin u1)",
+     .flags = 0},
+    {.name = "u_callback",
+     .version = 1,
+     .nin = 1,
+     .nout = 2,
+     .nparam = 0,
+     .eval = u_callback,
+     .doc = "(u^2 + ct, sin u), may fail",
+     .flags = 0},
+    {.name = "u_broken",
+     .version = 1,
+     .nin = 1,
+     .nout = 2,
+     .nparam = 0,
+     .eval = NULL,
+     .doc = "no eval function",
+     .flags = 0},
 };
 #define FZ_NUPRIM ((int)(sizeof u_prims / sizeof u_prims[0]))
 
@@ -480,6 +530,62 @@ static const dal_primitive *fz_map_prim(fz *f, int d) {
 }
 
 // place particle k; counts derived from the primitive, sometimes deliberately wrong
+// the builder's defs filled from positional arguments (the harness draws them in this order)
+static int fz_place_def(dal_builder *b, int particle, const dal_primitive *prim, int parent, int nc,
+                        const int *coords, int np, const double *par, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = par;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, particle, &d);
+}
+
+static int fz_add_constraint(dal_builder *b, const char *name, const dal_primitive *prim,
+                             int nparts, const int *parts, int nc, const int *coords, int np,
+                             const double *par, void *ctx, int *row) {
+  dal_constraint_def d = dal_default_constraint_def();
+  d.name = name;
+  d.prim = prim;
+  d.nparts = nparts;
+  d.parts = parts;
+  d.ncoords = nc;
+  d.coords = coords;
+  d.param_list = par;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_add_constraint_def(b, &d, row);
+}
+
+// a spring (k, L) or damper (k as c, L unused) between pa and pb, or to x0 + path(t) if pb < 0
+static int fz_link(dal_builder *b, int damper, int pa, int pb, const double *x0, dal_path_fn *path,
+                   void *ctx, double k, double L) {
+  if (damper) {
+    dal_damper_def dd = dal_default_damper_def();
+    dd.a = pa;
+    dd.b = pb;
+    for (int i = 0; x0 && i < 3; ++i) // the builder reads d of them
+      dd.anchor[i] = x0[i];
+    dd.path = path;
+    dd.ctx = ctx;
+    dd.c = k;
+    return dal_builder_add_damper_def(b, &dd);
+  }
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = pa;
+  sd.b = pb;
+  for (int i = 0; x0 && i < 3; ++i) // the builder reads d of them
+    sd.anchor[i] = x0[i];
+  sd.path = path;
+  sd.ctx = ctx;
+  sd.k = k;
+  sd.length = L;
+  return dal_builder_add_spring_def(b, &sd);
+}
+
 static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
   const dal_primitive *prim = fz_map_prim(f, m->dim);
   int parent = -1;
@@ -505,8 +611,8 @@ static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
   int pk = fz_pick(f, 24) == 23 ? k + FZ_MAX_PARTS : k;
   int with_coords = fz_pick(f, 20) != 19;
   int with_par = fz_pick(f, 20) != 19;
-  int rc = dal_builder_place(b, pk, prim, parent, nc, with_coords ? coords : NULL, np,
-                             with_par ? par : NULL, ctx);
+  int rc = fz_place_def(b, pk, prim, parent, nc, with_coords ? coords : NULL, np,
+                        with_par ? par : NULL, ctx);
   fz_b(f, b, "place", rc);
   if (!rc && pk == k) m->placed[k] = 1;
   // mostly fall back to a valid placement so that the model compiles
@@ -514,8 +620,8 @@ static void fz_place(fz *f, dal_builder *b, fz_model *m, int k) {
     int d = m->dim, cc[3];
     for (int a = 0; a < d; ++a)
       cc[a] = (k * d + a) % m->n;
-    rc = dal_builder_place(b, k, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, cc, 0,
-                           NULL, NULL);
+    rc = fz_place_def(b, k, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, cc, 0, NULL,
+                      NULL);
     fz_b(f, b, "place (fallback)", rc);
     if (!rc) m->placed[k] = 1;
   }
@@ -547,8 +653,8 @@ static void fz_constraint(fz *f, dal_builder *b, fz_model *m, int i) {
   int row = -1;
   int named = fz_pick(f, 8);
   void *ctx = fz_ctx(f, m, prim);
-  int rc = dal_builder_add_constraint(b, named ? name : NULL, prim, nparts, parts, nc, coords, np,
-                                      par, ctx, &row);
+  int rc = fz_add_constraint(b, named ? name : NULL, prim, nparts, parts, nc, coords, np, par, ctx,
+                             &row);
   fz_b(f, b, "add_constraint", rc);
 }
 
@@ -579,27 +685,26 @@ static void fz_forces(fz *f, dal_builder *b, fz_model *m) {
     case 1: {
       double k = fz_pos(f, 10.0);
       double L = fz_pos(f, 1.0);
-      fz_b(f, b, "add_spring", dal_builder_add_spring(b, pa, pb, k, L));
+      fz_b(f, b, "add_spring", fz_link(b, 0, pa, pb, NULL, NULL, NULL, k, L));
       break;
     }
     case 2: {
       double cd = fz_pos(f, 0.5);
-      fz_b(f, b, "add_damper", dal_builder_add_damper(b, pa, pb, cd));
+      fz_b(f, b, "add_damper", fz_link(b, 1, pa, pb, NULL, NULL, NULL, cd, 0.0));
       break;
     }
     case 3: {
       int with_x0 = fz_pick(f, 8) != 7;
       double k = fz_pos(f, 5.0);
       double L = fz_pos(f, 0.5);
-      fz_b(f, b, "add_anchor_spring",
-           dal_builder_add_anchor_spring(b, pa, with_x0 ? x0 : NULL, NULL, NULL, k, L));
+      fz_b(f, b, "add_anchor_spring", fz_link(b, 0, pa, -1, with_x0 ? x0 : NULL, NULL, NULL, k, L));
       break;
     }
     case 4: {
       int moving = fz_pick(f, 2);
       double cd = fz_pos(f, 0.5);
       fz_b(f, b, "add_anchor_damper",
-           dal_builder_add_anchor_damper(b, pa, x0, moving ? fz_path : NULL, c, cd));
+           fz_link(b, 1, pa, -1, x0, moving ? fz_path : NULL, c, cd, 0.0));
       break;
     }
     case 5: {
@@ -638,8 +743,8 @@ static void fz_chain(fz *f, dal_builder *b, fz_model *m) {
     if (fz_b(f, b, "add_particle", dal_builder_add_particle(b, name, mass, &p)))
       fz_b(f, b, "add_particle", dal_builder_add_particle(b, name, 1.0, &p));
     fz_b(f, b, "place",
-         dal_builder_place(b, p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c, 0,
-                           NULL, NULL));
+         fz_place_def(b, p, d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3, -1, d, c, 0, NULL,
+                      NULL));
   }
   double g[3] = {0.0, 0.0, 0.0};
   g[d - 1] = -9.81;
@@ -651,20 +756,20 @@ static void fz_chain(fz *f, dal_builder *b, fz_model *m) {
     if (k == 0) {
       double par[4] = {L, 0.0, 0.0, 0.0};
       fz_b(f, b, "add_constraint",
-           dal_builder_add_constraint(b, name, d == 2 ? &dal_con_anchor2 : &dal_con_anchor3, 1, &k,
-                                      0, NULL, d + 1, par, NULL, NULL));
+           fz_add_constraint(b, name, d == 2 ? &dal_con_anchor2 : &dal_con_anchor3, 1, &k, 0, NULL,
+                             d + 1, par, NULL, NULL));
     } else {
       int parts[2] = {k - 1, k};
       fz_b(f, b, "add_constraint",
-           dal_builder_add_constraint(b, name, d == 2 ? &dal_con_distance2 : &dal_con_distance3, 2,
-                                      parts, 0, NULL, 1, &L, NULL, NULL));
+           fz_add_constraint(b, name, d == 2 ? &dal_con_distance2 : &dal_con_distance3, 2, parts, 0,
+                             NULL, 1, &L, NULL, NULL));
     }
   }
   // now and then a damper along the chain or a force callback on it
   int extra = fz_pick(f, 4);
   if (extra == 1) {
     double cd = fz_pos(f, 0.5);
-    fz_b(f, b, "add_damper", dal_builder_add_damper(b, 0, N - 1, cd));
+    fz_b(f, b, "add_damper", fz_link(b, 1, 0, N - 1, NULL, NULL, NULL, cd, 0.0));
   } else if (extra == 2) {
     fz_cb *c = fz_new_cb(f, m);
     c->N = N;
@@ -852,6 +957,7 @@ static void fz_progress(fz *f, const fz_run_ctx *r, dal_state *st, double ta, do
   if (rc == DAL_OK && isfinite(t1) && t1 >= ta && !stopped && t != t1)
     fz_die(call, rc, "success but the state is not at t1");
   if (rc == DAL_E_MAXSTEPS && !(t > ta)) fz_die(call, rc, "max_steps taken without progress in t");
+  if (rc == DAL_E_ARG && t != ta) fz_die(call, rc, "a refused run moved the state's time");
   if (rc == DAL_OK) fz_products(f, r, st, call);
 }
 
@@ -872,6 +978,7 @@ typedef struct fz_mon {
   double t0, t1, last;
   int calls, stop_at, stopped, n, csv;
   int unevaluated; // the state could not be evaluated at an output time (evolve must fail)
+  int reenter;     // 1, 2: the monitor calls dal_state_set / dal_advance on its own state
   dal_csv out;
 } fz_mon;
 
@@ -890,6 +997,16 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
     return 0;
   }
   if (!fz_finite(qdd, mo->n)) fz_die("monitor sees a non-finite qddot", 0, NULL);
+  if (mo->reenter) {
+    // the state belongs to the run: a call that would move it is refused, by name
+    dal_state *w = (dal_state *)st; // what a careless monitor does
+    dal_solve_opts o = dal_default_solve_opts();
+    int rc = mo->reenter == 1 ? dal_state_set(sys, w, t, q, dal_state_qdot(st))
+                              : dal_advance(sys, w, &o, t + 1.0);
+    if (rc != DAL_E_STATE || !dal_state_errmsg(st)[0])
+      fz_die("a monitor moved the state under its run", rc, dal_state_errmsg(st));
+    if (dal_state_time(st) != t) fz_die("a refused re-entrant call moved the state", rc, NULL);
+  }
   if (mo->csv) {
     int rc = dal_csv_monitor(sys, st, &mo->out);
     if (rc != DAL_OK && rc != DAL_E_STATE) fz_die("csv monitor", rc, dal_state_errmsg(st));
@@ -903,11 +1020,11 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
 }
 
 static void fz_opts(fz *f, dal_solve_opts *o) {
-  dal_solve_default_opts(o);
+  *o = dal_default_solve_opts();
   o->method = (dal_method)fz_pick(f, 7);
   o->form = (dal_formulation)fz_pick(f, 5);
   o->linsol = (dal_linsol)fz_pick(f, 3);
-  if (fz_pick(f, 32) == 31) o->method = (dal_method)(7 + fz_pick(f, 3));
+  if (fz_pick(f, 8) == 7) o->method = (dal_method)(7 + fz_pick(f, 6)); // the symplectic six
   if (fz_pick(f, 32) == 31) o->form = (dal_formulation)(5 + fz_pick(f, 3));
   if (fz_u8(f) < 220) {
     int e = fz_pick(f, 11);
@@ -938,16 +1055,16 @@ static void fz_opts(fz *f, dal_solve_opts *o) {
   }
   o->project = fz_pick(f, 2);
   o->sparse_threshold = fz_pick(f, 2) ? 200 : fz_pick(f, 40);
-  // options not only from the defaults: raw bytes (refused by the magic check, or with the
-  // magic kept, by the field checks), fixed-step explicit RK, long runs
+  // options not only from the defaults: raw bytes (refused by the cookie check, or with the
+  // cookie kept, by the field checks), fixed-step explicit RK, long runs
   int mode = fz_pick(f, 32);
   if (mode == 31) {
-    int magic = o->magic, keep = fz_pick(f, 2);
+    int cookie = o->cookie, keep = fz_pick(f, 2);
     unsigned char raw[sizeof *o];
     for (size_t i = 0; i < sizeof raw; ++i)
       raw[i] = (unsigned char)fz_u8(f);
     memcpy(o, raw, sizeof raw);
-    if (keep) o->magic = magic;
+    if (keep) o->cookie = cookie;
   } else if (mode == 30) {
     o->fixed_erk = 1;
   } else if (mode == 29) {
@@ -988,6 +1105,7 @@ static void fz_integrate(fz *f, fz_run_ctx *r, dal_state *st) {
     mo.n = r->n;
     mo.stop_at = fz_pick(f, 6);
     mo.csv = fz_pick(f, 4) == 3;
+    mo.reenter = fz_pick(f, 8) < 2 ? 1 + fz_pick(f, 2) : 0;
     if (mo.csv) {
       if (!r->devnull) r->devnull = fopen("/dev/null", "w");
       mo.out.fp = r->devnull;
@@ -1047,8 +1165,7 @@ static void fz_foreign(fz *f, fz_run_ctx *r, dal_state *st) {
   dal_state *fs = r->fst;
   double t0 = dal_state_time(fs), q0 = dal_state_q(fs)[0];
   static double buf[3 * FZ_NQ];
-  dal_solve_opts o;
-  dal_solve_default_opts(&o);
+  dal_solve_opts o = dal_default_solve_opts();
   dal_csv csv = {r->devnull, 1, 0};
   switch (which) {
   case 0:
@@ -1108,11 +1225,14 @@ static void fz_twins(fz *f, fz_run_ctx *r) {
   fz_cap(r, &o);
   int k = fz_pick(f, 20);
   double t1 = t + 1e-3 * (1 + k);
+  // the same parameters too (fz_param may have set some on one of them)
+  int rp = dal_state_copy_params(r->sys, b, a);
+  if (rp && rp != DAL_E_NOMEM) fz_die("copy_params between states of one system", rp, NULL);
   int ra = dal_state_set(r->sys, a, t, q, qd), rb = dal_state_set(r->sys, b, t, q, qd);
   if (ra || rb) fz_die("state_set of a valid state", ra ? ra : rb, NULL);
   ra = fz_s(f, a, "advance (twin a)", dal_advance(r->sys, a, &o, t1));
   rb = fz_s(f, b, "advance (twin b)", dal_advance(r->sys, b, &o, t1));
-  if (r->m->impure) return;
+  if (r->m->impure || rp) return;
   if (ra != rb || dal_state_time(a) != dal_state_time(b) ||
       memcmp(dal_state_q(a), dal_state_q(b), (size_t)n * sizeof(double)) ||
       memcmp(dal_state_qdot(a), dal_state_qdot(b), (size_t)n * sizeof(double)) ||
@@ -1120,12 +1240,138 @@ static void fz_twins(fz *f, fz_run_ctx *r) {
     fz_die("two states of one system given the same inputs differ", ra, dal_state_errmsg(a));
 }
 
+// ---------------------------------------------------------------- the newer surfaces
+// a per-trajectory parameter set from the bytes: accepted only when finite, normal (and a
+// mass positive), then read back exactly; a refused value leaves the state's value
+static void fz_param(fz *f, fz_run_ctx *r, dal_state *st) {
+  static const char *const names[] = {"mass:0",    "place:0:0",  "place:0:1",  "con:0:0",
+                                      "gravity:1", "spring:0:k", "spring:0:L", "damper:0:c"};
+  const char *name = names[fz_pick(f, 8)];
+  double v;
+  if (fz_u8(f) < 128) {
+    int k = fz_pick(f, 64);
+    v = ((double)k - 16.0) / 16.0;
+  } else {
+    v = fz_num(f);
+  }
+  dal_param_ref ref;
+  char msg[512];
+  double t = dal_state_time(st);
+  if (dal_param_find(r->sys, name, &ref, msg, sizeof msg) != DAL_OK) {
+    if (!msg[0]) fz_die("param_find failed without a message", 0, name);
+    int rc = fz_s(f, st, "set_param_named", dal_state_set_param_named(r->sys, st, name, v));
+    if (rc != DAL_E_ARG) fz_die("a parameter that does not exist was set", rc, name);
+    return;
+  }
+  double before = NAN, after = NAN;
+  fz_status("state_param", dal_state_param(r->sys, st, &ref, &before));
+  int rc = fz_s(f, st, "set_param", dal_state_set_param(r->sys, st, &ref, v));
+  fz_status("state_param", dal_state_param(r->sys, st, &ref, &after));
+  if (rc == DAL_OK) {
+    if (!isfinite(v) || (v != 0.0 && fabs(v) < DBL_MIN))
+      fz_die("set_param accepted a non-finite or subnormal value", rc, name);
+    if (ref.kind == DAL_PARAM_MASS && !(v > 0)) fz_die("set_param accepted a mass <= 0", rc, name);
+    if (after != v) fz_die("an accepted parameter does not read back", rc, name);
+  } else {
+    if (rc != DAL_E_ARG && rc != DAL_E_NONFINITE && rc != DAL_E_NOMEM)
+      fz_die("set_param failed with an unexpected status", rc, dal_state_errmsg(st));
+    if (memcmp(&after, &before, sizeof after) != 0)
+      fz_die("a refused parameter changed the state's value", rc, name);
+  }
+  if (dal_state_time(st) != t) fz_die("set_param moved the state's time", rc, name);
+  rc = fz_s(f, st, "forward (param)", dal_forward(r->sys, st));
+  fz_finite_state(r, st, rc, "forward (param)");
+  if (rc == DAL_OK) fz_products(f, r, st, "forward (param)");
+}
+
+typedef struct fz_lyap {
+  long segments, max_segments;
+} fz_lyap;
+
+static int fz_lyap_monitor(double t, const double *e, int p, void *ctx) {
+  fz_lyap *l = ctx;
+  if (!isfinite(t) || !fz_finite(e, p)) fz_die("lyapunov monitor sees non-finite values", p, NULL);
+  if (++l->segments > l->max_segments)
+    fz_die("lyapunov: more segments than its span allows", 0, NULL);
+  return 0;
+}
+
+// equilibrium, normal modes or a short Lyapunov run (small models only)
+static void fz_analysis(fz *f, fz_run_ctx *r, dal_state *st) {
+  enum { NA = FZ_MAX_COORDS };
+  static double w2[NA], shapes[NA * NA], lre[2 * NA], lim[2 * NA], ex[2 * NA], er[2 * NA];
+  int which = fz_pick(f, 3), n = r->n, rc;
+  if (r->m->chain || n > NA) return;
+  if (which == 0) {
+    dal_equilibrium_opts o = dal_default_equilibrium_opts();
+    o.max_iter = 1 + fz_pick(f, 30);
+    if (fz_pick(f, 4) == 3) o.max_step = fz_num(f);
+    if (fz_pick(f, 8) == 7) o.xtol = fz_num(f);
+    double q0 = 0.0;
+    for (int i = 0; i < n; ++i)
+      q0 = fmax(q0, fabs(dal_state_q(st)[i]));
+    dal_equilibrium_report rep;
+    rc = fz_s(f, st, "equilibrium", dal_equilibrium(r->sys, st, &o, &rep));
+    fz_finite_state(r, st, rc, "equilibrium");
+    if (rc != DAL_OK) return;
+    fz_products(f, r, st, "equilibrium");
+    double a = 0.0, qm = 0.0;
+    for (int i = 0; i < n; ++i) {
+      if (dal_state_qdot(st)[i] != 0.0) fz_die("equilibrium: DAL_OK with qdot != 0", rc, NULL);
+      a = fmax(a, fabs(dal_state_qddot(st)[i]));
+      qm = fmax(qm, fabs(dal_state_q(st)[i]));
+    }
+    if (!(rep.accel == a) || !isfinite(rep.unsteady) || !isfinite(rep.step) || rep.iterations < 1)
+      fz_die("equilibrium: a report that does not match the state", rc, NULL);
+    if (!(qm <= 1e4 * (1.0 + q0) * (1.0 + 1e-15)))
+      fz_die("equilibrium: DAL_OK outside the neighbourhood of the start", rc, NULL);
+  } else if (which == 1) {
+    dal_modes md;
+    rc = fz_s(f, st, "normal_modes", dal_normal_modes(r->sys, st, w2, shapes, lre, lim, &md));
+    fz_finite_state(r, st, rc, "normal_modes");
+    if (rc == DAL_OK &&
+        (!fz_finite(w2, n) || !fz_finite(shapes, n * n) || !fz_finite(lre, 2 * n) ||
+         !fz_finite(lim, 2 * n) || md.verdict < DAL_UNSTABLE || md.verdict > DAL_ASYMPTOTIC))
+      fz_die("normal modes: DAL_OK with non-finite values or an unknown verdict", rc, NULL);
+  } else {
+    dal_lyapunov_opts o = dal_default_lyapunov_opts();
+    double t = dal_state_time(st);
+    o.t_end = t + 0.02 * (1 + fz_pick(f, 5));
+    o.nexp = 1 + fz_pick(f, 2);
+    if (o.nexp > 2 * n) o.nexp = 2 * n;
+    if (fz_u8(f) < 200) {
+      int k = fz_pick(f, 10);
+      o.renorm = 0.005 * (1 + k);
+    } else {
+      o.renorm = fz_num(f);
+    }
+    if (fz_pick(f, 2)) {
+      o.method = DAL_METHOD_RK4;
+      if (fz_u8(f) < 200) {
+        int k = fz_pick(f, 10);
+        o.h = 1e-3 * (1 + k);
+      } else {
+        o.h = fz_num(f);
+      }
+    }
+    o.max_steps = 2000;
+    fz_lyap l = {0, 0};
+    double span = o.t_end - t;
+    l.max_segments = o.renorm > 0 && isfinite(o.renorm) ? (long)fmin(1e6, span / o.renorm) : 0;
+    l.max_segments += o.nblocks + 4;
+    rc = fz_s(f, st, "lyapunov", dal_lyapunov(r->sys, st, &o, ex, er, fz_lyap_monitor, &l));
+    fz_finite_state(r, st, rc, "lyapunov");
+    if (rc == DAL_OK && !fz_finite(ex, o.nexp))
+      fz_die("lyapunov: DAL_OK, exponents not finite", rc, NULL);
+  }
+}
+
 // a sequence of public calls chosen by the bytes, on the two states of the system
 static void fz_ops(fz *f, fz_run_ctx *r) {
   int nops = fz_pick(f, 10), cur = 0;
   static double buf[3 * FZ_NQ], q[FZ_NQ], qd[FZ_NQ];
   for (int op = 0; op < nops; ++op) {
-    int code = fz_pick(f, 12), rc;
+    int code = fz_pick(f, 14), rc;
     dal_state *st = r->st[cur];
     switch (code) {
     case 0: // switch state
@@ -1214,6 +1460,12 @@ static void fz_ops(fz *f, fz_run_ctx *r) {
     case 10:
       fz_foreign(f, r, st);
       break;
+    case 12:
+      fz_param(f, r, st);
+      break;
+    case 13:
+      fz_analysis(f, r, st);
+      break;
     default:
       fz_twins(f, r);
       break;
@@ -1228,7 +1480,7 @@ static int fz_foreign_make(dal_builder **b, dal_system **sys, dal_state **st) {
   int rc = dal_builder_create(2, b);
   if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
   if (!rc) rc = dal_builder_add_particle(*b, "bob", 1.0, &bob);
-  if (!rc) rc = dal_builder_place(*b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
+  if (!rc) rc = fz_place_def(*b, bob, &dal_map_pendulum, -1, 1, &th, 7, par, NULL);
   if (!rc) rc = dal_builder_compile(*b, sys);
   if (!rc) rc = dal_state_create(*sys, st);
   if (!rc) rc = dal_state_set(*sys, *st, 0.0, &q, &qd);

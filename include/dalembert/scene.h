@@ -1,0 +1,99 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+/// @file
+/// @brief Scene files: a whole model and its run as text, read into a system, written back, run.
+///
+/// One element per line; `#` starts a comment (units go there); formulas are the rest of a line
+/// (docs/expressions.md has the grammar and why it is not YAML):
+///
+///   dim 2                                   # spatial dimension (2 or 3; 0: a Lagrangian only)
+///   param g = 9.8                           # named parameters, usable in every formula
+///   coord theta q=1 v=0                     # a coordinate with its initial value and rate
+///   particle bob mass=m                     # mass: a formula of the parameters
+///   place bob = l*sin(theta); a*cos(omega*t) - l*cos(theta)     # r(q, t) by formulas
+///   place bob pendulum theta l=1 ay=a w=omega                    # or by a built-in primitive
+///   place b parent=a = x_a + l*sin(th2); y_a - l*cos(th2)       # parent's position x_a, y_a
+///   constraint rod parts=a,b = sqrt((x_b - x_a)^2 + (y_b - y_a)^2) - l
+///   constraint rod distance2 parts=a,b L=1  # a built-in constraint
+///   spring a b k=10 L=1                     # or: spring a anchor=0,1 k=10 L=0
+///   damper a b c=0.1                        # or: damper a anchor=0,0 c=0.1
+///   gravity 0 -g
+///   potential = 1/2*k*theta^2               # a further U(q, t)
+///   lagrangian = 1/2*m*xdot^2 - 1/2*k*x^2   # instead of particles (dim 0)
+///   run method=bs rtol=1e-12 t1=100 dt=0.01 # method, tolerances, end time, output step
+///
+/// Formulas may use the coordinates, t, the parameters and (in `place ... parent=`, and in
+/// constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
+/// parameters are given by their names (primitives.h) as formulas without spaces; values of
+/// masses, gravity, springs and dampers are formulas of the parameters.
+/// Messages name the file and line: "pend.scene:7: place bob: formula 1 'l*sin(thet)', column 7:
+/// unknown symbol 'thet' ...".
+#ifndef DAL_SCENE_H
+#define DAL_SCENE_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "dalembert/base.h"
+#include "dalembert/expr.h"
+#include "dalembert/solve.h"
+#include "dalembert/state.h"
+#include "dalembert/system.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/// A scene read from text: its elements, the compiled system and the run (opaque).
+typedef struct dal_scene dal_scene;
+
+/// Read a scene from `text`; `name` (nullable) names it in messages. On failure *out is NULL
+/// and msg names the line and the culprit. Returns DAL_OK, DAL_E_ARG (syntax, unknown names,
+/// a model the builder refuses: its status), DAL_E_NONFINITE, DAL_E_NOMEM.
+DAL_API int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *msg,
+                            size_t msglen);
+
+/// Read a scene file (dal_scene_parse of its contents; DAL_E_IO when it cannot be read).
+DAL_API int dal_scene_read(const char *path, dal_scene **out, char *msg, size_t msglen);
+
+/// Free a scene and everything it built (NULL is a no-op). No state of its system may remain.
+DAL_API void dal_scene_destroy(dal_scene *sc);
+
+/// Write the scene back as text (comments dropped, numbers with %.17g, formulas as read): read
+/// again it gives the same system and run, bit for bit. Returns DAL_OK, DAL_E_ARG, DAL_E_IO.
+DAL_API int dal_scene_write(const dal_scene *sc, FILE *fp);
+
+/// Override parameter `name` (a `param` line's value) and rebuild the system. States of the
+/// old system must be destroyed first. Returns DAL_OK, DAL_E_ARG (unknown name; msg says),
+/// DAL_E_NONFINITE, or the rebuild's status (the scene then keeps the old value and system).
+DAL_API int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg,
+                                size_t msglen);
+
+/// The compiled system (borrowed from sc).
+DAL_API const dal_system *dal_scene_system(const dal_scene *sc);
+
+/// The run's options (method, rtol, atol; borrowed from sc) and times t0, t1, dt (nullable).
+DAL_API const dal_solve_opts *dal_scene_opts(const dal_scene *sc, double *t0, double *t1,
+                                             double *dt);
+
+/// A new state of the scene's system at t0 with the coordinates' initial values (the caller
+/// destroys it). Returns DAL_OK or the status of dal_state_create / dal_state_set.
+DAL_API int dal_scene_state(const dal_scene *sc, dal_state **out);
+
+/// Run the scene: from its initial state to t1 with output every dt, written as CSV to `csv`
+/// (nullable: no output). `st` (nullable) receives the final state (else it is destroyed).
+/// Returns the status of dal_evolve (its message in msg).
+DAL_API int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **st, char *msg, size_t msglen);
+
+/// Print the scene's equations: r_k(q, t) of every particle, T, U, L, the mass matrix, the
+/// forces and (one coordinate) the state derivative, in format fmt. Particles placed by the
+/// built-in maps with formulas (pendulum, hanging, ring, spherical, sphere, cartesian,
+/// fixed) are shown by those formulas. Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or
+/// element without formulas: msg names it), DAL_E_IO, DAL_E_NOMEM.
+DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
+                           size_t msglen);
+
+#ifdef __cplusplus
+}
+#endif
+#endif

@@ -1,0 +1,391 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The flow map's derivatives: the state-transition matrix Phi(t1, t0) = dy(t1)/dy(t0) and the
+// forward sensitivities dy(t1)/dp to named parameters, by the variational equations
+//   Phi' = A(t) Phi, Phi(t0) = I,   S' = A(t) S + df/dp, S(t0) = 0,   A = df/dy (exact tangent)
+// integrated with the trajectory as one first-order problem through the library's ODE
+// integrators, so that their error control covers Phi and S too. Minimal coordinates run
+// f = (qdot, qddot); constraint rows run the index-1 vector field (accelerations and
+// multipliers from the KKT system) in the full space, whose tangent leaves the manifold's
+// tangent space invariant (tangent_con.c).
+//
+// df/dp is exact: masses, gravity, spring constants and damper coefficients enter the residual
+// R = sum_k J_k' (m_k A_k - F_k) in closed form, so dR/dp = sum_k J_k' d(m_k A_k - F_k)/dp at
+// the state's accelerations, and df/dp = (0, -M^-1 dR/dp) (or the KKT solve with constraint
+// rows). Parameters of primitives enter as plain doubles and have no exact derivative: refused.
+//
+// The variational problem reaches its workspace from the right-hand side through the
+// integrator that calls it: the options the integrator passes are its own copy inside
+// dal_ode_integ, whose `prob` points at the var_problem below (its first member).
+#include <math.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "analysis.h"
+#include "integrate/integrate.h"
+
+typedef struct var_problem {
+  dal_ode_problem p;           // first: the integrator's prob points here
+  const dal_ode_problem *base; // minimal or index-1
+  dal_tangent *tg;
+  int n, m, np;
+  double *A;          // 2n x 2n
+  double *B;          // (n + m) x np: -dR/dp (and 0 for the constraint rows), then solved
+  double *f;          // N d scratch
+  dal_param_ref *ref; // np
+} var_problem;
+
+static var_problem *problem_of(const dal_solve_opts *opts) {
+  const dal_ode_integ *ig =
+      (const dal_ode_integ *)(const void *)((const char *)opts - offsetof(dal_ode_integ, opts));
+  return (var_problem *)(uintptr_t)ig->prob; // ours, and not const: see dal_state_transition
+}
+
+static int var_size(const dal_system *sys) { return 2 * sys->n * (1 + 2 * sys->n); }
+
+// y = (q, qdot, Phi, S): the trajectory from the state, Phi = I, S = 0 (y comes zeroed)
+static void var_from_state(const dal_system *sys, const dal_state *st, double *y) {
+  size_t n2 = 2 * (size_t)sys->n;
+  memcpy(y, st->q, (size_t)sys->n * sizeof(double));
+  memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
+  for (size_t i = 0; i < n2; ++i)
+    y[n2 + i * n2 + i] = 1.0;
+}
+
+static void var_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
+  st->t = t;
+  memcpy(st->q, y, (size_t)sys->n * sizeof(double));
+  memcpy(st->qdot, y + sys->n, (size_t)sys->n * sizeof(double));
+  dal__state_moved(st);
+}
+
+// dR/dp for one parameter at the evaluated tangent (n values into out)
+static void residual_dp(const dal_system *sys, const dal_state *st, dal_tangent *tg, double *f,
+                        const dal_param_ref *ref, double *out) {
+  int d = sys->dim, nd = tg->nd, n = tg->n;
+  memset(f, 0, (size_t)nd * sizeof(double));
+  const double *g = st->prm.g;
+  switch (ref->kind) {
+  case DAL_PARAM_MASS: // d(m A - m g)/dm
+    for (int b = 0; b < d; ++b)
+      f[ref->target * d + b] = tg->A[ref->target * d + b] - (st->prm.has_gravity ? g[b] : 0.0);
+    break;
+  case DAL_PARAM_GRAVITY: // F = m g
+    for (int k = 0; k < sys->N; ++k)
+      f[k * d + ref->index] = -st->prm.mass[k];
+    break;
+  case DAL_PARAM_SPRING_K:
+  case DAL_PARAM_SPRING_L:
+  case DAL_PARAM_DAMPER_C: {
+    int spring = ref->kind != DAL_PARAM_DAMPER_C;
+    const dal_link *l = spring ? &st->prm.springs[ref->target] : &st->prm.dampers[ref->target];
+    const double *an = tg->link + 9 * (size_t)(spring ? ref->target : sys->nspring + ref->target);
+    double e[3], len = 0.0, rel = 0.0;
+    for (int b = 0; b < d; ++b) {
+      double xb = l->b >= 0 ? tg->r[l->b * d + b] : an[b];
+      e[b] = tg->r[l->a * d + b] - xb;
+      len += e[b] * e[b];
+    }
+    len = sqrt(len);
+    for (int b = 0; b < d; ++b) {
+      e[b] /= len;
+      double vb = l->b >= 0 ? tg->v[l->b * d + b] : an[3 + b];
+      rel += (tg->v[l->a * d + b] - vb) * e[b];
+    }
+    // -dF_a/dp: U = k/2 (len - L)^2 gives -F_a = k (len - L) e; a damper F_a = -c rel e
+    double s = ref->kind == DAL_PARAM_SPRING_K   ? len - l->L
+               : ref->kind == DAL_PARAM_SPRING_L ? -l->k
+                                                 : rel;
+    for (int b = 0; b < d; ++b) {
+      f[l->a * d + b] += s * e[b];
+      if (l->b >= 0) f[l->b * d + b] -= s * e[b];
+    }
+    break;
+  }
+  default:
+    break;
+  }
+  for (int i = 0; i < n; ++i) {
+    double x = 0.0;
+    for (int c = 0; c < nd; ++c)
+      x += tg->J[(size_t)i * nd + c] * f[c];
+    out[i] = x;
+  }
+}
+
+static int var_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
+                   const double *y, double *ydot, unsigned need) {
+  var_problem *vp = problem_of(opts);
+  int n = vp->n, m = vp->m, np = vp->np, rc;
+  size_t n2 = 2 * (size_t)n, nk = (size_t)(n + m);
+  if ((rc = vp->base->rhs(sys, st, opts, t, y, ydot, need | DAL_P_ACC)) != 0) return rc;
+  // the exact tangent at (t, q, qdot) with the accelerations (and multipliers) just computed
+  if ((rc = dal__tangent_eval(sys, st, vp->tg, 0)) != 0) return rc;
+  if (m > 0) {
+    rc = dal__tangent_kkt(sys, st, vp->tg, vp->A, NULL, NULL);
+  } else if ((rc = dal__tangent_factor(sys, st, vp->tg)) == 0) {
+    dal__tangent_flow(vp->tg, vp->A, NULL);
+  }
+  if (rc) return rc;
+  // df/dp = (0, a_p): M a_p = -dR/dp, or the KKT system with zero constraint rows
+  for (int j = 0; j < np; ++j) {
+    double *b = vp->B + (size_t)j * nk;
+    residual_dp(sys, st, vp->tg, vp->f, &vp->ref[j], b);
+    for (size_t i = 0; i < nk; ++i)
+      b[i] = i < (size_t)n ? -b[i] : 0.0;
+  }
+  if (m > 0)
+    dal__tangent_kkt_solve(vp->tg, np, vp->B);
+  else
+    for (int j = 0; j < np; ++j)
+      dal__tangent_msolve(vp->tg, 1, vp->B + (size_t)j * nk);
+  // Y' = A Y (+ df/dp) for the 2n columns of Phi and the np of S
+  const double *A = vp->A;
+  for (size_t c = 0; c < n2 + (size_t)np; ++c) {
+    const double *Y = y + n2 + c * n2;
+    double *Yd = ydot + n2 + c * n2;
+    for (size_t i = 0; i < n2; ++i)
+      Yd[i] = 0.0;
+    for (size_t l = 0; l < n2; ++l) {
+      double yl = Y[l];
+      if (yl == 0.0) continue;
+      const double *Al = A + l * n2;
+      for (size_t i = 0; i < n2; ++i)
+        Yd[i] += Al[i] * yl;
+    }
+    if (c >= n2) {
+      const double *ap = vp->B + (c - n2) * nk;
+      for (int i = 0; i < n; ++i)
+        Yd[n + i] += ap[i];
+    }
+  }
+  return DAL_OK;
+}
+
+int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                         double t1, double *Phi, int nparam, const char *const *params, double *S) {
+  int rc = dal__check_pair(sys, st, "state_transition");
+  if (rc) return rc;
+  if (!Phi && !S) return DAL_FAIL(st, DAL_E_ARG, "state_transition: Phi and S are both NULL");
+  if (nparam < 0 || (nparam > 0 && (!params || !S)) || (nparam == 0 && S))
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "state_transition: nparam = %d needs %s; S goes with nparam > 0 names", nparam,
+                    nparam > 0 ? "the names and S" : "S = NULL");
+  if (!isfinite(t1) || !(t1 > st->t))
+    return DAL_FAIL(st, DAL_E_ARG, "state_transition: t1 = %g must be finite and after t = %g", t1,
+                    st->t);
+  dal_solve_opts o;
+  if (opts)
+    o = *opts;
+  else
+    o = dal_default_solve_opts();
+  if ((rc = dal__check_opts(st, &o)) != 0) return rc;
+  o = dal__effective_opts(&o); // atol following rtol
+  dal_method meth = o.method == DAL_METHOD_AUTO ? DAL_METHOD_DOPRI5 : o.method;
+  if (meth != DAL_METHOD_DOPRI5 && meth != DAL_METHOD_FEHLBERG78 && meth != DAL_METHOD_BS &&
+      meth != DAL_METHOD_RK4)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "state_transition: method '%s' does not run the variational equations; use "
+                    "an explicit one (DOPRI5, FEHLBERG78, BS, RK4)",
+                    dal_method_name(meth));
+  if (sys->m > 0 && (o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0))
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "state_transition: Baumgarte terms change the flow off the manifold; leave "
+                    "opts.baumgarte_alpha and _beta at 0");
+  o.method = meth;
+  o.form = sys->m > 0 ? DAL_FORM_INDEX1 : o.form;
+  o.work = 0;
+  o.project = 0;
+  if ((rc = dal__tangent_supported(sys, st, "state_transition")) != 0) return rc;
+
+  var_problem vp;
+  memset(&vp, 0, sizeof vp);
+  vp.base = sys->m > 0 ? &dal__problem_index1 : &dal__problem_minimal;
+  vp.p = *vp.base;
+  vp.p.name = "variational";
+  vp.p.size = var_size;
+  vp.p.rhs = var_rhs;
+  vp.p.project = NULL;
+  vp.p.from_state = var_from_state;
+  vp.p.to_state = var_to_state;
+  vp.n = sys->n;
+  vp.m = sys->m;
+  vp.np = nparam;
+  size_t n = (size_t)sys->n, n2 = 2 * n, nk = n + (size_t)sys->m;
+  vp.p.ny = (int)(n2 * (1 + n2 + (size_t)nparam));
+  char msg[256];
+  vp.ref = calloc((size_t)nparam + 1, sizeof *vp.ref);
+  vp.A = calloc(n2 * n2, sizeof(double));
+  vp.B = calloc(nk * (size_t)nparam + 1, sizeof(double));
+  vp.f = calloc((size_t)(sys->N * sys->dim) + 1, sizeof(double));
+  dal_ode_integ *ig = NULL;
+  if (!vp.ref || !vp.A || !vp.B || !vp.f || dal__tangent_create(sys, &vp.tg)) {
+    rc = DAL_FAIL(st, DAL_E_NOMEM, "state_transition: out of memory");
+    goto done;
+  }
+  for (int j = 0; j < nparam; ++j) {
+    if ((rc = dal_param_find(sys, params[j], &vp.ref[j], msg, sizeof msg)) != 0) {
+      rc = DAL_FAIL(st, rc, "state_transition: parameter %d: %s", j, msg);
+      goto done;
+    }
+    dal_param_kind k = vp.ref[j].kind;
+    if (k == DAL_PARAM_PLACE || k == DAL_PARAM_CONSTRAINT || sys->lag) {
+      rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "state_transition: parameter '%s' has no exact derivative (%s); "
+                    "sensitivities cover masses, gravity, springs and dampers of particle "
+                    "systems",
+                    params[j],
+                    sys->lag ? "the system is a Lagrangian"
+                             : "primitive parameters enter the jet functions as plain doubles");
+      goto done;
+    }
+  }
+  // a consistent start on the manifold (the tangent space is then invariant)
+  if ((rc = dal__analysis_eval(sys, st, st->t, st->q, st->qdot)) != 0) goto done;
+  if (sys->m > 0) {
+    if ((rc = dal__tangent_eval(sys, st, vp.tg, 0)) != 0) goto done;
+    if ((rc = dal__tangent_on_manifold(sys, st, vp.tg, "state_transition")) != 0) goto done;
+  }
+  if ((rc = dal__ode_create(sys, st, &o, meth, &vp.p, &ig)) != 0) goto done;
+  rc = ig->advance(ig, t1);
+  if (rc == 0) {
+    if (Phi) memcpy(Phi, ig->y + n2, n2 * n2 * sizeof(double));
+    if (S) memcpy(S, ig->y + n2 + n2 * n2, n2 * (size_t)nparam * sizeof(double));
+    double *y = ig->y;
+    rc = dal__analysis_eval(sys, st, t1, y, y + n);
+  } else if (rc > 0) {
+    rc = dal__public_status(rc);
+  }
+done:
+  if (ig) dal__ode_destroy(ig);
+  dal__tangent_free(vp.tg);
+  free(vp.ref);
+  free(vp.A);
+  free(vp.B);
+  free(vp.f);
+  return rc;
+}
+
+// ---------------------------------------------------------------------------------------------
+// linearization with inputs
+
+// resolve one input name: "force:<coordinate>" (*coord >= 0) or a parameter with an exact
+// derivative (*ref)
+static int resolve_input(const dal_system *sys, dal_state *st, const char *name, int *coord,
+                         dal_param_ref *ref) {
+  *coord = -1;
+  if (!name) return DAL_FAIL(st, DAL_E_ARG, "linearize_inputs: an input name is NULL");
+  if (strncmp(name, "force:", 6) == 0) {
+    const char *c = name + 6;
+    for (int i = 0; i < sys->n; ++i)
+      if (strcmp(sys->coord_names[i], c) == 0) *coord = i;
+    if (*coord < 0) {
+      char *end = NULL;
+      long v = strtol(c, &end, 10);
+      if (end != c && *end == '\0' && v >= 0 && v < sys->n) *coord = (int)v;
+    }
+    if (*coord < 0)
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "linearize_inputs: input '%s': no coordinate '%s' (a name given to the "
+                      "builder or a 0-based index below %d)",
+                      name, c, sys->n);
+    return DAL_OK;
+  }
+  char msg[256];
+  int rc = dal_param_find(sys, name, ref, msg, sizeof msg);
+  if (rc) return DAL_FAIL(st, rc, "linearize_inputs: input '%s': %s", name, msg);
+  if (ref->kind == DAL_PARAM_PLACE || ref->kind == DAL_PARAM_CONSTRAINT || sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "linearize_inputs: input '%s' has no exact derivative (%s); inputs are "
+                    "generalized forces \"force:<coordinate>\", masses, gravity, springs and "
+                    "dampers",
+                    name,
+                    sys->lag ? "the system is a Lagrangian"
+                             : "primitive parameters enter the jet functions as plain doubles");
+  return DAL_OK;
+}
+
+int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
+                         const char *const *inputs, double *B, double *Af, double *Bf) {
+  int rc = dal__check_pair(sys, st, "linearize_inputs");
+  if (rc) return rc;
+  if (ninput < 0 || (ninput > 0 && !inputs))
+    return DAL_FAIL(st, DAL_E_ARG, "linearize_inputs: ninput = %d needs %d names", ninput, ninput);
+  if ((rc = dal__tangent_supported(sys, st, "linearize_inputs")) != 0) return rc;
+  if ((rc = dal_forward(sys, st)) != 0) return rc;
+  int n = sys->n, m = sys->m, k = n - m;
+  size_t sn = (size_t)n, sk = (size_t)k, nk = sn + (size_t)m, k2 = 2 * sk, ni = (size_t)ninput;
+  dal_tangent *tg = NULL;
+  double *buf = calloc(nk * (ni + 1) + k2 * k2 + sk * sk + sn * sk + ni * sk +
+                           (size_t)(sys->N * sys->dim) + 1,
+                       sizeof(double));
+  if (!buf || dal__tangent_create(sys, &tg)) {
+    free(buf);
+    return DAL_FAIL(st, DAL_E_NOMEM, "linearize_inputs: out of memory");
+  }
+  double *R = buf, *Ar = R + nk * (ni + 1), *Mr = Ar + k2 * k2, *N = Mr + sk * sk;
+  double *Br = N + sn * sk, *f = Br + ni * sk;
+  if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) goto done;
+  if (m > 0 && (rc = dal__tangent_on_manifold(sys, st, tg, "linearize_inputs")) != 0) goto done;
+  // the input columns of the full residual: dR/du = -e_j for a generalized force, dR/dp else
+  for (int j = 0; j < ninput; ++j) {
+    int coord;
+    dal_param_ref ref;
+    if ((rc = resolve_input(sys, st, inputs[j], &coord, &ref)) != 0) goto done;
+    double *col = R + (size_t)j * nk;
+    if (coord >= 0)
+      col[coord] = 1.0;
+    else {
+      residual_dp(sys, st, tg, f, &ref, col);
+      for (int i = 0; i < n; ++i)
+        col[i] = -col[i];
+    }
+  }
+  // R columns now hold b_j = -dR/du_j: M dq'' + C dq' + K dq = b du (full space)
+  if (m == 0) {
+    if ((rc = dal__tangent_factor(sys, st, tg)) != 0) goto done;
+    if (B) memcpy(B, R, sn * ni * sizeof(double));
+    if (Af) dal__tangent_flow(tg, Af, NULL);
+    if (Bf) {
+      for (size_t j = 0; j < ni; ++j) {
+        double *c = Bf + j * 2 * sn;
+        memset(c, 0, sn * sizeof(double));
+        memcpy(c + sn, R + j * nk, sn * sizeof(double));
+        dal__tangent_msolve(tg, 1, c + sn);
+      }
+    }
+  } else {
+    // reduced: B_r = N' b, and the first-order Bf = (0, M_r^-1 B_r) = (0, N' da) with da from
+    // the KKT system [M G'; G 0] (da; -dlambda) = (b; 0)
+    if ((rc = dal__tangent_reduced(sys, st, tg, N, Ar, Mr, NULL, NULL)) != 0) goto done;
+    for (size_t j = 0; j < ni; ++j)
+      for (size_t i = 0; i < sk; ++i) {
+        double x = 0.0;
+        for (size_t l = 0; l < sn; ++l)
+          x += N[i * sn + l] * R[j * nk + l];
+        Br[j * sk + i] = x;
+      }
+    if (B) memcpy(B, Br, sk * ni * sizeof(double));
+    if (Af) memcpy(Af, Ar, k2 * k2 * sizeof(double));
+    if (Bf) {
+      dal__tangent_kkt_solve(tg, ninput, R); // tg's LU factors are the reduction's
+      for (size_t j = 0; j < ni; ++j) {
+        double *c = Bf + j * k2;
+        for (size_t i = 0; i < sk; ++i) {
+          double x = 0.0;
+          for (size_t l = 0; l < sn; ++l)
+            x += N[i * sn + l] * R[j * nk + l];
+          c[i] = 0.0;
+          c[sk + i] = x;
+        }
+      }
+    }
+  }
+done:
+  free(buf);
+  dal__tangent_free(tg);
+  return rc;
+}

@@ -1,0 +1,35 @@
+# SPDX-License-Identifier: MIT
+# SPDX-FileCopyrightText: 2026 dalembert engineers
+# docs/expressions.md shows what `dalembert show` prints: every line the command prints for the
+# seed scenes (text, LaTeX, the SICM state derivative) must be in the document verbatim.
+# Run: cmake -DCLI=<dalembert> -DDOC=<docs/expressions.md> -DSCENES=<examples/scenes> -P ...
+file(READ ${DOC} doc)
+set(bad 0)
+foreach(scene sicm_oscillator driven_pendulum bead_ring_below bead_ring_above)
+  foreach(fmt --text --latex --scheme)
+    execute_process(COMMAND ${CLI} show ${SCENES}/${scene}.scene ${fmt}
+      OUTPUT_VARIABLE out RESULT_VARIABLE rc)
+    if(NOT rc EQUAL 0)
+      message(SEND_ERROR "dalembert show ${scene} ${fmt} failed (${rc})")
+      math(EXPR bad "${bad} + 1")
+    endif()
+    string(REPLACE "\n" ";" lines "${out}")
+    foreach(line IN LISTS lines)
+      if(fmt STREQUAL "--scheme" AND NOT line MATCHES "^state derivative")
+        continue()
+      endif()
+      if(line STREQUAL "")
+        continue()
+      endif()
+      string(FIND "${doc}" "${line}" at)
+      if(at LESS 0)
+        message(SEND_ERROR "${scene} ${fmt}: not in the document: ${line}")
+        math(EXPR bad "${bad} + 1")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+if(bad GREATER 0)
+  message(FATAL_ERROR "${bad} line(s) of dalembert show differ from ${DOC}")
+endif()
+message(STATUS "docs/expressions.md shows what dalembert show prints")

@@ -1,0 +1,459 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The analysis tools on the constraint manifold, each against an independent reference:
+//  - Cartesian pendulum (x, y, rod): omega^2 = g/l (closed form) to 1e-12; equilibrium from an
+//    inconsistent start and its rod tension m g (statics by hand);
+//  - Cartesian double pendulum (four coordinates, two rods), equal masses and lengths:
+//    omega^2 = (g/l)(2 -+ sqrt 2) to 1e-12; static tensions (m1 + m2) g and m2 g;
+//  - the reduced linearization equals N' K_full N at a static equilibrium and the full-space
+//    vector-field Jacobian against central differences of the KKT accelerations (oracle);
+//  - the reduced linearization of the Cartesian pendulum at a moving state against the minimal
+//    pendulum's -g cos(theta) / l (the basis carried along the motion);
+//  - four-bar linkage (crank and rocker pivots fixed, particles at the two moving joints, three
+//    rods): its one mode about the stable equilibrium against a model in the crank angle alone
+//    written here by hand (coupler and rocker joint solved in closed form; U'' / M(theta)
+//    by jets of that closed form), to 1e-10;
+//  - bead on a circle turning at w as a Cartesian particle (dal_con_turning_circle): the
+//    trivial branch's Omega^2 = g/R - w^2 and the pitchfork at w = sqrt(g/R) located by
+//    continuation.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "check.h"
+#include "dalembert/dalembert.h"
+#include "scenes_def.h"
+
+static const double G0 = SCENE_G;
+
+// -------------------------------------------------------------------------------------------
+// the Cartesian pendulum
+
+static void cart_pendulum(void) {
+  const double l = 1.3;
+  dal_system *sys = scene_cart_pendulum(l);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {0.0, -l}, v[2] = {0.0, 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  double w2[1], x[2], re[2], im[2];
+  dal_modes md;
+  int rc = dal_normal_modes(sys, st, w2, x, re, im, &md);
+  CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
+  printf("Cartesian pendulum: omega^2 = %.17g, g/l = %.17g, diff %.3g\n", w2[0], G0 / l,
+         w2[0] - G0 / l);
+  CHECK_CLOSE(w2[0], G0 / l, 1e-12);
+  CHECK(md.verdict == DAL_NEUTRAL);
+  // the shape is along the tangent of the circle (x), M-normalized (m = 1)
+  CHECK_CLOSE(x[0], 1.0, 1e-12);
+  CHECK_CLOSE(x[1], 0.0, 1e-12);
+  CHECK_CLOSE(im[1], sqrt(G0 / l), 1e-12);
+  CHECK_CLOSE(re[0], 0.0, 1e-12);
+
+  // the equilibrium from an inconsistent start: the bob below the pivot, tension m g
+  double q0[2] = {0.4, -0.9 * l};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q0, v));
+  dal_equilibrium_report rep;
+  rc = dal_equilibrium(sys, st, NULL, &rep);
+  CHECK_MSG(rc == 0, "equilibrium: %s", dal_state_errmsg(st));
+  const double *qs = dal_state_q(st), *lam = dal_state_lambda(st);
+  printf("  equilibrium (%.3g, %.17g) in %d iterations, lambda = %.17g (-m g = %.17g)\n", qs[0],
+         qs[1], rep.iterations, lam[0], -G0);
+  CHECK_CLOSE(qs[0], 0.0, 1e-13);
+  CHECK_CLOSE(qs[1], -l, 1e-13);
+  CHECK_CLOSE(lam[0], -G0, 1e-12); // lambda = -T for a rod in tension T = m g
+  CHECK(rep.accel <= 1e-12 && rep.unsteady == 0.0);
+  // the inverted equilibrium: unstable, omega^2 = -g/l, compression -m g (lambda = +m g)
+  double q1[2] = {0.2, 0.8 * l};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q1, v));
+  CHECK_OK(dal_equilibrium(sys, st, NULL, NULL));
+  CHECK_CLOSE(dal_state_q(st)[1], l, 1e-13);
+  CHECK_CLOSE(dal_state_lambda(st)[0], G0, 1e-12);
+  CHECK_OK(dal_normal_modes(sys, st, w2, NULL, NULL, NULL, &md));
+  CHECK_CLOSE(w2[0], -G0 / l, 1e-12);
+  CHECK(md.verdict == DAL_UNSTABLE);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// -------------------------------------------------------------------------------------------
+// the Cartesian double pendulum: p1 on a rod of length l to the origin, p2 on a rod to p1
+
+static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
+  dal_builder *b = NULL;
+  int c[4], p[2], rc = dal_builder_create(2, &b);
+  double g[2] = {0.0, -G0};
+  const char *names[4] = {"x1", "y1", "x2", "y2"};
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = dal_builder_add_coord(b, names[i], &c[i]);
+  if (!rc) rc = dal_builder_add_particle(b, "p1", m1, &p[0]);
+  if (!rc) rc = dal_builder_add_particle(b, "p2", m2, &p[1]);
+  for (int k = 0; k < 2 && !rc; ++k) {
+    dal_place_def d = dal_default_place_def();
+    d.prim = &dal_map_cartesian2;
+    d.coords = c + 2 * k;
+    d.ncoords = 2;
+    rc = dal_builder_place_def(b, p[k], &d);
+  }
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  dal_constraint_def k1 = dal_default_constraint_def();
+  k1.name = "rod1";
+  k1.prim = &dal_con_anchor2;
+  k1.parts = p;
+  k1.nparts = 1;
+  k1.param[DAL_ANCHOR_L] = l1;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &k1, NULL);
+  dal_constraint_def k2 = dal_default_constraint_def();
+  k2.name = "rod2";
+  k2.prim = &dal_con_distance2;
+  k2.parts = p;
+  k2.nparts = 2;
+  k2.param[DAL_DISTANCE_L] = l2;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
+  return scene_finish(b, rc);
+}
+
+static void cart_double_pendulum(void) {
+  const double l = 0.7, m = 1.9;
+  dal_system *sys = double_pendulum(m, m, l, l);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[4] = {0.1, -0.6, -0.2, -1.3}, v[4] = {0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  int rc = dal_equilibrium(sys, st, NULL, NULL);
+  CHECK_MSG(rc == 0, "equilibrium: %s", dal_state_errmsg(st));
+  const double *qs = dal_state_q(st), *lam = dal_state_lambda(st);
+  CHECK_CLOSE(qs[0], 0.0, 1e-13);
+  CHECK_CLOSE(qs[1], -l, 1e-13);
+  CHECK_CLOSE(qs[2], 0.0, 1e-13);
+  CHECK_CLOSE(qs[3], -2 * l, 1e-13);
+  // statics: the upper rod carries both bobs, the lower one the lower bob (lambda = -T)
+  printf("Cartesian double pendulum: lambda = (%.17g, %.17g), -(m1 + m2) g = %.17g, -m2 g = "
+         "%.17g\n",
+         lam[0], lam[1], -2 * m * G0, -m * G0);
+  CHECK_CLOSE(lam[0], -2 * m * G0, 1e-12);
+  CHECK_CLOSE(lam[1], -m * G0, 1e-12);
+  double w2[2], x[8];
+  dal_modes md;
+  rc = dal_normal_modes(sys, st, w2, x, NULL, NULL, &md);
+  CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
+  double lo = G0 / l * (2 - sqrt(2.0)), hi = G0 / l * (2 + sqrt(2.0));
+  printf("  omega^2 = %.17g, %.17g; closed form %.17g, %.17g (diff %.3g, %.3g)\n", w2[0], w2[1], lo,
+         hi, w2[0] - lo, w2[1] - hi);
+  CHECK_CLOSE(w2[0], lo, 1e-12);
+  CHECK_CLOSE(w2[1], hi, 1e-12);
+  CHECK(md.verdict == DAL_NEUTRAL);
+  // shapes: horizontal motions only, angles theta2 = sqrt 2 theta1 (in phase), then -sqrt 2
+  CHECK_CLOSE(x[1], 0.0, 1e-12);
+  CHECK_CLOSE(x[3], 0.0, 1e-12);
+  CHECK_CLOSE(x[2] / x[0], 1 + sqrt(2.0),
+              1e-12); // x2 = l (theta1 + theta2), theta2 = +-sqrt 2 theta1
+  CHECK_CLOSE(x[6] / x[4], 1 - sqrt(2.0), 1e-12);
+  // at the static point the reduced matrices are N' M N and N' K_full N
+  double M[16], K[16], N[8], Mr[4], Kr[4];
+  CHECK_OK(dal_linearize_full(sys, st, M, NULL, K, NULL, N));
+  CHECK_OK(dal_linearize(sys, st, Mr, NULL, Kr));
+  for (int i = 0; i < 2; ++i)
+    for (int j = 0; j < 2; ++j) {
+      double sm = 0, sk = 0;
+      for (int a = 0; a < 4; ++a)
+        for (int b2 = 0; b2 < 4; ++b2) {
+          sm += N[i * 4 + a] * M[b2 * 4 + a] * N[j * 4 + b2];
+          sk += N[i * 4 + a] * K[b2 * 4 + a] * N[j * 4 + b2];
+        }
+      CHECK_CLOSE(Mr[j * 2 + i], sm, 1e-13);
+      CHECK_CLOSE(Kr[j * 2 + i], sk, 1e-12);
+    }
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// -------------------------------------------------------------------------------------------
+// the full-space vector-field Jacobian against central differences of the KKT accelerations
+// (oracle) at a moving, generic state of the double pendulum (unequal masses and lengths)
+
+static void jacobian_vs_fd(void) {
+  dal_system *sys = double_pendulum(1.3, 0.6, 0.9, 0.5);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double a1 = 0.7, a2 = -0.4, w1 = 1.1, wv2 = -2.3;
+  double q[4] = {0.9 * sin(a1), -0.9 * cos(a1), 0.9 * sin(a1) + 0.5 * sin(a2),
+                 -0.9 * cos(a1) - 0.5 * cos(a2)};
+  double v[4] = {0.9 * cos(a1) * w1, 0.9 * sin(a1) * w1, 0.9 * cos(a1) * w1 + 0.5 * cos(a2) * wv2,
+                 0.9 * sin(a1) * w1 + 0.5 * sin(a2) * wv2};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  double A[64], ft[8];
+  int rc = dal_vector_field_jacobian(sys, st, A, ft);
+  CHECK_MSG(rc == 0, "jacobian: %s", dal_state_errmsg(st));
+  double worst = 0.0;
+  for (int c = 0; c < 8; ++c) {
+    double h = 1e-5, ap[4], am[4], y[8];
+    for (int s = 0; s < 2; ++s) {
+      memcpy(y, q, sizeof q);
+      memcpy(y + 4, v, sizeof v);
+      y[c] += s ? -h : h;
+      CHECK_OK(dal_state_set(sys, st, 0.0, y, y + 4));
+      CHECK_OK(dal_forward(sys, st));
+      memcpy(s ? am : ap, dal_state_qddot(st), sizeof ap);
+    }
+    for (int i = 0; i < 4; ++i) {
+      double fd = (ap[i] - am[i]) / (2 * h), ex = A[c * 8 + 4 + i];
+      worst = fmax(worst, fabs(fd - ex) / (1.0 + fabs(ex)));
+      CHECK_CLOSE(ex, fd, 1e-7);
+      CHECK(A[c * 8 + i] == (c == 4 + i ? 1.0 : 0.0));
+    }
+  }
+  printf("full-space vector-field Jacobian vs central differences: worst %.3g\n", worst);
+  for (int i = 0; i < 8; ++i)
+    CHECK(ft[i] == 0.0 || fabs(ft[i]) < 1e-13);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// -------------------------------------------------------------------------------------------
+// the Cartesian pendulum at a moving state: with the basis carried along the motion, the
+// reduced tangent is the minimal pendulum's xi'' = -(g / l) cos(theta) xi (xi = l dtheta)
+
+static void moving_pendulum(void) {
+  const double l = 0.8, th = 0.9, w = 2.7;
+  dal_system *sys = scene_cart_pendulum(l);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[2] = {l * sin(th), -l * cos(th)}, v[2] = {l * cos(th) * w, l * sin(th) * w};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  double M[1], C[1], K[1];
+  int rc = dal_linearize(sys, st, M, C, K);
+  CHECK_MSG(rc == 0, "linearize: %s", dal_state_errmsg(st));
+  printf("moving Cartesian pendulum: K_r / M_r = %.17g, g cos(theta) / l = %.17g, C_r = %.3g\n",
+         K[0] / M[0], G0 * cos(th) / l, C[0]);
+  CHECK_CLOSE(M[0], 1.0, 1e-14);
+  CHECK_CLOSE(K[0], G0 * cos(th) / l, 1e-12);
+  CHECK_CLOSE(C[0], 0.0, 1e-12);
+  // off the manifold: refused, naming the row
+  double qb[2] = {q[0] * 1.01, q[1]};
+  CHECK_OK(dal_state_set(sys, st, 0.0, qb, v));
+  rc = dal_linearize(sys, st, M, C, K);
+  CHECK(rc == DAL_E_ARG && strstr(dal_state_errmsg(st), "'rod'") != NULL);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// -------------------------------------------------------------------------------------------
+// the four-bar linkage: ground pivots A = (0, 0) and D = (d, 0), crank AB (a), coupler BC (b),
+// rocker DC (c); particles at B (mB) and C (mC) in Cartesian coordinates, gravity -y
+
+static const double FB_A = 1.0, FB_B = 1.2, FB_C = 0.9, FB_D = 1.5, FB_MB = 1.0, FB_MC = 2.0;
+
+static dal_system *fourbar(void) {
+  dal_builder *b = NULL;
+  int c[4], p[2], rc = dal_builder_create(2, &b);
+  double g[2] = {0.0, -G0};
+  const char *names[4] = {"xB", "yB", "xC", "yC"};
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = dal_builder_add_coord(b, names[i], &c[i]);
+  if (!rc) rc = dal_builder_add_particle(b, "B", FB_MB, &p[0]);
+  if (!rc) rc = dal_builder_add_particle(b, "C", FB_MC, &p[1]);
+  for (int k = 0; k < 2 && !rc; ++k) {
+    dal_place_def d = dal_default_place_def();
+    d.prim = &dal_map_cartesian2;
+    d.coords = c + 2 * k;
+    d.ncoords = 2;
+    rc = dal_builder_place_def(b, p[k], &d);
+  }
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  dal_constraint_def crank = dal_default_constraint_def();
+  crank.name = "crank";
+  crank.prim = &dal_con_anchor2;
+  crank.parts = &p[0];
+  crank.nparts = 1;
+  crank.param[DAL_ANCHOR_L] = FB_A;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &crank, NULL);
+  dal_constraint_def coupler = dal_default_constraint_def();
+  coupler.name = "coupler";
+  coupler.prim = &dal_con_distance2;
+  coupler.parts = p;
+  coupler.nparts = 2;
+  coupler.param[DAL_DISTANCE_L] = FB_B;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &coupler, NULL);
+  dal_constraint_def rocker = dal_default_constraint_def();
+  rocker.name = "rocker";
+  rocker.prim = &dal_con_anchor2;
+  rocker.parts = &p[1];
+  rocker.nparts = 1;
+  rocker.param[DAL_ANCHOR_L] = FB_C;
+  rocker.param[DAL_ANCHOR_X0] = FB_D;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &rocker, NULL);
+  return scene_finish(b, rc);
+}
+
+// the mechanism in the crank angle th by hand: B = a (cos th, sin th), C on the circles about
+// B (radius b) and D (radius c), on the lower branch; jets along th give U', U'' and M(th)
+static void fourbar_hand(double th, double *Up, double *Upp, double *Mth, double *pos) {
+  dal_jet t = dal_var(th, 1.0);
+  dal_jet bx = dal_scale(dal_cos(t), FB_A), by = dal_scale(dal_sin(t), FB_A);
+  dal_jet px = dal_sub(dal_const(FB_D), bx), py = dal_scale(by, -1.0); // D - B
+  dal_jet L2 = dal_add(dal_sq(px), dal_sq(py)), L = dal_sqrt(L2);
+  dal_jet x = dal_div(dal_addc(L2, FB_B * FB_B - FB_C * FB_C), dal_scale(L, 2.0));
+  dal_jet h = dal_sqrt(dal_sub(dal_const(FB_B * FB_B), dal_sq(x)));
+  // C = B + (x p - h perp(p)) / L, perp(p) = (-py, px): the branch below the line BD
+  dal_jet cx = dal_add(bx, dal_div(dal_add(dal_mul(x, px), dal_mul(h, py)), L));
+  dal_jet cy = dal_add(by, dal_div(dal_sub(dal_mul(x, py), dal_mul(h, px)), L));
+  dal_jet U = dal_scale(dal_add(dal_scale(by, FB_MB), dal_scale(cy, FB_MC)), G0);
+  *Up = U.d;
+  *Upp = U.dd;
+  *Mth = FB_MB * (bx.d * bx.d + by.d * by.d) + FB_MC * (cx.d * cx.d + cy.d * cy.d);
+  if (pos) {
+    pos[0] = bx.v;
+    pos[1] = by.v;
+    pos[2] = cx.v;
+    pos[3] = cy.v;
+  }
+}
+
+static void fourbar_mode(void) {
+  // the hand model's equilibrium: Newton on U'(th) = 0 with U'' from the jets
+  double th = -1.3, up, upp, mth, pos[4];
+  for (int i = 0; i < 50; ++i) {
+    fourbar_hand(th, &up, &upp, &mth, NULL);
+    th -= up / upp;
+  }
+  fourbar_hand(th, &up, &upp, &mth, pos);
+  double w2hand = upp / mth;
+  CHECK(fabs(up) < 1e-12 && upp > 0);
+  // the constrained model from a nearby consistent configuration (the hand model at th + 0.2)
+  dal_system *sys = fourbar();
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q0[4], v[4] = {0};
+  fourbar_hand(th + 0.2, &up, &upp, &mth, q0);
+  CHECK_OK(dal_state_set(sys, st, 0.0, q0, v));
+  dal_equilibrium_report rep;
+  int rc = dal_equilibrium(sys, st, NULL, &rep);
+  CHECK_MSG(rc == 0, "equilibrium: %s", dal_state_errmsg(st));
+  const double *q = dal_state_q(st);
+  for (int i = 0; i < 4; ++i)
+    CHECK_CLOSE(q[i], pos[i], 1e-12);
+  double w2[1];
+  dal_modes md;
+  rc = dal_normal_modes(sys, st, w2, NULL, NULL, NULL, &md);
+  CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
+  printf("four-bar: crank angle %.15f, omega^2 = %.17g, hand model U''/M = %.17g (rel diff "
+         "%.3g), %d Newton iterations\n",
+         th, w2[0], w2hand, (w2[0] - w2hand) / w2hand, rep.iterations);
+  CHECK(fabs(w2[0] - w2hand) <= 1e-10 * w2hand);
+  CHECK(md.verdict == DAL_NEUTRAL);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// -------------------------------------------------------------------------------------------
+// the bead on a circle of radius R turning at w about the vertical, as a Cartesian particle
+// (x, y, z) with dal_con_turning_circle (two rows)
+
+static const double BEAD_R = 0.6;
+
+static dal_system *cart_bead(double w) {
+  dal_builder *b = NULL;
+  int c[3], p, rc = dal_builder_create(3, &b);
+  double g[3] = {0.0, 0.0, -G0};
+  const char *names[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(b, names[i], &c[i]);
+  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
+  dal_place_def d = dal_default_place_def();
+  d.prim = &dal_map_cartesian3;
+  d.coords = c;
+  d.ncoords = 3;
+  if (!rc) rc = dal_builder_place_def(b, p, &d);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  dal_constraint_def k = dal_default_constraint_def();
+  k.name = "ring";
+  k.prim = &dal_con_turning_circle;
+  k.parts = &p;
+  k.nparts = 1;
+  k.param[DAL_TURNING_CIRCLE_R] = BEAD_R;
+  k.param[DAL_TURNING_CIRCLE_W] = w;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
+  return scene_finish(b, rc);
+}
+
+static int bead_rebuild(double w, dal_system **out, void *ctx) {
+  (void)ctx;
+  *out = cart_bead(w);
+  return *out ? 0 : 1;
+}
+
+typedef struct bead_branch {
+  int regular, critical, bad;
+  double pcrit;
+} bead_branch;
+
+static int bead_point(double w, const dal_system *sys, const dal_state *st, dal_stability verdict,
+                      dal_branch_kind kind, void *ctx) {
+  (void)sys;
+  bead_branch *br = ctx;
+  const double wc = sqrt(G0 / BEAD_R);
+  if (kind == DAL_BRANCH_CRITICAL) {
+    br->critical++;
+    br->pcrit = w;
+    return 0;
+  }
+  br->regular++;
+  // the trivial branch: the bottom point, neutral below the critical rate, unstable above
+  const double *q = dal_state_q(st);
+  if (fabs(q[0]) > 1e-12 || fabs(q[1]) > 1e-12 || fabs(q[2] + BEAD_R) > 1e-12) br->bad++;
+  if (w < wc - 1e-6 && verdict != DAL_NEUTRAL) br->bad++;
+  if (w > wc + 1e-6 && verdict != DAL_UNSTABLE) br->bad++;
+  return 0;
+}
+
+static void turning_bead(void) {
+  const double wc = sqrt(G0 / BEAD_R);
+  // below the critical rate: Omega^2 = g/R - w^2 about the bottom (a relative equilibrium of
+  // the turning constraint whose point stays put)
+  for (int pass = 0; pass < 2; ++pass) {
+    double w = pass ? 1.3 * wc : 0.7 * wc;
+    dal_system *sys = cart_bead(w);
+    dal_state *st = NULL;
+    CHECK_OK(dal_state_create(sys, &st));
+    double q[3] = {0.0, 0.0, -BEAD_R}, v[3] = {0};
+    CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+    double w2[1], re[2], im[2];
+    dal_modes md;
+    int rc = dal_normal_modes(sys, st, w2, NULL, re, im, &md);
+    CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
+    double ref = G0 / BEAD_R - w * w;
+    printf("Cartesian bead at w = %.2f w_c: Omega^2 = %.17g, g/R - w^2 = %.17g\n", w / wc, w2[0],
+           ref);
+    CHECK_CLOSE(w2[0], ref, 1e-12);
+    CHECK(md.verdict == (pass ? DAL_UNSTABLE : DAL_NEUTRAL));
+    dal_state_destroy(st);
+    dal_system_destroy(sys);
+  }
+  // continuation in w along the bottom branch: the pitchfork at sqrt(g/R)
+  dal_continuation_opts o = dal_default_continuation_opts();
+  o.p0 = 0.2 * wc;
+  o.p1 = 1.8 * wc;
+  o.npoints = 8; // no grid point on the critical rate
+  double q0[3] = {0.0, 0.0, -BEAD_R};
+  bead_branch br = {0, 0, 0, 0.0};
+  dal_continuation_report rep;
+  int rc = dal_continue(bead_rebuild, q0, &o, bead_point, &rep, &br);
+  CHECK_MSG(rc == 0, "continue: %s", rep.msg);
+  printf("  continuation: %d points, %d critical at w = %.15f (sqrt(g/R) = %.15f)\n", br.regular,
+         br.critical, br.pcrit, wc);
+  CHECK(br.regular == 8 && br.critical == 1 && br.bad == 0);
+  CHECK(fabs(br.pcrit - wc) <= 2e-10 * (o.p1 - o.p0));
+}
+
+int main(void) {
+  cart_pendulum();
+  cart_double_pendulum();
+  jacobian_vs_fd();
+  moving_pendulum();
+  fourbar_mode();
+  turning_bead();
+  printf("%d checks, %d failures\n", check_count, check_failures);
+  return check_failures != 0;
+}
