@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "scenes.h"
 #include "dalembert/dalembert.h"
 #include "fd.h"
 
@@ -44,48 +45,29 @@ static dal_system *compile(dal_builder *b, int rc) {
 }
 
 // double pendulum: bob 1 (m1) on l1 about the origin, bob 2 (m2) on l2 hanging from bob 1
+// a standard scene, checked as compile() checks the scenes built here
+static dal_system *built(dal_system *sys) {
+  CHECK(sys != NULL);
+  return sys;
+}
+
 static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
-  dal_builder *b = NULL;
-  int q[2], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob1", m1, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob2", m2, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &q[0];
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = l1;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &q[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = l2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = grav;
+  k.m = m1;
+  k.m2 = m2;
+  k.l = l1;
+  k.l2 = l2;
+  return built(scn_double_pendulum(&k));
 }
 
 // SICM's driven pendulum: pivot y = a cos(w t), a = 0.1, w = 2 sqrt(g), l = 1, m = 1, g = 9.8
 static dal_system *driven_pendulum(void) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AY] = 0.1;
-  pd.param[DAL_PENDULUM_W] = 2 * sqrt(9.8);
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = 9.8;
+  k.ay = 0.1;
+  k.w = 2 * sqrt(9.8);
+  return built(scn_pendulum(&k));
 }
 
 // bead (mass m) on a ring of radius R turning at w about the vertical axis
@@ -963,16 +945,24 @@ static void test_refusals(void) {
   cd.nparts = 1;
   cd.param[DAL_ANCHOR_L] = 1.0;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  // constraints are covered by every tool but the Lyapunov spectrum (test_analysis_manifold)
+  // constraints are covered by every tool (test_analysis_manifold); Lyapunov vectors start on
+  // the manifold's tangent space, so initial vectors y0 are refused
   {
     dal_system *cs = compile(b, rc);
     dal_state *cst = NULL;
-    double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4];
+    double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4], y0[4] = {1, 0, 0, 0};
     CHECK(cs && dal_state_create(cs, &cst) == 0 && dal_state_set(cs, cst, 0.0, z, zv) == 0);
     dal_lyapunov_opts lo = dal_default_lyapunov_opts();
     lo.t_end = 1.0;
+    lo.nexp = 1;
+    lo.y0 = y0;
     CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_E_UNSUPPORTED);
-    CHECK(cst && strstr(dal_state_errmsg(cst), "'rod'") != NULL);
+    CHECK(cst && strstr(dal_state_errmsg(cst), "y0") != NULL);
+    lo.y0 = NULL;
+    lo.nexp = 3; // 2 (n - m) = 2 exponents at most
+    CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_E_ARG);
+    lo.nexp = 0;
+    CHECK(cst && dal_lyapunov(cs, cst, &lo, ex, NULL, NULL, NULL) == DAL_OK);
     dal_state_destroy(cst);
     dal_system_destroy(cs);
   }

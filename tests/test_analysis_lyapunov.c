@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "scenes.h"
 #include "dalembert/dalembert.h"
 
 static dal_system *compile(dal_builder *b, int rc) {
@@ -40,48 +41,21 @@ static dal_system *compile(dal_builder *b, int rc) {
 }
 
 // vertically driven pendulum (l = 1, m = 1, g = 9.8), pivot y = a cos(w t)
-static dal_system *driven(double a, double w) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AY] = a;
-  pd.param[DAL_PENDULUM_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+// a standard scene, checked as compile() checks the scenes built here
+static dal_system *built(dal_system *sys) {
+  CHECK(sys != NULL);
+  return sys;
 }
 
-static dal_system *double_pendulum(void) {
-  dal_builder *b = NULL;
-  int q[2], p[2], rc = dal_builder_create(2, &b);
-  double l2 = 1.0, g[2] = {0, -9.81};
-  if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob2", 1.0, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &q[0];
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &q[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = l2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+static dal_system *driven(double a, double w) {
+  scn_knobs k = scn_default();
+  k.g = 9.8;
+  k.ay = a;
+  k.w = w;
+  return built(scn_pendulum(&k));
 }
+
+static dal_system *double_pendulum(void) { return built(scn_double_pendulum(NULL)); }
 
 // rotating frame r = Rot(w t) (x, y) and a trap U = (k1 x'^2 + k2 y'^2)/2 turning with it
 static int rotating(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {

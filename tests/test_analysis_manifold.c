@@ -15,7 +15,10 @@
 //    by jets of that closed form), to 1e-10;
 //  - bead on a circle turning at w as a Cartesian particle (dal_con_turning_circle): the
 //    trivial branch's Omega^2 = g/R - w^2 and the pitchfork at w = sqrt(g/R) located by
-//    continuation.
+//    continuation;
+//  - the Lyapunov spectrum of the chaotic Cartesian double pendulum (2(n - m) = 4 exponents):
+//    +- pairs and a zero sum (Hamiltonian), the largest against the same orbit in its angles
+//    (the minimal-coordinate route) within the estimates' stated errors.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,16 +26,18 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-static const double G0 = SCENE_G;
+static const double G0 = SCN_G;
 
 // -------------------------------------------------------------------------------------------
 // the Cartesian pendulum
 
 static void cart_pendulum(void) {
   const double l = 1.3;
-  dal_system *sys = scene_cart_pendulum(l);
+  scn_knobs k = scn_default();
+  k.l = l;
+  dal_system *sys = scn_cart_pendulum(&k);
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {0.0, -l}, v[2] = {0.0, 0.0};
@@ -111,7 +116,7 @@ static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
   k2.nparts = 2;
   k2.param[DAL_DISTANCE_L] = l2;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static void cart_double_pendulum(void) {
@@ -217,7 +222,9 @@ static void jacobian_vs_fd(void) {
 
 static void moving_pendulum(void) {
   const double l = 0.8, th = 0.9, w = 2.7;
-  dal_system *sys = scene_cart_pendulum(l);
+  scn_knobs k = scn_default();
+  k.l = l;
+  dal_system *sys = scn_cart_pendulum(&k);
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {l * sin(th), -l * cos(th)}, v[2] = {l * cos(th) * w, l * sin(th) * w};
@@ -284,7 +291,7 @@ static dal_system *fourbar(void) {
   rocker.param[DAL_ANCHOR_L] = FB_C;
   rocker.param[DAL_ANCHOR_X0] = FB_D;
   if (!rc) rc = dal_builder_add_constraint_def(b, &rocker, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // the mechanism in the crank angle th by hand: B = a (cos th, sin th), C on the circles about
@@ -375,7 +382,7 @@ static dal_system *cart_bead(double w) {
   k.param[DAL_TURNING_CIRCLE_R] = BEAD_R;
   k.param[DAL_TURNING_CIRCLE_W] = w;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static int bead_rebuild(double w, dal_system **out, void *ctx) {
@@ -445,6 +452,109 @@ static void turning_bead(void) {
          br.critical, br.pcrit, wc);
   CHECK(br.regular == 8 && br.critical == 1 && br.bad == 0);
   CHECK(fabs(br.pcrit - wc) <= 2e-10 * (o.p1 - o.p0));
+
+  // above the critical rate, at the relative equilibrium cos(theta*) = g / (R w^2) (closed
+  // form; the particle circles the axis with the ring, qdot = w x r): the carried tangent's
+  // mode is Omega = w sin(theta*). dal_equilibrium seeks static points (qdot = 0) only: from
+  // theta* it finds a point on the axis, which the turning constraint leaves in place
+  double w = 1.4 * wc, th = acos(G0 / (BEAD_R * w * w));
+  dal_system *sys = cart_bead(w);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[3] = {BEAD_R * sin(th), 0.0, -BEAD_R * cos(th)}, v[3] = {0.0, w * q[0], 0.0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  double w2[1], re[2], im[2];
+  dal_modes md;
+  rc = dal_normal_modes(sys, st, w2, NULL, re, im, &md);
+  CHECK_MSG(rc == 0, "modes: %s", dal_state_errmsg(st));
+  double ref = w * w * sin(th) * sin(th);
+  printf("  relative equilibrium theta* = %.6f at w = 1.4 w_c: Omega^2 = %.17g, (w sin theta*)^2 "
+         "= %.17g; eigenvalues %.3g %+.17g i\n",
+         th, w2[0], ref, re[0], im[0]);
+  CHECK_CLOSE(w2[0], ref, 1e-12);
+  CHECK_CLOSE(fabs(im[0]), sqrt(ref), 1e-12);
+  CHECK(md.verdict == DAL_NEUTRAL);
+  dal_equilibrium_report er;
+  rc = dal_equilibrium(sys, st, NULL, &er);
+  const double *qe = dal_state_q(st);
+  printf("  dal_equilibrium from theta*: rc %d, (%.3g, %.3g, %.17g), accel %.3g\n", rc, qe[0],
+         qe[1], qe[2], er.accel);
+  CHECK(rc == 0 && fabs(qe[0]) < 1e-12 && fabs(qe[1]) < 1e-12 &&
+        fabs(fabs(qe[2]) - BEAD_R) < 1e-12 && er.accel < 1e-12);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// -------------------------------------------------------------------------------------------
+// Lyapunov spectrum on the manifold: the double pendulum (unit masses and rods) released at
+// rest from (2, 2) rad, in Cartesian coordinates and in its angles
+
+static dal_system *dp_angles(void) {
+  dal_builder *b = NULL;
+  int q[2], p[2], rc = dal_builder_create(2, &b);
+  double g[2] = {0, -G0};
+  if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "p1", 1.0, &p[0]);
+  if (!rc) rc = dal_builder_add_particle(b, "p2", 1.0, &p[1]);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &q[0];
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
+  pd = dal_default_place_def();
+  pd.prim = &dal_map_hanging;
+  pd.parent = p[0];
+  pd.coords = &q[1];
+  pd.ncoords = 1;
+  pd.param[DAL_HANGING_L] = 1.0;
+  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  if (!rc) rc = dal_builder_set_gravity(b, g);
+  return scene_finish(b, rc);
+}
+
+static void lyapunov_manifold(void) {
+  const double T = 200.0;
+  dal_lyapunov_opts o;
+  o = dal_default_lyapunov_opts();
+  o.t_end = T;
+  double exc[4], erc[4], exm[4], erm[4];
+  // Cartesian
+  dal_system *sys = double_pendulum(1.0, 1.0, 1.0, 1.0);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[4] = {sin(2.0), -cos(2.0), 2 * sin(2.0), -2 * cos(2.0)}, v[4] = {0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, v));
+  int rc = dal_lyapunov(sys, st, &o, exc, erc, NULL, NULL);
+  CHECK_MSG(rc == 0, "lyapunov (Cartesian): %s", dal_state_errmsg(st));
+  // the end of the orbit is on the manifold (projected at every QR)
+  double r1 = hypot(dal_state_q(st)[0], dal_state_q(st)[1]);
+  CHECK(fabs(r1 - 1.0) < 1e-12);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  // minimal coordinates
+  sys = dp_angles();
+  CHECK_OK(dal_state_create(sys, &st));
+  double th[2] = {2.0, 2.0}, z[2] = {0, 0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, th, z));
+  rc = dal_lyapunov(sys, st, &o, exm, erm, NULL, NULL);
+  CHECK_MSG(rc == 0, "lyapunov (angles): %s", dal_state_errmsg(st));
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+  printf("Lyapunov, double pendulum from (2, 2) rad, T = %g:\n  Cartesian %.4f(%.4f) %.4f(%.4f) "
+         "%.4f(%.4f) %.4f(%.4f)\n  angles    %.4f(%.4f) %.4f(%.4f) %.4f(%.4f) %.4f(%.4f)\n",
+         T, exc[0], erc[0], exc[1], erc[1], exc[2], erc[2], exc[3], erc[3], exm[0], erm[0], exm[1],
+         erm[1], exm[2], erm[2], exm[3], erm[3]);
+  // Hamiltonian: no phase-space contraction; the volume on the tangent space is measured in the
+  // Euclidean metric of (q, qdot), a bounded factor off the invariant one: O(1/T)
+  double sum = exc[0] + exc[1] + exc[2] + exc[3];
+  CHECK_MSG(fabs(sum) <= 4.0 / T, "sum %.3g", sum);
+  CHECK(exc[0] > 1.0 && erc[0] < 0.1 * exc[0]);
+  CHECK_MSG(fabs(exc[0] + exc[3]) <= 3 * hypot(erc[0], erc[3]) + 2.0 / T, "pair 1");
+  CHECK_MSG(fabs(exc[1] + exc[2]) <= 3 * hypot(erc[1], erc[2]) + 2.0 / T, "pair 2");
+  CHECK_MSG(fabs(exc[0] - exm[0]) <= 3 * hypot(erc[0], erm[0]) + 2.0 / T,
+            "largest: Cartesian %.4f(%.4f) vs angles %.4f(%.4f)", exc[0], erc[0], exm[0], erm[0]);
 }
 
 int main(void) {
@@ -454,6 +564,7 @@ int main(void) {
   moving_pendulum();
   fourbar_mode();
   turning_bead();
+  lyapunov_manifold();
   printf("%d checks, %d failures\n", check_count, check_failures);
   return check_failures != 0;
 }

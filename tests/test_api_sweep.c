@@ -1282,7 +1282,12 @@ static void sw_dal_lyapunov(void) {
   ST(dal_lyapunov(F.B, F.stB, &many, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
   ST(dal_lyapunov(F.B, F.stB, &no_renorm, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
   ST(dal_lyapunov(F.B, F.stB, &nan_y0, ex, err, NULL, NULL), DAL_E_NONFINITE, F.stB);
-  ST(dal_lyapunov(F.A, F.stA, &o, ex, err, NULL, NULL), DAL_E_UNSUPPORTED, F.stA);
+  dal_lyapunov_opts with_y0 = o;
+  double y0a[4] = {1, 0, 0, 0};
+  with_y0.nexp = 1;
+  with_y0.y0 = y0a; // constrained: the vectors start on the manifold's tangent space
+  ST(dal_lyapunov(F.A, F.stA, &with_y0, ex, err, NULL, NULL), DAL_E_UNSUPPORTED, F.stA);
+  ST(dal_lyapunov(F.A, F.stA, &many, ex, err, NULL, NULL), DAL_E_ARG, F.stA); // 2(n - m) = 2
   st_intact();
   // a short run on a fresh state (it moves to t_end): the flow preserves phase-space volume
   // (trace df/dy = 0), so the two exponents sum to 0 up to the integration tolerance

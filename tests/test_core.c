@@ -11,8 +11,9 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "scenes.h"
 
-#define G0 9.81
+#define G0 SCN_G
 #define PI 3.14159265358979323846
 
 static dal_solve_opts opts(dal_formulation f, dal_method m, double tol) {
@@ -23,58 +24,14 @@ static dal_solve_opts opts(dal_formulation f, dal_method m, double tol) {
   return o;
 }
 
-static dal_system *finish(dal_builder *b, int rc) {
-  dal_system *s = NULL;
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
 
 // minimal pendulum (l = 1), or the double pendulum (pendulum + hanging) when two is set
 static dal_system *pendulum(int two) {
-  dal_builder *b = NULL;
-  int c[2], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "th1", &c[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &c[0];
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  if (two && !rc) rc = dal_builder_add_coord(b, "th2", &c[1]);
-  if (two && !rc) rc = dal_builder_add_particle(b, "bob2", 1.0, &p[1]);
-  pd = dal_default_place_def(); // bob2 hangs from bob1
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &c[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = 1.0;
-  if (two && !rc) rc = dal_builder_place_def(b, p[1], &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return finish(b, rc);
+  return two ? scn_double_pendulum(NULL) : scn_pendulum(NULL);
 }
 
 // 2D isotropic oscillator: a unit mass on a zero-length spring (k = 1) to the origin
-static dal_system *oscillator(void) {
-  dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  dal_spring_def sd = dal_default_spring_def();
-  sd.a = p;
-  sd.k = 1.0;
-  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
-  return finish(b, rc);
-}
+static dal_system *oscillator(void) { return scn_oscillator(NULL); }
 
 static int pivot_path(dal_jet t, dal_jet *x, void *ctx) {
   (void)ctx;
@@ -86,45 +43,16 @@ static dal_moving_point pivot = {pivot_path, NULL};
 
 // Cartesian pendulum (l = 1) on a fixed or moving pivot
 static dal_system *cart_pendulum(int moving) {
-  dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.ctx = moving ? &pivot : NULL;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  return finish(b, rc);
+  scn_knobs k = scn_default();
+  k.pivot = moving ? &pivot : NULL;
+  return scn_cart_pendulum(&k);
 }
 
 // Likharev's bead on a ring (R = 1) turning at w about the vertical
 static dal_system *bead(double w) {
-  dal_builder *b = NULL;
-  int c, p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_ring;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = 1.0;
-  pd.param[DAL_RING_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return finish(b, rc);
+  scn_knobs k = scn_default();
+  k.spin = w;
+  return scn_bead(&k);
 }
 
 // Cartesian bead on the turning circle (three coordinates, two constraint rows)
@@ -150,7 +78,7 @@ static dal_system *cart_bead(double w) {
   cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
   cd.param[DAL_TURNING_CIRCLE_W] = w;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  return finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // finding 1: minimal coordinates forced into IDA agree with Bulirsch-Stoer
@@ -430,7 +358,7 @@ static dal_system *forced_pendulum(int cartesian) {
   dd.c = 0.4;
   if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_add_force(b, wind, NULL);
-  return finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // |E(T) - E(0) - W(T)| relative to the energies involved, over [0, T] at rtol tol

@@ -11,9 +11,9 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-#define G0 SCENE_G
+#define G0 SCN_G
 
 // the worst deviation from the closed form over the outputs, and their count
 typedef struct cmp {
@@ -65,7 +65,7 @@ static double run(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
 // adaptive methods: outputs between the steps within 16 x rtol (the library's promise for
 // the step points, solve.h), and the step count independent of the outputs
 static void test_adaptive(void) {
-  dal_system *s = scene_pendulum(1.0), *cs = scene_cart_pendulum(1.0);
+  dal_system *s = scn_pendulum(NULL), *cs = scn_cart_pendulum(NULL);
   dal_state *st = NULL, *cst = NULL;
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_create(cs, &cst));
@@ -120,7 +120,7 @@ static void test_adaptive(void) {
 // (RK4's cubic Hermite and the symplectic methods' partial composed step are of the method's
 // order), and the grid trajectory untouched by the outputs
 static void test_fixed(void) {
-  dal_system *s = scene_pendulum(1.0), *cs = scene_cart_pendulum(1.0);
+  dal_system *s = scn_pendulum(NULL), *cs = scn_cart_pendulum(NULL);
   dal_state *st = NULL, *cst = NULL;
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_create(cs, &cst));
@@ -186,7 +186,7 @@ static void test_tight_irregular(void) {
     tk[nk++] = t;
   }
   tk[nk++] = T;
-  dal_system *s = scene_pendulum(1.0);
+  dal_system *s = scn_pendulum(NULL);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));

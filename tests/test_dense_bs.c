@@ -19,54 +19,18 @@
 #include "dalembert/dalembert.h"
 #include "integrate/integrate.h"
 #include "ref_elliptic.h"
+#include "scenes.h"
 
-#define G0 9.81
+#define G0 SCN_G
 #define PI 3.14159265358979323846
 #define NSAMPLE 7
 
-static dal_system *finish(dal_builder *b, int rc) {
-  dal_system *s = NULL;
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
 
 // simple pendulum, l = 1, g = 9.81 (minimal coordinate th)
-static dal_system *pendulum(void) {
-  dal_builder *b = NULL;
-  int c, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "th", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return finish(b, rc);
-}
+static dal_system *pendulum(void) { return scn_pendulum(NULL); }
 
 // 2D isotropic oscillator: unit mass on a zero-length spring (k = 1) to the origin
-static dal_system *oscillator(void) {
-  dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  dal_spring_def sd = dal_default_spring_def(); // to the origin
-  sd.a = p;
-  sd.k = 1.0;
-  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
-  return finish(b, rc);
-}
+static dal_system *oscillator(void) { return scn_oscillator(NULL); }
 
 // the sampling harness of one run
 typedef struct probe {

@@ -10,9 +10,27 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-#define G0 SCENE_G
+#define G0 SCN_G
+
+// the standard scenes at a given length (radius) and turning rate
+static dal_system *pendulum(double l) {
+  scn_knobs k = scn_default();
+  k.l = l;
+  return scn_pendulum(&k);
+}
+static dal_system *cart_pendulum(double l) {
+  scn_knobs k = scn_default();
+  k.l = l;
+  return scn_cart_pendulum(&k);
+}
+static dal_system *bead(double R, double w) {
+  scn_knobs k = scn_default();
+  k.R = R;
+  k.spin = w;
+  return scn_bead(&k);
+}
 #define PI 3.14159265358979323846
 
 static double g_q0(double t, const double *q, const double *qd, void *ctx) {
@@ -32,7 +50,7 @@ static double g_qd0(double t, const double *q, const double *qd, void *ctx) {
 static void test_period(void) {
   const double l = 1.0, th0 = 2.0, w0 = sqrt(G0 / l);
   const double T = 4.0 * ref_ellip_K(sin(0.5 * th0) * sin(0.5 * th0)) / w0;
-  dal_system *s = scene_pendulum(l);
+  dal_system *s = pendulum(l);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -92,7 +110,7 @@ static void test_period(void) {
 // 2. the bead's turning points (theta' = 0) against the Jacobi integral's prediction
 static void test_bead_turning(void) {
   const double R = 0.5, w = 6.0; // above the critical rate sqrt(g/R) = 4.43: off-axis minimum
-  dal_system *s = scene_bead(R, w);
+  dal_system *s = bead(R, w);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -151,7 +169,7 @@ static void test_leaving_circle(void) {
   const double R = 1.0, v0 = 0.5;
   const double phi_ref = acos((2.0 + v0 * v0 / (G0 * R)) / 3.0);
   // minimal coordinates: the pendulum map's reaction (theta = pi at the top)
-  dal_system *s = scene_pendulum(R);
+  dal_system *s = pendulum(R);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -188,7 +206,7 @@ static void test_leaving_circle(void) {
   dal_system_destroy(s);
 
   // Cartesian coordinates in GGL (IDA): the rod's multiplier changes sign there
-  s = scene_cart_pendulum(R);
+  s = cart_pendulum(R);
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_events_create(s, &ev));
   d = dal_default_event_def();
@@ -239,7 +257,7 @@ static int mon_count(const dal_system *sys, const dal_state *st, void *ctx) {
 static void test_every_method(void) {
   const double l = 1.0, th0 = 1.0, w0 = sqrt(G0 / l);
   const double T = 4.0 * ref_ellip_K(sin(0.5 * th0) * sin(0.5 * th0)) / w0;
-  dal_system *s = scene_pendulum(l);
+  dal_system *s = pendulum(l);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
@@ -325,7 +343,7 @@ static double g_nan(double t, const double *q, const double *qd, void *ctx) {
 
 // 5. a failing event function stops the run with DAL_E_CALLBACK naming it; a section to CSV
 static void test_failures_and_csv(void) {
-  dal_system *s = scene_pendulum(1.0);
+  dal_system *s = scn_pendulum(NULL);
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));

@@ -18,9 +18,9 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-static const double G0 = SCENE_G;
+static const double G0 = SCN_G;
 
 // double pendulum in angles (th1, th2), bob 1 on l1 about the origin, bob 2 on l2 from bob 1;
 // with_links: an anchored spring on bob 2 and a damper from bob 1 to an anchor
@@ -61,7 +61,7 @@ static dal_system *dp_angles(int with_links) {
     dm.anchor[1] = -0.3;
     if (!rc) rc = dal_builder_add_damper_def(b, &dm);
   }
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // the flow y(t1) from (t0, q, v) with the state's parameters, by BS at rtol 1e-13 (index-1
@@ -248,7 +248,7 @@ static dal_system *dp_cartesian(void) {
   k2.nparts = 2;
   k2.param[DAL_DISTANCE_L] = 0.6;
   if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static void redundant_phi(void) {

@@ -15,9 +15,9 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes_def.h"
+#include "scenes.h"
 
-static const double MC = 1.7, MB = 0.4, L = 0.8, G0 = SCENE_G;
+static const double MC = 1.7, MB = 0.4, L = 0.8, G0 = SCN_G;
 
 // cart at (x, 0), bob at (x + l sin th, -l cos th)
 static int cart_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
@@ -40,7 +40,7 @@ static dal_system *cart_minimal(void) {
   if (!rc) rc = dal_builder_add_particle(b, "bob", MB, &p);
   if (!rc) rc = dal_builder_set_map(b, cart_map, NULL);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static dal_system *cart_cartesian(void) {
@@ -73,7 +73,7 @@ static dal_system *cart_cartesian(void) {
   rod.nparts = 2;
   rod.param[DAL_DISTANCE_L] = L;
   if (!rc) rc = dal_builder_add_constraint_def(b, &rod, NULL);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 // the textbook first-order A (4 x 4) and b (4) in x = (x, th, x', th')

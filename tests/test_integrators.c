@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "check.h"
+#include "scenes.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
 
@@ -27,23 +28,10 @@ static const dal_method adaptive[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, 
 
 // simple pendulum, l = 1, g = 9.8: theta'' = -g sin theta
 static dal_system *make_pendulum(void) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int th, bob;
-  double g[2] = {0, -G};
-  int rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  CHECK_OK(rc);
-  dal_builder_destroy(b);
+  scn_knobs k = scn_default();
+  k.g = G;
+  dal_system *sys = scn_pendulum(&k);
+  CHECK(sys != NULL);
   return sys;
 }
 

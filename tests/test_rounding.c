@@ -21,6 +21,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 static const double g_earth = 9.8, drive_a = 0.1;
 
@@ -55,21 +56,11 @@ static dal_system *oscillator(void) {
 }
 
 static dal_system *driven(void) {
-  dal_builder *b;
-  int th, bob, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AY] = drive_a;
-  pd.param[DAL_PENDULUM_W] = 2 * sqrt(g_earth);
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  double grav[2] = {0, -g_earth};
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  return finish(b, rc);
+  scn_knobs k = scn_default();
+  k.g = g_earth;
+  k.ay = drive_a;
+  k.w = 2 * sqrt(g_earth);
+  return scn_pendulum(&k);
 }
 
 // theta'' = -(g - a w^2 cos(w t)) sin(theta) (pivot y = a cos(w t)), by a Taylor series of

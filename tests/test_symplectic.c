@@ -18,6 +18,7 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "scenes.h"
 
 #define PI 3.14159265358979323846
 #define EPS 2.220446049250313e-16
@@ -33,6 +34,12 @@ static dal_system *compile(dal_builder *b, int rc) {
   if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
   CHECK_OK(rc);
   dal_builder_destroy(b);
+  return sys;
+}
+
+// a standard scene, checked as compile() checks the scenes built here
+static dal_system *built(dal_system *sys) {
+  CHECK(sys != NULL);
   return sys;
 }
 
@@ -56,22 +63,15 @@ static int pend_lag(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, v
 }
 
 static dal_system *make_pendulum(int lagrangian) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (lagrangian) {
-    if (!rc) rc = dal_builder_set_lagrangian(b, pend_lag, NULL);
-  } else {
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &th;
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = 1.0;
-    if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-    if (!rc) rc = dal_builder_set_gravity(b, g);
+  if (!lagrangian) {
+    scn_knobs k = scn_default();
+    k.g = 9.8;
+    return built(scn_pendulum(&k));
   }
+  dal_builder *b = NULL;
+  int th, rc = dal_builder_create(2, &b);
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_set_lagrangian(b, pend_lag, NULL);
   return compile(b, rc);
 }
 
@@ -139,101 +139,27 @@ static int pivot_path(dal_jet t, dal_jet *x, void *ctx) {
 }
 
 static dal_system *make_cart_pendulum(dal_moving_point *mp) {
-  dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.ctx = mp;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = 9.8;
+  k.pivot = mp;
+  return built(scn_cart_pendulum(&k));
 }
 
 // the same driven pendulum in minimal coordinates: pivot (a cos(w t), 0)
 static dal_system *make_driven_minimal(const pivot *pv) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AX] = pv->a;
-  pd.param[DAL_PENDULUM_W] = pv->w;
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = 9.8;
+  k.ax = pv->a;
+  k.w = pv->w;
+  return built(scn_pendulum(&k));
 }
 
 // double pendulum m1 = 1, m2 = 0.5, l1 = 1, l2 = 0.7, g = 9.81: minimal or Cartesian
 static dal_system *make_double(int cartesian) {
-  dal_builder *b = NULL;
-  int p[2], rc = dal_builder_create(2, &b);
-  double grav[2] = {0.0, -9.81}, l2 = 0.7;
-  if (!rc) rc = dal_builder_add_particle(b, "upper", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "lower", 0.5, &p[1]);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  if (cartesian) {
-    int c[4];
-    const char *names[4] = {"x1", "y1", "x2", "y2"};
-    for (int i = 0; i < 4 && !rc; ++i)
-      rc = dal_builder_add_coord(b, names[i], &c[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-    pd.coords = c + 2;
-    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod1";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &p[0];
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.0;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-    cd = dal_default_constraint_def();
-    cd.name = "rod2";
-    cd.prim = &dal_con_distance2;
-    cd.parts = p;
-    cd.nparts = 2;
-    cd.param[DAL_DISTANCE_L] = l2;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  } else {
-    int th[2];
-    if (!rc) rc = dal_builder_add_coord(b, "theta1", &th[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "theta2", &th[1]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &th[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = 1.0;
-    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_hanging;
-    pd.parent = p[0];
-    pd.coords = &th[1];
-    pd.ncoords = 1;
-    pd.param[DAL_HANGING_L] = l2;
-    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  }
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.m2 = 0.5;
+  k.l2 = 0.7;
+  return built(cartesian ? scn_cart_double_pendulum(&k) : scn_double_pendulum(&k));
 }
 
 // the Cartesian double pendulum's state for angles th (from the downward vertical), at rest

@@ -1,8 +1,10 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 /// @file
-/// @brief Analysis: exact linearization, normal modes and stability, equilibria and their
-/// continuation in one parameter, Lyapunov exponents (docs/analysis.md).
+/// @brief Analysis: exact linearization (with inputs), normal modes and stability, equilibria
+/// and their continuation in one parameter, the state-transition matrix and parameter
+/// sensitivities, Lyapunov exponents; in minimal coordinates and on the constraint manifold
+/// (docs/analysis.md).
 ///
 /// The state derivative of a system in minimal coordinates is f(t, y) = (qdot, qddot) with
 /// y = (q, qdot) and qddot from M qddot = Q - c. Everything here rests on its exact tangent:
@@ -224,10 +226,11 @@ typedef struct dal_equilibrium_report {
 /// With m constraint rows, Newton runs on (q, lambda) for the static KKT system
 /// c - Q - G' lambda = 0, phi = 0 with the exact Jacobian [K - sum lambda_i Hess phi_i, -G';
 /// G, 0] (the start need not be on the manifold); on success dal_state_lambda(st) holds the
-/// multipliers at the equilibrium: the static loads (lambda = -T for a rod in tension T). A
-/// point that a moving constraint carries along (dphi/dt != 0 there: a relative equilibrium in
-/// redundant coordinates) is DAL_E_UNSUPPORTED; a moving constraint that leaves the point in
-/// place (a turning ring's bottom) is fine.
+/// multipliers at the equilibrium: the static loads (lambda = -T for a rod in tension T). Only
+/// static points (qdot = 0) are sought: a moving constraint that leaves the point in place (a
+/// turning ring's bottom) is fine, a converged point that it carries along (dphi/dt != 0) is
+/// DAL_E_UNSUPPORTED, and relative equilibria carried by the constraint (a bead off the axis of
+/// a turning ring in Cartesian coordinates) are not sought (use a map in the moving frame).
 /// Returns DAL_OK; DAL_E_SINGULAR when K (or the KKT Newton matrix) is singular (a bifurcation
 /// point or a neutral direction; the message names the coordinate); DAL_E_CONV after max_iter
 /// iterations or a non-finite step (the state then holds the last iterate); DAL_E_ARG for bad
@@ -302,7 +305,8 @@ DAL_API int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_co
 /// Options of dal_lyapunov. Always start from dal_default_lyapunov_opts().
 typedef struct dal_lyapunov_opts {
   int cookie;        ///< set by dal_default_lyapunov_opts; do not touch
-  int nexp;          ///< exponents wanted, 1 .. 2n (the largest ones); 0 (default): all 2n
+  int nexp;          ///< exponents wanted, 1 .. 2n (2(n - m) with constraint rows; the
+                     ///< largest ones); 0 (default): all of them
   double t_end;      ///< integrate from the state's t to t_end (> t); required
   double transient;  ///< time discarded before the averages start (the tangent vectors align
                      ///< with the leading directions meanwhile); 0
@@ -341,6 +345,11 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 ///    that decays like 1/time (e.g. the initial alignment; raise `transient` for that).
 ///  monitor (may be NULL): called after each reorthonormalization past the transient with
 ///    the running estimates in the order of the QR columns (decreasing once converged).
+/// With m constraint rows there are 2(n - m) exponents (nexp at most that; 0: all): the
+/// trajectory runs the index-1 vector field with the full-space KKT tangent, the vectors start
+/// as a basis of the manifold's tangent space, and at every reorthonormalization the trajectory
+/// is projected back onto the manifold and the vectors onto its tangent space (y0 must be
+/// NULL: DAL_E_UNSUPPORTED otherwise); the state must be consistent.
 /// On success the state holds the end of the trajectory (evaluated; its integrator history is
 /// dropped); on failure it is unchanged and its message says what failed and when.
 /// The integration allocates nothing per step. Units: 1/time.

@@ -165,7 +165,7 @@ typedef enum dal_expr_format {
 
 /// Print formula k of e, simplified, into buf (len bytes, truncated, NUL-terminated; buf may
 /// be NULL when len is 0). Returns the length of the whole text (as snprintf), or DAL_E_ARG
-/// (NULL e, k out of range, unknown format), DAL_E_NOMEM.
+/// (NULL e, k out of range, unknown format), DAL_E_NOMEM (also for a text over 16 MiB).
 DAL_API int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, size_t len);
 
 /// The derivative of formula k of e along input j (0 <= j < dal_expr_nin(e)), or along t for

@@ -51,13 +51,79 @@ typedef struct lyap {
   lapack_int lwork;
   double h;   // DOPRI5 step carried between segments
   long steps; // accepted steps
+  // constraint rows: the full-space KKT tangent A (2n x 2n), and the basis N, Yb (n x k) of
+  // the manifold's tangent space where the vectors start and are projected back at every QR
+  double *A, *N, *Yb;
 } lyap;
+
+// with constraint rows: F = (f, A V) with the full-space tangent of the index-1 field (the
+// state evaluated, its tangent taken)
+static int aug_rhs_manifold(lyap *L, const double *Y, double *F) {
+  int n = L->n, ny = L->ny, rc = dal__tangent_kkt(L->sys, L->st, L->tg, L->A, NULL, NULL);
+  if (rc) return rc;
+  const double *qdd = dal_state_qddot(L->st);
+  for (int i = 0; i < n; ++i) {
+    F[i] = Y[n + i];
+    F[n + i] = qdd[i];
+  }
+  for (int j = 0; j < L->p; ++j) {
+    const double *v = Y + (size_t)ny * (1 + j);
+    double *f = F + (size_t)ny * (1 + j);
+    for (int i = 0; i < ny; ++i) {
+      double x = 0.0;
+      for (int c = 0; c < ny; ++c)
+        x += L->A[(size_t)c * ny + i] * v[c];
+      f[i] = x;
+    }
+  }
+  return DAL_OK;
+}
+
+// with constraint rows, at a QR time: the trajectory back onto the manifold (its drift is the
+// integrator's error) and the tangent vectors onto the tangent space there,
+// v = (vq, vv) -> (N N' vq, Yb N' vq + N N' vv) (the manifold's tangent space in the basis of
+// dal__tangent_basis); also the start's vectors (init: the first p columns of that basis)
+static int manifold_project(lyap *L, double t, int init) {
+  int n = L->n, ny = L->ny, k = n - L->sys->m, rc;
+  double *Y = L->Y;
+  if ((rc = dal__analysis_eval(L->sys, L->st, t, Y, Y + n)) != 0) return rc;
+  if ((rc = dal__project_state(L->sys, L->st, 1e-13, 20, NULL)) != 0) return rc;
+  if ((rc = dal_forward(L->sys, L->st)) != 0) return rc;
+  memcpy(Y, L->st->q, (size_t)n * sizeof(double));
+  memcpy(Y + n, L->st->qdot, (size_t)n * sizeof(double));
+  memset(L->kc, 0, (size_t)ny * sizeof(double)); // RK4's compensation belongs to the old y
+  if ((rc = dal__tangent_eval(L->sys, L->st, L->tg, 0)) != 0) return rc;
+  if ((rc = dal__tangent_basis(L->sys, L->st, L->tg, L->N, L->Yb, NULL)) != 0) return rc;
+  for (int j = 0; j < L->p; ++j) {
+    double *v = Y + (size_t)ny * (1 + j), *xi = L->Z, *eta = L->Z + k;
+    for (int a = 0; a < k; ++a) {
+      double x = 0.0, e = 0.0;
+      for (int i = 0; i < n; ++i) {
+        x += L->N[(size_t)a * n + i] * v[i];
+        e += L->N[(size_t)a * n + i] * v[n + i];
+      }
+      xi[a] = init ? (j == a) : x;
+      eta[a] = init ? (j == k + a) : e;
+    }
+    for (int i = 0; i < n; ++i) {
+      double vq = 0.0, vv = 0.0;
+      for (int a = 0; a < k; ++a) {
+        vq += L->N[(size_t)a * n + i] * xi[a];
+        vv += L->Yb[(size_t)a * n + i] * xi[a] + L->N[(size_t)a * n + i] * eta[a];
+      }
+      v[i] = vq;
+      v[n + i] = vv;
+    }
+  }
+  return DAL_OK;
+}
 
 // augmented right-hand side F = (f(t, y), (df/dy) V)
 static int aug_rhs(lyap *L, double t, const double *Y, double *F) {
   int n = L->n, ny = L->ny, rc;
   if ((rc = dal__analysis_eval(L->sys, L->st, t, Y, Y + n)) != 0) return rc;
   if ((rc = dal__tangent_eval(L->sys, L->st, L->tg, 0)) != 0) return rc;
+  if (L->sys->m > 0) return aug_rhs_manifold(L, Y, F);
   if ((rc = dal__tangent_factor(L->sys, L->st, L->tg)) != 0) return rc;
   const double *qdd = dal_state_qddot(L->st);
   for (int i = 0; i < n; ++i) {
@@ -217,12 +283,15 @@ static void lyap_free(lyap *L) {
   free(L->Z);
   free(L->tau);
   free(L->qrwork);
+  free(L->A);
+  free(L->N);
+  free(L->Yb);
   dal__tangent_free(L->tg);
   dal_state_destroy(L->st);
 }
 
 static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
-  int ny = 2 * sys->n;
+  int ny = 2 * (sys->n - sys->m); // the manifold's dimension with constraint rows
   if (!o || o->cookie != DAL_LYAP_COOKIE)
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
@@ -233,7 +302,12 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
                     "DAL_METHOD_DOPRI5 or DAL_METHOD_RK4",
                     dal_method_name(o->method));
   if (o->nexp < 0 || o->nexp > ny)
-    return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2n = %d", o->nexp, ny);
+    return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2(n - m) = %d", o->nexp,
+                    ny);
+  if (o->y0 && sys->m > 0)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "lyapunov: initial vectors y0 with constraint rows: the vectors start on the "
+                    "manifold's tangent space; leave y0 NULL");
   if (!isfinite(o->t_end) || !(o->t_end > st->t))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: t_end = %g must be finite and after t = %.17g",
                     o->t_end, st->t);
@@ -278,12 +352,6 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
   int rc = check_opts(sys, st, o);
   if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
-  if (!rc && sys->m > 0)
-    rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                  "lyapunov: the system has %d constraint row(s) (first: '%s'); Lyapunov "
-                  "spectra cover minimal coordinates only: describe the scene by coordinate "
-                  "maps without constraints",
-                  sys->m, sys->con[0].name);
   if (rc) return rc;
 
   lyap L;
@@ -292,7 +360,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   L.o = o;
   L.n = sys->n;
   L.ny = 2 * sys->n;
-  L.p = o->nexp ? o->nexp : L.ny;
+  L.p = o->nexp ? o->nexp : 2 * (sys->n - sys->m);
   L.m = L.ny * (1 + L.p);
   int nb = o->nblocks, ny = L.ny, p = L.p;
   double *sum = NULL, *blk = NULL, *lg = NULL, *est = NULL;
@@ -304,10 +372,14 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     ok = (L.k[i] = calloc(m, sizeof(double))) != NULL;
   ok = ok && (L.yt = calloc(m, sizeof(double))) && (L.y1 = calloc(m, sizeof(double))) &&
        (L.kc = calloc(m, sizeof(double))) && (L.Y = calloc(m, sizeof(double))) &&
-       (L.Z = calloc((size_t)L.n * p + 1, sizeof(double))) &&
+       (L.Z = calloc((size_t)L.n * p + 2 * (size_t)L.n + 1, sizeof(double))) &&
        (L.tau = calloc((size_t)p, sizeof(double))) && (sum = calloc((size_t)p, sizeof(double))) &&
        (blk = calloc((size_t)p * nb, sizeof(double))) && (lg = calloc((size_t)p, sizeof(double))) &&
        (est = calloc((size_t)p, sizeof(double)));
+  if (ok && sys->m > 0)
+    ok = (L.A = calloc((size_t)ny * ny, sizeof(double))) &&
+         (L.N = calloc((size_t)L.n * L.n + 1, sizeof(double))) &&
+         (L.Yb = calloc((size_t)L.n * L.n + 1, sizeof(double)));
   if (ok) {
     // workspace of the QR factorization and of forming Q
     double q1 = 0.0, q2 = 0.0;
@@ -328,6 +400,15 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   for (int j = 0; j < p; ++j)
     for (int i = 0; i < ny; ++i)
       L.Y[(size_t)ny * (1 + j) + i] = o->y0 ? o->y0[(size_t)j * ny + i] : (i == j ? 1.0 : 0.0);
+  if (sys->m > 0) { // a consistent start, the vectors on the manifold's tangent space
+    if ((rc = dal__analysis_eval(sys, L.st, t, L.Y, L.Y + L.n)) != 0 ||
+        (rc = dal__tangent_eval(sys, L.st, L.tg, 0)) != 0 ||
+        (rc = dal__tangent_on_manifold(sys, L.st, L.tg, "lyapunov")) != 0 ||
+        (rc = manifold_project(&L, t, 1)) != 0) {
+      memcpy(st->err, L.st->err, sizeof st->err);
+      goto done;
+    }
+  }
   if (orthonormalize(&L, lg) != 0) {
     rc = DAL_FAIL(st, DAL_E_ARG, "lyapunov: the initial tangent vectors could not be factored");
     goto done;
@@ -357,6 +438,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     if (rc == DAL_E_MAXSTEPS)
       rc = DAL_FAIL(L.st, DAL_E_MAXSTEPS, "lyapunov: more than %ld steps before t=%.17g",
                     o->max_steps, o->t_end);
+    if (!rc && sys->m > 0) rc = manifold_project(&L, t, 0);
     if (rc) {
       memcpy(st->err, L.st->err, sizeof st->err);
       goto done;

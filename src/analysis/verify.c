@@ -404,6 +404,109 @@ static int check_path(const dal_system *sys, const dal_state *st, dal_state *w,
   return DAL_OK;
 }
 
+// the first failed check of dal_verify_model and why
+typedef struct verdict {
+  const char *fail;
+  char why[200];
+} verdict;
+
+// M symmetric positive definite (A: n x n scratch for its factor)
+static void check_mass(const dal_state *st, int n, double *A, dal_model_report *rep, verdict *v) {
+  const double *M = dal_state_mass_matrix(st);
+  if (!M) return;
+  double mmax = 0.0, asym = 0.0;
+  for (size_t i = 0; i < (size_t)n * n; ++i)
+    mmax = fmax(mmax, fabs(M[i]));
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < i; ++j)
+      asym = fmax(asym, fabs(M[(size_t)j * n + i] - M[(size_t)i * n + j]));
+  rep->mass_asym = mmax > 0 ? asym / mmax : 0.0;
+  memcpy(A, M, (size_t)n * n * sizeof(double));
+  rep->mass_pivot = chol_min_pivot(n, A);
+  rep->mass_checked = 1;
+  if (rep->mass_asym > 1e-12) {
+    v->fail = "mass matrix";
+    snprintf(v->why, sizeof v->why, "M is not symmetric (max |M_ij - M_ji| / max |M| = %.3g)",
+             rep->mass_asym);
+  } else if (!(rep->mass_pivot > 1e-14)) {
+    v->fail = "mass matrix";
+    snprintf(v->why, sizeof v->why,
+             "M is not positive definite (smallest Cholesky pivot^2 / max diagonal %.3g)",
+             rep->mass_pivot);
+  }
+}
+
+// Q against -dU/dq by differences of the energy at (q +- h e_j, qd) evaluated in w; the status
+// of an evaluation that failed
+static int check_forces(const dal_system *sys, const dal_state *st, dal_state *w, double t,
+                        double *q, const double *qd, double tolf, dal_model_report *rep,
+                        verdict *v) {
+  int n = sys->n, rc = DAL_OK, wc = -1;
+  double worst = 0.0;
+  const double *Q = dal_state_genforces(st);
+  for (int j = 0; j < n && !rc; ++j) {
+    double qj = q[j], h = 1e-4 * fmax(1.0, fabs(qj)), U[4];
+    const double s[4] = {h, -h, 0.5 * h, -0.5 * h};
+    for (int k = 0; k < 4 && !rc; ++k) {
+      q[j] = qj + s[k];
+      rc = energy_at(sys, w, t, q, qd, &U[k]);
+    }
+    q[j] = qj;
+    if (rc) return rc;
+    double dh = (U[0] - U[1]) / (2 * h), dh2 = (U[2] - U[3]) / h;
+    double epsf = 64.0 * DBL_EPSILON * fmax(1.0, fmax(fabs(U[0]), fabs(U[1])));
+    double bound = fabs(dh - dh2) / 3.0 + 2.0 * epsf / h;
+    double r = fabs(Q[j] + dh2) / bound;
+    if (r > worst) {
+      worst = r;
+      wc = j;
+    }
+  }
+  rep->force_err = worst;
+  rep->force_coord = wc;
+  rep->force_checked = 1;
+  if (!v->fail && worst > tolf) {
+    v->fail = "forces";
+    snprintf(v->why, sizeof v->why,
+             "Q of coordinate '%s' differs from -dU/dq by %.3g x the difference bound (a "
+             "potential whose jets disagree with its values?)",
+             sys->coord_names[wc], worst);
+  }
+  return DAL_OK;
+}
+
+// the constraint rank at the state (a rank defect is a failed check, not a status)
+static int check_rank(const dal_system *sys, dal_state *st, dal_model_report *rep, verdict *v) {
+  if (!sys->m) {
+    rep->rank = 0;
+    return DAL_OK;
+  }
+  dal_constraint_report cr;
+  int crc = dal_check_constraints(sys, st, &cr);
+  rep->rank = cr.rank;
+  rep->rmin = cr.rmin;
+  if (crc == DAL_E_CONSTRAINT && !v->fail) {
+    v->fail = "constraints";
+    snprintf(v->why, sizeof v->why, "%.190s", dal_state_errmsg(st));
+  } else if (crc && crc != DAL_E_CONSTRAINT) {
+    return crc;
+  }
+  return DAL_OK;
+}
+
+// the report's verdict and message
+static void summarize(dal_model_report *rep, const verdict *v) {
+  rep->passed = v->fail == NULL;
+  if (v->fail)
+    snprintf(rep->msg, sizeof rep->msg, "model check failed (%s): %s", v->fail, v->why);
+  else
+    snprintf(rep->msg, sizeof rep->msg,
+             "model checks passed: M asym %.2g, pivot %.2g; Q vs -dU/dq %s %.2g x bound; path "
+             "residual %.2g; rank %d of %d",
+             rep->mass_asym, rep->mass_pivot, rep->force_checked ? "" : "(skipped)", rep->force_err,
+             rep->path_residual, rep->rank, rep->m);
+}
+
 int dal_verify_model(const dal_system *sys, dal_state *st, const dal_verify_opts *opts,
                      dal_model_report *out) {
   dal_model_report local, *rep = out ? out : &local;
@@ -444,69 +547,16 @@ int dal_verify_model(const dal_system *sys, dal_state *st, const dal_verify_opts
   double *A = buf, *q = A + (size_t)n * n, *qd = q + n; // M's factor, the state's q, qdot
   memcpy(q, dal_state_q(st), (size_t)n * sizeof(double));
   memcpy(qd, dal_state_qdot(st), (size_t)n * sizeof(double));
-  const char *fail = NULL;
-  char why[200] = "";
+  verdict v = {NULL, ""};
   // M symmetric positive definite
-  const double *M = dal_state_mass_matrix(st);
-  if (M) {
-    double mmax = 0.0, asym = 0.0;
-    for (size_t i = 0; i < (size_t)n * n; ++i)
-      mmax = fmax(mmax, fabs(M[i]));
-    for (int i = 0; i < n; ++i)
-      for (int j = 0; j < i; ++j)
-        asym = fmax(asym, fabs(M[(size_t)j * n + i] - M[(size_t)i * n + j]));
-    rep->mass_asym = mmax > 0 ? asym / mmax : 0.0;
-    memcpy(A, M, (size_t)n * n * sizeof(double));
-    rep->mass_pivot = chol_min_pivot(n, A);
-    rep->mass_checked = 1;
-    if (rep->mass_asym > 1e-12) {
-      fail = "mass matrix";
-      snprintf(why, sizeof why, "M is not symmetric (max |M_ij - M_ji| / max |M| = %.3g)",
-               rep->mass_asym);
-    } else if (!(rep->mass_pivot > 1e-14)) {
-      fail = "mass matrix";
-      snprintf(why, sizeof why,
-               "M is not positive definite (smallest Cholesky pivot^2 / max diagonal %.3g)",
-               rep->mass_pivot);
-    }
-  }
+  check_mass(st, n, A, rep, &v);
   // Q against -dU/dq when every applied force is a potential force
   if (!sys->lag && !sys->ndamper && !sys->nforce && !sys->ngenforce) {
-    double worst = 0.0;
-    int wc = -1;
-    const double *Q = dal_state_genforces(st);
-    for (int j = 0; j < n && !rc; ++j) {
-      double qj = q[j], h = 1e-4 * fmax(1.0, fabs(qj)), U[4];
-      const double s[4] = {h, -h, 0.5 * h, -0.5 * h};
-      for (int k = 0; k < 4 && !rc; ++k) {
-        q[j] = qj + s[k];
-        rc = energy_at(sys, w, t, q, qd, &U[k]);
-      }
-      q[j] = qj;
-      if (rc) break;
-      double dh = (U[0] - U[1]) / (2 * h), dh2 = (U[2] - U[3]) / h;
-      double epsf = 64.0 * DBL_EPSILON * fmax(1.0, fmax(fabs(U[0]), fabs(U[1])));
-      double bound = fabs(dh - dh2) / 3.0 + 2.0 * epsf / h;
-      double r = fabs(Q[j] + dh2) / bound;
-      if (r > worst) {
-        worst = r;
-        wc = j;
-      }
-    }
+    rc = check_forces(sys, st, w, t, q, qd, tolf, rep, &v);
     if (rc) {
       snprintf(rep->msg, sizeof rep->msg, "model check: evaluation near the state failed: %.240s",
                dal_state_errmsg(w));
       goto done;
-    }
-    rep->force_err = worst;
-    rep->force_coord = wc;
-    rep->force_checked = 1;
-    if (!fail && worst > tolf) {
-      fail = "forces";
-      snprintf(why, sizeof why,
-               "Q of coordinate '%s' differs from -dU/dq by %.3g x the difference bound (a "
-               "potential whose jets disagree with its values?)",
-               sys->coord_names[wc], worst);
     }
   }
   // the Lagrange residual of a short integrated path
@@ -516,39 +566,18 @@ int dal_verify_model(const dal_system *sys, dal_state *st, const dal_verify_opts
              dal_state_errmsg(w));
     goto done;
   }
-  if (!fail && rep->path_residual > PATH_TOL) {
-    fail = "path";
-    snprintf(why, sizeof why,
+  if (!v.fail && rep->path_residual > PATH_TOL) {
+    v.fail = "path";
+    snprintf(v.why, sizeof v.why,
              "the Lagrange residual of an integrated path is %.3g (relative) on coordinate '%s' "
              "(pass below %g)",
              rep->path_residual, sys->coord_names[rep->path_coord], PATH_TOL);
   }
   // constraint rank at the state
-  if (sys->m) {
-    dal_constraint_report cr;
-    int crc = dal_check_constraints(sys, st, &cr);
-    rep->rank = cr.rank;
-    rep->rmin = cr.rmin;
-    if (crc == DAL_E_CONSTRAINT && !fail) {
-      fail = "constraints";
-      snprintf(why, sizeof why, "%.190s", dal_state_errmsg(st));
-    } else if (crc && crc != DAL_E_CONSTRAINT) {
-      rc = crc;
-      goto done;
-    }
-  } else {
-    rep->rank = 0;
-  }
-  rep->passed = fail == NULL;
-  if (fail)
-    snprintf(rep->msg, sizeof rep->msg, "model check failed (%s): %s", fail, why);
-  else
-    snprintf(rep->msg, sizeof rep->msg,
-             "model checks passed: M asym %.2g, pivot %.2g; Q vs -dU/dq %s %.2g x bound; path "
-             "residual %.2g; rank %d of %d",
-             rep->mass_asym, rep->mass_pivot, rep->force_checked ? "" : "(skipped)", rep->force_err,
-             rep->path_residual, rep->rank, rep->m);
-  rc = fail ? DAL_E_VERIFY : DAL_OK;
+  rc = check_rank(sys, st, rep, &v);
+  if (rc) goto done;
+  summarize(rep, &v);
+  rc = v.fail ? DAL_E_VERIFY : DAL_OK;
 done:
   dal_state_destroy(w);
   free(buf);

@@ -20,7 +20,7 @@
 
 #include "algebra.h"
 
-#define MAX_TERMS 4096 // expansion gives up beyond this many terms (the product stays)
+#define MAX_TERMS 64 // expansion gives up beyond this many terms (the product stays)
 
 typedef struct ivec {
   int *v;
@@ -300,7 +300,7 @@ int dal__alg_mul(dal_alg *g, const int *f, int n) {
     goto done;
   }
   // factors that came apart may repeat a base: merge again when so
-  qsort(out.v, (size_t)out.n, sizeof *out.v, cmp_int);
+  if (out.n > 1) qsort(out.v, (size_t)out.n, sizeof *out.v, cmp_int);
   int again = 0;
   for (int i = 0; i + 1 < out.n; ++i) {
     int b1, e1, b2, e2;

@@ -79,8 +79,8 @@ int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, i
                 size_t msglen);
 
 /// a new expression from roots (nout nodes) of tr, whose symbols are nin_named inputs (with
-/// their velocities when `velocities`) and parameters with `values`; formulas are the roots
-/// printed. msg on failure.
+/// their velocities when `velocities`) and parameters with `values`; its formulas have no
+/// source text ("(derived)"; dal_expr_print shows them). msg on failure.
 int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots, int nout,
                         int nin_named, int velocities, const double *values, dal_expr **out,
                         char *msg, size_t msglen);

@@ -22,7 +22,13 @@ typedef struct sb {
   int fail;
 } sb;
 
+#define MAX_TEXT (1u << 24) // a longer text fails (DAL_E_NOMEM): trees shared many times over
+
 static void put(sb *b, const char *fmt, ...) {
+  if (b->fail || b->n > MAX_TEXT) {
+    b->fail = 1;
+    return;
+  }
   va_list ap;
   va_start(ap, fmt);
   char tmp[256];
@@ -66,6 +72,7 @@ static void put(sb *b, const char *fmt, ...) {
 typedef struct pr {
   const dal_xtree *tr;
   int fmt;
+  char **cache; // text of each node once printed (sort keys), shared by nested printers
 } pr;
 
 static const dal_xnode *N(const pr *p, int x) { return &p->tr->node[x]; }
@@ -154,15 +161,29 @@ typedef struct fact {
   char *key;
 } fact;
 
+// the text of node x (a sort key), computed once per node: without the cache, keys of keys
+// would make printing exponential in the nesting depth
 static char *text_of(const pr *p, int x) {
+  if (p->cache && p->cache[x]) {
+    size_t n = strlen(p->cache[x]) + 1;
+    char *r = malloc(n);
+    if (r) memcpy(r, p->cache[x], n);
+    return r;
+  }
   sb b = {0};
-  pr q = {p->tr, F_TEXT};
+  pr q = {p->tr, F_TEXT, p->cache};
   expr(&q, &b, x, 0);
   if (b.fail) {
     free(b.s);
     return NULL;
   }
-  return b.s ? b.s : calloc(1, 1);
+  char *r = b.s ? b.s : calloc(1, 1);
+  if (r && p->cache) {
+    size_t n = strlen(r) + 1;
+    p->cache[x] = malloc(n);
+    if (p->cache[x]) memcpy(p->cache[x], r, n);
+  }
+  return r;
 }
 
 static int fact_cmp(const void *a, const void *b) {
@@ -558,9 +579,14 @@ static void expr(const pr *p, sb *b, int x, int prec) {
 
 int dal__xprint(const dal_xtree *tr, int x, int fmt, char *buf, size_t len) {
   sb b = {0};
-  pr p = {tr, fmt};
-  if (x >= 0) expr(&p, &b, x, 0);
-  if (b.fail || x < 0) {
+  pr p = {tr, fmt, calloc((size_t)tr->n + 1, sizeof(char *))};
+  if (x >= 0 && p.cache) expr(&p, &b, x, 0);
+  if (p.cache)
+    for (int i = 0; i < tr->n; ++i)
+      free(p.cache[i]);
+  int nocache = !p.cache;
+  free(p.cache);
+  if (b.fail || x < 0 || nocache) {
     free(b.s);
     if (buf && len) buf[0] = 0;
     return DAL_E_NOMEM;

@@ -125,17 +125,12 @@ static int recursion_applies(const dal_builder *b, const int *ip, char *why, siz
   return ok;
 }
 
-int dal_builder_compile(dal_builder *b, dal_system **out) {
-  if (!b) return DAL_E_ARG;
-  if (!out) return BFAIL(DAL_E_ARG, "compile: the output pointer is NULL");
-  *out = NULL;
-  int n = b->coords.len, N = b->parts.len, d = b->dim;
+// the model as a whole: coordinates, particles placed, primitive tables still readable, no
+// constraints on a Lagrangian system
+static int validate_model(dal_builder *b) {
+  int n = b->coords.len, N = b->parts.len;
   dal_place *places = b->places.data;
   dal_con *cons = b->cons.data;
-  static const int no_ints[1] = {0}; // an empty pool is NULL: ip + 0 must stay valid C
-  const int *ip = b->ipool.data ? (const int *)b->ipool.data : no_ints;
-
-  // validate the model as a whole
   if (n == 0) return BFAIL(DAL_E_ARG, "the model has no generalized coordinates");
   if (!b->lag && N == 0) return BFAIL(DAL_E_ARG, "the model has no particles and no Lagrangian");
   if (!b->map)
@@ -161,46 +156,22 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
                  "constraint '%s': constraints need particles or coordinates of a "
                  "particle system, not a Lagrangian system",
                  cons[0].name);
+  return DAL_OK;
+}
 
-  char why[DAL_ERRMSG_LEN / 2];
-  int recursive = recursion_applies(b, ip, why, sizeof why);
-  if (recursive < 0) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
-  if (b->dynamics == DAL_DYNAMICS_RECURSIVE && !recursive)
-    return BFAIL(DAL_E_UNSUPPORTED,
-                 "DAL_DYNAMICS_RECURSIVE does not apply: %s; use DAL_DYNAMICS_AUTO or _DENSE", why);
+// scratch lists for the dependency unions: an instance's raw coordinate list (repeats
+// allowed) or a union of sorted lists
+typedef struct dep_scratch {
+  int *tmp, *tmp2;
+} dep_scratch;
 
-  dal_system *s = calloc(1, sizeof *s);
-  if (!s) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
-  s->dim = d;
-  s->n = n;
-  s->N = N;
-  s->coord_names = dup_names(&b->coords);
-  s->part_names = dup_names(&b->parts);
-  s->mass = dup_mem(b->masses.data, (size_t)N * sizeof(double));
-  s->map = b->map;
-  s->map_ctx = b->map_ctx;
-  s->lag = b->lag;
-  s->lag_ctx = b->lag_ctx;
-  s->ipool = dup_mem(b->ipool.data, (size_t)b->ipool.len * sizeof(int));
-  s->ppool = dup_mem(b->ppool.data, (size_t)b->ppool.len * sizeof(double));
-  s->place = b->map ? NULL : dup_mem(places, (size_t)N * sizeof(dal_place));
-  s->pdep_off = calloc((size_t)N + 1, sizeof(int));
-  s->pj_off = calloc((size_t)N + 1, sizeof(int));
-  // scratch lists hold an instance's raw coordinate list (repeats allowed) or a union
-  size_t ntmp = (size_t)2 * n + 1;
-  for (int k = 0; k < N && !b->map; ++k)
-    if ((size_t)places[k].ncoord >= ntmp) ntmp = (size_t)places[k].ncoord + 1;
-  for (int i = 0; i < b->cons.len; ++i)
-    if ((size_t)cons[i].ncoord >= ntmp) ntmp = (size_t)cons[i].ncoord + 1;
-  int *tmp = malloc(ntmp * sizeof(int));
-  int *tmp2 = malloc(ntmp * sizeof(int));
-  size_t pcap = 0, ccap = 0;
-  if (reserve_ints(&s->pdep, &pcap, (size_t)N + 1)) goto nomem;
-  if (!s->coord_names || !s->part_names || !s->mass || !s->ipool || !s->ppool ||
-      (!b->map && !s->place) || !s->pdep_off || !s->pj_off || !tmp || !tmp2)
-    goto nomem;
-
-  // per-particle dependency coordinates, in placement order (parents come first)
+// per-particle dependency coordinates, in placement order (parents come first); -1: no memory
+static int particle_deps(const dal_builder *b, dal_system *s, const int *ip, dep_scratch *w) {
+  int n = s->n, N = s->N, d = s->dim;
+  const dal_place *places = b->places.data;
+  int *tmp = w->tmp, *tmp2 = w->tmp2;
+  size_t pcap = 0;
+  if (reserve_ints(&s->pdep, &pcap, (size_t)N + 1)) return -1;
   s->max_in = 1;
   s->max_out = d;
   for (int k = 0; k < N; ++k) {
@@ -222,7 +193,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
       }
       if (pl->prim->nin > s->max_in) s->max_in = pl->prim->nin;
     }
-    if (reserve_ints(&s->pdep, &pcap, (size_t)s->pdep_off[k] + (size_t)len)) goto nomem;
+    if (reserve_ints(&s->pdep, &pcap, (size_t)s->pdep_off[k] + (size_t)len)) return -1;
     memcpy(s->pdep + s->pdep_off[k], tmp, (size_t)len * sizeof(int));
     s->pdep_off[k + 1] = s->pdep_off[k] + len;
     s->pj_off[k + 1] = s->pj_off[k] + d * len;
@@ -231,18 +202,24 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     if (n > s->max_in) s->max_in = n;
     if (N * d > s->max_out) s->max_out = N * d;
   }
+  return 0;
+}
 
-  // constraints: rows, dependency coordinates, compact G offsets
+// constraints: rows, dependency coordinates, compact G offsets; -1: no memory
+static int constraint_rows(const dal_builder *b, dal_system *s, const int *ip, dep_scratch *w) {
+  const dal_con *cons = b->cons.data;
+  int *tmp = w->tmp, *tmp2 = w->tmp2;
+  size_t ccap = 0;
   s->ncon = b->cons.len;
   s->con = calloc((size_t)s->ncon + 1, sizeof(dal_con));
-  if (!s->con) goto nomem;
+  if (!s->con) return -1;
   int m = 0, cdep_total = 0;
   for (int i = 0; i < s->ncon; ++i)
     m += cons[i].prim->nout;
   s->m = m;
   s->row_con = malloc(((size_t)m + 1) * sizeof(int));
   s->con_loff = calloc((size_t)s->ncon + 1, sizeof(int));
-  if (!s->row_con || !s->con_loff || reserve_ints(&s->cdep, &ccap, (size_t)s->ncon + 1)) goto nomem;
+  if (!s->row_con || !s->con_loff || reserve_ints(&s->cdep, &ccap, (size_t)s->ncon + 1)) return -1;
   s->g_total = 0;
   for (int i = 0; i < s->ncon; ++i) {
     dal_con *c = &s->con[i];
@@ -250,7 +227,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     c->name = NULL;
     size_t len = strlen(cons[i].name);
     c->name = malloc(len + 1);
-    if (!c->name) goto nomem;
+    if (!c->name) return -1;
     memcpy(c->name, cons[i].name, len + 1);
     int nd = sorted_unique(ip + c->coord_off, c->ncoord, tmp);
     for (int a = 0; a < c->npart; ++a) {
@@ -259,7 +236,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
           merge_union(tmp, nd, s->pdep + s->pdep_off[p], s->pdep_off[p + 1] - s->pdep_off[p], tmp2);
       memcpy(tmp, tmp2, (size_t)nd * sizeof(int));
     }
-    if (reserve_ints(&s->cdep, &ccap, (size_t)cdep_total + (size_t)nd)) goto nomem;
+    if (reserve_ints(&s->cdep, &ccap, (size_t)cdep_total + (size_t)nd)) return -1;
     c->dep_off = cdep_total;
     c->ndep = nd;
     memcpy(s->cdep + cdep_total, tmp, (size_t)nd * sizeof(int));
@@ -272,8 +249,11 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
     if (c->prim->nin > s->max_in) s->max_in = c->prim->nin;
     if (c->prim->nout > s->max_out) s->max_out = c->prim->nout;
   }
+  return 0;
+}
 
-  // forces
+// forces: gravity, springs, dampers, potentials and callbacks copied; -1: no memory
+static int copy_forces(const dal_builder *b, dal_system *s) {
   s->has_gravity = b->has_gravity;
   memcpy(s->g, b->g, sizeof s->g);
   s->nspring = b->springs.len;
@@ -288,8 +268,12 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   s->potq = dup_mem(b->potq.data, (size_t)s->npotq * sizeof(dal_cb));
   s->forces = dup_mem(b->forces.data, (size_t)s->nforce * sizeof(dal_cb));
   s->genforces = dup_mem(b->genforces.data, (size_t)s->ngenforce * sizeof(dal_cb));
-  if (!s->springs || !s->dampers || !s->potr || !s->potq || !s->forces || !s->genforces) goto nomem;
+  return !s->springs || !s->dampers || !s->potr || !s->potq || !s->forces || !s->genforces ? -1 : 0;
+}
 
+// the route and the storage it implies, and the tree assembly data; -1: no memory
+static int route_and_tree(const dal_builder *b, dal_system *s, int recursive) {
+  int n = s->n, N = s->N, d = s->dim, m = s->m;
   // the route (solve.h, "Dynamics routes"): the recursion where it applies, unless there are
   // so many constraint rows that the KKT matrix is cheaper than the m x m loop system
   // (base/bounds.h). (A placement moving more than d coordinates leaves M singular whatever the
@@ -314,23 +298,75 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   // tree assembly data: subtree masses (parents precede children) and local column offsets
   s->mu = dup_mem(s->mass, (size_t)N * sizeof(double));
   s->ploc_off = calloc((size_t)N + 1, sizeof(int));
-  if (!s->mu || !s->ploc_off) goto nomem;
+  if (!s->mu || !s->ploc_off) return -1;
   for (int k = N - 1; k >= 0 && s->place; --k)
     if (s->place[k].parent >= 0) s->mu[s->place[k].parent] += s->mu[k];
   for (int k = 0; k < N; ++k)
     s->ploc_off[k + 1] = s->ploc_off[k] + (s->place ? d * s->place[k].ncoord : 0);
-  free(tmp);
-  free(tmp2);
+  return 0;
+}
+
+int dal_builder_compile(dal_builder *b, dal_system **out) {
+  if (!b) return DAL_E_ARG;
+  if (!out) return BFAIL(DAL_E_ARG, "compile: the output pointer is NULL");
+  *out = NULL;
+  int n = b->coords.len, N = b->parts.len, d = b->dim;
+  dal_place *places = b->places.data;
+  dal_con *cons = b->cons.data;
+  static const int no_ints[1] = {0}; // an empty pool is NULL: ip + 0 must stay valid C
+  const int *ip = b->ipool.data ? (const int *)b->ipool.data : no_ints;
+
+  // validate the model as a whole, and the route asked for
+  int rc = validate_model(b);
+  if (rc) return rc;
+  char why[DAL_ERRMSG_LEN / 2];
+  int recursive = recursion_applies(b, ip, why, sizeof why);
+  if (recursive < 0) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
+  if (b->dynamics == DAL_DYNAMICS_RECURSIVE && !recursive)
+    return BFAIL(DAL_E_UNSUPPORTED,
+                 "DAL_DYNAMICS_RECURSIVE does not apply: %s; use DAL_DYNAMICS_AUTO or _DENSE", why);
+
+  // the system's copies of the builder's names, masses, callbacks, pools and placements
+  dal_system *s = calloc(1, sizeof *s);
+  if (!s) return BFAIL(DAL_E_NOMEM, "out of memory compiling the system");
+  s->dim = d;
+  s->n = n;
+  s->N = N;
+  s->coord_names = dup_names(&b->coords);
+  s->part_names = dup_names(&b->parts);
+  s->mass = dup_mem(b->masses.data, (size_t)N * sizeof(double));
+  s->map = b->map;
+  s->map_ctx = b->map_ctx;
+  s->lag = b->lag;
+  s->lag_ctx = b->lag_ctx;
+  s->ipool = dup_mem(b->ipool.data, (size_t)b->ipool.len * sizeof(int));
+  s->ppool = dup_mem(b->ppool.data, (size_t)b->ppool.len * sizeof(double));
+  s->place = b->map ? NULL : dup_mem(places, (size_t)N * sizeof(dal_place));
+  s->pdep_off = calloc((size_t)N + 1, sizeof(int));
+  s->pj_off = calloc((size_t)N + 1, sizeof(int));
+  // scratch lists long enough for any instance's coordinate list or a union
+  size_t ntmp = (size_t)2 * n + 1;
+  for (int k = 0; k < N && !b->map; ++k)
+    if ((size_t)places[k].ncoord >= ntmp) ntmp = (size_t)places[k].ncoord + 1;
+  for (int i = 0; i < b->cons.len; ++i)
+    if ((size_t)cons[i].ncoord >= ntmp) ntmp = (size_t)cons[i].ncoord + 1;
+  dep_scratch w = {malloc(ntmp * sizeof(int)), malloc(ntmp * sizeof(int))};
+  int ok = s->coord_names && s->part_names && s->mass && s->ipool && s->ppool &&
+           (b->map || s->place) && s->pdep_off && s->pj_off && w.tmp && w.tmp2;
+
+  // dependencies of particles and constraints, forces, the route and the tree data
+  ok = ok && !particle_deps(b, s, ip, &w) && !constraint_rows(b, s, ip, &w) && !copy_forces(b, s) &&
+       !route_and_tree(b, s, recursive);
+  free(w.tmp);
+  free(w.tmp2);
+  if (!ok) {
+    dal_system_destroy(s);
+    return BFAIL(DAL_E_NOMEM, "out of memory compiling the system (%d coordinates, %d particles)",
+                 n, N);
+  }
   b->err[0] = 0;
   *out = s;
   return DAL_OK;
-
-nomem:
-  free(tmp);
-  free(tmp2);
-  dal_system_destroy(s);
-  return BFAIL(DAL_E_NOMEM, "out of memory compiling the system (%d coordinates, %d particles)", n,
-               N);
 }
 
 void dal_system_destroy(dal_system *s) {

@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The standard scenes of the tests and benchmarks, built once from defs with a few knobs.
+//
+// A test reads best as: get the standard scene, change one knob, check one property against
+// its independent reference. Every scene is planar (d = 2, gravity (0, -g)) unless it says 3D
+// (gravity (0, 0, -g)); names are fixed so that messages and parameter strings can rely on
+// them: one particle "bob" (the bead: "bead"), two "upper" and "lower", a chain "p0", "p1",
+// ...; angles "theta" ("theta1", "theta2"; a chain "th0", "th1", ...), Cartesian coordinates
+// "x", "y" ("x1", "y1", "x2", "y2"; a chain "x0", "y0", ...); rods "rod" ("rod1", "rod2"; a
+// chain "rod0", ...). Examples do not use this library: they stay as a user writes them.
+#ifndef DAL_TESTS_SCENES_H
+#define DAL_TESTS_SCENES_H
+
+#include "dalembert/dalembert.h"
+
+/// Gravity of the standard scenes unless a test changes it (m/s^2).
+#define SCN_G 9.81
+
+/// The knobs of the standard scenes. Start from scn_default() and change what the test needs.
+typedef struct scn_knobs {
+  double g;               ///< gravity magnitude (m/s^2), default SCN_G
+  double m, m2;           ///< masses of the first and the second particle (every chain
+                          ///< particle: m), default 1
+  double l, l2;           ///< rod lengths (first, second; every chain link: l), default 1
+  double ax, ay, w;       ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
+                          ///< default 0 (fixed)
+  const dal_moving_point *pivot; ///< Cartesian scenes: the moving anchor of the first rod,
+                                 ///< default NULL (fixed at the origin)
+  double R, spin;         ///< bead: ring radius (default 1) and turning rate (default 0)
+  double k;               ///< oscillator: spring stiffness to the origin, default 1
+  int N;                  ///< chain: number of particles, default 4
+  dal_dynamics dynamics;  ///< the dynamics route, default DAL_DYNAMICS_AUTO
+} scn_knobs;
+
+/// The defaults listed in scn_knobs.
+scn_knobs scn_default(void);
+
+/// Compile b (when rc is 0) and destroy it; on failure print the builder's message to stderr
+/// and return NULL. For scenes a test builds itself on top of scn_* builders.
+dal_system *scn_finish(dal_builder *b, int rc);
+
+// Every scene takes its knobs by pointer, NULL for the defaults, and returns the compiled
+// system (NULL after printing the builder's message when it cannot be built).
+
+/// A pendulum in its angle theta from the downward vertical: "bob" (m) on a rod l about the
+/// origin, the pivot driven by (ax, ay, w).
+dal_system *scn_pendulum(const scn_knobs *k);
+/// The same circle in Cartesian coordinates (x, y): "bob" on the rod "rod" (dal_con_anchor2,
+/// length l) to the origin, or to k->pivot when set.
+dal_system *scn_cart_pendulum(const scn_knobs *k);
+/// The double pendulum in its angles theta1, theta2: "upper" (m) on l about the origin (driven
+/// as scn_pendulum), "lower" (m2) hanging from it on l2.
+dal_system *scn_double_pendulum(const scn_knobs *k);
+/// The double pendulum in Cartesian coordinates (x1, y1, x2, y2): "rod1" (anchor, l; to
+/// k->pivot when set) and "rod2" (distance, l2).
+dal_system *scn_cart_double_pendulum(const scn_knobs *k);
+/// Likharev's bead (m) on a ring of radius R turning at `spin` about the vertical (3D, theta).
+dal_system *scn_bead(const scn_knobs *k);
+/// The 2D isotropic oscillator: "bob" (m) in Cartesian (x, y) on a zero-length spring of
+/// stiffness k to the origin, no gravity.
+dal_system *scn_oscillator(const scn_knobs *k);
+/// A chain of N pendulums in their angles th0 ... : "p0" on l about the origin, each next
+/// hanging from its parent on l.
+dal_system *scn_chain(const scn_knobs *k);
+/// The chain in Cartesian coordinates: "rod0" (anchor, l) and "rod<i>" (distance, l).
+dal_system *scn_cart_chain(const scn_knobs *k);
+
+#endif
