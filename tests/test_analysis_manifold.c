@@ -511,7 +511,7 @@ static dal_system *dp_angles(void) {
   pd.param[DAL_HANGING_L] = 1.0;
   if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  return scene_finish(b, rc);
+  return scn_finish(b, rc);
 }
 
 static void lyapunov_manifold(void) {
