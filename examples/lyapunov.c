@@ -11,10 +11,10 @@
 // the flow preserves area (M is constant, no damping), so the two exponents sum to zero.
 //
 // Full mode (default; --out DIR, default ./demo-output): 3000 s after a 100 s transient,
-// DOPRI5 at 1e-10; writes lyapunov.csv (t, lambda_1, lambda_2, and the finite-time exponent of
-// every 100 s window) and draws lyapunov.png with gnuplot; prints the exponents with their
-// convergence estimate and the exponent over the first 70 s, which is the slope of
-// log |dtheta| of the demo's two orbits 1e-10 apart.
+// the defaults (AUTO: Adams at rtol 1e-10); writes lyapunov.csv (t, lambda_1, lambda_2, and the
+// finite-time exponent of every 100 s window) and draws lyapunov.png with gnuplot; prints the
+// exponents with their convergence estimate and the exponent over the first 70 s, which is the
+// slope of log |dtheta| of the demo's two orbits 1e-10 apart.
 // --check (ctest): over 100 s, with RK4 at h = 2^-8 for both,
 //  1. the largest exponent equals the classic two-orbit estimate (two library RK4 orbits 1e-7
 //     apart, the separation renormalized every second; Benettin et al. 1976), which uses no
@@ -179,7 +179,8 @@ static int full_mode(const dal_system *sys, const char *dir) {
     dal_state_destroy(st);
     return 1;
   }
-  printf("DOPRI5 1e-10, transient %g s, averaged over %g s:\n", o.transient, o.t_end - o.transient);
+  printf("Adams (AUTO) at rtol 1e-10, transient %g s, averaged over %g s:\n", o.transient,
+         o.t_end - o.transient);
   printf("  lambda_1 = %.4f +- %.4f, lambda_2 = %.4f +- %.4f (1/s), sum %.1e\n", ex[0], er[0],
          ex[1], er[1], ex[0] + ex[1]);
   // the first 70 s from the start, along the demo's perturbation (thetadot + 1e-10)

@@ -27,10 +27,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "check.h"
-#include "scenes.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 static dal_system *compile(dal_builder *b, int rc) {
   dal_system *sys = NULL;
@@ -206,12 +207,13 @@ static void test_hamiltonian(void) {
            ex[1], er[1], ex[2], er[2], ex[3], er[3]);
     printf("  %-34s sum %.3e, Liouville -d(log det M)/T %.3e\n", "", sum, liouville);
     CHECK_MSG(fabs(sum - liouville) <= 1e-6, "sum %.9g vs Liouville %.9g", sum, liouville);
-    CHECK(ex[0] > 1.0 && er[0] < 0.1 * ex[0]);
-    CHECK_MSG(fabs(ex[0] + ex[3]) <= 3 * hypot(er[0], er[3]) + 2.0 / T, "pair 1: %.4f %.4f", ex[0],
+    // the errors are 95% half-widths (analysis.h)
+    CHECK(ex[0] > 1.0 && er[0] < 0.2 * ex[0]);
+    CHECK_MSG(fabs(ex[0] + ex[3]) <= hypot(er[0], er[3]) + 2.0 / T, "pair 1: %.4f %.4f", ex[0],
               ex[3]);
-    CHECK_MSG(fabs(ex[1] + ex[2]) <= 3 * hypot(er[1], er[2]) + 2.0 / T, "pair 2: %.4f %.4f", ex[1],
+    CHECK_MSG(fabs(ex[1] + ex[2]) <= hypot(er[1], er[2]) + 2.0 / T, "pair 2: %.4f %.4f", ex[1],
               ex[2]);
-    CHECK_MSG(fabs(ex[1]) <= 3 * er[1] + 2.0 / T, "zero exponent: %.4f +- %.4f", ex[1], er[1]);
+    CHECK_MSG(fabs(ex[1]) <= er[1] + 2.0 / T, "zero exponent: %.4f +- %.4f", ex[1], er[1]);
   }
   dal_state_destroy(st);
   dal_system_destroy(sys);
@@ -377,7 +379,7 @@ static void test_errors(void) {
   CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_ARG); // t_end unset
   CHECK(strstr(dal_state_errmsg(st), "t_end") != NULL);
   o.t_end = 1.0;
-  o.method = DAL_METHOD_BS;
+  o.method = DAL_METHOD_VARIATIONAL; // a structure-preserving method: not for the tangent
   CHECK(dal_lyapunov(sys, st, &o, ex, NULL, NULL, NULL) == DAL_E_UNSUPPORTED);
   o.method = DAL_METHOD_DOPRI5;
   o.nexp = 3;
@@ -401,11 +403,94 @@ static void test_errors(void) {
   dal_system_destroy(sys);
 }
 
+// SICM's driven pendulum over 1000 s from seven nearby starts (theta0 = 1 + 0.001 k): the
+// reported errors against the spread of the seven estimates, and the same Benettin loop written
+// on dal_advance (two orbits 1e-8 apart, renormalized every second: an independent second
+// route) with its CPU time. Before (private DOPRI5, errors = standard error of 10 block means):
+// 0.146 ... 0.614 with errors 0.04 ... 0.08.
+static double cpu_s(void) { return (double)clock() / CLOCKS_PER_SEC; }
+
+static double advance_loop(const dal_system *sys, double th0, double T) {
+  dal_state *a = NULL, *b = NULL;
+  double d0 = 1e-8, z = 0, qb = th0 + d0, sum = 0;
+  CHECK_OK(dal_state_create(sys, &a));
+  CHECK_OK(dal_state_create(sys, &b));
+  CHECK_OK(dal_state_set(sys, a, 0, &th0, &z));
+  CHECK_OK(dal_state_set(sys, b, 0, &qb, &z));
+  dal_solve_opts o = dal_default_solve_opts();
+  o.rtol = 1e-10; // the Lyapunov default, the same automatic method (Adams)
+  for (int k = 1; k <= (int)T; ++k) {
+    CHECK_OK(dal_advance(sys, a, &o, k));
+    CHECK_OK(dal_advance(sys, b, &o, k));
+    double dq = dal_state_q(b)[0] - dal_state_q(a)[0];
+    double dv = dal_state_qdot(b)[0] - dal_state_qdot(a)[0], d = hypot(dq, dv);
+    sum += log(d / d0);
+    double nq = dal_state_q(a)[0] + dq * d0 / d, nv = dal_state_qdot(a)[0] + dv * d0 / d;
+    CHECK_OK(dal_state_set(sys, b, k, &nq, &nv));
+  }
+  dal_state_destroy(a);
+  dal_state_destroy(b);
+  return sum / T;
+}
+
+static int cmp_d(const void *x, const void *y) {
+  double a = *(const double *)x, b = *(const double *)y;
+  return (a > b) - (a < b);
+}
+
+static void test_sicm_seven(void) {
+  dal_system *sys = driven(0.1, 2 * sqrt(9.8));
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  const double T = 1000.0;
+  double lam[7], err[7], loop[7], cl = 0, ca = 0;
+  printf("  SICM driven pendulum, 1000 s, seven starts (defaults: AUTO = Adams at rtol 1e-10)\n"
+         "    theta0   lambda +- error (95%%)   dal_advance loop   CPU s: lyapunov / loop\n");
+  for (int k = 0; k < 7; ++k) {
+    double th0 = 1.0 + 1e-3 * k, z = 0.0;
+    dal_lyapunov_opts o = dal_default_lyapunov_opts();
+    o.t_end = T;
+    o.nexp = 1;
+    double c0 = cpu_s();
+    if (run(sys, st, 0.0, &th0, &z, &o, &lam[k], &err[k])) break;
+    double c1 = cpu_s();
+    loop[k] = advance_loop(sys, th0, T);
+    double c2 = cpu_s();
+    cl += c1 - c0;
+    ca += c2 - c1;
+    printf("    %.3f    %.4f +- %.4f          %.4f             %.2f / %.2f\n", th0, lam[k], err[k],
+           loop[k], c1 - c0, c2 - c1);
+  }
+  double mean = 0, var = 0, srt[7], esrt[7];
+  for (int k = 0; k < 7; ++k)
+    mean += lam[k] / 7;
+  for (int k = 0; k < 7; ++k) {
+    var += (lam[k] - mean) * (lam[k] - mean) / 6;
+    srt[k] = lam[k];
+    esrt[k] = err[k];
+  }
+  qsort(srt, 7, sizeof srt[0], cmp_d);
+  qsort(esrt, 7, sizeof esrt[0], cmp_d);
+  int cover = 0;
+  for (int k = 0; k < 7; ++k)
+    cover += fabs(lam[k] - srt[3]) <= err[k];
+  printf("    spread: %.4f ... %.4f, standard deviation %.4f; reported errors %.4f ... %.4f "
+         "(median %.4f); %d of 7 intervals hold the median %.4f; CPU %.1f s against %.1f s\n",
+         srt[0], srt[6], sqrt(var), esrt[0], esrt[6], esrt[3], cover, srt[3], cl, ca);
+  // the reported errors are of the size of the run-to-run scatter (before: 3 x smaller)
+  CHECK_MSG(esrt[3] >= sqrt(var), "median error %.4f below the spread's deviation %.4f", esrt[3],
+            sqrt(var));
+  CHECK_MSG(cover >= 5, "%d of 7 intervals hold the median", cover);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
 int main(void) {
   printf("Lyapunov exponents:\n");
   test_linear();
   test_hamiltonian();
   test_driven();
   test_errors();
+  test_sicm_seven();
   return check_summary("test_analysis_lyapunov");
 }

@@ -1252,8 +1252,8 @@ static void sw_dal_default_lyapunov_opts(void) {
   dal_lyapunov_opts o;
   memset(&o, 0xff, sizeof o);
   o = dal_default_lyapunov_opts(); // every field written, the cookie too
-  CHECK(isnan(o.t_end) && o.nexp == 0 && o.renorm == 1.0 && o.method == DAL_METHOD_DOPRI5);
-  CHECK(o.rtol == 1e-10 && o.atol == 1e-10 && o.y0 == NULL && o.nblocks == 10);
+  CHECK(isnan(o.t_end) && o.nexp == 0 && o.renorm == 1.0 && o.method == DAL_METHOD_AUTO);
+  CHECK(o.rtol == 1e-10 && o.atol == 1e-10 && o.y0 == NULL && o.nblocks == 4);
 }
 static void sw_dal_lyapunov(void) {
   dal_lyapunov_opts o, raw, no_end, behind, bs, many, no_renorm, nan_y0;
@@ -1266,8 +1266,8 @@ static void sw_dal_lyapunov(void) {
   no_end = behind = bs = many = no_renorm = nan_y0 = o;
   no_end.t_end = NAN;
   behind.t_end = -1.0;
-  bs.method = DAL_METHOD_BS;
-  many.nexp = 3; // 2n = 2
+  bs.method = DAL_METHOD_VARIATIONAL; // structure-preserving: not for the tangent
+  many.nexp = 3;                      // 2n = 2
   no_renorm.renorm = 0.0;
   nan_y0.y0 = y0n;
   ST(dal_lyapunov(F.B, NULL, &o, ex, err, NULL, NULL), DAL_E_ARG, NULL);

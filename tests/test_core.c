@@ -24,7 +24,6 @@ static dal_solve_opts opts(dal_formulation f, dal_method m, double tol) {
   return o;
 }
 
-
 // minimal pendulum (l = 1), or the double pendulum (pendulum + hanging) when two is set
 static dal_system *pendulum(int two) {
   return two ? scn_double_pendulum(NULL) : scn_pendulum(NULL);

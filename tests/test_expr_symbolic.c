@@ -388,6 +388,7 @@ static void identities(void) {
   identity("2*3 + x^0 + 4/8", "15/2");
   identity("a*x + a*y", "a*(x + y)");
   identity("-a*x - a*y", "-a*(x + y)");
+  identity("x/2 + 3*y/4", "1/4*(2*x + 3*y)");
   identity("sqrt(x)^2", "x");
   identity("sin(-x) + cos(-x)", "cos(x) - sin(x)");
   identity("exp(0) + log(1) + sin(0)", "1");

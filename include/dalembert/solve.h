@@ -51,7 +51,7 @@ extern "C" {
 /// | Bulirsch-Stoer           | 0.005   | 9.0                         | 5.2                |
 /// | Adams (CVODE)            | 0.001   | 1.2                         | 1.4                |
 /// | BDF (CVODE)              | 0.0001  | 2.2 to 1e-11; clamped below | 0.9                |
-/// | GGL (IDA)                | 0.001   | 4.0 to rtol 1e-9; clamped   | 18.2 (to 1e-8)     |
+/// | GGL (IDA)                | 0.001   | 2.4 to 1e-9; 12.9 at 1e-10  | 16.5 (to 1e-8)     |
 /// | index-1 + projection     | x 0.2   | 1.1 (BS), 2.1 (DOPRI5)      |                    |
 /// | index-1 in IDA           | 0.0002  | drifts: 34 to 1e-9, 77 at 1e-10 (no stabilization) |
 /// | index-3 in IDA           | 0.001   | 1e3 - 1e5 (kept to show where it fails)            |
@@ -66,12 +66,19 @@ extern "C" {
 /// target broke the multistep history: 113 x rtol for Adams in a loop of 986 calls); the model
 /// may then be evaluated up to one step beyond the target.
 ///
-/// IDA is run at no less than 1e-12 (its corrector stalls on rounding below: limits.h); a
-/// tighter request is clamped, atol scaled alike, and the clamp shows in dal_stats.rtol_used
-/// (GGL then measures 23 x rtol at 1e-10, 230 x at 1e-11, 2300 x at 1e-12). So with
-/// DAL_FORM_AUTO and DAL_METHOD_AUTO, a constrained system asked for rtol < 1e-9 runs the index-1
-/// form with projection and Bulirsch-Stoer instead (from a consistent start), which honours it (row
-/// "auto (constrained)" of the table in tests/test_core.c). Ill-conditioned problems (chaos,
+/// IDA is run at no less than the local tolerance 1e-12 (DAL_IDA_TOL_FLOOR, base/bounds.h): below
+/// it the rounding of the constraint rows, amplified into the multipliers' Newton corrections,
+/// fails IDA's convergence test (docs/dae.md has the measurements). A tighter request is
+/// clamped, atol scaled alike, and never silently: the run returns DAL_OK with a note in the
+/// state's message ("rtol ... is below what IDA can honour") and the clamp in
+/// dal_stats.rtol_used (GGL then measures 12.9 x rtol at 1e-10, 129 x at 1e-11, 1292 x at
+/// 1e-12 on the Cartesian pendulum). So with DAL_FORM_AUTO and DAL_METHOD_AUTO, a constrained
+/// system asked for rtol < 1e-9 runs the index-1 form with projection and Bulirsch-Stoer instead
+/// (from a consistent start), which honours it (row "auto (constrained)" of the table in
+/// tests/test_core.c). With the defaults, an IDA failure by convergence or step collapse falls
+/// back to that route from the last accepted step (opts.no_fallback; dal_stats.fallbacks;
+/// tests/test_dae_grid.c: 0 failures over 390 starts and random rod trees at rtol 1e-4 ...
+/// 1e-10). Ill-conditioned problems (chaos,
 /// near-separatrix motion) amplify local errors further.
 ///
 /// Structure-preserving methods (AUTO never picks them: ask for them by name). They take the
@@ -233,8 +240,18 @@ typedef struct dal_solve_opts {
   double init_max_move;   ///< DAE start: the largest change |delta q_i| (units of q) the
                           ///< consistent initialization may apply; a larger one fails with
                           ///< DAL_E_INIT naming the coordinate and the state is unchanged.
-                          ///< 0 (default): no limit. Either way the report of the move is
-                          ///< kept (dal_state_init_report in dae.h).
+                          ///< 0 (default): no limit, but a move beyond atol + rtol |q_i|
+                          ///< leaves a note in the state's message after DAL_OK (naming the
+                          ///< coordinate, the move and the constraint). Either way the report
+                          ///< of the move is kept (dal_state_init_report in dae.h).
+  int no_fallback;        ///< DAE route: if nonzero, a failure of IDA is returned as it is;
+                          ///< 0 (default): with DAL_FORM_AUTO and DAL_METHOD_AUTO, a
+                          ///< convergence failure or step collapse in IDA (DAL_E_CONV,
+                          ///< DAL_E_STEP) restarts from the last accepted step in the index-1
+                          ///< form with projection and Bulirsch-Stoer (the fallback ladder of
+                          ///< docs/dae.md), recorded in dal_stats and in the state's message.
+                          ///< An explicit formulation or method is honoured as asked: its
+                          ///< failure message names this fallback as the remedy.
 } dal_solve_opts;
 
 /// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default). atol = rtol reaches a
@@ -255,21 +272,26 @@ DAL_API const char *dal_formulation_name(dal_formulation f);
 
 /// Integration statistics accumulated since the last dal_state_set.
 typedef struct dal_stats {
-  long steps;        ///< accepted steps
-  long rejected;     ///< rejected steps (error test and convergence failures)
-  long rhs_evals;    ///< right-hand-side or residual evaluations
-  long jac_evals;    ///< Jacobian evaluations
-  long nonlin_iters; ///< nonlinear (Newton) iterations
-  long projections;  ///< manifold projections (INDEX1 with project)
-  double last_h;     ///< last step size taken
-  int foreign_code;  ///< last raw return code of the underlying solver (0 if none)
-  double rtol_used;  ///< local relative tolerance the integrator runs at: the calibrated
-                     ///< factor times opts.rtol, raised to the method's floor when the
-                     ///< request is tighter than it can honour (the clamp is visible here)
-  double max_phi;    ///< RATTLE: largest position residual max |phi| at an accepted step
-                     ///< (length units; 0 for the other methods)
-  double max_phidot; ///< RATTLE: largest velocity residual max |G v + dphi/dt| at an accepted
-                     ///< step (length/time; 0 for the other methods)
+  long steps;             ///< accepted steps
+  long rejected;          ///< rejected steps (error test and convergence failures)
+  long rhs_evals;         ///< right-hand-side or residual evaluations
+  long jac_evals;         ///< Jacobian evaluations
+  long nonlin_iters;      ///< nonlinear (Newton) iterations
+  long projections;       ///< manifold projections (INDEX1 with project)
+  double last_h;          ///< last step size taken
+  int foreign_code;       ///< last raw return code of the underlying solver (0 if none)
+  double rtol_used;       ///< local relative tolerance the integrator runs at: the calibrated
+                          ///< factor times opts.rtol, raised to the method's floor when the
+                          ///< request is tighter than it can honour (the clamp is visible here)
+  double max_phi;         ///< RATTLE: largest position residual max |phi| at an accepted step
+                          ///< (length units; 0 for the other methods)
+  double max_phidot;      ///< RATTLE: largest velocity residual max |G v + dphi/dt| at an accepted
+                          ///< step (length/time; 0 for the other methods)
+  dal_method method_used; ///< the method that ran last (AUTO resolved; DAL_METHOD_BDF for IDA)
+  dal_formulation form_used; ///< the formulation that ran last (AUTO resolved)
+  int fallbacks;             ///< switches of the DAE route to the fallback (opts.no_fallback)
+  double fallback_t;         ///< time of the last switch (the last step IDA accepted)
+  int fallback_cause;        ///< status of IDA's failure that caused it (DAL_E_CONV, DAL_E_STEP)
 } dal_stats;
 
 /// Statistics of the state's integration so far.

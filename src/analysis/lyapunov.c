@@ -3,11 +3,17 @@
 // Lyapunov exponents: trajectory and exact tangent vectors integrated together, QR
 // reorthonormalization (Benettin, Galgani, Giorgilli, Strelcyn, Meccanica 15, 1980).
 //
-// The augmented system is Y = (y, V) with y' = f(t, y) and V' = (df/dy) V, V = 2n x p. Its
-// integrator is this file's own: classical RK4 at a fixed step, or Dormand-Prince 5(4) with
-// the step control of Hairer-Norsett-Wanner, Solving ODEs I, sec. II.4 (coefficients of
-// Table 5.2). A Runge-Kutta step of the augmented system applies the method's own derivative
-// to V, so V is the exact tangent of the numerical flow.
+// The augmented system is Y = (y, V) with y' = f(t, y) and V' = (df/dy) V, V = 2n x p. It runs
+// on the library's own integrators (integrate.h: a first-order problem of size 2n (1 + p)),
+// with dal_advance's tolerance calibration and progress guards. A Runge-Kutta step of the
+// augmented system applies the method's own derivative to V, so V is the exact tangent of the
+// numerical flow.
+//
+// The error estimate: the exponents of nblocks equal blocks of the averaging time are the
+// samples; the reported error is a 95% confidence half-width of their mean, Student's t with
+// nblocks - 1 degrees of freedom times the standard error, and never below the half-range of
+// the block exponents divided by sqrt(nblocks) (blocks that stick to a regular island for
+// part of the run are not independent samples; see dal_lyapunov in analysis.h).
 #include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
@@ -26,35 +32,90 @@ dal_lyapunov_opts dal_default_lyapunov_opts(void) {
   o->t_end = NAN;
   o->transient = 0.0;
   o->renorm = 1.0;
-  o->method = DAL_METHOD_DOPRI5;
+  o->method = DAL_METHOD_AUTO;
   o->rtol = 1e-10;
   o->atol = 1e-10;
   o->h = 1e-3;
   o->y0 = NULL;
-  o->nblocks = 10;
+  o->nblocks = 4;
   o->max_steps = 10000000;
   return d;
 }
 
-/// the run: system, scratch state, tangent workspace and integrator memory
+/// the run: system, work state, tangent workspace, the augmented problem and its integrator
 typedef struct lyap {
   const dal_system *sys;
-  dal_state *st;
+  dal_state *st; // work state: the integrators run on it
   dal_tangent *tg;
   const dal_lyapunov_opts *o;
-  int n, ny, p, m;            // coordinates, 2n, tangent vectors, augmented size 2n (1 + p)
-  double *Z;                  // n x p scratch
-  double *k[7], *yt, *y1, *Y; // integrator stages, trial state, result, current state
-  double *kc;                 // RK4: compensation of the trajectory's sum (ny; Kahan, as the
-                              // library's RK4, so both follow the same orbit to the bit)
-  double *tau, *qrwork;       // QR
+  int n, ny, p, m;      // coordinates, 2n, tangent vectors, augmented size 2n (1 + p)
+  double *Z;            // n x p scratch
+  double *Y;            // current (y, V)
+  double *tau, *qrwork; // QR
   lapack_int lwork;
-  double h;   // DOPRI5 step carried between segments
-  long steps; // accepted steps
+  dal_first_order fo; // Y' = F(t, Y) for the library's integrators
+  dal_solve_opts so;  // their options (tolerances as for dal_advance)
+  dal_method meth;    // the method that runs (AUTO resolved)
+  dal_ode_integ *ig;  // the integrator kept between segments (methods with changed_y)
+  double h;           // the last full step of the previous segment (the next one's first)
+  long steps;         // accepted steps
+  int ymoved;         // the projection moved the trajectory at the last QR (constraint rows)
   // constraint rows: the full-space KKT tangent A (2n x 2n), and the basis N, Yb (n x k) of
   // the manifold's tangent space where the vectors start and are projected back at every QR
   double *A, *N, *Yb;
 } lyap;
+
+/// levels of the blocking analysis: blocks of 1, 2, 4, ... segments
+#define LYAP_LEVELS 48
+/// Flyvbjerg-Petersen blocking of the local exponents of one tangent vector, online: level k
+/// holds blocks of 2^k consecutive segments (their exponent: sum of log |R_jj| over the sum of
+/// their lengths), the pending partial block and the sums of the completed ones
+typedef struct lyap_blocking {
+  double pl[LYAP_LEVELS], pd[LYAP_LEVELS]; // pending block: sum of logs, of lengths
+  int pc[LYAP_LEVELS];                     // blocks of the level below in it
+  long n[LYAP_LEVELS];                     // completed blocks
+  double s1[LYAP_LEVELS], s2[LYAP_LEVELS]; // sums of their exponents and squares
+} lyap_blocking;
+
+// one segment of length dt with log growth lg
+static void blocking_add(lyap_blocking *b, double lg, double dt) {
+  for (int k = 0; k < LYAP_LEVELS; ++k) {
+    b->pl[k] += lg;
+    b->pd[k] += dt;
+    if (++b->pc[k] < (k == 0 ? 1 : 2)) return;
+    double e = b->pl[k] / b->pd[k];
+    b->n[k]++;
+    b->s1[k] += e;
+    b->s2[k] += e * e;
+    lg = b->pl[k];
+    dt = b->pd[k];
+    b->pl[k] = b->pd[k] = 0.0;
+    b->pc[k] = 0;
+  }
+}
+
+// two-sided 95% quantile of Student's t with nu degrees of freedom (Cornish-Fisher expansion
+// about the normal quantile 1.96; within 0.5% of the tables for nu >= 3, 2% at nu = 2)
+static double student95(long nu) {
+  const double z = 1.959963984540054, z3 = z * z * z, z5 = z3 * z * z;
+  double v = (double)nu;
+  return z + (z3 + z) / (4 * v) + (5 * z5 + 16 * z3 + 3 * z) / (96 * v * v) +
+         (3 * z5 * z * z + 19 * z5 + 17 * z3 - 15 * z) / (384 * v * v * v);
+}
+
+// the error of the mean exponent: the largest 95% half-width t * s / sqrt(n) over the
+// blockings that keep at least nmin blocks (the standard error grows with the block length
+// while the blocks are correlated, and levels off once they are not)
+static double blocking_error(const lyap_blocking *b, int nmin) {
+  double err = -1.0;
+  for (int k = 0; k < LYAP_LEVELS; ++k) {
+    long n = b->n[k];
+    if (n < nmin || n < 2) continue;
+    double mean = b->s1[k] / n, var = fmax(0.0, (b->s2[k] - n * mean * mean) / (n - 1));
+    err = fmax(err, student95(n - 1) * sqrt(var / n));
+  }
+  return err >= 0 ? err : INFINITY;
+}
 
 // with constraint rows: F = (f, A V) with the full-space tangent of the index-1 field (the
 // state evaluated, its tangent taken)
@@ -91,7 +152,7 @@ static int manifold_project(lyap *L, double t, int init) {
   if ((rc = dal_forward(L->sys, L->st)) != 0) return rc;
   memcpy(Y, L->st->q, (size_t)n * sizeof(double));
   memcpy(Y + n, L->st->qdot, (size_t)n * sizeof(double));
-  memset(L->kc, 0, (size_t)ny * sizeof(double)); // RK4's compensation belongs to the old y
+  L->ymoved = 1; // the integrator's y changed in full
   if ((rc = dal__tangent_eval(L->sys, L->st, L->tg, 0)) != 0) return rc;
   if ((rc = dal__tangent_basis(L->sys, L->st, L->tg, L->N, L->Yb, NULL)) != 0) return rc;
   for (int j = 0; j < L->p; ++j) {
@@ -119,13 +180,24 @@ static int manifold_project(lyap *L, double t, int init) {
 }
 
 // augmented right-hand side F = (f(t, y), (df/dy) V)
-static int aug_rhs(lyap *L, double t, const double *Y, double *F) {
+static int aug_rhs(void *ctx, dal_state *st, double t, const double *Y, double *F) {
+  lyap *L = ctx;
   int n = L->n, ny = L->ny, rc;
-  if ((rc = dal__analysis_eval(L->sys, L->st, t, Y, Y + n)) != 0) return rc;
-  if ((rc = dal__tangent_eval(L->sys, L->st, L->tg, 0)) != 0) return rc;
-  if (L->sys->m > 0) return aug_rhs_manifold(L, Y, F);
-  if ((rc = dal__tangent_factor(L->sys, L->st, L->tg)) != 0) return rc;
-  const double *qdd = dal_state_qddot(L->st);
+  if (L->sys->m > 0) {
+    if ((rc = dal__analysis_eval(L->sys, st, t, Y, Y + n)) != 0) return rc;
+    if ((rc = dal__tangent_eval(L->sys, st, L->tg, 0)) != 0) return rc;
+    return aug_rhs_manifold(L, Y, F);
+  }
+  // the trajectory point, evaluated (no validation or reset of a public dal_state_set: the
+  // integrator's values are finite, its progress guard checks them)
+  st->t = t;
+  memcpy(st->q, Y, (size_t)n * sizeof(double));
+  memcpy(st->qdot, Y + n, (size_t)n * sizeof(double));
+  dal__state_moved(st);
+  if ((rc = dal__eval(L->sys, st, DAL_P_ALL)) != 0) return rc;
+  if ((rc = dal__tangent_eval(L->sys, st, L->tg, 0)) != 0) return rc;
+  if ((rc = dal__tangent_factor(L->sys, st, L->tg)) != 0) return rc;
+  const double *qdd = dal_state_qddot(st);
   for (int i = 0; i < n; ++i) {
     F[i] = Y[n + i];
     F[n + i] = qdd[i];
@@ -153,111 +225,49 @@ static int aug_rhs(lyap *L, double t, const double *Y, double *F) {
   return DAL_OK;
 }
 
-// classical RK4 from t over [t, t1] in steps of at most h (the last one shortened)
-static int rk4_segment(lyap *L, double *t, double t1) {
-  int m = L->m, rc;
-  double *y = L->Y, *yt = L->yt, **k = L->k;
-  while (*t < t1) {
-    double h = L->o->h;
-    if (*t + h > t1 - 1e-9 * h) h = t1 - *t;
-    if ((rc = aug_rhs(L, *t, y, k[0])) != 0) return rc;
-    for (int i = 0; i < m; ++i)
-      yt[i] = y[i] + 0.5 * h * k[0][i];
-    if ((rc = aug_rhs(L, *t + 0.5 * h, yt, k[1])) != 0) return rc;
-    for (int i = 0; i < m; ++i)
-      yt[i] = y[i] + 0.5 * h * k[1][i];
-    if ((rc = aug_rhs(L, *t + 0.5 * h, yt, k[2])) != 0) return rc;
-    for (int i = 0; i < m; ++i)
-      yt[i] = y[i] + h * k[2][i];
-    if ((rc = aug_rhs(L, *t + h, yt, k[3])) != 0) return rc;
-    for (int i = 0; i < m; ++i) {
-      double d = h * (k[0][i] / 6.0 + k[1][i] / 3.0 + k[2][i] / 3.0 + k[3][i] / 6.0);
-      if (i < L->ny) {
-        dal__ksum(&y[i], &L->kc[i], d); // the trajectory compensated, like ode_rk4.c
-      } else {
-        y[i] += d;
-      }
-    }
-    *t = h == t1 - *t ? t1 : *t + h;
-    if (++L->steps > L->o->max_steps) return DAL_E_MAXSTEPS;
+// Y from t to t1 by the library's integrator. A method that can go on after the QR changed V
+// (changed_y: RK4, Bulirsch-Stoer) keeps its integrator, compensation and step; the others get
+// a fresh one per segment, its first step the last full one before. On failure Y and t hold
+// the last accepted step and the work state's message says what failed.
+static int segment(lyap *L, double *t, double t1) {
+  if (L->steps >= L->o->max_steps) return DAL_E_MAXSTEPS;
+  long left = L->o->max_steps - L->steps;
+  dal_ode_integ *ig = L->ig;
+  if (ig) {
+    int i0 = L->ymoved ? 0 : L->ny; // the vectors, and the trajectory when projected
+    memcpy(ig->y + i0, L->Y + i0, (size_t)(L->m - i0) * sizeof(double));
+    ig->changed_y(ig, i0);
+    ig->opts.max_steps = left;
+  } else {
+    dal_solve_opts so = L->so;
+    so.max_steps = left;
+    if (L->h > 0 && L->meth != DAL_METHOD_RK4) so.h0 = fmin(L->h, t1 - *t);
+    L->st->t = *t;
+    L->fo.y0 = L->Y;
+    int rc = dal__ode_create_fo(L->sys, L->st, &so, L->meth, &L->fo, &ig);
+    if (rc) return rc;
   }
-  return DAL_OK;
-}
-
-// Dormand-Prince 5(4) tableau
-static const double dp_c[7] = {0, 1.0 / 5, 3.0 / 10, 4.0 / 5, 8.0 / 9, 1, 1};
-static const double dp_a[7][6] = {
-    {0},
-    {1.0 / 5},
-    {3.0 / 40, 9.0 / 40},
-    {44.0 / 45, -56.0 / 15, 32.0 / 9},
-    {19372.0 / 6561, -25360.0 / 2187, 64448.0 / 6561, -212.0 / 729},
-    {9017.0 / 3168, -355.0 / 33, 46732.0 / 5247, 49.0 / 176, -5103.0 / 18656},
-    {35.0 / 384, 0, 500.0 / 1113, 125.0 / 192, -2187.0 / 6784, 11.0 / 84}};
-// error coefficients: 5th-order weights minus the embedded 4th-order ones
-static const double dp_e[7] = {71.0 / 57600,      0,          -71.0 / 16695, 71.0 / 1920,
-                               -17253.0 / 339200, 22.0 / 525, -1.0 / 40};
-
-// DOPRI5 over [t, t1]: steps under error control, the last one landing on t1
-static int dopri_segment(lyap *L, double *t, double t1) {
-  int m = L->m, rc;
-  const dal_lyapunov_opts *o = L->o;
-  double *y = L->Y, *yt = L->yt, *y1 = L->y1, **k = L->k;
-  if ((rc = aug_rhs(L, *t, y, k[0])) != 0) return rc;
-  if (L->h <= 0) {
-    // starting step from the sizes of y and f (Hairer-Norsett-Wanner II.4)
-    double d0 = 0, d1 = 0;
-    for (int i = 0; i < m; ++i) {
-      double sc = o->atol + o->rtol * fabs(y[i]);
-      d0 += (y[i] / sc) * (y[i] / sc);
-      d1 += (k[0][i] / sc) * (k[0][i] / sc);
-    }
-    d0 = sqrt(d0 / m);
-    d1 = sqrt(d1 / m);
-    L->h = d0 > 1e-5 && d1 > 1e-5 ? 0.01 * d0 / d1 : 1e-6;
+  L->ymoved = 0;
+  // per call, as the driver does: the target and the progress guard's counters
+  ig->tout = t1;
+  ig->ncall = 0;
+  ig->rhs_fatal = 0;
+  ig->ntiny = 0;
+  ig->nrecov = 0;
+  int rc = ig->advance(ig, t1);
+  memcpy(L->Y, ig->y, (size_t)L->m * sizeof(double));
+  *t = ig->t;
+  L->steps += ig->ncall;
+  // the step before a landing step shortened to t1 is the natural one
+  double hl = ig->t - ig->tprev;
+  if (ig->ncall > 1 || hl > L->h) L->h = hl;
+  if (!rc && ig->changed_y) {
+    L->ig = ig;
+  } else {
+    dal__ode_destroy(ig);
+    L->ig = NULL;
   }
-  while (*t < t1) {
-    double h = fmin(L->h, t1 - *t);
-    int last = h == t1 - *t;
-    if (h <= 1e-14 * fmax(1.0, fabs(*t))) {
-      char qs[256];
-      dal__fmt_q(L->sys, L->Y, qs, sizeof qs);
-      return DAL_FAIL(L->st, DAL_E_STEP,
-                      "lyapunov: DOPRI5 step size underflow (h = %.3g) at t=%.17g, %s; loosen "
-                      "rtol/atol or use RK4 with a fixed step",
-                      h, *t, qs);
-    }
-    for (int s = 1; s < 7; ++s) {
-      for (int i = 0; i < m; ++i) {
-        double acc = 0.0;
-        for (int j = 0; j < s; ++j)
-          acc += dp_a[s][j] * k[j][i];
-        (s == 6 ? y1 : yt)[i] = y[i] + h * acc;
-      }
-      if ((rc = aug_rhs(L, *t + dp_c[s] * h, s == 6 ? y1 : yt, k[s])) != 0) return rc;
-    }
-    double err = 0.0;
-    for (int i = 0; i < m; ++i) {
-      double e = 0.0;
-      for (int s = 0; s < 7; ++s)
-        e += dp_e[s] * k[s][i];
-      double sc = o->atol + o->rtol * fmax(fabs(y[i]), fabs(y1[i]));
-      err += (h * e / sc) * (h * e / sc);
-    }
-    err = sqrt(err / m);
-    double fac = err > 0 ? 0.9 * pow(err, -0.2) : 10.0;
-    fac = fmin(10.0, fmax(0.2, fac));
-    if (err <= 1.0) {
-      memcpy(y, y1, (size_t)m * sizeof(double));
-      memcpy(k[0], k[6], (size_t)m * sizeof(double)); // first same as last
-      *t = last ? t1 : *t + h;
-      if (++L->steps > o->max_steps) return DAL_E_MAXSTEPS;
-      if (!last || fac < 1.0) L->h = h * fac;
-    } else {
-      L->h = h * fmin(1.0, fac);
-    }
-  }
-  return DAL_OK;
+  return rc;
 }
 
 // V = Q R: V becomes Q, logs of |R_ii| into lg (p)
@@ -274,11 +284,7 @@ static int orthonormalize(lyap *L, double *lg) {
 }
 
 static void lyap_free(lyap *L) {
-  for (int i = 0; i < 7; ++i)
-    free(L->k[i]);
-  free(L->yt);
-  free(L->kc);
-  free(L->y1);
+  dal__ode_destroy(L->ig);
   free(L->Y);
   free(L->Z);
   free(L->tau);
@@ -296,10 +302,13 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
                     "dal_default_lyapunov_opts");
-  if (o->method != DAL_METHOD_DOPRI5 && o->method != DAL_METHOD_RK4)
+  const dal_method_row *row = dal__method_row(o->method);
+  if (!row || o->method == DAL_METHOD_VARIATIONAL || o->method == DAL_METHOD_VARIATIONAL4 ||
+      o->method == DAL_METHOD_VARIATIONAL6 || o->method == DAL_METHOD_RATTLE ||
+      o->method == DAL_METHOD_RATTLE4 || o->method == DAL_METHOD_RATTLE6)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "lyapunov: method '%s' is not available for the variational equations; use "
-                    "DAL_METHOD_DOPRI5 or DAL_METHOD_RK4",
+                    "DOPRI5, Fehlberg 7(8), Bulirsch-Stoer, Adams, BDF, RK4 or AUTO",
                     dal_method_name(o->method));
   if (o->nexp < 0 || o->nexp > ny)
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2(n - m) = %d", o->nexp,
@@ -308,6 +317,7 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "lyapunov: initial vectors y0 with constraint rows: the vectors start on the "
                     "manifold's tangent space; leave y0 NULL");
+
   if (!isfinite(o->t_end) || !(o->t_end > st->t))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: t_end = %g must be finite and after t = %.17g",
                     o->t_end, st->t);
@@ -331,7 +341,7 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
                     "near 0",
                     o->renorm <= tiny ? "renorm" : "RK4 step h",
                     o->renorm <= tiny ? o->renorm : o->h, tmax, tiny);
-  if (o->method == DAL_METHOD_DOPRI5 &&
+  if (o->method != DAL_METHOD_RK4 &&
       (!(o->rtol > 0) || !(o->atol > 0) || !isfinite(o->rtol) || !isfinite(o->atol)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: rtol = %g and atol = %g must be finite and > 0",
                     o->rtol, o->atol);
@@ -362,19 +372,17 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   L.ny = 2 * sys->n;
   L.p = o->nexp ? o->nexp : 2 * (sys->n - sys->m);
   L.m = L.ny * (1 + L.p);
+  lyap_blocking *bk = NULL;
   int nb = o->nblocks, ny = L.ny, p = L.p;
-  double *sum = NULL, *blk = NULL, *lg = NULL, *est = NULL;
+  double *sum = NULL, *lg = NULL, *est = NULL;
   size_t m = (size_t)L.m;
   // the work state carries the state's parameter overrides (a sweep's per-trajectory values)
   int ok = dal_state_create(sys, &L.st) == 0 && dal_state_copy_params(sys, L.st, st) == 0 &&
            dal__tangent_create(sys, &L.tg) == 0;
-  for (int i = 0; i < 7 && ok; ++i)
-    ok = (L.k[i] = calloc(m, sizeof(double))) != NULL;
-  ok = ok && (L.yt = calloc(m, sizeof(double))) && (L.y1 = calloc(m, sizeof(double))) &&
-       (L.kc = calloc(m, sizeof(double))) && (L.Y = calloc(m, sizeof(double))) &&
+  ok = ok && (L.Y = calloc(m, sizeof(double))) &&
        (L.Z = calloc((size_t)L.n * p + 2 * (size_t)L.n + 1, sizeof(double))) &&
        (L.tau = calloc((size_t)p, sizeof(double))) && (sum = calloc((size_t)p, sizeof(double))) &&
-       (blk = calloc((size_t)p * nb, sizeof(double))) && (lg = calloc((size_t)p, sizeof(double))) &&
+       (bk = calloc((size_t)p, sizeof *bk)) && (lg = calloc((size_t)p, sizeof(double))) &&
        (est = calloc((size_t)p, sizeof(double)));
   if (ok && sys->m > 0)
     ok = (L.A = calloc((size_t)ny * ny, sizeof(double))) &&
@@ -392,6 +400,18 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     rc = DAL_FAIL(st, DAL_E_NOMEM, "lyapunov: out of memory for %d tangent vectors", p);
     goto done;
   }
+
+  // the integrator: the library's, on the augmented problem, with dal_advance's tolerances
+  L.fo.ny = L.m;
+  L.fo.rhs = aug_rhs;
+  L.fo.ctx = &L;
+  L.so = dal_default_solve_opts();
+  L.so.method = o->method;
+  L.so.rtol = o->rtol;
+  L.so.atol = o->atol;
+  L.so.fixed_step = o->h;
+  // (AUTO by the size of the augmented first-order system: L.m / 2 coordinates)
+  L.meth = o->method == DAL_METHOD_AUTO ? dal__auto_method(o->rtol, L.m / 2, 0) : o->method;
 
   // the start: trajectory from the state, tangent vectors orthonormalized
   double t = st->t;
@@ -431,9 +451,9 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     if (averaging && block == nb - 1) bound = o->t_end;
     double t1 = fmin(t + o->renorm, bound);
     if (bound - t1 < 1e-9 * o->renorm) t1 = bound;
-    double t_seg = t;
-    rc = o->method == DAL_METHOD_RK4 ? rk4_segment(&L, &t, t1) : dopri_segment(&L, &t, t1);
-    if (!rc && !(t > t_seg))
+    double tprev = t;
+    rc = segment(&L, &t, t1);
+    if (!rc && !(t > tprev))
       rc = DAL_FAIL(L.st, DAL_E_STEP, "lyapunov: no progress at t=%.17g (segment to %.17g)", t, t1);
     if (rc == DAL_E_MAXSTEPS)
       rc = DAL_FAIL(L.st, DAL_E_MAXSTEPS, "lyapunov: more than %ld steps before t=%.17g",
@@ -457,7 +477,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
         goto done;
       }
       sum[j] += lg[j];
-      blk[(size_t)block * p + j] += lg[j];
+      blocking_add(&bk[j], lg[j], t - tprev);
       est[j] = sum[j] / (t - ta);
     }
     if (t >= bound && block < nb - 1) ++block;
@@ -465,19 +485,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   }
   for (int j = 0; j < p; ++j) {
     exponents[j] = t > ta ? sum[j] / (t - ta) : NAN;
-    if (errors) {
-      // standard error of the block means (blocks of equal length span / nb)
-      double mean = 0.0, var = 0.0, bl = span / nb;
-      int nfull = t >= o->t_end ? nb : block;
-      for (int b = 0; b < nfull; ++b)
-        mean += blk[(size_t)b * p + j] / bl;
-      mean /= nfull > 0 ? nfull : 1;
-      for (int b = 0; b < nfull; ++b) {
-        double x = blk[(size_t)b * p + j] / bl - mean;
-        var += x * x;
-      }
-      errors[j] = nfull > 1 ? sqrt(var / (nfull - 1) / nfull) : INFINITY;
-    }
+    if (errors) errors[j] = blocking_error(&bk[j], nb);
   }
   // largest first (decoupled invariant subspaces keep the QR columns in their initial order)
   for (int i = 1; i < p; ++i)
@@ -495,7 +503,7 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   rc = dal__analysis_eval(sys, st, t, L.Y, L.Y + L.n);
 done:
   free(sum);
-  free(blk);
+  free(bk);
   free(lg);
   free(est);
   lyap_free(&L);

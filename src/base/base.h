@@ -228,9 +228,11 @@ struct dal_state {
   void (*integ_free)(void *);
   dal_solve_opts integ_opts;
   dal_stats stats;
-  dal_init_report init_rep;  // the last consistent start's report (init.c)
-  int init_rep_valid;        // init_rep holds a report
-  struct dal_events *events; // attached event set (borrowed; events.h)
+  dal_init_report init_rep;         // the last consistent start's report (init.c)
+  int init_rep_valid;               // init_rep holds a report
+  struct dal_events *events;        // attached event set (borrowed; events.h)
+  const struct dal_first_order *fo; // a first-order problem run on this work state by the
+                                    // integrators (integrate.h: dal__ode_create_fo), or NULL
   int lazy;    // a callback holds the state at an output time, not yet evaluated: the public
                // accessors evaluate it on first use (dal__lazy_eval)
   int lazy_rc; // status of that evaluation when it failed (the driver then stops the run)

@@ -128,10 +128,12 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
   X(method)                                                                                        \
   X(form)                                                                                          \
   X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step) X(max_steps) X(baumgarte_alpha)    \
-      X(baumgarte_beta) X(project) X(sparse_threshold) X(fixed_erk) X(work) X(init_max_move)
+      X(baumgarte_beta) X(project) X(sparse_threshold) X(fixed_erk) X(work) X(init_max_move)       \
+          X(no_fallback)
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)
 // a new field changes the size: add it to DAL_OPTS_FIELDS, then update this check
-_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) == 112 && sizeof(dal_solve_opts) == 112,
+// (4 bytes of padding follow no_fallback)
+_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) + 4 == 120 && sizeof(dal_solve_opts) == 120,
                "dal_solve_opts changed: list every field in DAL_OPTS_FIELDS");
 
 dal_solve_opts dal__effective_opts(const dal_solve_opts *o) {

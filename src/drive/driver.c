@@ -20,9 +20,11 @@ typedef struct dal_integ_handle {
   int kind;
   dal_ode_integ *ode;
   void *ida;
-  double *yi; // dense output of the ODE route (ny)
-  double t;   // time of the state when last handed back
-  double *qq; // (q, qdot) handed back, to notice changes made outside the integrator
+  double *yi;                // dense output of the ODE route (ny)
+  double t;                  // time of the state when last handed back
+  double *qq;                // (q, qdot) handed back, to notice changes made outside the integrator
+  char note[DAL_ERRMSG_LEN]; // a fallback's note, left in the state's message on success
+  char why[DAL_ERRMSG_LEN];  // IDA's failure message that caused the fallback
 } dal_integ_handle;
 
 static void handle_free(void *p) {
@@ -104,6 +106,35 @@ static int handle_current(const dal_system *sys, const dal_state *st, const dal_
          memcmp(h->qq + n, st->qdot, n * sizeof(double)) == 0;
 }
 
+// notes for the state's message on success (issue: never silent where a request was not
+// honoured as given): a consistent start that moved the coordinates by more than the
+// tolerance asked for, and an IDA tolerance raised to its floor
+static void start_notes(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                        dal_integ_handle *h, const dal_init_report *before, int before_valid) {
+  size_t used = strlen(h->note);
+  const dal_init_report *r = &st->init_rep;
+  if (st->init_rep_valid && r->dq_coord >= 0 &&
+      (!before_valid || memcmp(before, r, sizeof *r) != 0)) {
+    int j = r->dq_coord;
+    double scale = o->atol + o->rtol * fabs(st->q[j]);
+    if (r->dq_max > scale && used < sizeof h->note)
+      used += (size_t)snprintf(
+          h->note + used, sizeof h->note - used,
+          "%snote: the consistent start at t=%.17g moved coordinate '%s' by %.3g (largest "
+          "constraint residual %.3g on '%s'); set opts.init_max_move to refuse such moves "
+          "(dal_state_init_report has the report)",
+          used ? "; " : "", st->t, sys->coord_names[j], r->dq_max, r->phi_before,
+          r->phi_row >= 0 ? sys->con[sys->row_con[r->phi_row]].name : "-");
+  }
+  if (h->kind == KIND_IDA && st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form) &&
+      used < sizeof h->note)
+    snprintf(h->note + used, sizeof h->note - used,
+             "%snote: rtol %g is below what IDA can honour: it ran at the local tolerance %g "
+             "(its floor, dal_stats.rtol_used), so expect errors above rtol; DAL_FORM_AUTO with "
+             "DAL_METHOD_AUTO runs the index-1 form with projection and Bulirsch-Stoer there",
+             used ? "; " : "", o->rtol, st->stats.rtol_used);
+}
+
 // make sure st->integ is an integrator for these options at the state's current point (dense:
 // a monitor reads outputs between the steps, which AUTO takes into account when it creates one)
 static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense) {
@@ -116,6 +147,9 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
   int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
   if (rc) return rc;
   dal_solve_opts oc = *o;
+  // the consistent start's report before this start (to notice a new one)
+  dal_init_report before = st->init_rep;
+  int before_valid = st->init_rep_valid;
   if (tight) {
     // the index-1 form starts from a consistent state too, and projects after every step
     oc.form = DAL_FORM_INDEX1;
@@ -143,10 +177,86 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
     handle_free(h);
     return rc;
   }
+  start_notes(sys, st, o, h, &before, before_valid);
   handle_sync(sys, st, h);
   st->integ = h;
   st->integ_free = handle_free;
   st->integ_opts = *o;
+  st->stats.method_used = meth;
+  st->stats.form_used = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
+                        : prob                       ? DAL_FORM_ODE
+                        : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
+                                                     : o->form;
+  return DAL_OK;
+}
+
+// the fallback ladder's one rung (docs/dae.md): an IDA failure that another formulation can
+// overcome (a Newton iteration that does not converge, a step size collapse at a regular
+// point) restarts from the last accepted step in the index-1 form with projection and
+// Bulirsch-Stoer; the caller's options stay the integrator's key, so that later calls with the
+// same options continue on the fallback
+static int can_fall_back(const dal_solve_opts *o, int rc) {
+  return !o->no_fallback && o->form == DAL_FORM_AUTO && o->method == DAL_METHOD_AUTO &&
+         (rc == DAL_E_CONV || rc == DAL_E_STEP);
+}
+
+static int fall_back(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int cause) {
+  char why[DAL_ERRMSG_LEN];
+  memcpy(why, st->err, sizeof why);
+  double t = st->t;
+  dal__integ_reset(st);
+  dal_solve_opts oc = *o;
+  oc.form = DAL_FORM_INDEX1;
+  oc.project = 1;
+  oc.method = DAL_METHOD_BS;
+  int rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+  if (rc) {
+    // no consistent start there (a singular point): IDA's failure stands, with both reasons;
+    // the state stays at IDA's last accepted step, evaluated
+    // IDA's message up to a clause boundary, then the start's reason
+    size_t cut = strlen(why);
+    if (cut > 300) {
+      cut = 300;
+      while (cut > 0 && !(why[cut - 1] == ';' || why[cut - 1] == ':'))
+        --cut;
+      if (cut > 0) --cut;
+    }
+    char msg[2 * DAL_ERRMSG_LEN];
+    snprintf(msg, sizeof msg, "%.*s; the fallback to the index-1 form could not start there: %s",
+             (int)cut, why, st->err);
+    (void)dal__eval(sys, st, DAL_P_ALL);
+    msg[sizeof st->err - 1] = 0; // cut to the state's message length
+    memcpy(st->err, msg, sizeof st->err);
+    return cause;
+  }
+  dal_integ_handle *h = calloc(1, sizeof *h);
+  if (!h || !(h->qq = calloc(2 * (size_t)sys->n + 1, sizeof(double)))) {
+    free(h);
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the fallback integrator");
+  }
+  h->kind = KIND_ODE;
+  rc = dal__ode_create(sys, st, &oc, DAL_METHOD_BS, &dal__problem_index1, &h->ode);
+  if (!rc && !(h->yi = calloc((size_t)h->ode->ny + 1, sizeof(double))))
+    rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the fallback integrator");
+  if (rc) {
+    handle_free(h);
+    return rc;
+  }
+  memcpy(h->why, why, sizeof why);
+  handle_sync(sys, st, h);
+  st->integ = h;
+  st->integ_free = handle_free;
+  st->integ_opts = *o;
+  st->stats.method_used = DAL_METHOD_BS;
+  st->stats.form_used = DAL_FORM_INDEX1;
+  st->stats.fallbacks++;
+  st->stats.fallback_t = t;
+  st->stats.fallback_cause = cause;
+  snprintf(h->note, sizeof h->note,
+           "note: IDA's GGL form stopped at t=%.17g (%s); the run went on from there in the "
+           "index-1 form with projection and Bulirsch-Stoer (dal_stats.fallbacks; "
+           "opts.no_fallback turns this off). IDA said: %.300s",
+           t, dal_status_name(cause), why);
   return DAL_OK;
 }
 
@@ -346,6 +456,7 @@ static int run_to(run *r, double t1) {
   dal_state *st = r->st;
   int rc = ensure_integ(sys, st, r->o, r->outputs && r->monitor);
   if (rc) return rc;
+again:;
   dal_integ_handle *h = st->integ;
   r->h = h;
   if (t1 == st->t) return evaluate_here(sys, st);
@@ -391,6 +502,23 @@ static int run_to(run *r, double t1) {
     r->h = NULL; // freed with it
     return r->status;
   }
+  if (rc && h->kind == KIND_IDA && can_fall_back(r->o, rc) && st->t < t1) {
+    // the fallback from the last accepted step (its own failure is returned as it is)
+    r->h = NULL;
+    int frc = fall_back(sys, st, r->o, rc);
+    if (frc) return frc;
+    goto again;
+  }
+  if (rc && h->why[0] && rc != DAL__HOOK_STOP) {
+    // the fallback failed too: its reason, and IDA's before it
+    char msg[2 * DAL_ERRMSG_LEN];
+    snprintf(msg, sizeof msg,
+             "%.300s; this run had fallen back from IDA's GGL form, which "
+             "stopped with: %s",
+             st->err, h->why);
+    msg[sizeof st->err - 1] = 0; // cut to the state's message length
+    memcpy(st->err, msg, sizeof st->err);
+  }
   if (rc) {
     // the state holds the last accepted step (or the failing callback's time); the next
     // call restarts the integrator there
@@ -399,6 +527,7 @@ static int run_to(run *r, double t1) {
     return rc;
   }
   st->err[0] = 0;
+  if (h->note[0]) memcpy(st->err, h->note, sizeof st->err);
   handle_sync(sys, st, h);
   return DAL_OK;
 }

@@ -780,16 +780,26 @@ int dal__alg_factor(dal_alg *g, int x) {
   int rest0;
   double c0 = split(g, ts[0], &rest0);
   if (rest0 >= 0) factors(g, rest0, &f0);
-  long gc = 0;
+  // rational coefficients p_i/q over one denominator q <= 64: their gcd(p_i)/q comes out
+  long gc = 0, q = 0;
   int allneg = 1, allint = 1;
+  for (long qq = 1; qq <= 64 && !q; ++qq) {
+    int ok = 1;
+    for (int i = 0; i < nt && ok; ++i) {
+      int rr;
+      double c = split(g, ts[i], &rr) * (double)qq;
+      ok = c == floor(c) && fabs(c) <= 1e9;
+    }
+    if (ok) q = qq;
+  }
   for (int i = 0; i < nt; ++i) {
     int rr;
     double c = split(g, ts[i], &rr);
     if (c >= 0) allneg = 0;
-    if (c != floor(c) || fabs(c) > 1e9)
+    if (!q)
       allint = 0;
     else
-      gc = gcdl(gc, (long)c);
+      gc = gcdl(gc, (long)(c * (double)q));
   }
   (void)c0;
   for (int k = 0; k < f0.n && !g->fail; ++k) {
@@ -817,7 +827,7 @@ int dal__alg_factor(dal_alg *g, int x) {
     }
     if (everywhere) push(g, &common, powk(g, b, emin));
   }
-  double cf = allint && gc > 1 ? (double)gc : 1.0;
+  double cf = allint && gc > 0 && gc != q ? (double)gc / (double)q : 1.0;
   if (allneg) cf = -cf;
   int r;
   if (!common.n && cf == 1.0) {

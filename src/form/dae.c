@@ -140,6 +140,42 @@ double dal__dae_tol_factor(dal_formulation form) {
   }
 }
 
+int dal__dae_row_scales(dal_dae *f, double *sl, double *smu) {
+  const dal_system *sys = f->sys;
+  dal_state *st = f->st;
+  int n = f->n, m = f->m;
+  double *e = calloc(2 * (size_t)n + (size_t)m + 1, sizeof(double));
+  if (!e) return DAL_E_NOMEM;
+  double *col = e + n, *lam = e + 2 * n;
+  // the diagonal of M, a column at a time through the particle Jacobians (once per start)
+  double *md = malloc(((size_t)n + 1) * sizeof(double));
+  if (!md) {
+    free(e);
+    return DAL_E_NOMEM;
+  }
+  for (int j = 0; j < n; ++j) {
+    e[j] = 1.0;
+    dal__mass_apply(sys, st, e, col);
+    e[j] = 0.0;
+    md[j] = col[j];
+  }
+  // each row of G through G' e_r
+  for (int r = 0; r < m; ++r) {
+    lam[r] = 1.0;
+    dal__gt_apply(sys, st, lam, col);
+    lam[r] = 0.0;
+    sl[r] = smu[r] = 0.0;
+    for (int j = 0; j < n; ++j) {
+      double g = fabs(col[j]);
+      smu[r] = fmax(smu[r], g);
+      if (md[j] > 0.0) sl[r] = fmax(sl[r], g / md[j]);
+    }
+  }
+  free(md);
+  free(e);
+  return DAL_OK;
+}
+
 void dal__dae_mask(const dal_dae *f, double *id) {
   // index-3 keeps only q in the error test, the usual practice for the higher-index variables
   // of a BDF code (Brenan, Campbell and Petzold, sec. 5.4): with v in it the steps collapse

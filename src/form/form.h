@@ -50,6 +50,12 @@ int dal__dae_eval(dal_dae *f, double t, const double *y);
 int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, double *F);
 /// Local tolerance factor of a DAE form in IDA (calibrated like the ODE methods' factors).
 double dal__dae_tol_factor(dal_formulation form);
+/// How far one unit of each multiplier moves the differential unknowns per unit of step size,
+/// at the state's current kinematics: sl[r] = max_j |G_rj| / M_jj (v moves by h sl[r] per unit
+/// of lambda_r, from M v' = ... + G' lambda) and smu[r] = max_j |G_rj| (q moves by h smu[r]
+/// per unit of mu_r, from q' = v - G' mu). Both (m); 0 for a row with a zero gradient.
+/// Returns 0 or DAL_E_NOMEM.
+int dal__dae_row_scales(dal_dae *f, double *sl, double *smu);
 /// Error-test mask id (neq): 1 for variables in the error test (q and v; index-3: q only),
 /// 0 for the algebraic ones (lambda, mu).
 void dal__dae_mask(const dal_dae *f, double *id);

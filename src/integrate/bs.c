@@ -632,6 +632,15 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
   return DAL_OK;
 }
 
+// the caller changed y[i0 ..]: their compensations start anew, f at the step's start is
+// evaluated again, and the last step has no dense output any more (the order and step stay)
+static void bs_changed_y(dal_ode_integ *ig, int i0) {
+  bs_mem *m = ig->impl;
+  memset(m->c + i0, 0, (size_t)(ig->ny - i0) * sizeof(double));
+  m->f0_ok = 0;
+  m->cur = -1;
+}
+
 int dal__bs_create(dal_ode_integ *ig) {
   bs_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
@@ -663,6 +672,7 @@ int dal__bs_create(dal_ode_integ *ig) {
   }
   if (!ok) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
   ig->interp = bs_interp;
+  ig->changed_y = bs_changed_y;
   m->cur = -1;
   m->bulirsch = ig->rtol < BS_BULIRSCH_RTOL;
   bs_sequence(m, 0);

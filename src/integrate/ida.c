@@ -30,7 +30,9 @@ typedef struct ida_mem {
   dal_dae f;                    // the formulation (sizes, residual, Newton matrix)
   int n, m, neq, off_l, off_mu; // copies of f's sizes
   int sparse, started;
-  double rtol; // the relative tolerance IDA runs at (calibrated and floored)
+  double rtol;      // the relative tolerance IDA runs at (calibrated and floored)
+  double h0;        // the first step handed to IDA (0 until the first advance)
+  double *sl, *smu; // (m each) how far a unit of lambda_r / mu_r moves v / q per unit step
   SUNContext ctx;
   void *ida;
   N_Vector y, yp, id, atol, w1, w2;
@@ -117,6 +119,52 @@ static int jacobian(double t, double cj, N_Vector yy, N_Vector yp, N_Vector rr, 
   return 0;
 }
 
+// Error weights. q and v (and W): 1 / (rtol |y_i| + atol_i), IDA's own rule. The multipliers
+// are out of the error test but in the Newton convergence test, where IDA weighs them like
+// any unknown. An index-2 multiplier is determined by the iteration only to cj times the
+// rounding of its constraint row: a correction d lambda moves v by h M^-1 G' d lambda and
+// changes the residual G v + phi_t by h G M^-1 G' d lambda, so rounding eps |G v| in that row
+// comes back as d lambda ~ eps |G v| / (h |G M^-1 G'|) (docs/dae.md: 3e-10 at h = 3e-7 on the
+// spherical pendulum, against a weight asking 2e-11). Weighted by its own size the multiplier
+// fails the convergence test from rounding alone, IDA shrinks h, cj grows, and the start
+// collapses. So a multiplier is weighed by what it does to the differential unknowns over
+// the step: d lambda_r is small enough when h sl_r d lambda_r is within v's tolerance (mu_r:
+// h smu_r d mu_r within q's) times DAL_IDA_MULT_SHARE, and never tighter than by its own size
+// (rtol |lambda_r| + atol).
+static int ewt_fn(N_Vector yv, N_Vector ewt, void *data) {
+  ida_mem *w = data;
+  const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(w->atol);
+  double *e = N_VGetArrayPointer(ewt);
+  int n = w->n, m = w->m;
+  double tq = INFINITY, tv = INFINITY;
+  for (int i = 0; i < w->neq; ++i) {
+    double tol = w->rtol * fabs(y[i]) + at[i];
+    if (!(tol > 0.0)) return -1;
+    e[i] = 1.0 / tol;
+    if (i < n)
+      tq = fmin(tq, tol);
+    else if (i < 2 * n)
+      tv = fmin(tv, tol);
+  }
+  if (w->f.form == DAL_FORM_INDEX3 || !w->sl) return 0;
+  double h = 0.0;
+  IDAGetCurrentStep(w->ida, &h);
+  h = fabs(h);
+  if (!(h > 0.0)) h = w->h0;
+  if (!(h > 0.0)) return 0;
+  // the share of v's (q's) tolerance a multiplier's correction may take
+  h /= DAL_IDA_MULT_SHARE;
+  for (int r = 0; r < m; ++r) {
+    int il = w->off_l + r;
+    if (w->sl[r] > 0.0) e[il] = fmin(e[il], w->sl[r] * h / tv);
+    if (w->off_mu >= 0 && w->smu[r] > 0.0) {
+      int im = w->off_mu + r;
+      e[im] = fmin(e[im], w->smu[r] * h / tq);
+    }
+  }
+  return 0;
+}
+
 // ---------------------------------------------------------------------------------------
 
 void dal__ida_free(void *mem) {
@@ -129,6 +177,7 @@ void dal__ida_free(void *mem) {
   for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
     if (vs[i]) N_VDestroy(vs[i]);
   if (w->ctx) SUNContext_Free(&w->ctx);
+  free(w->sl);
   dal__dae_free(&w->f);
   free(w);
 }
@@ -246,6 +295,15 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
       if (w->off_mu >= 0) at[w->off_mu + r] = fmax(atol, sqrt(opts->atol));
     }
   }
+  // the multipliers' reach for their error weights (ewt_fn)
+  if (w->m > 0) {
+    w->sl = malloc(2 * (size_t)w->m * sizeof(double));
+    if (!w->sl || dal__dae_row_scales(&w->f, w->sl, w->sl + w->m)) {
+      rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d constraint rows", w->m);
+      goto fail;
+    }
+    w->smu = w->sl + w->m;
+  }
   load_y(w);
   w->ida = IDACreate(w->ctx);
   if (!w->ida) {
@@ -254,7 +312,7 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   }
   IDA_CHECK(IDASetErrHandlerFn(w->ida, silent_handler, w));
   IDA_CHECK(IDAInit(w->ida, residual, st->t, w->y, w->yp));
-  IDA_CHECK(IDASVtolerances(w->ida, w->rtol, w->atol));
+  IDA_CHECK(IDAWFtolerances(w->ida, ewt_fn));
   IDA_CHECK(IDASetUserData(w->ida, w));
   IDA_CHECK(IDASetId(w->ida, w->id));
   IDA_CHECK(IDASetSuppressAlg(w->ida, SUNTRUE));
@@ -369,11 +427,12 @@ static int map_failure(ida_mem *w, int flag, double tfail) {
   case IDA_NLS_FAIL:
     code = DAL_E_CONV;
     what = "the Newton iteration failed to converge repeatedly";
-    remedy = w->f.form == DAL_FORM_GGL
-                 ? "check the constraints (dal_check_constraints) for near-redundancy or a "
-                   "vanishing gradient near this configuration"
-                 : "check the constraints (dal_check_constraints) for near-redundancy, or use "
-                   "the GGL form";
+    // at a regular point this is no defect of the constraints (docs/dae.md); the rank check
+    // of the consistent start passed
+    remedy = "the index-1 form with projection goes on where IDA stops (the default options "
+             "fall back to it by themselves; asked for explicitly: DAL_FORM_INDEX1 with "
+             "opts.project and an ODE method); if the constraints become nearly dependent "
+             "here, dal_check_constraints names them";
     break;
   case IDA_LINIT_FAIL:
   case IDA_LSETUP_FAIL:
@@ -424,6 +483,7 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
     if (w->opts.hmax > 0 && h0 > w->opts.hmax) h0 = w->opts.hmax;
     if (h0 > fabs(tout - t0)) h0 = fabs(tout - t0);
     IDASetInitStep(w->ida, tout > t0 ? h0 : -h0);
+    w->h0 = h0;
     w->started = 1;
   }
   w->cb_status = 0;

@@ -72,6 +72,10 @@ struct dal_ode_integ {
   /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
   /// last stage of an FSAL method); NULL: evaluated
   int (*end_slope)(dal_ode_integ *ig, double *f);
+  /// the caller changed ig->y[i0 .. ny) at ig->t between advance calls (a reorthonormalized
+  /// tangent): go on from there, the rest of the method's memory kept (the compensation of the
+  /// unchanged components, the step size); NULL: the caller makes a fresh integrator instead
+  void (*changed_y)(dal_ode_integ *ig, int i0);
 };
 
 /// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)
@@ -83,6 +87,34 @@ int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
 /// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
 /// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
 int dal__ode_start_slope(dal_ode_integ *ig);
+
+/// A first-order problem y' = F(t, y) of any size that is not a formulation of the system:
+/// the tangent (Lyapunov) and variational integrations of analysis/ run on the library's ODE
+/// methods through it (GSL's gsl_odeiv2_system). y starts with the trajectory (q, qdot) of the
+/// system (the state follows it in messages and on failure); the rest is the problem's own
+/// (tangent vectors, sensitivities). A constrained tangent plugs in with its own rhs and, where
+/// it has a manifold, a projection.
+typedef struct dal_first_order {
+  int ny;           ///< size of y (>= 2n)
+  const double *y0; ///< y at the start (ny; read at creation)
+  /// f = F(t, y) (ny each); 0, a retry code (DAL__RECOVERABLE, DAL__RETRY_*) or a negative
+  /// status with the work state's message set; may use the work state as scratch
+  int (*rhs)(void *ctx, dal_state *st, double t, const double *y, double *f);
+  /// project y onto the problem's invariant manifold at t, in place (0 or a status); NULL: none
+  int (*project)(void *ctx, dal_state *st, double t, double *y);
+  void *ctx;            ///< passed to rhs and project
+  dal_ode_problem prob; ///< filled by dal__ode_create_fo (the problem the integrator runs)
+} dal_first_order;
+/// the problem that runs st->fo (first_order.c; its ny is set per run)
+extern const dal_ode_problem dal__problem_first_order;
+/// A fresh ODE integrator for method meth (an adaptive ODE method or RK4) on the first-order
+/// problem fo at time st->t: st is a work state the integrator owns while it lives (it keeps a
+/// pointer to fo, whose prob it fills and runs; fo must outlive the integrator). opts: tolerances
+/// (a global target, the method's calibrated factor applied as for dal_advance), h0, hmax,
+/// fixed_step, max_steps; the formulation, work and projection options are ignored (fo->project
+/// runs when set).
+int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                       dal_method meth, const dal_first_order *fo, dal_ode_integ **out);
 
 /// One row per integration method (GSL's gsl_odeiv2_step_type): adding a method is one row
 /// in methods.c and one file. `tol_factor`: the method's local error control runs at

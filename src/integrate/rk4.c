@@ -115,6 +115,12 @@ static int rk4_advance(dal_ode_integ *ig, double tout) {
   return DAL_OK;
 }
 
+// the caller changed y[i0 ..]: their compensations start anew
+static void rk4_changed_y(dal_ode_integ *ig, int i0) {
+  rk4_mem *m = ig->impl;
+  memset(m->c + i0, 0, (size_t)(ig->ny - i0) * sizeof(double));
+}
+
 int dal__rk4_create(dal_ode_integ *ig) {
   rk4_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the RK4 integrator");
@@ -132,5 +138,6 @@ int dal__rk4_create(dal_ode_integ *ig) {
   m->c1 = calloc(ny, sizeof(double));
   if (!m->k1 || !m->k2 || !m->k3 || !m->k4 || !m->yt || !m->y1 || !m->c || !m->c1)
     return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the RK4 integrator");
+  ig->changed_y = rk4_changed_y;
   return DAL_OK;
 }
