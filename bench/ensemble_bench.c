@@ -27,6 +27,7 @@
 #include <time.h>
 
 #include "dalembert/dalembert.h"
+#include "support/scenes.h"
 #ifdef DAL_BENCH_MPI
 #include "dalembert/mpi.h"
 #endif
@@ -34,23 +35,9 @@
 enum { NT = 256 };
 
 static dal_system *driven(void) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int th, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.81};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def(); // a drive of zero amplitude at w = 1
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_W] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default(); // a drive of zero amplitude at w = 1
+  k.w = 1.0;
+  return scn_pendulum(&k);
 }
 
 static int keep(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {

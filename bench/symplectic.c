@@ -26,6 +26,7 @@
 
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "support/scenes.h"
 #include "util.h"
 
 #define PI 3.14159265358979323846
@@ -70,93 +71,33 @@ static dal_system *compile(dal_builder *b, int rc) {
   return sys;
 }
 
+// a standard scene (tests/support), or the end of the run when it cannot be built
+static dal_system *built(dal_system *sys) {
+  if (!sys) exit(1);
+  return sys;
+}
+
+// a unit pendulum (g = 9.8) whose pivot is driven by (ax cos wt, ay cos wt)
 static dal_system *build_pendulum(double ax, double ay, double w) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.8};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def(); // unit length, pivot at the origin driven by (ax, ay)
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AX] = ax;
-  pd.param[DAL_PENDULUM_AY] = ay;
-  pd.param[DAL_PENDULUM_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = 9.8;
+  k.ax = ax;
+  k.ay = ay;
+  k.w = w;
+  return built(scn_pendulum(&k));
 }
 
 static dal_system *build_ring(double w, int cartesian) {
-  dal_builder *b = NULL;
-  int c[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -9.81};
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (cartesian) {
-    const char *nm[3] = {"x", "y", "z"};
-    for (int i = 0; i < 3 && !rc; ++i)
-      rc = dal_builder_add_coord(b, nm[i], &c[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian3;
-    pd.coords = c;
-    pd.ncoords = 3;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def(); // unit radius, centred at the origin
-    cd.name = "ring";
-    cd.prim = &dal_con_turning_circle;
-    cd.parts = &p;
-    cd.nparts = 1;
-    cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
-    cd.param[DAL_TURNING_CIRCLE_W] = w;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  } else {
-    if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
-    dal_place_def pd = dal_default_place_def(); // unit radius
-    pd.prim = &dal_map_ring;
-    pd.coords = c;
-    pd.ncoords = 1;
-    pd.param[DAL_RING_R] = 1.0;
-    pd.param[DAL_RING_W] = w;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  }
-  return compile(b, rc);
+  scn_knobs k = scn_default(); // unit radius, centred at the origin
+  k.spin = w;
+  return built(cartesian ? scn_cart_bead(&k) : scn_bead(&k));
 }
 
 static dal_system *build_double_cartesian(void) {
-  dal_builder *b = NULL;
-  int p[2], c[4], rc = dal_builder_create(2, &b);
-  double grav[2] = {0.0, -9.81};
-  const char *names[4] = {"x1", "y1", "x2", "y2"};
-  if (!rc) rc = dal_builder_add_particle(b, "upper", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "lower", 0.5, &p[1]);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, names[i], &c[i]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.ncoords = 2;
-  pd.coords = c;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd.coords = c + 2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  dal_constraint_def cd = dal_default_constraint_def(); // unit rod to the origin
-  cd.name = "rod1";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p[0];
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd = dal_default_constraint_def();
-  cd.name = "rod2";
-  cd.prim = &dal_con_distance2;
-  cd.parts = p;
-  cd.nparts = 2;
-  cd.param[DAL_DISTANCE_L] = 0.7;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  return compile(b, rc);
+  scn_knobs k = scn_default(); // m2 = 0.5 on l2 = 0.7 below a unit rod to the origin
+  k.m2 = 0.5;
+  k.l2 = 0.7;
+  return built(scn_cart_double_pendulum(&k));
 }
 
 // the period of the bead's oscillation on the ring, from the times theta' turns positive

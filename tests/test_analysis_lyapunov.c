@@ -103,28 +103,12 @@ static dal_system *rotating_trap(const trap *tr) {
 }
 
 static dal_system *hanging_spring(double m, double k, double L, double c) {
-  dal_builder *b = NULL;
-  int q[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.81};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "mass", m, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = q;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  dal_spring_def sd = dal_default_spring_def();
-  sd.a = p;
-  sd.k = k;
-  sd.length = L;
-  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
-  dal_damper_def dd = dal_default_damper_def();
-  dd.a = p;
-  dd.c = c;
-  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs kn = scn_default();
+  kn.m = m;
+  kn.k = k;
+  kn.l = L;
+  kn.c = c;
+  return built(scn_hanging_spring(&kn));
 }
 
 // run dal_lyapunov from (t0, q, qdot); returns its status

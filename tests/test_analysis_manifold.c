@@ -69,6 +69,12 @@ static void cart_pendulum(void) {
   CHECK_CLOSE(qs[1], -l, 1e-13);
   CHECK_CLOSE(lam[0], -G0, 1e-12); // lambda = -T for a rod in tension T = m g
   CHECK(rep.accel <= 1e-12 && rep.unsteady == 0.0);
+  // too few iterations: DAL_E_CONV with the residual in the message, the state at the iterate
+  dal_equilibrium_opts few = dal_default_equilibrium_opts();
+  few.max_iter = 1;
+  CHECK_OK(dal_state_set(sys, st, 0.0, q0, v));
+  rc = dal_equilibrium(sys, st, &few, NULL);
+  CHECK(rc == DAL_E_CONV && strstr(dal_state_errmsg(st), "scaled residual") != NULL);
   // the inverted equilibrium: unstable, omega^2 = -g/l, compression -m g (lambda = +m g)
   double q1[2] = {0.2, 0.8 * l};
   CHECK_OK(dal_state_set(sys, st, 0.0, q1, v));
@@ -489,31 +495,6 @@ static void turning_bead(void) {
 // Lyapunov spectrum on the manifold: the double pendulum (unit masses and rods) released at
 // rest from (2, 2) rad, in Cartesian coordinates and in its angles
 
-static dal_system *dp_angles(void) {
-  dal_builder *b = NULL;
-  int q[2], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "th1", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "th2", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "p1", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "p2", 1.0, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &q[0];
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &q[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return scn_finish(b, rc);
-}
-
 static void lyapunov_manifold(void) {
   const double T = 200.0;
   dal_lyapunov_opts o;
@@ -534,7 +515,7 @@ static void lyapunov_manifold(void) {
   dal_state_destroy(st);
   dal_system_destroy(sys);
   // minimal coordinates
-  sys = dp_angles();
+  sys = scn_double_pendulum(NULL); // unit masses and rods, g = 9.81
   CHECK_OK(dal_state_create(sys, &st));
   double th[2] = {2.0, 2.0}, z[2] = {0, 0};
   CHECK_OK(dal_state_set(sys, st, 0.0, th, z));

@@ -56,28 +56,9 @@ static dal_system *bead(double w) {
 
 // Cartesian bead on the turning circle (three coordinates, two constraint rows)
 static dal_system *cart_bead(double w) {
-  dal_builder *b = NULL;
-  int c[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -G0};
-  const char *nm[3] = {"x", "y", "z"};
-  for (int i = 0; i < 3 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian3;
-  pd.coords = c;
-  pd.ncoords = 3;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "ring";
-  cd.prim = &dal_con_turning_circle;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
-  cd.param[DAL_TURNING_CIRCLE_W] = w;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  return scn_finish(b, rc);
+  scn_knobs k = scn_default();
+  k.spin = w;
+  return scn_cart_bead(&k);
 }
 
 // finding 1: minimal coordinates forced into IDA agree with Bulirsch-Stoer

@@ -25,8 +25,9 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "scenes.h"
 
-#define G0 9.81
+#define G0 SCN_G
 #define PI 3.14159265358979323846
 
 static dal_solve_opts opts_of(dal_formulation f, dal_method m, double tol) {
@@ -56,117 +57,37 @@ static int drive_path(dal_jet t, dal_jet *x, void *ctx) {
 
 /// Cartesian pendulum: one particle (x, y), rod of length l to the pivot (x0, y0) + x(t)
 static dal_system *cart_pendulum(double l, double m, double x0, double y0, dal_moving_point *mp) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = l;
-  cd.param[DAL_ANCHOR_X0] = x0;
-  cd.param[DAL_ANCHOR_Y0] = y0;
-  cd.ctx = mp;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "cart_pendulum: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.l = l;
+  k.m = m;
+  k.x0 = x0;
+  k.y0 = y0;
+  k.pivot = mp;
+  return scn_cart_pendulum(&k);
 }
 
 /// minimal pendulum (theta) about pivot (0, 0) + drive
 static dal_system *min_pendulum(double l, double m, const drive *dr) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int c, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = l;
-  pd.param[DAL_PENDULUM_AX] = dr ? dr->ax : 0;
-  pd.param[DAL_PENDULUM_AY] = dr ? dr->ay : 0;
-  pd.param[DAL_PENDULUM_W] = dr ? dr->w : 0;
-  pd.param[DAL_PENDULUM_PH] = dr ? dr->ph : 0;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "min_pendulum: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.l = l;
+  k.m = m;
+  if (dr) {
+    k.ax = dr->ax;
+    k.ay = dr->ay;
+    k.w = dr->w;
+    k.ph = dr->ph;
+  }
+  return scn_pendulum(&k);
 }
 
 /// double pendulum: minimal (th1, th2) or Cartesian with two rods
 static dal_system *double_pendulum(int dae, double l1, double l2, double m1, double m2) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_particle(b, "upper", m1, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "lower", m2, &p[1]);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!dae) {
-    int th[2];
-    if (!rc) rc = dal_builder_add_coord(b, "th1", &th[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "th2", &th[1]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &th[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = l1;
-    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_hanging;
-    pd.parent = p[0];
-    pd.coords = &th[1];
-    pd.ncoords = 1;
-    pd.param[DAL_HANGING_L] = l2;
-    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  } else {
-    int c[4];
-    const char *nm[4] = {"x1", "y1", "x2", "y2"};
-    for (int i = 0; i < 4 && !rc; ++i)
-      rc = dal_builder_add_coord(b, nm[i], &c[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-    pd.coords = c + 2;
-    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod1";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &p[0];
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = l1;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-    cd = dal_default_constraint_def();
-    cd.name = "rod2";
-    cd.prim = &dal_con_distance2;
-    cd.parts = p;
-    cd.nparts = 2;
-    cd.param[DAL_DISTANCE_L] = l2;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  }
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "double_pendulum: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.l = l1;
+  k.l2 = l2;
+  k.m = m1;
+  k.m2 = m2;
+  return dae ? scn_cart_double_pendulum(&k) : scn_double_pendulum(&k);
 }
 
 /// planar chain of N unit masses joined by rods of length 1, the first to the origin

@@ -263,39 +263,9 @@ static dal_system *make_spherical(int cartesian) {
 // bead on a ring of radius 1 turning at w about the vertical: minimal (dal_map_ring) or
 // Cartesian on dal_con_turning_circle
 static dal_system *make_ring(double w, int cartesian) {
-  dal_builder *b = NULL;
-  int c[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -9.81};
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (cartesian) {
-    const char *nm[3] = {"x", "y", "z"};
-    for (int i = 0; i < 3 && !rc; ++i)
-      rc = dal_builder_add_coord(b, nm[i], &c[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian3;
-    pd.coords = c;
-    pd.ncoords = 3;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "ring";
-    cd.prim = &dal_con_turning_circle;
-    cd.parts = &p;
-    cd.nparts = 1;
-    cd.param[DAL_TURNING_CIRCLE_R] = 1.0;
-    cd.param[DAL_TURNING_CIRCLE_W] = w;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  } else {
-    if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_ring;
-    pd.coords = c;
-    pd.ncoords = 1;
-    pd.param[DAL_RING_R] = 1.0;
-    pd.param[DAL_RING_W] = w;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  }
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.spin = w;
+  return built(cartesian ? scn_cart_bead(&k) : scn_bead(&k));
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 /// @file
-/// @brief Expressions: formulas compiled to jet programs, usable as primitives and callbacks, and the
-/// same formulas differentiated, simplified and printed.
+/// @brief Expressions: formulas compiled to jet programs, usable as primitives and callbacks, and
+/// the same formulas differentiated, simplified and printed.
 ///
 /// A dal_expr is a vector of formulas over named inputs (coordinates, particle positions, and
 /// with `velocities` their velocities named input + "dot"), the time `t` and named parameters:

@@ -4,6 +4,7 @@
 //   c(q, 0) - Q(q) - G(q)' lambda = 0,   phi(q, t) = 0
 // in (q, lambda) with its exact Jacobian [K - sum lambda_i Hess phi_i, -G'; G, 0] from the
 // tangent (jets), the multipliers at the solution being the static loads.
+#include <float.h>
 #include <lapacke.h>
 #include <math.h>
 #include <stdio.h>
@@ -12,11 +13,47 @@
 
 #include "analysis.h"
 
+// the residual (R - G' lambda; phi) at qdot = qddot = 0 scaled as dal_equilibrium scales its
+// own (equilibrium.c): each coordinate's by the forces that make it (sqrt(M_jj) sum_k |F_k| /
+// sqrt(m_k), the change of a unit move sum_i |K_ji|, the constraint forces sum_r |G_rj lambda_r|),
+// each constraint row's by the change of a unit move sum_j |G_rj| (1 + max |q|)
+static double scaled_residual(const dal_system *sys, const dal_state *st, const dal_tangent *tg,
+                              const double *lam) {
+  int n = sys->n, m = sys->m, d = sys->dim;
+  double fs = 0.0, worst = 0.0, qmax = 0.0;
+  for (int k = 0; k < sys->N; ++k) {
+    double f2 = 0.0, mk = st->prm.mass[k];
+    for (int a = 0; a < d; ++a)
+      f2 += st->F[k * d + a] * st->F[k * d + a];
+    if (mk > 0) fs += sqrt(f2 / mk);
+  }
+  for (int j = 0; j < n; ++j) {
+    double sc = sqrt(fabs(tg->M[(size_t)j * n + j])) * fs;
+    for (int i = 0; i < n; ++i)
+      sc += fabs(tg->Rq[(size_t)i * n + j]);
+    for (int r = 0; r < m; ++r)
+      sc += fabs(tg->G[(size_t)j * m + r] * lam[r]);
+    double x = fabs(tg->res[j]);
+    if (x > 0) worst = fmax(worst, sc > 0 ? x / sc : INFINITY);
+    if (!isfinite(x)) worst = INFINITY;
+    qmax = fmax(qmax, fabs(st->q[j]));
+  }
+  for (int r = 0; r < m; ++r) {
+    double sc = 0.0, x = fabs(tg->cres[r]);
+    for (int j = 0; j < n; ++j)
+      sc += fabs(tg->G[(size_t)j * m + r]);
+    sc *= 1.0 + qmax;
+    if (x > 0) worst = fmax(worst, sc > 0 ? x / sc : INFINITY);
+    if (!isfinite(x)) worst = INFINITY;
+  }
+  return worst;
+}
+
 int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                               dal_equilibrium_report *rep) {
   int n = sys->n, m = sys->m, nk = n + m, rc;
   size_t sn = (size_t)n, snk = (size_t)nk;
-  double t = st->t, step = INFINITY;
+  double t = st->t, step = INFINITY, reach = 0.0, res = INFINITY;
   dal_tangent *tg = NULL;
   double *buf = calloc(snk * snk + 2 * snk + 2 * sn + 2 * (size_t)m + 1, sizeof(double));
   lapack_int *ipiv = calloc(snk, sizeof(lapack_int));
@@ -28,6 +65,11 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
   double *J = buf, *x = J + snk * snk, *q = x + snk, *zero = q + sn, *lam = zero + sn;
   double *ftbuf = NULL; // 2n: df/dt at the solution
   memcpy(q, st->q, sn * sizeof(double));
+  // the same neighbourhood and residual test as dal_equilibrium (equilibrium.c)
+  for (int i = 0; i < n; ++i)
+    reach = fmax(reach, fabs(q[i]));
+  reach = 1e4 * (1.0 + reach);
+  double res_tol = fmax(o->xtol, 1024.0 * DBL_EPSILON);
   dal_equilibrium_report r = {0, 0.0, 0.0, 0.0};
   // the multipliers start from the KKT solution at (q, 0)
   if ((rc = dal__analysis_eval(sys, st, t, q, zero)) != 0) goto done;
@@ -37,15 +79,18 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
   for (int it = 1;; ++it) {
     if (it > 1 && (rc = dal__analysis_eval(sys, st, t, q, zero)) != 0) goto done;
     if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) goto done;
-    if (step <= 0.0) break; // the last step was below xtol: converged at this evaluation
+    // converged: the last step was below xtol and the scaled residual is small here
+    res = scaled_residual(sys, st, tg, lam);
+    if (step <= 0.0 && res <= res_tol) break;
     if (it > o->max_iter) {
       char qs[256];
       dal__fmt_q(sys, st->q, qs, sizeof qs);
       rc = DAL_FAIL(st, DAL_E_CONV,
                     "equilibrium: Newton on the constraint manifold did not converge in %d "
-                    "iterations at t=%.17g (last step %.3g, now at %s); start closer to the "
-                    "equilibrium, bound the step (max_step) or raise max_iter",
-                    o->max_iter, t, r.step, qs);
+                    "iterations at t=%.17g (last step %.3g, scaled residual %.3g against %.3g, "
+                    "now at %s); start closer to the equilibrium, bound the step (max_step) or "
+                    "raise max_iter",
+                    o->max_iter, t, r.step, res, res_tol, qs);
       goto done;
     }
     // [K_full -G'; G 0] (dq; dlambda) = -(R - G' lambda; phi) at qdot = 0, qddot = 0
@@ -90,6 +135,20 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
       goto done;
     }
     double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
+    // a step that leaves the start's neighbourhood lands on no equilibrium the start was
+    // meant for (the Newton matrix is nearly singular there)
+    for (int i = 0; i < n; ++i)
+      if (!(fabs(q[i] + f * x[i]) <= reach)) {
+        char qs[256];
+        dal__fmt_q(sys, st->q, qs, sizeof qs);
+        rc = DAL_FAIL(st, DAL_E_CONV,
+                      "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
+                      "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the Newton "
+                      "matrix on the constraint manifold is nearly singular there; start closer "
+                      "to the equilibrium or bound the step (max_step)",
+                      t, qs, sys->coord_names[i], q[i] + f * x[i], reach);
+        goto done;
+      }
     for (int i = 0; i < n; ++i) {
       q[i] += f * x[i];
       conv = fmax(conv, fabs(f * x[i]) / (1.0 + fabs(q[i])));

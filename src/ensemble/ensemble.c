@@ -193,9 +193,9 @@ static int sweep_fail(char *buf, size_t len, int code, const char *fmt, ...) {
 }
 #define SFAIL(code, ...) sweep_fail(errmsg, errlen, (code), __VA_ARGS__)
 
-int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_opts *o,
-                  dal_sweep_out *out, char *errmsg, size_t errlen) {
-  if (errmsg && errlen) errmsg[0] = 0;
+// the sweep's arguments and options, each refusal naming the field
+static int check_sweep(const dal_system *sys, const dal_sweep *sw, const dal_sweep_opts *o,
+                       const dal_sweep_out *out, char *errmsg, size_t errlen) {
   if (!sys || !sw || !o || !out)
     return SFAIL(DAL_E_ARG, "sweep: system, sweep, options or out is NULL");
   if (o->cookie != DAL_SWEEP_COOKIE)
@@ -233,6 +233,81 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
     if (dal_param_check(sys, &sw->params[j], m, sizeof m))
       return SFAIL(DAL_E_ARG, "sweep parameter %d: %s", j, m);
   }
+  return DAL_OK;
+}
+
+// the work list: this part's trajectories in index order, each marked as not run until it runs
+// (what a cancelled sweep leaves); p->count its length
+static int work_list(pool *p, char *errmsg, size_t errlen) {
+  const dal_sweep *sw = p->sw;
+  const dal_sweep_opts *o = p->o;
+  dal_sweep_out *out = p->out;
+  long count = 0;
+  for (long i = 0; i < sw->ntraj; ++i)
+    count += dal_sweep_part_of(i, o->nparts, o->part_block) == o->part;
+  p->idx = malloc((size_t)(count ? count : 1) * sizeof(long));
+  if (!p->idx) return SFAIL(DAL_E_NOMEM, "sweep: out of memory");
+  count = 0;
+  for (long i = 0; i < sw->ntraj; ++i)
+    if (dal_sweep_part_of(i, o->nparts, o->part_block) == o->part) p->idx[count++] = i;
+  p->count = count;
+  for (long pos = 0; pos < count; ++pos) {
+    long i = p->idx[pos];
+    for (int k = 0; k < sw->nresult; ++k)
+      out->results[(size_t)i * (size_t)sw->nresult + k] = NAN;
+    record(p, i, DAL_E_CALLBACK, "not run: the sweep was cancelled");
+  }
+  return DAL_OK;
+}
+
+// the workers' states and data (a failure leaves what was created for the caller to free)
+static int create_workers(pool *p, worker *ws, char *errmsg, size_t errlen) {
+  const dal_sweep_opts *o = p->o;
+  int rc = DAL_OK;
+  for (int w = 0; w < p->nthreads && !rc; ++w) {
+    ws[w].p = p;
+    ws[w].id = w;
+    rc = dal_state_create(p->sys, &ws[w].st);
+    if (rc) return SFAIL(rc, "sweep: out of memory creating the state of worker %d", w);
+    if (o->worker_create) {
+      rc = o->worker_create(p->sys, w, o->worker_ctx, &ws[w].data);
+      if (rc)
+        SFAIL(rc < 0 ? rc : DAL_E_CALLBACK, "sweep: worker_create of worker %d returned %d", w, rc);
+      if (rc > 0) rc = DAL_E_CALLBACK;
+    }
+  }
+  return rc;
+}
+
+// run the workers: the caller is worker 0; a thread that cannot start leaves its share to the
+// others
+static int run_workers(pool *p, worker *ws, char *errmsg, size_t errlen) {
+  int nthreads = p->nthreads;
+  if (pthread_mutex_init(&p->lock, NULL) != 0)
+    return SFAIL(DAL_E_NOMEM, "sweep: could not initialize a mutex");
+  for (int w = 1; w < nthreads; ++w)
+    ws[w].started = pthread_create(&ws[w].thread, NULL, work, &ws[w]) == 0;
+  work(&ws[0]);
+  // a static block whose thread did not start is run by the caller (dynamic: already done)
+  for (int w = 1; w < nthreads; ++w)
+    if (!ws[w].started) work(&ws[w]);
+  for (int w = 1; w < nthreads; ++w)
+    if (ws[w].started) pthread_join(ws[w].thread, NULL);
+  pthread_mutex_destroy(&p->lock);
+  p->out->nrun = p->done;
+  p->out->nfailed = p->failed;
+  if (p->cancelled)
+    return SFAIL(DAL_E_CALLBACK,
+                 "sweep: cancelled by the progress callback after %ld of %ld trajectories", p->done,
+                 p->count);
+  return DAL_OK;
+}
+
+int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_opts *o,
+                  dal_sweep_out *out, char *errmsg, size_t errlen) {
+  if (errmsg && errlen) errmsg[0] = 0;
+  int rc = check_sweep(sys, sw, o, out, errmsg, errlen);
+  if (rc) return rc;
   int nthreads = o->nthreads;
   if (nthreads == 0) {
     long np = sysconf(_SC_NPROCESSORS_ONLN);
@@ -241,70 +316,17 @@ int dal_sweep_run(const dal_system *sys, const dal_sweep *sw, const dal_sweep_op
 
   // the work list: this part's trajectories in index order
   pool p = {.sys = sys, .sw = sw, .o = o, .out = out};
-  long count = 0;
-  for (long i = 0; i < sw->ntraj; ++i)
-    count += dal_sweep_part_of(i, o->nparts, o->part_block) == o->part;
-  p.idx = malloc((size_t)(count ? count : 1) * sizeof(long));
-  if (!p.idx) return SFAIL(DAL_E_NOMEM, "sweep: out of memory");
-  count = 0;
-  for (long i = 0; i < sw->ntraj; ++i)
-    if (dal_sweep_part_of(i, o->nparts, o->part_block) == o->part) p.idx[count++] = i;
-  p.count = count;
-  // until it runs, a trajectory reads as not run (what a cancelled sweep leaves)
-  for (long pos = 0; pos < count; ++pos) {
-    long i = p.idx[pos];
-    for (int k = 0; k < sw->nresult; ++k)
-      out->results[(size_t)i * (size_t)sw->nresult + k] = NAN;
-    record(&p, i, DAL_E_CALLBACK, "not run: the sweep was cancelled");
-  }
-  if (nthreads > count) nthreads = count > 0 ? (int)count : 1;
+  rc = work_list(&p, errmsg, errlen);
+  if (rc) return rc;
+  if (nthreads > p.count) nthreads = p.count > 0 ? (int)p.count : 1;
   p.nthreads = nthreads;
   out->nfailed = 0;
   out->nrun = 0;
 
   // workers: one state each, created here so that a failure runs nothing
   worker *ws = calloc((size_t)nthreads, sizeof(worker));
-  int rc = ws ? DAL_OK : DAL_E_NOMEM;
-  if (rc) SFAIL(rc, "sweep: out of memory");
-  for (int w = 0; w < nthreads && !rc; ++w) {
-    ws[w].p = &p;
-    ws[w].id = w;
-    rc = dal_state_create(sys, &ws[w].st);
-    if (rc) {
-      SFAIL(rc, "sweep: out of memory creating the state of worker %d", w);
-      break;
-    }
-    if (o->worker_create) {
-      rc = o->worker_create(sys, w, o->worker_ctx, &ws[w].data);
-      if (rc)
-        SFAIL(rc < 0 ? rc : DAL_E_CALLBACK, "sweep: worker_create of worker %d returned %d", w, rc);
-      if (rc > 0) rc = DAL_E_CALLBACK;
-    }
-  }
-  if (!rc && pthread_mutex_init(&p.lock, NULL) != 0) {
-    rc = DAL_E_NOMEM;
-    SFAIL(rc, "sweep: could not initialize a mutex");
-  }
-  if (!rc) {
-    // the caller is worker 0; a thread that cannot start leaves its share to the others
-    for (int w = 1; w < nthreads; ++w)
-      ws[w].started = pthread_create(&ws[w].thread, NULL, work, &ws[w]) == 0;
-    work(&ws[0]);
-    // a static block whose thread did not start is run by the caller (dynamic: already done)
-    for (int w = 1; w < nthreads; ++w)
-      if (!ws[w].started) work(&ws[w]);
-    for (int w = 1; w < nthreads; ++w)
-      if (ws[w].started) pthread_join(ws[w].thread, NULL);
-    pthread_mutex_destroy(&p.lock);
-    long ran = p.done;
-    out->nrun = ran;
-    out->nfailed = p.failed;
-    if (p.cancelled) {
-      rc = DAL_E_CALLBACK;
-      SFAIL(rc, "sweep: cancelled by the progress callback after %ld of %ld trajectories", ran,
-            count);
-    }
-  }
+  rc = ws ? create_workers(&p, ws, errmsg, errlen) : SFAIL(DAL_E_NOMEM, "sweep: out of memory");
+  if (!rc) rc = run_workers(&p, ws, errmsg, errlen);
   for (int w = 0; ws && w < nthreads; ++w) {
     if (o->worker_destroy && ws[w].data) o->worker_destroy(ws[w].data, o->worker_ctx);
     dal_state_destroy(ws[w].st);

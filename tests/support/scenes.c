@@ -55,6 +55,9 @@ static int swing(dal_builder *b, const scn_knobs *k, const char *name, double m,
     pd.param[DAL_PENDULUM_AX] = k->ax;
     pd.param[DAL_PENDULUM_AY] = k->ay;
     pd.param[DAL_PENDULUM_W] = k->w;
+    pd.param[DAL_PENDULUM_PH] = k->ph;
+    pd.param[DAL_PENDULUM_X0] = k->x0;
+    pd.param[DAL_PENDULUM_Y0] = k->y0;
   } else {
     pd.prim = &dal_map_hanging;
     pd.parent = parent;
@@ -79,8 +82,7 @@ static int free_particle(dal_builder *b, const char *name, double m, const char 
 }
 
 // a rod `name` of length l: to the (moving) anchor when b2 < 0, else between a and b2
-static int rod(dal_builder *b, const char *name, int a, int b2, double l,
-               const dal_moving_point *pivot) {
+static int rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k) {
   int parts[2] = {a, b2};
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = name;
@@ -89,7 +91,9 @@ static int rod(dal_builder *b, const char *name, int a, int b2, double l,
     cd.prim = &dal_con_anchor2;
     cd.nparts = 1;
     cd.param[DAL_ANCHOR_L] = l;
-    cd.ctx = (void *)pivot;
+    cd.param[DAL_ANCHOR_X0] = k->x0;
+    cd.param[DAL_ANCHOR_Y0] = k->y0;
+    cd.ctx = (void *)k->pivot;
   } else {
     cd.prim = &dal_con_distance2;
     cd.nparts = 2;
@@ -111,7 +115,7 @@ dal_system *scn_cart_pendulum(const scn_knobs *k) {
   dal_builder *b = NULL;
   int p, rc = start(k, 2, &b);
   if (!rc) rc = free_particle(b, "bob", k->m, "x", "y", &p);
-  if (!rc) rc = rod(b, "rod", p, -1, k->l, k->pivot);
+  if (!rc) rc = rod(b, "rod", p, -1, k->l, k);
   return scn_finish(b, rc);
 }
 
@@ -130,8 +134,8 @@ dal_system *scn_cart_double_pendulum(const scn_knobs *k) {
   int p[2], rc = start(k, 2, &b);
   if (!rc) rc = free_particle(b, "upper", k->m, "x1", "y1", &p[0]);
   if (!rc) rc = free_particle(b, "lower", k->m2, "x2", "y2", &p[1]);
-  if (!rc) rc = rod(b, "rod1", p[0], -1, k->l, k->pivot);
-  if (!rc) rc = rod(b, "rod2", p[0], p[1], k->l2, NULL);
+  if (!rc) rc = rod(b, "rod1", p[0], -1, k->l, k);
+  if (!rc) rc = rod(b, "rod2", p[0], p[1], k->l2, k);
   return scn_finish(b, rc);
 }
 
@@ -151,6 +155,30 @@ dal_system *scn_bead(const scn_knobs *k) {
   return scn_finish(b, rc);
 }
 
+dal_system *scn_cart_bead(const scn_knobs *k) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int c[3], p, rc = start(k, 3, &b);
+  const char *nm[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(b, nm[i], &c[i]);
+  if (!rc) rc = dal_builder_add_particle(b, "bead", k->m, &p);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian3;
+  pd.coords = c;
+  pd.ncoords = 3;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_turning_circle;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_TURNING_CIRCLE_R] = k->R;
+  cd.param[DAL_TURNING_CIRCLE_W] = k->spin;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  return scn_finish(b, rc);
+}
+
 dal_system *scn_oscillator(const scn_knobs *k) {
   KNOBS(k);
   scn_knobs free = *k;
@@ -162,6 +190,23 @@ dal_system *scn_oscillator(const scn_knobs *k) {
   sd.a = p;
   sd.k = k->k;
   if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  return scn_finish(b, rc);
+}
+
+dal_system *scn_hanging_spring(const scn_knobs *k) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int p, rc = start(k, 2, &b);
+  if (!rc) rc = free_particle(b, "bob", k->m, "x", "y", &p);
+  dal_spring_def sd = dal_default_spring_def();
+  sd.a = p;
+  sd.k = k->k;
+  sd.length = k->l;
+  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
+  dal_damper_def dd = dal_default_damper_def();
+  dd.a = p;
+  dd.c = k->c;
+  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   return scn_finish(b, rc);
 }
 
@@ -190,7 +235,7 @@ dal_system *scn_cart_chain(const scn_knobs *k) {
     snprintf(r, sizeof r, "rod%d", i);
     int p;
     rc = free_particle(b, name, k->m, x, y, &p);
-    if (!rc) rc = rod(b, r, i == 0 ? p : prev, i == 0 ? -1 : p, k->l, k->pivot);
+    if (!rc) rc = rod(b, r, i == 0 ? p : prev, i == 0 ? -1 : p, k->l, k);
     prev = p;
   }
   return scn_finish(b, rc);

@@ -19,18 +19,21 @@
 
 /// The knobs of the standard scenes. Start from scn_default() and change what the test needs.
 typedef struct scn_knobs {
-  double g;               ///< gravity magnitude (m/s^2), default SCN_G
-  double m, m2;           ///< masses of the first and the second particle (every chain
-                          ///< particle: m), default 1
-  double l, l2;           ///< rod lengths (first, second; every chain link: l), default 1
-  double ax, ay, w;       ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
-                          ///< default 0 (fixed)
+  double g;         ///< gravity magnitude (m/s^2), default SCN_G
+  double m, m2;     ///< masses of the first and the second particle (every chain
+                    ///< particle: m), default 1
+  double l, l2;     ///< rod lengths (first, second; every chain link: l), default 1
+  double ax, ay, w; ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
+  double ph;        ///< phase of that drive (rad), default 0
+  double x0, y0;    ///< the (first) pivot or rod anchor, default the origin
+                    ///< default 0 (fixed)
   const dal_moving_point *pivot; ///< Cartesian scenes: the moving anchor of the first rod,
                                  ///< default NULL (fixed at the origin)
-  double R, spin;         ///< bead: ring radius (default 1) and turning rate (default 0)
-  double k;               ///< oscillator: spring stiffness to the origin, default 1
-  int N;                  ///< chain: number of particles, default 4
-  dal_dynamics dynamics;  ///< the dynamics route, default DAL_DYNAMICS_AUTO
+  double R, spin;                ///< bead: ring radius (default 1) and turning rate (default 0)
+  double k;                      ///< oscillator, hanging spring: stiffness, default 1
+  double c;                      ///< hanging spring: damping coefficient, default 0
+  int N;                         ///< chain: number of particles, default 4
+  dal_dynamics dynamics;         ///< the dynamics route, default DAL_DYNAMICS_AUTO
 } scn_knobs;
 
 /// The defaults listed in scn_knobs.
@@ -44,10 +47,10 @@ dal_system *scn_finish(dal_builder *b, int rc);
 // system (NULL after printing the builder's message when it cannot be built).
 
 /// A pendulum in its angle theta from the downward vertical: "bob" (m) on a rod l about the
-/// origin, the pivot driven by (ax, ay, w).
+/// pivot (x0, y0), driven by (ax, ay, w, ph).
 dal_system *scn_pendulum(const scn_knobs *k);
 /// The same circle in Cartesian coordinates (x, y): "bob" on the rod "rod" (dal_con_anchor2,
-/// length l) to the origin, or to k->pivot when set.
+/// length l) to (x0, y0), plus k->pivot's motion when set.
 dal_system *scn_cart_pendulum(const scn_knobs *k);
 /// The double pendulum in its angles theta1, theta2: "upper" (m) on l about the origin (driven
 /// as scn_pendulum), "lower" (m2) hanging from it on l2.
@@ -57,9 +60,15 @@ dal_system *scn_double_pendulum(const scn_knobs *k);
 dal_system *scn_cart_double_pendulum(const scn_knobs *k);
 /// Likharev's bead (m) on a ring of radius R turning at `spin` about the vertical (3D, theta).
 dal_system *scn_bead(const scn_knobs *k);
+/// The same bead in Cartesian coordinates (x, y, z) on the turning circle "ring"
+/// (dal_con_turning_circle, radius R, rate spin; two constraint rows).
+dal_system *scn_cart_bead(const scn_knobs *k);
 /// The 2D isotropic oscillator: "bob" (m) in Cartesian (x, y) on a zero-length spring of
 /// stiffness k to the origin, no gravity.
 dal_system *scn_oscillator(const scn_knobs *k);
+/// A mass hanging on a spring: "bob" (m) in Cartesian (x, y) on a spring of stiffness k and
+/// rest length l to the origin, with a damper c to the origin, under gravity.
+dal_system *scn_hanging_spring(const scn_knobs *k);
 /// A chain of N pendulums in their angles th0 ... : "p0" on l about the origin, each next
 /// hanging from its parent on l.
 dal_system *scn_chain(const scn_knobs *k);
