@@ -213,6 +213,9 @@ static void test_tight_irregular(void) {
       dal_solve_opts o = dal_default_solve_opts();
       o.method = ms[mi];
       o.rtol = tols[j];
+      // the bound below was set with atol = 1e-2 rtol (the default until the AUTO table of
+      // docs/performance.md); with atol = rtol DOPRI5's dense output measures 25 x at 1e-12
+      o.atol = 1e-2 * o.rtol;
       double q = th0, qd = 0, ea = 0, eb = 0;
       // the request honoured: BDF runs a tighter one as 1e-11, and says so in rtol_used
       double honoured = ms[mi] == DAL_METHOD_BDF ? fmax(o.rtol, 1e-11) : o.rtol;

@@ -21,14 +21,21 @@ extern "C" {
 
 /// Integration methods.
 ///
-/// DAL_METHOD_AUTO picks, for the ODE and index-1 forms, by opts.rtol (never a symplectic
-/// method, see below):
-///   rtol > 1e-6: DOPRI5;  1e-12 <= rtol <= 1e-6: Adams;  rtol < 1e-12: Bulirsch-Stoer;
-/// and BDF (IDA) for the GGL and index-3 forms. Measured wall time to t = 10 on a 6-link
-/// pendulum chain (ms, same run): rtol 1e-4: dopri5 2.9, adams 3.0, fehlberg78 7.7, bs 9.8;
-/// 1e-8: bs 18, adams 23, fehlberg78 24, dopri5 30; 1e-12: adams 47, bs 48, fehlberg78 88,
-/// dopri5 255. Below 1e-12 Adams' local tolerance nears rounding and BS is the robust choice
-/// (on a single pendulum BS is fastest from 1e-5 down).
+/// DAL_METHOD_AUTO picks, for the ODE and index-1 forms, by opts.rtol and the number of
+/// coordinates n (never a symplectic method, see below):
+///   n <= 2: Bulirsch-Stoer;
+///   n >= 3: rtol >= 1e-3: DOPRI5;  1e-8 <= rtol < 1e-3: Fehlberg 7(8);  rtol < 1e-8: BS;
+/// except that dal_evolve with a monitor gets DOPRI5 where this says Fehlberg 7(8) (Fehlberg's
+/// dense output is a partial step: 12 right-hand sides per output time, 30-70x a plain
+/// advance with outputs every 0.001; DOPRI5's costs 1.1-1.5x, bench/dense_ir.c). The choice is
+/// made when the integrator is created, and kept while the options stay the same;
+/// and BDF (IDA) for the GGL and index-3 forms. The rule is read off a work-precision table
+/// (bench/auto.sh, docs/performance.md "AUTO"): the instructions each method needs to reach
+/// a position error of 1e-4, 1e-8 and 1e-11 on the pendulum, the bead on the turning ring,
+/// SICM's driven pendulum, the double pendulum, the 2D oscillator and the N-link chain
+/// (N = 1 ... 256), with the default atol. Adams (CVODE) is never the cheapest by more than a
+/// few percent there: its per-step overhead outweighs its fewer evaluations. Stiff problems
+/// want DAL_METHOD_BDF, which AUTO does not detect.
 ///
 /// Tolerances are targets for the global error: each method runs its local error control at
 /// c * rtol, c * atol, calibrated so that the error at t = 10 on the closed-form scenes (the
@@ -207,7 +214,7 @@ typedef struct dal_solve_opts {
   dal_linsol linsol;      ///< linear solver for implicit methods
   double rtol;            ///< relative tolerance, 1e-15 <= rtol < 1, default 1e-8
   double atol;            ///< absolute tolerance (> 0, units of q); 0 (default) follows
-                          ///< rtol: atol = DAL_ATOL_PER_RTOL * rtol (1e-10 at the default
+                          ///< rtol: atol = DAL_ATOL_PER_RTOL * rtol (1e-8 at the default
                           ///< rtol), so setting only rtol tightens both. Set it yourself
                           ///< when coordinates are far from unit scale.
   double h0;              ///< initial step (0: automatic)
@@ -247,11 +254,14 @@ typedef struct dal_solve_opts {
                           ///< failure message names this fallback as the remedy.
 } dal_solve_opts;
 
-/// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default).
-#define DAL_ATOL_PER_RTOL 1e-2
+/// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default). atol = rtol reaches a
+/// given position error with fewer instructions than atol = 1e-2 rtol (the rule before) on
+/// coordinates of unit scale: 0.73 - 1.13 of the cost, median 0.95, over the scenes of the
+/// AUTO table (bench/auto.sh); the tolerance calibration above was measured with atol = rtol.
+#define DAL_ATOL_PER_RTOL 1.0
 
 /// Fill *o with the defaults: AUTO method, AUTO formulation, rtol 1e-8, atol 0 (follows rtol:
-/// 1e-10), no limit on the consistent start's move.
+/// 1e-8), no limit on the consistent start's move.
 DAL_API dal_solve_opts dal_default_solve_opts(void);
 
 /// Short name of a method ("dopri5", "fehlberg78", "bs", "rk4", "adams", "bdf", "variational",

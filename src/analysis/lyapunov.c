@@ -410,7 +410,12 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
   L.so.rtol = o->rtol;
   L.so.atol = o->atol;
   L.so.fixed_step = o->h;
-  L.meth = o->method == DAL_METHOD_AUTO ? dal__auto_method(o->rtol) : o->method;
+  // AUTO here keeps the rule it was validated with (tests/test_analysis_lyapunov.c), not the
+  // ODE rule of solve.h (measured on plain trajectories, not on the augmented tangent system)
+  dal_method am = o->rtol > 1e-6     ? DAL_METHOD_DOPRI5
+                  : o->rtol >= 1e-12 ? DAL_METHOD_ADAMS
+                                     : DAL_METHOD_BS;
+  L.meth = o->method == DAL_METHOD_AUTO ? am : o->method;
 
   // the start: trajectory from the state, tangent vectors orthonormalized
   double t = st->t;

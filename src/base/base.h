@@ -143,6 +143,9 @@ struct dal_system {
   // m x m loop system instead of the KKT matrix; chosen at compile time (system.c)
   int aba;
   int store_J; // compact particle Jacobians are stored (all but large recursive trees)
+  // M couples few coordinates (sum over particles of (coordinates it depends on)^2 at most
+  // DAL_KKT_LOCAL_COUPLING n: Cartesian particles): its KKT matrix goes to KLU at any order
+  int kkt_local;
 };
 
 /// Products of an evaluation at the state's (t, q, qdot). A caller asks dal__eval for the set
@@ -250,6 +253,8 @@ static inline double dal__wrap_pi(double x) {
 /// when the callback reads a product (st->lazy): reading q alone costs nothing; the public
 /// readers call this first (state.c; nothing happens unless st->lazy)
 void dal__lazy_eval(const dal_state *st);
+/// the same for the products p only (DAL_P_*): a reader evaluates what it reads
+void dal__lazy_eval_for(const dal_state *st, unsigned p);
 /// End a callback's hold on a lazily evaluated state: 0, or the status of an evaluation that
 /// failed while the callback read it, with the message "<who> at t=...: evaluating the state
 /// failed: ..." (state.c)
@@ -360,9 +365,11 @@ int dal__solve_unconstrained(const dal_system *sys, dal_state *st);
 int dal__finish(const dal_system *sys, dal_state *st);
 /// st->power = dE/dt = pw[0] + pw[1] + sum_k N_k . drdt_k - lambda . phit (requires OUT, PW)
 void dal__power(const dal_system *sys, dal_state *st);
-/// Lagrangian route: A = d2L/dqdot2 (n x n col-major into A), rhs = dL/dq - X + Q_nc
+/// Lagrangian route: A = d2L/dqdot2 (n x n col-major into A), rhs = dL/dq - X + Q_nc; with
+/// energies, also h (*h_out) and st->en's T, U, T2, T1, T0 (two more evaluations of L;
+/// otherwise *h_out is NaN and st->en is left alone)
 int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
-                          double *h_out);
+                          double *h_out, int energies);
 
 /// M x through the particle Jacobians (requires DAL_P_J) or the dense M (DAL_P_M): y (n) = M x
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y);

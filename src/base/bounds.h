@@ -13,21 +13,42 @@
 
 /// Most constraint rows solved by the m x m loop system on top of the recursion (aba.c: m
 /// recursion solves with unit loads, the m x m matrix G M^-1 G' and its unblocked Cholesky,
-/// O(m N + m^2 + m^3)); with more rows the KKT matrix in all coordinates is used (dense, or
-/// KLU from order DAL_KKT_SPARSE_MIN). Measured in instructions on the Cartesian chain (N
-/// particles with their own coordinates, N rods, index-1 with projection, bench/overhead_ir.sh
-/// routes_ir.csv): loop system / KKT matrix 0.35 at m = 4, 0.45 at 16, 0.47 at 32 and 0.49 at
-/// 64 (dense KKT), 3.7 at 72 and 5.6 at 128 (KKT by KLU): the loop system wins while the
-/// KKT matrix is dense and loses to KLU's O(N) once it is sparse. 32 keeps every system of up
-/// to 32 rows on the loop system and hands larger Cartesian systems to KLU; a tree with a few
-/// loops (the held 64-link chain, m = 1) runs 9.7x faster than through the dense KKT matrix.
+/// O(m N + m^2 + m^3)); with more rows the KKT matrix in all coordinates is used. Which wins
+/// depends on M's coupling. Where M is dense (a tree in minimal coordinates: the held 64-link
+/// chain, m = 1, runs 9.7x faster on the loop system) its KKT matrix is dense too and the loop
+/// system wins at every m measured (0.28 of the dense KKT matrix at m = 4, 0.47 at 64:
+/// routes_ir.csv). Where M couples few coordinates (DAL_KKT_LOCAL_COUPLING: Cartesian
+/// particles) the KKT matrix goes to KLU, which wins from m = 3: on the Cartesian N-link chain
+/// (index-1 with projection, DOPRI5, rtol 1e-6, instructions per step, bench/cliff.sh) loop
+/// system / KKT by KLU is 1.02 at m = 2, 1.10 at 3, 1.35 at 6, 2.05 at 16, 3.0 at 32, 6.9 at
+/// 128 (it was handed the dense KKT matrix from m = 33 to 66: 8.7x KLU at m = 64, the cliff
+/// of the old thresholds).
+#ifndef DAL_LOOP_ROWS_MAX
 #define DAL_LOOP_ROWS_MAX 32
+#endif
+#ifndef DAL_LOOP_ROWS_LOCAL_MAX
+#define DAL_LOOP_ROWS_LOCAL_MAX 2
+#endif
 
-/// Smallest KKT order factored sparse (KLU) when a dense M exists, and the largest fill
-/// (non-zeros / order^2) for it: measured on the chain, KLU wins from ~200 unknowns when the
-/// matrix is sparse (N = 256: 0.22 s dense -> 0.09 s KLU).
+/// M couples few coordinates when the sum over particles of the square of the number of
+/// coordinates each depends on is at most this many times n (a Cartesian particle in 3D:
+/// 9 for 3 coordinates); such a system's KKT matrix is factored by KLU at any order. Measured
+/// on the Cartesian N-link chain (KKT order 3N, index-1 with projection, instructions per
+/// step): dense (LAPACK dsytrf) / KLU 3.7 at order 6, 4.8 at 24, 6.5 at 96, 8.7 at 192 — the
+/// dense factorization never wins (OpenBLAS' per-call overhead at small orders, O(n^3) at
+/// large ones).
+#define DAL_KKT_LOCAL_COUPLING 3.0
+
+/// Smallest KKT order factored sparse (KLU) for a strongly coupled M (a dense M exists and
+/// the system is not DAL_KKT_LOCAL_COUPLING), and the largest fill (non-zeros / order^2) for
+/// it (N = 256: 0.22 s dense -> 0.09 s KLU; not re-measured: no default route of the
+/// benchmark scenes reaches it).
+#ifndef DAL_KKT_SPARSE_MIN
 #define DAL_KKT_SPARSE_MIN 200
+#endif
+#ifndef DAL_KKT_SPARSE_FILL
 #define DAL_KKT_SPARSE_FILL 0.05
+#endif
 /// Reciprocal condition number below which a KKT matrix counts as singular.
 #define DAL_KKT_RCOND_MIN 1e-14
 
@@ -45,6 +66,15 @@
 /// Debian packages it is compiled without optimization, which moves the crossover down; with
 /// an optimized one KLU still wins well below 192 unknowns.
 #define DAL_SPARSE_THRESHOLD 12
+
+/// DAL_METHOD_AUTO for the ODE and index-1 forms (integrate/methods.c, solve.h): Bulirsch-Stoer
+/// for systems of at most DAL_AUTO_SMALL_N coordinates; otherwise DOPRI5 from rtol
+/// DAL_AUTO_LOOSE_RTOL up, Fehlberg 7(8) down to DAL_AUTO_TIGHT_RTOL, Bulirsch-Stoer below.
+/// Read off the work-precision table of bench/auto.sh (instructions to reach an error band
+/// on the seed scenes and the chain, N = 1 ... 256; docs/performance.md "AUTO").
+#define DAL_AUTO_SMALL_N 2
+#define DAL_AUTO_LOOSE_RTOL 1e-3
+#define DAL_AUTO_TIGHT_RTOL 1e-8
 
 /// Smallest local relative tolerance handed to any integrator: below it the error
 /// estimates are dominated by rounding and the step size collapses.

@@ -13,7 +13,7 @@ int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   if (!c || !c->fp)
     return DAL_FAIL_C(st, DAL_E_ARG, "csv_monitor: ctx must be a dal_csv with an open stream");
   // a row holds the state's energies: they must be current at its (t, q, qdot)
-  dal__lazy_eval(st);
+  dal__lazy_eval_for(st, DAL_P_DYN | (sys->m ? DAL_P_OUT : 0u));
   if (!(st->have & DAL_P_DYN))
     return DAL_FAIL_C(st, DAL_E_STATE,
                       "csv_monitor: the state is not evaluated at t=%.17g; call dal_forward "

@@ -39,8 +39,8 @@ static void handle_free(void *p) {
 
 // resolve formulation and method; *prob is NULL for the IDA route; *tight is set when AUTO
 // chose the index-1 form with projection because IDA cannot honour the tolerance (solve.h)
-static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method *meth,
-                   const dal_ode_problem **prob, int *tight) {
+static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
+                   dal_method *meth, const dal_ode_problem **prob, int *tight) {
   dal_formulation form = o->form;
   dal_method m = o->method;
   *tight = 0;
@@ -85,7 +85,7 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
     *prob = NULL;
     return DAL_OK;
   }
-  if (m == DAL_METHOD_AUTO) m = dal__auto_method(o->rtol);
+  if (m == DAL_METHOD_AUTO) m = dal__auto_method(o->rtol, sys->n, dense);
   *meth = m;
   *prob = form == DAL_FORM_INDEX1 ? &dal__problem_index1 : &dal__problem_minimal;
   return DAL_OK;
@@ -135,15 +135,16 @@ static void start_notes(const dal_system *sys, dal_state *st, const dal_solve_op
              used ? "; " : "", o->rtol, st->stats.rtol_used);
 }
 
-// make sure st->integ is an integrator for these options at the state's current point
-static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_opts *o) {
+// make sure st->integ is an integrator for these options at the state's current point (dense:
+// a monitor reads outputs between the steps, which AUTO takes into account when it creates one)
+static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense) {
   dal_integ_handle *h = st->integ;
   if (h && dal__same_opts(o, &st->integ_opts) && handle_current(sys, st, h)) return DAL_OK;
   dal__integ_reset(st);
   dal_method meth = DAL_METHOD_AUTO;
   const dal_ode_problem *prob = NULL;
   int tight = 0;
-  int rc = resolve(sys, st, o, &meth, &prob, &tight);
+  int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
   if (rc) return rc;
   dal_solve_opts oc = *o;
   // the consistent start's report before this start (to notice a new one)
@@ -453,7 +454,7 @@ static int after_step(void *p) {
 static int run_to(run *r, double t1) {
   const dal_system *sys = r->sys;
   dal_state *st = r->st;
-  int rc = ensure_integ(sys, st, r->o);
+  int rc = ensure_integ(sys, st, r->o, r->outputs && r->monitor);
   if (rc) return rc;
 again:;
   dal_integ_handle *h = st->integ;

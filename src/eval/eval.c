@@ -17,12 +17,14 @@
 static int first_nonfinite(const double *x, int n);
 static int accel_nonfinite(const dal_system *sys, dal_state *st, int i, int mult);
 
-// a Lagrangian system: A = d2L/dqdot2 in st->M, qddot, and h = E
-static int eval_lagrangian(const dal_system *sys, dal_state *st) {
+// a Lagrangian system: A = d2L/dqdot2 in st->M, qddot, and h = E unless only the
+// accelerations are asked for (an integrator's right-hand side)
+static int eval_lagrangian(const dal_system *sys, dal_state *st, unsigned need) {
   double h;
-  int rc = dal__lagrangian_terms(sys, st, st->M, st->qddot, &h);
+  int energies = (need & ~(DAL_P_KIN | DAL_P_ACC)) != 0;
+  int rc = dal__lagrangian_terms(sys, st, st->M, st->qddot, &h, energies);
   if (rc) return rc;
-  st->have |= DAL_P_DYN | DAL_P_M | DAL_P_MLOW;
+  st->have |= DAL_P_M | DAL_P_MLOW | (energies ? DAL_P_DYN : 0u);
   int bad = -1;
   if (dal__chol_solve(sys->n, st->M, st->L, st->qddot, &bad)) {
     char qs[256];
@@ -34,10 +36,12 @@ static int eval_lagrangian(const dal_system *sys, dal_state *st) {
   }
   int i = first_nonfinite(st->qddot, sys->n);
   if (i >= 0) return accel_nonfinite(sys, st, i, 0);
+  st->have |= DAL_P_ACC | DAL_P_KIN | DAL_P_J | DAL_P_CON;
+  if (!energies) return DAL_OK;
   // T, U, T2, T1, T0 come from dal__lagrangian_terms (read off L, system.h)
   st->en.E = st->en.T + st->en.U;
   st->en.h = h;
-  st->have |= DAL_P_ACC | DAL_P_OUT | DAL_P_KIN | DAL_P_J | DAL_P_CON;
+  st->have |= DAL_P_OUT;
   return DAL_OK;
 }
 
@@ -144,7 +148,7 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   int m = sys->m, rc;
   st->have = 0;
   if ((rc = check_point(sys, st)) != 0) return rc;
-  if (sys->lag) return eval_lagrangian(sys, st);
+  if (sys->lag) return eval_lagrangian(sys, st, need);
   // accelerations alone on the recursion, with every force on the particles: the forces F are
   // all it reads (aba.c), so Q, c and the energies are skipped (an integrator's right-hand side)
   int lean = sys->aba && m == 0 && !sys->npotq && !sys->ngenforce &&

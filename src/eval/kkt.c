@@ -124,13 +124,15 @@ struct dal_kkt *dal__kkt_create(const dal_system *sys) {
   k->n = sys->n;
   k->m = sys->m;
   k->nk = sys->n + sys->m;
-  // sparse without a dense M, or when the KKT matrix is large and at most 5% full
+  // sparse without a dense M, with an M that couples few coordinates (Cartesian particles:
+  // KLU wins at every order, base/bounds.h), or when the KKT matrix is large and at most 5%
+  // full
   double nnz = 2.0 * sys->g_total + sys->n;
   for (int p = 0; p < sys->N; ++p) {
     double nd = sys->pdep_off[p + 1] - sys->pdep_off[p];
     nnz += nd * nd;
   }
-  k->sparse = !sys->dense_M ||
+  k->sparse = !sys->dense_M || sys->kkt_local ||
               (k->nk >= DAL_KKT_SPARSE_MIN && nnz <= DAL_KKT_SPARSE_FILL * k->nk * (double)k->nk);
   k->cur = -1;
   size_t nk = (size_t)k->nk;

@@ -26,14 +26,14 @@ static int lag_eval(const dal_system *sys, dal_state *st, dal_jet t, dal_jet *L)
                       "or velocities whose products exceed double range)",
                       st->t, qs, big);
     return DAL_FAIL(st, DAL_E_DOMAIN,
-                    "Lagrangian produced a non-finite value or derivative at t=%.17g, %s",
-                    st->t, qs);
+                    "Lagrangian produced a non-finite value or derivative at t=%.17g, %s", st->t,
+                    qs);
   }
   return DAL_OK;
 }
 
 int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
-                          double *h_out) {
+                          double *h_out, int energies) {
   int n = sys->n, rc;
   dal_jet L;
   dal_jet t0 = dal_const(st->t), tw = dal_var(st->t, 1.0);
@@ -63,7 +63,8 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
       A[(size_t)i * n + j] = aij;
     }
   // w = (dq = qdot, dt = 1): W = D2(w), X_i = (D2(e_i^v + w) - A_ii - W) / 2
-  for (int i = 0; i < n; ++i) st->jq[i].d = st->qdot[i];
+  for (int i = 0; i < n; ++i)
+    st->jq[i].d = st->qdot[i];
   rc = lag_eval(sys, st, tw, &L);
   if (rc) return rc;
   double W = L.dd;
@@ -74,7 +75,8 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
     if (rc) return rc;
     rhs[i] = -0.5 * (L.dd - A[(size_t)i * n + i] - W);
   }
-  for (int i = 0; i < n; ++i) st->jq[i].d = 0.0;
+  for (int i = 0; i < n; ++i)
+    st->jq[i].d = 0.0;
   // dL/dq_i by first derivatives
   for (int i = 0; i < n; ++i) {
     st->jq[i].d = 1.0;
@@ -84,17 +86,24 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
     rhs[i] += L.d;
   }
   // energy function h = qdot . dL/dqdot - L in one evaluation along dv = qdot; the second
-  // derivative along the same direction is qdot' A qdot = 2 T2
-  for (int i = 0; i < n; ++i) st->jv[i].d = st->qdot[i];
-  rc = lag_eval(sys, st, t0, &L);
-  if (rc) return rc;
-  *h_out = L.d - L.v;
-  double L1 = L.v, T2 = 0.5 * L.dd, L0 = NAN;
-  {
-    // energies read off L (system.h): L(t, q, 0) in one more evaluation
-    for (int i = 0; i < n; ++i) st->jv[i] = dal_const(0.0);
+  // derivative along the same direction is qdot' A qdot = 2 T2. Two evaluations an
+  // integrator's right-hand side does not read: only when asked for
+  double L1 = NAN, T2 = NAN, L0 = NAN;
+  *h_out = NAN;
+  if (energies) {
+    for (int i = 0; i < n; ++i)
+      st->jv[i].d = st->qdot[i];
     rc = lag_eval(sys, st, t0, &L);
-    for (int i = 0; i < n; ++i) st->jv[i] = dal_const(st->qdot[i]);
+    if (rc) return rc;
+    *h_out = L.d - L.v;
+    L1 = L.v;
+    T2 = 0.5 * L.dd;
+    // energies read off L (system.h): L(t, q, 0) in one more evaluation
+    for (int i = 0; i < n; ++i)
+      st->jv[i] = dal_const(0.0);
+    rc = lag_eval(sys, st, t0, &L);
+    for (int i = 0; i < n; ++i)
+      st->jv[i] = dal_const(st->qdot[i]);
     if (rc) return rc;
     L0 = L.v;
   }
@@ -104,7 +113,9 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
   rc = dal__genforces(sys, st, &U, NULL);
   if (rc) return rc;
   *h_out += U;
-  for (int i = 0; i < n; ++i) rhs[i] += st->Q[i];
+  for (int i = 0; i < n; ++i)
+    rhs[i] += st->Q[i];
+  if (!energies) return DAL_OK;
   st->en.T = L1 - L0;
   st->en.U = U - L0;
   st->en.T2 = T2;

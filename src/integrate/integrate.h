@@ -138,8 +138,9 @@ const dal_method_row *dal__method_row(dal_method m);
 /// local tolerance factor of a method (its row's tol_factor)
 double dal__tol_factor(dal_method m);
 
-/// the automatic method for an ODE formulation by relative tolerance (rule in solve.h)
-dal_method dal__auto_method(double rtol);
+/// the automatic method for an ODE formulation by relative tolerance and number of
+/// coordinates n, and whether a monitor reads dense outputs (rule in solve.h)
+dal_method dal__auto_method(double rtol, int n, int dense);
 /// a fresh ODE integrator for method meth on problem prob at the state's (t, q, qdot), and
 /// its destruction (ode.c)
 int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, dal_method meth,

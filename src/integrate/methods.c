@@ -42,10 +42,14 @@ const char *dal_method_name(dal_method m) {
   return r ? r->name : "unknown";
 }
 
-/// The automatic method for an ODE formulation, by relative tolerance (documented in solve.h):
-/// rtol > 1e-6: DOPRI5; 1e-12 <= rtol <= 1e-6: Adams; rtol < 1e-12: Bulirsch-Stoer.
-dal_method dal__auto_method(double rtol) {
-  if (rtol > 1e-6) return DAL_METHOD_DOPRI5;
-  if (rtol >= 1e-12) return DAL_METHOD_ADAMS;
+/// The automatic method for an ODE formulation, by relative tolerance and number of
+/// coordinates (documented in solve.h; derived from bench/auto.sh's work-precision table):
+/// n <= 2: Bulirsch-Stoer; otherwise rtol >= 1e-3: DOPRI5, 1e-8 <= rtol < 1e-3: Fehlberg 7(8),
+/// rtol < 1e-8: Bulirsch-Stoer; with dense outputs DOPRI5 instead of Fehlberg 7(8), whose
+/// dense output is a partial step of 12 right-hand sides per output time.
+dal_method dal__auto_method(double rtol, int n, int dense) {
+  if (n <= DAL_AUTO_SMALL_N) return DAL_METHOD_BS;
+  if (rtol >= DAL_AUTO_LOOSE_RTOL) return DAL_METHOD_DOPRI5;
+  if (rtol >= DAL_AUTO_TIGHT_RTOL) return dense ? DAL_METHOD_DOPRI5 : DAL_METHOD_FEHLBERG78;
   return DAL_METHOD_BS;
 }

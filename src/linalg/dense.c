@@ -1,15 +1,64 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Dense linear algebra through LAPACKE: Cholesky solves with degenerate-pivot detection.
+// Dense linear algebra: Cholesky solves with degenerate-pivot detection (small orders
+// unblocked, larger ones through LAPACKE).
 #include <lapacke.h>
+#include <math.h>
 #include <string.h>
 
 #include "linalg.h"
 
+// the lower Cholesky factor of A (column-major, lower triangle read) into L, unblocked
+// (Golub-Van Loan, algorithm 4.2.1, column by column); 0, or j + 1 when pivot j is not positive
+static int chol_small(int n, const double *A, double *L) {
+  for (int j = 0; j < n; ++j) {
+    double *lj = L + (size_t)j * n;
+    for (int i = j; i < n; ++i)
+      lj[i] = A[(size_t)j * n + i];
+    // subtract the columns left of j: L(j:n, j) -= L(j:n, k) L(j, k)
+    for (int k = 0; k < j; ++k) {
+      const double *lk = L + (size_t)k * n;
+      double ljk = lk[j];
+      for (int i = j; i < n; ++i)
+        lj[i] -= lk[i] * ljk;
+    }
+    if (!(lj[j] > 0.0)) return j + 1;
+    double d = sqrt(lj[j]), r = 1.0 / d;
+    lj[j] = d;
+    for (int i = j + 1; i < n; ++i)
+      lj[i] *= r;
+  }
+  return 0;
+}
+
+// b := L^-T L^-1 b for the lower factor L
+static void chol_small_solve(int n, const double *L, double *b) {
+  for (int j = 0; j < n; ++j) {
+    const double *lj = L + (size_t)j * n;
+    double x = b[j] / lj[j];
+    b[j] = x;
+    for (int i = j + 1; i < n; ++i)
+      b[i] -= lj[i] * x;
+  }
+  for (int j = n - 1; j >= 0; --j) {
+    const double *lj = L + (size_t)j * n;
+    double x = b[j];
+    for (int i = j + 1; i < n; ++i)
+      x -= lj[i] * b[i];
+    b[j] = x / lj[j];
+  }
+}
+
 int dal__chol_solve(int n, const double *A, double *L, double *b, int *bad) {
-  memcpy(L, A, (size_t)n * (size_t)n * sizeof(double));
-  // the _work variants skip LAPACKE's NaN scan: inputs were checked finite upstream
-  lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', n, L, n);
+  int small = n <= DAL_CHOL_UNBLOCKED_MAX;
+  lapack_int info;
+  if (small) {
+    info = chol_small(n, A, L);
+  } else {
+    memcpy(L, A, (size_t)n * (size_t)n * sizeof(double));
+    // the _work variants skip LAPACKE's NaN scan: inputs were checked finite upstream
+    info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', n, L, n);
+  }
   if (info != 0) {
     *bad = info > 0 ? (int)info - 1 : 0;
     return -1;
@@ -26,6 +75,10 @@ int dal__chol_solve(int n, const double *A, double *L, double *b, int *bad) {
       *bad = i;
       return -1;
     }
+  }
+  if (small) {
+    chol_small_solve(n, L, b);
+    return 0;
   }
   info = LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', n, 1, L, n, b, n);
   if (info != 0) {

@@ -7,6 +7,14 @@
 /// Relative pivot threshold below which a Cholesky pivot counts as degenerate.
 #define DAL_CHOL_RTOL 2.2e-13
 
+/// Largest order factored by the library's own unblocked Cholesky; larger ones go to LAPACK.
+/// OpenBLAS' dpotrf/dpotrs cost about 4000 instructions per call in locks, buffer allocation
+/// and dispatch whatever the order (callgrind, bench/lagrange.c: 8 of the 15 million
+/// instructions of the driven pendulum's Lagrangian route at n = 1).
+#ifndef DAL_CHOL_UNBLOCKED_MAX
+#define DAL_CHOL_UNBLOCKED_MAX 32
+#endif
+
 /// Solve A x = b for symmetric positive definite A (n x n, column-major, not modified) by
 /// Cholesky into the scratch L (n x n). b (n) is overwritten by x. Returns 0, or -1 with
 /// *bad = index of the first degenerate pivot (not positive definite, or a pivot squared

@@ -135,7 +135,7 @@ int dal_forward(const dal_system *sys, dal_state *st) {
 // (st->have); before an evaluation, after dal_state_set and after a failed evaluation the
 // pointer is NULL, never a view of stale or unset values.
 static const double *current(const dal_state *st, unsigned p, const double *x) {
-  dal__lazy_eval(st);
+  dal__lazy_eval_for(st, p);
   return st && (st->have & p) == p ? x : NULL;
 }
 
@@ -149,19 +149,25 @@ int dal__lazy_end(dal_state *st, const char *who) {
   return DAL_FAIL(st, rc, "%s at t=%.17g: evaluating the state failed: %.400s", who, st->t, why);
 }
 
-void dal__lazy_eval(const dal_state *cst) {
+void dal__lazy_eval_for(const dal_state *cst, unsigned p) {
   // the driver's own state, lent to a monitor or event function as const: evaluated on the
-  // first read of a product; on failure the products stay unset (accessors give NULL and the
+  // first read of a product, and only as far as that product needs (reading the energies
+  // costs no accelerations); on failure the products stay unset (accessors give NULL and the
   // message is the state's)
-  if (!cst || !cst->lazy) return;
+  if (!cst || !cst->lazy || cst->lazy_rc) return;
   dal_state *st = (dal_state *)cst;
-  st->lazy = 0;
-  if ((st->have & DAL_P_ALL) != DAL_P_ALL) {
+  if ((st->have & p) != p) {
     // no step can shrink at an output time: a recoverable request is a failure here
-    int rc = dal__public_status(dal__eval(st->sys, st, DAL_P_ALL));
-    if (rc) st->lazy_rc = rc;
+    int rc = dal__public_status(dal__eval(st->sys, st, st->have | p));
+    if (rc) {
+      st->lazy_rc = rc;
+      return;
+    }
   }
+  if ((st->have & DAL_P_ALL) == DAL_P_ALL) st->lazy = 0;
 }
+
+void dal__lazy_eval(const dal_state *cst) { dal__lazy_eval_for(cst, DAL_P_ALL); }
 
 double dal_state_time(const dal_state *st) { return st ? st->t : NAN; }
 const double *dal_state_q(const dal_state *st) { return st ? st->q : NULL; }
@@ -213,7 +219,8 @@ const double *dal_state_phidot(const dal_state *st) {
 int dal_state_energies(const dal_state *st, dal_energies *out) {
   if (!st) return DAL_E_ARG;
   if (!out) return DAL_FAIL_C(st, DAL_E_ARG, "state_energies: out is NULL");
-  dal__lazy_eval(st);
+  // (h is final only with the outputs where constraints may move: dal__finish)
+  dal__lazy_eval_for(st, DAL_P_DYN | (st->sys->m ? DAL_P_OUT : 0u));
   if (!(st->have & DAL_P_DYN))
     return DAL_FAIL_C(st, DAL_E_STATE,
                       "state_energies: the state is not evaluated at its (t, q, qdot); call "
@@ -327,7 +334,7 @@ int dal_lagrange_residual(const dal_system *sys, dal_state *st, dal_path_q_fn *p
   dal__state_moved(st);
   if (sys->lag) {
     double h, *rhs = st->work + n;
-    rc = dal__lagrangian_terms(sys, st, st->M, rhs, &h);
+    rc = dal__lagrangian_terms(sys, st, st->M, rhs, &h, 0);
     st->have |= DAL_P_M | DAL_P_MLOW;
     if (rc) return dal__public_status(rc);
     for (int i = 0; i < n; ++i) {

@@ -278,8 +278,17 @@ static int route_and_tree(const dal_builder *b, dal_system *s, int recursive) {
   // so many constraint rows that the KKT matrix is cheaper than the m x m loop system
   // (base/bounds.h). (A placement moving more than d coordinates leaves M singular whatever the
   // route: its subtree moves only through its particle's position.)
+  // (with a mass matrix that couples few coordinates the sparse KKT matrix wins from
+  // DAL_LOOP_ROWS_LOCAL_MAX rows on: base/bounds.h)
+  double coupling = 0.0;
+  for (int p = 0; p < N; ++p) {
+    double nd = s->pdep_off[p + 1] - s->pdep_off[p];
+    coupling += nd * nd;
+  }
+  s->kkt_local = coupling <= DAL_KKT_LOCAL_COUPLING * n;
+  int loop_rows_max = s->kkt_local ? DAL_LOOP_ROWS_LOCAL_MAX : DAL_LOOP_ROWS_MAX;
   s->aba = recursive && (b->dynamics == DAL_DYNAMICS_RECURSIVE ||
-                         (b->dynamics == DAL_DYNAMICS_AUTO && m <= DAL_LOOP_ROWS_MAX));
+                         (b->dynamics == DAL_DYNAMICS_AUTO && m <= loop_rows_max));
   // dense mass matrix unless the system is large and needs none (a redundant system applies M
   // through J; the recursion needs no M); large recursive trees without constraints keep no
   // global Jacobians either (dal_state_jacobian forms them from the local blocks)

@@ -1,0 +1,342 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// dal_bench_auto: the work-precision table behind DAL_METHOD_AUTO and the default atol.
+//
+// Usage:
+//   dal_bench_auto refs OUT.csv [--quick]
+//       the reference positions of every scene at its final time (two independent
+//       computations; written once, natively: they are not what is measured)
+//   dal_bench_auto sweep REFS.csv [--quick] [--method NAME] [--rtol R]
+//       for every scene, method (auto, dopri5, fehlberg78, bs, adams), atol rule (atol =
+//       DAL_ATOL_PER_RTOL rtol, the default, or atol = 1e-2 rtol) and rtol 1e-2 ... 1e-13
+//       (decades):
+//       one dal_advance from the initial state inside auto_region(), then one CSV row on stdout
+//       (scene, N, method, atol rule, rtol, status, error, rhs, steps, wall). Run under
+//       valgrind --tool=callgrind --toggle-collect=auto_region: after each run the program asks
+//       callgrind to dump its counts (CALLGRIND_DUMP_STATS_AT, labelled with the row number),
+//       so the instructions of run k are in the k-th dump (bench/auto.sh joins them).
+//   dal_bench_auto table SWEEP.csv
+//       the AUTO table from a joined sweep (the columns above plus ir): for each scene, N and
+//       error band 1e-4, 1e-8, 1e-11 the cheapest configuration (method, atol rule, rtol
+//       interpolated) and AUTO's cost over it, as markdown on stdout.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <valgrind/callgrind.h>
+
+#include "dalembert/dalembert.h"
+#include "scenes.h"
+#include "util.h"
+
+#if defined(__GNUC__)
+#define BENCH_NOINLINE __attribute__((noinline))
+#else
+#define BENCH_NOINLINE
+#endif
+#define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
+
+// the scenes of the table: the seed scenes at their default horizons, then the chain
+typedef struct auto_scene {
+  scene_kind kind;
+  int N;
+} auto_scene;
+
+static const auto_scene scenes_full[] = {
+    {SC_PENDULUM, 1}, {SC_RING, 1},   {SC_DRIVEN, 1},  {SC_DOUBLE, 2},  {SC_HO2D, 1},
+    {SC_CHAIN, 1},    {SC_CHAIN, 2},  {SC_CHAIN, 4},   {SC_CHAIN, 8},   {SC_CHAIN, 16},
+    {SC_CHAIN, 32},   {SC_CHAIN, 64}, {SC_CHAIN, 128}, {SC_CHAIN, 256},
+};
+static const auto_scene scenes_quick[] = {
+    {SC_PENDULUM, 1},
+    {SC_DOUBLE, 2},
+    {SC_CHAIN, 4},
+    {SC_CHAIN, 32},
+};
+
+static const dal_method methods[] = {DAL_METHOD_AUTO, DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78,
+                                     DAL_METHOD_BS, DAL_METHOD_ADAMS};
+#define NMETH COUNT(methods)
+
+// the error bands of the table; a configuration needs no tighter rtol once its error is
+// below the tightest band by this factor
+static const double bands[] = {1e-4, 1e-8, 1e-11};
+#define NBAND COUNT(bands)
+#define ERR_FLOOR 1e-12
+
+static int scene_list(int quick, const auto_scene **out) {
+  *out = quick ? scenes_quick : scenes_full;
+  return quick ? COUNT(scenes_quick) : COUNT(scenes_full);
+}
+
+// ---------------------------------------------------------------- references
+
+static int cmd_refs(const char *path, int quick) {
+  FILE *fp = fopen(path, "w");
+  if (!fp) {
+    perror(path);
+    return 1;
+  }
+  fprintf(fp, "scene,t1,agreement,values...\n");
+  const auto_scene *list;
+  int ns = scene_list(quick, &list);
+  for (int i = 0; i < ns; ++i) {
+    bench_scene sc;
+    scene_init(&sc, list[i].kind, list[i].N, 0);
+    int npd = scene_np(&sc) * scene_dim(&sc);
+    double *r = malloc((size_t)npd * sizeof(double)), agree = 0;
+    char how[160];
+    if (!r) return 1;
+    double t0 = bench_now();
+    int rc = scene_reference(&sc, r, &agree, how, sizeof how);
+    fprintf(stderr, "refs %s: %s, agreement %.2e, %.1f s\n", sc.name, how, agree, bench_now() - t0);
+    if (rc) {
+      fprintf(stderr, "refs %s: failed (%s)\n", sc.name, dal_status_name(rc));
+      free(r);
+      fclose(fp);
+      return 1;
+    }
+    fprintf(fp, "%s,%.17g,%.3e", sc.name, sc.t1, agree);
+    for (int k = 0; k < npd; ++k)
+      fprintf(fp, ",%.17g", r[k]);
+    fprintf(fp, "\n");
+    free(r);
+  }
+  fclose(fp);
+  return 0;
+}
+
+// the reference of a scene from the file written by `refs` (npd values)
+static int read_ref(const char *path, const char *name, double *r, int npd) {
+  FILE *fp = fopen(path, "r");
+  if (!fp) return 1;
+  size_t cap = 1 << 20;
+  char *line = malloc(cap);
+  int found = 0;
+  while (line && !found && fgets(line, (int)cap, fp)) {
+    char *c = strchr(line, ',');
+    if (!c || (size_t)(c - line) != strlen(name) || strncmp(line, name, strlen(name)) != 0)
+      continue;
+    // skip t1 and the agreement
+    c = strchr(c + 1, ',');
+    c = c ? strchr(c + 1, ',') : NULL;
+    int k = 0;
+    while (c && k < npd) {
+      r[k++] = strtod(c + 1, NULL);
+      c = strchr(c + 1, ',');
+    }
+    found = k == npd;
+  }
+  free(line);
+  fclose(fp);
+  return !found;
+}
+
+// ---------------------------------------------------------------- the sweep
+
+// the measured region: callgrind counts instructions only in here
+static BENCH_NOINLINE int auto_region(bench_model *m, const dal_solve_opts *o, double t1) {
+  return dal_advance(m->sys, m->st, o, t1);
+}
+
+static int cmd_sweep(const char *refs, int quick, const char *only, double only_rtol) {
+  static const double tols[] = {1e-2, 1e-3, 1e-4,  1e-5,  1e-6,  1e-7,
+                                1e-8, 1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
+  const auto_scene *list;
+  int ns = scene_list(quick, &list), row = 0;
+  printf("row,scene,N,method,atol_rule,rtol,status,err,rhs,steps,wall_s\n");
+  for (int i = 0; i < ns; ++i) {
+    bench_scene sc;
+    scene_init(&sc, list[i].kind, list[i].N, 0);
+    int npd = scene_np(&sc) * scene_dim(&sc);
+    double *ref = malloc((size_t)npd * sizeof(double));
+    char err[400];
+    if (!ref || read_ref(refs, sc.name, ref, npd)) {
+      fprintf(stderr, "sweep %s: no reference in %s (run `refs` first)\n", sc.name, refs);
+      free(ref);
+      return 1;
+    }
+    bench_model m;
+    if (scene_model(&sc, 0, &m, err, sizeof err)) {
+      fprintf(stderr, "sweep %s: %s\n", sc.name, err);
+      free(ref);
+      return 1;
+    }
+    for (int mi = 0; mi < NMETH; ++mi)
+      for (int rule = 0; rule < 2; ++rule) {
+        // AUTO is measured as a user gets it: the default atol
+        if (methods[mi] == DAL_METHOD_AUTO && rule == 1) continue;
+        if (only && strcmp(only, dal_method_name(methods[mi])) != 0) continue;
+        for (int ti = 0; ti < COUNT(tols); ++ti) {
+          if (only_rtol > 0 && tols[ti] != only_rtol) continue;
+          dal_solve_opts o = dal_default_solve_opts();
+          o.method = methods[mi];
+          o.form = DAL_FORM_ODE;
+          o.rtol = tols[ti];
+          o.atol = rule ? 1e-2 * tols[ti] : 0.0;
+          o.max_steps = 2000000;
+          int rc = scene_model_reset(&m);
+          double t0 = bench_now();
+          if (!rc) rc = auto_region(&m, &o, sc.t1);
+          double wall = bench_now() - t0;
+          dal_stats s;
+          memset(&s, 0, sizeof s);
+          dal_state_stats(m.st, &s);
+          double e = rc ? NAN : bench_maxdiff(dal_state_positions(m.st), ref, npd);
+          printf("%d,%s,%d,%s,%s,%.0e,%s,%.4e,%ld,%ld,%.4e\n", row, sc.name, sc.N,
+                 dal_method_name(methods[mi]), rule ? "0.01rtol" : "default", tols[ti],
+                 dal_status_name(rc), e, s.rhs_evals, s.steps, wall);
+          fflush(stdout);
+          char label[32];
+          snprintf(label, sizeof label, "row%d", row++);
+          CALLGRIND_DUMP_STATS_AT(label);
+          // tighter tolerances cost more and add nothing to the bands
+          if (rc || e < ERR_FLOOR) break;
+        }
+      }
+    scene_model_free(&m);
+    free(ref);
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------- the table
+
+typedef struct pt {
+  char scene[32], meth[16], rule[16];
+  int N, ok;
+  long rhs, steps;
+  double rtol, err, ir;
+} pt;
+
+// the cost for a configuration (points of one scene, method and rule, loosest rtol first) to
+// reach an error <= band: the first rtol that reaches it, interpolated log-log against the
+// rtol before it (errors between decades of rtol); INFINITY when none does. *rt: the rtol
+// (interpolated alike) at which it does.
+static double cost_at(const pt *p, int n, double band, double *rt) {
+  for (int i = 0; i < n; ++i) {
+    if (!p[i].ok || !(p[i].err <= band)) continue;
+    *rt = p[i].rtol;
+    if (i == 0 || !p[i - 1].ok || !(p[i - 1].err > band) || p[i].err <= 0) return p[i].ir;
+    double x0 = log(p[i - 1].err), x1 = log(p[i].err), x = log(band);
+    double s = (x - x0) / (x1 - x0);
+    *rt = exp(log(p[i - 1].rtol) + s * (log(p[i].rtol) - log(p[i - 1].rtol)));
+    return exp(log(p[i - 1].ir) + s * (log(p[i].ir) - log(p[i - 1].ir)));
+  }
+  return INFINITY;
+}
+
+static int cmd_table(const char *path) {
+  FILE *fp = fopen(path, "r");
+  if (!fp) {
+    perror(path);
+    return 1;
+  }
+  int cap = 4096, n = 0;
+  pt *p = malloc((size_t)cap * sizeof *p);
+  char line[512];
+  if (!p || !fgets(line, sizeof line, fp)) {
+    fclose(fp);
+    free(p);
+    return 1;
+  }
+  // row,scene,N,method,atol_rule,rtol,status,err,rhs,steps,wall_s,ir
+  while (fgets(line, sizeof line, fp)) {
+    if (n == cap) {
+      pt *q = realloc(p, (size_t)(cap *= 2) * sizeof *p);
+      if (!q) break;
+      p = q;
+    }
+    char status[32];
+    int row;
+    double wall;
+    pt *x = &p[n];
+    if (sscanf(line, "%d,%31[^,],%d,%15[^,],%15[^,],%lf,%31[^,],%lf,%ld,%ld,%lf,%lf", &row,
+               x->scene, &x->N, x->meth, x->rule, &x->rtol, status, &x->err, &x->rhs, &x->steps,
+               &wall, &x->ir) != 12)
+      continue;
+    x->ok = strcmp(status, "DAL_OK") == 0 && isfinite(x->err) && x->ir > 0;
+    ++n;
+  }
+  fclose(fp);
+  printf("| scene | N | band | best: method, atol rule, rtol | AUTO: method at that band, rtol "
+         "| AUTO / best | best with atol = 1e-2 rtol / best with the default atol |\n");
+  printf("|---|---:|---:|---|---|---:|---:|\n");
+  double worst = 0, worst_atol = 0;
+  for (int i = 0; i < n;) {
+    int j = i;
+    while (j < n && strcmp(p[j].scene, p[i].scene) == 0)
+      ++j;
+    // [i, j) is one scene; configurations are runs of equal (method, rule)
+    for (int b = 0; b < NBAND; ++b) {
+      double best = INFINITY, best_rt = 0, autoc = INFINITY, auto_rt = 0;
+      double best_rule[2] = {INFINITY, INFINITY};
+      const char *bm = "-", *br = "-", *am = "-";
+      for (int k = i; k < j;) {
+        int l = k;
+        while (l < j && strcmp(p[l].meth, p[k].meth) == 0 && strcmp(p[l].rule, p[k].rule) == 0)
+          ++l;
+        double rt = 0, c = cost_at(p + k, l - k, bands[b], &rt);
+        if (strcmp(p[k].meth, "auto") == 0) {
+          autoc = c;
+          auto_rt = rt;
+          // AUTO's runs are runs of a named method: a configuration too
+          if (c < best) {
+            best = c;
+            best_rt = rt;
+            bm = "auto";
+            br = p[k].rule;
+          }
+        } else {
+          int r = strcmp(p[k].rule, "0.01rtol") == 0;
+          if (c < best_rule[r]) best_rule[r] = c;
+          if (c < best) {
+            best = c;
+            best_rt = rt;
+            bm = p[k].meth;
+            br = p[k].rule;
+          }
+        }
+        k = l;
+      }
+      if (!isfinite(best)) continue;
+      // the method AUTO ran at the first rtol that reached the band: the configuration with
+      // the default atol and the same rtol, steps and right-hand sides
+      for (int k = i; k < j; ++k) {
+        if (strcmp(p[k].meth, "auto") != 0 || !p[k].ok || !(p[k].err <= bands[b])) continue;
+        for (int l = i; l < j; ++l)
+          if (l != k && strcmp(p[l].rule, "default") == 0 && p[l].rtol == p[k].rtol &&
+              p[l].rhs == p[k].rhs && p[l].steps == p[k].steps)
+            am = p[l].meth;
+        break;
+      }
+      double ratio = autoc / best, ar = best_rule[1] / best_rule[0];
+      if (ratio > worst) worst = ratio;
+      if (ar > worst_atol) worst_atol = ar;
+      printf("| %s | %d | %.0e | %s, %s, %.1e | %s, %.1e | %.2f | %.2f |\n", p[i].scene, p[i].N,
+             bands[b], bm, br, best_rt, am, auto_rt, ratio, ar);
+    }
+    i = j;
+  }
+  printf("\nLargest AUTO / best: %.2f.\n", worst);
+  (void)worst_atol;
+  free(p);
+  return 0;
+}
+
+int main(int argc, char **argv) {
+  int quick = 0;
+  const char *only = NULL;
+  double only_rtol = 0;
+  for (int a = 3; a < argc; ++a) {
+    if (strcmp(argv[a], "--quick") == 0) quick = 1;
+    if (strcmp(argv[a], "--method") == 0 && a + 1 < argc) only = argv[++a];
+    if (strcmp(argv[a], "--rtol") == 0 && a + 1 < argc) only_rtol = atof(argv[++a]);
+  }
+  if (argc >= 3 && strcmp(argv[1], "refs") == 0) return cmd_refs(argv[2], quick);
+  if (argc >= 3 && strcmp(argv[1], "sweep") == 0) return cmd_sweep(argv[2], quick, only, only_rtol);
+  if (argc >= 3 && strcmp(argv[1], "table") == 0) return cmd_table(argv[2]);
+  fprintf(stderr, "usage: dal_bench_auto refs OUT.csv [--quick] | sweep REFS.csv [--quick] "
+                  "[--method NAME] [--rtol R] | table SWEEP.csv\n");
+  return 2;
+}
