@@ -120,8 +120,9 @@ static void lib_measure(const bench_cfg *cfg, bench_model *m, const dal_solve_op
 }
 
 // the tolerance the library hands to SUNDIALS for a requested rtol: it scales the request
-// per method so that the achieved global error tracks it (the method rows of src/integrate/methods.c,
-// mirrored here so that both sides take the same steps; overhead.csv checks the rhs counts)
+// per method so that the achieved global error tracks it (the method rows of
+// src/integrate/methods.c, mirrored here so that both sides take the same steps; overhead.csv
+// checks the rhs counts)
 static double hand_tol(dal_method m, double rtol) {
   double c = m == DAL_METHOD_DOPRI5       ? 0.01
              : m == DAL_METHOD_FEHLBERG78 ? 0.01

@@ -20,7 +20,6 @@ FILE *bench_csv_open(const char *dir, const char *name, const char *header);
 /// Max-norm of a - b over n values (NaN if any value is NaN).
 double bench_maxdiff(const double *a, const double *b, int n);
 
-
 /// Benchmark formulations: the library's plus the variants of index-1 and the baseline.
 typedef enum bench_form {
   BF_ODE,

@@ -8,7 +8,8 @@
 static int cartesian(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, int d) {
   (void)t;
   (void)p;
-  for (int i = 0; i < d; ++i) out[i] = in[i];
+  for (int i = 0; i < d; ++i)
+    out[i] = in[i];
   return 0;
 }
 

@@ -111,7 +111,7 @@ const dal_primitive dal_con_anchor3 = {
     .nparam = 4,
     .eval = anchor3,
     .doc = "in (x, y, z); param (L, x0, y0, z0); ctx NULL or dal_moving_point; "
-    "out |r - (x0 + x(t))| - L",
+           "out |r - (x0 + x(t))| - L",
     .flags = 0,
     .param_names = anchor3_names,
     .param_defaults = anchor3_defaults,

@@ -8,7 +8,8 @@
 static int fixed(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, int d) {
   (void)in;
   (void)t;
-  for (int i = 0; i < d; ++i) out[i] = dal_const(p[i]);
+  for (int i = 0; i < d; ++i)
+    out[i] = dal_const(p[i]);
   return 0;
 }
 

@@ -78,7 +78,7 @@ const dal_primitive dal_con_line3 = {
     .nparam = 6,
     .eval = line3,
     .doc = "in (x, y, z); param (cx, cy, cz, ax, ay, az); out (e1.(r - c), e2.(r - c)), e1, e2 "
-    "orthonormal and normal to a",
+           "orthonormal and normal to a",
     .flags = 0,
     .param_names = line3_names,
     .param_defaults = line3_defaults,
@@ -93,7 +93,7 @@ const dal_primitive dal_con_turning_line2 = {
     .nparam = 4,
     .eval = turning_line2,
     .doc = "in (x, y); param (cx, cy, w, phi0); out -(x - cx) sin a + (y - cy) cos a, "
-    "a = w t + phi0",
+           "a = w t + phi0",
     .flags = 0,
     .param_names = turning_line2_names,
     .param_defaults = turning_line2_defaults,

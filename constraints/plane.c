@@ -26,7 +26,7 @@ const dal_primitive dal_con_plane = {
     .nparam = 6,
     .eval = on_plane,
     .doc = "in (x, y, z); param (cx, cy, cz, nx, ny, nz); "
-                                     "out n.(r - c) / |n|",
+           "out n.(r - c) / |n|",
     .flags = 0,
     .param_names = plane_names,
     .param_defaults = plane_defaults,

@@ -6,17 +6,16 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "dalembert/primitives.h"
 #include "base/base.h"
+#include "dalembert/primitives.h"
 
 static const dal_primitive *const registry[] = {
-    &dal_map_cartesian2, &dal_map_cartesian3, &dal_map_fixed2,    &dal_map_fixed3,
-    &dal_map_pendulum,   &dal_map_hanging,    &dal_map_spherical, &dal_map_ring,
-    &dal_map_curve2,     &dal_map_curve3,     &dal_map_sphere,
-    &dal_con_distance2,  &dal_con_distance3,  &dal_con_anchor2,   &dal_con_anchor3,
-    &dal_con_circle2,    &dal_con_circle3,    &dal_con_turning_circle, &dal_con_sphere,
-    &dal_con_plane,      &dal_con_line2,      &dal_con_line3,     &dal_con_turning_line2,
-    &dal_con_prescribed,
+    &dal_map_cartesian2, &dal_map_cartesian3,     &dal_map_fixed2,        &dal_map_fixed3,
+    &dal_map_pendulum,   &dal_map_hanging,        &dal_map_spherical,     &dal_map_ring,
+    &dal_map_curve2,     &dal_map_curve3,         &dal_map_sphere,        &dal_con_distance2,
+    &dal_con_distance3,  &dal_con_anchor2,        &dal_con_anchor3,       &dal_con_circle2,
+    &dal_con_circle3,    &dal_con_turning_circle, &dal_con_sphere,        &dal_con_plane,
+    &dal_con_line2,      &dal_con_line3,          &dal_con_turning_line2, &dal_con_prescribed,
 };
 
 int dal_primitive_count(void) { return (int)(sizeof registry / sizeof registry[0]); }
@@ -80,7 +79,8 @@ const char *dal__builtin_param_check(const dal_primitive *prim, const double *pa
     if (r->kind == RULE_NONZERO && p[0] == 0.0) return r->what;
     if (r->kind == RULE_DIRECTION) {
       double s = 0.0;
-      for (int k = 0; k < r->count; ++k) s += p[k] * p[k];
+      for (int k = 0; k < r->count; ++k)
+        s += p[k] * p[k];
       if (!(s >= DBL_MIN) || !isfinite(s)) return r->what;
     }
   }

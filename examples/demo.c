@@ -7,8 +7,8 @@
 //
 // Usage: demo [OUTDIR]   (default ./demo-output); demo --check runs each scene's own check.
 // The scenes are the sibling programs sicm_oscillator, sicm_driven_pendulum, sicm_section,
-// ring_scene, lyapunov and bead_bifurcation (built next to this one); each is self-contained and documented
-// in its own file.
+// ring_scene, lyapunov and bead_bifurcation (built next to this one); each is self-contained and
+// documented in its own file.
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -26,8 +26,8 @@ int main(int argc, char **argv) {
     dir[slash - argv[0]] = 0;
   }
   printf("dalembert %s: seed scenes%s\n", dal_version(), check ? " (checks)" : "");
-  const char *scenes[6] = {"sicm_oscillator", "sicm_driven_pendulum", "sicm_section",
-                           "ring_scene",      "lyapunov",             "bead_bifurcation"};
+  const char *scenes[6] = {"sicm_oscillator", "sicm_driven_pendulum", "sicm_section", "ring_scene",
+                           "lyapunov",        "bead_bifurcation"};
   int bad = 0;
   for (int i = 0; i < 6; ++i) {
     char cmd[3200];

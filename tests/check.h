@@ -9,47 +9,47 @@
 
 static int check_failures = 0, check_count = 0;
 
-#define CHECK(cond)                                                                              \
-  do {                                                                                           \
-    ++check_count;                                                                               \
-    if (!(cond)) {                                                                               \
-      ++check_failures;                                                                          \
-      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);                   \
-    }                                                                                            \
+#define CHECK(cond)                                                                                \
+  do {                                                                                             \
+    ++check_count;                                                                                 \
+    if (!(cond)) {                                                                                 \
+      ++check_failures;                                                                            \
+      fprintf(stderr, "%s:%d: CHECK failed: %s\n", __FILE__, __LINE__, #cond);                     \
+    }                                                                                              \
   } while (0)
 
-#define CHECK_MSG(cond, ...)                                                                     \
-  do {                                                                                           \
-    ++check_count;                                                                               \
-    if (!(cond)) {                                                                               \
-      ++check_failures;                                                                          \
-      fprintf(stderr, "%s:%d: CHECK failed: %s: ", __FILE__, __LINE__, #cond);                   \
-      fprintf(stderr, __VA_ARGS__);                                                              \
-      fputc('\n', stderr);                                                                       \
-    }                                                                                            \
+#define CHECK_MSG(cond, ...)                                                                       \
+  do {                                                                                             \
+    ++check_count;                                                                                 \
+    if (!(cond)) {                                                                                 \
+      ++check_failures;                                                                            \
+      fprintf(stderr, "%s:%d: CHECK failed: %s: ", __FILE__, __LINE__, #cond);                     \
+      fprintf(stderr, __VA_ARGS__);                                                                \
+      fputc('\n', stderr);                                                                         \
+    }                                                                                              \
   } while (0)
 
 /// |a - b| <= tol * max(1, |b|): relative for large values, absolute near zero
-#define CHECK_CLOSE(a, b, tol)                                                                   \
-  do {                                                                                           \
-    double ca_ = (a), cb_ = (b), ct_ = (tol);                                                    \
-    double scale_ = fabs(cb_) > 1.0 ? fabs(cb_) : 1.0;                                           \
-    ++check_count;                                                                               \
-    if (!(fabs(ca_ - cb_) <= ct_ * scale_)) {                                                    \
-      ++check_failures;                                                                          \
-      fprintf(stderr, "%s:%d: %s = %.17g, expected %s = %.17g (tol %g, diff %.3g)\n", __FILE__,  \
-              __LINE__, #a, ca_, #b, cb_, ct_, fabs(ca_ - cb_));                                 \
-    }                                                                                            \
+#define CHECK_CLOSE(a, b, tol)                                                                     \
+  do {                                                                                             \
+    double ca_ = (a), cb_ = (b), ct_ = (tol);                                                      \
+    double scale_ = fabs(cb_) > 1.0 ? fabs(cb_) : 1.0;                                             \
+    ++check_count;                                                                                 \
+    if (!(fabs(ca_ - cb_) <= ct_ * scale_)) {                                                      \
+      ++check_failures;                                                                            \
+      fprintf(stderr, "%s:%d: %s = %.17g, expected %s = %.17g (tol %g, diff %.3g)\n", __FILE__,    \
+              __LINE__, #a, ca_, #b, cb_, ct_, fabs(ca_ - cb_));                                   \
+    }                                                                                              \
   } while (0)
 
-#define CHECK_OK(call)                                                                           \
-  do {                                                                                           \
-    int rc_ = (call);                                                                            \
-    ++check_count;                                                                               \
-    if (rc_ != 0) {                                                                              \
-      ++check_failures;                                                                          \
-      fprintf(stderr, "%s:%d: %s returned %d\n", __FILE__, __LINE__, #call, rc_);                \
-    }                                                                                            \
+#define CHECK_OK(call)                                                                             \
+  do {                                                                                             \
+    int rc_ = (call);                                                                              \
+    ++check_count;                                                                                 \
+    if (rc_ != 0) {                                                                                \
+      ++check_failures;                                                                            \
+      fprintf(stderr, "%s:%d: %s returned %d\n", __FILE__, __LINE__, #call, rc_);                  \
+    }                                                                                              \
   } while (0)
 
 /// deterministic uniform random numbers in [lo, hi) (xorshift64*)

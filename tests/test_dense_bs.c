@@ -25,7 +25,6 @@
 #define PI 3.14159265358979323846
 #define NSAMPLE 7
 
-
 // simple pendulum, l = 1, g = 9.81 (minimal coordinate th)
 static dal_system *pendulum(void) { return scn_pendulum(NULL); }
 

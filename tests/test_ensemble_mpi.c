@@ -13,8 +13,8 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "scenes.h"
 #include "dalembert/mpi.h"
+#include "scenes.h"
 
 static dal_system *driven(void) {
   scn_knobs k = scn_default(); // a drive of zero amplitude at w = 1, set per trajectory

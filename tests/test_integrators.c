@@ -12,9 +12,9 @@
 #include <string.h>
 
 #include "check.h"
-#include "scenes.h"
 #include "dalembert/dalembert.h"
 #include "ref_elliptic.h"
+#include "scenes.h"
 
 #define PI 3.14159265358979323846
 #define G 9.8

@@ -58,7 +58,8 @@ static void zero_gh(double *g, double *H) {
 // x^n by repeated multiplication (independent of dal_powi's squaring)
 static double ipow(double x, int n) {
   double r = 1.0;
-  for (int i = 0; i < (n < 0 ? -n : n); ++i) r *= x;
+  for (int i = 0; i < (n < 0 ? -n : n); ++i)
+    r *= x;
   return n < 0 ? 1.0 / r : r;
 }
 
@@ -458,7 +459,17 @@ static const op ops[] = {
     {"pow(real p)", 1, {0.2, 0}, {4, 0}, 0, -2.5, 3.5, 0, j_pow, h_pow, h3_pow},
     {"pow(integer p, any sign of base)", 1, {-3, 0}, {3, 0}, 0.4, -4, 5, 1, j_pow, h_pow, h3_pow},
     {"pow(p = 0)", 1, {0.2, 0}, {4, 0}, 0, 0, 0, 0, j_pow, h_pow, h3_pow},
-    {"powi(n in -5..6, any sign of base)", 1, {-3, 0}, {3, 0}, 0.4, -5, 6, 1, j_powi, h_powi, h3_powi},
+    {"powi(n in -5..6, any sign of base)",
+     1,
+     {-3, 0},
+     {3, 0},
+     0.4,
+     -5,
+     6,
+     1,
+     j_powi,
+     h_powi,
+     h3_powi},
     {"exp", 1, {-3, 0}, {3, 0}, 0, 0, 0, 0, j_exp, h_exp, h3_exp},
     {"log", 1, {0.2, 0}, {10, 0}, 0, 0, 0, 0, j_log, h_log, h3_log},
     {"sin", 1, {-7, 0}, {7, 0}, 0, 0, 0, 0, j_sin, h_sin, h3_sin},
@@ -489,12 +500,12 @@ static double curve_arg(const sample *sm, int i, double s) {
   return sm->v[i] + sm->d[i] * s + 0.5 * sm->dd[i] * (s * s) + sm->c3[i] * (s * s * s);
 }
 
-
 // value of the operation along the curve, through the jet's own value path
 static double op_along(double s, const void *ctx) {
   const sample *sm = ctx;
   dal_jet x[2];
-  for (int i = 0; i < sm->o->arity; ++i) x[i] = dal_const(curve_arg(sm, i, s));
+  for (int i = 0; i < sm->o->arity; ++i)
+    x[i] = dal_const(curve_arg(sm, i, s));
   return sm->o->jet(x, sm->p).v;
 }
 
@@ -533,7 +544,8 @@ static void test_op(const op *o) {
 
     // the lower coefficients do not read d3: bit-identical with an unknown (NaN) d3
     dal_jet xn[2];
-    for (int i = 0; i < o->arity; ++i) xn[i] = dal_jet_make(sm.v[i], sm.d[i], sm.dd[i]);
+    for (int i = 0; i < o->arity; ++i)
+      xn[i] = dal_jet_make(sm.v[i], sm.d[i], sm.dd[i]);
     dal_jet rn = o->jet(xn, sm.p);
     int constant = (o->jet == j_pow || o->jet == j_powi) && sm.p == 0.0; // x^0 = 1: d3 = 0
     CHECK_MSG(rn.v == r.v && rn.d == r.d && rn.dd == r.dd && (constant || !isfinite(rn.d3)),
@@ -586,15 +598,14 @@ static void test_op(const op *o) {
       }
       if (s3 > 0) worst_an3 = fmax(worst_an3, fabs(r.d3 - e3) / s3);
       CHECK_MSG(fabs(r.d3 - e3) <= TOL_AN * s3,
-                "%s third derivative at (%g, %g) p=%g: %.17g vs %.17g", o->name, sm.v[0],
-                sm.v[1], sm.p, r.d3, e3);
+                "%s third derivative at (%g, %g) p=%g: %.17g vs %.17g", o->name, sm.v[0], sm.v[1],
+                sm.p, r.d3, e3);
       fd3_est f3 = fd3_estimate(op_along, &sm, 8.0, 0.0);
       if (f3.valid) {
         nvalid3++;
         worst_fd3 = fmax(worst_fd3, fabs(r.d3 - f3.d3) / f3.tol);
-        CHECK_MSG(fabs(r.d3 - f3.d3) <= f3.tol,
-                  "%s d3 vs FD at (%g, %g): %.17g vs %.17g (tol %g)", o->name, sm.v[0], sm.v[1],
-                  r.d3, f3.d3, f3.tol);
+        CHECK_MSG(fabs(r.d3 - f3.d3) <= f3.tol, "%s d3 vs FD at (%g, %g): %.17g vs %.17g (tol %g)",
+                  o->name, sm.v[0], sm.v[1], r.d3, f3.d3, f3.tol);
       }
     } else {
       CHECK_MSG(isnan(r.d3), "%s: order-2 helper must leave d3 unknown (NaN), got %g", o->name,
@@ -775,8 +786,8 @@ static dal_jet nested_eval(int which, dal_jet x) {
 
 static double nested_along(double s, const void *ctx) {
   const nested *n = ctx;
-  return nested_eval(n->which, dal_const(n->x0 + n->d * s + 0.5 * n->dd * (s * s) +
-                                         n->c3 * (s * s * s)))
+  return nested_eval(n->which,
+                     dal_const(n->x0 + n->d * s + 0.5 * n->dd * (s * s) + n->c3 * (s * s * s)))
       .v;
 }
 
@@ -1017,7 +1028,8 @@ static void test_sincos(void) {
 
 int main(void) {
   printf("jet operations at %d random points along random directions:\n", NSAMPLE);
-  for (size_t i = 0; i < sizeof ops / sizeof ops[0]; ++i) test_op(&ops[i]);
+  for (size_t i = 0; i < sizeof ops / sizeof ops[0]; ++i)
+    test_op(&ops[i]);
   test_identities();
   test_chain_rule();
   test_chain_rule3();

@@ -105,7 +105,8 @@ static int near(const char *what, int i, double a, double b, double tol, double 
 
 static void near_vec(const char *what, const double *a, const double *b, int n, double tol,
                      double scale) {
-  for (int i = 0; i < n; ++i) near(what, i, a[i], b[i], tol, scale);
+  for (int i = 0; i < n; ++i)
+    near(what, i, a[i], b[i], tol, scale);
 }
 
 // M (n x n column-major): symmetric, positive definite (own Cholesky), equal to Mh (row-major)
@@ -113,7 +114,8 @@ static void check_mass(const char *what, const double *M, const double *Mh, int 
   CHECK_MSG(M != NULL, "%s: no mass matrix", what);
   if (!M) return;
   double L[16], scale = 0.0;
-  for (int i = 0; i < n * n; ++i) scale = fmax(scale, fabs(Mh[i]));
+  for (int i = 0; i < n * n; ++i)
+    scale = fmax(scale, fabs(Mh[i]));
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       CHECK_MSG(M[i + n * j] == M[j + n * i], "%s: M not symmetric at (%d, %d)", what, i, j);
@@ -123,13 +125,15 @@ static void check_mass(const char *what, const double *M, const double *Mh, int 
   memcpy(L, M, (size_t)n * n * sizeof(double));
   for (int j = 0; j < n; ++j) {
     double p = L[j + n * j];
-    for (int k = 0; k < j; ++k) p -= L[j + n * k] * L[j + n * k];
+    for (int k = 0; k < j; ++k)
+      p -= L[j + n * k] * L[j + n * k];
     CHECK_MSG(p > 1e-12 * scale, "%s: M not positive definite (pivot %d = %g)", what, j, p);
     if (!(p > 0)) return;
     L[j + n * j] = sqrt(p);
     for (int i = j + 1; i < n; ++i) {
       double s = L[i + n * j];
-      for (int k = 0; k < j; ++k) s -= L[i + n * k] * L[j + n * k];
+      for (int k = 0; k < j; ++k)
+        s -= L[i + n * k] * L[j + n * k];
       L[i + n * j] = s / L[j + n * j];
     }
   }
@@ -257,7 +261,8 @@ static void test_harmonic_oscillator(void) {
     near("HO reaction", 1, N[1], 0, TOL, 1);
     // Jacobian is exactly d x n = 2 x 2 (sentinels after it stay untouched)
     double J[8];
-    for (int i = 0; i < 8; ++i) J[i] = -777.0;
+    for (int i = 0; i < 8; ++i)
+      J[i] = -777.0;
     CHECK_OK(dal_state_jacobian(sa.sys, sa.st, 0, J));
     CHECK(J[0] == 1 && J[1] == 0 && J[2] == 0 && J[3] == 1);
     CHECK(J[4] == -777.0 && J[5] == -777.0 && J[6] == -777.0 && J[7] == -777.0);
@@ -392,7 +397,8 @@ static void test_ring(void) {
         const double *N = dal_state_reactions(s.st);
         double Nn = -m * R * (thd * thd + w * w * sn * sn) - m * P.g * cs;
         double Nf = 2 * m * w * R * cs * thd, Nh[3];
-        for (int a = 0; a < 3; ++a) Nh[a] = Nn * n[a] + Nf * ef[a];
+        for (int a = 0; a < 3; ++a)
+          Nh[a] = Nn * n[a] + Nf * ef[a];
         near_vec("ring reaction N", N, Nh, 3, TOL, m * (R * (thd * thd + w * w) + P.g + w * R));
         double Nt = N[0] * tg[0] + N[1] * tg[1] + N[2] * tg[2];
         near("ring N.tangent", 0, Nt, 0.0, TOL, m * (R * (thd * thd + w * w) + P.g));
@@ -753,7 +759,8 @@ static void test_spherical(void) {
       // reaction along the rod: N = -(m l (thd^2 + sin^2 phd^2) + m g cos) e_r
       double er[3] = {sn * cos(x[1]), sn * sin(x[1]), -cs};
       double Nm = -(m * l * (v[0] * v[0] + sn * sn * v[1] * v[1]) + m * P.g * cs), Nh[3];
-      for (int a = 0; a < 3; ++a) Nh[a] = Nm * er[a];
+      for (int a = 0; a < 3; ++a)
+        Nh[a] = Nm * er[a];
       near_vec("spherical reaction", dal_state_reactions(s.st), Nh, 3, TOL, m * (l * 18 + P.g));
     }
     // singular mass matrix at the poles: DAL_E_SINGULAR names 'phi', t and q
@@ -932,12 +939,14 @@ static zoo_hand zoo_forces(const zoo *z, int which, double t, const double *q, c
     double e[2] = {rA[0] - z->X2[0], rA[1] - z->X2[1]};
     len = hypot(e[0], e[1]);
     f = z->k2 * (len - z->L2) / len;
-    for (int a = 0; a < 2; ++a) H.F[a] -= f * e[a];
+    for (int a = 0; a < 2; ++a)
+      H.F[a] -= f * e[a];
     H.U += 0.5 * z->k2 * (len - z->L2) * (len - z->L2);
     double u[2] = {rB[0] - X3[0], rB[1] - X3[1]};
     len = hypot(u[0], u[1]);
     f = z->k3 * (len - z->L3) / len;
-    for (int a = 0; a < 2; ++a) H.F[2 + a] -= f * u[a];
+    for (int a = 0; a < 2; ++a)
+      H.F[2 + a] -= f * u[a];
     H.U += 0.5 * z->k3 * (len - z->L3) * (len - z->L3);
   }
   if (which & 2) {
@@ -954,7 +963,8 @@ static zoo_hand zoo_forces(const zoo *z, int which, double t, const double *q, c
     len = hypot(u[0], u[1]);
     double eu[2] = {u[0] / len, u[1] / len};
     double rel3 = (vB[0] - V3[0]) * eu[0] + (vB[1] - V3[1]) * eu[1];
-    for (int a = 0; a < 2; ++a) H.F[2 + a] -= z->c3 * rel3 * eu[a];
+    for (int a = 0; a < 2; ++a)
+      H.F[2 + a] -= z->c3 * rel3 * eu[a];
     H.Ddamp -= z->c3 * rel3 * rel3;
   }
   if (which & 4) {
@@ -1095,8 +1105,8 @@ static const double tree_drive[3] = {0.3, 5.0, 0.2}; // ay, w, ph
 static int tree_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
   (void)ctx;
   dal_jet x = dal_const(0.0);
-  dal_jet y = dal_scale(dal_cos(dal_addc(dal_scale(t, tree_drive[1]), tree_drive[2])),
-                        tree_drive[0]);
+  dal_jet y =
+      dal_scale(dal_cos(dal_addc(dal_scale(t, tree_drive[1]), tree_drive[2])), tree_drive[0]);
   for (int k = 0; k < TREE_N; ++k) {
     x = dal_add(x, dal_scale(dal_sin(q[k]), tree_len[k]));
     y = dal_sub(y, dal_scale(dal_cos(q[k]), tree_len[k]));
@@ -1110,8 +1120,10 @@ static dal_system *tree_build(int general) {
   dal_builder *b = builder(2);
   int c[TREE_N], p[TREE_N];
   double g[2] = {0.0, -9.81}, x0[2] = {0.5, -1.0};
-  for (int k = 0; k < TREE_N; ++k) BUILD(dal_builder_add_coord(b, NULL, &c[k]));
-  for (int k = 0; k < TREE_N; ++k) BUILD(dal_builder_add_particle(b, NULL, tree_mass[k], &p[k]));
+  for (int k = 0; k < TREE_N; ++k)
+    BUILD(dal_builder_add_coord(b, NULL, &c[k]));
+  for (int k = 0; k < TREE_N; ++k)
+    BUILD(dal_builder_add_particle(b, NULL, tree_mass[k], &p[k]));
   if (general) {
     BUILD(dal_builder_set_map(b, tree_map, NULL));
   } else {
@@ -1171,16 +1183,17 @@ static void test_tree_vs_general(void) {
     near_vec("tree Q", dal_state_genforces(tr.st), dal_state_genforces(ge.st), n, 1e-12, 1.0);
     near_vec("tree c", dal_state_bias(tr.st), dal_state_bias(ge.st), n, 1e-12, 1.0);
     near_vec("tree dr/dt", dal_state_drdt(tr.st), dal_state_drdt(ge.st), 2 * N, 1e-13, 1.0);
-    near_vec("tree accelerations", dal_state_accelerations(tr.st),
-             dal_state_accelerations(ge.st), 2 * N, 1e-12, 1.0);
-    near_vec("tree reactions", dal_state_reactions(tr.st), dal_state_reactions(ge.st), 2 * N,
-             1e-12, 1.0);
+    near_vec("tree accelerations", dal_state_accelerations(tr.st), dal_state_accelerations(ge.st),
+             2 * N, 1e-12, 1.0);
+    near_vec("tree reactions", dal_state_reactions(tr.st), dal_state_reactions(ge.st), 2 * N, 1e-12,
+             1.0);
     dal_energies et = energies(&tr), eg = energies(&ge);
     near("tree h", 0, et.h, eg.h, 1e-13, 1.0);
     near("tree T0", 0, et.T0, eg.T0, 1e-13, 1.0);
     const double *M = dal_state_mass_matrix(tr.st);
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) CHECK(M[j * n + i] == M[i * n + j]);
+      for (int i = 0; i < n; ++i)
+        CHECK(M[j * n + i] == M[i * n + j]);
     for (int k = 0; k < N; ++k) {
       double Jt[2 * TREE_N], Jg[2 * TREE_N];
       CHECK_OK(dal_state_jacobian(tr.sys, tr.st, k, Jt));

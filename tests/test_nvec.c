@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// White box: the library's serial-vector kernels (src/integrate/nvec.c) against SUNDIALS' own serial
-// vector operations on random vectors (the reference), including the fused and vector-array
+// White box: the library's serial-vector kernels (src/integrate/nvec.c) against SUNDIALS' own
+// serial vector operations on random vectors (the reference), including the fused and vector-array
 // forms against their definitions through SUNDIALS' single operations, and aliasing.
 #include <math.h>
 #include <nvector/nvector_serial.h>

@@ -97,7 +97,8 @@ typedef struct point {
 // evaluate with jets along (w, dt) with input curvature z; rc of eval or -99 if non-finite
 static int eval_jet(const point *P, const double *w, const double *z, double dt, dal_jet *out) {
   dal_jet in[MAXIO];
-  for (int i = 0; i < P->prim->nin; ++i) in[i] = dal_jet_make(P->u[i], w[i], z[i]);
+  for (int i = 0; i < P->prim->nin; ++i)
+    in[i] = dal_jet_make(P->u[i], w[i], z[i]);
   int rc = P->prim->eval(in, dal_jet_make(P->t, dt, 0.0), P->param, out, P->ctx);
   if (rc) return rc;
   for (int a = 0; a < P->prim->nout; ++a)
@@ -143,7 +144,8 @@ static int random_point(point *P) {
       P->w[i] = grid(-1, 1, 10);
       P->z[i] = grid(-1, 1, 10);
     }
-    for (int i = 0; i < p->nparam; ++i) P->param[i] = check_rand(&seed, 0.5, 1.5);
+    for (int i = 0; i < p->nparam; ++i)
+      P->param[i] = check_rand(&seed, 0.5, 1.5);
     P->t = grid(-3, 3, 20);
     dal_jet out[MAXIO];
     if (eval_jet(P, P->w, P->z, 1.0, out) == 0) return 1;
@@ -175,7 +177,8 @@ static void test_eval(const dal_primitive *p, void *ctx, const char *ctxname) {
       double e[MAXIO] = {0};
       e[i] = 1.0;
       CHECK_OK(eval_jet(&P, e, zero, 0.0, out));
-      for (int a = 0; a < p->nout; ++a) J[a][i] = out[a].d;
+      for (int a = 0; a < p->nout; ++a)
+        J[a][i] = out[a].d;
       memcpy(P.w, e, sizeof e);
       memset(P.z, 0, sizeof P.z);
       P.dt = 0.0;
@@ -183,7 +186,8 @@ static void test_eval(const dal_primitive *p, void *ctx, const char *ctxname) {
     }
     // time derivatives
     CHECK_OK(eval_jet(&P, zero, zero, 1.0, out));
-    for (int a = 0; a < p->nout; ++a) Jt[a] = out[a].d;
+    for (int a = 0; a < p->nout; ++a)
+      Jt[a] = out[a].d;
     memset(P.w, 0, sizeof P.w);
     memset(P.z, 0, sizeof P.z);
     P.dt = 1.0;
@@ -285,13 +289,17 @@ static int composite(const scene *S, const double *q, double t, double *val) {
   int k = 0;
   for (int a = 0; a < S->npart; ++a) {
     dal_jet wq[3], wr[3];
-    for (int b = 0; b < S->d; ++b) wq[b] = dal_const(q[a * S->d + b]);
+    for (int b = 0; b < S->d; ++b)
+      wq[b] = dal_const(q[a * S->d + b]);
     warp_eval(wq, tt, NULL, wr, S->d == 3 ? &dim3 : &dim2);
-    for (int b = 0; b < S->d; ++b) in[k++] = wr[b];
+    for (int b = 0; b < S->d; ++b)
+      in[k++] = wr[b];
   }
-  for (int i = S->npart * S->d; i < S->prim->nin; ++i) in[k++] = dal_const(q[i]);
+  for (int i = S->npart * S->d; i < S->prim->nin; ++i)
+    in[k++] = dal_const(q[i]);
   if (S->prim->eval(in, tt, S->param, out, S->ctx)) return -1;
-  for (int a = 0; a < S->prim->nout; ++a) val[a] = out[a].v;
+  for (int a = 0; a < S->prim->nout; ++a)
+    val[a] = out[a].v;
   return 0;
 }
 
@@ -318,7 +326,8 @@ static dal_system *scene_build(scene *S, int as_con) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int d = S->d, rc = dal_builder_create(d, &b), coords[MAXIO], parts[MAXIO], idx;
-  for (int i = 0; i < S->n && !rc; ++i) rc = dal_builder_add_coord(b, NULL, &coords[i]);
+  for (int i = 0; i < S->n && !rc; ++i)
+    rc = dal_builder_add_coord(b, NULL, &coords[i]);
   // warp particles, then the particle under test (map; after its parent), then one slider per
   // coordinate
   int self = -1;
@@ -381,12 +390,14 @@ static int scene_point(scene *S) {
       S->q[i] = grid(-1.5, 1.5, 20);
       S->qd[i] = grid(-1, 1, 10);
     }
-    for (int i = 0; i < S->prim->nparam; ++i) S->param[i] = check_rand(&seed, 0.5, 1.5);
+    for (int i = 0; i < S->prim->nparam; ++i)
+      S->param[i] = check_rand(&seed, 0.5, 1.5);
     S->t = grid(-3, 3, 20);
     double val[MAXIO];
     if (composite(S, S->q, S->t, val) == 0) {
       int ok = 1;
-      for (int a = 0; a < S->prim->nout; ++a) ok &= isfinite(val[a]);
+      for (int a = 0; a < S->prim->nout; ++a)
+        ok &= isfinite(val[a]);
       if (ok) return 1;
     }
   }

@@ -370,8 +370,8 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 /// 1/time.
 /// Returns DAL_OK; DAL_E_ARG (options, nexp, a dependent y0); DAL_E_NONFINITE (y0);
 /// DAL_E_UNSUPPORTED (method, or see the file comment); the integrators' statuses
-/// (DAL_E_STEP, DAL_E_MAXSTEPS for max_steps in all, ...); the statuses of dal_vector_field_jacobian
-/// at the failing time.
+/// (DAL_E_STEP, DAL_E_MAXSTEPS for max_steps in all, ...); the statuses of
+/// dal_vector_field_jacobian at the failing time.
 DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
                          double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
 

@@ -123,13 +123,12 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
 }
 
 // every option field: the integrator is reused only while all of them are unchanged
+// clang-format off
 #define DAL_OPTS_FIELDS(X)                                                                         \
-  X(cookie)                                                                                        \
-  X(method)                                                                                        \
-  X(form)                                                                                          \
-  X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step) X(max_steps) X(baumgarte_alpha)    \
-      X(baumgarte_beta) X(project) X(sparse_threshold) X(fixed_erk) X(work) X(init_max_move)       \
-          X(no_fallback)
+  X(cookie) X(method) X(form) X(linsol) X(rtol) X(atol) X(h0) X(hmin) X(hmax) X(fixed_step)      \
+  X(max_steps) X(baumgarte_alpha) X(baumgarte_beta) X(project) X(sparse_threshold) X(fixed_erk)   \
+  X(work) X(init_max_move) X(no_fallback)
+// clang-format on
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)
 // a new field changes the size: add it to DAL_OPTS_FIELDS, then update this check
 // (4 bytes of padding follow no_fallback)

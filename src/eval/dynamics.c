@@ -10,8 +10,8 @@
 #include "linalg/linalg.h"
 
 // position and velocity of a link's anchor, x0 + x(t) (the moving-point convention)
-static int anchor(const dal_system *sys, dal_state *st, const dal_link *l, double *x,
-                  double *xd, const char *kind) {
+static int anchor(const dal_system *sys, dal_state *st, const dal_link *l, double *x, double *xd,
+                  const char *kind) {
   int d = sys->dim;
   if (!l->fn) {
     memcpy(x, l->x0, (size_t)d * sizeof(double));
@@ -47,7 +47,8 @@ static int direction(const dal_system *sys, dal_state *st, const double *ra, con
                     "%s on particle '%s' has zero length at t=%.17g: its direction is "
                     "undefined; start the particles apart",
                     kind, sys->part_names[l->a], st->t);
-  for (int b = 0; b < d; ++b) e[b] /= *len;
+  for (int b = 0; b < d; ++b)
+    e[b] /= *len;
   return DAL_OK;
 }
 
@@ -81,19 +82,22 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
     // e points from the other end to particle a
     if ((rc = direction(sys, st, ra, rb, e, &len, l, kind)) != 0) return rc;
     double f, ev = 0.0; // ev: e . (v_a - v_other)
-    for (int b = 0; b < d; ++b) ev += (vb[b] - vra[b]) * e[b];
+    for (int b = 0; b < d; ++b)
+      ev += (vb[b] - vra[b]) * e[b];
     if (spring) {
       f = l->k * (len - l->L);
       *U += 0.5 * l->k * (len - l->L) * (len - l->L);
       // a moving anchor changes U explicitly: dU/dt = -f e . xdot_anchor
       if (pw && l->b < 0)
-        for (int b = 0; b < d; ++b) pw[1] -= f * e[b] * vra[b];
+        for (int b = 0; b < d; ++b)
+          pw[1] -= f * e[b] * vra[b];
     } else {
       f = l->k * ev;
       // the damper's power on the particles (an anchor's motion is external)
       if (pw) {
         double s = 0.0;
-        for (int b = 0; b < d; ++b) s += e[b] * (vb[b] - (l->b >= 0 ? vra[b] : 0.0));
+        for (int b = 0; b < d; ++b)
+          s += e[b] * (vb[b] - (l->b >= 0 ? vra[b] : 0.0));
         pw[0] -= f * s;
       }
     }
@@ -106,7 +110,8 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
   int Nd = N * d;
   for (int i = 0; i < sys->npotr; ++i) {
     dal_jet Uj;
-    for (int j = 0; j < Nd; ++j) st->jr[j] = dal_const(st->r[j]);
+    for (int j = 0; j < Nd; ++j)
+      st->jr[j] = dal_const(st->r[j]);
     for (int j = 0; j < Nd; ++j) {
       st->jr[j].d = 1.0;
       rc = sys->potr[i].fn.potr(st->jr, dal_const(st->t), &Uj, sys->potr[i].ctx);
@@ -135,7 +140,8 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
     if (rc) return dal__cb_status(st, rc, "force callback");
   }
   if (pw && sys->nforce)
-    for (int j = 0; j < Nd; ++j) pw[0] += (st->F[j] - F0[j]) * st->v[j];
+    for (int j = 0; j < Nd; ++j)
+      pw[0] += (st->F[j] - F0[j]) * st->v[j];
   for (int j = 0; j < Nd; ++j)
     if (!isfinite(st->F[j]))
       return DAL_FAIL(st, DAL_E_NONFINITE,
@@ -174,7 +180,8 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) 
   int n = sys->n, rc;
   for (int i = 0; i < sys->npotq; ++i) {
     dal_jet Uj = dal_const(0.0);
-    for (int j = 0; j < n; ++j) st->jq[j] = dal_const(st->q[j]);
+    for (int j = 0; j < n; ++j)
+      st->jq[j] = dal_const(st->q[j]);
     for (int j = 0; j < n; ++j) {
       st->jq[j].d = 1.0;
       rc = sys->potq[i].fn.potq(st->jq, dal_const(st->t), &Uj, sys->potq[i].ctx);
@@ -188,7 +195,8 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) 
       st->Q[j] -= Uj.d;
     }
     if (pw || n == 0) {
-      for (int j = 0; j < n; ++j) st->jq[j] = dal_const(st->q[j]);
+      for (int j = 0; j < n; ++j)
+        st->jq[j] = dal_const(st->q[j]);
       rc = sys->potq[i].fn.potq(st->jq, dal_var(st->t, 1.0), &Uj, sys->potq[i].ctx);
       if (rc) return dal__cb_status(st, rc, "potential U(q,t)");
       if (pw) pw[1] += Uj.d;
@@ -196,14 +204,16 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) 
     *U += Uj.v;
   }
   double qv0 = 0.0; // Q . qdot before the callbacks, for their power
-  for (int j = 0; j < n && pw && sys->ngenforce; ++j) qv0 += st->Q[j] * st->qdot[j];
+  for (int j = 0; j < n && pw && sys->ngenforce; ++j)
+    qv0 += st->Q[j] * st->qdot[j];
   for (int i = 0; i < sys->ngenforce; ++i) {
     rc = sys->genforces[i].fn.gen(st->t, st->q, st->qdot, st->Q, sys->genforces[i].ctx);
     if (rc) return dal__cb_status(st, rc, "generalized force callback");
   }
   if (pw && sys->ngenforce) {
     double qv = 0.0;
-    for (int j = 0; j < n; ++j) qv += st->Q[j] * st->qdot[j];
+    for (int j = 0; j < n; ++j)
+      qv += st->Q[j] * st->qdot[j];
     pw[0] += qv - qv0;
   }
   for (int j = 0; j < n; ++j)
@@ -217,7 +227,8 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) 
 
 // Q and c for any tree of placements by subtree sums (carried to a parent through Lp_k'; the
 // chain rule J_k = Lp_k J_p + Lc_k), and M by composite masses when every parent link is a
-// translation (r_k = r_p + f): then J_k = sum of L_a over the ancestors a of k (L_a: a's local coordinate columns), so
+// translation (r_k = r_p + f): then J_k = sum of L_a over the ancestors a of k (L_a: a's local
+// coordinate columns), so
 //   M = sum_a sum_{b ancestor-or-self of a} mu_a (L_a' L_b + L_b' L_a for b != a),
 //   Q = sum_a L_a' (sum of F over a's subtree),  c = sum_a L_a' (sum of m gamma over it),
 // with mu_a the subtree mass: O(N depth) work instead of O(N n^2) (Featherstone's composite
@@ -227,9 +238,11 @@ int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw) 
 static inline void subtree_sums(const dal_system *sys, dal_state *st, const int d) {
   int N = sys->N;
   double *restrict cf = st->cf, *restrict cg = st->cf + N * d;
-  for (int e = 0; e < N * d; ++e) cf[e] = st->F[e];
+  for (int e = 0; e < N * d; ++e)
+    cf[e] = st->F[e];
   for (int k = 0; k < N; ++k)
-    for (int a = 0; a < d; ++a) cg[k * d + a] = st->prm.mass[k] * st->gamma[k * d + a];
+    for (int a = 0; a < d; ++a)
+      cg[k * d + a] = st->prm.mass[k] * st->gamma[k * d + a];
   for (int k = N - 1; k >= 0; --k) {
     const dal_place *pk = &sys->place[k];
     const int *ck = sys->ipool + pk->coord_off;
@@ -266,8 +279,10 @@ static inline void subtree_sums(const dal_system *sys, dal_state *st, const int 
 
 static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
   int d = sys->dim, n = sys->n, N = sys->N;
-  if (d == 2) subtree_sums(sys, st, 2);
-  else subtree_sums(sys, st, 3);
+  if (d == 2)
+    subtree_sums(sys, st, 2);
+  else
+    subtree_sums(sys, st, 3);
   for (int k = 0; k < N && want_M; ++k) {
     const dal_place *pk = &sys->place[k];
     const int *ck = sys->ipool + pk->coord_off;
@@ -285,7 +300,8 @@ static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
       if (nk == 1 && nb == 1) {
         // one coordinate each (chains, pendulums): one entry
         double v = 0.0;
-        for (int a = 0; a < d; ++a) v += Lk[a] * Lb[a];
+        for (int a = 0; a < d; ++a)
+          v += Lk[a] * Lb[a];
         int r = ck[0] > cb[0] ? ck[0] : cb[0], c = ck[0] > cb[0] ? cb[0] : ck[0];
         M[(size_t)c * n + r] += (r == c && b != k ? 2.0 : 1.0) * muk * v;
         continue;
@@ -293,7 +309,8 @@ static void tree_assembly(const dal_system *sys, dal_state *st, int want_M) {
       for (int i = 0; i < nk; ++i)
         for (int j = 0; j < (b == k ? i + 1 : nb); ++j) {
           double v = 0.0;
-          for (int a = 0; a < d; ++a) v += Lk[a * nk + i] * Lb[a * nb + j];
+          for (int a = 0; a < d; ++a)
+            v += Lk[a * nk + i] * Lb[a * nb + j];
           v *= muk;
           int r = ck[i], c = cb[j];
           if (r == c && (b != k || i != j)) v *= 2.0;
@@ -341,7 +358,8 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) 
           for (int c2 = 0; c2 < ndk; ++c2) {
             double *col = st->M + (size_t)dk[c2] * n;
             // m (J_ac J_ac2): the product is symmetric in (c, c2), so M is exactly symmetric
-            for (int c = 0; c < ndk; ++c) col[dk[c]] += m * (row[c] * row[c2]);
+            for (int c = 0; c < ndk; ++c)
+              col[dk[c]] += m * (row[c] * row[c2]);
           }
       }
     }
@@ -374,7 +392,8 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw) 
     // Cholesky reads)
     if (want_M > 1 && st->tree)
       for (int j = 0; j < n; ++j)
-        for (int i = j + 1; i < n; ++i) st->M[(size_t)i * n + j] = st->M[(size_t)j * n + i];
+        for (int i = j + 1; i < n; ++i)
+          st->M[(size_t)i * n + j] = st->M[(size_t)j * n + i];
     st->have |= want_M > 1 || !st->tree ? DAL_P_M | DAL_P_MLOW : DAL_P_MLOW;
   }
   return DAL_OK;
@@ -391,7 +410,8 @@ void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x
   if (!(st->have & DAL_P_J)) {
     DAL_NEED(st, DAL_P_M);
     for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) y[i] += st->M[(size_t)j * n + i] * x[j];
+      for (int i = 0; i < n; ++i)
+        y[i] += st->M[(size_t)j * n + i] * x[j];
     return;
   }
   for (int k = 0; k < sys->N; ++k) {
@@ -400,16 +420,19 @@ void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x
     const double *Jk = st->J + sys->pj_off[k];
     for (int a = 0; a < d; ++a) {
       double s = 0.0;
-      for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * x[dk[c]];
+      for (int c = 0; c < ndk; ++c)
+        s += Jk[a * ndk + c] * x[dk[c]];
       s *= st->prm.mass[k];
-      for (int c = 0; c < ndk; ++c) y[dk[c]] += Jk[a * ndk + c] * s;
+      for (int c = 0; c < ndk; ++c)
+        y[dk[c]] += Jk[a * ndk + c] * s;
     }
   }
 }
 
 int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
   int n = sys->n;
-  for (int j = 0; j < n; ++j) st->qddot[j] = st->Q[j] - st->c[j];
+  for (int j = 0; j < n; ++j)
+    st->qddot[j] = st->Q[j] - st->c[j];
   int bad = -1;
   DAL_NEED(st, DAL_P_MLOW | DAL_P_DYN);
   int rc = dal__chol_solve(n, st->M, st->L, st->qddot, &bad);
@@ -440,13 +463,15 @@ int dal__finish(const dal_system *sys, dal_state *st) {
         int p = pk->parent;
         for (int b = 0; b < d && p >= 0; ++b)
           s += Lp[a * d + b] * (st->a[p * d + b] - st->gamma[p * d + b]);
-        for (int i = 0; i < pk->ncoord; ++i) s += Lk[a * pk->ncoord + i] * st->qddot[ck[i]];
+        for (int i = 0; i < pk->ncoord; ++i)
+          s += Lk[a * pk->ncoord + i] * st->qddot[ck[i]];
       } else {
         DAL_NEED(st, DAL_P_J);
         const int *dk = sys->pdep + sys->pdep_off[k];
         int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
         const double *Jk = st->J + sys->pj_off[k];
-        for (int c = 0; c < ndk; ++c) s += Jk[a * ndk + c] * st->qddot[dk[c]];
+        for (int c = 0; c < ndk; ++c)
+          s += Jk[a * ndk + c] * st->qddot[dk[c]];
       }
       st->a[k * d + a] = s;
       st->N[k * d + a] = st->prm.mass[k] * s - st->F[k * d + a];

@@ -4,8 +4,8 @@
 #ifndef DAL_DAE_INTERNAL_H
 #define DAL_DAE_INTERNAL_H
 
-#include "dalembert/dae.h"
 #include "base/base.h"
+#include "dalembert/dae.h"
 #include "linalg/linalg.h"
 
 /// KKT metric: the (1,1) block is the identity (minimum-norm position steps) or M.
@@ -34,10 +34,8 @@ void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lam
 /// max |x_i| over n entries (NaN counts as largest); *at (nullable) receives its index
 double dal__max_abs(const double *x, int n, int *at);
 
-
 /// Rank check (diagnose.c): writes the named message into the state when G is rank
 /// deficient. Returns DAL_OK, DAL_E_CONSTRAINT or DAL_E_NOMEM; rep is nullable.
 int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report *rep);
-
 
 #endif

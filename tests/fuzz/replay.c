@@ -152,7 +152,8 @@ int main(int argc, char **argv) {
       uint8_t buf[512];
       for (long k = 0; k < nrand; ++k) {
         size_t len = 16 + (size_t)(next_rand(&seed) % (sizeof buf - 16));
-        for (size_t i = 0; i < len; ++i) buf[i] = (uint8_t)(next_rand(&seed) >> 56);
+        for (size_t i = 0; i < len; ++i)
+          buf[i] = (uint8_t)(next_rand(&seed) >> 56);
         char what[4096];
         snprintf(what, sizeof what, "%s/random-%ld", dump ? dump : "(random)", k);
         if (dump) {
