@@ -1335,7 +1335,37 @@ static int row_monitor_reentrant(char *msg) {
 }
 
 // ---------------------------------------------------------------- the table
+
+// a method with a tolerance floor of its own (CVODE's BDF, 1e-11) asked for 1e-13 ran at its
+// floor with DAL_OK and an empty message: the clamp is now a note, and rtol_used shows it
+static int row_bdf_floor_note(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 1.0));
+  dal_solve_opts o = dal_default_solve_opts();
+  o.method = DAL_METHOD_BDF;
+  o.rtol = 1e-13;
+  int rc = dal_advance(s.sys, s.st, &o, 1.0);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  dal_stats stats;
+  dal_state_stats(s.st, &stats);
+  // the local tolerance it ran at is the one of a request at the floor itself, which the
+  // method honours and which leaves no note
+  o.rtol = 1e-11;
+  double q = 1.0, qd = 0.0;
+  CHECK_OK(dal_state_set(s.sys, s.st, 0.0, &q, &qd));
+  CHECK_OK(dal_advance(s.sys, s.st, &o, 1.0));
+  CHECK(strstr(dal_state_errmsg(s.st), "note") == NULL);
+  dal_stats at_floor;
+  dal_state_stats(s.st, &at_floor);
+  CHECK_MSG(stats.rtol_used == at_floor.rtol_used, "rtol_used %g, at the floor %g", stats.rtol_used,
+            at_floor.rtol_used);
+  scene_free(&s);
+  return rc;
+}
+
 static const rel_row rows[] = {
+    {"bdf: a request below its floor leaves a note", DAL_OK, "below what bdf can honour", "1e-11",
+     NULL, row_bdf_floor_note},
     {"csv monitor: state of a smaller system", DAL_E_STATE, "csv_monitor", "another system", NULL,
      row_csv_foreign},
     {"csv monitor: state never evaluated", DAL_E_STATE, "csv_monitor", "not evaluated", NULL,

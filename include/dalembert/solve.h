@@ -60,7 +60,8 @@ extern "C" {
 /// at 2.5 rad, by events at the times and by a dal_advance loop; tests/test_dense.c): the
 /// factors 0.005 and 0.0005 calibrated at t = 10 gave up to 27 x and 107 x there. CVODE's BDF
 /// honours rtol >= 1e-11 (its local tolerance would pass the floor 1e-15 below): a tighter
-/// request runs as 1e-11, atol scaled alike, and the clamp shows in dal_stats.rtol_used.
+/// request runs as 1e-11, atol scaled alike, never silently: DAL_OK with a note in the state's
+/// message ("rtol ... is below what bdf can honour") and the clamp in dal_stats.rtol_used.
 /// A dal_advance call without events or monitor lets CVODE step on past its target and
 /// takes the state there from CVODE's interpolating polynomial (forcing a step to end at every
 /// target broke the multistep history: 113 x rtol for Adams in a loop of 986 calls); the model

@@ -133,6 +133,14 @@ static void start_notes(const dal_system *sys, dal_state *st, const dal_solve_op
              "(its floor, dal_stats.rtol_used), so expect errors above rtol; DAL_FORM_AUTO with "
              "DAL_METHOD_AUTO runs the index-1 form with projection and Bulirsch-Stoer there",
              used ? "; " : "", o->rtol, st->stats.rtol_used);
+  // an ODE method with a floor of its own (CVODE's BDF) ran at that floor
+  const dal_method_row *mr = h->ode ? dal__method_row(h->ode->method) : NULL;
+  if (mr && o->rtol < mr->min_rtol && used < sizeof h->note)
+    snprintf(h->note + used, sizeof h->note - used,
+             "%snote: rtol %g is below what %s can honour: it ran as rtol %g, atol scaled alike "
+             "(dal_stats.rtol_used has the local tolerance), so expect errors above rtol; "
+             "DAL_METHOD_BS or DAL_METHOD_AUTO honour tighter requests",
+             used ? "; " : "", o->rtol, mr->name, mr->min_rtol);
 }
 
 // make sure st->integ is an integrator for these options at the state's current point (dense:
