@@ -167,12 +167,6 @@ static int is_unset(double x) {
   return u == unset_bits;
 }
 
-const char *dal__param_name(const dal_primitive *prim, int i, char *buf, size_t len) {
-  if (prim->version >= 2 && prim->param_names && prim->param_names[i]) return prim->param_names[i];
-  snprintf(buf, len, "p%d", i);
-  return buf;
-}
-
 int dal__prim_version_ok(const dal_primitive *prim, char *err, const char *what) {
   if (prim->version < 1)
     return dal__set_err(err, DAL_E_ARG,

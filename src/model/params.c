@@ -623,3 +623,11 @@ int dal_state_copy_params(const dal_system *sys, dal_state *dst, const dal_state
   dal__state_moved(dst);
   return DAL_OK;
 }
+
+// the integrator memory kept in a state: dropping it, with the factorization history it holds
+void dal__integ_reset(dal_state *st) {
+  if (st->integ && st->integ_free) st->integ_free(st->integ);
+  st->integ = NULL;
+  st->integ_free = NULL;
+  dal__kkt_reset(st->kkt);
+}

@@ -403,14 +403,6 @@ int dal_constraint_forces(const dal_system *sys, const dal_state *st, double *F)
   return DAL_OK;
 }
 
-// the integrator memory kept in a state: dropping it, with the factorization history it holds
-void dal__integ_reset(dal_state *st) {
-  if (st->integ && st->integ_free) st->integ_free(st->integ);
-  st->integ = NULL;
-  st->integ_free = NULL;
-  dal__kkt_reset(st->kkt);
-}
-
 // the last consistent start's report, kept for the user
 int dal_state_init_report(const dal_state *st, dal_init_report *out) {
   if (!st || !out) return DAL_E_ARG;

@@ -27,6 +27,13 @@ int dal__check_mass(char *err, const char *nm, double mass) {
   return DAL_OK;
 }
 
+// a parameter's name for messages: its name in the primitive's table, or p<i>
+const char *dal__param_name(const dal_primitive *prim, int i, char *buf, size_t len) {
+  if (prim->version >= 2 && prim->param_names && prim->param_names[i]) return prim->param_names[i];
+  snprintf(buf, len, "p%d", i);
+  return buf;
+}
+
 int dal__check_prim_value(char *err, const char *what, const dal_primitive *prim, int i, double x) {
   char nb[16];
   if (!isfinite(x))
