@@ -118,6 +118,23 @@ static double scaled_residual(const dal_system *sys, const dal_state *st, const 
 
 // the equilibrium solve on a prepared workspace; on success the state is at (t, q*, 0),
 // evaluated, with the tangent (and dR/dt) of the solution in w->tg
+double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
+                         double reach, double *big, int *far) {
+  *big = 0.0;
+  *far = -1;
+  for (int i = 0; i < n; ++i) {
+    *big = fmax(*big, fabs(x[i]));
+    if (!isfinite(x[i])) *big = INFINITY;
+  }
+  for (int i = 0; i < m; ++i)
+    if (!isfinite(x[n + i])) *big = INFINITY;
+  if (!isfinite(*big)) return 1.0;
+  double f = max_step > 0 && *big > max_step ? max_step / *big : 1.0;
+  for (int i = 0; i < n && *far < 0; ++i)
+    if (!(fabs(q[i] + f * x[i]) <= reach)) *far = i;
+  return f;
+}
+
 // the Newton step K dq = R (R in w->x) taken from w->q, scaled down to max_step and kept
 // within reach of the start; *step: the largest relative change of q (0 when below xtol with
 // the full step), *length: the step's length
@@ -138,19 +155,12 @@ static int newton_step(const dal_system *sys, dal_state *st, const dal_equilibri
                     t, qs, sys->coord_names[info > 0 ? (int)info - 1 : 0]);
   }
   double big = 0.0, conv = 0.0;
-  for (int i = 0; i < n; ++i) {
-    big = fmax(big, fabs(w->x[i]));
-    if (!isfinite(w->x[i])) big = INFINITY;
-  }
+  int far = -1;
+  double f = dal__newton_scale(w->x, n, 0, w->q, o->max_step, reach, &big, &far);
   if (!isfinite(big))
     return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
-  double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
   // a step that leaves the start's neighbourhood (K nearly singular: a turning point of
-  // the potential) lands on no equilibrium the start was meant for
-  int far = -1;
-  for (int i = 0; i < n && far < 0; ++i)
-    if (!(fabs(w->q[i] + f * w->x[i]) <= reach)) // |q0| <= reach / 1e4
-      far = i;
+  // the potential) lands on no equilibrium the start was meant for (|q0| <= reach / 1e4)
   if (far >= 0) {
     char qs[256];
     dal__fmt_q(sys, st->q, qs, sizeof qs);

@@ -98,28 +98,22 @@ static int mf_step(const dal_system *sys, dal_state *st, const dal_equilibrium_o
                    int it, double *conv, dal_equilibrium_report *r) {
   int n = w->n, m = w->m;
   double *x = w->x, *q = w->q, big = 0.0;
-  for (int i = 0; i < n; ++i) {
-    big = fmax(big, fabs(x[i]));
-    if (!isfinite(x[i])) big = INFINITY;
-  }
-  for (int i = 0; i < m; ++i)
-    if (!isfinite(x[n + i])) big = INFINITY;
+  int far = -1;
+  double f = dal__newton_scale(x, n, m, q, o->max_step, w->reach, &big, &far);
   if (!isfinite(big))
     return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", st->t);
-  double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
   // a step that leaves the start's neighbourhood lands on no equilibrium the start was
   // meant for (the Newton matrix is nearly singular there)
-  for (int i = 0; i < n; ++i)
-    if (!(fabs(q[i] + f * x[i]) <= w->reach)) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      return DAL_FAIL(st, DAL_E_CONV,
-                      "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
-                      "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the Newton "
-                      "matrix on the constraint manifold is nearly singular there; start closer "
-                      "to the equilibrium or bound the step (max_step)",
-                      st->t, qs, sys->coord_names[i], q[i] + f * x[i], w->reach);
-    }
+  if (far >= 0) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_CONV,
+                    "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
+                    "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the Newton "
+                    "matrix on the constraint manifold is nearly singular there; start closer "
+                    "to the equilibrium or bound the step (max_step)",
+                    st->t, qs, sys->coord_names[far], q[far] + f * x[far], w->reach);
+  }
   *conv = 0.0;
   for (int i = 0; i < n; ++i) {
     q[i] += f * x[i];
