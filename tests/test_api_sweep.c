@@ -317,6 +317,20 @@ static void sw_dal_evolve(void) {
   ST(dal_evolve(F.A, F.stA, &F.o, 1.0, -0.1, NULL, NULL), DAL_E_ARG, F.stA);
   st_intact();
 }
+static void sw_dal_evolve_at(void) {
+  const double ts[2] = {0.5, 1.0}, dec[3] = {0.5, 1.0, 0.7}, nan2[2] = {0.5, NAN};
+  const double back[2] = {-1.0, 1.0};
+  ST(dal_evolve_at(F.A, NULL, &F.o, ts, 2, NULL, NULL), DAL_E_ARG, NULL);
+  ST(dal_evolve_at(NULL, F.stA, &F.o, ts, 2, NULL, NULL), DAL_E_STATE, F.stA);
+  ST(dal_evolve_at(F.B, F.stA, &F.o, ts, 2, NULL, NULL), DAL_E_STATE, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, NULL, ts, 2, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, NULL, 2, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, ts, 0, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, dec, 3, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, nan2, 2, NULL, NULL), DAL_E_NONFINITE, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, back, 2, NULL, NULL), DAL_E_TIME, F.stA);
+  st_intact();
+}
 static void sw_dal_csv_monitor(void) {
   dal_csv none = {NULL, 0, 0};
   FILE *fp = tmpfile();
@@ -2010,6 +2024,7 @@ static const sweep_row rows[] = {
     ROW(dal_state_stats),
     ROW(dal_advance),
     ROW(dal_evolve),
+    ROW(dal_evolve_at),
     ROW(dal_csv_monitor),
     ROW(dal_default_event_def),
     ROW(dal_events_create),

@@ -343,6 +343,21 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
                        double dt, dal_monitor_fn *monitor, void *ctx);
 
+/// Evolve from the current time to times[n - 1], calling `monitor` (may be NULL) at every
+/// output time times[0 .. n) (n >= 1, caller-owned, read during the call only; seconds), like
+/// solve_ivp's t_eval. The times must be finite, not before the current time and
+/// non-decreasing (integration runs forward; equal times are each served); the monitor is
+/// called at the current time only when times[0] equals it. The outputs are served exactly as
+/// dal_evolve serves its grid: from the method's dense output after each accepted step, so the
+/// steps, the end state and the statistics are bit for bit those of dal_evolve with a monitor
+/// to the same end time, whatever the list (tests/test_evolve_at.c). opts.max_steps counts the
+/// steps between two outputs. Returns DAL_OK at times[n - 1], DAL_STOPPED, DAL_EVENT or a
+/// negative status as dal_evolve does; a bad list is refused before any step with a message
+/// naming the index: times NULL or n = 0 DAL_E_ARG, a time NaN or inf DAL_E_NONFINITE,
+/// times[i] < times[i - 1] DAL_E_ARG, times[0] before the current time DAL_E_TIME.
+DAL_API int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                          const double *times, size_t n, dal_monitor_fn *monitor, void *ctx);
+
 /// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row.
 typedef struct dal_csv {
   FILE *fp;        ///< output stream (borrowed)

@@ -313,10 +313,11 @@ typedef struct run {
   const dal_solve_opts *o;
   const char *what; // "advance" or "evolve" (messages)
   dal_integ_handle *h;
-  int outputs;       // evolve: the output grid below is served
-  double t0, dt, t1; // output times t0 + k dt (k <= K), then t1
-  long k, K;         // next output index
-  double last_out;   // time of the last output served
+  int outputs;         // evolve: the output grid below is served
+  double t0, dt, t1;   // output times t0 + k dt (k <= K), then t1
+  long k, K;           // next output index
+  const double *times; // evolve_at: the output times times[0 .. K] instead of the grid
+  double last_out;     // time of the last output served
   dal_monitor_fn *monitor;
   void *ctx;
   dal_events *ev; // attached events with at least one event, or NULL
@@ -327,6 +328,7 @@ typedef struct run {
 // the next output time, or +inf when all are served
 static double out_time(const run *r) {
   if (!r->outputs) return INFINITY;
+  if (r->times) return r->k <= r->K ? r->times[r->k] : INFINITY;
   if (r->k <= r->K) {
     double tk = r->t0 + (double)r->k * r->dt;
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
@@ -661,4 +663,74 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
   if (out_time(&r) <= t1 && (rc = serve_output(&r, st->t, 1)) != 0)
     return rc == DAL__HOOK_STOP ? r.status : rc;
   return DAL_OK;
+}
+
+// dal_evolve_at with checked (system, state, options): the output times validated here
+static int evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                     const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
+  if (!times || n == 0)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "evolve_at: no output times (times %s, n = %zu); give at least one time, the "
+                    "last being the end of the run",
+                    times ? "given" : "NULL", n);
+  for (size_t i = 0; i < n; ++i) {
+    if (!isfinite(times[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "evolve_at: times[%zu] = %g is not finite", i, times[i]);
+    if (i > 0 && times[i] < times[i - 1])
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "evolve_at: times[%zu] = %.17g lies before times[%zu] = %.17g; the output "
+                      "times must be non-decreasing (integration runs forward)",
+                      i, times[i], i - 1, times[i - 1]);
+  }
+  if (times[0] < st->t)
+    return DAL_FAIL(st, DAL_E_TIME,
+                    "evolve_at: times[0] = %.17g lies behind the current time %.17g; integration "
+                    "runs forward only (reset the state with dal_state_set to go back)",
+                    times[0], st->t);
+  dal_solve_opts eff = dal__effective_opts(opts);
+  double t0 = st->t, t1 = times[n - 1];
+  run r = {.sys = sys,
+           .st = st,
+           .o = &eff,
+           .what = "evolve",
+           .outputs = 1,
+           .t0 = t0,
+           .t1 = t1,
+           .k = 0,
+           .K = (long)n - 1,
+           .times = times,
+           .last_out = -INFINITY,
+           .monitor = monitor,
+           .ctx = ctx,
+           .ev = active_events(st)};
+  int rc;
+  // the start (made consistent first in redundant coordinates), evaluated
+  if ((rc = run_to(&r, t0)) != 0) return rc;
+  if (t1 > t0 && t1 - t0 <= DAL_TINY_STEP(t0) &&
+      (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
+    return rc;
+  // output times at the start, then the steps serve the others
+  while (out_time(&r) <= st->t)
+    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
+  // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
+  while (out_time(&r) <= t1)
+    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  return DAL_OK;
+}
+
+int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                  const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
+  // the end time is the last output time; the list itself is checked below (naming the index)
+  double t1 = st ? st->t : 0.0;
+  if (st && times && n > 0 && isfinite(times[n - 1]) && times[n - 1] > t1) t1 = times[n - 1];
+  int rc = check_call(sys, st, opts, t1, "evolve_at");
+  if (rc) return rc;
+  dal_events *ev = active_events(st);
+  st->busy = 1;
+  if (ev) dal__events_hold(ev, 1);
+  rc = evolve_at(sys, st, opts, times, n, monitor, ctx);
+  if (ev) dal__events_hold(ev, 0);
+  st->busy = 0;
+  return rc;
 }
