@@ -235,6 +235,17 @@ static void sw_dal_check_constraints(void) {
   ST(dal_check_constraints(F.B, F.stA, &rep), DAL_E_STATE, F.stA);
   ST(dal_check_constraints(F.A, F.stA, NULL), DAL_OK, F.stA);
 }
+static void sw_dal_joint_forces(void) {
+  double Fo[2];
+  CHECK_OK(dal_forward(F.B, F.stB));
+  ST(dal_joint_forces(F.B, NULL, Fo), DAL_E_ARG, NULL);
+  ST(dal_joint_forces(NULL, F.stB, Fo), DAL_E_STATE, F.stB);
+  ST(dal_joint_forces(F.A, F.stB, Fo), DAL_E_STATE, F.stB);
+  ST(dal_joint_forces(F.B, F.stB, NULL), DAL_E_ARG, F.stB);
+  ST(dal_joint_forces(F.B, F.stB, Fo), DAL_OK, F.stB);
+  CHECK(isfinite(Fo[0]) && isfinite(Fo[1]) && Fo[1] > 0); // the rod holds the bob up
+  st_intact();
+}
 static void sw_dal_constraint_forces(void) {
   double Fo[2];
   CHECK_OK(dal_forward(F.A, F.stA));
@@ -2058,6 +2069,7 @@ static const sweep_row rows[] = {
     ROW(dal_state_bias),
     ROW(dal_state_forces),
     ROW(dal_state_reactions),
+    ROW(dal_joint_forces),
     ROW(dal_state_lambda),
     ROW(dal_state_phi),
     ROW(dal_state_phidot),
