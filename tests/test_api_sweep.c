@@ -1709,6 +1709,53 @@ static void sw_dal_state_set_events(void) {
   CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
   dal_events_destroy(ev);
 }
+static void sw_dal_trajectory_create(void) {
+  dal_trajectory *tr = (dal_trajectory *)&F; // overwritten with NULL on failure
+  CHECK(dal_trajectory_create(NULL, &tr) == DAL_E_ARG && tr == NULL);
+  CHECK(dal_trajectory_create(F.B, NULL) == DAL_E_ARG);
+  CHECK(dal_trajectory_create(F.B, &tr) == DAL_OK && tr != NULL);
+  dal_trajectory_destroy(tr);
+}
+static void sw_dal_trajectory_destroy(void) { dal_trajectory_destroy(NULL); }
+static void sw_dal_trajectory_errmsg(void) { CHECK(strcmp(dal_trajectory_errmsg(NULL), "") == 0); }
+static void sw_dal_state_set_trajectory(void) {
+  dal_trajectory *tr = NULL;
+  CHECK_OK(dal_trajectory_create(F.A, &tr));
+  CHECK(dal_state_set_trajectory(NULL, tr) == DAL_E_ARG);
+  ST(dal_state_set_trajectory(F.stB, tr), DAL_E_STATE, F.stB); // another system's
+  CHECK(dal_state_set_trajectory(F.stA, NULL) == DAL_OK);
+  dal_trajectory_destroy(tr);
+}
+static void sw_dal_trajectory_span(void) {
+  dal_trajectory *tr = NULL;
+  double t0 = 0, t1 = 0;
+  CHECK(dal_trajectory_span(NULL, &t0, &t1) == DAL_E_ARG);
+  CHECK_OK(dal_trajectory_create(F.B, &tr));
+  CHECK(dal_trajectory_span(tr, &t0, &t1) == 0 && isnan(t0) && isnan(t1));
+  CHECK(dal_trajectory_span(tr, NULL, NULL) == 0);
+  dal_trajectory_destroy(tr);
+}
+static void sw_dal_trajectory_eval(void) {
+  dal_trajectory *tr = NULL;
+  dal_state *st = NULL;
+  double q = 0.3, qd = 0, qo, vo;
+  CHECK(dal_trajectory_eval(NULL, 0.0, &qo, &vo) == DAL_E_ARG);
+  CHECK_OK(dal_trajectory_create(F.B, &tr));
+  CHECK(dal_trajectory_eval(tr, 0.0, &qo, &vo) == DAL_E_ARG && dal_trajectory_errmsg(tr)[0]);
+  CHECK_OK(dal_state_create(F.B, &st));
+  CHECK_OK(dal_state_set(F.B, st, 0.0, &q, &qd));
+  CHECK_OK(dal_state_set_trajectory(st, tr));
+  CHECK_OK(dal_advance(F.B, st, &F.o, 0.5));
+  CHECK(dal_trajectory_eval(tr, NAN, &qo, &vo) == DAL_E_NONFINITE && dal_trajectory_errmsg(tr)[0]);
+  CHECK(dal_trajectory_eval(tr, INFINITY, &qo, &vo) == DAL_E_NONFINITE);
+  CHECK(dal_trajectory_eval(tr, 0.6, &qo, &vo) == DAL_E_ARG && dal_trajectory_errmsg(tr)[0]);
+  CHECK(dal_trajectory_eval(tr, -0.1, &qo, &vo) == DAL_E_ARG);
+  CHECK(dal_trajectory_eval(tr, 0.25, NULL, NULL) == DAL_OK);
+  CHECK(dal_trajectory_eval(tr, 0.5, &qo, NULL) == DAL_OK && qo == dal_state_q(st)[0]);
+  CHECK(dal_trajectory_errmsg(tr)[0] == 0);
+  dal_state_destroy(st);
+  dal_trajectory_destroy(tr);
+}
 static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
 static void sw_dal_events_get(void) {
   dal_events *ev = NULL;
@@ -2037,6 +2084,12 @@ static const sweep_row rows[] = {
     ROW(dal_evolve),
     ROW(dal_evolve_at),
     ROW(dal_csv_monitor),
+    ROW(dal_trajectory_create),
+    ROW(dal_trajectory_destroy),
+    ROW(dal_state_set_trajectory),
+    ROW(dal_trajectory_eval),
+    ROW(dal_trajectory_span),
+    ROW(dal_trajectory_errmsg),
     ROW(dal_default_event_def),
     ROW(dal_events_create),
     ROW(dal_events_destroy),

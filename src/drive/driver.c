@@ -351,6 +351,17 @@ static int place(void *p, double t) {
   return DAL_OK;
 }
 
+// put the state at the end of the step just taken: the accepted step itself (a stored trajectory
+// ends its steps where the integrator is)
+static int place_end(void *p, double t) {
+  run *r = p;
+  dal_integ_handle *h = r->h;
+  if (h->kind == KIND_IDA) return dal__ida_place(h->ida, t);
+  dal__ode_to_state(h->ode, h->ode->t, h->ode->y);
+  dal__state_moved(r->st);
+  return DAL_OK;
+}
+
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
 static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
   if (!monitor) return 0;
@@ -423,6 +434,16 @@ static int after_step(void *p) {
   }
   r->nsteps++;
   int rc, np = 0, kp = 0;
+  // Bulirsch-Stoer's long steps carry an interpolant of degree up to 2 kappa + 1: four records
+  // of degree 8 per step (solve.h, dal_trajectory)
+  int pieces = r->h->kind == KIND_ODE && r->h->ode->method == DAL_METHOD_BS ? 4 : 1;
+  if (st->traj && (rc = dal__traj_step(st->traj, st, a, b, pieces, place, place_end, r)) != 0) {
+    // out of memory: the run stops at the step's end, evaluated
+    char msg[DAL_ERRMSG_LEN];
+    memcpy(msg, st->err, sizeof msg);
+    if (place_end(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+    return r->status = rc;
+  }
   if (r->ev) {
     if ((rc = dal__events_scan(r->ev, st, a, b, place, r)) != 0) {
       // a failing event function: the run stops at the step's end, evaluated
@@ -464,7 +485,7 @@ static int after_step(void *p) {
 static int run_to(run *r, double t1) {
   const dal_system *sys = r->sys;
   dal_state *st = r->st;
-  int rc = ensure_integ(sys, st, r->o, r->outputs && r->monitor);
+  int rc = ensure_integ(sys, st, r->o, (r->outputs && r->monitor) || st->traj);
   if (rc) return rc;
 again:;
   dal_integ_handle *h = st->integ;
@@ -477,11 +498,13 @@ again:;
     dal__integ_reset(st);
     r->h = NULL; // freed with it
     st->t = t1;
+    if (st->traj) dal__traj_end(st->traj, t1);
     return evaluate_here(sys, st);
   }
   // the hook only when someone looks: a monitor at output times, or events
-  int hooked = (r->outputs && r->monitor) || r->ev;
+  int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
+  if (st->traj && (rc = dal__traj_begin(st->traj, st)) != 0) return rc;
   r->status = DAL_OK;
   r->nsteps = 0;
   if (h->kind == KIND_ODE) {
@@ -495,6 +518,7 @@ again:;
     ig->hook_ctx = r;
     rc = ig->advance(ig, t1);
     ig->hook = NULL;
+    if (st->traj) dal__traj_end(st->traj, rc ? st->t : ig->t);
     if (!rc) {
       // the state at t1, evaluated there
       dal__ode_to_state(ig, ig->t, ig->y);
@@ -505,6 +529,7 @@ again:;
     rc = dal__ida_advance(sys, st, h->ida, t1);
     if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
     dal__ida_set_hook(h->ida, NULL, NULL);
+    if (st->traj) dal__traj_end(st->traj, st->t);
   }
   if (rc == DAL__HOOK_STOP) {
     // the hook left the state where the run stops, evaluated; the integrator is elsewhere
