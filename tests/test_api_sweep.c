@@ -235,25 +235,27 @@ static void sw_dal_check_constraints(void) {
   ST(dal_check_constraints(F.B, F.stA, &rep), DAL_E_STATE, F.stA);
   ST(dal_check_constraints(F.A, F.stA, NULL), DAL_OK, F.stA);
 }
+// a (system, const state, out) reader: NULL state, NULL or foreign system, NULL out, then ok
+typedef int state_reader_fn(const dal_system *sys, const dal_state *st, double *out);
+static void reader_rows(state_reader_fn *fn, const dal_system *own, dal_state *st,
+                        const dal_system *other, double *out) {
+  ST(fn(own, NULL, out), DAL_E_ARG, NULL);
+  ST(fn(NULL, st, out), DAL_E_STATE, st);
+  ST(fn(other, st, out), DAL_E_STATE, st);
+  ST(fn(own, st, NULL), DAL_E_ARG, st);
+  ST(fn(own, st, out), DAL_OK, st);
+}
 static void sw_dal_joint_forces(void) {
   double Fo[2];
   CHECK_OK(dal_forward(F.B, F.stB));
-  ST(dal_joint_forces(F.B, NULL, Fo), DAL_E_ARG, NULL);
-  ST(dal_joint_forces(NULL, F.stB, Fo), DAL_E_STATE, F.stB);
-  ST(dal_joint_forces(F.A, F.stB, Fo), DAL_E_STATE, F.stB);
-  ST(dal_joint_forces(F.B, F.stB, NULL), DAL_E_ARG, F.stB);
-  ST(dal_joint_forces(F.B, F.stB, Fo), DAL_OK, F.stB);
+  reader_rows(dal_joint_forces, F.B, F.stB, F.A, Fo);
   CHECK(isfinite(Fo[0]) && isfinite(Fo[1]) && Fo[1] > 0); // the rod holds the bob up
   st_intact();
 }
 static void sw_dal_constraint_forces(void) {
   double Fo[2];
   CHECK_OK(dal_forward(F.A, F.stA));
-  ST(dal_constraint_forces(F.A, NULL, Fo), DAL_E_ARG, NULL);
-  ST(dal_constraint_forces(NULL, F.stA, Fo), DAL_E_STATE, F.stA);
-  ST(dal_constraint_forces(F.B, F.stA, Fo), DAL_E_STATE, F.stA);
-  ST(dal_constraint_forces(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
-  ST(dal_constraint_forces(F.A, F.stA, Fo), DAL_OK, F.stA);
+  reader_rows(dal_constraint_forces, F.A, F.stA, F.B, Fo);
   // the minimal system has no explicit constraints: zero forces, DAL_OK
   double Fb[2] = {7, 7};
   ST(dal_constraint_forces(F.B, F.stB, Fb), DAL_OK, F.stB);
@@ -261,11 +263,7 @@ static void sw_dal_constraint_forces(void) {
 }
 static void sw_dal_constraint_genforces(void) {
   double Q[2];
-  ST(dal_constraint_genforces(F.A, NULL, Q), DAL_E_ARG, NULL);
-  ST(dal_constraint_genforces(NULL, F.stA, Q), DAL_E_STATE, F.stA);
-  ST(dal_constraint_genforces(F.B, F.stA, Q), DAL_E_STATE, F.stA);
-  ST(dal_constraint_genforces(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
-  ST(dal_constraint_genforces(F.A, F.stA, Q), DAL_OK, F.stA);
+  reader_rows(dal_constraint_genforces, F.A, F.stA, F.B, Q);
 }
 
 // ---------------------------------------------------------------- rows: primitives.h

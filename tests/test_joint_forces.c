@@ -24,6 +24,27 @@ static void twin(const dal_system *s, const dal_state *st, const dal_system *c, 
   CHECK_OK(dal_forward(c, sc));
 }
 
+// a scene in minimal coordinates and its Cartesian twin, with a state each
+typedef struct twins {
+  dal_system *s, *c;
+  dal_state *st, *sc;
+} twins;
+
+static twins twins_open(dal_system *s, dal_system *c) {
+  twins w = {s, c, NULL, NULL};
+  CHECK(s && c);
+  CHECK_OK(dal_state_create(s, &w.st));
+  CHECK_OK(dal_state_create(c, &w.sc));
+  return w;
+}
+
+static void twins_close(twins *w) {
+  dal_state_destroy(w->st);
+  dal_state_destroy(w->sc);
+  dal_system_destroy(w->s);
+  dal_system_destroy(w->c);
+}
+
 static double worst_rel(const double *a, const double *b, int n, double scale) {
   double w = 0;
   for (int i = 0; i < n; ++i)
@@ -35,10 +56,9 @@ static void pendulum(void) {
   scn_knobs k = scn_default();
   k.m = 1.7;
   k.l = 0.8;
-  dal_system *s = scn_pendulum(&k), *c = scn_cart_pendulum(&k);
-  dal_state *st, *sc;
-  CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_state_create(c, &sc));
+  twins w = twins_open(scn_pendulum(&k), scn_cart_pendulum(&k));
+  dal_system *s = w.s, *c = w.c;
+  dal_state *st = w.st, *sc = w.sc;
   unsigned long long seed = 11;
   double w_closed = 0, w_cart = 0, w_zero = 0;
   for (int i = 0; i < 200; ++i) {
@@ -74,10 +94,7 @@ static void pendulum(void) {
   CHECK(dal_joint_forces(c, st, J) == DAL_E_STATE);
   CHECK(dal_joint_forces(s, st, NULL) == DAL_E_ARG);
   CHECK(dal_joint_forces(s, NULL, J) == DAL_E_ARG);
-  dal_state_destroy(st);
-  dal_state_destroy(sc);
-  dal_system_destroy(s);
-  dal_system_destroy(c);
+  twins_close(&w);
 }
 
 // the double pendulum: the lower joint is rod2's pull, the upper one rod1's alone; in the
@@ -88,10 +105,9 @@ static void double_pendulum(void) {
   k.m = 1.3;
   k.m2 = 0.6;
   k.l2 = 0.7;
-  dal_system *s = scn_double_pendulum(&k), *c = scn_cart_double_pendulum(&k);
-  dal_state *st, *sc;
-  CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_state_create(c, &sc));
+  twins w = twins_open(scn_double_pendulum(&k), scn_cart_double_pendulum(&k));
+  dal_system *s = w.s, *c = w.c;
+  dal_state *st = w.st, *sc = w.sc;
   unsigned long long seed = 5;
   double worst = 0, split = 0;
   for (int i = 0; i < 200; ++i) {
@@ -121,10 +137,7 @@ static void double_pendulum(void) {
          worst, split);
   CHECK(worst <= 1e-12);
   CHECK(split > 1e-2);
-  dal_state_destroy(st);
-  dal_state_destroy(sc);
-  dal_system_destroy(s);
-  dal_system_destroy(c);
+  twins_close(&w);
 }
 
 // the bead on a ring turning about the vertical (3D, a rheonomic map) against the Cartesian bead
@@ -133,10 +146,9 @@ static void bead(void) {
   scn_knobs k = scn_default();
   k.R = 0.6;
   k.spin = 5.0;
-  dal_system *s = scn_bead(&k), *c = scn_cart_bead(&k);
-  dal_state *st, *sc;
-  CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_state_create(c, &sc));
+  twins w = twins_open(scn_bead(&k), scn_cart_bead(&k));
+  dal_system *s = w.s, *c = w.c;
+  dal_state *st = w.st, *sc = w.sc;
   unsigned long long seed = 3;
   double worst = 0;
   for (int i = 0; i < 100; ++i) {
@@ -152,10 +164,7 @@ static void bead(void) {
   }
   printf("bead on the turning ring: joint force vs the ring constraint's: %.2g\n", worst);
   CHECK(worst <= 1e-12);
-  dal_state_destroy(st);
-  dal_state_destroy(sc);
-  dal_system_destroy(s);
-  dal_system_destroy(c);
+  twins_close(&w);
 }
 
 int main(void) {

@@ -22,22 +22,13 @@ static double times[NE];
 
 // the closed form's error at t of (q, qdot) (minimal: theta; Cartesian: x, y)
 static double ref_err(int cart, double t, const double *q, const double *v) {
-  double th, thd, w0 = sqrt(SCN_G);
-  ref_pendulum(TH0, w0, t, &th, &thd);
-  if (cart)
-    return fmax(fmax(fabs(q[0] - sin(th)), fabs(q[1] + cos(th))),
-                fmax(fabs(v[0] - thd * cos(th)), fabs(v[1] - thd * sin(th))) / w0);
-  return fmax(fabs(q[0] - th), fabs(v[0] - thd) / w0);
+  return ref_pendulum_error(TH0, sqrt(SCN_G), cart, t, q, v);
 }
 
 static void start(const dal_system *s, dal_state *st, int cart) {
-  if (cart) {
-    double x[2] = {sin(TH0), -cos(TH0)}, v[2] = {0, 0};
-    CHECK_OK(dal_state_set(s, st, 0.0, x, v));
-  } else {
-    double q = TH0, qd = 0;
-    CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
-  }
+  double q[2], v[2];
+  ref_pendulum_start(TH0, cart, q, v);
+  CHECK_OK(dal_state_set(s, st, 0.0, q, v));
 }
 
 // the dense output at the listed times, compared with the trajectory there

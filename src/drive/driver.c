@@ -482,7 +482,7 @@ static int after_step(void *p) {
 }
 
 // advance the run to t1 >= st->t with validated arguments
-static int run_to(run *r, double t1) {
+static int run_steps(run *r, double t1) {
   const dal_system *sys = r->sys;
   dal_state *st = r->st;
   int rc = ensure_integ(sys, st, r->o, (r->outputs && r->monitor) || st->traj);
@@ -498,13 +498,11 @@ again:;
     dal__integ_reset(st);
     r->h = NULL; // freed with it
     st->t = t1;
-    if (st->traj) dal__traj_end(st->traj, t1);
     return evaluate_here(sys, st);
   }
   // the hook only when someone looks: a monitor at output times, or events
   int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
-  if (st->traj && (rc = dal__traj_begin(st->traj, st)) != 0) return rc;
   r->status = DAL_OK;
   r->nsteps = 0;
   if (h->kind == KIND_ODE) {
@@ -518,7 +516,6 @@ again:;
     ig->hook_ctx = r;
     rc = ig->advance(ig, t1);
     ig->hook = NULL;
-    if (st->traj) dal__traj_end(st->traj, rc ? st->t : ig->t);
     if (!rc) {
       // the state at t1, evaluated there
       dal__ode_to_state(ig, ig->t, ig->y);
@@ -529,7 +526,6 @@ again:;
     rc = dal__ida_advance(sys, st, h->ida, t1);
     if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
     dal__ida_set_hook(h->ida, NULL, NULL);
-    if (st->traj) dal__traj_end(st->traj, st->t);
   }
   if (rc == DAL__HOOK_STOP) {
     // the hook left the state where the run stops, evaluated; the integrator is elsewhere
@@ -565,6 +561,15 @@ again:;
   if (h->note[0]) memcpy(st->err, h->note, sizeof st->err);
   handle_sync(sys, st, h);
   return DAL_OK;
+}
+
+// run_steps, recorded into the state's trajectory when one is attached
+static int run_to(run *r, double t1) {
+  dal_trajectory *tr = r->st->traj;
+  int rc = tr && t1 > r->st->t ? dal__traj_begin(tr, r->st) : DAL_OK;
+  if (!rc) rc = run_steps(r, t1);
+  if (tr) dal__traj_end(tr, r->st->t);
+  return rc;
 }
 
 static dal_events *active_events(const dal_state *st) {
@@ -617,34 +622,15 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   return rc;
 }
 
-static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-                  double dt, dal_monitor_fn *monitor, void *ctx);
-
-int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-               double dt, dal_monitor_fn *monitor, void *ctx) {
-  int rc = check_call(sys, st, opts, t1, "evolve");
-  if (rc) return rc;
-  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
-  // its callbacks)
-  dal_events *ev = active_events(st);
-  st->busy = 1;
-  if (ev) dal__events_hold(ev, 1);
-  rc = evolve(sys, st, opts, t1, dt, monitor, ctx);
-  if (ev) dal__events_hold(ev, 0);
-  st->busy = 0;
-  return rc;
-}
-
-// dal_evolve with checked (system, state, options, t1)
-static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-                  double dt, dal_monitor_fn *monitor, void *ctx) {
-  int rc;
+// the output grid t0 + k dt of dal_evolve, checked, into r
+static int grid_setup(run *r, double dt) {
+  dal_state *st = r->st;
   if (!isfinite(dt))
     return DAL_FAIL(st, DAL_E_NONFINITE,
                     "evolve: output interval dt = %g is not finite; give a positive finite dt", dt);
   if (!(dt > 0))
     return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive", dt);
-  double t0 = st->t, span = (t1 - t0) / dt;
+  double t0 = r->t0, t1 = r->t1, span = (t1 - t0) / dt;
   // a dt below the floating-point spacing of t would give output times that never advance
   if (t0 + dt == t0 || t1 + dt == t1)
     return DAL_FAIL(st, DAL_E_ARG,
@@ -655,44 +641,20 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
     return DAL_FAIL(st, DAL_E_ARG,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
                     t0, t1, dt);
-  dal_solve_opts eff = dal__effective_opts(opts);
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
   long K = (long)floor(span);
   while (K > 0 && t0 + (double)K * dt > t1)
     --K;
   while (t0 + (double)(K + 1) * dt <= t1)
     ++K;
-  run r = {.sys = sys,
-           .st = st,
-           .o = &eff,
-           .what = "evolve",
-           .outputs = 1,
-           .t0 = t0,
-           .dt = dt,
-           .t1 = t1,
-           .k = 0,
-           .K = K,
-           .last_out = -INFINITY,
-           .monitor = monitor,
-           .ctx = ctx,
-           .ev = active_events(st)};
-  // the start (made consistent first in redundant coordinates), evaluated, is output 0
-  if ((rc = run_to(&r, t0)) != 0) return rc;
-  // an interval of a few ulps that cannot be integrated is refused before any output
-  if (t1 > t0 && t1 - t0 <= DAL_TINY_STEP(t0) &&
-      (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
-    return rc;
-  if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
-  if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
-  // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
-  if (out_time(&r) <= t1 && (rc = serve_output(&r, st->t, 1)) != 0)
-    return rc == DAL__HOOK_STOP ? r.status : rc;
+  r->dt = dt;
+  r->K = K;
   return DAL_OK;
 }
 
-// dal_evolve_at with checked (system, state, options): the output times validated here
-static int evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                     const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
+// the output times of dal_evolve_at, checked (naming the index), into r
+static int list_setup(run *r, const double *times, size_t n) {
+  dal_state *st = r->st;
   if (!times || n == 0)
     return DAL_FAIL(st, DAL_E_ARG,
                     "evolve_at: no output times (times %s, n = %zu); give at least one time, the "
@@ -712,8 +674,24 @@ static int evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts 
                     "evolve_at: times[0] = %.17g lies behind the current time %.17g; integration "
                     "runs forward only (reset the state with dal_state_set to go back)",
                     times[0], st->t);
+  r->times = times;
+  r->K = (long)n - 1;
+  return DAL_OK;
+}
+
+// the output times of a call: dal_evolve's grid of dt, or dal_evolve_at's list times[0 .. n)
+typedef struct out_spec {
+  int list;
+  double dt;
+  const double *times;
+  size_t n;
+} out_spec;
+
+// dal_evolve and dal_evolve_at with checked (system, state, options, t1)
+static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                  const out_spec *os, dal_monitor_fn *monitor, void *ctx) {
   dal_solve_opts eff = dal__effective_opts(opts);
-  double t0 = st->t, t1 = times[n - 1];
+  double t0 = st->t;
   run r = {.sys = sys,
            .st = st,
            .o = &eff,
@@ -722,19 +700,19 @@ static int evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts 
            .t0 = t0,
            .t1 = t1,
            .k = 0,
-           .K = (long)n - 1,
-           .times = times,
            .last_out = -INFINITY,
            .monitor = monitor,
            .ctx = ctx,
            .ev = active_events(st)};
-  int rc;
+  int rc = os->list ? list_setup(&r, os->times, os->n) : grid_setup(&r, os->dt);
+  if (rc) return rc;
   // the start (made consistent first in redundant coordinates), evaluated
   if ((rc = run_to(&r, t0)) != 0) return rc;
+  // an interval of a few ulps that cannot be integrated is refused before any output
   if (t1 > t0 && t1 - t0 <= DAL_TINY_STEP(t0) &&
       (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
     return rc;
-  // output times at the start, then the steps serve the others
+  // the output times at the start (the grid's first), then the steps serve the others
   while (out_time(&r) <= st->t)
     if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
@@ -744,18 +722,32 @@ static int evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts 
   return DAL_OK;
 }
 
-int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                  const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
-  // the end time is the last output time; the list itself is checked below (naming the index)
-  double t1 = st ? st->t : 0.0;
-  if (st && times && n > 0 && isfinite(times[n - 1]) && times[n - 1] > t1) t1 = times[n - 1];
-  int rc = check_call(sys, st, opts, t1, "evolve_at");
+// the public evolve calls: checks, then the state (and its events) belong to the run until it
+// returns (dal__check_idle refuses its callbacks)
+static int evolve_held(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                       const out_spec *os, dal_monitor_fn *monitor, void *ctx) {
+  int rc = check_call(sys, st, opts, t1, os->list ? "evolve_at" : "evolve");
   if (rc) return rc;
   dal_events *ev = active_events(st);
   st->busy = 1;
   if (ev) dal__events_hold(ev, 1);
-  rc = evolve_at(sys, st, opts, times, n, monitor, ctx);
+  rc = evolve(sys, st, opts, t1, os, monitor, ctx);
   if (ev) dal__events_hold(ev, 0);
   st->busy = 0;
   return rc;
+}
+
+int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+               double dt, dal_monitor_fn *monitor, void *ctx) {
+  const out_spec os = {.dt = dt};
+  return evolve_held(sys, st, opts, t1, &os, monitor, ctx);
+}
+
+int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                  const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
+  // the end time is the last output time; the list itself is checked later (naming the index)
+  double t1 = st ? st->t : 0.0;
+  if (st && times && n > 0 && isfinite(times[n - 1]) && times[n - 1] > t1) t1 = times[n - 1];
+  const out_spec os = {.list = 1, .times = times, .n = n};
+  return evolve_held(sys, st, opts, t1, &os, monitor, ctx);
 }

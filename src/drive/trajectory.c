@@ -20,6 +20,7 @@ struct dal_trajectory {
   size_t n;      // coordinates
   size_t stride; // doubles per step: HEAD + NODES * 2n
   long nsteps, cap;
+  int active;   // a run records into it (dal__traj_begin .. dal__traj_end)
   double *data; // nsteps x stride: a, b, c, then per node q (n), qdot (n)
   char err[DAL_ERRMSG_LEN];
 };
@@ -53,13 +54,19 @@ void dal_trajectory_destroy(dal_trajectory *tr) {
 
 const char *dal_trajectory_errmsg(const dal_trajectory *tr) { return tr ? tr->err : ""; }
 
-int dal_state_set_trajectory(dal_state *st, dal_trajectory *tr) {
+int dal__attach_check(dal_state *st, const dal_system *owner, const char *what, const char *thing) {
   if (!st) return DAL_E_ARG;
-  if (dal__check_idle(st, "state_set_trajectory")) return DAL_E_STATE;
-  if (tr && tr->sys != st->sys)
+  if (dal__check_idle(st, what)) return DAL_E_STATE;
+  if (owner && owner != st->sys)
     return DAL_FAIL(st, DAL_E_STATE,
-                    "state_set_trajectory: the trajectory belongs to another system; create it "
-                    "with this state's system");
+                    "%s: the %s belongs to another system; create it with this state's system",
+                    what, thing);
+  return DAL_OK;
+}
+
+int dal_state_set_trajectory(dal_state *st, dal_trajectory *tr) {
+  int rc = dal__attach_check(st, tr ? tr->sys : NULL, "state_set_trajectory", "trajectory");
+  if (rc) return rc;
   st->traj = tr;
   return DAL_OK;
 }
@@ -72,9 +79,9 @@ long dal_trajectory_span(const dal_trajectory *tr, double *t0, double *t1) {
 }
 
 int dal__traj_begin(dal_trajectory *tr, dal_state *st) {
-  if (!tr->nsteps) return DAL_OK;
-  double end = tr->data[(size_t)(tr->nsteps - 1) * tr->stride + 2];
-  if (fabs(st->t - end) <= DAL_TINY_STEP(end)) return DAL_OK;
+  double end = tr->nsteps ? tr->data[(size_t)(tr->nsteps - 1) * tr->stride + 2] : st->t;
+  tr->active = fabs(st->t - end) <= DAL_TINY_STEP(end);
+  if (tr->active) return DAL_OK;
   return DAL_FAIL(st, DAL_E_ARG,
                   "the attached trajectory ends at t=%.17g but the run starts at t=%.17g; a "
                   "recorded run continues where the trajectory ends: attach a new trajectory "
@@ -131,6 +138,8 @@ int dal__traj_step(dal_trajectory *tr, dal_state *st, double a, double b, int pi
 }
 
 void dal__traj_end(dal_trajectory *tr, double t) {
+  if (!tr->active) return;
+  tr->active = 0;
   // records wholly after a stop inside the step (a step stored in pieces) go
   while (tr->nsteps > 1 && tr->data[(size_t)(tr->nsteps - 1) * tr->stride] > t)
     tr->nsteps--;
