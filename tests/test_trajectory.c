@@ -181,6 +181,34 @@ static void stops_and_refusals(const dal_system *s, dal_state *st) {
   dal_trajectory_destroy(tr);
 }
 
+// AUTO picks for a recorded run what it picks for dal_evolve with a monitor (solve.h): DOPRI5
+// where a plain dal_advance gets Fehlberg 7(8) (n >= 3, rtol 1e-6)
+static void auto_rule(void) {
+  scn_knobs k = scn_default();
+  k.N = 3;
+  dal_system *s = scn_chain(&k);
+  dal_state *st = NULL;
+  dal_trajectory *tr = NULL;
+  CHECK_OK(dal_state_create(s, &st));
+  CHECK_OK(dal_trajectory_create(s, &tr));
+  dal_solve_opts o = dal_default_solve_opts();
+  o.rtol = 1e-6;
+  double q[3] = {0.5, 0.2, -0.1}, v[3] = {0, 0, 0};
+  dal_stats sp, sr;
+  CHECK_OK(dal_state_set(s, st, 0.0, q, v));
+  CHECK_OK(dal_advance(s, st, &o, 1.0));
+  CHECK_OK(dal_state_stats(st, &sp));
+  CHECK_OK(dal_state_set(s, st, 0.0, q, v));
+  CHECK_OK(dal_state_set_trajectory(st, tr));
+  CHECK_OK(dal_advance(s, st, &o, 1.0));
+  CHECK_OK(dal_state_stats(st, &sr));
+  CHECK(sp.method_used == DAL_METHOD_FEHLBERG78 && sr.method_used == DAL_METHOD_DOPRI5);
+  CHECK_OK(dal_state_set_trajectory(st, NULL));
+  dal_trajectory_destroy(tr);
+  dal_state_destroy(st);
+  dal_system_destroy(s);
+}
+
 int main(void) {
   dal_system *s = scn_pendulum(NULL), *c = scn_cart_pendulum(NULL);
   dal_state *st, *sc;
@@ -214,6 +242,7 @@ int main(void) {
   row(c, sc, 1, DAL_METHOD_BDF, 1e-6);
   row(c, sc, 1, DAL_METHOD_BDF, 1e-8);
   stops_and_refusals(s, st);
+  auto_rule();
   dal_state_destroy(st);
   dal_state_destroy(sc);
   dal_system_destroy(s);
