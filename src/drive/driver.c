@@ -500,7 +500,7 @@ again:;
     st->t = t1;
     return evaluate_here(sys, st);
   }
-  // the hook only when someone looks: a monitor at output times, or events
+  // the hook only when someone looks: a monitor at output times, events, or a trajectory
   int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
