@@ -35,13 +35,25 @@ static void start(const dal_system *s, dal_state *st, int cart) {
 typedef struct dense_cmp {
   dal_trajectory *tr;
   int n;
-  double diff; // worst |trajectory - dense output| over q and qdot / w0
+  double diff;   // worst |trajectory - dense output| over q and qdot / w0
+  double *seen;  // the outputs' (q, qdot) (2n each), kept by a first run ...
+  int compare;   // ... and compared bit for bit by a second one
+  int different; // outputs of the second run that differ
 } dense_cmp;
 
 static int dense_mon(const dal_system *sys, const dal_state *st, void *ctx) {
   dense_cmp *c = ctx;
   int n = dal_system_ncoords(sys);
   double q[2], v[2];
+  double *seen = c->seen + (size_t)c->n * 2 * (size_t)n;
+  if (c->compare) {
+    c->different += memcmp(seen, dal_state_q(st), (size_t)n * sizeof(double)) != 0 ||
+                    memcmp(seen + n, dal_state_qdot(st), (size_t)n * sizeof(double)) != 0;
+    c->n++;
+    return 0;
+  }
+  memcpy(seen, dal_state_q(st), (size_t)n * sizeof(double));
+  memcpy(seen + n, dal_state_qdot(st), (size_t)n * sizeof(double));
   if (dal_trajectory_eval(c->tr, dal_state_time(st), q, v)) return -1;
   for (int i = 0; i < n; ++i)
     c->diff = fmax(c->diff, fmax(fabs(q[i] - dal_state_q(st)[i]),
@@ -82,13 +94,26 @@ static void row(const dal_system *s, dal_state *st, int cart, dal_method m, doub
   }
   // the same steps without recording: dal_evolve_at with a monitor (dense output) ends on the
   // same state bit for bit, and its outputs are what the trajectory interpolates
-  dense_cmp dc = {tr, 0, 0};
+  static double seen[NE * 4];
+  dense_cmp dc = {tr, 0, 0, seen, 0, 0};
   start(s, st, cart);
   CHECK_OK(dal_evolve_at(s, st, &o, times, NE, dense_mon, &dc));
   CHECK_MSG(memcmp(dal_state_q(st), qe, (size_t)n * sizeof(double)) == 0 &&
                 memcmp(dal_state_qdot(st), ve, (size_t)n * sizeof(double)) == 0,
             "%s: the recorded run's end state differs from dal_evolve_at's", dal_method_name(m));
   CHECK(dc.n == NE);
+  // recording does not change the outputs either: the same run recorded, bit for bit
+  dal_trajectory *tr2 = NULL;
+  dense_cmp d2 = {NULL, 0, 0, seen, 1, 0};
+  CHECK_OK(dal_trajectory_create(s, &tr2));
+  start(s, st, cart);
+  CHECK_OK(dal_state_set_trajectory(st, tr2));
+  CHECK_OK(dal_evolve_at(s, st, &o, times, NE, dense_mon, &d2));
+  CHECK_OK(dal_state_set_trajectory(st, NULL));
+  CHECK_MSG(d2.n == NE && d2.different == 0, "%s: %d of %d outputs change when recorded",
+            dal_method_name(m), d2.different, d2.n);
+  CHECK(memcmp(dal_state_q(st), qe, (size_t)n * sizeof(double)) == 0);
+  dal_trajectory_destroy(tr2);
   size_t bytes = (size_t)steps * (3 + 18 * (size_t)n) * sizeof(double);
   if (rtol > 0)
     printf("| %-12s | %-4s | %5.0e | %6ld | %9.2f | %9.2e | %8zu |\n", dal_method_name(m),

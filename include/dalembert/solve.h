@@ -399,7 +399,9 @@ DAL_API int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_
 /// Bulirsch-Stoer), grown by doubling (about log2(records) allocations over a run: a recorded
 /// run allocates, an unrecorded one does not). A recorded run takes the steps of a run with
 /// dense output (those of dal_evolve with a monitor: the same end state bit for bit; without
-/// monitor or events dal_advance may take other steps, within the tolerance). Not thread-safe:
+/// monitor or events dal_advance may take other steps, within the tolerance), and recording
+/// changes neither the steps nor the outputs of dal_evolve / dal_evolve_at (bit for bit, every
+/// method of the table; tests/test_trajectory.c). Not thread-safe:
 /// one trajectory per state, read after the run (dal_trajectory_eval keeps its message in the
 /// trajectory).
 typedef struct dal_trajectory dal_trajectory;
