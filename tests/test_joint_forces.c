@@ -53,118 +53,145 @@ static double worst_rel(const double *a, const double *b, int n, double scale) {
   return w;
 }
 
+// one comparison over random states (q, qdot and t drawn from the ranges) of the minimal
+// scene: its joint forces J against what `ref` derives from the twin evaluated at the same
+// motion; `ref` may also give `alt`, another force whose distance to the reference is
+// reported (a rule that must differ, or a second reference). Returns the worst |J - ref| and
+// sets *alt_worst, both relative to `scale`
+typedef void ref_fn(const twins *w, double *ref, double *alt);
+typedef struct sweep_spec {
+  double qmax, vmax, tmax, scale;
+  unsigned long long seed;
+  const char *what, *alt_what; // printed: the reference, and alt (NULL: none)
+  double alt_bound;            // alt within it of the reference, or (< 0) farther than -alt_bound
+} sweep_spec;
+
+static double sweep(const twins *w, const sweep_spec *sp, ref_fn *ref, double *alt_worst) {
+  int n = dal_system_ncoords(w->s);
+  int nd = dal_system_nparticles(w->s) * dal_system_dim(w->s);
+  unsigned long long seed = sp->seed;
+  double worst = 0;
+  *alt_worst = 0;
+  for (int i = 0; i < 200; ++i) {
+    double q[2], v[2], t = sp->tmax > 0 ? check_rand(&seed, 0, sp->tmax) : 0.0;
+    for (int j = 0; j < n; ++j) {
+      q[j] = check_rand(&seed, -sp->qmax, sp->qmax);
+      v[j] = check_rand(&seed, -sp->vmax, sp->vmax);
+    }
+    CHECK_OK(dal_state_set(w->s, w->st, t, q, v));
+    CHECK_OK(dal_forward(w->s, w->st));
+    double J[6], r[6], alt[6];
+    CHECK_OK(dal_joint_forces(w->s, w->st, J));
+    twin(w->s, w->st, w->c, w->sc);
+    memcpy(alt, J, sizeof alt);
+    ref(w, r, alt);
+    worst = fmax(worst, worst_rel(J, r, nd, sp->scale));
+    *alt_worst = fmax(*alt_worst, worst_rel(alt, r, nd, sp->scale));
+  }
+  return worst;
+}
+
+// a sweep printed and checked: J within 1e-14 (relative) of the reference, alt as the spec says
+static void run_case(const twins *w, const sweep_spec *sp, ref_fn *ref) {
+  double alt = 0, worst = sweep(w, sp, ref, &alt);
+  printf("%s: %.2g", sp->what, worst);
+  if (sp->alt_what) printf("; %s: %.2g", sp->alt_what, alt);
+  printf(" (relative to %g)\n", sp->scale);
+  CHECK_MSG(worst <= 1e-14, "%s: %.3g", sp->what, worst);
+  if (sp->alt_what)
+    CHECK_MSG(sp->alt_bound > 0 ? alt <= sp->alt_bound : alt > -sp->alt_bound, "%s: %.3g",
+              sp->alt_what, alt);
+}
+
+// the pendulum (m 1.7, l 0.8): the rod's tension T = m (g cos th + l thd^2) along the rod
+// towards the pivot, r = l (sin th, -cos th); alt: the Cartesian rod's force from its
+// multiplier. There the particle's own placement (Cartesian coordinates) holds nothing
+#define PEND_M 1.7
+#define PEND_L 0.8
+static void pendulum_ref(const twins *w, double *ref, double *alt) {
+  double th = dal_state_q(w->st)[0], thd = dal_state_qdot(w->st)[0];
+  double T = PEND_M * (SCN_G * cos(th) + PEND_L * thd * thd), Jc[2];
+  ref[0] = -T * sin(th);
+  ref[1] = T * cos(th);
+  CHECK_OK(dal_constraint_forces(w->c, w->sc, alt));
+  CHECK_OK(dal_joint_forces(w->c, w->sc, Jc));
+  CHECK(fabs(Jc[0]) + fabs(Jc[1]) <= 1e-14 * PEND_M * (SCN_G + 36.0 * PEND_L));
+}
+
 static void pendulum(void) {
   scn_knobs k = scn_default();
-  k.m = 1.7;
-  k.l = 0.8;
+  k.m = PEND_M;
+  k.l = PEND_L;
   twins w = twins_open(scn_pendulum(&k), scn_cart_pendulum(&k));
-  dal_system *s = w.s, *c = w.c;
-  dal_state *st = w.st, *sc = w.sc;
-  unsigned long long seed = 11;
-  double w_closed = 0, w_cart = 0, w_zero = 0;
-  for (int i = 0; i < 200; ++i) {
-    double th = check_rand(&seed, -3.1, 3.1), thd = check_rand(&seed, -6, 6);
-    CHECK_OK(dal_state_set(s, st, 0.0, &th, &thd));
-    CHECK_OK(dal_forward(s, st));
-    double J[2], Jc[2], Fc[2], Z[2];
-    CHECK_OK(dal_joint_forces(s, st, J));
-    // closed form: tension T along the rod towards the pivot, r = l (sin th, -cos th)
-    double T = k.m * (k.g * cos(th) + k.l * thd * thd);
-    double ref[2] = {-T * sin(th), T * cos(th)};
-    double scale = k.m * (k.g + k.l * 36.0);
-    w_closed = fmax(w_closed, worst_rel(J, ref, 2, scale));
-    // the Cartesian pendulum: the rod's force from its multiplier
-    twin(s, st, c, sc);
-    CHECK_OK(dal_constraint_forces(c, sc, Fc));
-    w_cart = fmax(w_cart, worst_rel(J, Fc, 2, scale));
-    // there the particle's own placement (Cartesian coordinates) holds nothing
-    CHECK_OK(dal_joint_forces(c, sc, Jc));
-    Z[0] = Z[1] = 0;
-    w_zero = fmax(w_zero, worst_rel(Jc, Z, 2, scale));
-  }
-  printf("pendulum: joint force vs m (g cos th + l thd^2): %.2g; vs the Cartesian rod's "
-         "multiplier: %.2g; Cartesian placement: %.2g (relative to m (g + l thd_max^2))\n",
-         w_closed, w_cart, w_zero);
-  CHECK(w_closed <= 1e-14);
-  CHECK(w_cart <= 1e-12);
-  CHECK(w_zero <= 1e-14);
+  const sweep_spec sp = {3.1,
+                         6,
+                         0,
+                         PEND_M * (SCN_G + 36.0 * PEND_L),
+                         11,
+                         "pendulum: joint force vs m (g cos th + l thd^2)",
+                         "the Cartesian rod's multiplier vs it",
+                         1e-14};
+  run_case(&w, &sp, pendulum_ref);
   // refusals: not evaluated, a foreign state, NULL output
   double th = 0.3, thd = 0, J[2];
-  CHECK_OK(dal_state_set(s, st, 0.0, &th, &thd));
-  CHECK(dal_joint_forces(s, st, J) == DAL_E_STATE && strstr(dal_state_errmsg(st), "dal_forward"));
-  CHECK(dal_joint_forces(c, st, J) == DAL_E_STATE);
-  CHECK(dal_joint_forces(s, st, NULL) == DAL_E_ARG);
-  CHECK(dal_joint_forces(s, NULL, J) == DAL_E_ARG);
+  CHECK_OK(dal_state_set(w.s, w.st, 0.0, &th, &thd));
+  CHECK(dal_joint_forces(w.s, w.st, J) == DAL_E_STATE &&
+        strstr(dal_state_errmsg(w.st), "dal_forward"));
+  CHECK(dal_joint_forces(w.c, w.st, J) == DAL_E_STATE);
+  CHECK(dal_joint_forces(w.s, w.st, NULL) == DAL_E_ARG);
+  CHECK(dal_joint_forces(w.s, NULL, J) == DAL_E_ARG);
   twins_close(&w);
 }
 
 // the double pendulum: the lower joint is rod2's pull, the upper one rod1's alone; in the
 // Cartesian twin each rod is a row, so rod1's force on the upper particle is the sum of the
-// constraint forces on both (rod2's pulls on them cancel)
+// constraint forces on both (rod2's pulls on them cancel). alt: the whole reaction on the
+// upper particle (rod1's pull plus rod2's), which is not its joint force
+static void double_ref(const twins *w, double *ref, double *alt) {
+  double Fc[4];
+  CHECK_OK(dal_constraint_forces(w->c, w->sc, Fc));
+  for (int a = 0; a < 2; ++a) {
+    ref[a] = Fc[a] + Fc[2 + a];
+    ref[2 + a] = Fc[2 + a];
+    alt[a] = dal_state_reactions(w->st)[a];
+  }
+}
+
 static void double_pendulum(void) {
   scn_knobs k = scn_default();
   k.m = 1.3;
   k.m2 = 0.6;
   k.l2 = 0.7;
   twins w = twins_open(scn_double_pendulum(&k), scn_cart_double_pendulum(&k));
-  dal_system *s = w.s, *c = w.c;
-  dal_state *st = w.st, *sc = w.sc;
-  unsigned long long seed = 5;
-  double worst = 0, split = 0;
-  for (int i = 0; i < 200; ++i) {
-    double q[2], v[2];
-    for (int j = 0; j < 2; ++j) {
-      q[j] = check_rand(&seed, -3, 3);
-      v[j] = check_rand(&seed, -4, 4);
-    }
-    CHECK_OK(dal_state_set(s, st, 0.0, q, v));
-    CHECK_OK(dal_forward(s, st));
-    double J[4], Fc[4], ref[4];
-    CHECK_OK(dal_joint_forces(s, st, J));
-    twin(s, st, c, sc);
-    CHECK_OK(dal_constraint_forces(c, sc, Fc));
-    for (int a = 0; a < 2; ++a) {
-      ref[a] = Fc[a] + Fc[2 + a]; // rod1 on the upper particle
-      ref[2 + a] = Fc[2 + a];     // rod2 on the lower
-    }
-    double scale = (k.m + k.m2) * (k.g + 16.0 * 2);
-    worst = fmax(worst, worst_rel(J, ref, 4, scale));
-    // the whole reaction on the upper particle is rod1's pull plus rod2's: not the joint force
-    const double *N = dal_state_reactions(st);
-    split = fmax(split, worst_rel(N, J, 2, scale));
-  }
-  printf("double pendulum: joint forces vs the Cartesian rods' multipliers: %.2g (the upper "
-         "reaction differs from its joint force by up to %.2g)\n",
-         worst, split);
-  CHECK(worst <= 1e-12);
-  CHECK(split > 1e-2);
+  const sweep_spec sp = {3,
+                         4,
+                         0,
+                         (k.m + k.m2) * (k.g + 16.0 * 2),
+                         5,
+                         "double pendulum: joint forces vs the Cartesian rods' multipliers",
+                         "the upper reaction vs its joint force (must differ)",
+                         -1e-2};
+  run_case(&w, &sp, double_ref);
   twins_close(&w);
 }
 
 // the bead on a ring turning about the vertical (3D, a rheonomic map) against the Cartesian bead
 // on the turning circle: the ring's force on the bead from the two constraint rows
+static void bead_ref(const twins *w, double *ref, double *alt) {
+  (void)alt;
+  CHECK_OK(dal_constraint_forces(w->c, w->sc, ref));
+}
+
 static void bead(void) {
   scn_knobs k = scn_default();
   k.R = 0.6;
   k.spin = 5.0;
   twins w = twins_open(scn_bead(&k), scn_cart_bead(&k));
-  dal_system *s = w.s, *c = w.c;
-  dal_state *st = w.st, *sc = w.sc;
-  unsigned long long seed = 3;
-  double worst = 0;
-  for (int i = 0; i < 100; ++i) {
-    double th = check_rand(&seed, -3, 3), thd = check_rand(&seed, -5, 5);
-    double t = check_rand(&seed, 0, 2);
-    CHECK_OK(dal_state_set(s, st, t, &th, &thd));
-    CHECK_OK(dal_forward(s, st));
-    double J[3], Fc[3];
-    CHECK_OK(dal_joint_forces(s, st, J));
-    twin(s, st, c, sc);
-    CHECK_OK(dal_constraint_forces(c, sc, Fc));
-    worst = fmax(worst, worst_rel(J, Fc, 3, k.m * (k.g + k.R * 100.0)));
-  }
-  printf("bead on the turning ring: joint force vs the ring constraint's: %.2g\n", worst);
-  CHECK(worst <= 1e-12);
+  const sweep_spec sp = {3,    5,
+                         2,    k.m * (k.g + k.R * 100.0),
+                         3,    "bead on the turning ring: joint force vs the ring constraint's",
+                         NULL, 0};
+  run_case(&w, &sp, bead_ref);
   twins_close(&w);
 }
 
@@ -238,42 +265,36 @@ static dal_system *lever(int cart) {
   return scn_finish(b, rc);
 }
 
+// the first rod (row 0) on the upper particle: lambda times the unit vector from the origin;
+// only the lever rod acts on the lower particle. alt: the child's force handed up unscaled (a
+// translation's rule), wrong here
+static void lever_ref(const twins *w, double *ref, double *alt) {
+  double Fc[4];
+  CHECK_OK(dal_constraint_forces(w->c, w->sc, Fc));
+  const double *r = dal_state_positions(w->sc), lam = dal_state_lambda(w->sc)[0];
+  double len = hypot(r[0], r[1]);
+  ref[0] = lam * r[0] / len;
+  ref[1] = lam * r[1] / len;
+  ref[2] = Fc[2];
+  ref[3] = Fc[3];
+  const double *N = dal_state_reactions(w->st);
+  alt[0] = N[0] + alt[2];
+  alt[1] = N[1] + alt[3];
+}
+
 static void lever_test(void) {
   twins w = twins_open(lever(0), lever(1));
   if (!w.s || !w.c) return;
-  unsigned long long seed = 23;
-  double worst = 0, naive = 0;
-  for (int i = 0; i < 100; ++i) {
-    double q[2], v[2];
-    for (int j = 0; j < 2; ++j) {
-      q[j] = check_rand(&seed, -3, 3);
-      v[j] = check_rand(&seed, -3, 3);
-    }
-    CHECK_OK(dal_state_set(w.s, w.st, 0.0, q, v));
-    CHECK_OK(dal_forward(w.s, w.st));
-    double J[4], Fc[4], ref[4];
-    CHECK_OK(dal_joint_forces(w.s, w.st, J));
-    twin(w.s, w.st, w.c, w.sc);
-    CHECK_OK(dal_constraint_forces(w.c, w.sc, Fc));
-    // the first rod (row 0) on the upper particle: lambda times the unit vector from the origin
-    const double *r = dal_state_positions(w.sc), lam = dal_state_lambda(w.sc)[0];
-    double len = hypot(r[0], r[1]);
-    ref[0] = lam * r[0] / len;
-    ref[1] = lam * r[1] / len;
-    ref[2] = Fc[2]; // only the lever rod acts on the lower particle
-    ref[3] = Fc[3];
-    double scale = 2.0 * (SCN_G + 9.0 * 2.5);
-    worst = fmax(worst, worst_rel(J, ref, 4, scale));
-    // handing J_k up unscaled (a translation's rule) would be wrong here
-    const double *N = dal_state_reactions(w.st);
-    double plain[2] = {N[0] + J[2], N[1] + J[3]};
-    naive = fmax(naive, worst_rel(plain, ref, 2, scale));
-  }
-  printf("lever (parent block 1.5 I): joint forces vs the Cartesian rows' multipliers: %.2g (the "
-         "translation's rule would be off by %.2g)\n",
-         worst, naive);
-  CHECK(worst <= 1e-12);
-  CHECK(naive > 1e-2);
+  const sweep_spec sp = {
+      3,
+      3,
+      0,
+      2.0 * (SCN_G + 9.0 * 2.5),
+      23,
+      "lever (parent block 1.5 I): joint forces vs the Cartesian rows' multipliers",
+      "the translation's rule (must differ)",
+      -1e-2};
+  run_case(&w, &sp, lever_ref);
   twins_close(&w);
 }
 
