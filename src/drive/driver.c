@@ -218,10 +218,11 @@ typedef struct run {
   const dal_solve_opts *o;
   const char *what; // "advance" or "evolve" (messages)
   dal_integ_handle *h;
-  int outputs;       // evolve: the output grid below is served
-  double t0, dt, t1; // output times t0 + k dt (k <= K), then t1
-  long k, K;         // next output index
-  double last_out;   // time of the last output served
+  int outputs;         // evolve: the output grid below is served
+  double t0, dt, t1;   // output times t0 + k dt (k <= K), then t1
+  long k, K;           // next output index
+  const double *times; // evolve_at: the output times times[0 .. K] instead of the grid
+  double last_out;     // time of the last output served
   dal_monitor_fn *monitor;
   void *ctx;
   dal_events *ev; // attached events with at least one event, or NULL
@@ -231,6 +232,7 @@ typedef struct run {
 // the next output time, or +inf when all are served
 static double out_time(const run *r) {
   if (!r->outputs) return INFINITY;
+  if (r->times) return r->k <= r->K ? r->times[r->k] : INFINITY;
   if (r->k <= r->K) {
     double tk = r->t0 + (double)r->k * r->dt;
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
@@ -245,6 +247,17 @@ static int place(void *p, double t) {
   run *r = p;
   dal_integ *it = r->h->it;
   return it->ops->place(it, t);
+}
+
+// put the state at the end of the step just taken: the accepted step itself (a stored trajectory
+// ends its steps where the integrator is)
+static int place_end(void *p, double t) {
+  run *r = p;
+  dal_integ_handle *h = r->h;
+  if (h->kind == KIND_IDA) return dal__ida_place(h->ida, t);
+  dal__ode_to_state(h->ode, h->ode->t, h->ode->y);
+  dal__state_moved(r->st);
+  return DAL_OK;
 }
 
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
@@ -312,6 +325,16 @@ static int after_step(void *p) {
   double a = 0, b = 0;
   r->h->it->ops->window(r->h->it, &a, &b);
   int rc, np = 0, kp = 0;
+  // Bulirsch-Stoer's long steps carry an interpolant of degree up to 2 kappa + 1: four records
+  // of degree 8 per step (solve.h, dal_trajectory)
+  int pieces = r->h->kind == KIND_ODE && r->h->ode->method == DAL_METHOD_BS ? 4 : 1;
+  if (st->traj && (rc = dal__traj_step(st->traj, st, a, b, pieces, place, place_end, r)) != 0) {
+    // out of memory: the run stops at the step's end, evaluated
+    char msg[DAL_ERRMSG_LEN];
+    memcpy(msg, st->err, sizeof msg);
+    if (place_end(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+    return r->status = rc;
+  }
   if (r->ev) {
     if ((rc = dal__events_scan(r->ev, st, a, b, place, r)) != 0) {
       // a failing event function: the run stops at the step's end, evaluated
@@ -342,10 +365,10 @@ static int after_step(void *p) {
 }
 
 // advance the run to t1 >= st->t with validated arguments
-static int run_to(run *r, double t1) {
+static int run_steps(run *r, double t1) {
   const dal_system *sys = r->sys;
   dal_state *st = r->st;
-  int rc = ensure_integ(sys, st, r->o, r->outputs && r->monitor);
+  int rc = ensure_integ(sys, st, r->o, (r->outputs && r->monitor) || st->traj);
   if (rc) return rc;
 again:;
   dal_integ_handle *h = st->integ;
@@ -360,8 +383,8 @@ again:;
     st->t = t1;
     return evaluate_here(sys, st);
   }
-  // the hook only when someone looks: a monitor at output times, or events
-  int hooked = (r->outputs && r->monitor) || r->ev;
+  // the hook only when someone looks: a monitor at output times, events, or a trajectory
+  int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
   rc = h->it->ops->advance(h->it, t1, hooked ? after_step : NULL, r);
@@ -399,6 +422,15 @@ again:;
   if (h->note[0]) memcpy(st->err, h->note, sizeof st->err);
   handle_sync(sys, st, h);
   return DAL_OK;
+}
+
+// run_steps, recorded into the state's trajectory when one is attached
+static int run_to(run *r, double t1) {
+  dal_trajectory *tr = r->st->traj;
+  int rc = tr && t1 > r->st->t ? dal__traj_begin(tr, r->st) : DAL_OK;
+  if (!rc) rc = run_steps(r, t1);
+  if (tr) dal__traj_end(tr, r->st->t);
+  return rc;
 }
 
 static dal_events *active_events(const dal_state *st) {
@@ -450,34 +482,15 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   return rc;
 }
 
-static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-                  double dt, dal_monitor_fn *monitor, void *ctx);
-
-int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-               double dt, dal_monitor_fn *monitor, void *ctx) {
-  int rc = check_call(sys, st, opts, t1, "evolve");
-  if (rc) return rc;
-  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
-  // its callbacks)
-  dal_events *ev = active_events(st);
-  st->busy = 1;
-  if (ev) dal__events_hold(ev, 1);
-  rc = evolve(sys, st, opts, t1, dt, monitor, ctx);
-  if (ev) dal__events_hold(ev, 0);
-  st->busy = 0;
-  return rc;
-}
-
-// dal_evolve with checked (system, state, options, t1)
-static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-                  double dt, dal_monitor_fn *monitor, void *ctx) {
-  int rc;
+// the output grid t0 + k dt of dal_evolve, checked, into r
+static int grid_setup(run *r, double dt) {
+  dal_state *st = r->st;
   if (!isfinite(dt))
     return DAL_FAIL(st, DAL_E_NONFINITE,
                     "evolve: output interval dt = %g is not finite; give a positive finite dt", dt);
   if (!(dt > 0))
     return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive", dt);
-  double t0 = st->t, span = (t1 - t0) / dt;
+  double t0 = r->t0, t1 = r->t1, span = (t1 - t0) / dt;
   // a dt below the floating-point spacing of t would give output times that never advance
   if (t0 + dt == t0 || t1 + dt == t1)
     return DAL_FAIL(st, DAL_E_ARG,
@@ -488,37 +501,113 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
     return DAL_FAIL(st, DAL_E_ARG,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
                     t0, t1, dt);
-  dal_solve_opts eff = dal__effective_opts(opts);
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
   long K = (long)floor(span);
   while (K > 0 && t0 + (double)K * dt > t1)
     --K;
   while (t0 + (double)(K + 1) * dt <= t1)
     ++K;
+  r->dt = dt;
+  r->K = K;
+  return DAL_OK;
+}
+
+// the output times of dal_evolve_at, checked (naming the index), into r
+static int list_setup(run *r, const double *times, size_t n) {
+  dal_state *st = r->st;
+  if (!times || n == 0)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "evolve_at: no output times (times %s, n = %zu); give at least one time, the "
+                    "last being the end of the run",
+                    times ? "given" : "NULL", n);
+  for (size_t i = 0; i < n; ++i) {
+    if (!isfinite(times[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "evolve_at: times[%zu] = %g is not finite", i, times[i]);
+    if (i > 0 && times[i] < times[i - 1])
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "evolve_at: times[%zu] = %.17g lies before times[%zu] = %.17g; the output "
+                      "times must be non-decreasing (integration runs forward)",
+                      i, times[i], i - 1, times[i - 1]);
+  }
+  if (times[0] < st->t)
+    return DAL_FAIL(st, DAL_E_TIME,
+                    "evolve_at: times[0] = %.17g lies behind the current time %.17g; integration "
+                    "runs forward only (reset the state with dal_state_set to go back)",
+                    times[0], st->t);
+  r->times = times;
+  r->K = (long)n - 1;
+  return DAL_OK;
+}
+
+// the output times of a call: dal_evolve's grid of dt, or dal_evolve_at's list times[0 .. n)
+typedef struct out_spec {
+  int list;
+  double dt;
+  const double *times;
+  size_t n;
+} out_spec;
+
+// dal_evolve and dal_evolve_at with checked (system, state, options, t1)
+static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                  const out_spec *os, dal_monitor_fn *monitor, void *ctx) {
+  dal_solve_opts eff = dal__effective_opts(opts);
+  double t0 = st->t;
   run r = {.sys = sys,
            .st = st,
            .o = &eff,
            .what = "evolve",
            .outputs = 1,
            .t0 = t0,
-           .dt = dt,
            .t1 = t1,
            .k = 0,
-           .K = K,
            .last_out = -INFINITY,
            .monitor = monitor,
            .ctx = ctx,
            .ev = active_events(st)};
-  // the start (made consistent first in redundant coordinates), evaluated, is output 0
+  int rc = os->list ? list_setup(&r, os->times, os->n) : grid_setup(&r, os->dt);
+  if (rc) return rc;
+  // the start (made consistent first in redundant coordinates), evaluated
   if ((rc = run_to(&r, t0)) != 0) return rc;
   // an interval of a few ulps that cannot be integrated is refused before any output
   if (t1 > t0 && t1 - t0 <= DAL_TINY_STEP(t0) &&
       (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
     return rc;
-  if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  // the output times at the start (the grid's first), then the steps serve the others
+  while (out_time(&r) <= st->t)
+    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
   // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
-  if (out_time(&r) <= t1 && (rc = serve_output(&r, st->t, 1)) != 0)
-    return rc == DAL__HOOK_STOP ? r.status : rc;
+  while (out_time(&r) <= t1)
+    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   return DAL_OK;
+}
+
+// the public evolve calls: checks, then the state (and its events) belong to the run until it
+// returns (dal__check_idle refuses its callbacks)
+static int evolve_held(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                       const out_spec *os, dal_monitor_fn *monitor, void *ctx) {
+  int rc = check_call(sys, st, opts, t1, os->list ? "evolve_at" : "evolve");
+  if (rc) return rc;
+  dal_events *ev = active_events(st);
+  st->busy = 1;
+  if (ev) dal__events_hold(ev, 1);
+  rc = evolve(sys, st, opts, t1, os, monitor, ctx);
+  if (ev) dal__events_hold(ev, 0);
+  st->busy = 0;
+  return rc;
+}
+
+int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+               double dt, dal_monitor_fn *monitor, void *ctx) {
+  const out_spec os = {.dt = dt};
+  return evolve_held(sys, st, opts, t1, &os, monitor, ctx);
+}
+
+int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                  const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
+  // the end time is the last output time; the list itself is checked later (naming the index)
+  double t1 = st ? st->t : 0.0;
+  if (st && times && n > 0 && isfinite(times[n - 1]) && times[n - 1] > t1) t1 = times[n - 1];
+  const out_spec os = {.list = 1, .times = times, .n = n};
+  return evolve_held(sys, st, opts, t1, &os, monitor, ctx);
 }
