@@ -85,9 +85,9 @@
 /// Tighter requests are clamped to it and the clamp reported in dal_stats.rtol_used.
 #define DAL_IDA_TOL_FLOOR 1e-12
 /// An IDA failure blames the constraints when the smallest pivot ratio of their gradients (the
-/// rank test of dal_check_constraints) fell below this share of the start's: they are becoming
-/// dependent (the rod-and-rail scene of tests/test_dae_messages.c: 0.87 at the start, 2.2e-3
-/// where IDA stops; regular points keep their start's ratio within a factor of a few).
+/// rank test of dal_check_constraints) fell below this share of the start's (they are becoming
+/// dependent: the rod-and-rail scene of tests/test_dae_messages.c, 0.87 at the start and
+/// 2.2e-3 where IDA stops), or when a row's largest gradient entry did (a cusp).
 #define DAL_IDA_DEP_DROP 0.01
 
 /// Share of the velocity (position) tolerance that the Newton correction of a multiplier lambda
