@@ -45,8 +45,11 @@ typedef struct ida_mem {
   int cb_status;
   char cb_msg[DAL_ERRMSG_LEN];
   char ida_msg[256];
-  // the last Newton correction's largest error-weighted component (index, weighted size), and
-  // the constraints' rank check at the start (failure messages)
+  // for failure messages: the vector of the last linear solve (a Newton correction) and IDA's
+  // current error weights (both IDA's own storage, alive while IDA is), the correction's
+  // largest error-weighted component (index, weighted size), the start's rank check
+  N_Vector ncor;
+  const double *ewt;
   int ncor_i;
   double ncor_v;
   dal_constraint_report rank0;
@@ -128,8 +131,9 @@ static int jacobian(double t, double cj, N_Vector yy, N_Vector yp, N_Vector rr, 
 }
 
 // The linear solver IDA sees: the dense or KLU solver, watched. The solution of each solve is
-// a Newton correction; its largest error-weighted component is kept, so that a convergence
-// failure names the unknown that kept moving (not a guess from the last step's error).
+// a Newton correction; the vector holding it is remembered (no copy: a step costs nothing
+// more), so that a convergence failure names the unknown that kept moving (newton_culprit),
+// not a guess from the last step's error.
 static ida_mem *watched(SUNLinearSolver S) { return S->content; }
 static SUNLinearSolver_Type watch_type(SUNLinearSolver S) {
   return SUNLinSolGetType(watched(S)->LS);
@@ -140,17 +144,21 @@ static int watch_setup(SUNLinearSolver S, SUNMatrix A) { return SUNLinSolSetup(w
 static sunindextype watch_lastflag(SUNLinearSolver S) { return SUNLinSolLastFlag(watched(S)->LS); }
 static int watch_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype tol) {
   ida_mem *w = watched(S);
-  int rc = SUNLinSolSolve(w->LS, A, x, b, tol);
-  if (rc != SUNLS_SUCCESS || IDAGetErrWeights(w->ida, w->w2) != IDA_SUCCESS) return rc;
-  const double *dx = N_VGetArrayPointer(x), *ew = N_VGetArrayPointer(w->w2);
+  w->ncor = x;
+  return SUNLinSolSolve(w->LS, A, x, b, tol);
+}
+
+// after a convergence failure: the largest error-weighted component of the last correction
+static void newton_culprit(ida_mem *w) {
   w->ncor_i = -1;
   w->ncor_v = 0.0;
+  if (!w->ncor || !w->ewt) return;
+  const double *dx = N_VGetArrayPointer(w->ncor);
   for (int i = 0; i < w->neq; ++i)
-    if (fabs(dx[i] * ew[i]) > w->ncor_v) {
-      w->ncor_v = fabs(dx[i] * ew[i]);
+    if (fabs(dx[i] * w->ewt[i]) > w->ncor_v) {
+      w->ncor_v = fabs(dx[i] * w->ewt[i]);
       w->ncor_i = i;
     }
-  return rc;
 }
 static SUNLinearSolver watch_create(ida_mem *w) {
   SUNLinearSolver S = SUNLinSolNewEmpty(w->ctx);
@@ -182,6 +190,7 @@ static int ewt_fn(N_Vector yv, N_Vector ewt, void *data) {
   const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(w->atol);
   double *e = N_VGetArrayPointer(ewt);
   int n = w->n, m = w->m;
+  w->ewt = e;
   double tq = INFINITY, tv = INFINITY;
   for (int i = 0; i < w->neq; ++i) {
     double tol = w->rtol * fabs(y[i]) + at[i];
@@ -567,6 +576,7 @@ static int map_failure(ida_mem *w, int flag, double hfail) {
   dal_state *st = w->st;
   const char *what, *remedy;
   int ask, code = failure_kind(w, flag, &what, &remedy, &ask);
+  if (code == DAL_E_CONV) newton_culprit(w);
   char var[320] = "error dominated by no variable", name[160];
   int conv = code == DAL_E_CONV && w->ncor_i >= 0, dom = conv ? w->ncor_i : dominating(w);
   if (dom >= 0) unknown_name(w, dom, name, sizeof name);
@@ -607,7 +617,7 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   }
   w->cb_status = 0;
   w->ida_msg[0] = 0;
-  w->ncor_i = -1;
+  w->ncor = NULL;
   // progress guard: no step below a few ulps of t (IDA would otherwise creep towards a point
   // it cannot pass, e.g. a callback that keeps returning > 0 or a constraint that becomes
   // unsatisfiable, with a million steps that do not move t); opts.hmin when larger
