@@ -235,11 +235,17 @@ int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_in
   return make_consistent(sys, st, tol, 0.0, rep ? rep : &local);
 }
 
-// used by the IDA driver: rank check, then the consistent initialization
-int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep) {
+// used by the IDA driver: rank check (its report into *crep, nullable), then the consistent
+// initialization
+int dal__dae_start_checked(const dal_system *sys, dal_state *st, double max_move,
+                           dal_init_report *rep, dal_constraint_report *crep) {
   dal_init_report local;
   int rc = dal__eval_constraints(sys, st);
-  if (rc == 0) rc = dal__check_rank(sys, st, NULL);
+  if (rc == 0) rc = dal__check_rank(sys, st, crep);
   if (rc == 0) rc = make_consistent(sys, st, 0.0, max_move, rep ? rep : &local);
   return dal__public_status(rc);
+}
+
+int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep) {
+  return dal__dae_start_checked(sys, st, max_move, rep, NULL);
 }
