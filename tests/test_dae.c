@@ -92,46 +92,9 @@ static dal_system *double_pendulum(int dae, double l1, double l2, double m1, dou
 
 /// planar chain of N unit masses joined by rods of length 1, the first to the origin
 static dal_system *chain(int N) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  for (int k = 0; k < N && !rc; ++k) {
-    int c[2], p;
-    char nm[32];
-    snprintf(nm, sizeof nm, "x%d", k);
-    rc = dal_builder_add_coord(b, nm, &c[0]);
-    snprintf(nm, sizeof nm, "y%d", k);
-    if (!rc) rc = dal_builder_add_coord(b, nm, &c[1]);
-    if (!rc) rc = dal_builder_add_particle(b, NULL, 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    snprintf(nm, sizeof nm, "rod%d", k);
-    // unit rods: the first to the origin, then between neighbours
-    int pp[2] = {k - 1, k};
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = nm;
-    if (k == 0) {
-      cd.prim = &dal_con_anchor2;
-      cd.parts = &p;
-      cd.nparts = 1;
-      cd.param[DAL_ANCHOR_L] = 1.0;
-    } else {
-      cd.prim = &dal_con_distance2;
-      cd.parts = pp;
-      cd.nparts = 2;
-      cd.param[DAL_DISTANCE_L] = 1.0;
-    }
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  }
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "chain: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.N = N;
+  return scn_cart_chain(&k);
 }
 
 /// the chain released from 45 degrees with the links aligned, at rest
@@ -307,45 +270,13 @@ static void test_double_and_driven(void) {
 // bead on a ring turning about the vertical: the turning-circle constraint vs dal_map_ring
 static void test_rotating_ring(void) {
   double R = 0.5, w = 7.0, tol = 1e-9;
-  dal_builder *bm = NULL, *bd = NULL;
-  dal_system *ms = NULL, *ds = NULL;
-  double g[3] = {0, 0, -G0};
-  int c, p, rc = dal_builder_create(3, &bm);
-  if (!rc) rc = dal_builder_add_coord(bm, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(bm, "bead", 0.2, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_ring;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = R;
-  pd.param[DAL_RING_W] = w;
-  if (!rc) rc = dal_builder_place_def(bm, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(bm, g);
-  if (!rc) rc = dal_builder_compile(bm, &ms);
-  int cc[3];
-  if (!rc) rc = dal_builder_create(3, &bd);
-  for (int i = 0; i < 3 && !rc; ++i)
-    rc = dal_builder_add_coord(bd, NULL, &cc[i]);
-  if (!rc) rc = dal_builder_add_particle(bd, "bead", 0.2, &p);
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian3;
-  pd.coords = cc;
-  pd.ncoords = 3;
-  if (!rc) rc = dal_builder_place_def(bd, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(bd, g);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "ring";
-  cd.prim = &dal_con_turning_circle;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_TURNING_CIRCLE_R] = R;
-  cd.param[DAL_TURNING_CIRCLE_W] = w;
-  if (!rc) rc = dal_builder_add_constraint_def(bd, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(bd, &ds);
-  CHECK_OK(rc);
-  dal_builder_destroy(bm);
-  dal_builder_destroy(bd);
-  if (rc) return;
+  scn_knobs kn = scn_default();
+  kn.R = R;
+  kn.spin = w;
+  kn.m = 0.2;
+  dal_system *ms = scn_bead(&kn), *ds = scn_cart_bead(&kn);
+  CHECK(ms != NULL && ds != NULL);
+  if (!ms || !ds) return;
   dal_state *a = NULL, *b = NULL;
   CHECK_OK(dal_state_create(ms, &a));
   CHECK_OK(dal_state_create(ds, &b));
@@ -379,16 +310,10 @@ static void test_rotating_ring(void) {
 static void test_turning_line(void) {
   double w = 1.5, s0 = 0.4, tol = 1e-9;
   dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  scn_knobs flat = scn_default();
+  flat.g = 0.0; // a horizontal plane
+  int p, rc = scn_builder(&flat, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "bead", 1.0, "x", "y", &p);
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "rod";
   cd.prim = &dal_con_turning_line2;
@@ -396,10 +321,9 @@ static void test_turning_line(void) {
   cd.nparts = 1;
   cd.param[DAL_TURNING_LINE2_W] = w;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  CHECK_OK(rc);
-  if (rc) return;
+  dal_system *s = scn_finish(b, rc);
+  CHECK(s != NULL);
+  if (!s) return;
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(s, &st));
   double q[2] = {s0, 0.0}, qd[2] = {0.0, w * s0};
@@ -439,18 +363,8 @@ static void test_prescribed(void) {
   wiggle wg = {0.3, 2.0};
   dal_prescribed pr = {wiggle_fn, &wg};
   dal_builder *b = NULL;
-  dal_system *s = NULL;
-  double g[2] = {0, -G0};
-  int c, p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", m, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = l;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
+  int c = 0, p, rc = scn_builder(NULL, 2, &b); // theta is the first coordinate
+  if (!rc) rc = scn_add_swing(b, NULL, "bob", m, -1, l, "theta", &p);
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "motor";
   cd.prim = &dal_con_prescribed;
@@ -459,10 +373,9 @@ static void test_prescribed(void) {
   cd.param[DAL_PRESCRIBED_Q0] = th0;
   cd.ctx = &pr;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  CHECK_OK(rc);
-  if (rc) return;
+  dal_system *s = scn_finish(b, rc);
+  CHECK(s != NULL);
+  if (!s) return;
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(s, &st));
   double q = 0.0, qd = 0.0; // inconsistent: the library puts it on the prescribed motion
@@ -624,35 +537,16 @@ static void test_consistent_init(void) {
   CHECK(rep.phi_before > 0.05 && rep.dq_max > 0.01);
   // a conflicting pair: two rods of length 1 from pivots 3 apart cannot both hold
   dal_builder *bb = NULL;
-  dal_system *cs = NULL;
-  int c[2], p, rc = dal_builder_create(2, &bb);
-  if (!rc) rc = dal_builder_add_coord(bb, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(bb, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(bb, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(bb, p, &pd);
-  dal_constraint_def cd = dal_default_constraint_def(); // rod to the pivot (0, 0)
-  cd.name = "left";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(bb, &cd, NULL);
-  cd = dal_default_constraint_def(); // rod to the pivot (3, 0)
-  cd.name = "right";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.param[DAL_ANCHOR_X0] = 3.0;
-  if (!rc) rc = dal_builder_add_constraint_def(bb, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(bb, &cs);
-  dal_builder_destroy(bb);
-  CHECK_OK(rc);
-  if (!rc) {
+  scn_knobs k = scn_default();
+  k.g = 0.0;
+  int p, rc = scn_builder(&k, 2, &bb);
+  if (!rc) rc = scn_add_xy(bb, "bob", 1.0, "x", "y", &p);
+  if (!rc) rc = scn_add_rod(bb, "left", p, -1, 1.0, &k); // to the pivot (0, 0)
+  k.x0 = 3.0;
+  if (!rc) rc = scn_add_rod(bb, "right", p, -1, 1.0, &k); // to the pivot (3, 0)
+  dal_system *cs = scn_finish(bb, rc);
+  CHECK(cs != NULL);
+  if (cs) {
     dal_state *cst = NULL;
     CHECK_OK(dal_state_create(cs, &cst));
     double cq[2] = {1.4, 0.3}, cv[2] = {0, 0};
@@ -675,29 +569,15 @@ static void test_consistent_init(void) {
 static void test_redundant(void) {
   // duplicated rod on the Cartesian pendulum
   dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int c[8], p[4], rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p[0]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd.name = "rod_copy";
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  CHECK_OK(rc);
-  if (rc) return;
+  scn_knobs k = scn_default();
+  k.g = 0.0;
+  int p[4], rc = scn_builder(&k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "bob", 1.0, "x", "y", &p[0]);
+  if (!rc) rc = scn_add_rod(b, "rod", p[0], -1, 1.0, &k);
+  if (!rc) rc = scn_add_rod(b, "rod_copy", p[0], -1, 1.0, &k);
+  dal_system *s = scn_finish(b, rc);
+  CHECK(s != NULL);
+  if (!s) return;
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(s, &st));
   double q[2] = {0.6, -0.8}, qd[2] = {0.8, 0.6};
@@ -718,37 +598,21 @@ static void test_redundant(void) {
 
   // four free particles with six rods (a square and its diagonals): 8 coordinates, rigid
   // motions 3, so 5 rods suffice and the sixth is redundant: rank 5 of 6
-  s = NULL;
-  rc = dal_builder_create(2, &b);
+  rc = scn_builder(&k, 2, &b);
   const double xy[8] = {0, 0, 1, 0, 1, 1, 0, 1};
-  for (int k = 0; k < 4 && !rc; ++k) {
-    rc = dal_builder_add_coord(b, NULL, &c[2 * k]);
-    if (!rc) rc = dal_builder_add_coord(b, NULL, &c[2 * k + 1]);
-    if (!rc) rc = dal_builder_add_particle(b, NULL, 1.0, &p[k]);
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c + 2 * k;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p[k], &pd);
-  }
+  for (int i = 0; i < 4 && !rc; ++i)
+    rc = scn_add_xy(b, NULL, 1.0, NULL, NULL, &p[i]);
   const int pairs[6][2] = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 2}, {1, 3}};
   for (int i = 0; i < 6 && !rc; ++i) {
     char nm[16];
     double L = hypot(xy[2 * pairs[i][1]] - xy[2 * pairs[i][0]],
                      xy[2 * pairs[i][1] + 1] - xy[2 * pairs[i][0] + 1]);
     snprintf(nm, sizeof nm, "rod%d", i + 1);
-    cd = dal_default_constraint_def();
-    cd.name = nm;
-    cd.prim = &dal_con_distance2;
-    cd.parts = pairs[i];
-    cd.nparts = 2;
-    cd.param[DAL_DISTANCE_L] = L;
-    rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    rc = scn_add_rod(b, nm, p[pairs[i][0]], p[pairs[i][1]], L, &k);
   }
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  CHECK_OK(rc);
-  if (rc) return;
+  s = scn_finish(b, rc);
+  CHECK(s != NULL);
+  if (!s) return;
   CHECK_OK(dal_state_create(s, &st));
   double z[8] = {0};
   CHECK_OK(dal_state_set(s, st, 0.0, xy, z));
@@ -903,26 +767,14 @@ static void test_failures(void) {
   dal_system_destroy(s);
   s = NULL;
   dal_builder *b = NULL;
-  int c[2], p, rc2 = dal_builder_create(2, &b);
-  if (!rc2) rc2 = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc2) rc2 = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc2) rc2 = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pdef = dal_default_place_def();
-  pdef.prim = &dal_map_cartesian2;
-  pdef.coords = c;
-  pdef.ncoords = 2;
-  if (!rc2) rc2 = dal_builder_place_def(b, p, &pdef);
+  scn_knobs k0 = scn_default();
+  k0.g = 0.0;
+  int p, rc2 = scn_builder(&k0, 2, &b);
+  if (!rc2) rc2 = scn_add_xy(b, "bob", 1.0, "x", "y", &p);
   if (!rc2) rc2 = dal_builder_add_force(b, failing_force, NULL);
-  dal_constraint_def cdef = dal_default_constraint_def(); // unit rod to the origin
-  cdef.name = "rod";
-  cdef.prim = &dal_con_anchor2;
-  cdef.parts = &p;
-  cdef.nparts = 1;
-  cdef.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc2) rc2 = dal_builder_add_constraint_def(b, &cdef, NULL);
-  if (!rc2) rc2 = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  CHECK_OK(rc2);
+  if (!rc2) rc2 = scn_add_rod(b, "rod", p, -1, 1.0, &k0); // unit rod to the origin
+  s = scn_finish(b, rc2);
+  CHECK(s != NULL);
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
   o = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);

@@ -30,8 +30,8 @@ dal_system *scn_finish(dal_builder *b, int rc) {
   return rc ? NULL : s;
 }
 
-// a builder of dimension d with gravity -g along the last axis and the chosen route
-static int start(const scn_knobs *k, int d, dal_builder **b) {
+int scn_builder(const scn_knobs *k, int d, dal_builder **b) {
+  KNOBS(k);
   int rc = dal_builder_create(d, b);
   double g[3] = {0.0, 0.0, 0.0};
   g[d - 1] = -k->g;
@@ -40,10 +40,9 @@ static int start(const scn_knobs *k, int d, dal_builder **b) {
   return rc;
 }
 
-// particle `name` of mass m placed by the pendulum map (parent < 0, driven pivot) or hanging
-// from its parent, in coordinate `coord`
-static int swing(dal_builder *b, const scn_knobs *k, const char *name, double m, int parent,
-                 double l, const char *coord, int *p) {
+int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m, int parent,
+                  double l, const char *coord, int *p) {
+  KNOBS(k);
   int c, rc = dal_builder_add_coord(b, coord, &c);
   if (!rc) rc = dal_builder_add_particle(b, name, m, p);
   dal_place_def pd = dal_default_place_def();
@@ -67,9 +66,8 @@ static int swing(dal_builder *b, const scn_knobs *k, const char *name, double m,
   return rc;
 }
 
-// particle `name` of mass m in its own Cartesian coordinates xname, yname
-static int free_particle(dal_builder *b, const char *name, double m, const char *xname,
-                         const char *yname, int *p) {
+int scn_add_xy(dal_builder *b, const char *name, double m, const char *xname, const char *yname,
+               int *p) {
   int c[2], rc = dal_builder_add_coord(b, xname, &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, yname, &c[1]);
   if (!rc) rc = dal_builder_add_particle(b, name, m, p);
@@ -81,8 +79,8 @@ static int free_particle(dal_builder *b, const char *name, double m, const char 
   return rc;
 }
 
-// a rod `name` of length l: to the (moving) anchor when b2 < 0, else between a and b2
-static int rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k) {
+int scn_add_rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k) {
+  KNOBS(k);
   int parts[2] = {a, b2};
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = name;
@@ -105,44 +103,44 @@ static int rod(dal_builder *b, const char *name, int a, int b2, double l, const 
 dal_system *scn_pendulum(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int p, rc = start(k, 2, &b);
-  if (!rc) rc = swing(b, k, "bob", k->m, -1, k->l, "theta", &p);
+  int p, rc = scn_builder(k, 2, &b);
+  if (!rc) rc = scn_add_swing(b, k, "bob", k->m, -1, k->l, "theta", &p);
   return scn_finish(b, rc);
 }
 
 dal_system *scn_cart_pendulum(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int p, rc = start(k, 2, &b);
-  if (!rc) rc = free_particle(b, "bob", k->m, "x", "y", &p);
-  if (!rc) rc = rod(b, "rod", p, -1, k->l, k);
+  int p, rc = scn_builder(k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "bob", k->m, "x", "y", &p);
+  if (!rc) rc = scn_add_rod(b, "rod", p, -1, k->l, k);
   return scn_finish(b, rc);
 }
 
 dal_system *scn_double_pendulum(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int p[2], rc = start(k, 2, &b);
-  if (!rc) rc = swing(b, k, "upper", k->m, -1, k->l, "theta1", &p[0]);
-  if (!rc) rc = swing(b, k, "lower", k->m2, p[0], k->l2, "theta2", &p[1]);
+  int p[2], rc = scn_builder(k, 2, &b);
+  if (!rc) rc = scn_add_swing(b, k, "upper", k->m, -1, k->l, "theta1", &p[0]);
+  if (!rc) rc = scn_add_swing(b, k, "lower", k->m2, p[0], k->l2, "theta2", &p[1]);
   return scn_finish(b, rc);
 }
 
 dal_system *scn_cart_double_pendulum(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int p[2], rc = start(k, 2, &b);
-  if (!rc) rc = free_particle(b, "upper", k->m, "x1", "y1", &p[0]);
-  if (!rc) rc = free_particle(b, "lower", k->m2, "x2", "y2", &p[1]);
-  if (!rc) rc = rod(b, "rod1", p[0], -1, k->l, k);
-  if (!rc) rc = rod(b, "rod2", p[0], p[1], k->l2, k);
+  int p[2], rc = scn_builder(k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "upper", k->m, "x1", "y1", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "lower", k->m2, "x2", "y2", &p[1]);
+  if (!rc) rc = scn_add_rod(b, "rod1", p[0], -1, k->l, k);
+  if (!rc) rc = scn_add_rod(b, "rod2", p[0], p[1], k->l2, k);
   return scn_finish(b, rc);
 }
 
 dal_system *scn_bead(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int c, p, rc = start(k, 3, &b);
+  int c, p, rc = scn_builder(k, 3, &b);
   if (!rc) rc = dal_builder_add_coord(b, "theta", &c);
   if (!rc) rc = dal_builder_add_particle(b, "bead", k->m, &p);
   dal_place_def pd = dal_default_place_def();
@@ -158,7 +156,7 @@ dal_system *scn_bead(const scn_knobs *k) {
 dal_system *scn_cart_bead(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int c[3], p, rc = start(k, 3, &b);
+  int c[3], p, rc = scn_builder(k, 3, &b);
   const char *nm[3] = {"x", "y", "z"};
   for (int i = 0; i < 3 && !rc; ++i)
     rc = dal_builder_add_coord(b, nm[i], &c[i]);
@@ -184,8 +182,8 @@ dal_system *scn_oscillator(const scn_knobs *k) {
   scn_knobs free = *k;
   free.g = 0.0;
   dal_builder *b = NULL;
-  int p, rc = start(&free, 2, &b);
-  if (!rc) rc = free_particle(b, "bob", k->m, "x", "y", &p);
+  int p, rc = scn_builder(&free, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "bob", k->m, "x", "y", &p);
   dal_spring_def sd = dal_default_spring_def(); // zero length, to the origin
   sd.a = p;
   sd.k = k->k;
@@ -196,8 +194,8 @@ dal_system *scn_oscillator(const scn_knobs *k) {
 dal_system *scn_hanging_spring(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int p, rc = start(k, 2, &b);
-  if (!rc) rc = free_particle(b, "bob", k->m, "x", "y", &p);
+  int p, rc = scn_builder(k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "bob", k->m, "x", "y", &p);
   dal_spring_def sd = dal_default_spring_def();
   sd.a = p;
   sd.k = k->k;
@@ -213,12 +211,12 @@ dal_system *scn_hanging_spring(const scn_knobs *k) {
 dal_system *scn_chain(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int p = -1, rc = start(k, 2, &b);
+  int p = -1, rc = scn_builder(k, 2, &b);
   for (int i = 0; i < k->N && !rc; ++i) {
     char name[16], coord[16];
     snprintf(name, sizeof name, "p%d", i);
     snprintf(coord, sizeof coord, "th%d", i);
-    rc = swing(b, k, name, k->m, p, k->l, coord, &p);
+    rc = scn_add_swing(b, k, name, k->m, p, k->l, coord, &p);
   }
   return scn_finish(b, rc);
 }
@@ -226,7 +224,7 @@ dal_system *scn_chain(const scn_knobs *k) {
 dal_system *scn_cart_chain(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int prev = -1, rc = start(k, 2, &b);
+  int prev = -1, rc = scn_builder(k, 2, &b);
   for (int i = 0; i < k->N && !rc; ++i) {
     char name[16], x[16], y[16], r[16];
     snprintf(name, sizeof name, "p%d", i);
@@ -234,8 +232,8 @@ dal_system *scn_cart_chain(const scn_knobs *k) {
     snprintf(y, sizeof y, "y%d", i);
     snprintf(r, sizeof r, "rod%d", i);
     int p;
-    rc = free_particle(b, name, k->m, x, y, &p);
-    if (!rc) rc = rod(b, r, i == 0 ? p : prev, i == 0 ? -1 : p, k->l, k);
+    rc = scn_add_xy(b, name, k->m, x, y, &p);
+    if (!rc) rc = scn_add_rod(b, r, i == 0 ? p : prev, i == 0 ? -1 : p, k->l, k);
     prev = p;
   }
   return scn_finish(b, rc);

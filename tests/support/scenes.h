@@ -43,6 +43,24 @@ scn_knobs scn_default(void);
 /// and return NULL. For scenes a test builds itself on top of scn_* builders.
 dal_system *scn_finish(dal_builder *b, int rc);
 
+// Pieces for scenes a test builds itself (each returns a library status, 0 on success; NULL
+// knobs: the defaults).
+
+/// A builder of dimension d (2 or 3) with gravity -k->g along the last axis (none when k->g is
+/// 0) and the dynamics route k->dynamics.
+int scn_builder(const scn_knobs *k, int d, dal_builder **b);
+/// Particle `name` (mass m) in its own Cartesian coordinates named x and y
+/// (dal_map_cartesian2); its index in *p.
+int scn_add_xy(dal_builder *b, const char *name, double m, const char *x, const char *y, int *p);
+/// A rod `name` of length l: from particle a to the anchor (k->x0, k->y0), moving by k->pivot
+/// when set (dal_con_anchor2), when b2 < 0; else between particles a and b2 (dal_con_distance2).
+int scn_add_rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k);
+/// Particle `name` (mass m) in the angle coordinate `coord`: on the pendulum map about the pivot
+/// (k->x0, k->y0) driven by (k->ax, k->ay, k->w, k->ph) when parent < 0, else hanging from
+/// particle `parent` on length l (dal_map_hanging); its index in *p.
+int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m, int parent,
+                  double l, const char *coord, int *p);
+
 // Every scene takes its knobs by pointer, NULL for the defaults, and returns the compiled
 // system (NULL after printing the builder's message when it cannot be built).
 
