@@ -3,7 +3,10 @@
 // The standard scenes of the tests and benchmarks (scenes.h).
 #include "scenes.h"
 
+#include <math.h>
 #include <stdio.h>
+
+#define PI 3.14159265358979323846
 
 scn_knobs scn_default(void) {
   scn_knobs k = {0};
@@ -236,5 +239,83 @@ dal_system *scn_cart_chain(const scn_knobs *k) {
     if (!rc) rc = scn_add_rod(b, r, i == 0 ? p : prev, i == 0 ? -1 : p, k->l, k);
     prev = p;
   }
+  return scn_finish(b, rc);
+}
+
+dal_system *scn_fourbar(const scn_knobs *k, int cart, double th1, double w1, double *q,
+                        double *qd) {
+  KNOBS(k);
+  const double a = 1.0, bl = 3.5, c = 2.0, Dx = 3.0;
+  double B[2] = {a * sin(th1), -a * cos(th1)};
+  // C on circle(B, bl) and circle(D, c), the lower intersection
+  double dx = Dx - B[0], dy = -B[1], dd = sqrt(dx * dx + dy * dy);
+  double al = (bl * bl - c * c + dd * dd) / (2 * dd), h = sqrt(bl * bl - al * al);
+  double C[2] = {B[0] + al * dx / dd + h * dy / dd, B[1] + al * dy / dd - h * dx / dd};
+  double th2 = atan2(C[0] - B[0], -(C[1] - B[1]));
+  // closure (C - D) . Cdot = 0 gives the coupler rate
+  double e1[2] = {cos(th1), sin(th1)}, e2[2] = {cos(th2), sin(th2)};
+  double CD[2] = {C[0] - Dx, C[1]};
+  double w2 = -a * w1 * (CD[0] * e1[0] + CD[1] * e1[1]) / (bl * (CD[0] * e2[0] + CD[1] * e2[1]));
+  double Bd[2] = {a * w1 * e1[0], a * w1 * e1[1]};
+  double Cd[2] = {Bd[0] + bl * w2 * e2[0], Bd[1] + bl * w2 * e2[1]};
+  // the ground pivots: A at the origin, D at (Dx, 0)
+  scn_knobs ground = *k;
+  ground.x0 = ground.y0 = ground.ax = ground.ay = 0.0;
+  ground.pivot = NULL;
+  dal_builder *b = NULL;
+  int p[2], rc = scn_builder(k, 2, &b);
+  if (!cart) {
+    if (!rc) rc = scn_add_swing(b, &ground, "B", 1.0, -1, a, "crank", &p[0]);
+    if (!rc) rc = scn_add_swing(b, &ground, "C", 2.0, p[0], bl, "coupler", &p[1]);
+    q[0] = th1, q[1] = th2, qd[0] = w1, qd[1] = w2;
+  } else {
+    if (!rc) rc = scn_add_xy(b, "B", 1.0, "xB", "yB", &p[0]);
+    if (!rc) rc = scn_add_xy(b, "C", 2.0, "xC", "yC", &p[1]);
+    if (!rc) rc = scn_add_rod(b, "AB", p[0], -1, a, &ground);
+    if (!rc) rc = scn_add_rod(b, "BC", p[0], p[1], bl, &ground);
+    q[0] = B[0], q[1] = B[1], q[2] = C[0], q[3] = C[1];
+    qd[0] = Bd[0], qd[1] = Bd[1], qd[2] = Cd[0], qd[3] = Cd[1];
+  }
+  ground.x0 = Dx;
+  if (!rc) rc = scn_add_rod(b, "CD", p[1], -1, c, &ground);
+  return scn_finish(b, rc);
+}
+
+dal_system *scn_held_chain(const scn_knobs *k, int cart, double *q, double *qd) {
+  KNOBS(k);
+  const int NL = k->N;
+  const double al = PI / 3.0;
+  double span = NL * sin(al), x = 0.0, y = 0.0;
+  scn_knobs ground = *k;
+  ground.x0 = ground.y0 = ground.ax = ground.ay = 0.0;
+  ground.pivot = NULL;
+  dal_builder *b = NULL;
+  int rc = scn_builder(k, 2, &b), prev = -1;
+  for (int i = 0; i < NL - 1 && !rc; ++i) {
+    double th = i < NL / 2 ? al : PI - al;
+    char name[16], cx[16], cy[16];
+    int p;
+    x += sin(th);
+    y -= cos(th);
+    snprintf(name, sizeof name, "p%d", i);
+    if (!cart) {
+      // unit links: a pendulum about A at the origin, then each hanging from the previous
+      snprintf(cx, sizeof cx, "th%d", i);
+      rc = scn_add_swing(b, &ground, name, 1.0, prev, 1.0, cx, &p);
+      q[i] = th;
+      qd[i] = 0.0;
+    } else {
+      // unit rods: the first to A at the origin, then between neighbours
+      snprintf(cx, sizeof cx, "x%d", i);
+      snprintf(cy, sizeof cy, "y%d", i);
+      rc = scn_add_xy(b, name, 1.0, cx, cy, &p);
+      if (!rc) rc = scn_add_rod(b, NULL, i == 0 ? p : prev, i == 0 ? -1 : p, 1.0, &ground);
+      q[2 * i] = x, q[2 * i + 1] = y;
+      qd[2 * i] = qd[2 * i + 1] = 0.0;
+    }
+    prev = p;
+  }
+  ground.x0 = span; // the last unit rod to B = (span, 0)
+  if (!rc) rc = scn_add_rod(b, "held", prev, -1, 1.0, &ground);
   return scn_finish(b, rc);
 }

@@ -92,5 +92,18 @@ dal_system *scn_hanging_spring(const scn_knobs *k);
 dal_system *scn_chain(const scn_knobs *k);
 /// The chain in Cartesian coordinates: "rod0" (anchor, l) and "rod<i>" (distance, l).
 dal_system *scn_cart_chain(const scn_knobs *k);
+/// The four-bar linkage: ground pivots A = (0, 0) and D = (3, 0); crank AB = 1, coupler
+/// BC = 3.5, rocker CD = 2, massless links, masses 1 at "B" and 2 at "C", the crank at th1 (rad
+/// from the downward vertical) turning at w1 (rad/s), the coupler's rate from the closure.
+/// Tree (cart = 0): B on the pendulum map about A ("crank"), C hanging from B ("coupler"),
+/// the loop row "CD"; Cartesian (cart = 1): (xB, yB, xC, yC) with the rods "AB", "BC", "CD".
+/// The consistent initial state in q, qd: 2 entries each (tree) or 4 (Cartesian).
+dal_system *scn_fourbar(const scn_knobs *k, int cart, double th1, double w1, double *q, double *qd);
+/// A chain of k->N unit links and N - 1 unit masses "p0" ... between A = (0, 0) and
+/// B = (N sin 60deg, 0), released from rest as a V. Tree (cart = 0): "p0" on the pendulum map
+/// about A, each next hanging ("th0", ...), the last rod "held" to B as a loop row; Cartesian
+/// (cart = 1): ("x0", "y0", ...) with N unnamed rods but the last, "held". The initial state
+/// in q, qd: N - 1 entries each (tree) or 2 (N - 1) (Cartesian).
+dal_system *scn_held_chain(const scn_knobs *k, int cart, double *q, double *qd);
 
 #endif
