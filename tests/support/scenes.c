@@ -82,6 +82,20 @@ int scn_add_xy(dal_builder *b, const char *name, double m, const char *xname, co
   return rc;
 }
 
+int scn_add_xyz(dal_builder *b, const char *name, double m, int *p) {
+  int c[3], rc = DAL_OK;
+  const char *nm[3] = {"x", "y", "z"};
+  for (int i = 0; i < 3 && !rc; ++i)
+    rc = dal_builder_add_coord(b, nm[i], &c[i]);
+  if (!rc) rc = dal_builder_add_particle(b, name, m, p);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_cartesian3;
+  pd.coords = c;
+  pd.ncoords = 3;
+  if (!rc) rc = dal_builder_place_def(b, *p, &pd);
+  return rc;
+}
+
 int scn_add_rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k) {
   KNOBS(k);
   int parts[2] = {a, b2};
@@ -152,6 +166,7 @@ dal_system *scn_bead(const scn_knobs *k) {
   pd.ncoords = 1;
   pd.param[DAL_RING_R] = k->R;
   pd.param[DAL_RING_W] = k->spin;
+  pd.param[DAL_RING_PHI0] = k->phi0;
   if (!rc) rc = dal_builder_place_def(b, p, &pd);
   return scn_finish(b, rc);
 }
@@ -159,16 +174,8 @@ dal_system *scn_bead(const scn_knobs *k) {
 dal_system *scn_cart_bead(const scn_knobs *k) {
   KNOBS(k);
   dal_builder *b = NULL;
-  int c[3], p, rc = scn_builder(k, 3, &b);
-  const char *nm[3] = {"x", "y", "z"};
-  for (int i = 0; i < 3 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", k->m, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian3;
-  pd.coords = c;
-  pd.ncoords = 3;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  int p, rc = scn_builder(k, 3, &b);
+  if (!rc) rc = scn_add_xyz(b, "bead", k->m, &p);
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "ring";
   cd.prim = &dal_con_turning_circle;
@@ -177,6 +184,96 @@ dal_system *scn_cart_bead(const scn_knobs *k) {
   cd.param[DAL_TURNING_CIRCLE_R] = k->R;
   cd.param[DAL_TURNING_CIRCLE_W] = k->spin;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  return scn_finish(b, rc);
+}
+
+int scn_add_spherical(dal_builder *b, const scn_knobs *k, int *p) {
+  KNOBS(k);
+  int c[2], rc = dal_builder_add_coord(b, "theta", &c[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "phi", &c[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", k->m, p);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_spherical;
+  pd.coords = c;
+  pd.ncoords = 2;
+  pd.param[DAL_SPHERICAL_L] = k->l;
+  pd.param[DAL_SPHERICAL_X0] = k->x0;
+  pd.param[DAL_SPHERICAL_Y0] = k->y0;
+  pd.param[DAL_SPHERICAL_Z0] = k->z0;
+  if (!rc) rc = dal_builder_place_def(b, *p, &pd);
+  return rc;
+}
+
+dal_system *scn_spherical(const scn_knobs *k) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int p, rc = scn_builder(k, 3, &b);
+  if (!rc) rc = scn_add_spherical(b, k, &p);
+  return scn_finish(b, rc);
+}
+
+dal_system *scn_cart_spherical(const scn_knobs *k) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int p, rc = scn_builder(k, 3, &b);
+  if (!rc) rc = scn_add_xyz(b, "bob", k->m, &p);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "rod";
+  cd.prim = &dal_con_anchor3;
+  cd.parts = &p;
+  cd.nparts = 1;
+  cd.param[DAL_ANCHOR_L] = k->l;
+  cd.param[DAL_ANCHOR_X0] = k->x0;
+  cd.param[DAL_ANCHOR_Y0] = k->y0;
+  cd.param[DAL_ANCHOR_Z0] = k->z0;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  return scn_finish(b, rc);
+}
+
+// rotating frame: r = Rot(w t) (x, y); param (w)
+static int rotating(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
+  (void)ctx;
+  dal_jet s, c;
+  dal_sincos(dal_scale(t, p[0]), &s, &c);
+  out[0] = dal_sub(dal_mul(in[0], c), dal_mul(in[1], s));
+  out[1] = dal_add(dal_mul(in[0], s), dal_mul(in[1], c));
+  return 0;
+}
+
+static const dal_primitive prim_rotating = {.name = "rotating",
+                                            .version = 1,
+                                            .nin = 2,
+                                            .nout = 2,
+                                            .nparam = 1,
+                                            .eval = rotating,
+                                            .doc = "in (x, y); param (w); out Rot(w t) (x, y)"};
+
+// the trap's potential in the turning components of r
+static int trap_pot(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
+  const scn_trap *tr = ctx;
+  dal_jet s, c;
+  dal_sincos(dal_scale(t, tr->w), &s, &c);
+  dal_jet xp = dal_add(dal_mul(r[0], c), dal_mul(r[1], s));
+  dal_jet yp = dal_sub(dal_mul(r[1], c), dal_mul(r[0], s));
+  *U = dal_add(dal_scale(dal_sq(xp), 0.5 * tr->k1), dal_scale(dal_sq(yp), 0.5 * tr->k2));
+  return 0;
+}
+
+dal_system *scn_rotating_trap(const scn_trap *tr, double m) {
+  scn_knobs free = scn_default();
+  free.g = 0.0;
+  dal_builder *b = NULL;
+  int q[2], p, rc = scn_builder(&free, 2, &b);
+  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
+  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
+  if (!rc) rc = dal_builder_add_particle(b, "ion", m, &p);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &prim_rotating;
+  pd.coords = q;
+  pd.ncoords = 2;
+  pd.param[0] = tr->w;
+  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
   return scn_finish(b, rc);
 }
 

@@ -26,10 +26,11 @@ typedef struct scn_knobs {
   double ax, ay, w; ///< pendulum pivot drive (ax cos wt, ay cos wt) (dal_map_pendulum),
   double ph;        ///< phase of that drive (rad), default 0
   double x0, y0;    ///< the (first) pivot or rod anchor, default the origin
-                    ///< default 0 (fixed)
+  double z0;        ///< 3D scenes (spherical pendulum): the pivot's z, default 0
   const dal_moving_point *pivot; ///< Cartesian scenes: the moving anchor of the first rod,
                                  ///< default NULL (fixed at the origin)
   double R, spin;                ///< bead: ring radius (default 1) and turning rate (default 0)
+  double phi0;                   ///< bead: the ring's plane angle at t = 0 (rad), default 0
   double k;                      ///< oscillator, hanging spring: stiffness, default 1
   double c;                      ///< hanging spring: damping coefficient, default 0
   int N;                         ///< chain: number of particles, default 4
@@ -52,6 +53,9 @@ int scn_builder(const scn_knobs *k, int d, dal_builder **b);
 /// Particle `name` (mass m) in its own Cartesian coordinates named x and y
 /// (dal_map_cartesian2); its index in *p.
 int scn_add_xy(dal_builder *b, const char *name, double m, const char *x, const char *y, int *p);
+/// Particle `name` (mass m) in its own 3D Cartesian coordinates "x", "y", "z"
+/// (dal_map_cartesian3); its index in *p.
+int scn_add_xyz(dal_builder *b, const char *name, double m, int *p);
 /// A rod `name` of length l: from particle a to the anchor (k->x0, k->y0), moving by k->pivot
 /// when set (dal_con_anchor2), when b2 < 0; else between particles a and b2 (dal_con_distance2).
 int scn_add_rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k);
@@ -81,6 +85,23 @@ dal_system *scn_bead(const scn_knobs *k);
 /// The same bead in Cartesian coordinates (x, y, z) on the turning circle "ring"
 /// (dal_con_turning_circle, radius R, rate spin; two constraint rows).
 dal_system *scn_cart_bead(const scn_knobs *k);
+/// The spherical pendulum's particle "bob" (mass k->m) in (theta, phi) on dal_map_spherical of
+/// length k->l about (k->x0, k->y0, k->z0); its index in *p.
+int scn_add_spherical(dal_builder *b, const scn_knobs *k, int *p);
+/// The spherical pendulum (3D): scn_add_spherical under gravity.
+dal_system *scn_spherical(const scn_knobs *k);
+/// The same in Cartesian coordinates (x, y, z): "bob" on the rod "rod" (dal_con_anchor3, length
+/// l) to (x0, y0, z0).
+dal_system *scn_cart_spherical(const scn_knobs *k);
+/// An anisotropic trap turning at rate w: U = (k1 x'^2 + k2 y'^2) / 2 in the components (x', y')
+/// of r in the turning frame.
+typedef struct scn_trap {
+  double w, k1, k2; ///< rate (rad/s) and stiffnesses
+} scn_trap;
+/// The ion "ion" (mass m) in the rotating frame's coordinates (x, y) (r = Rot(w t) (x, y), a user
+/// primitive "rotating" with param (w)) in the trap tr (borrowed; must outlive the system), no
+/// gravity.
+dal_system *scn_rotating_trap(const scn_trap *tr, double m);
 /// The 2D isotropic oscillator: "bob" (m) in Cartesian (x, y) on a zero-length spring of
 /// stiffness k to the origin, no gravity.
 dal_system *scn_oscillator(const scn_knobs *k);
