@@ -20,6 +20,12 @@ scn_knobs scn_default(void) {
   return k;
 }
 
+scn_knobs scn_weightless(void) {
+  scn_knobs k = scn_default();
+  k.g = 0.0;
+  return k;
+}
+
 // NULL knobs: the defaults
 #define KNOBS(k)                                                                                   \
   scn_knobs dflt_ = scn_default();                                                                 \
@@ -260,8 +266,7 @@ static int trap_pot(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
 }
 
 dal_system *scn_rotating_trap(const scn_trap *tr, double m) {
-  scn_knobs free = scn_default();
-  free.g = 0.0;
+  scn_knobs free = scn_weightless();
   dal_builder *b = NULL;
   int q[2], p, rc = scn_builder(&free, 2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
@@ -304,7 +309,7 @@ dal_system *scn_hanging_spring(const scn_knobs *k) {
   dal_damper_def dd = dal_default_damper_def();
   dd.a = p;
   dd.c = k->c;
-  if (!rc) rc = dal_builder_add_damper_def(b, &dd);
+  if (!rc && k->c != 0.0) rc = dal_builder_add_damper_def(b, &dd);
   return scn_finish(b, rc);
 }
 
@@ -415,4 +420,44 @@ dal_system *scn_held_chain(const scn_knobs *k, int cart, double *q, double *qd) 
   ground.x0 = span; // the last unit rod to B = (span, 0)
   if (!rc) rc = scn_add_rod(b, "held", prev, -1, 1.0, &ground);
   return scn_finish(b, rc);
+}
+
+void scn_rk4_replica(const double *y0, double T, double H, int naive, double *out) {
+  long double y[4] = {y0[0], y0[1], y0[2], y0[3]}, c[4] = {0, 0, 0, 0};
+  double yd[4] = {y0[0], y0[1], y0[2], y0[3]}, t = 0.0;
+  while (t < T) {
+    double tend = t + H;
+    if (tend > T - 1e-9 * H) tend = T;
+    double hd = tend - t;
+    if (naive) {
+      // in double, the update summed directly
+      double k[4][4], yt[4];
+      for (int s = 0; s < 4; ++s) {
+        double a = s == 0 ? 0.0 : s == 3 ? hd : 0.5 * hd;
+        for (int i = 0; i < 4; ++i)
+          yt[i] = s ? yd[i] + a * k[s - 1][i] : yd[i];
+        k[s][0] = yt[2], k[s][1] = yt[3], k[s][2] = -yt[0], k[s][3] = -yt[1];
+      }
+      for (int i = 0; i < 4; ++i)
+        yd[i] = yd[i] + hd / 6.0 * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]);
+    } else {
+      // in long double, the update added with Kahan's compensation
+      long double h = hd, k[4][4], yt[4];
+      for (int s = 0; s < 4; ++s) {
+        long double a = s == 0 ? 0.0L : s == 3 ? h : 0.5L * h;
+        for (int i = 0; i < 4; ++i)
+          yt[i] = s ? y[i] + a * k[s - 1][i] : y[i];
+        k[s][0] = yt[2], k[s][1] = yt[3], k[s][2] = -yt[0], k[s][3] = -yt[1];
+      }
+      for (int i = 0; i < 4; ++i) {
+        long double d = h * (k[0][i] + 2 * (k[1][i] + k[2][i]) + k[3][i]) / 6 - c[i];
+        long double s = y[i] + d;
+        c[i] = (s - y[i]) - d;
+        y[i] = s;
+      }
+    }
+    t = tend;
+  }
+  for (int i = 0; i < 4; ++i)
+    out[i] = naive ? yd[i] : (double)y[i];
 }

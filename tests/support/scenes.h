@@ -39,6 +39,8 @@ typedef struct scn_knobs {
 
 /// The defaults listed in scn_knobs.
 scn_knobs scn_default(void);
+/// The defaults without gravity (g = 0).
+scn_knobs scn_weightless(void);
 
 /// Compile b (when rc is 0) and destroy it; on failure print the builder's message to stderr
 /// and return NULL. For scenes a test builds itself on top of scn_* builders.
@@ -106,7 +108,7 @@ dal_system *scn_rotating_trap(const scn_trap *tr, double m);
 /// stiffness k to the origin, no gravity.
 dal_system *scn_oscillator(const scn_knobs *k);
 /// A mass hanging on a spring: "bob" (m) in Cartesian (x, y) on a spring of stiffness k and
-/// rest length l to the origin, with a damper c to the origin, under gravity.
+/// rest length l to the origin, with a damper c to the origin (none when c = 0), under gravity.
 dal_system *scn_hanging_spring(const scn_knobs *k);
 /// A chain of N pendulums in their angles th0 ... : "p0" on l about the origin, each next
 /// hanging from its parent on l.
@@ -126,5 +128,14 @@ dal_system *scn_fourbar(const scn_knobs *k, int cart, double th1, double w1, dou
 /// (cart = 1): ("x0", "y0", ...) with N unnamed rods but the last, "held". The initial state
 /// in q, qd: N - 1 entries each (tree) or 2 (N - 1) (Cartesian).
 dal_system *scn_held_chain(const scn_knobs *k, int cart, double *q, double *qd);
+
+// References shared by the tests and the benchmarks.
+
+/// RK4 with the fixed step H (the last step shortened to end at T) on the unit oscillator
+/// q'' = -q in the plane, y = (q1, q2, v1, v2) from y0 (4) to out (4): the classical recurrence
+/// in long double with a compensated update (naive = 0), or in double with the uncompensated
+/// update y + h/6 (k1 + 2 k2 + 2 k3 + k4) (naive = 1). The round-off reference of the library's
+/// RK4.
+void scn_rk4_replica(const double *y0, double T, double H, int naive, double *out);
 
 #endif
