@@ -298,40 +298,19 @@ static dal_moving_point drive = {drive_path, NULL};
 // Cartesian (rod to a moving anchor, a rheonomic constraint)
 static dal_system *forced_pendulum(int cartesian) {
   dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
+  scn_knobs k = scn_default();
+  int p, rc = scn_builder(&k, 2, &b);
   if (!cartesian) {
     // the built-in drive: pivot (ax cos(w t + ph), ay cos(w t + ph)); use the path through a
     // user map instead to match the Cartesian scene exactly
-    if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &c[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = 1.0;
-    pd.param[DAL_PENDULUM_AX] = 0.2;
-    pd.param[DAL_PENDULUM_W] = 3.0;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    k.ax = 0.2;
+    k.w = 3.0;
+    if (!rc) rc = scn_add_swing(b, &k, "bob", 1.0, -1, 1.0, "theta", &p);
   } else {
-    if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &p;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.0; // to the moving point 0 + x(t)
-    cd.ctx = &drive;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    k.pivot = &drive; // the rod to the moving point 0 + x(t)
+    if (!rc) rc = scn_add_xy(b, "bob", 1.0, "x", "y", &p);
+    if (!rc) rc = scn_add_rod(b, "rod", p, -1, 1.0, &k);
   }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
   dal_damper_def dd = dal_default_damper_def();
   dd.a = p;
   dd.anchor[1] = -2.0; // at (0, -2)

@@ -422,6 +422,24 @@ dal_system *scn_held_chain(const scn_knobs *k, int cart, double *q, double *qd) 
   return scn_finish(b, rc);
 }
 
+dal_system *scn_closed_loop(const scn_knobs *k, double link) {
+  KNOBS(k);
+  dal_builder *b = NULL;
+  int p[2], rc = scn_builder(k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "p", k->m, NULL, NULL, &p[0]);
+  if (!rc) rc = scn_add_xy(b, "s", k->m2, NULL, NULL, &p[1]);
+  if (!rc) rc = scn_add_rod(b, "rod", p[0], -1, k->l, k);
+  dal_constraint_def cd = dal_default_constraint_def();
+  cd.name = "ring";
+  cd.prim = &dal_con_circle2;
+  cd.parts = &p[1];
+  cd.nparts = 1;
+  cd.param[DAL_CIRCLE_R] = k->R;
+  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  if (!rc) rc = scn_add_rod(b, "link", p[0], p[1], link, k);
+  return scn_finish(b, rc);
+}
+
 void scn_rk4_replica(const double *y0, double T, double H, int naive, double *out) {
   long double y[4] = {y0[0], y0[1], y0[2], y0[3]}, c[4] = {0, 0, 0, 0};
   double yd[4] = {y0[0], y0[1], y0[2], y0[3]}, t = 0.0;

@@ -128,6 +128,11 @@ dal_system *scn_fourbar(const scn_knobs *k, int cart, double th1, double w1, dou
 /// (cart = 1): ("x0", "y0", ...) with N unnamed rods but the last, "held". The initial state
 /// in q, qd: N - 1 entries each (tree) or 2 (N - 1) (Cartesian).
 dal_system *scn_held_chain(const scn_knobs *k, int cart, double *q, double *qd);
+/// A closed loop: "p" (mass m) in unnamed Cartesian coordinates on the rod "rod" of length l
+/// from (x0, y0), "s" (mass m2) on the circle "ring" of radius R about the origin
+/// (dal_con_circle2), tied by the rod "link" of length `link`: 4 coordinates, 2 + 1 + 1
+/// constraint rows.
+dal_system *scn_closed_loop(const scn_knobs *k, double link);
 
 // References shared by the tests and the benchmarks.
 
