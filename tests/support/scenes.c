@@ -479,3 +479,17 @@ void scn_rk4_replica(const double *y0, double T, double H, int naive, double *ou
   for (int i = 0; i < 4; ++i)
     out[i] = naive ? yd[i] : (double)y[i];
 }
+
+int scn_sum_q0(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  *(double *)ctx += dal_state_q(st)[0];
+  return 0;
+}
+
+int scn_sum_energy(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  dal_energies e;
+  if (dal_state_energies(st, &e)) return -1;
+  *(double *)ctx += e.E;
+  return 0;
+}

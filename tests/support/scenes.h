@@ -143,4 +143,10 @@ dal_system *scn_closed_loop(const scn_knobs *k, double link);
 /// RK4.
 void scn_rk4_replica(const double *y0, double T, double H, int naive, double *out);
 
+/// Monitors for dal_evolve: add q[0] (scn_sum_q0) or the total energy E (scn_sum_energy, one
+/// evaluation per output) at every output to *(double *)ctx; the second returns -1 when the
+/// energies fail.
+int scn_sum_q0(const dal_system *sys, const dal_state *st, void *ctx);
+int scn_sum_energy(const dal_system *sys, const dal_state *st, void *ctx);
+
 #endif
