@@ -75,31 +75,30 @@ int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m
   return rc;
 }
 
-int scn_add_xy(dal_builder *b, const char *name, double m, const char *xname, const char *yname,
-               int *p) {
-  int c[2], rc = dal_builder_add_coord(b, xname, &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, yname, &c[1]);
+// particle `name` (mass m) in its own d Cartesian coordinates named nm[0 .. d)
+static int add_cartesian(dal_builder *b, const char *name, double m, const char *const *nm, int d,
+                         int *p) {
+  int c[3], rc = DAL_OK;
+  for (int i = 0; i < d && !rc; ++i)
+    rc = dal_builder_add_coord(b, nm[i], &c[i]);
   if (!rc) rc = dal_builder_add_particle(b, name, m, p);
   dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
+  pd.prim = d == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3;
   pd.coords = c;
-  pd.ncoords = 2;
+  pd.ncoords = d;
   if (!rc) rc = dal_builder_place_def(b, *p, &pd);
   return rc;
 }
 
+int scn_add_xy(dal_builder *b, const char *name, double m, const char *xname, const char *yname,
+               int *p) {
+  const char *nm[2] = {xname, yname};
+  return add_cartesian(b, name, m, nm, 2, p);
+}
+
 int scn_add_xyz(dal_builder *b, const char *name, double m, int *p) {
-  int c[3], rc = DAL_OK;
-  const char *nm[3] = {"x", "y", "z"};
-  for (int i = 0; i < 3 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, name, m, p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian3;
-  pd.coords = c;
-  pd.ncoords = 3;
-  if (!rc) rc = dal_builder_place_def(b, *p, &pd);
-  return rc;
+  static const char *const nm[3] = {"x", "y", "z"};
+  return add_cartesian(b, name, m, nm, 3, p);
 }
 
 int scn_add_rod(dal_builder *b, const char *name, int a, int b2, double l, const scn_knobs *k) {
@@ -177,20 +176,35 @@ dal_system *scn_bead(const scn_knobs *k) {
   return scn_finish(b, rc);
 }
 
-dal_system *scn_cart_bead(const scn_knobs *k) {
-  KNOBS(k);
+// one particle in (x, y, z) under gravity held by one constraint: the spherical pendulum's rod
+// "rod" (anchor3: l to (x0, y0, z0)) on "bob", or the bead's turning circle "ring" (R, spin)
+static dal_system *cart3(const scn_knobs *k, int rod) {
   dal_builder *b = NULL;
   int p, rc = scn_builder(k, 3, &b);
-  if (!rc) rc = scn_add_xyz(b, "bead", k->m, &p);
+  if (!rc) rc = scn_add_xyz(b, rod ? "bob" : "bead", k->m, &p);
   dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "ring";
-  cd.prim = &dal_con_turning_circle;
   cd.parts = &p;
   cd.nparts = 1;
-  cd.param[DAL_TURNING_CIRCLE_R] = k->R;
-  cd.param[DAL_TURNING_CIRCLE_W] = k->spin;
+  if (rod) {
+    cd.name = "rod";
+    cd.prim = &dal_con_anchor3;
+    cd.param[DAL_ANCHOR_L] = k->l;
+    cd.param[DAL_ANCHOR_X0] = k->x0;
+    cd.param[DAL_ANCHOR_Y0] = k->y0;
+    cd.param[DAL_ANCHOR_Z0] = k->z0;
+  } else {
+    cd.name = "ring";
+    cd.prim = &dal_con_turning_circle;
+    cd.param[DAL_TURNING_CIRCLE_R] = k->R;
+    cd.param[DAL_TURNING_CIRCLE_W] = k->spin;
+  }
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   return scn_finish(b, rc);
+}
+
+dal_system *scn_cart_bead(const scn_knobs *k) {
+  KNOBS(k);
+  return cart3(k, 0);
 }
 
 int scn_add_spherical(dal_builder *b, const scn_knobs *k, int *p) {
@@ -220,20 +234,7 @@ dal_system *scn_spherical(const scn_knobs *k) {
 
 dal_system *scn_cart_spherical(const scn_knobs *k) {
   KNOBS(k);
-  dal_builder *b = NULL;
-  int p, rc = scn_builder(k, 3, &b);
-  if (!rc) rc = scn_add_xyz(b, "bob", k->m, &p);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor3;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = k->l;
-  cd.param[DAL_ANCHOR_X0] = k->x0;
-  cd.param[DAL_ANCHOR_Y0] = k->y0;
-  cd.param[DAL_ANCHOR_Z0] = k->z0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  return scn_finish(b, rc);
+  return cart3(k, 1);
 }
 
 // rotating frame: r = Rot(w t) (x, y); param (w)
