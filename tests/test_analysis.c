@@ -195,16 +195,6 @@ static dal_system *rotating_trap(const trap *tr, double m) {
   return built(scn_rotating_trap(tr, m));
 }
 
-// a particle hanging from a spring (k, rest L) with a damper c at the origin, Cartesian
-static dal_system *hanging_spring(double m, double k, double L, double c) {
-  scn_knobs kn = scn_default();
-  kn.m = m;
-  kn.k = k;
-  kn.l = L;
-  kn.c = c;
-  return built(scn_hanging_spring(&kn));
-}
-
 // ---------------------------------------------------------------------------------------------
 // the vector-field Jacobian against central differences of dal_forward's qddot
 
@@ -585,7 +575,10 @@ static void test_double_pendulum_modes(void) {
 static void test_spring_damper(void) {
   int fails0 = check_failures;
   const double m = 0.7, k = 40.0, L = 0.5, c = 1.1;
-  dal_system *sys = hanging_spring(m, k, L, c);
+  // a particle hanging from a spring (k, rest L) with a damper c at the origin, Cartesian
+  scn_knobs kn = scn_default();
+  kn.m = m, kn.k = k, kn.l = L, kn.c = c;
+  dal_system *sys = built(scn_hanging_spring(&kn));
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   // the equilibrium from a nearby start: y* = -(L + m g / k)

@@ -55,15 +55,6 @@ typedef scn_trap trap;
 
 static dal_system *rotating_trap(const trap *tr) { return built(scn_rotating_trap(tr, 1.0)); }
 
-static dal_system *hanging_spring(double m, double k, double L, double c) {
-  scn_knobs kn = scn_default();
-  kn.m = m;
-  kn.k = k;
-  kn.l = L;
-  kn.c = c;
-  return built(scn_hanging_spring(&kn));
-}
-
 // run dal_lyapunov from (t0, q, qdot); returns its status
 static int run(const dal_system *sys, dal_state *st, double t0, const double *q, const double *qd,
                dal_lyapunov_opts *o, double *ex, double *er) {
@@ -101,7 +92,9 @@ static void test_linear(void) {
   dal_system_destroy(sys);
   // damped spring at rest: real parts 0, 0, -c/2m, -c/2m; the sum is exactly -c/m
   const double m = 0.7, k = 40.0, L = 0.5, c = 0.3, ell = L + m * 9.81 / k;
-  sys = hanging_spring(m, k, L, c);
+  scn_knobs kn = scn_default(); // hanging from a spring (k, rest L) with a damper c
+  kn.m = m, kn.k = k, kn.l = L, kn.c = c;
+  sys = built(scn_hanging_spring(&kn));
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {0, -ell};
   if (!run(sys, st, 0.0, q, z, &o, ex, er)) {

@@ -283,35 +283,34 @@ dal_system *scn_rotating_trap(const scn_trap *tr, double m) {
   return scn_finish(b, rc);
 }
 
-dal_system *scn_oscillator(const scn_knobs *k) {
-  KNOBS(k);
-  scn_knobs free = *k;
-  free.g = 0.0;
+// "bob" in (x, y) on a spring of stiffness k to the origin: of zero length without gravity
+// (the oscillator), or hanging (rest length l, gravity, a damper c unless c = 0)
+static dal_system *spring_bob(const scn_knobs *k, int hanging) {
+  scn_knobs kk = *k;
+  if (!hanging) kk.g = 0.0;
   dal_builder *b = NULL;
-  int p, rc = scn_builder(&free, 2, &b);
-  if (!rc) rc = scn_add_xy(b, "bob", k->m, "x", "y", &p);
-  dal_spring_def sd = dal_default_spring_def(); // zero length, to the origin
-  sd.a = p;
-  sd.k = k->k;
-  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
-  return scn_finish(b, rc);
-}
-
-dal_system *scn_hanging_spring(const scn_knobs *k) {
-  KNOBS(k);
-  dal_builder *b = NULL;
-  int p, rc = scn_builder(k, 2, &b);
+  int p, rc = scn_builder(&kk, 2, &b);
   if (!rc) rc = scn_add_xy(b, "bob", k->m, "x", "y", &p);
   dal_spring_def sd = dal_default_spring_def();
   sd.a = p;
   sd.k = k->k;
-  sd.length = k->l;
+  if (hanging) sd.length = k->l;
   if (!rc) rc = dal_builder_add_spring_def(b, &sd);
   dal_damper_def dd = dal_default_damper_def();
   dd.a = p;
   dd.c = k->c;
-  if (!rc && k->c != 0.0) rc = dal_builder_add_damper_def(b, &dd);
+  if (!rc && hanging && k->c != 0.0) rc = dal_builder_add_damper_def(b, &dd);
   return scn_finish(b, rc);
+}
+
+dal_system *scn_oscillator(const scn_knobs *k) {
+  KNOBS(k);
+  return spring_bob(k, 0);
+}
+
+dal_system *scn_hanging_spring(const scn_knobs *k) {
+  KNOBS(k);
+  return spring_bob(k, 1);
 }
 
 dal_system *scn_chain(const scn_knobs *k) {
