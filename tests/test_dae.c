@@ -30,15 +30,6 @@
 #define G0 SCN_G
 #define PI 3.14159265358979323846
 
-static dal_solve_opts opts_of(dal_formulation f, dal_method m, double tol) {
-  dal_solve_opts o = dal_default_solve_opts();
-  o.form = f;
-  o.method = m;
-  o.rtol = tol;
-  o.atol = tol;
-  return o;
-}
-
 // ---------------------------------------------------------------------------------------------
 // scenes
 
@@ -174,8 +165,8 @@ static void test_pendulum_vs_minimal(void) {
   CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &w0));
   CHECK_OK(dal_forward(ms, a));
   CHECK_OK(set_from_particles(ds, b, a, 2));
-  dal_solve_opts om = opts_of(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
-  dal_solve_opts od = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
+  dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
+  dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, lmax = 0.0;
   for (int k = 1; k <= 12; ++k) {
     double t = 0.25 * k;
@@ -211,8 +202,8 @@ static void test_double_and_driven(void) {
     CHECK_OK(dal_state_set(ms, a, 0.0, th, thd));
     CHECK_OK(dal_forward(ms, a));
     CHECK_OK(set_from_particles(ds, b, a, 4));
-    dal_solve_opts om = opts_of(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
-    dal_solve_opts od = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+    dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
+    dal_solve_opts od = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
     double emax = 0.0, fmaxd = 0.0;
     for (int k = 1; k <= 8; ++k) {
       double t = 0.25 * k;
@@ -248,8 +239,8 @@ static void test_double_and_driven(void) {
     CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &w0));
     CHECK_OK(dal_forward(ms, a));
     CHECK_OK(set_from_particles(ds, b, a, 2));
-    dal_solve_opts om = opts_of(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
-    dal_solve_opts od = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
+    dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
+    dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
     double emax = 0.0;
     for (int k = 1; k <= 8; ++k) {
       double t = 0.25 * k;
@@ -284,8 +275,8 @@ static void test_rotating_ring(void) {
   CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &thd0));
   CHECK_OK(dal_forward(ms, a));
   CHECK_OK(set_from_particles(ds, b, a, 3));
-  dal_solve_opts om = opts_of(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
-  dal_solve_opts od = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
+  dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
+  dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, phimax = 0.0;
   for (int k = 1; k <= 8; ++k) {
     double t = 0.25 * k;
@@ -328,7 +319,7 @@ static void test_turning_line(void) {
   CHECK_OK(dal_state_create(s, &st));
   double q[2] = {s0, 0.0}, qd[2] = {0.0, w * s0};
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-  dal_solve_opts o = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
+  dal_solve_opts o = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, nmax = 0.0;
   for (int k = 1; k <= 8; ++k) {
     double t = 0.25 * k, r = s0 * cosh(w * t);
@@ -384,7 +375,7 @@ static void test_prescribed(void) {
   CHECK_OK(dal_make_consistent(s, st, 0.0, &rep));
   CHECK_CLOSE(dal_state_q(st)[0], th0, 1e-14);
   CHECK_CLOSE(dal_state_qdot(st)[0], wg.A * wg.W, 1e-14);
-  dal_solve_opts o = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, 1e-9);
+  dal_solve_opts o = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, 1e-9);
   double emax = 0.0;
   for (int k = 0; k <= 6; ++k) {
     double t = 0.3 * k;
@@ -420,7 +411,7 @@ static void test_tight_tolerance(void) {
   for (int i = 0; i < 3; ++i) {
     double q[2] = {sin(th0), -cos(th0)}, qd[2] = {0, 0};
     CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-    dal_solve_opts o = opts_of(runs[i].f, runs[i].m, tol);
+    dal_solve_opts o = scn_opts(runs[i].f, runs[i].m, tol);
     o.project = runs[i].project;
     int rc = dal_advance(s, st, &o, T);
     const double *x = dal_state_q(st);
@@ -459,12 +450,12 @@ static void test_drift(void) {
   // GGL over 40 s, residuals at every output
   resid ggl = {0, 0};
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-  dal_solve_opts o = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+  dal_solve_opts o = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   CHECK_OK(dal_evolve(s, st, &o, 40.0, 0.5, resid_monitor, &ggl));
   // unstabilized index-1 in IDA: phi(10), phi(40)
   double phi[2], phidot[2];
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-  o = opts_of(DAL_FORM_INDEX1, DAL_METHOD_BDF, tol);
+  o = scn_opts(DAL_FORM_INDEX1, DAL_METHOD_BDF, tol);
   CHECK_OK(dal_advance(s, st, &o, 10.0));
   phi[0] = fabs(dal_state_phi(st)[0]);
   phidot[0] = fabs(dal_state_phidot(st)[0]);
@@ -589,7 +580,7 @@ static void test_redundant(void) {
   CHECK(rep.m == 2 && rep.rank == 1 && rep.ndependent == 2);
   CHECK_MSG(strstr(msg, "'rod' and 'rod_copy'") && strstr(msg, "rank 1 of 2"), "%s", msg);
   // the integrator refuses to start, with the same diagnosis
-  dal_solve_opts o = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, 1e-8);
+  dal_solve_opts o = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, 1e-8);
   rc = dal_advance(s, st, &o, 1.0);
   CHECK(rc == DAL_E_CONSTRAINT);
   CHECK_MSG(strstr(dal_state_errmsg(st), "redundant"), "%s", dal_state_errmsg(st));
@@ -638,7 +629,7 @@ static void test_klu_vs_dense(void) {
   chain_start(N, q, qd);
   CHECK_OK(dal_state_set(s, a, 0.0, q, qd));
   CHECK_OK(dal_state_set(s, b, 0.0, q, qd));
-  dal_solve_opts od = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol), ok = od;
+  dal_solve_opts od = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol), ok = od;
   od.linsol = DAL_LINSOL_DENSE;
   ok.linsol = DAL_LINSOL_KLU;
   CHECK_OK(dal_advance(s, a, &od, 1.0));
@@ -695,7 +686,7 @@ static void test_large_chain(int N) {
   CHECK_OK(dal_forward(s, st)); // sparse KKT: no dense M
   dal_energies e0, e1;
   dal_state_energies(st, &e0);
-  dal_solve_opts o = opts_of(DAL_FORM_AUTO, DAL_METHOD_AUTO, 1e-8);
+  dal_solve_opts o = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, 1e-8);
   CHECK_OK(dal_advance(s, st, &o, 0.05));
   dal_state_energies(st, &e1);
   double phi = max_abs(dal_state_phi(st), N), phidot = max_abs(dal_state_phidot(st), N);
@@ -725,7 +716,7 @@ static void test_failures(void) {
   CHECK_OK(dal_state_create(s, &st));
   double q[2] = {sin(th0), -cos(th0)}, qd[2] = {0, 0};
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-  dal_solve_opts o = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+  dal_solve_opts o = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   o.max_steps = 20;
   int rc = dal_advance(s, st, &o, 5.0);
   const char *msg = dal_state_errmsg(st);
@@ -734,13 +725,13 @@ static void test_failures(void) {
   CHECK(fabs(dal_state_phi(st)[0]) < 1e-9);
   CHECK_MSG(strstr(msg, "dominated by") && strstr(msg, "last accepted step"), "%s", msg);
   // projection needs an ODE method: with BDF (IDA) the request is refused, naming the remedy
-  o = opts_of(DAL_FORM_INDEX1, DAL_METHOD_BDF, tol);
+  o = scn_opts(DAL_FORM_INDEX1, DAL_METHOD_BDF, tol);
   o.project = 1;
   double tkeep = dal_state_time(st);
   CHECK(dal_advance(s, st, &o, 5.0) == DAL_E_UNSUPPORTED);
   CHECK(strstr(dal_state_errmsg(st), "Baumgarte") != NULL);
   CHECK(dal_state_time(st) == tkeep);
-  o = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+  o = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   // and it continues from there
   o.max_steps = 100000;
   CHECK_OK(dal_advance(s, st, &o, 5.0));
@@ -751,7 +742,7 @@ static void test_failures(void) {
   ref_pendulum(th0, sqrt(G0), 5.0, &th, &thd);
   for (int i = 0; i < 2; ++i) {
     CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-    o = opts_of(i ? DAL_FORM_INDEX3 : DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+    o = scn_opts(i ? DAL_FORM_INDEX3 : DAL_FORM_GGL, DAL_METHOD_BDF, tol);
     CHECK_OK(dal_advance(s, st, &o, 5.0));
     const double *x = dal_state_q(st);
     err[i] = hypot(x[0] - sin(th), x[1] + cos(th));
@@ -777,7 +768,7 @@ static void test_failures(void) {
   CHECK(s != NULL);
   CHECK_OK(dal_state_create(s, &st));
   CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-  o = opts_of(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+  o = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   rc = dal_advance(s, st, &o, 2.0);
   msg = dal_state_errmsg(st);
   CHECK_MSG(rc == DAL_E_CALLBACK, "rc %d: %s", rc, msg);

@@ -480,6 +480,14 @@ void scn_rk4_replica(const double *y0, double T, double H, int naive, double *ou
     out[i] = naive ? yd[i] : (double)y[i];
 }
 
+dal_solve_opts scn_opts(dal_formulation f, dal_method m, double tol) {
+  dal_solve_opts o = dal_default_solve_opts();
+  o.form = f;
+  o.method = m;
+  o.rtol = o.atol = tol;
+  return o;
+}
+
 int scn_sum_q0(const dal_system *sys, const dal_state *st, void *ctx) {
   (void)sys;
   *(double *)ctx += dal_state_q(st)[0];

@@ -143,6 +143,10 @@ dal_system *scn_closed_loop(const scn_knobs *k, double link);
 /// RK4.
 void scn_rk4_replica(const double *y0, double T, double H, int naive, double *out);
 
+/// Solver options from dal_default_solve_opts() with the formulation f, the method m and
+/// rtol = atol = tol.
+dal_solve_opts scn_opts(dal_formulation f, dal_method m, double tol);
+
 /// Monitors for dal_evolve: add q[0] (scn_sum_q0) or the total energy E (scn_sum_energy, one
 /// evaluation per output) at every output to *(double *)ctx; the second returns -1 when the
 /// energies fail.
