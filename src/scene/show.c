@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // A scene's equations: positions as formulas, T, U, L, M, F and the state derivative.
+#define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -294,7 +295,7 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
         char buf[512];
         snprintf(buf, sizeof buf, "%s", an);
         int c = 0;
-        for (char *s = strtok(buf, ","); s && c < 3; s = strtok(NULL, ","), ++c)
+        for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && c < 3; s = strtok_r(NULL, ",", &sv), ++c)
           snprintf(anc[c], sizeof anc[c], "%s", s);
       }
       adds(&pot, pot.n ? " + 1/2*(" : "1/2*(");
