@@ -208,6 +208,22 @@ static void errors(void) {
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b = sin(th); -cos(th)\nrun method=euler\n",
           "bad.scene:5", "unknown method 'euler'");
   refused("dim 2\ncoord th\nparticle b mass=1\n", "bad.scene", "'b'"); // never placed
+  // event and section lines
+  const char *pend = "dim 2\ncoord th q=1\nparticle b mass=1\nplace b = sin(th); -cos(th)\n";
+  char text[512];
+  snprintf(text, sizeof text, "%sevent e = thdot + x\n", pend);
+  refused(text, "bad.scene:5: event e: formula 1 'thdot + x'", "unknown symbol 'x'");
+  snprintf(text, sizeof text, "%sevent e upward = th\n", pend);
+  refused(text, "bad.scene:5", "unknown word 'upward'");
+  snprintf(text, sizeof text, "%ssection s terminal = th\n", pend);
+  refused(text, "bad.scene:5", "unknown word 'terminal'");
+  snprintf(text, sizeof text, "%ssection s period=-1\n", pend);
+  refused(text, "bad.scene:5", "period -1 is not positive");
+  snprintf(text, sizeof text, "%ssection s period=1\nsection s2 period=2\n", pend);
+  refused(text, "bad.scene:6", "a second stroboscopic section");
+  snprintf(text, sizeof text, "%sevent e = th; thdot\n", pend);
+  refused(text, "bad.scene:5", "one formula after '='");
+  refused("event e = t\n", "bad.scene:1", "after the coordinates");
   // the equations of a scene with a constraint are not shown, and it says so
   dal_scene *sc;
   char msg[512];
@@ -221,7 +237,44 @@ static void errors(void) {
   dal_scene_destroy(sc);
 }
 
+// a terminal event of a scene file stops the run where the pendulum released at rest from
+// theta0 first passes the bottom: a quarter period, 4 sqrt(l/g) K(sin^2(theta0/2)) / 4
+// (K by the arithmetic-geometric mean: K(m) = pi / (2 AGM(1, sqrt(1 - m))))
+static void terminal_event(void) {
+  dal_scene *sc;
+  char msg[512];
+  CHECK_OK(dal_scene_parse("dim 2\nparam g = 9.8\ncoord th q=1\nparticle b mass=1\n"
+                           "place b = sin(th); -cos(th)\ngravity 0 -g\n"
+                           "run method=bs rtol=1e-12 t1=10 dt=0.5\n"
+                           "event bottom falling terminal = th\nsection top rising = thdot\n",
+                           "ev.scene", &sc, msg, sizeof msg));
+  if (!sc) return;
+  dal_events *ev;
+  dal_state *st;
+  CHECK_OK(dal_scene_events(sc, &ev));
+  CHECK(dal_events_size(ev) == 2 && dal_scene_event_is_section(sc, 0) == 0 &&
+        dal_scene_event_is_section(sc, 1) == 1 && dal_scene_event_is_section(sc, 2) == -1);
+  CHECK(dal_scene_strobe(sc) == 0);
+  int rc = dal_scene_run_events(sc, NULL, ev, &st, msg, sizeof msg);
+  CHECK_MSG(rc == DAL_EVENT, "run: %d %s", rc, msg);
+  double a = 1, b = sqrt(1 - pow(sin(0.5), 2));
+  for (int i = 0; i < 40; ++i) {
+    double an = (a + b) / 2;
+    b = sqrt(a * b);
+    a = an;
+  }
+  double quarter = sqrt(1 / 9.8) * PI / (2 * a);
+  CHECK(st && fabs(dal_state_time(st) - quarter) < 1e-10);
+  CHECK(dal_events_count(ev) == 1);
+  printf("terminal event 'bottom' at t = %.15f, quarter period %.15f\n",
+         st ? dal_state_time(st) : NAN, quarter);
+  dal_state_destroy(st);
+  dal_events_destroy(ev);
+  dal_scene_destroy(sc);
+}
+
 int main(void) {
+  terminal_event();
   oscillator();
   driven();
   bead("bead_ring_below.scene", 2.0);
