@@ -204,7 +204,7 @@ int cli_lyapunov(cli *c) {
   o.nexp = (int)c->nexp;
   o.method = so->method;
   o.rtol = so->rtol;
-  o.atol = so->atol;
+  if (so->atol > 0) o.atol = so->atol; // else dal_lyapunov's default (it needs one > 0)
   if (c->method && method_named(c->method, &o.method)) return DAL_E_ARG;
   int k = 2 * (dal_system_ncoords(sys) - dal_system_nconstraints(sys));
   if (o.nexp > 0 && o.nexp < k) k = o.nexp;
@@ -214,7 +214,7 @@ int cli_lyapunov(cli *c) {
   double *ex = calloc((size_t)k + 1, sizeof *ex), *er = calloc((size_t)k + 1, sizeof *er);
   rc = ex && er ? dal_lyapunov(sys, st, &o, ex, er, lyap_progress, c) : DAL_E_NOMEM;
   if (rc) {
-    snprintf(c->msg, sizeof c->msg, "%s: lyapunov: %s", c->path, dal_state_errmsg(st));
+    snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
   } else {
     double sum = 0;
     printf("# Lyapunov exponents of %s from t = %g to %g (transient %g, renormalized every %g, "
