@@ -66,27 +66,33 @@ static int cli(const char *args) {
   return tab.status;
 }
 
-// the C route of the driven pendulum: dal_map_pendulum with a moving pivot
-static dal_system *pendulum(double a) {
+// the C route: one particle on one coordinate placed by a built-in map (its parameters as a
+// list), under gravity g
+static dal_system *one_coordinate(const dal_primitive *prim, int dim, const double *param, int np,
+                                  const double *grav) {
   dal_builder *b;
   dal_system *sys = NULL;
   int th, bob;
-  double grav[2] = {0, -g};
-  dal_builder_create(2, &b);
+  dal_builder_create(dim, &b);
   dal_builder_add_coord(b, "theta", &th);
   dal_builder_add_particle(b, "bob", 1.0, &bob);
   dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_pendulum;
+  d.prim = prim;
   d.coords = &th;
   d.ncoords = 1;
-  d.param[DAL_PENDULUM_L] = 1.0;
-  d.param[DAL_PENDULUM_AY] = a;
-  d.param[DAL_PENDULUM_W] = 2.0 * sqrt(g);
+  d.param_list = param;
+  d.nparam_list = np;
   dal_builder_place_def(b, bob, &d);
   dal_builder_set_gravity(b, grav);
   CHECK_OK(dal_builder_compile(b, &sys));
   dal_builder_destroy(b);
   return sys;
+}
+
+// the driven pendulum: dal_map_pendulum (l, x0, y0, ax, ay, w, ph) with a moving pivot
+static dal_system *pendulum(double a) {
+  double param[7] = {1.0, 0, 0, 0, a, 2.0 * sqrt(g), 0}, grav[2] = {0, -g};
+  return one_coordinate(&dal_map_pendulum, 2, param, 7, grav);
 }
 
 static void modes(void) {
@@ -117,8 +123,7 @@ static void equilibria(void) {
 }
 
 static void lyapunov(void) {
-  CHECK(cli("lyapunov " SCENES "/driven_pendulum.scene --t1 40 --method rk4 --h 0.00390625") ==
-            0 &&
+  CHECK(cli("lyapunov " SCENES "/driven_pendulum.scene --t1 40 --method rk4 --h 0.00390625") == 0 &&
         tab.nrow == 2);
   dal_system *sys = pendulum(0.1);
   dal_state *st;
@@ -298,22 +303,7 @@ static void sweep(void) {
         tab.nrow == 3);
   for (int i = 0; i < 3; ++i) {
     double w = 1 + i, param[3] = {1, w, 0}, gv[3] = {0, 0, -9.81}, q = 0.5, v = 0;
-    dal_builder *b;
-    dal_system *sys;
-    int th, p;
-    dal_builder_create(3, &b);
-    dal_builder_add_coord(b, "theta", &th);
-    dal_builder_add_particle(b, "p", 1.0, &p);
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_ring;
-    d.coords = &th;
-    d.ncoords = 1;
-    d.param_list = param;
-    d.nparam_list = 3;
-    dal_builder_place_def(b, p, &d);
-    dal_builder_set_gravity(b, gv);
-    CHECK_OK(dal_builder_compile(b, &sys));
-    dal_builder_destroy(b);
+    dal_system *sys = one_coordinate(&dal_map_ring, 3, param, 3, gv);
     dal_state *st;
     dal_state_create(sys, &st);
     dal_state_set(sys, st, 0, &q, &v);

@@ -208,21 +208,24 @@ static void errors(void) {
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b = sin(th); -cos(th)\nrun method=euler\n",
           "bad.scene:5", "unknown method 'euler'");
   refused("dim 2\ncoord th\nparticle b mass=1\n", "bad.scene", "'b'"); // never placed
-  // event and section lines
-  const char *pend = "dim 2\ncoord th q=1\nparticle b mass=1\nplace b = sin(th); -cos(th)\n";
-  char text[512];
-  snprintf(text, sizeof text, "%sevent e = thdot + x\n", pend);
-  refused(text, "bad.scene:5: event e: formula 1 'thdot + x'", "unknown symbol 'x'");
-  snprintf(text, sizeof text, "%sevent e upward = th\n", pend);
-  refused(text, "bad.scene:5", "unknown word 'upward'");
-  snprintf(text, sizeof text, "%ssection s terminal = th\n", pend);
-  refused(text, "bad.scene:5", "unknown word 'terminal'");
-  snprintf(text, sizeof text, "%ssection s period=-1\n", pend);
-  refused(text, "bad.scene:5", "period -1 is not positive");
-  snprintf(text, sizeof text, "%ssection s period=1\nsection s2 period=2\n", pend);
-  refused(text, "bad.scene:6", "a second stroboscopic section");
-  snprintf(text, sizeof text, "%sevent e = th; thdot\n", pend);
-  refused(text, "bad.scene:5", "one formula after '='");
+  // event and section lines after a pendulum's 4 lines: the line added, its message's parts
+  static const char *const bad_events[][3] = {
+      {"event e = thdot + x\n", "bad.scene:5: event e: formula 1 'thdot + x'",
+       "unknown symbol 'x'"},
+      {"event e upward = th\n", "bad.scene:5", "unknown word 'upward'"},
+      {"section s terminal = th\n", "bad.scene:5", "unknown word 'terminal'"},
+      {"section s period=-1\n", "bad.scene:5", "period -1 is not positive"},
+      {"section s period=1\nsection s2 period=2\n", "bad.scene:6", "a second stroboscopic"},
+      {"event e = th; thdot\n", "bad.scene:5", "one formula after '='"},
+  };
+  for (size_t i = 0; i < sizeof bad_events / sizeof *bad_events; ++i) {
+    char text[512];
+    snprintf(text, sizeof text,
+             "dim 2\ncoord th q=1\nparticle b mass=1\n"
+             "place b = sin(th); -cos(th)\n%s",
+             bad_events[i][0]);
+    refused(text, bad_events[i][1], bad_events[i][2]);
+  }
   refused("event e = t\n", "bad.scene:1", "after the coordinates");
   // the equations of a scene with a constraint are not shown, and it says so
   dal_scene *sc;

@@ -279,7 +279,8 @@ static int write_crossings(cli *c, const dal_events *ev, FILE *fp) {
     fprintf(fp, "%.17g,%s", r.t, dal_events_name(ev, r.event));
     for (int i = 0; i < 2 * n; ++i) {
       double x = q[i];
-      if (c->wrap && i < n) x -= 2 * 3.14159265358979323846 * floor(x / (2 * 3.14159265358979323846) + 0.5);
+      if (c->wrap && i < n)
+        x -= 2 * 3.14159265358979323846 * floor(x / (2 * 3.14159265358979323846) + 0.5);
       fprintf(fp, ",%.17g", x);
     }
     fputc('\n', fp);

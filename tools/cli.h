@@ -24,14 +24,14 @@
 #include "dalembert/scene.h"
 
 typedef struct cli {
-  const char *path;                      // the scene file
-  dal_scene *sc;                         // read from it
-  const char *out, *png, *events;        // -o, --chart, --events
-  const char *scan, *param, *method;     // --scan, --param, --method
-  double t1, transient, renorm, h;       // lyapunov (-1: the default)
-  double nexp, threads;                  // --nexp, --threads
+  const char *path;                       // the scene file
+  dal_scene *sc;                          // read from it
+  const char *out, *png, *events;         // -o, --chart, --events
+  const char *scan, *param, *method;      // --scan, --param, --method
+  double t1, transient, renorm, h;        // lyapunov (-1: the default)
+  double nexp, threads;                   // --nexp, --threads
   int here, surface, wrap, mpi, progress; // flags
-  dal_expr_format fmt;                   // show
+  dal_expr_format fmt;                    // show
   int argc;
   char **argv;
   char msg[2048];

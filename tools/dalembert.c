@@ -131,8 +131,7 @@ static int num_arg(int argc, char **argv, int *i, double *v) {
 
 // options that take a string
 static int str_opt(cli *c, const char *o, const char *v) {
-  static const char *const names[] = {"-o",    "--chart", "--events", "--scan",
-                                      "--param", "--method"};
+  static const char *const names[] = {"-o", "--chart", "--events", "--scan", "--param", "--method"};
   const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method};
   for (int k = 0; k < 6; ++k)
     if (!strcmp(o, names[k])) {
@@ -144,8 +143,8 @@ static int str_opt(cli *c, const char *o, const char *v) {
 
 // options that take a number
 static double *num_opt(cli *c, const char *o) {
-  static const char *const names[] = {"--t1", "--transient", "--renorm", "--h",
-                                      "--nexp", "--threads"};
+  static const char *const names[] = {"--t1", "--transient", "--renorm",
+                                      "--h",  "--nexp",      "--threads"};
   double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads};
   for (int k = 0; k < 6; ++k)
     if (!strcmp(o, names[k])) return dst[k];
@@ -161,12 +160,18 @@ static int flag_opt(cli *c, const char *o) {
       *dst[k] = 1;
       return 1;
     }
-  if (!strcmp(o, "--progress")) c->progress = 1;
-  else if (!strcmp(o, "--no-progress")) c->progress = 0;
-  else if (!strcmp(o, "--text")) c->fmt = DAL_EXPR_TEXT;
-  else if (!strcmp(o, "--latex")) c->fmt = DAL_EXPR_LATEX;
-  else if (!strcmp(o, "--scheme")) c->fmt = DAL_EXPR_SCHEME;
-  else return 0;
+  if (!strcmp(o, "--progress"))
+    c->progress = 1;
+  else if (!strcmp(o, "--no-progress"))
+    c->progress = 0;
+  else if (!strcmp(o, "--text"))
+    c->fmt = DAL_EXPR_TEXT;
+  else if (!strcmp(o, "--latex"))
+    c->fmt = DAL_EXPR_LATEX;
+  else if (!strcmp(o, "--scheme"))
+    c->fmt = DAL_EXPR_SCHEME;
+  else
+    return 0;
   return 1;
 }
 
@@ -200,9 +205,14 @@ static const struct {
   const char *name;
   command_fn *fn;
 } commands[] = {
-    {"run", cmd_run},          {"show", cmd_show},         {"write", cmd_write},
-    {"modes", cli_modes},      {"equilibria", cli_equilibria}, {"lyapunov", cli_lyapunov},
-    {"section", cli_section},  {"sweep", cli_sweep},
+    {"run", cmd_run},
+    {"show", cmd_show},
+    {"write", cmd_write},
+    {"modes", cli_modes},
+    {"equilibria", cli_equilibria},
+    {"lyapunov", cli_lyapunov},
+    {"section", cli_section},
+    {"sweep", cli_sweep},
 };
 
 int main(int argc, char **argv) {

@@ -102,8 +102,8 @@ static int run_sweep(cli *c, const dal_sweep *sw, dal_sweep_opts *so, dal_sweep_
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   *writer = rank == 0;
   if (rank) so->progress = NULL;
-  int rc = dal_sweep_run_mpi(dal_scene_system(c->sc), sw, so, o, MPI_COMM_WORLD, c->msg,
-                             sizeof c->msg);
+  int rc =
+      dal_sweep_run_mpi(dal_scene_system(c->sc), sw, so, o, MPI_COMM_WORLD, c->msg, sizeof c->msg);
   if (!was) MPI_Finalize();
   return rc;
 #else

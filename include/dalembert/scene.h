@@ -26,8 +26,8 @@
 ///   section strobe period=2*pi/omega        # a stroboscopic section: the state every period
 ///
 /// Event and section formulas may use t, the coordinates, their rates (theta -> thetadot) and
-/// the parameters. Formulas may use the coordinates, t, the parameters and (in `place ... parent=`, and in
-/// constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
+/// the parameters. Formulas may use the coordinates, t, the parameters and (in `place ... parent=`,
+/// and in constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
 /// parameters are given by their names (primitives.h) as formulas without spaces; values of
 /// masses, gravity, springs and dampers are formulas of the parameters.
 /// Messages name the file and line: "pend.scene:7: place bob: formula 1 'l*sin(thet)', column 7:

@@ -379,11 +379,17 @@ static int el_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
   return DAL_OK;
 }
 
-// the words of a built-in primitive from word 3 on: coordinates and name=formula parameters
+// the built-in primitive named by word 2 and its words from word 3 on: coordinates and
+// name=formula parameters
 // (parent= and parts= belong to the element); every parameter without a default given
-static int prim_args(dal_scene *sc, const sline *l, const dal_primitive *prim, int *coords,
-                     int *nc, double *param, char *msg, size_t len) {
+static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, int *coords, int *nc,
+                     double *param, char *msg, size_t len) {
   const char *k = l->tok[0], *nm = l->tok[1];
+  if (l->ntok < 3)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k, nm);
+  const dal_primitive *prim = *pp = dal_primitive_find(l->tok[2]);
+  if (!prim)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm, l->tok[2]);
   if (prim->nparam > 64)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has more than 64 parameters", k, nm,
                prim->name);
@@ -479,18 +485,12 @@ static int el_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
     return formula_element(sc, l, p, &parent, parent >= 0, msg, len);
   }
   // by a built-in primitive: its name, coordinates, parameters
-  if (l->ntok < 3)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: '= formulas' or a primitive",
-               l->tok[1]);
-  const dal_primitive *prim = dal_primitive_find(l->tok[2]);
-  if (!prim)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown primitive '%s'", l->tok[1],
-               l->tok[2]);
+  const dal_primitive *prim = NULL;
   double param[64];
-  int coords[MAXTOK], nc = 0, rc = prim_args(sc, l, prim, coords, &nc, param, msg, len);
+  int coords[MAXTOK], nc = 0, rc = prim_args(sc, l, &prim, coords, &nc, param, msg, len);
   if (rc) return rc;
-  return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL),
-                msg, len);
+  return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL), msg,
+                len);
 }
 
 static int el_constraint(dal_scene *sc, const sline *l, char *msg, size_t len) {
@@ -500,24 +500,18 @@ static int el_constraint(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *pl = dal__scene_kv(l, 2, "parts");
   if (pl && (rc = part_list(sc, l, pl, parts, 16, &np, msg, len))) return rc;
   if (l->nf) return formula_element(sc, l, -1, parts, np, msg, len);
-  if (l->ntok < 3)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "constraint %s: '= formulas' or a primitive",
-               l->tok[1]);
-  const dal_primitive *prim = dal_primitive_find(l->tok[2]);
-  if (!prim)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "constraint %s: unknown primitive '%s'",
-               l->tok[1], l->tok[2]);
+  const dal_primitive *prim = NULL;
   double param[64];
   int coords[MAXTOK], nc = 0;
-  if ((rc = prim_args(sc, l, prim, coords, &nc, param, msg, len))) return rc;
+  if ((rc = prim_args(sc, l, &prim, coords, &nc, param, msg, len))) return rc;
   return bcheck(
       sc, l, constrain_by(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam, param, NULL),
       msg, len);
 }
 
 // spring a b ... / spring a anchor=x,y ...: the other end (-1: an anchor) and the anchor
-static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double *anchor,
-                char *msg, size_t len) {
+static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double *anchor, char *msg,
+                size_t len) {
   const char *k = l->tok[0];
   if (l->ntok < 3 || !sc->b)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'",
@@ -540,7 +534,8 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
     char buf[512];
     snprintf(buf, sizeof buf, "%s", an);
     int i = 0, rc;
-    for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && i < 3; s = strtok_r(NULL, ",", &sv), ++i)
+    for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && i < 3;
+         s = strtok_r(NULL, ",", &sv), ++i)
       if ((rc = number(sc, l, "anchor", s, &anchor[i], msg, len))) return rc;
   }
   return DAL_OK;
@@ -664,8 +659,9 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
     else if (!section && !strcmp(w, "terminal"))
       terminal = 1;
     else
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown word '%s' (rising falling both%s)",
-                 k, l->tok[1], w, section ? " period=" : " terminal");
+      return err(sc, l->line, msg, len, DAL_E_ARG,
+                 "%s %s: unknown word '%s' (rising falling both%s)", k, l->tok[1], w,
+                 section ? " period=" : " terminal");
   }
   if (l->nf != 1)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: one formula after '='", k, l->tok[1]);
@@ -675,8 +671,8 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   char what[80];
   snprintf(what, sizeof what, "%s %s", k, l->tok[1]);
   scene_event *ev = &sc->ev[sc->nev];
-  rc = mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname,
-              sc->ncoord, 1, &ev->e, msg, len);
+  rc = mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname, sc->ncoord,
+              1, &ev->e, msg, len);
   if (rc) return rc;
   ev->name = l->tok[1];
   ev->direction = dir;
@@ -693,11 +689,13 @@ static const struct {
   const char *key;
   element_fn *fn;
 } elements[] = {
-    {"param", el_param},         {"dim", el_dim},           {"coord", el_coord},
-    {"particle", el_particle},   {"place", el_place},       {"constraint", el_constraint},
-    {"spring", el_spring},       {"damper", el_spring},     {"gravity", el_gravity},
-    {"potential", el_potential}, {"lagrangian", el_potential}, {"run", el_run},
-    {"event", el_event},         {"section", el_event},
+    {"param", el_param},          {"dim", el_dim},
+    {"coord", el_coord},          {"particle", el_particle},
+    {"place", el_place},          {"constraint", el_constraint},
+    {"spring", el_spring},        {"damper", el_spring},
+    {"gravity", el_gravity},      {"potential", el_potential},
+    {"lagrangian", el_potential}, {"run", el_run},
+    {"event", el_event},          {"section", el_event},
 };
 
 static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
@@ -947,8 +945,8 @@ int dal_scene_event_is_section(const dal_scene *sc, int i) {
 
 double dal_scene_strobe(const dal_scene *sc) { return sc ? sc->strobe : 0.0; }
 
-int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_state **stp,
-                         char *msg, size_t msglen) {
+int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_state **stp, char *msg,
+                         size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (stp) *stp = NULL;
   if (!sc) return DAL_E_ARG;

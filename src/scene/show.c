@@ -295,7 +295,8 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
         char buf[512];
         snprintf(buf, sizeof buf, "%s", an);
         int c = 0;
-        for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && c < 3; s = strtok_r(NULL, ",", &sv), ++c)
+        for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && c < 3;
+             s = strtok_r(NULL, ",", &sv), ++c)
           snprintf(anc[c], sizeof anc[c], "%s", s);
       }
       adds(&pot, pot.n ? " + 1/2*(" : "1/2*(");

@@ -6,9 +6,9 @@
 // parameter p: compiled, evaluated, checked, printed in the three formats, its text read back,
 // differentiated (the symbolic part on formulas of at most 100 instructions). Any other input is a
 // scene file: read, written back and read again (which must succeed), shown, and evaluated once at
-// its initial state, its events created. Invariants (abort when violated): every refusal has a status and a message;
-// what the library prints it reads back. No crash, no leak, no hang (scripts/fuzz.sh; the corpus is
-// replayed by ctest).
+// its initial state, its events created. Invariants (abort when violated): every refusal has a
+// status and a message; what the library prints it reads back. No crash, no leak, no hang
+// (scripts/fuzz.sh; the corpus is replayed by ctest).
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
 #include <stdio.h>
