@@ -227,17 +227,103 @@ static void errors(void) {
     refused(text, bad_events[i][1], bad_events[i][2]);
   }
   refused("event e = t\n", "bad.scene:1", "after the coordinates");
-  // the equations of a scene with a constraint are not shown, and it says so
+  // a built-in constraint primitive has no formulas to show, and it says so
   dal_scene *sc;
   char msg[512];
   CHECK_OK(dal_scene_parse("dim 2\ncoord x\ncoord y\nparticle b mass=1\nplace b = x; y\n"
-                           "constraint c parts=b = sqrt(x_b^2 + y_b^2) - 1\n",
+                           "particle a mass=1\nplace a fixed2 x=0 y=0\n"
+                           "constraint c distance2 parts=a,b L=1\n",
                            "c.scene", &sc, msg, sizeof msg));
   FILE *fp = tmpfile();
-  CHECK(dal_scene_show(sc, fp, DAL_EXPR_TEXT, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
-        strstr(msg, "c.scene:6: constraint c"));
+  CHECK(sc && dal_scene_show(sc, fp, DAL_EXPR_TEXT, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
+        strstr(msg, "c.scene:8: constraint c: the primitive 'distance2' has no formulas"));
   fclose(fp);
   dal_scene_destroy(sc);
+}
+
+// the value of the formula `lhs = ...` that show printed (in text), over the scene's
+// coordinates with rates and its parameters, at the state's (t, q, qdot)
+static double shown(const char *out, const char *lhs, const dal_scene *sc, const dal_state *st) {
+  char key[80];
+  snprintf(key, sizeof key, "\n%s = ", lhs);
+  const char *at = strstr(out, key);
+  CHECK_MSG(at != NULL, "show printed no '%s'", lhs);
+  if (!at) return NAN;
+  at += strlen(key);
+  size_t n = strcspn(at, "\n");
+  char *f = malloc(n + 1);
+  memcpy(f, at, n);
+  f[n] = 0;
+  const dal_system *sys = dal_scene_system(sc);
+  int nq = dal_system_ncoords(sys);
+  const char *in[8], *pn[] = {"g", "c"};
+  double pv[] = {9.8, 0.3};
+  for (int i = 0; i < nq; ++i)
+    in[i] = dal_system_coord_name(sys, i);
+  dal_expr_def d = dal_default_expr_def();
+  d.formulas = (const char *const *)&f;
+  d.nout = 1;
+  d.inputs = in;
+  d.nin = nq;
+  d.velocities = 1;
+  d.params = pn;
+  d.values = pv;
+  d.nparam = 2;
+  dal_expr *e = NULL;
+  char msg[512];
+  CHECK_OK(dal_expr_create(&d, &e, msg, sizeof msg));
+  dal_jet x[16], r = dal_const(NAN);
+  for (int i = 0; i < nq; ++i) {
+    x[i] = dal_const(dal_state_q(st)[i]);
+    x[nq + i] = dal_const(dal_state_qdot(st)[i]);
+  }
+  if (e) dal_expr_eval(e, x, dal_const(dal_state_time(st)), NULL, &r);
+  dal_expr_destroy(e);
+  free(f);
+  return r.v;
+}
+
+// show of a damped double pendulum (two coordinates: the accelerations by Cramer's rule, the
+// damper's forces from Rayleigh's D) against the library's numeric accelerations at the
+// initial state, and of a constrained particle: phi and G = dphi/dq in closed form
+static void show_more(void) {
+  const char *texts[2] = {
+      "dim 2\nparam g = 9.8\nparam c = 0.3\ncoord a q=0.4 v=0.1\ncoord b q=-0.2 v=0.3\n"
+      "particle p1 mass=1\nparticle p2 mass=2\nplace p1 = sin(a); -cos(a)\n"
+      "place p2 parent=p1 = x_p1 + sin(b); y_p1 - cos(b)\ngravity 0 -g\n"
+      "damper p2 anchor=0,0 c=c\n",
+      "dim 2\nparam g = 9.8\ncoord x q=0.6 v=0\ncoord y q=-0.8 v=0\nparticle b mass=1\n"
+      "place b = x; y\nconstraint rod parts=b = sqrt(x_b^2 + y_b^2) - 1\ngravity 0 -g\n"};
+  for (int k = 0; k < 2; ++k) {
+    dal_scene *sc = NULL;
+    dal_state *st = NULL;
+    char msg[512], *out = NULL;
+    size_t n = 0;
+    CHECK_OK(dal_scene_parse(texts[k], "more.scene", &sc, msg, sizeof msg));
+    if (!sc) continue;
+    FILE *fp = open_memstream(&out, &n);
+    fputc('\n', fp);
+    CHECK_OK(dal_scene_show(sc, fp, DAL_EXPR_TEXT, msg, sizeof msg));
+    fclose(fp);
+    CHECK_OK(dal_scene_state(sc, &st));
+    CHECK_OK(dal_forward(dal_scene_system(sc), st));
+    if (k == 0) {
+      double aa = shown(out, "addot", sc, st), bb = shown(out, "bddot", sc, st);
+      printf("damped double pendulum: shown qddot (%.15f, %.15f), numeric (%.15f, %.15f)\n", aa, bb,
+             dal_state_qddot(st)[0], dal_state_qddot(st)[1]);
+      CHECK_CLOSE(aa, dal_state_qddot(st)[0], 1e-13);
+      CHECK_CLOSE(bb, dal_state_qddot(st)[1], 1e-13);
+      CHECK(strstr(out, "\nD = ") && strstr(out, "\nM qddot = F + Q\n"));
+    } else {
+      CHECK_CLOSE(shown(out, "phi_rod", sc, st), 0.0, 1e-15);
+      CHECK_CLOSE(shown(out, "G_rod,x", sc, st), 0.6, 1e-15);
+      CHECK_CLOSE(shown(out, "G_rod,y", sc, st), -0.8, 1e-15);
+      CHECK(strstr(out, "\nM qddot = F + G' lambda, phi = 0\n") != NULL);
+    }
+    free(out);
+    dal_state_destroy(st);
+    dal_scene_destroy(sc);
+  }
 }
 
 // a terminal event of a scene file stops the run where the pendulum released at rest from
@@ -278,6 +364,7 @@ static void terminal_event(void) {
 
 int main(void) {
   terminal_event();
+  show_more();
   oscillator();
   driven();
   bead("bead_ring_below.scene", 2.0);

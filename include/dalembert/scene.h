@@ -111,10 +111,14 @@ DAL_API int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev,
                                  char *msg, size_t msglen);
 
 /// Print the scene's equations: r_k(q, t) of every particle, T, U, L, the mass matrix, the
-/// forces and (one coordinate) the state derivative, in format fmt. Particles placed by the
-/// built-in maps with formulas (pendulum, hanging, ring, spherical, sphere, cartesian,
-/// fixed) are shown by those formulas. Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or
-/// element without formulas: msg names it), DAL_E_IO, DAL_E_NOMEM.
+/// forces and the accelerations (one coordinate: the state derivative; two or three: M^-1 F by
+/// Cramer's rule; more: M qddot = F), in format fmt. Dampers add Rayleigh's function D (along
+/// each damper's axis) and their forces Q = -dD/dqdot (M qddot = F + Q); constraints by formulas
+/// add their rows phi(q, t) and G = dphi/dq (M qddot = F + G' lambda, phi = 0; the
+/// accelerations are then not solved). Particles placed by the built-in maps with formulas
+/// (pendulum, hanging, ring, spherical, sphere, cartesian, fixed) are shown by those formulas.
+/// Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or built-in constraint without formulas: msg
+/// names its line), DAL_E_IO, DAL_E_NOMEM.
 DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
                            size_t msglen);
 
