@@ -17,7 +17,8 @@
 //    they first differ by 0.1 rad equals the C route's to one output step.
 // 6. sweep: the final states over omega equal the C route (dal_map_ring at each omega) to
 //    1e-9, and 1 and 2 threads write the same bytes.
-// 7. exit codes: the library's status (a bad --param: 1; no section line: 1).
+// 7. exit codes: the library's status (a bad --param: 1; no section line: 1), and the progress
+//    line only on stderr.
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -326,6 +327,24 @@ static void sweep(void) {
   CHECK(system(cmd) == 0);
 }
 
+// the progress line: on stderr with --progress (its last state the end time), never on stdout,
+// and none when CI is set
+static void progress(void) {
+  char cmd[1024];
+  snprintf(cmd, sizeof cmd,
+           "%s run %s/bead_ring_below.scene --progress 2>&1 >/dev/null | tr '\\r' '\\n' | "
+           "grep -q 'run: t: 20 / 20'",
+           CLI, SCENES);
+  CHECK(system(cmd) == 0);
+  snprintf(cmd, sizeof cmd,
+           "CI=1 %s run %s/bead_ring_below.scene 2>&1 >/dev/null | grep -q t:", CLI, SCENES);
+  CHECK(system(cmd) != 0);
+  snprintf(cmd, sizeof cmd,
+           "%s run %s/bead_ring_below.scene --progress 2>/dev/null | grep -q 'run: t'", CLI,
+           SCENES);
+  CHECK(system(cmd) != 0);
+}
+
 static void exit_codes(void) {
   CHECK(cli("sweep " SCENES "/bead_ring_below.scene --param nope=0:1:2 2>/dev/null") == 1);
   CHECK(cli("section " SCENES "/bead_ring_below.scene 2>/dev/null") == 1);
@@ -341,6 +360,7 @@ int main(void) {
   surface();
   two_orbits();
   sweep();
+  progress();
   exit_codes();
   return check_summary("test_cli");
 }

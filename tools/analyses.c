@@ -233,29 +233,32 @@ int cli_lyapunov(cli *c) {
   return cli_fail(rc, c->msg);
 }
 
-// the stroboscopic section's monitor: the CSV row and the progress line
-typedef struct strobe {
+// the monitor of cli_evolve: the progress line and the CSV row
+typedef struct rows {
   cli *c;
   dal_csv csv;
   double t1;
-} strobe;
+  const char *what;
+} rows;
 
-static int strobe_row(const dal_system *sys, const dal_state *st, void *ctx) {
-  strobe *s = ctx;
-  cli_progress(s->c, "section: t", dal_state_time(st), s->t1, NULL);
-  return dal_csv_monitor(sys, st, &s->csv);
+static int row(const dal_system *sys, const dal_state *st, void *ctx) {
+  rows *r = ctx;
+  cli_progress(r->c, r->what, dal_state_time(st), r->t1, NULL);
+  return r->csv.fp ? dal_csv_monitor(sys, st, &r->csv) : DAL_OK;
 }
 
-static int strobe_section(cli *c, FILE *fp) {
+int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
   const dal_system *sys = dal_scene_system(c->sc);
-  double t0, t1, T = dal_scene_strobe(c->sc);
-  const dal_solve_opts *so = dal_scene_opts(c->sc, &t0, &t1, NULL);
+  double t1;
+  const dal_solve_opts *so = dal_scene_opts(c->sc, NULL, &t1, NULL);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "section: the scene's initial state was refused");
-  strobe s = {c, {fp, 0, c->wrap}, t1};
-  rc = dal_evolve(sys, st, so, t1, T, strobe_row, &s);
-  if (rc < 0) snprintf(c->msg, sizeof c->msg, "%s: section: %s", c->path, dal_state_errmsg(st));
+  if (rc) return cli_fail(rc, "the scene's initial state was refused");
+  if (ev) rc = dal_state_set_events(st, ev);
+  rows r = {c, {fp, 0, c->wrap}, t1, what};
+  if (!rc) rc = dal_evolve(sys, st, so, t1, dt, row, &r);
+  if (rc < 0) snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
+  dal_state_set_events(st, NULL);
   dal_state_destroy(st);
   return cli_fail(rc, c->msg);
 }
@@ -303,16 +306,13 @@ int cli_section(cli *c) {
   }
   FILE *fp = cli_out(c);
   if (!fp) return DAL_E_IO;
-  int rc;
-  if (strobo) {
-    rc = strobe_section(c, fp);
-  } else {
-    dal_events *ev = NULL;
-    rc = dal_scene_events(c->sc, &ev);
-    if (!rc)
-      rc = cli_fail(dal_scene_run_events(c->sc, NULL, ev, NULL, c->msg, sizeof c->msg), c->msg);
-    if (rc >= 0) rc = write_crossings(c, ev, fp);
-    dal_events_destroy(ev);
-  }
+  dal_events *ev = NULL;
+  double dt;
+  dal_scene_opts(c->sc, NULL, NULL, &dt);
+  int rc = strobo ? DAL_OK : dal_scene_events(c->sc, &ev);
+  if (!rc)
+    rc = cli_evolve(c, strobo ? fp : NULL, ev, strobo ? dal_scene_strobe(c->sc) : dt, "section: t");
+  if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp);
+  dal_events_destroy(ev);
   return cli_close(c, fp, rc);
 }

@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The command line's shared parts: its options and the analysis commands.
 //
-//   dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv]
+//   dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]
 //   dalembert show SCENE [--text | --latex | --scheme]
 //   dalembert write SCENE
 //   dalembert modes SCENE [--here]            normal modes at the equilibrium Newton finds
@@ -49,6 +49,10 @@ FILE *cli_out(const cli *c);
 int cli_close(const cli *c, FILE *fp, int rc);
 // NAME=LO:HI:N into its parts (name points into the copy buf of len bytes)
 int cli_grid(const char *spec, char *buf, size_t len, double *lo, double *hi, int *n);
+
+// run the scene from its initial state to t1 with events ev (nullable) attached: a CSV row of
+// dal_csv_monitor every dt to fp (nullable: none) and the progress line `what`
+int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what);
 
 int cli_modes(cli *c);
 int cli_equilibria(cli *c);

@@ -16,17 +16,18 @@
 #include "cli.h"
 
 int cli_usage(void) {
-  fprintf(stderr,
-          "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv]\n"
-          "       dalembert show SCENE [--text | --latex | --scheme]\n"
-          "       dalembert write SCENE\n"
-          "       dalembert modes SCENE [--here]\n"
-          "       dalembert equilibria SCENE [--scan COORD=LO:HI:N]\n"
-          "       dalembert lyapunov SCENE [--t1 T] [--transient T] [--renorm T] [--nexp K]\n"
-          "                          [--method M] [--h H]\n"
-          "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
-          "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
-          "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
+  fprintf(
+      stderr,
+      "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]\n"
+      "       dalembert show SCENE [--text | --latex | --scheme]\n"
+      "       dalembert write SCENE\n"
+      "       dalembert modes SCENE [--here]\n"
+      "       dalembert equilibria SCENE [--scan COORD=LO:HI:N]\n"
+      "       dalembert lyapunov SCENE [--t1 T] [--transient T] [--renorm T] [--nexp K]\n"
+      "                          [--method M] [--h H]\n"
+      "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
+      "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
+      "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
   return 64;
 }
 
@@ -38,7 +39,11 @@ int cli_fail(int rc, const char *msg) {
 }
 
 void cli_progress(const cli *c, const char *what, double done, double total, const char *extra) {
+  static double last = -1; // the fraction shown last: a line every 0.5% (calls are serialized)
   if (!c->progress) return;
+  double f = total > 0 ? done / total : 1;
+  if (f < 1 && last >= 0 && f - last < 0.005 && f >= last) return;
+  last = f >= 1 ? -1 : f;
   fprintf(stderr, "\r%s: %.4g / %.4g%s%s   ", what, done, total, extra ? " " : "",
           extra ? extra : "");
   if (done >= total) fputc('\n', stderr);
@@ -89,7 +94,9 @@ static int cmd_run(cli *c) {
   if (!fp) return DAL_E_IO;
   dal_events *ev = NULL;
   int rc = dal_scene_events(c->sc, &ev);
-  if (!rc) rc = cli_fail(dal_scene_run_events(c->sc, fp, ev, NULL, c->msg, sizeof c->msg), c->msg);
+  double dt;
+  dal_scene_opts(c->sc, NULL, NULL, &dt);
+  if (!rc) rc = cli_evolve(c, fp, ev, dt, "run: t");
   if (rc >= 0 && c->events) {
     FILE *ef = fopen(c->events, "w");
     if (!ef || dal_events_write_csv(ev, ef, -1, 0)) {
