@@ -2011,6 +2011,41 @@ static void sw_dal_scene_run(void) {
   CHECK_OK(dal_scene_run(sc, NULL, NULL, NULL, 0));
   dal_scene_destroy(sc);
 }
+static void sw_dal_scene_events(void) {
+  dal_scene *sc = sweep_scene();
+  dal_events *ev = (dal_events *)&F;
+  CHECK(dal_scene_events(NULL, &ev) == DAL_E_ARG && ev == NULL);
+  CHECK(dal_scene_events(sc, NULL) == DAL_E_ARG);
+  CHECK_OK(dal_scene_events(sc, &ev));
+  CHECK(ev && dal_events_size(ev) == 0);
+  dal_events_destroy(ev);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_event_is_section(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_event_is_section(NULL, 0) == -1 && dal_scene_event_is_section(sc, 0) == -1 &&
+        dal_scene_event_is_section(sc, -1) == -1);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_strobe(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_strobe(NULL) == 0 && dal_scene_strobe(sc) == 0);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_run_events(void) {
+  dal_scene *sc = sweep_scene(), *other = sweep_scene();
+  dal_state *st = (dal_state *)&F;
+  dal_events *ev = NULL;
+  char msg[256];
+  CHECK(dal_scene_run_events(NULL, NULL, NULL, &st, NULL, 0) == DAL_E_ARG && st == NULL);
+  // an event set of another scene's system is foreign
+  CHECK_OK(dal_scene_events(other, &ev));
+  CHECK(dal_scene_run_events(sc, NULL, ev, NULL, msg, sizeof msg) == DAL_E_STATE && msg[0]);
+  dal_events_destroy(ev);
+  CHECK_OK(dal_scene_run_events(sc, NULL, NULL, NULL, NULL, 0));
+  dal_scene_destroy(other);
+  dal_scene_destroy(sc);
+}
 static void sw_dal_scene_show(void) {
   dal_scene *sc = sweep_scene();
   CHECK(dal_scene_show(NULL, stdout, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
@@ -2064,6 +2099,10 @@ static const sweep_row rows[] = {
     ROW(dal_scene_state),
     ROW(dal_scene_run),
     ROW(dal_scene_show),
+    ROW(dal_scene_events),
+    ROW(dal_scene_event_is_section),
+    ROW(dal_scene_strobe),
+    ROW(dal_scene_run_events),
     ROW(dal_status_string),
     ROW(dal_status_name),
     ROW(dal_version),
