@@ -20,7 +20,7 @@
 /// consecutive recoverable right-hand-side failures tolerated before giving up
 #define ERK_MAX_RECOVER 30
 /// accepted points before a step that Fehlberg 7(8)'s dense output interpolates through
-#define FEHL_HIST 4
+#define FEHL_HIST 5
 
 typedef struct erk_mem {
   SUNContext ctx;
@@ -30,16 +30,16 @@ typedef struct erk_mem {
   double *K, *yk;        // its stages (stages x ny) and stage argument (ny)
   // Fehlberg 7(8)'s dense output (fehlberg_interp): the last FEHL_HIST accepted points of
   // the run with their slopes, oldest first, and the interpolant of the current step
-  int nh;                   // points held
-  double ht[FEHL_HIST];     // their times
-  double *hy, *hf;          // their y and f (FEHL_HIST x ny each)
-  int nz;                   // nodes of the current step's interpolant
-  double zt[FEHL_HIST + 1]; // their times
-  double *zy, *zf;          // their y and f ((FEHL_HIST + 1) x ny each)
-  double *cf, *cf7;         // its Newton coefficients, and those of the check
-  double ct0, ct1;          // the step it was built for
-  long n_hist, n_inner;     // steps served from the record, from inner points
-  long nfe_base, netf_base; // counters already added to the state's statistics
+  int nh;                      // points held
+  double ht[FEHL_HIST];        // their times
+  double *hy, *hf;             // their y and f (FEHL_HIST x ny each)
+  int nz;                      // nodes of the current step's interpolant
+  double zt[FEHL_HIST + 1];    // their times
+  double *zy, *zf;             // their y and f ((FEHL_HIST + 1) x ny each)
+  double *cf, *cf7;            // its Newton coefficients, and those of the check
+  double ct0, ct1;             // the step it was built for
+  long n_hist, n_mid, n_inner; // steps served by each of fehlberg_build's interpolants
+  long nfe_base, netf_base;    // counters already added to the state's statistics
 } erk_mem;
 
 static int erk_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
@@ -215,7 +215,8 @@ static int fehlberg_partial(dal_ode_integ *ig, double tau, double *yout) {
 }
 
 // Newton coefficients of the Hermite interpolant through nz nodes zt with values y (node x
-// ny) and slopes f: divided differences on the doubled nodes z_0, z_0, z_1, z_1, ...
+// ny) and slopes f: divided differences on the doubled nodes z_0, z_0, z_1, z_1, ... (2 nz
+// per component, component after component)
 static void hermite_newton(int ny, int nz, const double *zt, const double *y, const double *f,
                            double *cf) {
   double d[2 * (FEHL_HIST + 1)];
@@ -230,43 +231,36 @@ static void hermite_newton(int ny, int nz, const double *zt, const double *y, co
     for (int o = 2; o < Z; ++o)
       for (int i = Z - 1; i >= o; --i)
         d[i] = (d[i] - d[i - 1]) / (zt[i / 2] - zt[(i - o) / 2]);
-    for (int i = 0; i < Z; ++i)
-      cf[(size_t)i * ny + k] = d[i];
+    memcpy(cf + (size_t)k * Z, d, (size_t)Z * sizeof(double));
   }
 }
 
 // the Newton form (hermite_newton) at t into yout
 static void hermite_eval(int ny, int nz, const double *zt, const double *cf, double t,
                          double *yout) {
-  double dz[2 * (FEHL_HIST + 1)];
+  double dz[FEHL_HIST + 1];
   int Z = 2 * nz;
-  for (int i = 0; i < Z; ++i)
-    dz[i] = t - zt[i / 2];
-  for (int k = 0; k < ny; ++k) {
-    double p = cf[(size_t)(Z - 1) * ny + k];
-    for (int i = Z - 2; i >= 0; --i)
-      p = p * dz[i] + cf[(size_t)i * ny + k];
-    yout[k] = p;
+  for (int i = 0; i < nz; ++i)
+    dz[i] = t - zt[i];
+  for (int k = 0; k < ny; ++k, cf += Z) {
+    // nested form over the doubled nodes, two coefficients per node
+    double p = cf[Z - 1];
+    for (int i = nz - 1; i > 0; --i)
+      p = (p * dz[i] + cf[2 * i]) * dz[i - 1] + cf[2 * i - 1];
+    yout[k] = p * dz[0] + cf[0];
   }
 }
 
-// the interpolant through the record (FEHL_HIST points before the step and its end, degree
-// 9) when it agrees with the one through the newest three of them (degree 7) at the quarter
-// points to half the requested tolerance; 1 if taken
-static int fehlberg_from_record(dal_ode_integ *ig) {
+// the interpolant through the nz nodes in zt, zy, zf into cf; with check, the largest
+// difference at the quarter points of the step to the one without the oldest node, in units
+// of the requested tolerance (the error control runs at tol_factor of it)
+static double fehlberg_fit(dal_ode_integ *ig, int nz, int check) {
   erk_mem *m = ig->impl;
-  int ny = ig->ny, nz = FEHL_HIST + 1;
-  if (m->nh != FEHL_HIST || m->ht[FEHL_HIST - 1] != ig->tprev) return 0;
-  size_t bytes = (size_t)ny * sizeof(double);
-  memcpy(m->zt, m->ht, sizeof m->ht);
-  memcpy(m->zy, m->hy, FEHL_HIST * bytes);
-  memcpy(m->zf, m->hf, FEHL_HIST * bytes);
-  m->zt[FEHL_HIST] = ig->t;
-  memcpy(m->zy + (size_t)FEHL_HIST * ny, ig->y, bytes);
-  memcpy(m->zf + (size_t)FEHL_HIST * ny, ig->hf1, bytes);
+  int ny = ig->ny;
+  m->nz = nz;
   hermite_newton(ny, nz, m->zt, m->zy, m->zf, m->cf);
+  if (!check) return 0.0;
   hermite_newton(ny, nz - 1, m->zt + 1, m->zy + ny, m->zf + ny, m->cf7);
-  // the requested tolerance (the error control runs at tol_factor of it)
   double c = 1.0 / dal__tol_factor(ig->method), h = ig->t - ig->tprev, worst = 0.0;
   double *a = m->yk, *b = m->K;
   for (int q = 1; q <= 3; ++q) {
@@ -276,43 +270,87 @@ static int fehlberg_from_record(dal_ode_integ *ig) {
     for (int k = 0; k < ny; ++k)
       worst = fmax(worst, fabs(a[k] - b[k]) / (c * (ig->atol + ig->rtol * fabs(a[k]))));
   }
-  m->nz = nz;
-  return worst <= 0.5;
+  return worst;
 }
 
-// the step's interpolant: through the record of the run (fehlberg_from_record), or through
-// the step's ends and two inner points computed by partial steps of the method (degree 7;
-// 26 right-hand sides for the step: after a start, a gap in the record, or where the record's
-// interpolants disagree)
+// node i of the step's interpolant: the record's point r, or y and f at tprev + theta h (an
+// inner point: a partial step of the method and one right-hand side, 13 in all)
+static void fehlberg_node_rec(dal_ode_integ *ig, int i, int r) {
+  erk_mem *m = ig->impl;
+  size_t ny = (size_t)ig->ny;
+  m->zt[i] = m->ht[r];
+  memcpy(m->zy + i * ny, m->hy + r * ny, ny * sizeof(double));
+  memcpy(m->zf + i * ny, m->hf + r * ny, ny * sizeof(double));
+}
+static int fehlberg_node_inner(dal_ode_integ *ig, int i, double theta) {
+  erk_mem *m = ig->impl;
+  size_t ny = (size_t)ig->ny;
+  double tau = theta * (ig->t - ig->tprev), *yi = m->zy + i * ny, *fi = m->zf + i * ny;
+  int rc = dal__ode_start_slope(ig);
+  if (!rc) rc = fehlberg_partial(ig, tau, yi);
+  if (rc) return rc;
+  if ((rc = dal__ode_eval(ig, ig->tprev + tau, yi, fi, DAL_P_ACC)) != 0)
+    return dal__public_status(rc);
+  ig->st->stats.rhs_evals++;
+  m->zt[i] = ig->tprev + tau;
+  return DAL_OK;
+}
+static void fehlberg_node_end(dal_ode_integ *ig, int i) {
+  erk_mem *m = ig->impl;
+  size_t ny = (size_t)ig->ny;
+  m->zt[i] = ig->t;
+  memcpy(m->zy + i * ny, ig->y, ny * sizeof(double));
+  memcpy(m->zf + i * ny, ig->hf1, ny * sizeof(double));
+}
+
+// The step's interpolant, the cheapest that passes its check (its difference to the one
+// without its oldest node within the requested tolerance): (1) through the FEHL_HIST accepted
+// points before the step and its end (degree 9, no right-hand side); (2) through the newest
+// three of them, the step's midpoint and its end (degree 9, 13 right-hand sides); else (3)
+// through the step's start, two inner points and its end (degree 7, 13 or 26 right-hand
+// sides). A start or a gap in the record goes to (3) at once.
 static int fehlberg_build(dal_ode_integ *ig) {
   erk_mem *m = ig->impl;
-  int ny = ig->ny, rc = dal__ode_end_slope(ig);
+  int rc = dal__ode_end_slope(ig), nh = m->nh, mid = 0;
   if (rc) return rc;
-  if (fehlberg_from_record(ig)) {
-    m->n_hist++;
-  } else {
-    if ((rc = dal__ode_start_slope(ig)) != 0) return rc;
-    size_t bytes = (size_t)ny * sizeof(double);
-    double h = ig->t - ig->tprev;
-    m->nz = 4;
-    m->zt[0] = ig->tprev;
-    memcpy(m->zy, ig->yprev, bytes);
-    memcpy(m->zf, ig->hf0, bytes);
-    for (int i = 1; i < 3; ++i) {
-      double tau = h * i / 3.0;
-      double *yi = m->zy + (size_t)i * ny, *fi = m->zf + (size_t)i * ny;
-      if ((rc = fehlberg_partial(ig, tau, yi)) != 0) return rc;
-      if ((rc = dal__ode_eval(ig, ig->tprev + tau, yi, fi, DAL_P_ACC)) != 0)
-        return dal__public_status(rc);
-      ig->st->stats.rhs_evals++;
-      m->zt[i] = ig->tprev + tau;
+  int rec = nh > 0 && m->ht[nh - 1] == ig->tprev;
+  if (rec && nh == FEHL_HIST) {
+    for (int i = 0; i < FEHL_HIST; ++i)
+      fehlberg_node_rec(ig, i, i);
+    fehlberg_node_end(ig, FEHL_HIST);
+    if (fehlberg_fit(ig, FEHL_HIST + 1, 1) <= 1.0) {
+      m->n_hist++;
+      goto done;
     }
-    m->zt[3] = ig->t;
-    memcpy(m->zy + (size_t)3 * ny, ig->y, bytes);
-    memcpy(m->zf + (size_t)3 * ny, ig->hf1, bytes);
-    hermite_newton(ny, 4, m->zt, m->zy, m->zf, m->cf);
-    m->n_inner++;
   }
+  if (rec && nh >= 3) {
+    for (int i = 0; i < 3; ++i)
+      fehlberg_node_rec(ig, i, nh - 3 + i);
+    if ((rc = fehlberg_node_inner(ig, 3, 0.5)) != 0) return rc;
+    fehlberg_node_end(ig, 4);
+    mid = 1;
+    if (fehlberg_fit(ig, 5, 1) <= 1.0) {
+      m->n_mid++;
+      goto done;
+    }
+  }
+  // (3): the midpoint already computed moves to node 2 (nodes 0, 1/4, 1/2, 1), else 1/3, 2/3
+  size_t ny = (size_t)ig->ny;
+  if (mid) {
+    m->zt[2] = m->zt[3];
+    memcpy(m->zy + 2 * ny, m->zy + 3 * ny, ny * sizeof(double));
+    memcpy(m->zf + 2 * ny, m->zf + 3 * ny, ny * sizeof(double));
+  } else if ((rc = fehlberg_node_inner(ig, 2, 2.0 / 3.0)) != 0) {
+    return rc;
+  }
+  if ((rc = fehlberg_node_inner(ig, 1, mid ? 0.25 : 1.0 / 3.0)) != 0) return rc;
+  m->zt[0] = ig->tprev;
+  memcpy(m->zy, ig->yprev, ny * sizeof(double));
+  memcpy(m->zf, ig->hf0, ny * sizeof(double));
+  fehlberg_node_end(ig, 3);
+  fehlberg_fit(ig, 4, 0);
+  m->n_inner++;
+done:
   m->ct0 = ig->tprev;
   m->ct1 = ig->t;
   return DAL_OK;
