@@ -1,14 +1,15 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Benchmark: what output every 0.001 costs in dal_evolve (dense output) against one
-// dal_advance to the end, for Bulirsch-Stoer and DOPRI5 on a pendulum and a double pendulum.
+// dal_advance to the end, for Bulirsch-Stoer, DOPRI5, Fehlberg 7(8) and Adams on a pendulum and
+// a double pendulum.
 //
 // Each row runs both side by side, alternating, and keeps the median of the repeats; the
-// ratio is evolve / advance. Before dense output dal_evolve stepped to every output time
-// (Bulirsch-Stoer: 47 steps to t = 10 alone, 10,000 with output every 0.001, 30x the time).
-// Two monitors: one reading q only (no model evaluation at the outputs), one reading the
-// energies (one evaluation per output, like dal_csv_monitor).
-// Usage: dal_bench_dense [repeats] (default 7); prints a table (markdown) and CSV rows.
+// ratio is evolve / advance, taken pair by pair (median and min-max over the repeats). Before dense
+// output dal_evolve stepped to every output time (Bulirsch-Stoer: 47 steps to t = 10 alone, 10,000
+// with output every 0.001, 30x the time). Two monitors: one reading q only (no model evaluation at
+// the outputs), one reading the energies (one evaluation per output, like dal_csv_monitor). Usage:
+// dal_bench_dense [repeats] (default 7); prints a table (markdown) and CSV rows.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -45,7 +46,8 @@ static double one(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
 int main(int argc, char **argv) {
   int reps = argc > 1 ? atoi(argv[1]) : 7;
   if (reps < 1 || reps > 99) reps = 7;
-  const dal_method ms[2] = {DAL_METHOD_BS, DAL_METHOD_DOPRI5};
+  const dal_method ms[4] = {DAL_METHOD_BS, DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78,
+                            DAL_METHOD_ADAMS};
   const double tols[2] = {1e-6, 1e-10};
   printf("| scene | method | rtol | steps | advance (ms) | evolve, q (ms) | ratio | evolve, "
          "energies (ms) | ratio |\n|---|---|---|---|---|---|---|---|---|\n");
@@ -53,7 +55,7 @@ int main(int argc, char **argv) {
     dal_system *s = chain(links);
     dal_state *st = NULL;
     if (!s || dal_state_create(s, &st)) return 1;
-    for (int mi = 0; mi < 2; ++mi)
+    for (int mi = 0; mi < 4; ++mi)
       for (int ti = 0; ti < 2; ++ti) {
         dal_solve_opts o = dal_default_solve_opts();
         o.method = ms[mi];
@@ -63,13 +65,24 @@ int main(int argc, char **argv) {
         for (int r = 0; r < reps; ++r)
           for (int mode = 0; mode < 3; ++mode)
             t[mode][r] = one(s, st, &o, mode, &steps[mode], &evals[mode]);
-        double med[3];
+        double med[3], rq[99], re[99];
         for (int mode = 0; mode < 3; ++mode)
           med[mode] = bench_median(t[mode], reps);
-        printf("| %s | %s | %.0e | %ld | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
-               links == 1 ? "pendulum" : "double pendulum", dal_method_name(ms[mi]), tols[ti],
-               steps[0], 1e3 * med[0], 1e3 * med[1], med[1] / med[0], 1e3 * med[2],
-               med[2] / med[0]);
+        // the ratios pair by pair (adjacent runs share the machine's load), median (min-max)
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
+        for (int r = 0; r < reps; ++r) {
+          rq[r] = t[1][r] / t[0][r];
+          re[r] = t[2][r] / t[0][r];
+          lo[0] = fmin(lo[0], rq[r]);
+          hi[0] = fmax(hi[0], rq[r]);
+          lo[1] = fmin(lo[1], re[r]);
+          hi[1] = fmax(hi[1], re[r]);
+        }
+        double mq = bench_median(rq, reps), me = bench_median(re, reps);
+        printf(
+            "| %s | %s | %.0e | %ld | %.2f | %.2f | %.2f (%.2f-%.2f) | %.2f | %.2f (%.2f-%.2f) |\n",
+            links == 1 ? "pendulum" : "double pendulum", dal_method_name(ms[mi]), tols[ti],
+            steps[0], 1e3 * med[0], 1e3 * med[1], mq, lo[0], hi[0], 1e3 * med[2], me, lo[1], hi[1]);
         if (steps[1] != steps[0])
           printf("(steps differ: %ld with outputs, %ld without)\n", steps[1], steps[0]);
       }

@@ -3,7 +3,7 @@
 // dal_bench_dense_ir: what output every 0.001 costs in dal_evolve against one dal_advance, in
 // instructions, for every adaptive method (the wall-time twin is bench/dense.c).
 //
-// Usage: dal_bench_dense_ir
+// Usage: dal_bench_dense_ir [METHOD]   (METHOD: only that method's rows, e.g. fehlberg78)
 //   the pendulum and the double pendulum of bench/dense.c (released at 2 and 1 rad, to t = 10)
 //   by DOPRI5, Fehlberg 7(8), Bulirsch-Stoer and Adams at rtol 1e-6 and 1e-10: one plain
 //   dal_advance, dal_evolve with a monitor reading q only, and one reading the energies, each
@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <valgrind/callgrind.h>
 
 #include "dalembert/dalembert.h"
@@ -39,7 +40,7 @@ static BENCH_NOINLINE int dense_region(const dal_system *s, dal_state *st, const
                      : dal_evolve(s, st, o, 10.0, 0.001, scn_sum_energy, acc);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
   static const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
                                   DAL_METHOD_ADAMS};
   static const double tols[] = {1e-6, 1e-10};
@@ -53,6 +54,7 @@ int main(void) {
     for (size_t mi = 0; mi < sizeof ms / sizeof ms[0]; ++mi)
       for (size_t ti = 0; ti < sizeof tols / sizeof tols[0]; ++ti)
         for (int mode = 0; mode < 3; ++mode) {
+          if (argc > 1 && strcmp(argv[1], dal_method_name(ms[mi])) != 0) continue;
           dal_solve_opts o = dal_default_solve_opts();
           o.method = ms[mi];
           o.rtol = tols[ti];

@@ -78,8 +78,10 @@ static void test_auto_rule(void) {
   dal_system *one = chain(1), *two = chain(2), *three = chain(3);
   CHECK(one && two && three);
   if (!one || !two || !three) return;
-  // n <= 2: Bulirsch-Stoer at every rtol
-  expect_auto(one, 1e-2, 0, DAL_METHOD_BS);
+  // n <= 2: DOPRI5 from 1e-3 up, Bulirsch-Stoer below
+  expect_auto(one, 1e-2, 0, DAL_METHOD_DOPRI5);
+  expect_auto(two, 1e-3, 0, DAL_METHOD_DOPRI5);
+  expect_auto(one, 1e-4, 0, DAL_METHOD_BS);
   expect_auto(one, 1e-6, 0, DAL_METHOD_BS);
   expect_auto(two, 1e-10, 0, DAL_METHOD_BS);
   // n >= 3: DOPRI5 from 1e-3 up, Fehlberg 7(8) down to 1e-8, BS below

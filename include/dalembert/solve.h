@@ -23,12 +23,12 @@ extern "C" {
 ///
 /// DAL_METHOD_AUTO picks, for the ODE and index-1 forms, by opts.rtol and the number of
 /// coordinates n (never a symplectic method, see below):
-///   n <= 2: Bulirsch-Stoer;
-///   n >= 3: rtol >= 1e-3: DOPRI5;  1e-8 <= rtol < 1e-3: Fehlberg 7(8);  rtol < 1e-8: BS;
+///   rtol >= 1e-3: DOPRI5;
+///   rtol < 1e-3, n <= 2: Bulirsch-Stoer;
+///   rtol < 1e-3, n >= 3: Fehlberg 7(8) down to rtol 1e-8, BS below;
 /// except that dal_evolve with a monitor (and a run recording a dal_trajectory) gets DOPRI5
-/// where this says Fehlberg 7(8) (Fehlberg's dense output is a partial step: 12 right-hand
-/// sides per output time, 30-70x a plain advance with outputs every 0.001; DOPRI5's costs
-/// 1.1-1.5x, bench/dense_ir.c). The choice is
+/// where this says Fehlberg 7(8) (Fehlberg's dense output costs 1.6-2.6x a plain advance with
+/// outputs every 0.001, DOPRI5's 1.06-1.5x, bench/dense_ir.c). The choice is
 /// made when the integrator is created, and kept while the options stay the same;
 /// and BDF (IDA) for the GGL and index-3 forms. The rule is read off a work-precision table
 /// (bench/auto.sh, docs/performance.md "AUTO"): the instructions each method needs to reach

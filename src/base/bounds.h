@@ -67,9 +67,9 @@
 /// an optimized one KLU still wins well below 192 unknowns.
 #define DAL_SPARSE_THRESHOLD 12
 
-/// DAL_METHOD_AUTO for the ODE and index-1 forms (integrate/methods.c, solve.h): Bulirsch-Stoer
-/// for systems of at most DAL_AUTO_SMALL_N coordinates; otherwise DOPRI5 from rtol
-/// DAL_AUTO_LOOSE_RTOL up, Fehlberg 7(8) down to DAL_AUTO_TIGHT_RTOL, Bulirsch-Stoer below.
+/// DAL_METHOD_AUTO for the ODE and index-1 forms (integrate/methods.c, solve.h): DOPRI5 from
+/// rtol DAL_AUTO_LOOSE_RTOL up; below, Bulirsch-Stoer for systems of at most DAL_AUTO_SMALL_N
+/// coordinates, otherwise Fehlberg 7(8) down to DAL_AUTO_TIGHT_RTOL and Bulirsch-Stoer below.
 /// Read off the work-precision table of bench/auto.sh (instructions to reach an error band
 /// on the seed scenes and the chain, N = 1 ... 256; docs/performance.md "AUTO").
 #define DAL_AUTO_SMALL_N 2

@@ -87,6 +87,9 @@ int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
 /// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
 /// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
 int dal__ode_start_slope(dal_ode_integ *ig);
+/// the slope f(t, y) at the end of the last step into ig->hf1, once per step: the method's own
+/// (end_slope) unless a projection moved y, else evaluated; 0 or a public status
+int dal__ode_end_slope(dal_ode_integ *ig);
 
 /// A first-order problem y' = F(t, y) of any size that is not a formulation of the system:
 /// the tangent (Lyapunov) and variational integrations of analysis/ run on the library's ODE
