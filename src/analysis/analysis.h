@@ -16,7 +16,7 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
 /// scaled to opts.max_step (max_step <= 0: unbounded): *big is its largest coordinate entry in
 /// magnitude (inf when any entry is not finite), *far the first coordinate that q_i + f x_i
 /// sends beyond reach (-1: none, not looked for when *big is not finite); returns the factor f
-/// (equilibrium.c)
+/// (equilibrium_manifold.c)
 double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
                          double reach, double *big, int *far);
 

@@ -118,23 +118,6 @@ static double scaled_residual(const dal_system *sys, const dal_state *st, const 
 
 // the equilibrium solve on a prepared workspace; on success the state is at (t, q*, 0),
 // evaluated, with the tangent (and dR/dt) of the solution in w->tg
-double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
-                         double reach, double *big, int *far) {
-  *big = 0.0;
-  *far = -1;
-  for (int i = 0; i < n; ++i) {
-    *big = fmax(*big, fabs(x[i]));
-    if (!isfinite(x[i])) *big = INFINITY;
-  }
-  for (int i = 0; i < m; ++i)
-    if (!isfinite(x[n + i])) *big = INFINITY;
-  if (!isfinite(*big)) return 1.0;
-  double f = max_step > 0 && *big > max_step ? max_step / *big : 1.0;
-  for (int i = 0; i < n && *far < 0; ++i)
-    if (!(fabs(q[i] + f * x[i]) <= reach)) *far = i;
-  return f;
-}
-
 // the Newton step K dq = R (R in w->x) taken from w->q, scaled down to max_step and kept
 // within reach of the start; *step: the largest relative change of q (0 when below xtol with
 // the full step), *length: the step's length

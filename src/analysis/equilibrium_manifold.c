@@ -49,6 +49,23 @@ static double scaled_residual(const dal_system *sys, const dal_state *st, const 
   return worst;
 }
 
+double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
+                         double reach, double *big, int *far) {
+  *big = 0.0;
+  *far = -1;
+  for (int i = 0; i < n; ++i) {
+    *big = fmax(*big, fabs(x[i]));
+    if (!isfinite(x[i])) *big = INFINITY;
+  }
+  for (int i = 0; i < m; ++i)
+    if (!isfinite(x[n + i])) *big = INFINITY;
+  if (!isfinite(*big)) return 1.0;
+  double f = max_step > 0 && *big > max_step ? max_step / *big : 1.0;
+  for (int i = 0; i < n && *far < 0; ++i)
+    if (!(fabs(q[i] + f * x[i]) <= reach)) *far = i;
+  return f;
+}
+
 // the Newton workspace on the manifold: the KKT matrix J (nk x nk), the step x (nk), the
 // coordinates q, the zero velocity, the multipliers lam; reach bounds |q_i|
 typedef struct mf_ws {
