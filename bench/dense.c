@@ -15,52 +15,14 @@
 #include <stdlib.h>
 
 #include "dalembert/dalembert.h"
+#include "support/scenes.h"
 #include "util.h"
 
+// the pendulum (1 link) and the double pendulum (2) of the scene library
 static dal_system *chain(int links) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int rc = dal_builder_create(2, &b), prev = -1;
-  double g[2] = {0.0, -9.81};
-  for (int i = 0; i < links && !rc; ++i) {
-    int c, p;
-    char name[16];
-    snprintf(name, sizeof name, "th%d", i + 1);
-    rc = dal_builder_add_coord(b, name, &c);
-    snprintf(name, sizeof name, "bob%d", i + 1);
-    if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    dal_place_def d = dal_default_place_def();
-    d.coords = &c;
-    d.ncoords = 1;
-    if (prev < 0) {
-      d.prim = &dal_map_pendulum;
-      d.param[DAL_PENDULUM_L] = 1.0;
-    } else {
-      d.prim = &dal_map_hanging;
-      d.parent = prev;
-      d.param[DAL_HANGING_L] = 1.0;
-    }
-    if (!rc) rc = dal_builder_place_def(b, p, &d);
-    prev = p;
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
-
-static int read_q(const dal_system *sys, const dal_state *st, void *ctx) {
-  (void)sys;
-  *(double *)ctx += dal_state_q(st)[0];
-  return 0;
-}
-static int read_energy(const dal_system *sys, const dal_state *st, void *ctx) {
-  (void)sys;
-  dal_energies e;
-  if (dal_state_energies(st, &e)) return -1;
-  *(double *)ctx += e.E;
-  return 0;
+  scn_knobs k = scn_default();
+  k.N = links;
+  return scn_chain(&k);
 }
 
 // seconds for one run: mode 0 advance, 1 evolve reading q, 2 evolve reading the energies
@@ -70,8 +32,8 @@ static double one(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
   dal_state_set(s, st, 0.0, q, qd);
   double t0 = bench_now();
   int rc = mode == 0   ? dal_advance(s, st, o, t1)
-           : mode == 1 ? dal_evolve(s, st, o, t1, 0.001, read_q, &acc)
-                       : dal_evolve(s, st, o, t1, 0.001, read_energy, &acc);
+           : mode == 1 ? dal_evolve(s, st, o, t1, 0.001, scn_sum_q0, &acc)
+                       : dal_evolve(s, st, o, t1, 0.001, scn_sum_energy, &acc);
   double dt = bench_now() - t0;
   if (rc) fprintf(stderr, "run failed: %s\n", dal_state_errmsg(st));
   dal_stats sts;

@@ -208,20 +208,163 @@ static void errors(void) {
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b = sin(th); -cos(th)\nrun method=euler\n",
           "bad.scene:5", "unknown method 'euler'");
   refused("dim 2\ncoord th\nparticle b mass=1\n", "bad.scene", "'b'"); // never placed
-  // the equations of a scene with a constraint are not shown, and it says so
+  // event and section lines after a pendulum's 4 lines: the line added, its message's parts
+  static const char *const bad_events[][3] = {
+      {"event e = thdot + x\n", "bad.scene:5: event e: formula 1 'thdot + x'",
+       "unknown symbol 'x'"},
+      {"event e upward = th\n", "bad.scene:5", "unknown word 'upward'"},
+      {"section s terminal = th\n", "bad.scene:5", "unknown word 'terminal'"},
+      {"section s period=-1\n", "bad.scene:5", "period -1 is not positive"},
+      {"section s period=1\nsection s2 period=2\n", "bad.scene:6", "a second stroboscopic"},
+      {"event e = th; thdot\n", "bad.scene:5", "one formula after '='"},
+  };
+  for (size_t i = 0; i < sizeof bad_events / sizeof *bad_events; ++i) {
+    char text[512];
+    snprintf(text, sizeof text,
+             "dim 2\ncoord th q=1\nparticle b mass=1\n"
+             "place b = sin(th); -cos(th)\n%s",
+             bad_events[i][0]);
+    refused(text, bad_events[i][1], bad_events[i][2]);
+  }
+  refused("event e = t\n", "bad.scene:1", "after the coordinates");
+  // a built-in constraint primitive has no formulas to show, and it says so
   dal_scene *sc;
   char msg[512];
   CHECK_OK(dal_scene_parse("dim 2\ncoord x\ncoord y\nparticle b mass=1\nplace b = x; y\n"
-                           "constraint c parts=b = sqrt(x_b^2 + y_b^2) - 1\n",
+                           "particle a mass=1\nplace a fixed2 x=0 y=0\n"
+                           "constraint c distance2 parts=a,b L=1\n",
                            "c.scene", &sc, msg, sizeof msg));
   FILE *fp = tmpfile();
-  CHECK(dal_scene_show(sc, fp, DAL_EXPR_TEXT, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
-        strstr(msg, "c.scene:6: constraint c"));
+  CHECK(sc && dal_scene_show(sc, fp, DAL_EXPR_TEXT, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
+        strstr(msg, "c.scene:8: constraint c: the primitive 'distance2' has no formulas"));
   fclose(fp);
   dal_scene_destroy(sc);
 }
 
+// the value of the formula `lhs = ...` that show printed (in text), over the scene's
+// coordinates with rates and its parameters, at the state's (t, q, qdot)
+static double shown(const char *out, const char *lhs, const dal_scene *sc, const dal_state *st) {
+  char key[80];
+  snprintf(key, sizeof key, "\n%s = ", lhs);
+  const char *at = strstr(out, key);
+  CHECK_MSG(at != NULL, "show printed no '%s'", lhs);
+  if (!at) return NAN;
+  at += strlen(key);
+  size_t n = strcspn(at, "\n");
+  char *f = malloc(n + 1);
+  memcpy(f, at, n);
+  f[n] = 0;
+  const dal_system *sys = dal_scene_system(sc);
+  int nq = dal_system_ncoords(sys);
+  const char *in[8], *pn[] = {"g", "c"};
+  double pv[] = {9.8, 0.3};
+  for (int i = 0; i < nq; ++i)
+    in[i] = dal_system_coord_name(sys, i);
+  dal_expr_def d = dal_default_expr_def();
+  d.formulas = (const char *const *)&f;
+  d.nout = 1;
+  d.inputs = in;
+  d.nin = nq;
+  d.velocities = 1;
+  d.params = pn;
+  d.values = pv;
+  d.nparam = 2;
+  dal_expr *e = NULL;
+  char msg[512];
+  CHECK_OK(dal_expr_create(&d, &e, msg, sizeof msg));
+  dal_jet x[16], r = dal_const(NAN);
+  for (int i = 0; i < nq; ++i) {
+    x[i] = dal_const(dal_state_q(st)[i]);
+    x[nq + i] = dal_const(dal_state_qdot(st)[i]);
+  }
+  if (e) dal_expr_eval(e, x, dal_const(dal_state_time(st)), NULL, &r);
+  dal_expr_destroy(e);
+  free(f);
+  return r.v;
+}
+
+// show of a damped double pendulum (two coordinates: the accelerations by Cramer's rule, the
+// damper's forces from Rayleigh's D) against the library's numeric accelerations at the
+// initial state, and of a constrained particle: phi and G = dphi/dq in closed form
+static void show_more(void) {
+  const char *texts[2] = {
+      "dim 2\nparam g = 9.8\nparam c = 0.3\ncoord a q=0.4 v=0.1\ncoord b q=-0.2 v=0.3\n"
+      "particle p1 mass=1\nparticle p2 mass=2\nplace p1 = sin(a); -cos(a)\n"
+      "place p2 parent=p1 = x_p1 + sin(b); y_p1 - cos(b)\ngravity 0 -g\n"
+      "damper p2 anchor=0,0 c=c\n",
+      "dim 2\nparam g = 9.8\ncoord x q=0.6 v=0\ncoord y q=-0.8 v=0\nparticle b mass=1\n"
+      "place b = x; y\nconstraint rod parts=b = sqrt(x_b^2 + y_b^2) - 1\ngravity 0 -g\n"};
+  for (int k = 0; k < 2; ++k) {
+    dal_scene *sc = NULL;
+    dal_state *st = NULL;
+    char msg[512], *out = NULL;
+    size_t n = 0;
+    CHECK_OK(dal_scene_parse(texts[k], "more.scene", &sc, msg, sizeof msg));
+    if (!sc) continue;
+    FILE *fp = open_memstream(&out, &n);
+    fputc('\n', fp);
+    CHECK_OK(dal_scene_show(sc, fp, DAL_EXPR_TEXT, msg, sizeof msg));
+    fclose(fp);
+    CHECK_OK(dal_scene_state(sc, &st));
+    CHECK_OK(dal_forward(dal_scene_system(sc), st));
+    if (k == 0) {
+      double aa = shown(out, "addot", sc, st), bb = shown(out, "bddot", sc, st);
+      printf("damped double pendulum: shown qddot (%.15f, %.15f), numeric (%.15f, %.15f)\n", aa, bb,
+             dal_state_qddot(st)[0], dal_state_qddot(st)[1]);
+      CHECK_CLOSE(aa, dal_state_qddot(st)[0], 1e-13);
+      CHECK_CLOSE(bb, dal_state_qddot(st)[1], 1e-13);
+      CHECK(strstr(out, "\nD = ") && strstr(out, "\nM qddot = F + Q\n"));
+    } else {
+      CHECK_CLOSE(shown(out, "phi_rod", sc, st), 0.0, 1e-15);
+      CHECK_CLOSE(shown(out, "G_rod,x", sc, st), 0.6, 1e-15);
+      CHECK_CLOSE(shown(out, "G_rod,y", sc, st), -0.8, 1e-15);
+      CHECK(strstr(out, "\nM qddot = F + G' lambda, phi = 0\n") != NULL);
+    }
+    free(out);
+    dal_state_destroy(st);
+    dal_scene_destroy(sc);
+  }
+}
+
+// a terminal event of a scene file stops the run where the pendulum released at rest from
+// theta0 first passes the bottom: a quarter period, 4 sqrt(l/g) K(sin^2(theta0/2)) / 4
+// (K by the arithmetic-geometric mean: K(m) = pi / (2 AGM(1, sqrt(1 - m))))
+static void terminal_event(void) {
+  dal_scene *sc;
+  char msg[512];
+  CHECK_OK(dal_scene_parse("dim 2\nparam g = 9.8\ncoord th q=1\nparticle b mass=1\n"
+                           "place b = sin(th); -cos(th)\ngravity 0 -g\n"
+                           "run method=bs rtol=1e-12 t1=10 dt=0.5\n"
+                           "event bottom falling terminal = th\nsection top rising = thdot\n",
+                           "ev.scene", &sc, msg, sizeof msg));
+  if (!sc) return;
+  dal_events *ev;
+  dal_state *st;
+  CHECK_OK(dal_scene_events(sc, &ev));
+  CHECK(dal_events_size(ev) == 2 && dal_scene_event_is_section(sc, 0) == 0 &&
+        dal_scene_event_is_section(sc, 1) == 1 && dal_scene_event_is_section(sc, 2) == -1);
+  CHECK(dal_scene_strobe(sc) == 0);
+  int rc = dal_scene_run_events(sc, NULL, ev, &st, msg, sizeof msg);
+  CHECK_MSG(rc == DAL_EVENT, "run: %d %s", rc, msg);
+  double a = 1, b = sqrt(1 - pow(sin(0.5), 2));
+  for (int i = 0; i < 40; ++i) {
+    double an = (a + b) / 2;
+    b = sqrt(a * b);
+    a = an;
+  }
+  double quarter = sqrt(1 / 9.8) * PI / (2 * a);
+  CHECK(st && fabs(dal_state_time(st) - quarter) < 1e-10);
+  CHECK(dal_events_count(ev) == 1);
+  printf("terminal event 'bottom' at t = %.15f, quarter period %.15f\n",
+         st ? dal_state_time(st) : NAN, quarter);
+  dal_state_destroy(st);
+  dal_events_destroy(ev);
+  dal_scene_destroy(sc);
+}
+
 int main(void) {
+  terminal_event();
+  show_more();
   oscillator();
   driven();
   bead("bead_ring_below.scene", 2.0);

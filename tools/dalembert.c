@@ -1,33 +1,54 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The dalembert command line: run a scene file (CSV, a gnuplot chart), show its equations,
-// write it back normalized.
+// write it back normalized, and the analyses (cli.h lists the commands and options).
 //
-//   dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--set NAME=VALUE]... [--quiet]
-//   dalembert show SCENE [--text | --latex | --scheme] [--set NAME=VALUE]...
-//   dalembert write SCENE [--set NAME=VALUE]...
-//
-// Exit status: 0 on success (a run a monitor or a terminal event stopped early included),
-// else minus the library's status (DAL_E_ARG -> 1, DAL_E_DOMAIN -> 4, DAL_E_IO -> 16, ...: the
-// list in dalembert/base.h), 64 for a command line it does not understand. Messages name the
-// scene file and line.
+// Exit status: 0 on success (a run a terminal event stopped early included), else minus the
+// library's status (DAL_E_ARG -> 1, DAL_E_DOMAIN -> 4, DAL_E_CONV -> 11, DAL_E_UNSUPPORTED ->
+// 15, DAL_E_IO -> 16, ...: the list in dalembert/base.h), 64 for a command line it does not
+// understand. Messages name the scene file and line.
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
-#include "dalembert/dalembert.h"
-#include "dalembert/scene.h"
+#include "cli.h"
 
-static int usage(void) {
-  fprintf(stderr,
-          "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--set NAME=VALUE]...\n"
-          "       dalembert show SCENE [--text | --latex | --scheme] [--set NAME=VALUE]...\n"
-          "       dalembert write SCENE [--set NAME=VALUE]...\n");
+int cli_usage(void) {
+  fprintf(
+      stderr,
+      "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]\n"
+      "       dalembert show SCENE [--text | --latex | --scheme]\n"
+      "       dalembert write SCENE\n"
+      "       dalembert modes SCENE [--here]\n"
+      "       dalembert equilibria SCENE [--scan COORD=LO:HI:N]\n"
+      "       dalembert lyapunov SCENE [--t1 T] [--transient T] [--renorm T] [--nexp K]\n"
+      "                          [--method M] [--h H]\n"
+      "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
+      "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
+      "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
   return 64;
 }
 
-static int status_exit(int rc) { return rc < 0 ? -rc : 0; }
+int cli_status_exit(int rc) { return rc < 0 ? -rc : 0; }
+
+int cli_fail(int rc, const char *msg) {
+  if (rc < 0) fprintf(stderr, "dalembert: %s\n", msg);
+  return rc;
+}
+
+void cli_progress(const cli *c, const char *what, double done, double total, const char *extra) {
+  static double last = -1; // the fraction shown last: a line every 0.5% (calls are serialized)
+  if (!c->progress) return;
+  double f = total > 0 ? done / total : 1;
+  if (f < 1 && last >= 0 && f - last < 0.005 && f >= last) return;
+  last = f >= 1 ? -1 : f;
+  fprintf(stderr, "\r%s: %.4g / %.4g%s%s   ", what, done, total, extra ? " " : "",
+          extra ? extra : "");
+  if (done >= total) fputc('\n', stderr);
+  fflush(stderr);
+}
 
 // a chart of the coordinates against t from the CSV, by gnuplot when it is installed
 static int chart(const dal_scene *sc, const char *csv, const char *png) {
@@ -50,73 +71,181 @@ static int chart(const dal_scene *sc, const char *csv, const char *png) {
   return rc ? DAL_E_IO : DAL_OK;
 }
 
-int main(int argc, char **argv) {
-  if (argc < 3) return usage();
-  const char *cmd = argv[1], *path = argv[2], *out = NULL, *png = NULL;
-  dal_expr_format fmt = DAL_EXPR_TEXT;
-  char msg[2048];
-  dal_scene *sc;
-  int rc = dal_scene_read(path, &sc, msg, sizeof msg);
-  if (rc) {
-    fprintf(stderr, "dalembert: %s\n", msg);
-    return status_exit(rc);
+FILE *cli_out(const cli *c) {
+  FILE *fp = c->out ? fopen(c->out, "w") : stdout;
+  if (!fp) fprintf(stderr, "dalembert: cannot write %s\n", c->out);
+  return fp;
+}
+
+int cli_close(const cli *c, FILE *fp, int rc) {
+  if (fp && fp != stdout && fclose(fp) && rc >= 0) {
+    fprintf(stderr, "dalembert: writing %s failed\n", c->out);
+    return DAL_E_IO;
   }
-  for (int i = 3; i < argc && !rc; ++i) {
-    if (!strcmp(argv[i], "-o") && i + 1 < argc) {
-      out = argv[++i];
-    } else if (!strcmp(argv[i], "--chart") && i + 1 < argc) {
-      png = argv[++i];
-    } else if (!strcmp(argv[i], "--text")) {
-      fmt = DAL_EXPR_TEXT;
-    } else if (!strcmp(argv[i], "--latex")) {
-      fmt = DAL_EXPR_LATEX;
-    } else if (!strcmp(argv[i], "--scheme")) {
-      fmt = DAL_EXPR_SCHEME;
-    } else if (!strcmp(argv[i], "--set") && i + 1 < argc) {
-      char *eq = strchr(argv[++i], '='), *end;
-      if (!eq) {
-        dal_scene_destroy(sc);
-        return usage();
-      }
-      *eq = 0;
-      double v = strtod(eq + 1, &end);
-      if (end == eq + 1 || *end) {
-        fprintf(stderr, "dalembert: --set %s: '%s' is not a number\n", argv[i], eq + 1);
-        dal_scene_destroy(sc);
-        return status_exit(DAL_E_ARG);
-      }
-      rc = dal_scene_set_param(sc, argv[i], v, msg, sizeof msg);
-      if (rc) fprintf(stderr, "dalembert: %s\n", msg);
-    } else {
-      dal_scene_destroy(sc);
-      return usage();
-    }
+  return rc;
+}
+
+static int cmd_run(cli *c) {
+  if (c->png && !c->out) {
+    fprintf(stderr, "dalembert: --chart needs -o FILE.csv\n");
+    return DAL_E_ARG;
   }
-  if (!rc && !strcmp(cmd, "run")) {
-    if (png && !out) {
-      fprintf(stderr, "dalembert: --chart needs -o FILE.csv\n");
-      dal_scene_destroy(sc);
-      return usage();
-    }
-    FILE *fp = out ? fopen(out, "w") : stdout;
-    if (!fp) {
-      fprintf(stderr, "dalembert: cannot write %s\n", out);
+  FILE *fp = cli_out(c);
+  if (!fp) return DAL_E_IO;
+  dal_events *ev = NULL;
+  int rc = dal_scene_events(c->sc, &ev);
+  double dt;
+  dal_scene_opts(c->sc, NULL, NULL, &dt);
+  if (!rc) rc = cli_evolve(c, fp, ev, dt, "run: t");
+  if (rc >= 0 && c->events) {
+    FILE *ef = fopen(c->events, "w");
+    if (!ef || dal_events_write_csv(ev, ef, -1, 0)) {
+      fprintf(stderr, "dalembert: cannot write %s\n", c->events);
       rc = DAL_E_IO;
-    } else {
-      rc = dal_scene_run(sc, fp, NULL, msg, sizeof msg);
-      if (rc < 0) fprintf(stderr, "dalembert: %s\n", msg);
-      if (out && fclose(fp)) rc = rc ? rc : DAL_E_IO;
-      if (rc >= 0 && png) rc = chart(sc, out, png);
     }
-  } else if (!rc && !strcmp(cmd, "show")) {
-    rc = dal_scene_show(sc, stdout, fmt, msg, sizeof msg);
-    if (rc) fprintf(stderr, "dalembert: %s\n", msg);
-  } else if (!rc && !strcmp(cmd, "write")) {
-    rc = dal_scene_write(sc, stdout);
-  } else if (!rc) {
-    dal_scene_destroy(sc);
-    return usage();
+    if (ef && fclose(ef)) rc = DAL_E_IO;
   }
-  dal_scene_destroy(sc);
-  return status_exit(rc);
+  dal_events_destroy(ev);
+  rc = cli_close(c, fp, rc);
+  if (rc >= 0 && c->png) rc = chart(c->sc, c->out, c->png);
+  return rc;
+}
+
+// one NAME=VALUE of --set
+static int set_one(cli *c, char *arg) {
+  char *eq = strchr(arg, '='), *end;
+  if (!eq) return 64;
+  *eq = 0;
+  double v = strtod(eq + 1, &end);
+  if (end == eq + 1 || *end) {
+    fprintf(stderr, "dalembert: --set %s: '%s' is not a number\n", arg, eq + 1);
+    return DAL_E_ARG;
+  }
+  return cli_fail(dal_scene_set_param(c->sc, arg, v, c->msg, sizeof c->msg), c->msg);
+}
+
+// the value after option argv[*i] as a number
+static int num_arg(int argc, char **argv, int *i, double *v) {
+  char *end;
+  if (*i + 1 >= argc) return 64;
+  *v = strtod(argv[++*i], &end);
+  if (end == argv[*i] || *end) {
+    fprintf(stderr, "dalembert: %s: '%s' is not a number\n", argv[*i - 1], argv[*i]);
+    return DAL_E_ARG;
+  }
+  return DAL_OK;
+}
+
+// options that take a string
+static int str_opt(cli *c, const char *o, const char *v) {
+  static const char *const names[] = {"-o", "--chart", "--events", "--scan", "--param", "--method"};
+  const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method};
+  for (int k = 0; k < 6; ++k)
+    if (!strcmp(o, names[k])) {
+      *dst[k] = v;
+      return 1;
+    }
+  return 0;
+}
+
+// options that take a number
+static double *num_opt(cli *c, const char *o) {
+  static const char *const names[] = {"--t1", "--transient", "--renorm",
+                                      "--h",  "--nexp",      "--threads"};
+  double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads};
+  for (int k = 0; k < 6; ++k)
+    if (!strcmp(o, names[k])) return dst[k];
+  return NULL;
+}
+
+// flags
+static int flag_opt(cli *c, const char *o) {
+  static const char *const names[] = {"--here", "--surface", "--wrap", "--mpi"};
+  int *dst[] = {&c->here, &c->surface, &c->wrap, &c->mpi};
+  for (int k = 0; k < 4; ++k)
+    if (!strcmp(o, names[k])) {
+      *dst[k] = 1;
+      return 1;
+    }
+  if (!strcmp(o, "--progress"))
+    c->progress = 1;
+  else if (!strcmp(o, "--no-progress"))
+    c->progress = 0;
+  else if (!strcmp(o, "--text"))
+    c->fmt = DAL_EXPR_TEXT;
+  else if (!strcmp(o, "--latex"))
+    c->fmt = DAL_EXPR_LATEX;
+  else if (!strcmp(o, "--scheme"))
+    c->fmt = DAL_EXPR_SCHEME;
+  else
+    return 0;
+  return 1;
+}
+
+static int parse(cli *c, int argc, char **argv) {
+  for (int i = 3; i < argc; ++i) {
+    double *d;
+    int rc = DAL_OK;
+    if (flag_opt(c, argv[i])) continue;
+    if (!strcmp(argv[i], "--set") && i + 1 < argc)
+      rc = set_one(c, argv[++i]);
+    else if (i + 1 < argc && str_opt(c, argv[i], argv[i + 1]))
+      ++i;
+    else if ((d = num_opt(c, argv[i])))
+      rc = num_arg(argc, argv, &i, d);
+    else
+      rc = 64;
+    if (rc) return rc;
+  }
+  return DAL_OK;
+}
+
+typedef int command_fn(cli *c);
+
+static int cmd_show(cli *c) {
+  return cli_fail(dal_scene_show(c->sc, stdout, c->fmt, c->msg, sizeof c->msg), c->msg);
+}
+
+static int cmd_write(cli *c) { return dal_scene_write(c->sc, stdout); }
+
+static const struct {
+  const char *name;
+  command_fn *fn;
+} commands[] = {
+    {"run", cmd_run},
+    {"show", cmd_show},
+    {"write", cmd_write},
+    {"modes", cli_modes},
+    {"equilibria", cli_equilibria},
+    {"lyapunov", cli_lyapunov},
+    {"section", cli_section},
+    {"sweep", cli_sweep},
+};
+
+int main(int argc, char **argv) {
+  if (argc < 3) return cli_usage();
+  command_fn *fn = NULL;
+  for (size_t k = 0; k < sizeof commands / sizeof *commands; ++k)
+    if (!strcmp(argv[1], commands[k].name)) fn = commands[k].fn;
+  if (!fn) return cli_usage();
+  cli c;
+  memset(&c, 0, sizeof c);
+  c.path = argv[2];
+  c.fmt = DAL_EXPR_TEXT;
+  c.nexp = 0;
+  c.threads = 1;
+  c.t1 = c.transient = c.renorm = c.h = -1;
+  const char *ci = getenv("CI");
+  c.progress = isatty(2) && !(ci && *ci);
+  c.argc = argc;
+  c.argv = argv;
+  int rc = dal_scene_read(c.path, &c.sc, c.msg, sizeof c.msg);
+  if (rc) {
+    fprintf(stderr, "dalembert: %s\n", c.msg);
+    return cli_status_exit(rc);
+  }
+  rc = parse(&c, argc, argv);
+  if (!rc) rc = fn(&c);
+  dal_scene_destroy(c.sc);
+  return rc == 64 ? cli_usage() : cli_status_exit(rc);
 }

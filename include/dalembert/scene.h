@@ -21,9 +21,13 @@
 ///   potential = 1/2*k*theta^2               # a further U(q, t)
 ///   lagrangian = 1/2*m*xdot^2 - 1/2*k*x^2   # instead of particles (dim 0)
 ///   run method=bs rtol=1e-12 t1=100 dt=0.01 # method, tolerances, end time, output step
+///   event bottom falling terminal = theta   # g(t, q, qdot): located crossings; terminal stops
+///   section up rising = sin(theta)          # a surface section: the crossings are its points
+///   section strobe period=2*pi/omega        # a stroboscopic section: the state every period
 ///
-/// Formulas may use the coordinates, t, the parameters and (in `place ... parent=`, and in
-/// constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
+/// Event and section formulas may use t, the coordinates, their rates (theta -> thetadot) and
+/// the parameters. Formulas may use the coordinates, t, the parameters and (in `place ... parent=`,
+/// and in constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
 /// parameters are given by their names (primitives.h) as formulas without spaces; values of
 /// masses, gravity, springs and dampers are formulas of the parameters.
 /// Messages name the file and line: "pend.scene:7: place bob: formula 1 'l*sin(thet)', column 7:
@@ -35,6 +39,7 @@
 #include <stdio.h>
 
 #include "dalembert/base.h"
+#include "dalembert/events.h"
 #include "dalembert/expr.h"
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
@@ -81,15 +86,39 @@ DAL_API const dal_solve_opts *dal_scene_opts(const dal_scene *sc, double *t0, do
 DAL_API int dal_scene_state(const dal_scene *sc, dal_state **out);
 
 /// Run the scene: from its initial state to t1 with output every dt, written as CSV to `csv`
-/// (nullable: no output). `st` (nullable) receives the final state (else it is destroyed).
-/// Returns the status of dal_evolve (its message in msg).
+/// (nullable: no output), its events attached (a terminal one stops the run: DAL_EVENT).
+/// `st` (nullable) receives the final state (else it is destroyed). Returns the status of
+/// dal_evolve (its message in msg).
 DAL_API int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **st, char *msg, size_t msglen);
 
+/// A new event set (events.h) of the scene's `event` and surface `section` lines, in the
+/// order of the file (event i is the i-th such line; the caller destroys it after detaching
+/// it). Returns DAL_OK, DAL_E_ARG (sc or out NULL), DAL_E_NOMEM.
+DAL_API int dal_scene_events(const dal_scene *sc, dal_events **out);
+
+/// Whether event i of dal_scene_events is a surface `section` line (1) or an `event` line
+/// (0); -1 when i is out of range.
+DAL_API int dal_scene_event_is_section(const dal_scene *sc, int i);
+
+/// The period of the scene's stroboscopic section (`section <name> period=T`, time units),
+/// 0 when it has none.
+DAL_API double dal_scene_strobe(const dal_scene *sc);
+
+/// dal_scene_run with an event set `ev` from dal_scene_events (nullable: the scene's events
+/// are still honoured, their log dropped), attached during the run: afterwards its log holds
+/// the crossings. A terminal event ends the run early with DAL_EVENT (positive, not an error).
+DAL_API int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_state **st,
+                                 char *msg, size_t msglen);
+
 /// Print the scene's equations: r_k(q, t) of every particle, T, U, L, the mass matrix, the
-/// forces and (one coordinate) the state derivative, in format fmt. Particles placed by the
-/// built-in maps with formulas (pendulum, hanging, ring, spherical, sphere, cartesian,
-/// fixed) are shown by those formulas. Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or
-/// element without formulas: msg names it), DAL_E_IO, DAL_E_NOMEM.
+/// forces and the accelerations (one coordinate: the state derivative; two or three: M^-1 F by
+/// Cramer's rule; more: M qddot = F), in format fmt. Dampers add Rayleigh's function D (along
+/// each damper's axis) and their forces Q = -dD/dqdot (M qddot = F + Q); constraints by formulas
+/// add their rows phi(q, t) and G = dphi/dq (M qddot = F + G' lambda, phi = 0; the
+/// accelerations are then not solved). Particles placed by the built-in maps with formulas
+/// (pendulum, hanging, ring, spherical, sphere, cartesian, fixed) are shown by those formulas.
+/// Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or built-in constraint without formulas: msg
+/// names its line), DAL_E_IO, DAL_E_NOMEM.
 DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
                            size_t msglen);
 

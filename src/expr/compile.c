@@ -50,20 +50,12 @@ static int folds(const dal_xtree *tr, const unsigned char *jet, int i, int c) {
   return x->op == X_ADD || x->op == X_SUB || x->op == X_MUL || x->op == X_DIV;
 }
 
-int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p, char *msg,
-                  size_t msglen) {
-  memset(p, 0, sizeof *p);
-  int n = tr->n, rc = DAL_E_NOMEM;
-  unsigned char *jet = calloc((size_t)n + 1, 1), *reach = calloc((size_t)n + 1, 1);
-  int *pos = malloc(((size_t)n + 1) * sizeof *pos), *last = malloc(((size_t)n + 1) * sizeof *last);
-  int *reg = malloc(((size_t)n + 1) * sizeof *reg);
-  alloc *sa = calloc(1, sizeof *sa), *ja = calloc(1, sizeof *ja);
-  p->out = malloc((size_t)nout * sizeof *p->out);
-  p->out_jet = malloc((size_t)nout);
-  p->ins = malloc(((size_t)n + 1) * sizeof *p->ins);
-  if (!jet || !reach || !pos || !last || !reg || !sa || !ja || !p->out || !p->out_jet || !p->ins)
-    goto done;
-  p->nout = nout;
+// which nodes are jets (depend on inputs or t), which the outputs reach (a constant operand
+// of a jet instruction is folded into it), their emission order (scalar nodes, then jet
+// nodes) and the last use of each value
+static void plan(const dal_xtree *tr, const int *roots, int nout, unsigned char *jet,
+                 unsigned char *reach, int *pos, int *last) {
+  int n = tr->n;
   // which nodes depend on inputs or t (jets), in pool order (children first)
   for (int i = 0; i < n; ++i) {
     const dal_xnode *x = &tr->node[i];
@@ -94,6 +86,76 @@ int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p,
   }
   for (int k = 0; k < nout; ++k)
     last[roots[k]] = np + 1; // outputs stay live to the end
+}
+
+// the instruction of node i: its operands' registers, or the constants folded into it, and
+// for a jet instruction which operands are jets
+static dal_xins encode(const dal_xtree *tr, const unsigned char *jet, const int *reg, int i,
+                       int pass) {
+  const dal_xnode *x = &tr->node[i];
+  dal_xins in = {(unsigned char)x->op, 0, 0, 0, 0, i, 0.0};
+  int a = x->a, b = x->b;
+  if (!pass) {
+    // scalar: operands are scalar registers
+    if (x->op == X_NUM) in.k = x->c;
+    if (x->op == X_PAR) in.a = (unsigned short)x->idx;
+    if (a >= 0) in.a = (unsigned short)reg[a];
+    if (b >= 0) in.b = (unsigned short)reg[b];
+  } else if (x->op == X_IN) {
+    in.a = (unsigned short)x->idx;
+  } else if (x->op == X_POW) {
+    const dal_xnode *e = &tr->node[b];
+    in.a = (unsigned short)reg[a];
+    if (!jet[a]) {
+      in.mode = P_SBASE; // scalar base, jet exponent: exp(b log a)
+      in.b = (unsigned short)reg[b];
+    } else if (is_int_const(e)) {
+      in.mode = P_INT;
+      in.k = e->c;
+    } else if (e->op == X_NUM) {
+      in.mode = P_K;
+      in.k = e->c;
+    } else if (!jet[b]) {
+      in.mode = P_S;
+      in.b = (unsigned short)reg[b];
+    } else {
+      in.mode = P_GEN;
+      in.b = (unsigned short)reg[b];
+    }
+  } else if (b >= 0) {
+    // binary jet op: which operands are jets, scalars, folded constants
+    int ka = folds(tr, jet, i, a), kb = folds(tr, jet, i, b);
+    if (jet[a] && jet[b])
+      in.mode = M_JJ;
+    else if (jet[a])
+      in.mode = kb ? M_JK : M_JS;
+    else
+      in.mode = ka ? M_KJ : M_SJ;
+    if (in.mode == M_JK) in.k = tr->node[b].c;
+    if (in.mode == M_KJ) in.k = tr->node[a].c;
+    if (in.mode != M_KJ) in.a = (unsigned short)reg[a];
+    if (in.mode != M_JK) in.b = (unsigned short)reg[b];
+  } else if (a >= 0) {
+    in.a = (unsigned short)reg[a];
+  }
+  return in;
+}
+
+int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p, char *msg,
+                  size_t msglen) {
+  memset(p, 0, sizeof *p);
+  int n = tr->n, rc = DAL_E_NOMEM;
+  unsigned char *jet = calloc((size_t)n + 1, 1), *reach = calloc((size_t)n + 1, 1);
+  int *pos = malloc(((size_t)n + 1) * sizeof *pos), *last = malloc(((size_t)n + 1) * sizeof *last);
+  int *reg = malloc(((size_t)n + 1) * sizeof *reg);
+  alloc *sa = calloc(1, sizeof *sa), *ja = calloc(1, sizeof *ja);
+  p->out = malloc((size_t)nout * sizeof *p->out);
+  p->out_jet = malloc((size_t)nout);
+  p->ins = malloc(((size_t)n + 1) * sizeof *p->ins);
+  if (!jet || !reach || !pos || !last || !reg || !sa || !ja || !p->out || !p->out_jet || !p->ins)
+    goto done;
+  p->nout = nout;
+  plan(tr, roots, nout, jet, reach, pos, last);
   sa->cap = SREGS;
   ja->cap = JREGS;
   // emit
@@ -102,51 +164,8 @@ int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p,
     for (int i = 0; i < n; ++i) {
       if (!reach[i] || jet[i] != pass) continue;
       const dal_xnode *x = &tr->node[i];
-      dal_xins in = {(unsigned char)x->op, 0, 0, 0, 0, i, 0.0};
+      dal_xins in = encode(tr, jet, reg, i, pass);
       int a = x->a, b = x->b;
-      if (!pass) {
-        // scalar: operands are scalar registers
-        if (x->op == X_NUM) in.k = x->c;
-        if (x->op == X_PAR) in.a = (unsigned short)x->idx;
-        if (a >= 0) in.a = (unsigned short)reg[a];
-        if (b >= 0) in.b = (unsigned short)reg[b];
-      } else if (x->op == X_IN) {
-        in.a = (unsigned short)x->idx;
-      } else if (x->op == X_POW) {
-        const dal_xnode *e = &tr->node[b];
-        in.a = (unsigned short)reg[a];
-        if (!jet[a]) {
-          in.mode = P_SBASE; // scalar base, jet exponent: exp(b log a)
-          in.b = (unsigned short)reg[b];
-        } else if (is_int_const(e)) {
-          in.mode = P_INT;
-          in.k = e->c;
-        } else if (e->op == X_NUM) {
-          in.mode = P_K;
-          in.k = e->c;
-        } else if (!jet[b]) {
-          in.mode = P_S;
-          in.b = (unsigned short)reg[b];
-        } else {
-          in.mode = P_GEN;
-          in.b = (unsigned short)reg[b];
-        }
-      } else if (b >= 0) {
-        // binary jet op: which operands are jets, scalars, folded constants
-        int ka = folds(tr, jet, i, a), kb = folds(tr, jet, i, b);
-        if (jet[a] && jet[b])
-          in.mode = M_JJ;
-        else if (jet[a])
-          in.mode = kb ? M_JK : M_JS;
-        else
-          in.mode = ka ? M_KJ : M_SJ;
-        if (in.mode == M_JK) in.k = tr->node[b].c;
-        if (in.mode == M_KJ) in.k = tr->node[a].c;
-        if (in.mode != M_KJ) in.a = (unsigned short)reg[a];
-        if (in.mode != M_JK) in.b = (unsigned short)reg[b];
-      } else if (a >= 0) {
-        in.a = (unsigned short)reg[a];
-      }
       // free operands at their last use, then take the result's register
       if (a >= 0 && reach[a] && !folds(tr, jet, i, a) && last[a] == pos[i])
         give(jet[a] ? ja : sa, reg[a]);
@@ -274,6 +293,54 @@ static dal_jet jpow(dal_jet a, double k) {
   return dal_pow(a, k);
 }
 
+// an arithmetic instruction: jet and jet, jet and scalar or constant, or the other way round
+static inline dal_jet arith(const dal_xins *x, const double *S, const dal_jet *J) {
+  dal_jet a, b;
+  switch (x->mode) {
+  case M_JS:
+  case M_JK: {
+    double s = x->mode == M_JK ? x->k : S[x->b];
+    a = J[x->a];
+    return x->op == X_ADD   ? dal_addc(a, s)
+           : x->op == X_SUB ? dal_addc(a, -s)
+           : x->op == X_MUL ? dal_scale(a, s)
+                            : dal_scale(a, 1.0 / s);
+  }
+  case M_SJ:
+  case M_KJ: {
+    double s = x->mode == M_KJ ? x->k : S[x->a];
+    b = J[x->b];
+    return x->op == X_ADD   ? dal_addc(b, s)
+           : x->op == X_SUB ? dal_addc(dal_neg(b), s)
+           : x->op == X_MUL ? dal_scale(b, s)
+                            : dal_div(dal_const(s), b);
+  }
+  default:
+    a = J[x->a];
+    b = J[x->b];
+    return x->op == X_ADD   ? dal_add(a, b)
+           : x->op == X_SUB ? dal_sub(a, b)
+           : x->op == X_MUL ? dal_mul(a, b)
+                            : dal_div(a, b);
+  }
+}
+
+// a power: integer, constant or scalar exponent, jet exponent, or a scalar base
+static inline dal_jet power(const dal_xins *x, const double *S, const dal_jet *J) {
+  switch (x->mode) {
+  case P_INT:
+    return x->k == 2.0 ? dal_sq(J[x->a]) : dal_powi(J[x->a], (int)x->k);
+  case P_K:
+    return jpow(J[x->a], x->k);
+  case P_S:
+    return jpow(J[x->a], S[x->b]);
+  case P_GEN:
+    return dal_exp(dal_mul(J[x->b], dal_log(J[x->a])));
+  default:
+    return dal_exp(dal_scale(J[x->b], log(S[x->a]))); // P_SBASE
+  }
+}
+
 static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2, int split,
                        dal_jet t, const double *param, dal_jet *out, int check, int *bad) {
   double S[SREGS];
@@ -307,57 +374,11 @@ static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2
     case X_ADD:
     case X_SUB:
     case X_MUL:
-    case X_DIV: {
-      dal_jet a, b;
-      switch (x->mode) {
-      case M_JS:
-      case M_JK: {
-        double s = x->mode == M_JK ? x->k : S[x->b];
-        a = J[x->a];
-        r = x->op == X_ADD   ? dal_addc(a, s)
-            : x->op == X_SUB ? dal_addc(a, -s)
-            : x->op == X_MUL ? dal_scale(a, s)
-                             : dal_scale(a, 1.0 / s);
-        break;
-      }
-      case M_SJ:
-      case M_KJ: {
-        double s = x->mode == M_KJ ? x->k : S[x->a];
-        b = J[x->b];
-        r = x->op == X_ADD   ? dal_addc(b, s)
-            : x->op == X_SUB ? dal_addc(dal_neg(b), s)
-            : x->op == X_MUL ? dal_scale(b, s)
-                             : dal_div(dal_const(s), b);
-        break;
-      }
-      default:
-        a = J[x->a];
-        b = J[x->b];
-        r = x->op == X_ADD   ? dal_add(a, b)
-            : x->op == X_SUB ? dal_sub(a, b)
-            : x->op == X_MUL ? dal_mul(a, b)
-                             : dal_div(a, b);
-      }
+    case X_DIV:
+      r = arith(x, S, J);
       break;
-    }
     case X_POW:
-      switch (x->mode) {
-      case P_INT:
-        r = x->k == 2.0 ? dal_sq(J[x->a]) : dal_powi(J[x->a], (int)x->k);
-        break;
-      case P_K:
-        r = jpow(J[x->a], x->k);
-        break;
-      case P_S:
-        r = jpow(J[x->a], S[x->b]);
-        break;
-      case P_GEN:
-        r = dal_exp(dal_mul(J[x->b], dal_log(J[x->a])));
-        break;
-      default:
-        r = dal_exp(dal_scale(J[x->b], log(S[x->a])));
-        break; // P_SBASE
-      }
+      r = power(x, S, J);
       break;
     case X_ATAN2:
     case X_HYPOT: {

@@ -110,36 +110,79 @@ static int args(parser *p, const char *fname, int n, int *out, size_t col) {
 }
 
 // a number, a name, a call or a parenthesized expression
+// a number at s (column col): its extent scanned here (strtod would also take hex, inf and nan)
+static int number(parser *p, const char *s, size_t col) {
+  size_t n = 0;
+  while (isdigit((unsigned char)s[n]))
+    n++;
+  if (s[n] == '.') {
+    n++;
+    while (isdigit((unsigned char)s[n]))
+      n++;
+  }
+  if ((s[n] == 'e' || s[n] == 'E') &&
+      (isdigit((unsigned char)s[n + 1]) ||
+       ((s[n + 1] == '+' || s[n + 1] == '-') && isdigit((unsigned char)s[n + 2])))) {
+    n += 2;
+    while (isdigit((unsigned char)s[n]))
+      n++;
+  }
+  char buf[64];
+  if (n >= sizeof buf) return fail(p, col, "number too long");
+  memcpy(buf, s, n);
+  buf[n] = 0;
+  double v = strtod(buf, NULL);
+  if (!isfinite(v)) return fail(p, col, "number out of range");
+  p->pos += n;
+  return mk(p, X_NUM, -1, -1, 0, v, col);
+}
+
+// a call of function `name` (the '(' taken)
+static int call(parser *p, const char *name, size_t col) {
+  int x[2];
+  for (int i = 0; i < (int)(sizeof fn1 / sizeof fn1[0]); ++i)
+    if (!strcmp(name, fn1[i])) {
+      if (args(p, name, 1, x, col)) return -1;
+      return mk(p, X_SIN + i, x[0], -1, 0, 0.0, col);
+    }
+  int op = !strcmp(name, "atan2")   ? X_ATAN2
+           : !strcmp(name, "hypot") ? X_HYPOT
+           : !strcmp(name, "pow")   ? X_POW
+                                    : -1;
+  if (op < 0) {
+    char w[160];
+    snprintf(w, sizeof w,
+             "unknown function '%s' (sin cos tan asin acos atan sinh cosh tanh exp log "
+             "sqrt atan2 hypot pow)",
+             name);
+    return fail(p, col, w);
+  }
+  if (args(p, name, 2, x, col)) return -1;
+  return mk(p, op, x[0], x[1], 0, 0.0, col);
+}
+
+// a name: an input, a parameter, t or pi
+static int symbol(parser *p, const char *name, size_t col) {
+  for (int i = 0; i < p->tr->nin + p->tr->nparam; ++i)
+    if (!strcmp(name, p->tr->names[i]))
+      return i < p->tr->nin ? mk(p, X_IN, -1, -1, i, 0.0, col)
+                            : mk(p, X_PAR, -1, -1, i - p->tr->nin, 0.0, col);
+  if (!strcmp(name, "t")) return mk(p, X_TIME, -1, -1, 0, 0.0, col);
+  if (!strcmp(name, "pi")) return mk(p, X_NUM, -1, -1, 0, 3.14159265358979323846, col);
+  char w[512];
+  int k = snprintf(w, sizeof w, "unknown symbol '%s' (known:", name);
+  for (int i = 0; i < p->tr->nin + p->tr->nparam && k < (int)sizeof w - 80; ++i)
+    k += snprintf(w + k, sizeof w - (size_t)k, " %s", p->tr->names[i]);
+  if (k < (int)sizeof w) snprintf(w + k, sizeof w - (size_t)k, " t pi)");
+  return fail(p, col, w);
+}
+
 static int primary(parser *p) {
   skip(p);
   size_t col = p->pos;
   const char *s = p->s + p->pos;
-  if (isdigit((unsigned char)*s) || (*s == '.' && isdigit((unsigned char)s[1]))) {
-    // scan the number's extent ourselves (strtod would also take hex, inf and nan)
-    size_t n = 0;
-    while (isdigit((unsigned char)s[n]))
-      n++;
-    if (s[n] == '.') {
-      n++;
-      while (isdigit((unsigned char)s[n]))
-        n++;
-    }
-    if ((s[n] == 'e' || s[n] == 'E') &&
-        (isdigit((unsigned char)s[n + 1]) ||
-         ((s[n + 1] == '+' || s[n + 1] == '-') && isdigit((unsigned char)s[n + 2])))) {
-      n += 2;
-      while (isdigit((unsigned char)s[n]))
-        n++;
-    }
-    char buf[64];
-    if (n >= sizeof buf) return fail(p, col, "number too long");
-    memcpy(buf, s, n);
-    buf[n] = 0;
-    double v = strtod(buf, NULL);
-    if (!isfinite(v)) return fail(p, col, "number out of range");
-    p->pos += n;
-    return mk(p, X_NUM, -1, -1, 0, v, col);
-  }
+  if (isdigit((unsigned char)*s) || (*s == '.' && isdigit((unsigned char)s[1])))
+    return number(p, s, col);
   if (isalpha((unsigned char)*s) || *s == '_') {
     size_t n = 0;
     while (isalnum((unsigned char)s[n]) || s[n] == '_')
@@ -150,43 +193,9 @@ static int primary(parser *p) {
     if (n >= sizeof name) return fail(p, col, "name longer than 63 characters");
     memcpy(name, s, n);
     name[n] = 0;
-    if (p->s[p->pos] == '(') {
-      // a call
-      p->pos++;
-      int x[2];
-      for (int i = 0; i < (int)(sizeof fn1 / sizeof fn1[0]); ++i)
-        if (!strcmp(name, fn1[i])) {
-          if (args(p, name, 1, x, col)) return -1;
-          return mk(p, X_SIN + i, x[0], -1, 0, 0.0, col);
-        }
-      int op = !strcmp(name, "atan2")   ? X_ATAN2
-               : !strcmp(name, "hypot") ? X_HYPOT
-               : !strcmp(name, "pow")   ? X_POW
-                                        : -1;
-      if (op < 0) {
-        char w[160];
-        snprintf(w, sizeof w,
-                 "unknown function '%s' (sin cos tan asin acos atan sinh cosh tanh exp log "
-                 "sqrt atan2 hypot pow)",
-                 name);
-        return fail(p, col, w);
-      }
-      if (args(p, name, 2, x, col)) return -1;
-      return mk(p, op, x[0], x[1], 0, 0.0, col);
-    }
-    // a name: an input, a parameter, t or pi
-    for (int i = 0; i < p->tr->nin + p->tr->nparam; ++i)
-      if (!strcmp(name, p->tr->names[i]))
-        return i < p->tr->nin ? mk(p, X_IN, -1, -1, i, 0.0, col)
-                              : mk(p, X_PAR, -1, -1, i - p->tr->nin, 0.0, col);
-    if (!strcmp(name, "t")) return mk(p, X_TIME, -1, -1, 0, 0.0, col);
-    if (!strcmp(name, "pi")) return mk(p, X_NUM, -1, -1, 0, 3.14159265358979323846, col);
-    char w[512];
-    int k = snprintf(w, sizeof w, "unknown symbol '%s' (known:", name);
-    for (int i = 0; i < p->tr->nin + p->tr->nparam && k < (int)sizeof w - 80; ++i)
-      k += snprintf(w + k, sizeof w - (size_t)k, " %s", p->tr->names[i]);
-    if (k < (int)sizeof w) snprintf(w + k, sizeof w - (size_t)k, " t pi)");
-    return fail(p, col, w);
+    if (p->s[p->pos] != '(') return symbol(p, name, col);
+    p->pos++;
+    return call(p, name, col);
   }
   if (*s == '(') {
     p->pos++;

@@ -471,21 +471,94 @@ static void sum(const pr *p, sb *b, int x, int prec) {
 }
 
 // prec: 0 top or argument, 1 term of a sum, 2 factor, 3 base of a power, 4 atom required
+// a number: in parentheses where a sign or a fraction would bind wrongly
+static void print_number(const pr *p, sb *b, double c, int prec) {
+  if (c < 0 && prec > 1 && p->fmt != F_SCHEME) {
+    put(b, p->fmt == F_LATEX ? "\\left(" : "(");
+    number(b, c, p->fmt);
+    put(b, p->fmt == F_LATEX ? "\\right)" : ")");
+  } else if (prec >= 3 && c != floor(c) && p->fmt == F_TEXT) {
+    put(b, "(");
+    number(b, c, p->fmt);
+    put(b, ")");
+  } else {
+    number(b, c, p->fmt);
+  }
+}
+
+// atan2(a, b), hypot(a, b)
+static void two_args(const pr *p, sb *b, const dal_xnode *n) {
+  if (p->fmt == F_SCHEME) {
+    put(b, n->op == X_ATAN2 ? "(atan " : "(hypot ");
+    expr(p, b, n->a, 0);
+    put(b, " ");
+    expr(p, b, n->b, 0);
+    put(b, ")");
+  } else {
+    put(b, p->fmt == F_LATEX ? "\\operatorname{%s}\\left(" : "%s(", dal__xop_name(n->op));
+    expr(p, b, n->a, 0);
+    put(b, ", ");
+    expr(p, b, n->b, 0);
+    put(b, p->fmt == F_LATEX ? "\\right)" : ")");
+  }
+}
+
+// a - b, a/b, -a: not canonical (printing a parsed tree as it is)
+static void difference(const pr *p, sb *b, const dal_xnode *n, int prec) {
+  int lp = n->op == X_SUB ? 1 : 2;
+  if (p->fmt == F_SCHEME) {
+    put(b, n->op == X_DIV ? "(/ " : "(- ");
+    expr(p, b, n->a, 0);
+    if (n->op != X_NEG) {
+      put(b, " ");
+      expr(p, b, n->b, 0);
+    }
+    put(b, ")");
+    return;
+  }
+  if (prec > lp) put(b, "(");
+  if (n->op == X_NEG) {
+    put(b, "-");
+    expr(p, b, n->a, 3);
+  } else {
+    expr(p, b, n->a, lp);
+    put(b, n->op == X_SUB ? " - " : "/");
+    expr(p, b, n->b, lp + 1);
+  }
+  if (prec > lp) put(b, ")");
+}
+
+// one-argument functions
+static void function(const pr *p, sb *b, const dal_xnode *n) {
+  if (p->fmt == F_SCHEME) {
+    put(b, "(%s ", dal__xop_name(n->op));
+    expr(p, b, n->a, 0);
+    put(b, ")");
+  } else if (p->fmt == F_LATEX) {
+    static const char *const lf[] = {"\\sin",    "\\cos",    "\\tan",  "\\arcsin",
+                                     "\\arccos", "\\arctan", "\\sinh", "\\cosh",
+                                     "\\tanh",   "\\exp",    "\\log"};
+    if (n->op == X_SQRT) {
+      put(b, "\\sqrt{");
+      expr(p, b, n->a, 0);
+      put(b, "}");
+    } else {
+      put(b, "%s\\left(", lf[n->op - X_SIN]);
+      expr(p, b, n->a, 0);
+      put(b, "\\right)");
+    }
+  } else {
+    put(b, "%s(", dal__xop_name(n->op));
+    expr(p, b, n->a, 0);
+    put(b, ")");
+  }
+}
+
 static void expr(const pr *p, sb *b, int x, int prec) {
   const dal_xnode *n = N(p, x);
   switch (n->op) {
   case X_NUM:
-    if (n->c < 0 && prec > 1 && p->fmt != F_SCHEME) {
-      put(b, p->fmt == F_LATEX ? "\\left(" : "(");
-      number(b, n->c, p->fmt);
-      put(b, p->fmt == F_LATEX ? "\\right)" : ")");
-    } else if (prec >= 3 && n->c != floor(n->c) && p->fmt == F_TEXT) {
-      put(b, "(");
-      number(b, n->c, p->fmt);
-      put(b, ")");
-    } else {
-      number(b, n->c, p->fmt);
-    }
+    print_number(p, b, n->c, prec);
     return;
   case X_IN:
   case X_PAR: {
@@ -508,72 +581,15 @@ static void expr(const pr *p, sb *b, int x, int prec) {
     return;
   case X_ATAN2:
   case X_HYPOT:
-    if (p->fmt == F_SCHEME) {
-      put(b, n->op == X_ATAN2 ? "(atan " : "(hypot ");
-      expr(p, b, n->a, 0);
-      put(b, " ");
-      expr(p, b, n->b, 0);
-      put(b, ")");
-    } else {
-      put(b, p->fmt == F_LATEX ? "\\operatorname{%s}\\left(" : "%s(", dal__xop_name(n->op));
-      expr(p, b, n->a, 0);
-      put(b, ", ");
-      expr(p, b, n->b, 0);
-      put(b, p->fmt == F_LATEX ? "\\right)" : ")");
-    }
+    two_args(p, b, n);
     return;
   case X_SUB:
   case X_DIV:
-  case X_NEG: {
-    // not canonical (printing a parsed tree as it is)
-    int lp = n->op == X_SUB ? 1 : 2;
-    if (p->fmt == F_SCHEME) {
-      put(b, n->op == X_DIV ? "(/ " : "(- ");
-      expr(p, b, n->a, 0);
-      if (n->op != X_NEG) {
-        put(b, " ");
-        expr(p, b, n->b, 0);
-      }
-      put(b, ")");
-      return;
-    }
-    if (prec > lp) put(b, "(");
-    if (n->op == X_NEG) {
-      put(b, "-");
-      expr(p, b, n->a, 3);
-    } else {
-      expr(p, b, n->a, lp);
-      put(b, n->op == X_SUB ? " - " : "/");
-      expr(p, b, n->b, lp + 1);
-    }
-    if (prec > lp) put(b, ")");
+  case X_NEG:
+    difference(p, b, n, prec);
     return;
-  }
   default:
-    break;
-  }
-  // one-argument functions
-  if (p->fmt == F_SCHEME) {
-    put(b, "(%s ", dal__xop_name(n->op));
-    expr(p, b, n->a, 0);
-    put(b, ")");
-  } else if (p->fmt == F_LATEX) {
-    static const char *const lf[] = {"\\sin",    "\\cos",    "\\tan",  "\\arcsin",
-                                     "\\arccos", "\\arctan", "\\sinh", "\\cosh",
-                                     "\\tanh",   "\\exp",    "\\log"};
-    if (n->op == X_SQRT) {
-      put(b, "\\sqrt{");
-      expr(p, b, n->a, 0);
-      put(b, "}");
-    } else {
-      put(b, "%s\\left(", lf[n->op - X_SIN]);
-      expr(p, b, n->a, 0);
-      put(b, "\\right)");
-    }
-  } else {
-    put(b, "%s(", dal__xop_name(n->op));
-    expr(p, b, n->a, 0);
-    put(b, ")");
+    function(p, b, n);
   }
 }
 

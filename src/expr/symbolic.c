@@ -88,6 +88,75 @@ static int parse_one(dal_xtree *tr, const char *text, const char *label, int *ro
 
 static int in_node(dal_xtree *tr, int i) { return dal__xnode(tr, X_IN, -1, -1, i, 0.0); }
 
+// v = sum_j dr/dq_j qdot_j + dr/dt of position node r over n coordinates; -1: out of memory
+static int velocity_of(dal_alg *g, dal_xtree *s, int r, int n) {
+  int vt[64], nv = 0, *vbig = n + 1 > 64 ? malloc(((size_t)n + 1) * sizeof *vbig) : vt;
+  if (!vbig) return -1;
+  for (int j = 0; j < n; ++j) {
+    int f[2] = {dal__alg_diff(g, r, j), in_node(s, n + j)};
+    vbig[nv++] = dal__alg_mul(g, f, 2);
+  }
+  vbig[nv++] = dal__alg_diff(g, r, -1);
+  int v = dal__alg_add(g, vbig, nv);
+  if (vbig != vt) free(vbig);
+  return v;
+}
+
+// particle k's terms: 1/2 m v_i^2 into T's terms, -m g_i r_i into U's
+static int particle_energy(dal_alg *g, dal_xtree *s, const dal_expr_model_def *d, int k,
+                           const int *grav, int *terms, int *nt, int *uterms, int *nu, char *msg,
+                           size_t msglen) {
+  const char *name = d->name ? d->name : "model";
+  char label[64];
+  int m, dim = d->dim;
+  snprintf(label, sizeof label, "mass of particle %d", k + 1);
+  int rc = parse_one(s, d->masses[k], label, &m, msg, msglen, name);
+  if (rc) return rc;
+  m = dal__alg_canon(g, m);
+  for (int i = 0; i < dim; ++i) {
+    int r;
+    snprintf(label, sizeof label, "position %c of particle %d", "xyz"[i], k + 1);
+    rc = parse_one(s, d->positions[k * dim + i], label, &r, msg, msglen, name);
+    if (rc) return rc;
+    r = dal__alg_canon(g, r);
+    int v = velocity_of(g, s, r, d->ncoords);
+    if (v < 0) return DAL_E_NOMEM;
+    int half[3] = {dal__xnum(s, 0.5), m, dal__alg_pow(g, v, dal__xnum(s, 2.0))};
+    terms[(*nt)++] = dal__alg_mul(g, half, 3);
+    if (grav[i] >= 0) {
+      int f[4] = {dal__xnum(s, -1.0), m, grav[i], r};
+      uterms[(*nu)++] = dal__alg_mul(g, f, 4);
+    }
+  }
+  return DAL_OK;
+}
+
+// a model def from dal_default_expr_model_def with counts and arrays that match
+static int model_def_ok(const dal_expr_model_def *d) {
+  return !(!d || d->cookie != MODEL_COOKIE || d->dim < 1 || d->dim > 3 || d->ncoords < 1 ||
+           !d->coords || d->nparticles < 1 || !d->masses || !d->positions || d->nparam < 0 ||
+           (d->nparam && !d->params) || d->ncoords > 10000 || d->nparticles > 10000);
+}
+
+// T = the sum of its terms, U likewise (0 without any), L = T - U, each expanded
+static int sum_up(dal_alg *g, dal_xtree *s, int *terms, int nt, int *uterms, int nu, int *Tn,
+                  int *Un, int *Ln) {
+  *Tn = dal__alg_expand(g, dal__alg_add(g, terms, nt));
+  *Un = nu ? dal__alg_expand(g, dal__alg_add(g, uterms, nu)) : dal__xnum(s, 0.0);
+  int f[2] = {dal__xnum(s, -1.0), *Un};
+  int l[2] = {*Tn, dal__alg_mul(g, f, 2)};
+  *Ln = dal__alg_expand(g, dal__alg_add(g, l, 2));
+  return g->fail || *Tn < 0 || *Un < 0 || *Ln < 0 ? DAL_E_NOMEM : DAL_OK;
+}
+
+// T, U or L of the model as an expression named "<model>.<which>"
+static int energy_expr(const char *name, char which, dal_xtree *s, int root, int n,
+                       const double *values, dal_expr **out, char *msg, size_t msglen) {
+  char nm[160];
+  snprintf(nm, sizeof nm, "%s.%c", name, which);
+  return dal__expr_from_tree(nm, s, &root, 1, n, 1, values, out, msg, msglen);
+}
+
 int dal_expr_model_energies(const dal_expr_model_def *d, dal_expr **T, dal_expr **U, dal_expr **L,
                             char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
@@ -95,9 +164,7 @@ int dal_expr_model_energies(const dal_expr_model_def *d, dal_expr **T, dal_expr 
   if (U) *U = NULL;
   if (L) *L = NULL;
   const char *name = d && d->name ? d->name : "model";
-  if (!d || d->cookie != MODEL_COOKIE || d->dim < 1 || d->dim > 3 || d->ncoords < 1 || !d->coords ||
-      d->nparticles < 1 || !d->masses || !d->positions || d->nparam < 0 ||
-      (d->nparam && !d->params) || d->ncoords > 10000 || d->nparticles > 10000) {
+  if (!model_def_ok(d)) {
     if (msg && msglen)
       snprintf(msg, msglen,
                "%s: the model def is NULL, not from dal_default_expr_model_def(), or its "
@@ -140,67 +207,19 @@ int dal_expr_model_energies(const dal_expr_model_def *d, dal_expr **T, dal_expr 
     rc = parse_one(&s, d->gravity[i], label, &grav[i], msg, msglen, name);
     if (!rc) grav[i] = dal__alg_canon(&g, grav[i]);
   }
-  for (int k = 0; k < d->nparticles && !rc; ++k) {
-    char label[64];
-    int m;
-    snprintf(label, sizeof label, "mass of particle %d", k + 1);
-    rc = parse_one(&s, d->masses[k], label, &m, msg, msglen, name);
-    if (rc) break;
-    m = dal__alg_canon(&g, m);
-    for (int i = 0; i < dim && !rc; ++i) {
-      int r;
-      snprintf(label, sizeof label, "position %c of particle %d", "xyz"[i], k + 1);
-      rc = parse_one(&s, d->positions[k * dim + i], label, &r, msg, msglen, name);
-      if (rc) break;
-      r = dal__alg_canon(&g, r);
-      // v = sum_j dr/dq_j qdot_j + dr/dt
-      int vt[64], nv = 0, *vbig = n + 1 > 64 ? malloc(((size_t)n + 1) * sizeof *vbig) : vt;
-      if (!vbig) {
-        rc = DAL_E_NOMEM;
-        break;
-      }
-      for (int j = 0; j < n; ++j) {
-        int f[2] = {dal__alg_diff(&g, r, j), in_node(&s, n + j)};
-        vbig[nv++] = dal__alg_mul(&g, f, 2);
-      }
-      vbig[nv++] = dal__alg_diff(&g, r, -1);
-      int v = dal__alg_add(&g, vbig, nv);
-      if (vbig != vt) free(vbig);
-      // 1/2 m v^2 and -m g r
-      int half[3] = {dal__xnum(&s, 0.5), m, dal__alg_pow(&g, v, dal__xnum(&s, 2.0))};
-      terms[nt++] = dal__alg_mul(&g, half, 3);
-      if (grav[i] >= 0) {
-        int f[4] = {dal__xnum(&s, -1.0), m, grav[i], r};
-        uterms[nu++] = dal__alg_mul(&g, f, 4);
-      }
-    }
-  }
+  for (int k = 0; k < d->nparticles && !rc; ++k)
+    rc = particle_energy(&g, &s, d, k, grav, terms, &nt, uterms, &nu, msg, msglen);
   if (!rc && d->potential) {
     int p;
     rc = parse_one(&s, d->potential, "potential", &p, msg, msglen, name);
     if (!rc) uterms[nu++] = dal__alg_canon(&g, p);
   }
-  if (!rc) {
-    Tn = dal__alg_expand(&g, dal__alg_add(&g, terms, nt));
-    Un = nu ? dal__alg_expand(&g, dal__alg_add(&g, uterms, nu)) : dal__xnum(&s, 0.0);
-    int f[2] = {dal__xnum(&s, -1.0), Un};
-    int l[2] = {Tn, dal__alg_mul(&g, f, 2)};
-    Ln = dal__alg_expand(&g, dal__alg_add(&g, l, 2));
-    if (g.fail || Tn < 0 || Un < 0 || Ln < 0) rc = DAL_E_NOMEM;
-  }
-  char nm[160];
-  if (!rc && T) {
-    snprintf(nm, sizeof nm, "%s.T", name);
-    rc = dal__expr_from_tree(nm, &s, &Tn, 1, n, 1, d->values, T, msg, msglen);
-  }
-  if (!rc && U) {
-    snprintf(nm, sizeof nm, "%s.U", name);
-    rc = dal__expr_from_tree(nm, &s, &Un, 1, n, 1, d->values, U, msg, msglen);
-  }
-  if (!rc && L) {
-    snprintf(nm, sizeof nm, "%s.L", name);
-    rc = dal__expr_from_tree(nm, &s, &Ln, 1, n, 1, d->values, L, msg, msglen);
-  }
+  if (!rc) rc = sum_up(&g, &s, terms, nt, uterms, nu, &Tn, &Un, &Ln);
+  const int roots[3] = {Tn, Un, Ln};
+  dal_expr **outs[3] = {T, U, L};
+  for (int k = 0; k < 3 && !rc; ++k)
+    if (outs[k])
+      rc = energy_expr(name, "TUL"[k], &s, roots[k], n, d -> values, outs[k], msg, msglen);
   if (rc) {
     if (rc == DAL_E_NOMEM && msg && msglen) snprintf(msg, msglen, "%s: out of memory", name);
     if (T) dal_expr_destroy(*T), *T = NULL;

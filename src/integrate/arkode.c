@@ -23,9 +23,8 @@
 #define FEHL_HIST 5
 
 typedef struct erk_mem {
-  SUNContext ctx;
   void *ark;
-  N_Vector y, ele, ewt, dky;
+  dal_sun_vecs v;           // context and vectors
   ARKodeButcherTable fb; // Fehlberg 7(8): its table for the dense output's partial steps
   double *K, *yk;        // its stages (stages x ny) and stage argument (ny)
   // Fehlberg 7(8)'s dense output (fehlberg_interp): the last FEHL_HIST accepted points of
@@ -51,10 +50,6 @@ static void erk_free(void *p) {
   erk_mem *m = p;
   if (!m) return;
   if (m->ark) ERKStepFree(&m->ark);
-  if (m->y) N_VDestroy(m->y);
-  if (m->ele) N_VDestroy(m->ele);
-  if (m->ewt) N_VDestroy(m->ewt);
-  if (m->dky) N_VDestroy(m->dky);
   if (m->fb) ARKodeButcherTable_Free(m->fb);
   free(m->K);
   free(m->yk);
@@ -64,7 +59,7 @@ static void erk_free(void *p) {
   free(m->zf);
   free(m->cf);
   free(m->cf7);
-  if (m->ctx) SUNContext_Free(&m->ctx);
+  dal__sun_vecs_free(&m->v);
   free(m);
 }
 
@@ -79,9 +74,9 @@ static void erk_sync_stats(dal_ode_integ *ig, erk_mem *m) {
 // restart the integrator at the last accepted step with initial step h (0: estimate)
 static int erk_restart(dal_ode_integ *ig, erk_mem *m, double h) {
   erk_sync_stats(ig, m);
-  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  memcpy(N_VGetArrayPointer(m->v.y), ig->y, (size_t)ig->ny * sizeof(double));
   int flag = ERKStepSetInitStep(m->ark, h);
-  if (flag == ARK_SUCCESS) flag = ERKStepReset(m->ark, ig->t, m->y);
+  if (flag == ARK_SUCCESS) flag = ERKStepReset(m->ark, ig->t, m->v.y);
   // a reset forgets the stop time
   if (flag == ARK_SUCCESS) flag = ERKStepSetStopTime(m->ark, ig->tout);
   m->netf_base = 0;
@@ -114,9 +109,9 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
     // a callback that keeps asking for a smaller step, not the solution, stopped us
     if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
     // dominating variable: the largest weighted local error estimate of the failed try
-    ERKStepGetEstLocalErrors(m->ark, m->ele);
-    ERKStepGetErrWeights(m->ark, m->ewt);
-    const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
+    ERKStepGetEstLocalErrors(m->ark, m->v.ele);
+    ERKStepGetErrWeights(m->ark, m->v.ewt);
+    const double *e = N_VGetArrayPointer(m->v.ele), *w = N_VGetArrayPointer(m->v.ewt);
     for (int i = 0; i < ig->ny; ++i)
       ig->ewt[i] = e[i] * w[i];
     int i = dal__ode_argmax(ig->ewt, ig->ny);
@@ -179,11 +174,11 @@ static int erk_set_fehlberg(void *ark) {
 // interpolation module keeps; the driver's cubic Hermite (ode.c) is its dense output
 static int erk_end_slope(dal_ode_integ *ig, double *f) {
   erk_mem *m = ig->impl;
-  int flag = ERKStepGetDky(m->ark, ig->t, 1, m->dky);
+  int flag = ERKStepGetDky(m->ark, ig->t, 1, m->v.dky);
   if (flag != ARK_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER, "ARKODE could not give the slope at t=%.17g (code %d)",
                     ig->t, flag);
-  memcpy(f, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  memcpy(f, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
   return DAL_OK;
 }
 
@@ -412,7 +407,7 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
   while (ig->t < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
-    flag = ERKStepEvolve(m->ark, tout, m->y, &tret, ARK_ONE_STEP);
+    flag = ERKStepEvolve(m->ark, tout, m->v.y, &tret, ARK_ONE_STEP);
     erk_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = ARK_RHSFUNC_FAIL;
     if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = ARK_ERR_FAILURE;
@@ -446,7 +441,7 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     if (flag == ARK_TSTOP_RETURN) tret = tout;
     if (tret > tout) return erk_failure(ig, m, ARK_BAD_T);
     int projected = 0;
-    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
+    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->v.y), &projected);
     if (!rc && ig->hook && m->fb) rc = fehlberg_record(ig);
     if (rc) return rc;
     if (projected && ig->t < tout) {
@@ -458,6 +453,9 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
   return DAL_OK;
 }
 
+static const dal_sun_setters setters = {ERKStepSStolerances, ERKStepSetInitStep, ERKStepSetMinStep,
+                                        ERKStepSetMaxStep};
+
 int dal__erk_create(dal_ode_integ *ig) {
   dal_state *st = ig->st;
   const dal_solve_opts *o = &ig->opts;
@@ -467,19 +465,9 @@ int dal__erk_create(dal_ode_integ *ig) {
   ig->free_impl = erk_free;
   ig->advance = erk_advance;
   ig->end_slope = erk_end_slope;
-  int flag = SUNContext_Create(NULL, &m->ctx);
-  if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
-  m->y = N_VNew_Serial(ig->ny, m->ctx);
-  m->ele = N_VNew_Serial(ig->ny, m->ctx);
-  m->ewt = N_VNew_Serial(ig->ny, m->ctx);
-  m->dky = N_VNew_Serial(ig->ny, m->ctx);
-  if (!m->y || !m->ele || !m->ewt || !m->dky)
-    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
-  // the library's vector kernels (nvec.c); the integrator's work vectors are clones of y
-  dal__nvec_fast(m->y);
-  dal__nvec_fast(m->dky);
-  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
-  m->ark = ERKStepCreate(erk_rhs, ig->t, m->y, m->ctx);
+  int flag = dal__sun_vecs_create(ig, &m->v, "ERK");
+  if (flag) return flag;
+  m->ark = ERKStepCreate(erk_rhs, ig->t, m->v.y, m->v.ctx);
   if (!m->ark) return DAL_FAIL(st, DAL_E_NOMEM, "ERKStepCreate failed");
   flag = ERKStepSetErrHandlerFn(m->ark, dal__ode_sun_err, ig);
   if (!flag) flag = ERKStepSetUserData(m->ark, ig);
@@ -501,13 +489,11 @@ int dal__erk_create(dal_ode_integ *ig) {
     ig->interp = fehlberg_interp;
   } else if (!flag)
     flag = ERKStepSetTableNum(m->ark, ARKODE_DORMAND_PRINCE_7_4_5);
-  if (!flag) flag = ERKStepSStolerances(m->ark, ig->rtol, ig->atol);
   // ARKODE's interpolant serves only the end slope (Hermite of degree 3 keeps the stored f)
   if (!flag) flag = ERKStepSetInterpolantDegree(m->ark, 3);
   if (!flag && o->fixed_erk) flag = ERKStepSetFixedStep(m->ark, o->fixed_step);
-  if (!flag && o->h0 > 0) flag = ERKStepSetInitStep(m->ark, o->h0);
-  if (!flag && o->hmin > 0) flag = ERKStepSetMinStep(m->ark, o->hmin);
-  if (!flag && o->hmax > 0) flag = ERKStepSetMaxStep(m->ark, o->hmax);
+  // the local tolerances and step bounds
+  if (!flag) flag = dal__sun_set_tols(m->ark, &setters, ig);
   // steps are counted per advance call by the driver; one internal step per ERKStepEvolve
   if (!flag) flag = ERKStepSetMaxNumSteps(m->ark, 0);
   if (flag)

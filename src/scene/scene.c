@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Scene files: one element per line, interpreted into a builder; written back; run; shown.
+#define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
@@ -102,6 +103,10 @@ static void unbuild(dal_scene *sc) {
   free(sc->partname);
   sc->partname = NULL;
   sc->npart = 0;
+  free(sc->ev);
+  sc->ev = NULL;
+  sc->nev = 0;
+  sc->strobe = 0;
 }
 
 void dal_scene_destroy(dal_scene *sc) {
@@ -241,7 +246,7 @@ static int part_list(dal_scene *sc, const sline *l, const char *list, int *idx, 
   *n = 0;
   char buf[512];
   snprintf(buf, sizeof buf, "%s", list);
-  for (char *s = strtok(buf, ","); s; s = strtok(NULL, ",")) {
+  for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s; s = strtok_r(NULL, ",", &sv)) {
     int k = dal__scene_find(sc->partname, sc->npart, s);
     if (k < 0)
       return err(sc, l->line, msg, len, DAL_E_ARG, "particle '%s' is not defined above", s);
@@ -322,316 +327,384 @@ static int add_name(char ***names, int n, const char *s) {
   return v[n] ? DAL_OK : DAL_E_NOMEM;
 }
 
-static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
-  const char *k = l->tok[0];
-  int rc = DAL_OK;
-  if (!strcmp(k, "param")) return DAL_OK; // taken before the build
-  if (!strcmp(k, "dim")) {
-    if (l->ntok != 2 || sc->b ||
-        (strcmp(l->tok[1], "0") && strcmp(l->tok[1], "2") && strcmp(l->tok[1], "3")))
-      return err(sc, l->line, msg, len, DAL_E_ARG,
-                 "dim: one of 0, 2, 3, before every coordinate and particle");
-    sc->dim = atoi(l->tok[1]);
-    return DAL_OK;
+static int el_param(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  (void)sc, (void)l, (void)msg, (void)len;
+  return DAL_OK; // taken before the build
+}
+
+static int el_dim(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (l->ntok != 2 || sc->b ||
+      (strcmp(l->tok[1], "0") && strcmp(l->tok[1], "2") && strcmp(l->tok[1], "3")))
+    return err(sc, l->line, msg, len, DAL_E_ARG,
+               "dim: one of 0, 2, 3, before every coordinate and particle");
+  sc->dim = atoi(l->tok[1]);
+  return DAL_OK;
+}
+
+static int el_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (l->ntok < 2) return err(sc, l->line, msg, len, DAL_E_ARG, "coord: a name is missing");
+  int rc = builder(sc, l, msg, len);
+  if (rc) return rc;
+  double q = 0, v = 0;
+  const char *s;
+  if ((s = dal__scene_kv(l, 2, "q")) && (rc = number(sc, l, "q", s, &q, msg, len))) return rc;
+  if ((s = dal__scene_kv(l, 2, "v")) && (rc = number(sc, l, "v", s, &v, msg, len))) return rc;
+  for (int i = 2; i < l->ntok; ++i)
+    if (strncmp(l->tok[i], "q=", 2) && strncmp(l->tok[i], "v=", 2))
+      return err(sc, l->line, msg, len, DAL_E_ARG, "coord %s: unknown word '%s' (q=, v=)",
+                 l->tok[1], l->tok[i]);
+  if ((rc = bcheck(sc, l, dal_builder_add_coord(sc->b, l->tok[1], NULL), msg, len))) return rc;
+  double *nq = realloc(sc->q0, ((size_t)sc->ncoord + 1) * sizeof *nq);
+  if (nq) sc->q0 = nq;
+  double *nv = realloc(sc->v0, ((size_t)sc->ncoord + 1) * sizeof *nv);
+  if (nv) sc->v0 = nv;
+  if (!nq || !nv || add_name(&sc->cname, sc->ncoord, l->tok[1])) return DAL_E_NOMEM;
+  sc->q0[sc->ncoord] = q;
+  sc->v0[sc->ncoord++] = v;
+  return DAL_OK;
+}
+
+static int el_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  const char *m = dal__scene_kv(l, 2, "mass");
+  if (l->ntok != 3 || !m)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "particle: 'particle <name> mass=<formula>'");
+  int rc = builder(sc, l, msg, len);
+  if (rc) return rc;
+  double mv;
+  if ((rc = number(sc, l, "mass", m, &mv, msg, len))) return rc;
+  if ((rc = bcheck(sc, l, dal_builder_add_particle(sc->b, l->tok[1], mv, NULL), msg, len)))
+    return rc;
+  if (add_name(&sc->partname, sc->npart, l->tok[1])) return DAL_E_NOMEM;
+  sc->npart++;
+  return DAL_OK;
+}
+
+// the built-in primitive named by word 2 and its words from word 3 on: coordinates and
+// name=formula parameters
+// (parent= and parts= belong to the element); every parameter without a default given
+static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, int *coords, int *nc,
+                     double *param, char *msg, size_t len) {
+  const char *k = l->tok[0], *nm = l->tok[1];
+  if (l->ntok < 3)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k, nm);
+  const dal_primitive *prim = *pp = dal_primitive_find(l->tok[2]);
+  if (!prim)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm, l->tok[2]);
+  if (prim->nparam > 64)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has more than 64 parameters", k, nm,
+               prim->name);
+  for (int i = 0; i < prim->nparam; ++i)
+    param[i] = prim->param_defaults ? prim->param_defaults[i] : NAN;
+  *nc = 0;
+  for (int i = 3; i < l->ntok; ++i) {
+    const char *w = l->tok[i], *eq = strchr(w, '=');
+    if (!strncmp(w, "parent=", 7) || !strncmp(w, "parts=", 6)) continue;
+    if (!eq) {
+      int c = dal__scene_find(sc->cname, sc->ncoord, w);
+      if (c < 0)
+        return err(sc, l->line, msg, len, DAL_E_ARG,
+                   "%s %s: '%s' is not a coordinate defined above", k, nm, w);
+      coords[(*nc)++] = c;
+      continue;
+    }
+    int j = -1;
+    for (int q = 0; q < prim->nparam && prim->param_names; ++q)
+      if (strlen(prim->param_names[q]) == (size_t)(eq - w) &&
+          !strncmp(prim->param_names[q], w, (size_t)(eq - w)))
+        j = q;
+    if (j < 0)
+      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has no parameter '%.*s'", k, nm,
+                 prim->name, (int)(eq - w), w);
+    int rc = number(sc, l, prim->param_names[j], eq + 1, &param[j], msg, len);
+    if (rc) return rc;
   }
-  if (!strcmp(k, "coord")) {
-    if (l->ntok < 2) return err(sc, l->line, msg, len, DAL_E_ARG, "coord: a name is missing");
-    if ((rc = builder(sc, l, msg, len))) return rc;
-    double q = 0, v = 0;
-    const char *s;
-    if ((s = dal__scene_kv(l, 2, "q")) && (rc = number(sc, l, "q", s, &q, msg, len))) return rc;
-    if ((s = dal__scene_kv(l, 2, "v")) && (rc = number(sc, l, "v", s, &v, msg, len))) return rc;
+  for (int i = 0; i < prim->nparam; ++i)
+    if (param[i] != param[i])
+      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: parameter '%s' of '%s' is required", k,
+                 nm, prim->param_names ? prim->param_names[i] : "?", prim->name);
+  return DAL_OK;
+}
+
+// a placement or a constraint by formulas (after '='): parts are the particles whose
+// positions the formulas may use (the parent, the constraint's parts)
+static int formula_element(dal_scene *sc, const sline *l, int p, const int *parts, int np,
+                           char *msg, size_t len) {
+  dal_expr *e = NULL;
+  char what[80];
+  snprintf(what, sizeof what, "%s %s", l->tok[0], l->tok[1]);
+  int nc = 0, *cs = malloc(((size_t)sc->ncoord + 1) * sizeof *cs);
+  if (!cs) return DAL_E_NOMEM;
+  int rc = element_expr(sc, l, what, parts, np, &e, cs, &nc, msg, len);
+  if (!rc && p >= 0) {
+    dal_place_def pd = dal_default_place_def();
+    pd.prim = dal_expr_primitive(e);
+    pd.parent = np ? parts[0] : -1;
+    pd.coords = cs;
+    pd.ncoords = nc;
+    pd.param_list = dal_expr_values(e);
+    pd.nparam_list = dal_expr_nparam(e);
+    pd.ctx = e;
+    rc = bcheck(sc, l, dal_builder_place_def(sc->b, p, &pd), msg, len);
+  } else if (!rc) {
+    dal_constraint_def cd = dal_default_constraint_def();
+    cd.name = l->tok[1];
+    cd.prim = dal_expr_primitive(e);
+    cd.parts = parts;
+    cd.nparts = np;
+    cd.coords = cs;
+    cd.ncoords = nc;
+    cd.param_list = dal_expr_values(e);
+    cd.nparam_list = dal_expr_nparam(e);
+    cd.ctx = e;
+    rc = bcheck(sc, l, dal_builder_add_constraint_def(sc->b, &cd, NULL), msg, len);
+  }
+  free(cs);
+  return rc;
+}
+
+static int el_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (l->ntok < 2 || !sc->b)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "place: 'place <particle> ...' after it");
+  int p = dal__scene_find(sc->partname, sc->npart, l->tok[1]), parent = -1;
+  if (p < 0)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "place: particle '%s' is not defined above",
+               l->tok[1]);
+  const char *ps = dal__scene_kv(l, 2, "parent");
+  if (ps && (parent = dal__scene_find(sc->partname, sc->npart, ps)) < 0)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parent '%s' is not defined above",
+               l->tok[1], ps);
+  if (l->nf) {
+    if (l->nf != sc->dim)
+      return err(sc, l->line, msg, len, DAL_E_ARG,
+                 "place %s: %d formulas for dimension %d (separate them with ';')", l->tok[1],
+                 l->nf, sc->dim);
     for (int i = 2; i < l->ntok; ++i)
-      if (strncmp(l->tok[i], "q=", 2) && strncmp(l->tok[i], "v=", 2))
-        return err(sc, l->line, msg, len, DAL_E_ARG, "coord %s: unknown word '%s' (q=, v=)",
+      if (strncmp(l->tok[i], "parent=", 7))
+        return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown word '%s' before '='",
                    l->tok[1], l->tok[i]);
-    if ((rc = bcheck(sc, l, dal_builder_add_coord(sc->b, l->tok[1], NULL), msg, len))) return rc;
-    double *nq = realloc(sc->q0, ((size_t)sc->ncoord + 1) * sizeof *nq);
-    if (nq) sc->q0 = nq;
-    double *nv = realloc(sc->v0, ((size_t)sc->ncoord + 1) * sizeof *nv);
-    if (nv) sc->v0 = nv;
-    if (!nq || !nv || add_name(&sc->cname, sc->ncoord, l->tok[1])) return DAL_E_NOMEM;
-    sc->q0[sc->ncoord] = q;
-    sc->v0[sc->ncoord++] = v;
-    return DAL_OK;
+    return formula_element(sc, l, p, &parent, parent >= 0, msg, len);
   }
-  if (!strcmp(k, "particle")) {
-    const char *m = dal__scene_kv(l, 2, "mass");
-    if (l->ntok != 3 || !m)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "particle: 'particle <name> mass=<formula>'");
-    if ((rc = builder(sc, l, msg, len))) return rc;
-    double mv;
-    if ((rc = number(sc, l, "mass", m, &mv, msg, len))) return rc;
-    if ((rc = bcheck(sc, l, dal_builder_add_particle(sc->b, l->tok[1], mv, NULL), msg, len)))
-      return rc;
-    if (add_name(&sc->partname, sc->npart, l->tok[1])) return DAL_E_NOMEM;
-    sc->npart++;
-    return DAL_OK;
-  }
-  if (!strcmp(k, "place")) {
-    if (l->ntok < 2 || !sc->b)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "place: 'place <particle> ...' after it");
-    int p = dal__scene_find(sc->partname, sc->npart, l->tok[1]), parent = -1;
-    if (p < 0)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "place: particle '%s' is not defined above",
-                 l->tok[1]);
-    const char *ps = dal__scene_kv(l, 2, "parent");
-    if (ps && (parent = dal__scene_find(sc->partname, sc->npart, ps)) < 0)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parent '%s' is not defined above",
-                 l->tok[1], ps);
-    int coords[MAXTOK], nc = 0;
-    if (l->nf) {
-      // by formulas
-      if (l->nf != sc->dim)
-        return err(sc, l->line, msg, len, DAL_E_ARG,
-                   "place %s: %d formulas for dimension %d (separate them with ';')", l->tok[1],
-                   l->nf, sc->dim);
-      for (int i = 2; i < l->ntok; ++i)
-        if (strncmp(l->tok[i], "parent=", 7))
-          return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown word '%s' before '='",
-                     l->tok[1], l->tok[i]);
-      dal_expr *e;
-      char what[80];
-      snprintf(what, sizeof what, "place %s", l->tok[1]);
-      int nc2;
-      int *cs = malloc(((size_t)sc->ncoord + 1) * sizeof *cs);
-      if (!cs) return DAL_E_NOMEM;
-      rc = element_expr(sc, l, what, parent >= 0 ? &parent : NULL, parent >= 0, &e, cs, &nc2, msg,
-                        len);
-      if (!rc) {
-        dal_place_def pd = dal_default_place_def();
-        pd.prim = dal_expr_primitive(e);
-        pd.parent = parent;
-        pd.coords = cs;
-        pd.ncoords = nc2;
-        pd.param_list = dal_expr_values(e);
-        pd.nparam_list = dal_expr_nparam(e);
-        pd.ctx = e;
-        rc = bcheck(sc, l, dal_builder_place_def(sc->b, p, &pd), msg, len);
-      }
-      free(cs);
-      return rc;
-    }
-    // by a built-in primitive: its name, coordinates, parameters
-    if (l->ntok < 3)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: '= formulas' or a primitive",
-                 l->tok[1]);
-    const dal_primitive *prim = dal_primitive_find(l->tok[2]);
-    if (!prim)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown primitive '%s'", l->tok[1],
-                 l->tok[2]);
-    double param[64];
-    if (prim->nparam > 64) return err(sc, l->line, msg, len, DAL_E_ARG, "too many parameters");
-    for (int i = 0; i < prim->nparam; ++i)
-      param[i] = prim->param_defaults ? prim->param_defaults[i] : NAN;
-    for (int i = 3; i < l->ntok; ++i) {
-      const char *eq = strchr(l->tok[i], '=');
-      if (!eq) {
-        int c = dal__scene_find(sc->cname, sc->ncoord, l->tok[i]);
-        if (c < 0)
-          return err(sc, l->line, msg, len, DAL_E_ARG,
-                     "place %s: '%s' is not a coordinate defined above", l->tok[1], l->tok[i]);
-        coords[nc++] = c;
-        continue;
-      }
-      if (!strncmp(l->tok[i], "parent=", 7)) continue;
-      int j = -1;
-      for (int q = 0; q < prim->nparam && prim->param_names; ++q)
-        if (strlen(prim->param_names[q]) == (size_t)(eq - l->tok[i]) &&
-            !strncmp(prim->param_names[q], l->tok[i], (size_t)(eq - l->tok[i])))
-          j = q;
-      if (j < 0)
-        return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: '%s' has no parameter '%.*s'",
-                   l->tok[1], prim->name, (int)(eq - l->tok[i]), l->tok[i]);
-      if ((rc = number(sc, l, prim->param_names[j], eq + 1, &param[j], msg, len))) return rc;
-    }
-    for (int i = 0; i < prim->nparam; ++i)
-      if (param[i] != param[i])
-        return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parameter '%s' of '%s' is required",
-                   l->tok[1], prim->param_names ? prim->param_names[i] : "?", prim->name);
-    return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL),
-                  msg, len);
-  }
-  if (!strcmp(k, "constraint")) {
-    if (l->ntok < 2 || !sc->b)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "constraint: 'constraint <name> ...'");
-    int parts[16], np = 0;
-    const char *pl = dal__scene_kv(l, 2, "parts");
-    if (pl && (rc = part_list(sc, l, pl, parts, 16, &np, msg, len))) return rc;
-    if (l->nf) {
-      dal_expr *e;
-      char what[80];
-      snprintf(what, sizeof what, "constraint %s", l->tok[1]);
-      int nc2;
-      int *cs = malloc(((size_t)sc->ncoord + 1) * sizeof *cs);
-      if (!cs) return DAL_E_NOMEM;
-      rc = element_expr(sc, l, what, parts, np, &e, cs, &nc2, msg, len);
-      if (!rc) {
-        dal_constraint_def cd = dal_default_constraint_def();
-        cd.name = l->tok[1];
-        cd.prim = dal_expr_primitive(e);
-        cd.parts = parts;
-        cd.nparts = np;
-        cd.coords = cs;
-        cd.ncoords = nc2;
-        cd.param_list = dal_expr_values(e);
-        cd.nparam_list = dal_expr_nparam(e);
-        cd.ctx = e;
-        rc = bcheck(sc, l, dal_builder_add_constraint_def(sc->b, &cd, NULL), msg, len);
-      }
-      free(cs);
-      return rc;
-    }
-    if (l->ntok < 3)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "constraint %s: '= formulas' or a primitive",
-                 l->tok[1]);
-    const dal_primitive *prim = dal_primitive_find(l->tok[2]);
-    if (!prim || prim->nparam > 64)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "constraint %s: unknown primitive '%s'",
-                 l->tok[1], l->tok[2]);
-    double param[64];
-    int coords[MAXTOK], nc = 0;
-    for (int i = 0; i < prim->nparam; ++i)
-      param[i] = prim->param_defaults ? prim->param_defaults[i] : NAN;
-    for (int i = 3; i < l->ntok; ++i) {
-      const char *eq = strchr(l->tok[i], '=');
-      if (!strncmp(l->tok[i], "parts=", 6)) continue;
-      if (!eq) {
-        int c = dal__scene_find(sc->cname, sc->ncoord, l->tok[i]);
-        if (c < 0)
-          return err(sc, l->line, msg, len, DAL_E_ARG,
-                     "constraint %s: '%s' is not a coordinate defined above", l->tok[1], l->tok[i]);
-        coords[nc++] = c;
-        continue;
-      }
-      int j = -1;
-      for (int q = 0; q < prim->nparam && prim->param_names; ++q)
-        if (strlen(prim->param_names[q]) == (size_t)(eq - l->tok[i]) &&
-            !strncmp(prim->param_names[q], l->tok[i], (size_t)(eq - l->tok[i])))
-          j = q;
-      if (j < 0)
-        return err(sc, l->line, msg, len, DAL_E_ARG, "constraint %s: '%s' has no parameter '%.*s'",
-                   l->tok[1], prim->name, (int)(eq - l->tok[i]), l->tok[i]);
-      if ((rc = number(sc, l, prim->param_names[j], eq + 1, &param[j], msg, len))) return rc;
-    }
-    for (int i = 0; i < prim->nparam; ++i)
-      if (param[i] != param[i])
-        return err(sc, l->line, msg, len, DAL_E_ARG,
-                   "constraint %s: parameter '%s' of '%s' is required", l->tok[1],
-                   prim->param_names ? prim->param_names[i] : "?", prim->name);
-    return bcheck(
-        sc, l,
-        constrain_by(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam, param, NULL), msg,
-        len);
-  }
-  if (!strcmp(k, "spring") || !strcmp(k, "damper")) {
-    int spring = k[0] == 's';
-    if (l->ntok < 3 || !sc->b)
-      return err(sc, l->line, msg, len, DAL_E_ARG,
-                 "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'", k, k, k);
-    int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
-    if (a < 0)
+  // by a built-in primitive: its name, coordinates, parameters
+  const dal_primitive *prim = NULL;
+  double param[64];
+  int coords[MAXTOK], nc = 0, rc = prim_args(sc, l, &prim, coords, &nc, param, msg, len);
+  if (rc) return rc;
+  return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL), msg,
+                len);
+}
+
+static int el_constraint(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (l->ntok < 2 || !sc->b)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "constraint: 'constraint <name> ...'");
+  int parts[16], np = 0, rc;
+  const char *pl = dal__scene_kv(l, 2, "parts");
+  if (pl && (rc = part_list(sc, l, pl, parts, 16, &np, msg, len))) return rc;
+  if (l->nf) return formula_element(sc, l, -1, parts, np, msg, len);
+  const dal_primitive *prim = NULL;
+  double param[64];
+  int coords[MAXTOK], nc = 0;
+  if ((rc = prim_args(sc, l, &prim, coords, &nc, param, msg, len))) return rc;
+  return bcheck(
+      sc, l, constrain_by(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam, param, NULL),
+      msg, len);
+}
+
+// spring a b ... / spring a anchor=x,y ...: the other end (-1: an anchor) and the anchor
+static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double *anchor, char *msg,
+                size_t len) {
+  const char *k = l->tok[0];
+  if (l->ntok < 3 || !sc->b)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'",
+               k, k, k);
+  *a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  if (*a < 0)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
+               l->tok[1]);
+  *b = -1;
+  *from = 2;
+  if (!strchr(l->tok[2], '=')) {
+    *b = dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+    if (*b < 0)
       return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
-                 l->tok[1]);
-    int bb = -1, from = 2;
-    if (!strchr(l->tok[2], '=')) {
-      bb = dal__scene_find(sc->partname, sc->npart, l->tok[2]);
-      if (bb < 0)
-        return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
-                   l->tok[2]);
-      from = 3;
-    }
-    double anchor[3] = {0, 0, 0};
-    const char *an = dal__scene_kv(l, from, "anchor");
-    if (an) {
-      char buf[512];
-      snprintf(buf, sizeof buf, "%s", an);
-      int i = 0;
-      for (char *s = strtok(buf, ","); s && i < 3; s = strtok(NULL, ","), ++i)
-        if ((rc = number(sc, l, "anchor", s, &anchor[i], msg, len))) return rc;
-    }
-    double kk = 0, LL = 0;
-    const char *s;
-    if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) &&
-        (rc = number(sc, l, "k", s, &kk, msg, len)))
-      return rc;
-    if (spring && (s = dal__scene_kv(l, from, "L")) && (rc = number(sc, l, "L", s, &LL, msg, len)))
-      return rc;
-    if (spring) {
-      dal_spring_def d = dal_default_spring_def();
-      d.a = a;
-      d.b = bb;
-      d.k = kk;
-      d.length = LL;
-      memcpy(d.anchor, anchor, sizeof anchor);
-      return bcheck(sc, l, dal_builder_add_spring_def(sc->b, &d), msg, len);
-    }
-    dal_damper_def d = dal_default_damper_def();
+                 l->tok[2]);
+    *from = 3;
+  }
+  const char *an = dal__scene_kv(l, *from, "anchor");
+  if (an) {
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", an);
+    int i = 0, rc;
+    for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && i < 3;
+         s = strtok_r(NULL, ",", &sv), ++i)
+      if ((rc = number(sc, l, "anchor", s, &anchor[i], msg, len))) return rc;
+  }
+  return DAL_OK;
+}
+
+static int el_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  int spring = l->tok[0][0] == 's', a = -1, bb = -1, from = 2, rc;
+  double anchor[3] = {0, 0, 0}, kk = 0, LL = 0;
+  if ((rc = ends(sc, l, &a, &bb, &from, anchor, msg, len))) return rc;
+  const char *s;
+  if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) &&
+      (rc = number(sc, l, spring ? "k" : "c", s, &kk, msg, len)))
+    return rc;
+  if (spring && (s = dal__scene_kv(l, from, "L")) && (rc = number(sc, l, "L", s, &LL, msg, len)))
+    return rc;
+  if (spring) {
+    dal_spring_def d = dal_default_spring_def();
     d.a = a;
     d.b = bb;
-    d.c = kk;
+    d.k = kk;
+    d.length = LL;
     memcpy(d.anchor, anchor, sizeof anchor);
-    return bcheck(sc, l, dal_builder_add_damper_def(sc->b, &d), msg, len);
+    return bcheck(sc, l, dal_builder_add_spring_def(sc->b, &d), msg, len);
   }
-  if (!strcmp(k, "gravity")) {
-    if (!sc->b || l->ntok != 1 + sc->dim)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)", sc->dim);
-    double g[3];
-    for (int i = 0; i < sc->dim; ++i)
-      if ((rc = number(sc, l, "component", l->tok[1 + i], &g[i], msg, len))) return rc;
-    return bcheck(sc, l, dal_builder_set_gravity(sc->b, g), msg, len);
+  dal_damper_def d = dal_default_damper_def();
+  d.a = a;
+  d.b = bb;
+  d.c = kk;
+  memcpy(d.anchor, anchor, sizeof anchor);
+  return bcheck(sc, l, dal_builder_add_damper_def(sc->b, &d), msg, len);
+}
+
+static int el_gravity(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (!sc->b || l->ntok != 1 + sc->dim)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)", sc->dim);
+  double g[3];
+  for (int i = 0; i < sc->dim; ++i) {
+    int rc = number(sc, l, "component", l->tok[1 + i], &g[i], msg, len);
+    if (rc) return rc;
   }
-  if (!strcmp(k, "potential") || !strcmp(k, "lagrangian")) {
-    int lag = k[0] == 'l';
-    if (!sc->b || l->nf != 1 || l->ntok != 1)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates", k,
-                 k);
-    dal_expr *e;
-    if ((rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
-                     sc->ncoord, lag, &e, msg, len)))
-      return rc;
-    return bcheck(sc, l,
-                  lag ? dal_builder_set_lagrangian(sc->b, dal_expr_lagrangian, e)
-                      : dal_builder_add_potential_q(sc->b, dal_expr_potential_q, e),
-                  msg, len);
+  return bcheck(sc, l, dal_builder_set_gravity(sc->b, g), msg, len);
+}
+
+static int el_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  const char *k = l->tok[0];
+  int lag = k[0] == 'l';
+  if (!sc->b || l->nf != 1 || l->ntok != 1)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates", k,
+               k);
+  dal_expr *e;
+  int rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
+                  sc->ncoord, lag, &e, msg, len);
+  if (rc) return rc;
+  return bcheck(sc, l,
+                lag ? dal_builder_set_lagrangian(sc->b, dal_expr_lagrangian, e)
+                    : dal_builder_add_potential_q(sc->b, dal_expr_potential_q, e),
+                msg, len);
+}
+
+// one key=value word of a run line
+static int run_key(dal_scene *sc, const sline *l, const char *w, char *msg, size_t len) {
+  const char *eq = strchr(w, '=');
+  if (!eq) return err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", w);
+  size_t n = (size_t)(eq - w);
+  char key[32];
+  snprintf(key, sizeof key, "%.*s", (int)(n < 31 ? n : 31), w);
+  if (!strcmp(key, "method")) return set_method(sc, l, eq + 1, msg, len);
+  static const char *const keys[] = {"rtol", "atol", "step", "t0", "t1", "dt"};
+  double *dst[] = {&sc->opts.rtol, &sc->opts.atol, &sc->opts.fixed_step, &sc->t0, &sc->t1, &sc->dt};
+  for (int i = 0; i < 6; ++i)
+    if (!strcmp(key, keys[i])) return number(sc, l, key, eq + 1, dst[i], msg, len);
+  return err(sc, l->line, msg, len, DAL_E_ARG,
+             "run: unknown key '%s' (method rtol atol step t0 t1 dt)", key);
+}
+
+static int el_run(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  sc->has_run = 1;
+  for (int i = 1; i < l->ntok; ++i) {
+    int rc = run_key(sc, l, l->tok[i], msg, len);
+    if (rc) return rc;
   }
-  if (!strcmp(k, "run")) {
-    sc->has_run = 1;
-    for (int i = 1; i < l->ntok; ++i) {
-      const char *eq = strchr(l->tok[i], '=');
-      if (!eq)
-        return err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", l->tok[i]);
-      size_t n = (size_t)(eq - l->tok[i]);
-      char key[32];
-      snprintf(key, sizeof key, "%.*s", (int)(n < 31 ? n : 31), l->tok[i]);
-      if (!strcmp(key, "method")) {
-        if ((rc = set_method(sc, l, eq + 1, msg, len))) return rc;
-        continue;
-      }
-      double v;
-      if ((rc = number(sc, l, key, eq + 1, &v, msg, len))) return rc;
-      if (!strcmp(key, "rtol"))
-        sc->opts.rtol = v;
-      else if (!strcmp(key, "atol"))
-        sc->opts.atol = v;
-      else if (!strcmp(key, "step"))
-        sc->opts.fixed_step = v;
-      else if (!strcmp(key, "t0"))
-        sc->t0 = v;
-      else if (!strcmp(key, "t1"))
-        sc->t1 = v;
-      else if (!strcmp(key, "dt"))
-        sc->dt = v;
-      else
-        return err(sc, l->line, msg, len, DAL_E_ARG,
-                   "run: unknown key '%s' (method rtol atol step t0 t1 dt)", key);
-    }
+  return DAL_OK;
+}
+
+// event NAME [rising|falling|both] [terminal] = g(t, q, qdot)
+// section NAME [rising|falling|both] = g(t, q, qdot)    (a surface section: logged crossings)
+// section NAME period=T                                  (stroboscopic: the state every T)
+static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  const char *k = l->tok[0];
+  int section = k[0] == 's', dir = DAL_EVENT_BOTH, terminal = 0, rc;
+  if (l->ntok < 2 || !sc->b || !sc->ncoord)
+    return err(sc, l->line, msg, len, DAL_E_ARG,
+               section ? "section: 'section <name> [rising|falling] = <formula>' or "
+                         "'section <name> period=<formula>', after the coordinates"
+                       : "event: 'event <name> [rising|falling] [terminal] = <formula>', after "
+                         "the coordinates");
+  const char *per = dal__scene_kv(l, 2, "period");
+  if (section && per) {
+    if (l->ntok != 3 || l->nf)
+      return err(sc, l->line, msg, len, DAL_E_ARG, "section %s: 'period=<formula>' alone",
+                 l->tok[1]);
+    if (sc->strobe > 0)
+      return err(sc, l->line, msg, len, DAL_E_ARG, "section %s: a second stroboscopic section",
+                 l->tok[1]);
+    double T;
+    if ((rc = number(sc, l, "period", per, &T, msg, len))) return rc;
+    if (!(T > 0))
+      return err(sc, l->line, msg, len, DAL_E_ARG, "section %s: period %g is not positive",
+                 l->tok[1], T);
+    sc->strobe = T;
     return DAL_OK;
   }
+  for (int i = 2; i < l->ntok; ++i) {
+    const char *w = l->tok[i];
+    if (!strcmp(w, "rising"))
+      dir = DAL_EVENT_RISING;
+    else if (!strcmp(w, "falling"))
+      dir = DAL_EVENT_FALLING;
+    else if (!strcmp(w, "both"))
+      dir = DAL_EVENT_BOTH;
+    else if (!section && !strcmp(w, "terminal"))
+      terminal = 1;
+    else
+      return err(sc, l->line, msg, len, DAL_E_ARG,
+                 "%s %s: unknown word '%s' (rising falling both%s)", k, l->tok[1], w,
+                 section ? " period=" : " terminal");
+  }
+  if (l->nf != 1)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: one formula after '='", k, l->tok[1]);
+  scene_event *v = realloc(sc->ev, ((size_t)sc->nev + 1) * sizeof *v);
+  if (!v) return DAL_E_NOMEM;
+  sc->ev = v;
+  char what[80];
+  snprintf(what, sizeof what, "%s %s", k, l->tok[1]);
+  scene_event *ev = &sc->ev[sc->nev];
+  rc = mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname, sc->ncoord,
+              1, &ev->e, msg, len);
+  if (rc) return rc;
+  ev->name = l->tok[1];
+  ev->direction = dir;
+  ev->terminal = terminal;
+  ev->section = section;
+  sc->nev++;
+  return DAL_OK;
+}
+
+typedef int element_fn(dal_scene *sc, const sline *l, char *msg, size_t len);
+
+// the elements of a scene file, by their first word
+static const struct {
+  const char *key;
+  element_fn *fn;
+} elements[] = {
+    {"param", el_param},          {"dim", el_dim},
+    {"coord", el_coord},          {"particle", el_particle},
+    {"place", el_place},          {"constraint", el_constraint},
+    {"spring", el_spring},        {"damper", el_spring},
+    {"gravity", el_gravity},      {"potential", el_potential},
+    {"lagrangian", el_potential}, {"run", el_run},
+    {"event", el_event},          {"section", el_event},
+};
+
+static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  for (size_t i = 0; i < sizeof elements / sizeof *elements; ++i)
+    if (!strcmp(l->tok[0], elements[i].key)) return elements[i].fn(sc, l, msg, len);
   return err(sc, l->line, msg, len, DAL_E_ARG,
              "unknown element '%s' (dim param coord particle place constraint spring damper "
-             "gravity potential lagrangian run)",
-             k);
+             "gravity potential lagrangian run event section)",
+             l->tok[0]);
 }
 
 static int build(dal_scene *sc, char *msg, size_t len) {
@@ -845,24 +918,64 @@ int dal_scene_state(const dal_scene *sc, dal_state **out) {
   return rc;
 }
 
-int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, size_t msglen) {
+int dal_scene_events(const dal_scene *sc, dal_events **out) {
+  if (out) *out = NULL;
+  if (!sc || !out) return DAL_E_ARG;
+  int rc = dal_events_create(sc->sys, out);
+  for (int i = 0; i < sc->nev && !rc; ++i) {
+    dal_event_def d = dal_default_event_def();
+    d.name = sc->ev[i].name;
+    d.g = dal_expr_event;
+    d.ctx = sc->ev[i].e;
+    d.direction = (dal_event_direction)sc->ev[i].direction;
+    d.terminal = sc->ev[i].terminal;
+    int k = dal_events_add(*out, &d);
+    if (k < 0) rc = k;
+  }
+  if (rc) {
+    dal_events_destroy(*out);
+    *out = NULL;
+  }
+  return rc;
+}
+
+int dal_scene_event_is_section(const dal_scene *sc, int i) {
+  return sc && i >= 0 && i < sc->nev ? sc->ev[i].section : -1;
+}
+
+double dal_scene_strobe(const dal_scene *sc) { return sc ? sc->strobe : 0.0; }
+
+int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_state **stp, char *msg,
+                         size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (stp) *stp = NULL;
   if (!sc) return DAL_E_ARG;
+  dal_events *own = NULL;
   dal_state *st;
-  int rc = dal_scene_state(sc, &st);
+  int rc = ev || !sc->nev ? DAL_OK : dal_scene_events(sc, &own);
+  if (!rc) rc = dal_scene_state(sc, &st);
   if (rc) {
     if (msg && msglen)
       snprintf(msg, msglen, "%s: the initial state: %s", sc->name, dal_status_string(rc));
+    dal_events_destroy(own);
     return rc;
   }
+  dal_events *use = ev ? ev : own;
+  if (use) rc = dal_state_set_events(st, use);
   dal_csv c = {csv, 0, 0};
-  rc = dal_evolve(sc->sys, st, &sc->opts, sc->t1, sc->dt, csv ? dal_csv_monitor : NULL,
-                  csv ? &c : NULL);
+  if (!rc)
+    rc = dal_evolve(sc->sys, st, &sc->opts, sc->t1, sc->dt, csv ? dal_csv_monitor : NULL,
+                    csv ? &c : NULL);
   if (rc && msg && msglen) snprintf(msg, msglen, "%s: %s", sc->name, dal_state_errmsg(st));
+  dal_state_set_events(st, NULL);
+  dal_events_destroy(own);
   if (stp)
     *stp = st;
   else
     dal_state_destroy(st);
   return rc;
+}
+
+int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, size_t msglen) {
+  return dal_scene_run_events(sc, csv, NULL, stp, msg, msglen);
 }

@@ -23,6 +23,15 @@ int dal__scene_find(char *const *names, int n, const char *s);
 /// the value of word `key`=value from word `from` on (NULL if absent)
 const char *dal__scene_kv(const sline *l, int from, const char *key);
 
+/// an `event` or a surface `section` line, compiled: g(t, q, qdot)
+typedef struct scene_event {
+  const char *name; // borrowed from the line
+  dal_expr *e;      // kept in the scene's expression list
+  int direction;    // dal_event_direction
+  int terminal;
+  int section;
+} scene_event;
+
 struct dal_scene {
   char *name;
   sline *lines;
@@ -45,6 +54,9 @@ struct dal_scene {
   dal_solve_opts opts;
   double t0, t1, dt;
   int has_run;
+  scene_event *ev; // the event and surface-section lines, in order
+  int nev;
+  double strobe; // period of the stroboscopic section (0: none)
 };
 
 #endif

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // A scene's equations: positions as formulas, T, U, L, M, F and the state derivative.
+#define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -146,235 +147,545 @@ static void latex_sym(const char *name, char *out, size_t len) {
   }
 }
 
-static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, dal_expr *T,
-                          dal_expr *U, dal_expr *L, char *msg, size_t msglen) {
+// formula k of e as text that reads back (malloc'd; NULL when out of memory)
+static char *text_of(const dal_expr *e, int k) {
+  int n = dal_expr_print(e, k, DAL_EXPR_TEXT, NULL, 0);
+  char *buf = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (buf) dal_expr_print(e, k, DAL_EXPR_TEXT, buf, (size_t)n + 1);
+  return buf;
+}
+
+// a formula over the coordinates (and their rates when vel), t and the parameters
+static int compile(const dal_scene *sc, const char *name, const char *f, int vel, dal_expr **e,
+                   char *msg, size_t msglen) {
+  dal_expr_def ed = dal_default_expr_def();
+  ed.name = name;
+  ed.formulas = &f;
+  ed.nout = 1;
+  ed.inputs = (const char *const *)sc->cname;
+  ed.nin = sc->ncoord;
+  ed.velocities = vel;
+  ed.params = (const char *const *)sc->pname;
+  ed.values = sc->pval;
+  ed.nparam = sc->nparam;
+  return dal_expr_create(&ed, e, msg, msglen);
+}
+
+// what the lines give beyond T and U: the damping forces (Rayleigh's D) and the constraints
+typedef struct extras {
+  str D;       // D(q, qdot, t) = sum 1/2 c |v_a - v_b|^2 ("" when no damper)
+  str phi[16]; // the constraint rows as formulas of q and t
+  char name[16][64];
+  int nphi;
+} extras;
+
+// the generalized forces of the dampers, -dD/dqdot_i, into Q (n formulas as text)
+static int damping(const dal_scene *sc, const extras *x, char **Q, char *msg, size_t msglen) {
+  dal_expr *D = NULL;
+  int rc = compile(sc, "D", x->D.s, 1, &D, msg, msglen);
+  for (int i = 0; i < sc->ncoord && !rc; ++i) {
+    dal_expr *dD;
+    rc = dal_expr_derivative(D, 0, sc->ncoord + i, &dD, msg, msglen);
+    if (rc) break;
+    char *t = text_of(dD, 0);
+    str q = {0};
+    if (t && !adds(&q, "-(") && !adds(&q, t) && !adds(&q, ")"))
+      Q[i] = q.s;
+    else
+      rc = DAL_E_NOMEM, free(q.s);
+    free(t);
+    dal_expr_destroy(dD);
+  }
+  dal_expr_destroy(D);
+  return rc;
+}
+
+// the cofactor expansion of det of the k x k submatrix of M (texts, row-major n x n) with
+// rows r[0..k-1] and columns c[0..k-1]; column `col` replaced by the texts b when b is set
+static int det(char **M, int n, const int *r, const int *c, int k, int col, char **b, str *out) {
+  if (k == 1) {
+    adds(out, "(");
+    adds(out, c[0] == col ? b[r[0]] : M[r[0] * n + c[0]]);
+    return adds(out, ")");
+  }
+  adds(out, "(");
+  for (int j = 0; j < k; ++j) {
+    int cc[3], m = 0;
+    for (int i = 0; i < k; ++i)
+      if (i != j) cc[m++] = c[i];
+    adds(out, j ? (j % 2 ? " - " : " + ") : "");
+    adds(out, "(");
+    adds(out, c[j] == col ? b[r[0]] : M[r[0] * n + c[j]]);
+    adds(out, ")*");
+    det(M, n, r + 1, cc, k - 1, col, b, out);
+  }
+  return adds(out, ")");
+}
+
+// qddot_i = det(M with column i replaced by F) / det(M) (Cramer's rule, n <= 3), printed
+static int accel_cramer(const dal_scene *sc, FILE *fp, dal_expr_format fmt,
+                        const dal_expr_equations *eq, char **Q, char *msg, size_t msglen) {
+  int n = eq->n, rc = DAL_OK, idx[3] = {0, 1, 2};
+  char *M[9] = {0}, *F[3] = {0};
+  for (int i = 0; i < n * n && !rc; ++i)
+    if (!(M[i] = text_of(eq->mass, i))) rc = DAL_E_NOMEM;
+  for (int i = 0; i < n && !rc; ++i) {
+    char *f = text_of(eq->force, i);
+    str s = {0};
+    if (f && !adds(&s, f) && (!Q || (!adds(&s, " + ") && !adds(&s, Q[i]))))
+      F[i] = s.s;
+    else
+      rc = DAL_E_NOMEM, free(s.s);
+    free(f);
+  }
+  for (int i = 0; i < n && !rc; ++i) {
+    str a = {0};
+    adds(&a, "");
+    det(M, n, idx, idx, n, i, F, &a);
+    adds(&a, "/");
+    det(M, n, idx, idx, n, -1, F, &a);
+    dal_expr *e = NULL;
+    rc = a.s ? compile(sc, "qddot", a.s, 1, &e, msg, msglen) : DAL_E_NOMEM;
+    free(a.s);
+    char lhs[160], nm[96];
+    latex_sym(sc->cname[i], nm, sizeof nm);
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "\\ddot{%s}" : "%sddot",
+             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
+    if (!rc) rc = print_eq(fp, lhs, e, 0, fmt);
+    dal_expr_destroy(e);
+  }
+  for (int i = 0; i < 9; ++i)
+    free(M[i]);
+  for (int i = 0; i < 3; ++i)
+    free(F[i]);
+  return rc;
+}
+
+// the state derivative of one coordinate as SICM prints it, or qddot = ...
+static int accel_one(const dal_scene *sc, FILE *fp, dal_expr_format fmt, const dal_expr *accel) {
+  char lhs[160];
+  if (fmt == DAL_EXPR_SCHEME) {
+    int k = dal_expr_print(accel, 0, fmt, NULL, 0);
+    char *s = k >= 0 ? malloc((size_t)k + 1) : NULL;
+    if (!s) return DAL_E_NOMEM;
+    dal_expr_print(accel, 0, fmt, s, (size_t)k + 1);
+    fprintf(fp, "state derivative = (up 1 %sdot %s)\n", sc->cname[0], s);
+    free(s);
+    return DAL_OK;
+  }
+  char nm[96];
+  latex_sym(sc->cname[0], nm, sizeof nm);
+  snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "\\ddot{%s}" : "%sddot",
+           fmt == DAL_EXPR_LATEX ? nm : sc->cname[0]);
+  return print_eq(fp, lhs, accel, 0, fmt);
+}
+
+// p_i, M_ij and F_i of Lagrange's equations
+static int show_pmf(const dal_scene *sc, FILE *fp, dal_expr_format fmt,
+                    const dal_expr_equations *eq) {
+  int n = eq->n, rc = DAL_OK;
+  char lhs[160], nm[96];
+  for (int i = 0; i < n && !rc; ++i) {
+    latex_sym(sc->cname[i], nm, sizeof nm);
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "p_{%s}" : "p_%s",
+             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
+    rc = print_eq(fp, lhs, eq->momentum, i, fmt);
+  }
+  for (int i = 0; i < n * n && !rc; ++i) {
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "M_{%d%d}" : "M_%d%d", i / n + 1, i % n + 1);
+    rc = print_eq(fp, lhs, eq->mass, i, fmt);
+  }
+  for (int i = 0; i < n && !rc; ++i) {
+    latex_sym(sc->cname[i], nm, sizeof nm);
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "F_{%s}" : "F_%s",
+             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
+    rc = print_eq(fp, lhs, eq->force, i, fmt);
+  }
+  return rc;
+}
+
+// a formula of q and t printed under the name lhs
+static int print_text(const dal_scene *sc, FILE *fp, dal_expr_format fmt, const char *lhs,
+                      const char *f, int vel, char *msg, size_t msglen) {
+  dal_expr *e = NULL;
+  int rc = compile(sc, lhs, f, vel, &e, msg, msglen);
+  if (!rc) rc = print_eq(fp, lhs, e, 0, fmt);
+  dal_expr_destroy(e);
+  return rc;
+}
+
+// the constraint rows phi and their Jacobian G = dphi/dq
+static int show_constraints(const dal_scene *sc, FILE *fp, dal_expr_format fmt, const extras *x,
+                            char *msg, size_t msglen) {
   int rc = DAL_OK;
+  char lhs[200];
+  for (int r = 0; r < x->nphi && !rc; ++r) {
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "\\phi_{\\mathrm{%s}}" : "phi_%s",
+             x->name[r]);
+    rc = print_text(sc, fp, fmt, lhs, x->phi[r].s, 0, msg, msglen);
+    dal_expr *e = NULL;
+    if (!rc) rc = compile(sc, lhs, x->phi[r].s, 0, &e, msg, msglen);
+    for (int j = 0; j < sc->ncoord && !rc; ++j) {
+      dal_expr *g = NULL;
+      rc = dal_expr_derivative(e, 0, j, &g, msg, msglen);
+      snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "G_{\\mathrm{%s},%s}" : "G_%s,%s",
+               x->name[r], sc->cname[j]);
+      if (!rc) rc = print_eq(fp, lhs, g, 0, fmt);
+      dal_expr_destroy(g);
+    }
+    dal_expr_destroy(e);
+  }
+  if (!rc)
+    fprintf(fp, "%s",
+            fmt == DAL_EXPR_LATEX ? "$$M \\ddot{q} = F + G^T \\lambda, \\quad \\phi = 0$$\n"
+                                  : "M qddot = F + G' lambda, phi = 0\n");
+  return rc;
+}
+
+static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, dal_expr *T,
+                          dal_expr *U, dal_expr *L, const extras *x, char *msg, size_t msglen) {
+  int rc = DAL_OK, damped = x && x->D.n;
   if (T) rc = print_eq(fp, "T", T, 0, fmt);
   if (!rc && U) rc = print_eq(fp, "U", U, 0, fmt);
   if (!rc) rc = print_eq(fp, "L", L, 0, fmt);
+  if (!rc && damped) rc = print_text(sc, fp, fmt, "D", x->D.s, 1, msg, msglen);
   dal_expr_equations eq;
   if (!rc) rc = dal_expr_lagrange(L, &eq, msg, msglen);
   if (rc) return rc;
   int n = eq.n;
-  char lhs[160];
-  for (int i = 0; i < n && !rc; ++i) {
-    char nm[96];
-    latex_sym(sc->cname[i], nm, sizeof nm);
-    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "p_{%s}" : "p_%s",
-             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
-    rc = print_eq(fp, lhs, eq.momentum, i, fmt);
+  char *Q[64] = {0}, lhs[160];
+  rc = show_pmf(sc, fp, fmt, &eq);
+  if (!rc && damped && n > 64) rc = DAL_E_UNSUPPORTED;
+  if (!rc && damped) rc = damping(sc, x, Q, msg, msglen);
+  for (int i = 0; i < n && damped && !rc; ++i) {
+    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "Q_{%s}" : "Q_%s", sc->cname[i]);
+    rc = print_text(sc, fp, fmt, lhs, Q[i], 1, msg, msglen);
   }
-  for (int i = 0; i < n * n && !rc; ++i) {
-    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "M_{%d%d}" : "M_%d%d", i / n + 1, i % n + 1);
-    rc = print_eq(fp, lhs, eq.mass, i, fmt);
+  if (!rc && x && x->nphi) {
+    rc = show_constraints(sc, fp, fmt, x, msg, msglen);
+  } else if (!rc) {
+    if (n > 1 || damped)
+      fprintf(fp, "%s",
+              fmt == DAL_EXPR_LATEX
+                  ? (damped ? "$$M \\ddot{q} = F + Q$$\n" : "$$M \\ddot{q} = F$$\n")
+                  : (damped ? "M qddot = F + Q\n" : "M qddot = F\n"));
+    if (eq.accel && !damped)
+      rc = accel_one(sc, fp, fmt, eq.accel);
+    else if (n <= 3)
+      rc = accel_cramer(sc, fp, fmt, &eq, damped ? Q : NULL, msg, msglen);
   }
-  for (int i = 0; i < n && !rc; ++i) {
-    char nm[96];
-    latex_sym(sc->cname[i], nm, sizeof nm);
-    snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "F_{%s}" : "F_%s",
-             fmt == DAL_EXPR_LATEX ? nm : sc->cname[i]);
-    rc = print_eq(fp, lhs, eq.force, i, fmt);
+  for (int i = 0; i < 64; ++i)
+    free(Q[i]);
+  dal_expr_equations_destroy(&eq);
+  return rc;
+}
+
+// the positions, masses, gravity and potential the lines give (formulas as text)
+typedef struct model {
+  int np, d;
+  char **pos;  // np x d
+  char **mass; // np, borrowed from the lines
+  char *grav[3];
+  str pot;
+} model;
+
+// a placement: by formulas (the parent's x_<p> replaced by its position) or a built-in map
+static int collect_place(const dal_scene *sc, const sline *l, model *m, char *msg, size_t len) {
+  int d = m->d, p = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  const char *ps = dal__scene_kv(l, 2, "parent");
+  int parent = ps ? dal__scene_find(sc->partname, sc->npart, ps) : -1;
+  char *par[3] = {NULL, NULL, NULL};
+  if (parent >= 0)
+    for (int c = 0; c < d; ++c)
+      par[c] = m->pos[parent * d + c];
+  if (l->nf) {
+    char *from[3], *to[3], nm[3][80];
+    for (int c = 0; c < d; ++c) {
+      snprintf(nm[c], sizeof nm[c], "%c_%s", "xyz"[c], parent >= 0 ? ps : "");
+      from[c] = nm[c];
+      to[c] = par[c] ? par[c] : "0";
+    }
+    for (int c = 0; c < d; ++c)
+      m->pos[p * d + c] = subst(l->f[c], from, to, parent >= 0 ? d : 0);
+    return DAL_OK;
   }
-  if (!rc && n > 1)
-    fprintf(fp, "%s", fmt == DAL_EXPR_LATEX ? "$$M \\ddot{q} = F$$\n" : "M qddot = F\n");
-  if (!rc && eq.accel) {
-    if (fmt == DAL_EXPR_SCHEME) {
-      int k = dal_expr_print(eq.accel, 0, fmt, NULL, 0);
-      char *buf = k >= 0 ? malloc((size_t)k + 1) : NULL;
-      if (buf) {
-        dal_expr_print(eq.accel, 0, fmt, buf, (size_t)k + 1);
-        fprintf(fp, "state derivative = (up 1 %sdot %s)\n", sc->cname[0], buf);
-        free(buf);
-      } else {
-        rc = DAL_E_NOMEM;
-      }
-    } else {
-      snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "\\ddot{%s}" : "%sddot", sc->cname[0]);
-      if (fmt == DAL_EXPR_LATEX) {
-        char nm[96];
-        latex_sym(sc->cname[0], nm, sizeof nm);
-        snprintf(lhs, sizeof lhs, "\\ddot{%s}", nm);
-      }
-      rc = print_eq(fp, lhs, eq.accel, 0, fmt);
+  const tmpl *t = NULL;
+  for (size_t j = 0; j < sizeof maps / sizeof maps[0]; ++j)
+    if (!strcmp(maps[j].prim, l->tok[2])) t = &maps[j];
+  if (!t) {
+    if (msg && len)
+      snprintf(msg, len, "%s:%d: place %s: the primitive '%s' has no formulas to show", sc->name,
+               l->line, l->tok[1], l->tok[2]);
+    return DAL_E_UNSUPPORTED;
+  }
+  const char *cn[8];
+  int nc = 0;
+  for (int j = 3; j < l->ntok && nc < 8; ++j)
+    if (!strchr(l->tok[j], '=')) cn[nc++] = l->tok[j];
+  for (int c = 0; c < d; ++c)
+    m->pos[p * d + c] = fill(t->f[c], dal_primitive_find(l->tok[2]), l, cn, nc, par);
+  return DAL_OK;
+}
+
+// spring a b ... / spring a anchor=..: the other end's position (a particle's or the anchor)
+static void other_end(const sline *l, const model *m, const dal_scene *sc, int c, char anc[3][128],
+                      const char **end) {
+  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+  *end = b >= 0 ? (m->pos[b * m->d + c] ? m->pos[b * m->d + c] : "0") : anc[c];
+}
+
+static void anchor_of(const sline *l, char anc[3][128]) {
+  const char *an = dal__scene_kv(l, 2, "anchor");
+  for (int c = 0; c < 3; ++c)
+    snprintf(anc[c], 128, "0");
+  if (!an) return;
+  char buf[512];
+  snprintf(buf, sizeof buf, "%s", an);
+  int c = 0;
+  for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && c < 3; s = strtok_r(NULL, ",", &sv), ++c)
+    snprintf(anc[c], 128, "%s", s);
+}
+
+// a spring's potential 1/2 k (|r_a - r_b| - L)^2 added to U
+static void collect_spring(const dal_scene *sc, const sline *l, model *m) {
+  int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  const char *kk = dal__scene_kv(l, 2, "k"), *LL = dal__scene_kv(l, 2, "L"), *end;
+  char anc[3][128];
+  anchor_of(l, anc);
+  adds(&m->pot, m->pot.n ? " + 1/2*(" : "1/2*(");
+  adds(&m->pot, kk ? kk : "0");
+  adds(&m->pot, ")*(sqrt(");
+  for (int c = 0; c < m->d; ++c) {
+    other_end(l, m, sc, c, anc, &end);
+    adds(&m->pot, c ? " + ((" : "((");
+    adds(&m->pot, m->pos[a * m->d + c] ? m->pos[a * m->d + c] : "0");
+    adds(&m->pot, ") - (");
+    adds(&m->pot, end);
+    adds(&m->pot, "))^2");
+  }
+  adds(&m->pot, ") - (");
+  adds(&m->pot, LL ? LL : "0");
+  adds(&m->pot, "))^2");
+}
+
+// the velocity of position formula r: sum_j dr/dq_j qdot_j + dr/dt, as text (into v)
+static int velocity(const dal_scene *sc, const char *r, str *v, char *msg, size_t len) {
+  dal_expr *e = NULL;
+  int rc = compile(sc, "v", r, 0, &e, msg, len);
+  adds(v, "(0");
+  for (int j = -1; j < sc->ncoord && !rc; ++j) {
+    dal_expr *dr = NULL;
+    rc = dal_expr_derivative(e, 0, j, &dr, msg, len);
+    char *t = rc ? NULL : text_of(dr, 0);
+    if (!rc && !t) rc = DAL_E_NOMEM;
+    if (!rc) {
+      adds(v, " + (");
+      adds(v, t);
+      adds(v, j >= 0 ? ")*" : ")");
+      if (j >= 0) adds(v, sc->cname[j]), adds(v, "dot");
+    }
+    free(t);
+    dal_expr_destroy(dr);
+  }
+  dal_expr_destroy(e);
+  return rc ? rc : adds(v, ")") ? DAL_E_NOMEM : DAL_OK;
+}
+
+// a damper's Rayleigh function along its axis, 1/2 c ((r_a - r_b) . (v_a - v_b))^2 / |r_a - r_b|^2
+// (the library's damper force -c ((v_a - v_b) . e) e), added to D
+static int collect_damper(const dal_scene *sc, const sline *l, const model *m, extras *x, char *msg,
+                          size_t len) {
+  int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]), rc = DAL_OK, d = m->d;
+  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+  const char *c = dal__scene_kv(l, 2, "c"), *end;
+  char anc[3][128];
+  anchor_of(l, anc);
+  str dr = {0}, dist = {0};
+  adds(&dist, "(0");
+  for (int k = 0; k < d; ++k) {
+    other_end(l, m, sc, k, anc, &end);
+    const char *ra = m->pos[a * d + k] ? m->pos[a * d + k] : "0";
+    free(dr.s);
+    dr = (str){0};
+    adds(&dr, "((");
+    adds(&dr, ra);
+    adds(&dr, ") - (");
+    adds(&dr, end);
+    adds(&dr, "))");
+    adds(&dist, " + ");
+    adds(&dist, dr.s);
+    adds(&dist, "^2");
+  }
+  adds(&dist, ")");
+  adds(&x->D, x->D.n ? " + 1/2*(" : "1/2*(");
+  adds(&x->D, c ? c : "0");
+  adds(&x->D, ")*(0");
+  for (int k = 0; k < d && !rc; ++k) {
+    other_end(l, m, sc, k, anc, &end);
+    const char *ra = m->pos[a * d + k] ? m->pos[a * d + k] : "0";
+    adds(&x->D, " + ((");
+    adds(&x->D, ra);
+    adds(&x->D, ") - (");
+    adds(&x->D, end);
+    adds(&x->D, "))*(");
+    rc = velocity(sc, ra, &x->D, msg, len);
+    adds(&x->D, " - ");
+    if (!rc && b >= 0)
+      rc = velocity(sc, end, &x->D, msg, len);
+    else
+      adds(&x->D, "0");
+    adds(&x->D, ")");
+  }
+  adds(&x->D, ")^2/");
+  int bad = adds(&x->D, dist.s ? dist.s : "1");
+  free(dr.s);
+  free(dist.s);
+  return rc ? rc : bad || !dist.s ? DAL_E_NOMEM : DAL_OK;
+}
+
+// a constraint by formulas: the parts' positions x_<p>, y_<p>, z_<p> replaced by theirs
+static int collect_constraint(const dal_scene *sc, const sline *l, const model *m, extras *x,
+                              char *msg, size_t len) {
+  if (!l->nf) {
+    if (msg && len)
+      snprintf(msg, len, "%s:%d: constraint %s: the primitive '%s' has no formulas to show",
+               sc->name, l->line, l->tok[1], l->ntok > 2 ? l->tok[2] : "?");
+    return DAL_E_UNSUPPORTED;
+  }
+  char *from[48], *to[48], nm[48][80], buf[512];
+  int n = 0;
+  const char *pl = dal__scene_kv(l, 2, "parts");
+  snprintf(buf, sizeof buf, "%s", pl ? pl : "");
+  for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && n + m->d <= 48;
+       s = strtok_r(NULL, ",", &sv)) {
+    int p = dal__scene_find(sc->partname, sc->npart, s);
+    for (int c = 0; c < m->d; ++c, ++n) {
+      snprintf(nm[n], sizeof nm[n], "%c_%s", "xyz"[c], s);
+      from[n] = nm[n];
+      to[n] = m->pos[p * m->d + c] ? m->pos[p * m->d + c] : "0";
     }
   }
-  dal_expr_equations_destroy(&eq);
+  for (int r = 0; r < l->nf; ++r) {
+    if (x->nphi == 16) {
+      if (msg && len) snprintf(msg, len, "%s:%d: more than 16 constraint rows", sc->name, l->line);
+      return DAL_E_UNSUPPORTED;
+    }
+    char *f = subst(l->f[r], from, to, n);
+    if (!f) return DAL_E_NOMEM;
+    adds(&x->phi[x->nphi], f);
+    free(f);
+    snprintf(x->name[x->nphi++], 64, l->nf > 1 ? "%s%d" : "%s", l->tok[1], r + 1);
+  }
+  return DAL_OK;
+}
+
+// one line's part of the model; dampers and constraints after every placement (second pass)
+static int collect(const dal_scene *sc, const sline *l, model *m, extras *x, int pass, int *k,
+                   char *msg, size_t len) {
+  const char *kw = l->tok[0];
+  if (pass == 1) {
+    if (!strcmp(kw, "damper")) return collect_damper(sc, l, m, x, msg, len);
+    if (!strcmp(kw, "constraint")) return collect_constraint(sc, l, m, x, msg, len);
+    return DAL_OK;
+  }
+  if (!strcmp(kw, "particle")) m->mass[(*k)++] = (char *)dal__scene_kv(l, 2, "mass");
+  if (!strcmp(kw, "place")) return collect_place(sc, l, m, msg, len);
+  if (!strcmp(kw, "gravity"))
+    for (int c = 0; c < m->d; ++c)
+      m->grav[c] = l->tok[1 + c];
+  if (!strcmp(kw, "potential")) {
+    adds(&m->pot, m->pot.n ? " + " : "");
+    adds(&m->pot, l->f[0]);
+  }
+  if (!strcmp(kw, "spring")) collect_spring(sc, l, m);
+  return DAL_OK;
+}
+
+// a Lagrangian scene: L as written
+static int show_lagrangian(const dal_scene *sc, const sline *l, FILE *fp, dal_expr_format fmt,
+                           char *msg, size_t msglen) {
+  dal_expr *L = NULL;
+  int rc = compile(sc, "L", l->f[0], 1, &L, msg, msglen);
+  if (!rc) rc = show_equations(sc, fp, fmt, NULL, NULL, L, NULL, msg, msglen);
+  dal_expr_destroy(L);
+  return rc;
+}
+
+// the positions, simplified (a name with '_' in LaTeX text mode is left as it is)
+static int show_positions(const dal_scene *sc, const model *m, FILE *fp, dal_expr_format fmt,
+                          char *msg, size_t msglen) {
+  int rc = DAL_OK;
+  for (int p = 0; p < m->np && !rc; ++p)
+    for (int c = 0; c < m->d && !rc; ++c) {
+      char lhs[96];
+      snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "%c_{\\mathrm{%s}}" : "%c_%s", "xyz"[c],
+               sc -> partname[p]);
+      dal_expr *e = NULL;
+      rc = compile(sc, sc->partname[p], m->pos[p * m->d + c], 0, &e, msg, msglen);
+      if (!rc) rc = print_eq(fp, lhs, e, 0, fmt);
+      dal_expr_destroy(e);
+    }
+  return rc;
+}
+
+static int show_model(const dal_scene *sc, const model *m, const extras *x, FILE *fp,
+                      dal_expr_format fmt, char *msg, size_t msglen) {
+  int rc = show_positions(sc, m, fp, fmt, msg, msglen);
+  if (rc) return rc;
+  dal_expr_model_def md = dal_default_expr_model_def();
+  md.name = sc->name;
+  md.dim = m->d;
+  md.coords = (const char *const *)sc->cname;
+  md.ncoords = sc->ncoord;
+  md.masses = (const char *const *)m->mass;
+  md.nparticles = m->np;
+  md.positions = (const char *const *)m->pos;
+  md.gravity = m->grav[0] ? (const char *const *)m->grav : NULL;
+  md.potential = m->pot.n ? m->pot.s : NULL;
+  md.params = (const char *const *)sc->pname;
+  md.values = sc->pval;
+  md.nparam = sc->nparam;
+  dal_expr *T = NULL, *U = NULL, *L = NULL;
+  rc = dal_expr_model_energies(&md, &T, &U, &L, msg, msglen);
+  if (!rc) rc = show_equations(sc, fp, fmt, T, U, L, x, msg, msglen);
+  dal_expr_destroy(T);
+  dal_expr_destroy(U);
+  dal_expr_destroy(L);
   return rc;
 }
 
 int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (!sc || !fp) return DAL_E_ARG;
-  int rc = DAL_OK, d = sc->dim;
-  // a Lagrangian scene: L as written
-  for (int i = 0; i < sc->nlines; ++i) {
-    const sline *l = &sc->lines[i];
-    if (!strcmp(l->tok[0], "lagrangian")) {
-      dal_expr_def ed = dal_default_expr_def();
-      ed.name = "L";
-      ed.formulas = (const char *const *)l->f;
-      ed.nout = 1;
-      ed.inputs = (const char *const *)sc->cname;
-      ed.nin = sc->ncoord;
-      ed.velocities = 1;
-      ed.params = (const char *const *)sc->pname;
-      ed.values = sc->pval;
-      ed.nparam = sc->nparam;
-      dal_expr *L;
-      rc = dal_expr_create(&ed, &L, msg, msglen);
-      if (!rc) rc = show_equations(sc, fp, fmt, NULL, NULL, L, msg, msglen);
-      dal_expr_destroy(L);
-      return rc;
-    }
-  }
-  // particles: positions as formulas, masses, gravity, potentials (springs included)
-  int np = sc->npart;
-  char **pos = calloc((size_t)np * (size_t)d + 1, sizeof *pos);
-  char **mass = calloc((size_t)np + 1, sizeof *mass);
-  char *grav[3] = {NULL, NULL, NULL};
-  str pot = {0};
-  adds(&pot, "");
-  if (!pos || !mass) rc = DAL_E_NOMEM;
-  int k = 0;
-  for (int i = 0; i < sc->nlines && !rc; ++i) {
-    const sline *l = &sc->lines[i];
-    const char *kw = l->tok[0];
-    if (!strcmp(kw, "particle")) {
-      mass[k++] = (char *)dal__scene_kv(l, 2, "mass");
-    } else if (!strcmp(kw, "place")) {
-      int p = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
-      const char *ps = dal__scene_kv(l, 2, "parent");
-      int parent = ps ? dal__scene_find(sc->partname, sc->npart, ps) : -1;
-      char *par[3] = {NULL, NULL, NULL};
-      if (parent >= 0)
-        for (int c = 0; c < d; ++c)
-          par[c] = pos[parent * d + c];
-      if (l->nf) {
-        // the formulas, the parent's x_<p> replaced by its position
-        char *from[3], *to[3];
-        char nm[3][80];
-        for (int c = 0; c < d; ++c) {
-          snprintf(nm[c], sizeof nm[c], "%c_%s", "xyz"[c], parent >= 0 ? ps : "");
-          from[c] = nm[c];
-          to[c] = par[c] ? par[c] : "0";
-        }
-        for (int c = 0; c < d; ++c)
-          pos[p * d + c] = subst(l->f[c], from, to, parent >= 0 ? d : 0);
-      } else {
-        const tmpl *t = NULL;
-        for (size_t j = 0; j < sizeof maps / sizeof maps[0]; ++j)
-          if (!strcmp(maps[j].prim, l->tok[2])) t = &maps[j];
-        if (!t) {
-          rc = DAL_E_UNSUPPORTED;
-          if (msg && msglen)
-            snprintf(msg, msglen, "%s:%d: place %s: the primitive '%s' has no formulas to show",
-                     sc->name, l->line, l->tok[1], l->tok[2]);
-          break;
-        }
-        const char *cn[8];
-        int nc = 0;
-        for (int j = 3; j < l->ntok && nc < 8; ++j)
-          if (!strchr(l->tok[j], '=')) cn[nc++] = l->tok[j];
-        for (int c = 0; c < d; ++c)
-          pos[p * d + c] = fill(t->f[c], dal_primitive_find(l->tok[2]), l, cn, nc, par);
-      }
-    } else if (!strcmp(kw, "gravity")) {
-      for (int c = 0; c < d; ++c)
-        grav[c] = l->tok[1 + c];
-    } else if (!strcmp(kw, "potential")) {
-      adds(&pot, pot.n ? " + " : "");
-      adds(&pot, l->f[0]);
-    } else if (!strcmp(kw, "spring")) {
-      int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
-      int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
-      const char *kk = dal__scene_kv(l, 2, "k"), *LL = dal__scene_kv(l, 2, "L");
-      const char *an = dal__scene_kv(l, 2, "anchor");
-      char anc[3][128] = {"0", "0", "0"};
-      if (an) {
-        char buf[512];
-        snprintf(buf, sizeof buf, "%s", an);
-        int c = 0;
-        for (char *s = strtok(buf, ","); s && c < 3; s = strtok(NULL, ","), ++c)
-          snprintf(anc[c], sizeof anc[c], "%s", s);
-      }
-      adds(&pot, pot.n ? " + 1/2*(" : "1/2*(");
-      adds(&pot, kk ? kk : "0");
-      adds(&pot, ")*(sqrt(");
-      for (int c = 0; c < d; ++c) {
-        adds(&pot, c ? " + ((" : "((");
-        adds(&pot, pos[a * d + c] ? pos[a * d + c] : "0");
-        adds(&pot, ") - (");
-        adds(&pot, b >= 0 ? (pos[b * d + c] ? pos[b * d + c] : "0") : anc[c]);
-        adds(&pot, "))^2");
-      }
-      adds(&pot, ") - (");
-      adds(&pot, LL ? LL : "0");
-      adds(&pot, "))^2");
-    } else if (!strcmp(kw, "constraint") || !strcmp(kw, "damper")) {
-      rc = DAL_E_UNSUPPORTED;
-      if (msg && msglen)
-        snprintf(msg, msglen,
-                 "%s:%d: %s %s: the equations of scenes with constraints or dampers are not "
-                 "shown (minimal coordinates and conservative forces only)",
-                 sc->name, l->line, kw, l->tok[1]);
-    }
-  }
-  for (int i = 0; i < np * d && !rc; ++i)
-    if (!pos[i]) {
+  for (int i = 0; i < sc->nlines; ++i)
+    if (!strcmp(sc->lines[i].tok[0], "lagrangian"))
+      return show_lagrangian(sc, &sc->lines[i], fp, fmt, msg, msglen);
+  model m = {sc->npart, sc->dim, NULL, NULL, {NULL, NULL, NULL}, {0}};
+  extras x;
+  memset(&x, 0, sizeof x);
+  m.pos = calloc((size_t)m.np * (size_t)m.d + 1, sizeof *m.pos);
+  m.mass = calloc((size_t)m.np + 1, sizeof *m.mass);
+  adds(&m.pot, "");
+  int rc = m.pos && m.mass && m.pot.s ? DAL_OK : DAL_E_NOMEM, k = 0;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < sc->nlines && !rc; ++i)
+      rc = collect(sc, &sc->lines[i], &m, &x, pass, &k, msg, msglen);
+  for (int i = 0; i < m.np * m.d && !rc; ++i)
+    if (!m.pos[i]) {
       rc = DAL_E_UNSUPPORTED;
       if (msg && msglen)
         snprintf(msg, msglen, "%s: particle '%s' is not placed by formulas", sc->name,
-                 sc->partname[i / d]);
+                 sc->partname[i / m.d]);
     }
-  if (!rc) {
-    // the positions, simplified (a name with '_' in LaTeX text mode is left as it is)
-    for (int p = 0; p < np && !rc; ++p)
-      for (int c = 0; c < d && !rc; ++c) {
-        dal_expr_def ed = dal_default_expr_def();
-        ed.name = sc->partname[p];
-        ed.formulas = (const char *const *)&pos[p * d + c];
-        ed.nout = 1;
-        ed.inputs = (const char *const *)sc->cname;
-        ed.nin = sc->ncoord;
-        ed.params = (const char *const *)sc->pname;
-        ed.values = sc->pval;
-        ed.nparam = sc->nparam;
-        dal_expr *e;
-        rc = dal_expr_create(&ed, &e, msg, msglen);
-        char lhs[96];
-        snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "%c_{\\mathrm{%s}}" : "%c_%s", "xyz"[c],
-                 sc -> partname[p]);
-        if (!rc) rc = print_eq(fp, lhs, e, 0, fmt);
-        dal_expr_destroy(e);
-      }
-  }
-  if (!rc) {
-    dal_expr_model_def md = dal_default_expr_model_def();
-    md.name = sc->name;
-    md.dim = d;
-    md.coords = (const char *const *)sc->cname;
-    md.ncoords = sc->ncoord;
-    md.masses = (const char *const *)mass;
-    md.nparticles = np;
-    md.positions = (const char *const *)pos;
-    md.gravity = grav[0] ? (const char *const *)grav : NULL;
-    md.potential = pot.n ? pot.s : NULL;
-    md.params = (const char *const *)sc->pname;
-    md.values = sc->pval;
-    md.nparam = sc->nparam;
-    dal_expr *T, *U, *L;
-    rc = dal_expr_model_energies(&md, &T, &U, &L, msg, msglen);
-    if (!rc) rc = show_equations(sc, fp, fmt, T, U, L, msg, msglen);
-    dal_expr_destroy(T);
-    dal_expr_destroy(U);
-    dal_expr_destroy(L);
-  }
-  if (pos)
-    for (int i = 0; i < np * d; ++i)
-      free(pos[i]);
-  free(pos);
-  free(mass);
-  free(pot.s);
+  if (!rc) rc = show_model(sc, &m, &x, fp, fmt, msg, msglen);
+  for (int i = 0; m.pos && i < m.np * m.d; ++i)
+    free(m.pos[i]);
+  free(m.pos);
+  free(m.mass);
+  free(m.pot.s);
+  free(x.D.s);
+  for (int r = 0; r < 16; ++r)
+    free(x.phi[r].s);
   if (!rc && ferror(fp)) rc = DAL_E_IO;
   return rc;
 }

@@ -6,9 +6,9 @@
 // parameter p: compiled, evaluated, checked, printed in the three formats, its text read back,
 // differentiated (the symbolic part on formulas of at most 100 instructions). Any other input is a
 // scene file: read, written back and read again (which must succeed), shown, and evaluated once at
-// its initial state. Invariants (abort when violated): every refusal has a status and a message;
-// what the library prints it reads back. No crash, no leak, no hang (scripts/fuzz.sh; the corpus is
-// replayed by ctest).
+// its initial state, its events created. Invariants (abort when violated): every refusal has a
+// status and a message; what the library prints it reads back. No crash, no leak, no hang
+// (scripts/fuzz.sh; the corpus is replayed by ctest).
 #define _POSIX_C_SOURCE 200809L
 #include <stdint.h>
 #include <stdio.h>
@@ -99,6 +99,16 @@ static void scene(const char *text) {
   }
   dal_state *st = NULL;
   if (!dal_scene_state(sc, &st)) dal_forward(dal_scene_system(sc), st);
+  // the event and section lines: their set, each function once at the initial state
+  dal_events *ev = NULL;
+  if (st && !dal_scene_events(sc, &ev)) {
+    for (int i = 0; i < dal_events_size(ev); ++i)
+      need(dal_scene_event_is_section(sc, i) >= 0, "an event line or a section line", text);
+    dal_state_set_events(st, ev);
+    dal_state_set_events(st, NULL);
+  }
+  need(dal_scene_strobe(sc) >= 0, "a stroboscopic period >= 0", text);
+  dal_events_destroy(ev);
   dal_state_destroy(st);
   dal_scene_destroy(sc);
 }
