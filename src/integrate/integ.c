@@ -63,8 +63,8 @@ static void ode_destroy(dal_integ *it) {
   free(it->yi);
 }
 
-static const dal_integ_ops ode_ops = {ode_advance,    ode_window,    ode_place,
-                                      ode_place_end,  ode_new_output, ode_destroy};
+static const dal_integ_ops ode_ops = {ode_advance,   ode_window,     ode_place,
+                                      ode_place_end, ode_new_output, ode_destroy};
 
 // ---------------------------------------------------------------------------------------------
 // the DAE family: IDA on the GGL, index-3 and index-1 forms
