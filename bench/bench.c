@@ -16,6 +16,7 @@
 #include "hand.h"
 #include "ref.h"
 #include "scenes.h"
+#include "support/scenes.h"
 #include "util.h"
 
 #define PI 3.14159265358979323846
@@ -741,26 +742,14 @@ static void exp_stiff(const bench_cfg *cfg) {
   dal_method meths[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_ADAMS, DAL_METHOD_BDF};
   for (int ki = 0; ki < nk; ++ki) {
     // a bob on a very stiff spring of rest length 1 to the origin, in Cartesian coordinates
-    dal_builder *b = NULL;
     bench_model m;
     memset(&m, 0, sizeof m);
-    int xy[2], p, rc = dal_builder_create(2, &b);
-    double g[2] = {0.0, -9.81};
-    if (!rc) rc = dal_builder_add_coord(b, "x", &xy[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "y", &xy[1]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = xy;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    if (!rc) rc = dal_builder_set_gravity(b, g);
-    dal_spring_def sd = dal_default_spring_def(); // anchored at the origin
-    sd.a = p;
-    sd.k = ks[ki];
-    sd.length = 1.0;
-    if (!rc) rc = dal_builder_add_spring_def(b, &sd);
-    if (!rc) rc = dal_builder_compile(b, &m.sys);
+    scn_knobs kn = scn_default(); // anchored at the origin, no damper
+    kn.g = 9.81;
+    kn.k = ks[ki];
+    kn.l = 1.0;
+    m.sys = scn_hanging_spring(&kn);
+    int rc = m.sys ? DAL_OK : DAL_E_ARG;
     if (!rc) rc = dal_state_create(m.sys, &m.st);
     m.n = 2;
     // released from rest at the static stretch, so that the fast radial mode is not excited
@@ -769,7 +758,6 @@ static void exp_stiff(const bench_cfg *cfg) {
     double q0[2] = {len * sin(th0), -len * cos(th0)}, qd0[2] = {0.0, 0.0};
     m.q0 = q0;
     m.qd0 = qd0;
-    dal_builder_destroy(b);
     for (int ri = 0; ri < 2; ++ri)
       for (int mi = 0; !rc && mi < COUNT(meths); ++mi) {
         double rtol = rtols[ri];
@@ -796,41 +784,10 @@ static void exp_stiff(const bench_cfg *cfg) {
 
 // the spherical pendulum in minimal (theta, phi) or redundant (x, y, z + rod) coordinates
 static int spherical_model(int redundant, double th0, double thd0, double phd0, bench_model *m) {
-  dal_builder *b = NULL;
   memset(m, 0, sizeof *m);
-  int rc = dal_builder_create(3, &b), p, c[3];
-  double g[3] = {0.0, 0.0, -9.81};
-  if (!rc && !redundant) {
-    rc = dal_builder_add_coord(b, "theta", &c[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "phi", &c[1]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def(); // unit length, pivot at the origin
-    pd.prim = &dal_map_spherical;
-    pd.coords = c;
-    pd.ncoords = 2;
-    pd.param[DAL_SPHERICAL_L] = 1.0;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  } else if (!rc) {
-    rc = dal_builder_add_coord(b, "x", &c[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-    if (!rc) rc = dal_builder_add_coord(b, "z", &c[2]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian3;
-    pd.coords = c;
-    pd.ncoords = 3;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def(); // unit rod to the origin
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor3;
-    cd.parts = &p;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.0;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &m->sys);
-  dal_builder_destroy(b);
+  // unit length and mass, pivot at the origin (the scene library's)
+  m->sys = redundant ? scn_cart_spherical(NULL) : scn_spherical(NULL);
+  int rc = m->sys ? DAL_OK : DAL_E_ARG;
   if (!rc) rc = dal_state_create(m->sys, &m->st);
   int n = m->sys ? dal_system_ncoords(m->sys) : 0;
   m->n = n;

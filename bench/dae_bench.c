@@ -26,6 +26,7 @@
 
 #include "dalembert/dalembert.h"
 #include "hand.h"
+#include "support/scenes.h"
 #include "util.h"
 
 #define PI 3.14159265358979323846
@@ -55,71 +56,7 @@ static void chain_free(chain_model *m) {
 
 static int chain_reset(chain_model *m) { return dal_state_set(m->sys, m->st, 0.0, m->q0, m->qd0); }
 
-// add the chain to b: Cartesian particles with rods (cart) or link angles (pendulum + hanging)
-static int chain_add(dal_builder *b, chain_model *m) {
-  int rc = DAL_OK, N = m->N;
-  double x = 0.0, y = 0.0;
-  for (int i = 0; i < N && !rc; ++i) {
-    char name[32];
-    int p = -1, c[2];
-    snprintf(name, sizeof name, "p%d", i);
-    if (m->cart) {
-      for (int a = 0; a < 2 && !rc; ++a) {
-        char cn[32];
-        snprintf(cn, sizeof cn, "%c%d", "xy"[a], i);
-        rc = dal_builder_add_coord(b, cn, &c[a]);
-      }
-      if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-      dal_place_def pd = dal_default_place_def();
-      pd.prim = &dal_map_cartesian2;
-      pd.coords = c;
-      pd.ncoords = 2;
-      if (!rc) rc = dal_builder_place_def(b, p, &pd);
-      dal_constraint_def cd = dal_default_constraint_def();
-      int ends[2] = {p - 1, p};
-      snprintf(name, sizeof name, "rod%d", i);
-      cd.name = name;
-      if (i == 0) {
-        cd.prim = &dal_con_anchor2;
-        cd.parts = &ends[1];
-        cd.nparts = 1;
-        cd.param[DAL_ANCHOR_L] = 1.0;
-      } else {
-        cd.prim = &dal_con_distance2;
-        cd.parts = ends;
-        cd.nparts = 2;
-        cd.param[DAL_DISTANCE_L] = 1.0;
-      }
-      if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-      x += sin(CHAIN_TH0);
-      y -= cos(CHAIN_TH0);
-      m->q0[2 * i] = x;
-      m->q0[2 * i + 1] = y;
-    } else {
-      snprintf(name, sizeof name, "th%d", i);
-      rc = dal_builder_add_coord(b, name, &c[0]);
-      snprintf(name, sizeof name, "p%d", i);
-      if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-      dal_place_def pd = dal_default_place_def();
-      pd.coords = c;
-      pd.ncoords = 1;
-      if (i == 0) {
-        pd.prim = &dal_map_pendulum;
-        pd.param[DAL_PENDULUM_L] = 1.0;
-      } else {
-        pd.prim = &dal_map_hanging;
-        pd.parent = p - 1;
-        pd.param[DAL_HANGING_L] = 1.0;
-      }
-      if (!rc) rc = dal_builder_place_def(b, p, &pd);
-      m->q0[i] = CHAIN_TH0;
-    }
-  }
-  double g[2] = {0.0, -G_STD};
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return rc;
-}
-
+// the chain of the scene library (scn_cart_chain, scn_chain) and its initial state
 static int chain_build(int N, int cart, chain_model *m) {
   memset(m, 0, sizeof *m);
   m->N = N;
@@ -127,12 +64,21 @@ static int chain_build(int N, int cart, chain_model *m) {
   size_t n = (size_t)(cart ? 2 * N : N);
   m->q0 = calloc(n, sizeof(double));
   m->qd0 = calloc(n, sizeof(double));
-  dal_builder *b = NULL;
-  int rc = m->q0 && m->qd0 ? dal_builder_create(2, &b) : DAL_E_NOMEM;
-  if (!rc) rc = chain_add(b, m);
-  if (!rc) rc = dal_builder_compile(b, &m->sys);
-  if (rc && b) fprintf(stderr, "dal_bench_dae: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
+  int rc = m->q0 && m->qd0 ? DAL_OK : DAL_E_NOMEM;
+  double x = 0.0, y = 0.0;
+  for (int i = 0; i < N && !rc; ++i) {
+    x += sin(CHAIN_TH0);
+    y -= cos(CHAIN_TH0);
+    if (cart)
+      m->q0[2 * i] = x, m->q0[2 * i + 1] = y;
+    else
+      m->q0[i] = CHAIN_TH0;
+  }
+  scn_knobs k = scn_default();
+  k.g = G_STD;
+  k.N = N;
+  if (!rc) m->sys = cart ? scn_cart_chain(&k) : scn_chain(&k);
+  if (!rc && !m->sys) rc = DAL_E_ARG; // the builder's message is on stderr
   if (!rc) rc = dal_state_create(m->sys, &m->st);
   if (!rc) rc = chain_reset(m);
   if (rc) chain_free(m);

@@ -1,65 +1,28 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Benchmark: what output every 0.001 costs in dal_evolve (dense output) against one
-// dal_advance to the end, for Bulirsch-Stoer and DOPRI5 on a pendulum and a double pendulum.
+// dal_advance to the end, for Bulirsch-Stoer, DOPRI5, Fehlberg 7(8) and Adams on a pendulum and
+// a double pendulum.
 //
 // Each row runs both side by side, alternating, and keeps the median of the repeats; the
-// ratio is evolve / advance. Before dense output dal_evolve stepped to every output time
-// (Bulirsch-Stoer: 47 steps to t = 10 alone, 10,000 with output every 0.001, 30x the time).
-// Two monitors: one reading q only (no model evaluation at the outputs), one reading the
-// energies (one evaluation per output, like dal_csv_monitor).
-// Usage: dal_bench_dense [repeats] (default 7); prints a table (markdown) and CSV rows.
+// ratio is evolve / advance, taken pair by pair (median and min-max over the repeats). Before dense
+// output dal_evolve stepped to every output time (Bulirsch-Stoer: 47 steps to t = 10 alone, 10,000
+// with output every 0.001, 30x the time). Two monitors: one reading q only (no model evaluation at
+// the outputs), one reading the energies (one evaluation per output, like dal_csv_monitor). Usage:
+// dal_bench_dense [repeats] (default 7); prints a table (markdown) and CSV rows.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "dalembert/dalembert.h"
+#include "support/scenes.h"
 #include "util.h"
 
+// the pendulum (1 link) and the double pendulum (2) of the scene library
 static dal_system *chain(int links) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int rc = dal_builder_create(2, &b), prev = -1;
-  double g[2] = {0.0, -9.81};
-  for (int i = 0; i < links && !rc; ++i) {
-    int c, p;
-    char name[16];
-    snprintf(name, sizeof name, "th%d", i + 1);
-    rc = dal_builder_add_coord(b, name, &c);
-    snprintf(name, sizeof name, "bob%d", i + 1);
-    if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    dal_place_def d = dal_default_place_def();
-    d.coords = &c;
-    d.ncoords = 1;
-    if (prev < 0) {
-      d.prim = &dal_map_pendulum;
-      d.param[DAL_PENDULUM_L] = 1.0;
-    } else {
-      d.prim = &dal_map_hanging;
-      d.parent = prev;
-      d.param[DAL_HANGING_L] = 1.0;
-    }
-    if (!rc) rc = dal_builder_place_def(b, p, &d);
-    prev = p;
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
-
-static int read_q(const dal_system *sys, const dal_state *st, void *ctx) {
-  (void)sys;
-  *(double *)ctx += dal_state_q(st)[0];
-  return 0;
-}
-static int read_energy(const dal_system *sys, const dal_state *st, void *ctx) {
-  (void)sys;
-  dal_energies e;
-  if (dal_state_energies(st, &e)) return -1;
-  *(double *)ctx += e.E;
-  return 0;
+  scn_knobs k = scn_default();
+  k.N = links;
+  return scn_chain(&k);
 }
 
 // seconds for one run: mode 0 advance, 1 evolve reading q, 2 evolve reading the energies
@@ -69,8 +32,8 @@ static double one(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
   dal_state_set(s, st, 0.0, q, qd);
   double t0 = bench_now();
   int rc = mode == 0   ? dal_advance(s, st, o, t1)
-           : mode == 1 ? dal_evolve(s, st, o, t1, 0.001, read_q, &acc)
-                       : dal_evolve(s, st, o, t1, 0.001, read_energy, &acc);
+           : mode == 1 ? dal_evolve(s, st, o, t1, 0.001, scn_sum_q0, &acc)
+                       : dal_evolve(s, st, o, t1, 0.001, scn_sum_energy, &acc);
   double dt = bench_now() - t0;
   if (rc) fprintf(stderr, "run failed: %s\n", dal_state_errmsg(st));
   dal_stats sts;
@@ -83,7 +46,8 @@ static double one(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
 int main(int argc, char **argv) {
   int reps = argc > 1 ? atoi(argv[1]) : 7;
   if (reps < 1 || reps > 99) reps = 7;
-  const dal_method ms[2] = {DAL_METHOD_BS, DAL_METHOD_DOPRI5};
+  const dal_method ms[4] = {DAL_METHOD_BS, DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78,
+                            DAL_METHOD_ADAMS};
   const double tols[2] = {1e-6, 1e-10};
   printf("| scene | method | rtol | steps | advance (ms) | evolve, q (ms) | ratio | evolve, "
          "energies (ms) | ratio |\n|---|---|---|---|---|---|---|---|---|\n");
@@ -91,7 +55,7 @@ int main(int argc, char **argv) {
     dal_system *s = chain(links);
     dal_state *st = NULL;
     if (!s || dal_state_create(s, &st)) return 1;
-    for (int mi = 0; mi < 2; ++mi)
+    for (int mi = 0; mi < 4; ++mi)
       for (int ti = 0; ti < 2; ++ti) {
         dal_solve_opts o = dal_default_solve_opts();
         o.method = ms[mi];
@@ -101,13 +65,24 @@ int main(int argc, char **argv) {
         for (int r = 0; r < reps; ++r)
           for (int mode = 0; mode < 3; ++mode)
             t[mode][r] = one(s, st, &o, mode, &steps[mode], &evals[mode]);
-        double med[3];
+        double med[3], rq[99], re[99];
         for (int mode = 0; mode < 3; ++mode)
           med[mode] = bench_median(t[mode], reps);
-        printf("| %s | %s | %.0e | %ld | %.2f | %.2f | %.2f | %.2f | %.2f |\n",
-               links == 1 ? "pendulum" : "double pendulum", dal_method_name(ms[mi]), tols[ti],
-               steps[0], 1e3 * med[0], 1e3 * med[1], med[1] / med[0], 1e3 * med[2],
-               med[2] / med[0]);
+        // the ratios pair by pair (adjacent runs share the machine's load), median (min-max)
+        double lo[2] = {INFINITY, INFINITY}, hi[2] = {0, 0};
+        for (int r = 0; r < reps; ++r) {
+          rq[r] = t[1][r] / t[0][r];
+          re[r] = t[2][r] / t[0][r];
+          lo[0] = fmin(lo[0], rq[r]);
+          hi[0] = fmax(hi[0], rq[r]);
+          lo[1] = fmin(lo[1], re[r]);
+          hi[1] = fmax(hi[1], re[r]);
+        }
+        double mq = bench_median(rq, reps), me = bench_median(re, reps);
+        printf(
+            "| %s | %s | %.0e | %ld | %.2f | %.2f | %.2f (%.2f-%.2f) | %.2f | %.2f (%.2f-%.2f) |\n",
+            links == 1 ? "pendulum" : "double pendulum", dal_method_name(ms[mi]), tols[ti],
+            steps[0], 1e3 * med[0], 1e3 * med[1], mq, lo[0], hi[0], 1e3 * med[2], me, lo[1], hi[1]);
         if (steps[1] != steps[0])
           printf("(steps differ: %ld with outputs, %ld without)\n", steps[1], steps[0]);
       }

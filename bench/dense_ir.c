@@ -3,7 +3,7 @@
 // dal_bench_dense_ir: what output every 0.001 costs in dal_evolve against one dal_advance, in
 // instructions, for every adaptive method (the wall-time twin is bench/dense.c).
 //
-// Usage: dal_bench_dense_ir
+// Usage: dal_bench_dense_ir [METHOD]   (METHOD: only that method's rows, e.g. fehlberg78)
 //   the pendulum and the double pendulum of bench/dense.c (released at 2 and 1 rad, to t = 10)
 //   by DOPRI5, Fehlberg 7(8), Bulirsch-Stoer and Adams at rtol 1e-6 and 1e-10: one plain
 //   dal_advance, dal_evolve with a monitor reading q only, and one reading the energies, each
@@ -13,9 +13,11 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <valgrind/callgrind.h>
 
 #include "dalembert/dalembert.h"
+#include "support/scenes.h"
 
 #if defined(__GNUC__)
 #define BENCH_NOINLINE __attribute__((noinline))
@@ -23,61 +25,22 @@
 #define BENCH_NOINLINE
 #endif
 
+// the pendulum (1 link) and the double pendulum (2) of the scene library
 static dal_system *chain(int links) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int rc = dal_builder_create(2, &b), prev = -1;
-  double g[2] = {0.0, -9.81};
-  for (int i = 0; i < links && !rc; ++i) {
-    int c, p;
-    char name[16];
-    snprintf(name, sizeof name, "th%d", i + 1);
-    rc = dal_builder_add_coord(b, name, &c);
-    snprintf(name, sizeof name, "bob%d", i + 1);
-    if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    dal_place_def d = dal_default_place_def();
-    d.coords = &c;
-    d.ncoords = 1;
-    if (prev < 0) {
-      d.prim = &dal_map_pendulum;
-      d.param[DAL_PENDULUM_L] = 1.0;
-    } else {
-      d.prim = &dal_map_hanging;
-      d.parent = prev;
-      d.param[DAL_HANGING_L] = 1.0;
-    }
-    if (!rc) rc = dal_builder_place_def(b, p, &d);
-    prev = p;
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
-
-static int read_q(const dal_system *sys, const dal_state *st, void *ctx) {
-  (void)sys;
-  *(double *)ctx += dal_state_q(st)[0];
-  return 0;
-}
-static int read_energy(const dal_system *sys, const dal_state *st, void *ctx) {
-  (void)sys;
-  dal_energies e;
-  if (dal_state_energies(st, &e)) return -1;
-  *(double *)ctx += e.E;
-  return 0;
+  scn_knobs k = scn_default();
+  k.N = links;
+  return scn_chain(&k);
 }
 
 // the measured region: mode 0 advance, 1 evolve reading q, 2 evolve reading the energies
 static BENCH_NOINLINE int dense_region(const dal_system *s, dal_state *st, const dal_solve_opts *o,
                                        int mode, double *acc) {
   return mode == 0   ? dal_advance(s, st, o, 10.0)
-         : mode == 1 ? dal_evolve(s, st, o, 10.0, 0.001, read_q, acc)
-                     : dal_evolve(s, st, o, 10.0, 0.001, read_energy, acc);
+         : mode == 1 ? dal_evolve(s, st, o, 10.0, 0.001, scn_sum_q0, acc)
+                     : dal_evolve(s, st, o, 10.0, 0.001, scn_sum_energy, acc);
 }
 
-int main(void) {
+int main(int argc, char **argv) {
   static const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
                                   DAL_METHOD_ADAMS};
   static const double tols[] = {1e-6, 1e-10};
@@ -91,6 +54,7 @@ int main(void) {
     for (size_t mi = 0; mi < sizeof ms / sizeof ms[0]; ++mi)
       for (size_t ti = 0; ti < sizeof tols / sizeof tols[0]; ++ti)
         for (int mode = 0; mode < 3; ++mode) {
+          if (argc > 1 && strcmp(argv[1], dal_method_name(ms[mi])) != 0) continue;
           dal_solve_opts o = dal_default_solve_opts();
           o.method = ms[mi];
           o.rtol = tols[ti];

@@ -548,18 +548,10 @@ static int stiff_pot(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
 
 static dal_system *build_stiff(void) {
   dal_builder *b = NULL;
-  int c[4], p[2], rc = dal_builder_create(2, &b);
-  const char *nm[4] = {"x1", "y1", "x2", "y2"};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.ncoords = 2;
-  for (int i = 0; i < 2 && !rc; ++i) {
-    rc = dal_builder_add_particle(b, i ? "m2" : "m1", 1.0, &p[i]);
-    pd.coords = c + 2 * i;
-    if (!rc) rc = dal_builder_place_def(b, p[i], &pd);
-  }
+  scn_knobs free = scn_weightless();
+  int p[2], rc = scn_builder(&free, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "m1", 1.0, "x1", "y1", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "m2", 1.0, "x2", "y2", &p[1]);
   if (!rc) rc = dal_builder_add_potential_q(b, stiff_pot, NULL);
   return compile(b, rc);
 }
@@ -749,44 +741,6 @@ static int sicm_pot(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
   return 0;
 }
 
-static void rk4_replica(const double *y0, double T, double H, int naive, double *out) {
-  long double y[4] = {y0[0], y0[1], y0[2], y0[3]}, c[4] = {0, 0, 0, 0};
-  double yd[4] = {y0[0], y0[1], y0[2], y0[3]}, t = 0.0;
-  while (t < T) {
-    double tend = t + H;
-    if (tend > T - 1e-9 * H) tend = T;
-    double hd = tend - t;
-    if (naive) {
-      double k[4][4], yt[4];
-      for (int s = 0; s < 4; ++s) {
-        double a = s == 0 ? 0.0 : s == 3 ? hd : 0.5 * hd;
-        for (int i = 0; i < 4; ++i)
-          yt[i] = s ? yd[i] + a * k[s - 1][i] : yd[i];
-        k[s][0] = yt[2], k[s][1] = yt[3], k[s][2] = -yt[0], k[s][3] = -yt[1];
-      }
-      for (int i = 0; i < 4; ++i)
-        yd[i] = yd[i] + hd / 6.0 * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]);
-    } else {
-      long double h = hd, k[4][4], yt[4];
-      for (int s = 0; s < 4; ++s) {
-        long double a = s == 0 ? 0.0L : s == 3 ? h : 0.5L * h;
-        for (int i = 0; i < 4; ++i)
-          yt[i] = s ? y[i] + a * k[s - 1][i] : y[i];
-        k[s][0] = yt[2], k[s][1] = yt[3], k[s][2] = -yt[0], k[s][3] = -yt[1];
-      }
-      for (int i = 0; i < 4; ++i) {
-        long double d = h * (k[0][i] + 2 * (k[1][i] + k[2][i]) + k[3][i]) / 6 - c[i];
-        long double s = y[i] + d;
-        c[i] = (s - y[i]) - d;
-        y[i] = s;
-      }
-    }
-    t = tend;
-  }
-  for (int i = 0; i < 4; ++i)
-    out[i] = naive ? yd[i] : (double)y[i];
-}
-
 static double fit_slope(const double *x, const double *y, int n) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int m = 0;
@@ -802,15 +756,9 @@ static void rounding(void) {
   FILE *fp = bench_csv_open(outdir, "sym_rounding.csv", "what,h,N,rms_error,rms_over_sqrtN");
   if (!fp) return;
   dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  scn_knobs free = scn_weightless();
+  int p, rc = scn_builder(&free, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "m", 1.0, "x", "y", &p);
   if (!rc) rc = dal_builder_add_potential_q(b, unit_pot, NULL);
   dal_system *sys = compile(b, rc);
   dal_state *st = NULL;
@@ -842,8 +790,8 @@ static void rounding(void) {
         dal_state_set(sys, st, 0, y0, y0 + 2);
         dal_advance(sys, st, &o, T);
         double ref[4], nv[4];
-        rk4_replica(y0, T, H, 0, ref);
-        rk4_replica(y0, T, H, 1, nv);
+        scn_rk4_replica(y0, T, H, 0, ref);
+        scn_rk4_replica(y0, T, H, 1, nv);
         for (int i = 0; i < 2; ++i) {
           double dl = dal_state_q(st)[i] - ref[i], dv = dal_state_qdot(st)[i] - ref[2 + i];
           sl += dl * dl + dv * dv;
@@ -873,11 +821,8 @@ static void rounding(void) {
   dal_system_destroy(sys);
   // Bulirsch-Stoer on SICM's oscillator (mass 2, k = 1) at t = 10 against the closed form
   b = NULL;
-  rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 2.0, &p);
-  if (!rc) rc = dal_builder_place_def(b, p, &pd); // the same Cartesian placement
+  rc = scn_builder(&free, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "m", 2.0, "x", "y", &p);
   if (!rc) rc = dal_builder_add_potential_q(b, sicm_pot, NULL);
   sys = compile(b, rc);
   dal_state_create(sys, &st);

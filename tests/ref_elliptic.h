@@ -66,4 +66,28 @@ static inline void ref_pendulum(double theta0, double w0, double t, double *thet
   *thetadot = -2.0 * k * w0 * cn;
 }
 
+/// the start of the pendulum of length 1 released from rest at theta0: in its angle (cart 0:
+/// q = theta0) or in Cartesian coordinates about a pivot at the origin (cart 1: q = (x, y));
+/// qdot = 0 (q, qdot: 1 or 2 entries)
+static inline void ref_pendulum_start(double theta0, int cart, double *q, double *qdot) {
+  q[0] = cart ? sin(theta0) : theta0;
+  qdot[0] = 0.0;
+  if (cart) {
+    q[1] = -cos(theta0);
+    qdot[1] = 0.0;
+  }
+}
+
+/// the deviation of (q, qdot) at t from that pendulum's exact motion (length 1, w0 = sqrt(g)):
+/// the worst of the coordinates' errors and the velocities' errors / w0
+static inline double ref_pendulum_error(double theta0, double w0, int cart, double t,
+                                        const double *q, const double *v) {
+  double th, thd;
+  ref_pendulum(theta0, w0, t, &th, &thd);
+  if (cart)
+    return fmax(fmax(fabs(q[0] - sin(th)), fabs(q[1] + cos(th))),
+                fmax(fabs(v[0] - thd * cos(th)), fabs(v[1] - thd * sin(th))) / w0);
+  return fmax(fabs(q[0] - th), fabs(v[0] - thd) / w0);
+}
+
 #endif

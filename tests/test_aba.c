@@ -21,6 +21,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define PI 3.14159265358979323846
 #define MAXN 256
@@ -862,162 +863,21 @@ static void run_scene(dal_system *s, const double *q, const double *qd, int n, d
   dal_state_destroy(st);
 }
 
-// four-bar linkage: ground pivots A = (0, 0), D = (3, 0); crank AB = 1, coupler BC = 3.5,
-// rocker CD = 2 (massless links, masses at B and C). Tree: B pendulum about A, C hanging from
-// B; loop: rod CD. Cartesian: B, C with rods AB, BC, CD.
+// the four-bar linkage and the chain held at both ends (scenes.h), checked as built
 static void fourbar(int cart, dal_dynamics how, double th1, double w1, dal_system **s, double *q,
                     double *qd) {
-  const double a = 1.0, bl = 3.5, c = 2.0, Dx = 3.0;
-  double B[2] = {a * sin(th1), -a * cos(th1)};
-  // C on circle(B, bl) and circle(D, c), the lower intersection
-  double dx = Dx - B[0], dy = -B[1], dd = sqrt(dx * dx + dy * dy);
-  double al = (bl * bl - c * c + dd * dd) / (2 * dd), h = sqrt(bl * bl - al * al);
-  double C[2] = {B[0] + al * dx / dd + h * dy / dd, B[1] + al * dy / dd - h * dx / dd};
-  double th2 = atan2(C[0] - B[0], -(C[1] - B[1]));
-  // closure (C - D) . Cdot = 0 gives the coupler rate
-  double e1[2] = {cos(th1), sin(th1)}, e2[2] = {cos(th2), sin(th2)};
-  double CD[2] = {C[0] - Dx, C[1]};
-  double w2 = -a * w1 * (CD[0] * e1[0] + CD[1] * e1[1]) / (bl * (CD[0] * e2[0] + CD[1] * e2[1]));
-  double Bd[2] = {a * w1 * e1[0], a * w1 * e1[1]};
-  double Cd[2] = {Bd[0] + bl * w2 * e2[0], Bd[1] + bl * w2 * e2[1]};
-  dal_builder *b = NULL;
-  int p[2], cs[4], rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.81};
-  rc = rc ? rc : dal_builder_add_particle(b, "B", 1.0, &p[0]);
-  rc = rc ? rc : dal_builder_add_particle(b, "C", 2.0, &p[1]);
-  if (!cart) {
-    rc = rc ? rc : dal_builder_add_coord(b, "crank", &cs[0]);
-    rc = rc ? rc : dal_builder_add_coord(b, "coupler", &cs[1]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &cs[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = a;
-    rc = rc ? rc : dal_builder_place_def(b, p[0], &pd);
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_hanging;
-    pd.parent = p[0];
-    pd.coords = &cs[1];
-    pd.ncoords = 1;
-    pd.param[DAL_HANGING_L] = bl;
-    rc = rc ? rc : dal_builder_place_def(b, p[1], &pd);
-    q[0] = th1, q[1] = th2, qd[0] = w1, qd[1] = w2;
-  } else {
-    const char *nm[4] = {"xB", "yB", "xC", "yC"};
-    for (int i = 0; i < 4; ++i)
-      rc = rc ? rc : dal_builder_add_coord(b, nm[i], &cs[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = cs;
-    pd.ncoords = 2;
-    rc = rc ? rc : dal_builder_place_def(b, p[0], &pd);
-    pd.coords = cs + 2;
-    rc = rc ? rc : dal_builder_place_def(b, p[1], &pd);
-    dal_constraint_def cd = dal_default_constraint_def(); // B to the ground pivot A (origin)
-    cd.name = "AB";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &p[0];
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = a;
-    rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
-    cd = dal_default_constraint_def();
-    cd.name = "BC";
-    cd.prim = &dal_con_distance2;
-    cd.parts = p;
-    cd.nparts = 2;
-    cd.param[DAL_DISTANCE_L] = bl;
-    rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
-    q[0] = B[0], q[1] = B[1], q[2] = C[0], q[3] = C[1];
-    qd[0] = Bd[0], qd[1] = Bd[1], qd[2] = Cd[0], qd[3] = Cd[1];
-  }
-  dal_constraint_def cd = dal_default_constraint_def(); // C to the ground pivot D = (Dx, 0)
-  cd.name = "CD";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p[1];
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = c;
-  cd.param[DAL_ANCHOR_X0] = Dx;
-  rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
-  rc = rc ? rc : dal_builder_set_gravity(b, g);
-  rc = rc ? rc : dal_builder_set_dynamics(b, how);
-  rc = rc ? rc : dal_builder_compile(b, s);
-  CHECK_MSG(rc == 0, "fourbar: %s", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
+  scn_knobs k = scn_default();
+  k.dynamics = how;
+  *s = scn_fourbar(&k, cart, th1, w1, q, qd);
+  CHECK_MSG(*s != NULL, "fourbar");
 }
 
-// a chain of NL links of unit length and mass between A = (0, 0) and B = (NL sin 60deg, 0),
-// released from rest as a V. Tree: NL - 1 particles (pendulum, then hanging); loop: the last
-// rod to B. Cartesian: NL - 1 particles with NL rods.
 static void held_chain(int NL, int cart, dal_dynamics how, dal_system **s, double *q, double *qd) {
-  const double al = PI / 3.0;
-  double span = NL * sin(al), x = 0.0, y = 0.0;
-  dal_builder *b = NULL;
-  int rc = dal_builder_create(2, &b), prev = -1;
-  double g[2] = {0, -9.81};
-  for (int k = 0; k < NL - 1 && !rc; ++k) {
-    double th = k < NL / 2 ? al : PI - al;
-    int p, c[2];
-    x += sin(th);
-    y -= cos(th);
-    rc = dal_builder_add_particle(b, NULL, 1.0, &p);
-    if (!cart) {
-      rc = rc ? rc : dal_builder_add_coord(b, NULL, &c[0]);
-      // unit links: a pendulum about A at the origin, then each hanging from the previous
-      dal_place_def pd = dal_default_place_def();
-      pd.coords = c;
-      pd.ncoords = 1;
-      if (k == 0) {
-        pd.prim = &dal_map_pendulum;
-        pd.param[DAL_PENDULUM_L] = 1.0;
-      } else {
-        pd.prim = &dal_map_hanging;
-        pd.parent = prev;
-        pd.param[DAL_HANGING_L] = 1.0;
-      }
-      rc = rc ? rc : dal_builder_place_def(b, p, &pd);
-      q[k] = th;
-      qd[k] = 0.0;
-    } else {
-      rc = rc ? rc : dal_builder_add_coord(b, NULL, &c[0]);
-      rc = rc ? rc : dal_builder_add_coord(b, NULL, &c[1]);
-      dal_place_def pd = dal_default_place_def();
-      pd.prim = &dal_map_cartesian2;
-      pd.coords = c;
-      pd.ncoords = 2;
-      rc = rc ? rc : dal_builder_place_def(b, p, &pd);
-      // unit rods: the first to A at the origin, then between neighbours
-      int pair[2] = {prev, p};
-      dal_constraint_def cd = dal_default_constraint_def();
-      if (k == 0) {
-        cd.prim = &dal_con_anchor2;
-        cd.parts = &p;
-        cd.nparts = 1;
-        cd.param[DAL_ANCHOR_L] = 1.0;
-      } else {
-        cd.prim = &dal_con_distance2;
-        cd.parts = pair;
-        cd.nparts = 2;
-        cd.param[DAL_DISTANCE_L] = 1.0;
-      }
-      rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
-      q[2 * k] = x, q[2 * k + 1] = y;
-      qd[2 * k] = qd[2 * k + 1] = 0.0;
-    }
-    prev = p;
-  }
-  dal_constraint_def cd = dal_default_constraint_def(); // the last unit rod to B = (span, 0)
-  cd.name = "held";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &prev;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.param[DAL_ANCHOR_X0] = span;
-  rc = rc ? rc : dal_builder_add_constraint_def(b, &cd, NULL);
-  rc = rc ? rc : dal_builder_set_gravity(b, g);
-  rc = rc ? rc : dal_builder_set_dynamics(b, how);
-  rc = rc ? rc : dal_builder_compile(b, s);
-  CHECK_MSG(rc == 0, "held chain: %s", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
+  scn_knobs k = scn_default();
+  k.dynamics = how;
+  k.N = NL;
+  *s = scn_held_chain(&k, cart, q, qd);
+  CHECK_MSG(*s != NULL, "held chain");
 }
 
 static void test_loops_vs_cartesian(void) {

@@ -224,6 +224,7 @@ typedef struct scen {
   dal_formulation form;
   dal_linsol linsol;
   int integrate, consistent;
+  int record; // the run records a dal_trajectory (over 2 s: its storage grows)
 } scen;
 
 static int scenario(const scen *sc) {
@@ -231,6 +232,7 @@ static int scenario(const scen *sc) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   dal_state *st = NULL;
+  dal_trajectory *tr = NULL;
   if (build(&r, sc->N, sc->minimal, &b, &sys) == DAL_OK) {
     int rc = dal_state_create(sys, &st);
     note(&r, rc, "(no state)");
@@ -248,9 +250,14 @@ static int scenario(const scen *sc) {
       o.rtol = 1e-6;
       o.atol = 1e-8;
       o.project = sc->form == DAL_FORM_INDEX1;
-      note(&r, dal_advance(sys, st, &o, 0.02), dal_state_errmsg(st));
+      if (sc->record) {
+        note(&r, dal_trajectory_create(sys, &tr), "(no trajectory)");
+        if (!r.rc) note(&r, dal_state_set_trajectory(st, tr), dal_state_errmsg(st));
+      }
+      if (!r.rc) note(&r, dal_advance(sys, st, &o, sc->record ? 2.0 : 0.02), dal_state_errmsg(st));
     }
   }
+  dal_trajectory_destroy(tr);
   dal_state_destroy(st);
   dal_system_destroy(sys);
   dal_builder_destroy(b);
@@ -258,21 +265,24 @@ static int scenario(const scen *sc) {
 }
 
 static const scen scens[] = {
-    {"forward, chain of 3 (dense KKT)", 3, 0, DAL_METHOD_AUTO, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 0,
-     1},
-    {"forward, chain of 70 (sparse KKT)", 70, 0, DAL_METHOD_AUTO, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 0,
-     1},
-    {"dopri5, double pendulum", 2, 1, DAL_METHOD_DOPRI5, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0},
-    {"fehlberg78, double pendulum", 2, 1, DAL_METHOD_FEHLBERG78, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1,
+    {"forward, chain of 3 (dense KKT)", 3, 0, DAL_METHOD_AUTO, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 0, 1,
      0},
-    {"bs, double pendulum", 2, 1, DAL_METHOD_BS, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0},
-    {"rk4, double pendulum", 2, 1, DAL_METHOD_RK4, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0},
-    {"adams, double pendulum", 2, 1, DAL_METHOD_ADAMS, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0},
-    {"bdf, double pendulum", 2, 1, DAL_METHOD_BDF, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0},
+    {"forward, chain of 70 (sparse KKT)", 70, 0, DAL_METHOD_AUTO, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 0,
+     1, 0},
+    {"dopri5, double pendulum", 2, 1, DAL_METHOD_DOPRI5, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0, 0},
+    {"fehlberg78, double pendulum", 2, 1, DAL_METHOD_FEHLBERG78, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1,
+     0, 0},
+    {"bs, double pendulum", 2, 1, DAL_METHOD_BS, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0, 0},
+    {"rk4, double pendulum", 2, 1, DAL_METHOD_RK4, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0, 0},
+    {"adams, double pendulum", 2, 1, DAL_METHOD_ADAMS, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0, 0},
+    {"bdf, double pendulum", 2, 1, DAL_METHOD_BDF, DAL_FORM_AUTO, DAL_LINSOL_AUTO, 1, 0, 0},
     {"index-1 + projection, dopri5, chain of 2", 2, 0, DAL_METHOD_DOPRI5, DAL_FORM_INDEX1,
-     DAL_LINSOL_AUTO, 1, 0},
-    {"ggl in IDA (dense), chain of 2", 2, 0, DAL_METHOD_BDF, DAL_FORM_GGL, DAL_LINSOL_DENSE, 1, 0},
-    {"ggl in IDA (KLU), chain of 2", 2, 0, DAL_METHOD_BDF, DAL_FORM_GGL, DAL_LINSOL_KLU, 1, 0},
+     DAL_LINSOL_AUTO, 1, 0, 0},
+    {"ggl in IDA (dense), chain of 2", 2, 0, DAL_METHOD_BDF, DAL_FORM_GGL, DAL_LINSOL_DENSE, 1, 0,
+     0},
+    {"ggl in IDA (KLU), chain of 2", 2, 0, DAL_METHOD_BDF, DAL_FORM_GGL, DAL_LINSOL_KLU, 1, 0, 0},
+    {"dopri5 recording a trajectory, double pendulum", 2, 1, DAL_METHOD_DOPRI5, DAL_FORM_AUTO,
+     DAL_LINSOL_AUTO, 1, 0, 1},
 };
 
 // ---------------------------------------------------------------- allocations in steps
@@ -352,6 +362,6 @@ int main(void) {
   }
   printf("%ld injection points in all\n", total);
   for (int i = 2; i < nsc; ++i)
-    steps_allocate(&scens[i]);
+    if (!scens[i].record) steps_allocate(&scens[i]);
   return check_summary("test_alloc");
 }

@@ -72,21 +72,13 @@ static dal_system *driven_pendulum(void) {
 
 // bead (mass m) on a ring of radius R turning at w about the vertical axis
 static dal_system *ring(double m, double R, double w) {
-  dal_builder *b = NULL;
-  int th, bead, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", m, &bead);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_ring;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = R;
-  pd.param[DAL_RING_W] = w;
-  pd.param[DAL_RING_PHI0] = 0.2;
-  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = grav;
+  k.m = m;
+  k.R = R;
+  k.spin = w;
+  k.phi0 = 0.2;
+  return built(scn_bead(&k));
 }
 
 // an anchor moving on a circle of radius 0.3 at rate 1.3 about (0.2, 1.5)
@@ -119,20 +111,12 @@ static int pot_q(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
 // gravity and both kinds of potential
 static dal_system *springs(void) {
   dal_builder *b = NULL;
-  int c[4], p[2], rc = dal_builder_create(2, &b);
-  const char *names[4] = {"x1", "y1", "x2", "y2"};
-  double g[2] = {0, -grav}, x0[2] = {-0.5, 0.8};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, names[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "a", 1.3, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "b", 0.6, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd.coords = c + 2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+  scn_knobs k = scn_default();
+  k.g = grav;
+  double x0[2] = {-0.5, 0.8};
+  int p[2], rc = scn_builder(&k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "a", 1.3, "x1", "y1", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "b", 0.6, "x2", "y2", &p[1]);
   dal_spring_def sd = dal_default_spring_def();
   sd.a = p[0];
   sd.path = circle_path;
@@ -167,7 +151,6 @@ static dal_system *springs(void) {
   if (!rc) rc = dal_builder_add_damper_def(b, &dd);
   if (!rc) rc = dal_builder_add_potential_r(b, pot_r, NULL);
   if (!rc) rc = dal_builder_add_potential_q(b, pot_q, NULL);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
   return compile(b, rc);
 }
 
@@ -195,82 +178,21 @@ static dal_system *paraboloid(void) {
 }
 
 static dal_system *spherical(void) {
-  dal_builder *b = NULL;
-  int q[2], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "phi", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 0.9, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_spherical;
-  pd.coords = q;
-  pd.ncoords = 2;
-  pd.param[DAL_SPHERICAL_L] = 1.2;
-  pd.param[DAL_SPHERICAL_X0] = 0.1;
-  pd.param[DAL_SPHERICAL_Y0] = -0.2;
-  pd.param[DAL_SPHERICAL_Z0] = 0.3;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return compile(b, rc);
+  scn_knobs k = scn_default();
+  k.g = grav;
+  k.m = 0.9;
+  k.l = 1.2;
+  k.x0 = 0.1;
+  k.y0 = -0.2;
+  k.z0 = 0.3;
+  return built(scn_spherical(&k));
 }
 
-// rotating frame: r = Rot(w t) (x, y); param (w)
-static int rotating(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
-  (void)ctx;
-  dal_jet s, c;
-  dal_sincos(dal_scale(t, p[0]), &s, &c);
-  out[0] = dal_sub(dal_mul(in[0], c), dal_mul(in[1], s));
-  out[1] = dal_add(dal_mul(in[0], s), dal_mul(in[1], c));
-  return 0;
-}
-static const dal_primitive prim_rotating = {.name = "rotating",
-                                            .version = 1,
-                                            .nin = 2,
-                                            .nout = 2,
-                                            .nparam = 1,
-                                            .eval = rotating,
-                                            .doc = "in (x, y); param (w); out Rot(w t) (x, y)"};
-
-// an anisotropic trap U = (k1 x'^2 + k2 y'^2)/2 turning with the frame (x', y' the rotating
-// components of r)
-typedef struct trap {
-  double w, k1, k2;
-} trap;
-
-static int trap_pot(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
-  const trap *tr = ctx;
-  dal_jet s, c;
-  dal_sincos(dal_scale(t, tr->w), &s, &c);
-  dal_jet xp = dal_add(dal_mul(r[0], c), dal_mul(r[1], s));
-  dal_jet yp = dal_sub(dal_mul(r[1], c), dal_mul(r[0], s));
-  *U = dal_add(dal_scale(dal_sq(xp), 0.5 * tr->k1), dal_scale(dal_sq(yp), 0.5 * tr->k2));
-  return 0;
-}
+// an ion in an anisotropic trap turning with the frame (scenes.h)
+typedef scn_trap trap;
 
 static dal_system *rotating_trap(const trap *tr, double m) {
-  dal_builder *b = NULL;
-  int q[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "ion", m, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &prim_rotating;
-  pd.coords = q;
-  pd.ncoords = 2;
-  pd.param[0] = tr->w;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
-  return compile(b, rc);
-}
-
-// a particle hanging from a spring (k, rest L) with a damper c at the origin, Cartesian
-static dal_system *hanging_spring(double m, double k, double L, double c) {
-  scn_knobs kn = scn_default();
-  kn.m = m;
-  kn.k = k;
-  kn.l = L;
-  kn.c = c;
-  return built(scn_hanging_spring(&kn));
+  return built(scn_rotating_trap(tr, m));
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -653,7 +575,10 @@ static void test_double_pendulum_modes(void) {
 static void test_spring_damper(void) {
   int fails0 = check_failures;
   const double m = 0.7, k = 40.0, L = 0.5, c = 1.1;
-  dal_system *sys = hanging_spring(m, k, L, c);
+  // a particle hanging from a spring (k, rest L) with a damper c at the origin, Cartesian
+  scn_knobs kn = scn_default();
+  kn.m = m, kn.k = k, kn.l = L, kn.c = c;
+  dal_system *sys = built(scn_hanging_spring(&kn));
   dal_state *st = NULL;
   CHECK_OK(dal_state_create(sys, &st));
   // the equilibrium from a nearby start: y* = -(L + m g / k)
@@ -911,28 +836,13 @@ static void test_refusals(void) {
   if (!rc) rc = dal_builder_add_genforce(b, gdrag, NULL);
   expect_refusal("Lagrangian with a callback", compile(b, rc), DAL_E_UNSUPPORTED,
                  "no exact derivative");
-  // constraints
-  int c[2];
-  rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+  // constraints: the Cartesian pendulum without gravity
+  scn_knobs free = scn_default();
+  free.g = 0.0;
   // constraints are covered by every tool (test_analysis_manifold); Lyapunov vectors start on
   // the manifold's tangent space, so initial vectors y0 are refused
   {
-    dal_system *cs = compile(b, rc);
+    dal_system *cs = built(scn_cart_pendulum(&free));
     dal_state *cst = NULL;
     double z[2] = {0.0, -1.0}, zv[2] = {0.0, 0.0}, ex[4], y0[4] = {1, 0, 0, 0};
     CHECK(cs && dal_state_create(cs, &cst) == 0 && dal_state_set(cs, cst, 0.0, z, zv) == 0);
@@ -952,15 +862,8 @@ static void test_refusals(void) {
   }
   // force callbacks (Cartesian and generalized)
   for (int g = 0; g < 2; ++g) {
-    rc = dal_builder_create(2, &b);
-    if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    rc = scn_builder(&free, 2, &b);
+    if (!rc) rc = scn_add_xy(b, "bob", 1.0, "x", "y", &p);
     if (!rc)
       rc = g ? dal_builder_add_genforce(b, gdrag, NULL) : dal_builder_add_force(b, drag, NULL);
     expect_refusal("force callback", compile(b, rc), DAL_E_UNSUPPORTED, "no exact derivative");
@@ -970,7 +873,7 @@ static void test_refusals(void) {
   rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "th", &q);
   if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  pd = dal_default_place_def();
+  dal_place_def pd = dal_default_place_def();
   pd.prim = &prim_hand;
   pd.coords = &q;
   pd.ncoords = 1;

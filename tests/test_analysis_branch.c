@@ -17,27 +17,19 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 static const double grav = 9.81, R = 0.4, mass = 0.25;
 
 static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
-  dal_builder *b = NULL;
-  int th, bead, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_ring;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = R;
-  pd.param[DAL_RING_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, out);
-  dal_builder_destroy(b);
-  return rc;
+  scn_knobs k = scn_default();
+  k.g = grav;
+  k.R = R;
+  k.m = mass;
+  k.spin = w;
+  *out = scn_bead(&k);
+  return *out ? DAL_OK : DAL_E_ARG;
 }
 
 typedef struct branch {

@@ -33,21 +33,13 @@
 #include "dalembert/dalembert.h"
 #include "scenes.h"
 
-static dal_system *compile(dal_builder *b, int rc) {
-  dal_system *sys = NULL;
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  CHECK_MSG(rc == 0, "build: %s", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
-}
-
-// vertically driven pendulum (l = 1, m = 1, g = 9.8), pivot y = a cos(w t)
-// a standard scene, checked as compile() checks the scenes built here
+// a standard scene, checked as built
 static dal_system *built(dal_system *sys) {
   CHECK(sys != NULL);
   return sys;
 }
 
+// vertically driven pendulum (l = 1, m = 1, g = 9.8), pivot y = a cos(w t)
 static dal_system *driven(double a, double w) {
   scn_knobs k = scn_default();
   k.g = 9.8;
@@ -59,57 +51,9 @@ static dal_system *driven(double a, double w) {
 static dal_system *double_pendulum(void) { return built(scn_double_pendulum(NULL)); }
 
 // rotating frame r = Rot(w t) (x, y) and a trap U = (k1 x'^2 + k2 y'^2)/2 turning with it
-static int rotating(const dal_jet *in, dal_jet t, const double *p, dal_jet *out, void *ctx) {
-  (void)ctx;
-  dal_jet s, c;
-  dal_sincos(dal_scale(t, p[0]), &s, &c);
-  out[0] = dal_sub(dal_mul(in[0], c), dal_mul(in[1], s));
-  out[1] = dal_add(dal_mul(in[0], s), dal_mul(in[1], c));
-  return 0;
-}
-static const dal_primitive prim_rotating = {.name = "rotating",
-                                            .version = 1,
-                                            .nin = 2,
-                                            .nout = 2,
-                                            .nparam = 1,
-                                            .eval = rotating,
-                                            .doc = "Rot(w t) (x, y)"};
-typedef struct trap {
-  double w, k1, k2;
-} trap;
-static int trap_pot(const dal_jet *r, dal_jet t, dal_jet *U, void *ctx) {
-  const trap *tr = ctx;
-  dal_jet s, c;
-  dal_sincos(dal_scale(t, tr->w), &s, &c);
-  dal_jet xp = dal_add(dal_mul(r[0], c), dal_mul(r[1], s));
-  dal_jet yp = dal_sub(dal_mul(r[1], c), dal_mul(r[0], s));
-  *U = dal_add(dal_scale(dal_sq(xp), 0.5 * tr->k1), dal_scale(dal_sq(yp), 0.5 * tr->k2));
-  return 0;
-}
-static dal_system *rotating_trap(const trap *tr) {
-  dal_builder *b = NULL;
-  int q[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "ion", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &prim_rotating;
-  pd.coords = q;
-  pd.ncoords = 2;
-  pd.param[0] = tr->w;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_add_potential_r(b, trap_pot, (void *)tr);
-  return compile(b, rc);
-}
+typedef scn_trap trap;
 
-static dal_system *hanging_spring(double m, double k, double L, double c) {
-  scn_knobs kn = scn_default();
-  kn.m = m;
-  kn.k = k;
-  kn.l = L;
-  kn.c = c;
-  return built(scn_hanging_spring(&kn));
-}
+static dal_system *rotating_trap(const trap *tr) { return built(scn_rotating_trap(tr, 1.0)); }
 
 // run dal_lyapunov from (t0, q, qdot); returns its status
 static int run(const dal_system *sys, dal_state *st, double t0, const double *q, const double *qd,
@@ -148,7 +92,9 @@ static void test_linear(void) {
   dal_system_destroy(sys);
   // damped spring at rest: real parts 0, 0, -c/2m, -c/2m; the sum is exactly -c/m
   const double m = 0.7, k = 40.0, L = 0.5, c = 0.3, ell = L + m * 9.81 / k;
-  sys = hanging_spring(m, k, L, c);
+  scn_knobs kn = scn_default(); // hanging from a spring (k, rest L) with a damper c
+  kn.m = m, kn.k = k, kn.l = L, kn.c = c;
+  sys = built(scn_hanging_spring(&kn));
   CHECK_OK(dal_state_create(sys, &st));
   double q[2] = {0, -ell};
   if (!run(sys, st, 0.0, q, z, &o, ex, er)) {

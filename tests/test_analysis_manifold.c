@@ -93,35 +93,11 @@ static void cart_pendulum(void) {
 
 static dal_system *double_pendulum(double m1, double m2, double l1, double l2) {
   dal_builder *b = NULL;
-  int c[4], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  const char *names[4] = {"x1", "y1", "x2", "y2"};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, names[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "p1", m1, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "p2", m2, &p[1]);
-  for (int k = 0; k < 2 && !rc; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    rc = dal_builder_place_def(b, p[k], &d);
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def k1 = dal_default_constraint_def();
-  k1.name = "rod1";
-  k1.prim = &dal_con_anchor2;
-  k1.parts = p;
-  k1.nparts = 1;
-  k1.param[DAL_ANCHOR_L] = l1;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k1, NULL);
-  dal_constraint_def k2 = dal_default_constraint_def();
-  k2.name = "rod2";
-  k2.prim = &dal_con_distance2;
-  k2.parts = p;
-  k2.nparts = 2;
-  k2.param[DAL_DISTANCE_L] = l2;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
+  int p[2], rc = scn_builder(NULL, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "p1", m1, "x1", "y1", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "p2", m2, "x2", "y2", &p[1]);
+  if (!rc) rc = scn_add_rod(b, "rod1", p[0], -1, l1, NULL);
+  if (!rc) rc = scn_add_rod(b, "rod2", p[0], p[1], l2, NULL);
   return scn_finish(b, rc);
 }
 
@@ -260,43 +236,14 @@ static const double FB_A = 1.0, FB_B = 1.2, FB_C = 0.9, FB_D = 1.5, FB_MB = 1.0,
 
 static dal_system *fourbar(void) {
   dal_builder *b = NULL;
-  int c[4], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  const char *names[4] = {"xB", "yB", "xC", "yC"};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, names[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "B", FB_MB, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "C", FB_MC, &p[1]);
-  for (int k = 0; k < 2 && !rc; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    rc = dal_builder_place_def(b, p[k], &d);
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def crank = dal_default_constraint_def();
-  crank.name = "crank";
-  crank.prim = &dal_con_anchor2;
-  crank.parts = &p[0];
-  crank.nparts = 1;
-  crank.param[DAL_ANCHOR_L] = FB_A;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &crank, NULL);
-  dal_constraint_def coupler = dal_default_constraint_def();
-  coupler.name = "coupler";
-  coupler.prim = &dal_con_distance2;
-  coupler.parts = p;
-  coupler.nparts = 2;
-  coupler.param[DAL_DISTANCE_L] = FB_B;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &coupler, NULL);
-  dal_constraint_def rocker = dal_default_constraint_def();
-  rocker.name = "rocker";
-  rocker.prim = &dal_con_anchor2;
-  rocker.parts = &p[1];
-  rocker.nparts = 1;
-  rocker.param[DAL_ANCHOR_L] = FB_C;
-  rocker.param[DAL_ANCHOR_X0] = FB_D;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &rocker, NULL);
+  scn_knobs k = scn_default();
+  int p[2], rc = scn_builder(&k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "B", FB_MB, "xB", "yB", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "C", FB_MC, "xC", "yC", &p[1]);
+  if (!rc) rc = scn_add_rod(b, "crank", p[0], -1, FB_A, &k);
+  if (!rc) rc = scn_add_rod(b, "coupler", p[0], p[1], FB_B, &k);
+  k.x0 = FB_D;
+  if (!rc) rc = scn_add_rod(b, "rocker", p[1], -1, FB_C, &k);
   return scn_finish(b, rc);
 }
 
@@ -367,28 +314,10 @@ static void fourbar_mode(void) {
 static const double BEAD_R = 0.6;
 
 static dal_system *cart_bead(double w) {
-  dal_builder *b = NULL;
-  int c[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0.0, 0.0, -G0};
-  const char *names[3] = {"x", "y", "z"};
-  for (int i = 0; i < 3 && !rc; ++i)
-    rc = dal_builder_add_coord(b, names[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_cartesian3;
-  d.coords = c;
-  d.ncoords = 3;
-  if (!rc) rc = dal_builder_place_def(b, p, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def k = dal_default_constraint_def();
-  k.name = "ring";
-  k.prim = &dal_con_turning_circle;
-  k.parts = &p;
-  k.nparts = 1;
-  k.param[DAL_TURNING_CIRCLE_R] = BEAD_R;
-  k.param[DAL_TURNING_CIRCLE_W] = w;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k, NULL);
-  return scn_finish(b, rc);
+  scn_knobs k = scn_default();
+  k.R = BEAD_R;
+  k.spin = w;
+  return scn_cart_bead(&k);
 }
 
 static int bead_rebuild(double w, dal_system **out, void *ctx) {

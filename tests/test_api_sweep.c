@@ -235,14 +235,27 @@ static void sw_dal_check_constraints(void) {
   ST(dal_check_constraints(F.B, F.stA, &rep), DAL_E_STATE, F.stA);
   ST(dal_check_constraints(F.A, F.stA, NULL), DAL_OK, F.stA);
 }
+// a (system, const state, out) reader: NULL state, NULL or foreign system, NULL out, then ok
+typedef int state_reader_fn(const dal_system *sys, const dal_state *st, double *out);
+static void reader_rows(state_reader_fn *fn, const dal_system *own, dal_state *st,
+                        const dal_system *other, double *out) {
+  ST(fn(own, NULL, out), DAL_E_ARG, NULL);
+  ST(fn(NULL, st, out), DAL_E_STATE, st);
+  ST(fn(other, st, out), DAL_E_STATE, st);
+  ST(fn(own, st, NULL), DAL_E_ARG, st);
+  ST(fn(own, st, out), DAL_OK, st);
+}
+static void sw_dal_joint_forces(void) {
+  double Fo[2];
+  CHECK_OK(dal_forward(F.B, F.stB));
+  reader_rows(dal_joint_forces, F.B, F.stB, F.A, Fo);
+  CHECK(isfinite(Fo[0]) && isfinite(Fo[1]) && Fo[1] > 0); // the rod holds the bob up
+  st_intact();
+}
 static void sw_dal_constraint_forces(void) {
   double Fo[2];
   CHECK_OK(dal_forward(F.A, F.stA));
-  ST(dal_constraint_forces(F.A, NULL, Fo), DAL_E_ARG, NULL);
-  ST(dal_constraint_forces(NULL, F.stA, Fo), DAL_E_STATE, F.stA);
-  ST(dal_constraint_forces(F.B, F.stA, Fo), DAL_E_STATE, F.stA);
-  ST(dal_constraint_forces(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
-  ST(dal_constraint_forces(F.A, F.stA, Fo), DAL_OK, F.stA);
+  reader_rows(dal_constraint_forces, F.A, F.stA, F.B, Fo);
   // the minimal system has no explicit constraints: zero forces, DAL_OK
   double Fb[2] = {7, 7};
   ST(dal_constraint_forces(F.B, F.stB, Fb), DAL_OK, F.stB);
@@ -250,11 +263,7 @@ static void sw_dal_constraint_forces(void) {
 }
 static void sw_dal_constraint_genforces(void) {
   double Q[2];
-  ST(dal_constraint_genforces(F.A, NULL, Q), DAL_E_ARG, NULL);
-  ST(dal_constraint_genforces(NULL, F.stA, Q), DAL_E_STATE, F.stA);
-  ST(dal_constraint_genforces(F.B, F.stA, Q), DAL_E_STATE, F.stA);
-  ST(dal_constraint_genforces(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
-  ST(dal_constraint_genforces(F.A, F.stA, Q), DAL_OK, F.stA);
+  reader_rows(dal_constraint_genforces, F.A, F.stA, F.B, Q);
 }
 
 // ---------------------------------------------------------------- rows: primitives.h
@@ -315,6 +324,20 @@ static void sw_dal_evolve(void) {
   ST(dal_evolve(F.A, F.stA, &F.o, 1.0, INFINITY, NULL, NULL), DAL_E_NONFINITE, F.stA);
   ST(dal_evolve(F.A, F.stA, &F.o, 1.0, 0.0, NULL, NULL), DAL_E_ARG, F.stA);
   ST(dal_evolve(F.A, F.stA, &F.o, 1.0, -0.1, NULL, NULL), DAL_E_ARG, F.stA);
+  st_intact();
+}
+static void sw_dal_evolve_at(void) {
+  const double ts[2] = {0.5, 1.0}, dec[3] = {0.5, 1.0, 0.7}, nan2[2] = {0.5, NAN};
+  const double back[2] = {-1.0, 1.0};
+  ST(dal_evolve_at(F.A, NULL, &F.o, ts, 2, NULL, NULL), DAL_E_ARG, NULL);
+  ST(dal_evolve_at(NULL, F.stA, &F.o, ts, 2, NULL, NULL), DAL_E_STATE, F.stA);
+  ST(dal_evolve_at(F.B, F.stA, &F.o, ts, 2, NULL, NULL), DAL_E_STATE, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, NULL, ts, 2, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, NULL, 2, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, ts, 0, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, dec, 3, NULL, NULL), DAL_E_ARG, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, nan2, 2, NULL, NULL), DAL_E_NONFINITE, F.stA);
+  ST(dal_evolve_at(F.A, F.stA, &F.o, back, 2, NULL, NULL), DAL_E_TIME, F.stA);
   st_intact();
 }
 static void sw_dal_csv_monitor(void) {
@@ -1684,6 +1707,53 @@ static void sw_dal_state_set_events(void) {
   CHECK(dal_state_set_events(F.stA, NULL) == DAL_OK);
   dal_events_destroy(ev);
 }
+static void sw_dal_trajectory_create(void) {
+  dal_trajectory *tr = (dal_trajectory *)&F; // overwritten with NULL on failure
+  CHECK(dal_trajectory_create(NULL, &tr) == DAL_E_ARG && tr == NULL);
+  CHECK(dal_trajectory_create(F.B, NULL) == DAL_E_ARG);
+  CHECK(dal_trajectory_create(F.B, &tr) == DAL_OK && tr != NULL);
+  dal_trajectory_destroy(tr);
+}
+static void sw_dal_trajectory_destroy(void) { dal_trajectory_destroy(NULL); }
+static void sw_dal_trajectory_errmsg(void) { CHECK(strcmp(dal_trajectory_errmsg(NULL), "") == 0); }
+static void sw_dal_state_set_trajectory(void) {
+  dal_trajectory *tr = NULL;
+  CHECK_OK(dal_trajectory_create(F.A, &tr));
+  CHECK(dal_state_set_trajectory(NULL, tr) == DAL_E_ARG);
+  ST(dal_state_set_trajectory(F.stB, tr), DAL_E_STATE, F.stB); // another system's
+  CHECK(dal_state_set_trajectory(F.stA, NULL) == DAL_OK);
+  dal_trajectory_destroy(tr);
+}
+static void sw_dal_trajectory_span(void) {
+  dal_trajectory *tr = NULL;
+  double t0 = 0, t1 = 0;
+  CHECK(dal_trajectory_span(NULL, &t0, &t1) == DAL_E_ARG);
+  CHECK_OK(dal_trajectory_create(F.B, &tr));
+  CHECK(dal_trajectory_span(tr, &t0, &t1) == 0 && isnan(t0) && isnan(t1));
+  CHECK(dal_trajectory_span(tr, NULL, NULL) == 0);
+  dal_trajectory_destroy(tr);
+}
+static void sw_dal_trajectory_eval(void) {
+  dal_trajectory *tr = NULL;
+  dal_state *st = NULL;
+  double q = 0.3, qd = 0, qo, vo;
+  CHECK(dal_trajectory_eval(NULL, 0.0, &qo, &vo) == DAL_E_ARG);
+  CHECK_OK(dal_trajectory_create(F.B, &tr));
+  CHECK(dal_trajectory_eval(tr, 0.0, &qo, &vo) == DAL_E_ARG && dal_trajectory_errmsg(tr)[0]);
+  CHECK_OK(dal_state_create(F.B, &st));
+  CHECK_OK(dal_state_set(F.B, st, 0.0, &q, &qd));
+  CHECK_OK(dal_state_set_trajectory(st, tr));
+  CHECK_OK(dal_advance(F.B, st, &F.o, 0.5));
+  CHECK(dal_trajectory_eval(tr, NAN, &qo, &vo) == DAL_E_NONFINITE && dal_trajectory_errmsg(tr)[0]);
+  CHECK(dal_trajectory_eval(tr, INFINITY, &qo, &vo) == DAL_E_NONFINITE);
+  CHECK(dal_trajectory_eval(tr, 0.6, &qo, &vo) == DAL_E_ARG && dal_trajectory_errmsg(tr)[0]);
+  CHECK(dal_trajectory_eval(tr, -0.1, &qo, &vo) == DAL_E_ARG);
+  CHECK(dal_trajectory_eval(tr, 0.25, NULL, NULL) == DAL_OK);
+  CHECK(dal_trajectory_eval(tr, 0.5, &qo, NULL) == DAL_OK && qo == dal_state_q(st)[0]);
+  CHECK(dal_trajectory_errmsg(tr)[0] == 0);
+  dal_state_destroy(st);
+  dal_trajectory_destroy(tr);
+}
 static void sw_dal_events_count(void) { CHECK(dal_events_count(NULL) == 0); }
 static void sw_dal_events_get(void) {
   dal_events *ev = NULL;
@@ -2049,7 +2119,14 @@ static const sweep_row rows[] = {
     ROW(dal_state_stats),
     ROW(dal_advance),
     ROW(dal_evolve),
+    ROW(dal_evolve_at),
     ROW(dal_csv_monitor),
+    ROW(dal_trajectory_create),
+    ROW(dal_trajectory_destroy),
+    ROW(dal_state_set_trajectory),
+    ROW(dal_trajectory_eval),
+    ROW(dal_trajectory_span),
+    ROW(dal_trajectory_errmsg),
     ROW(dal_default_event_def),
     ROW(dal_events_create),
     ROW(dal_events_destroy),
@@ -2082,6 +2159,7 @@ static const sweep_row rows[] = {
     ROW(dal_state_bias),
     ROW(dal_state_forces),
     ROW(dal_state_reactions),
+    ROW(dal_joint_forces),
     ROW(dal_state_lambda),
     ROW(dal_state_phi),
     ROW(dal_state_phidot),

@@ -16,14 +16,6 @@
 #define G0 SCN_G
 #define PI 3.14159265358979323846
 
-static dal_solve_opts opts(dal_formulation f, dal_method m, double tol) {
-  dal_solve_opts o = dal_default_solve_opts();
-  o.form = f;
-  o.method = m;
-  o.rtol = o.atol = tol;
-  return o;
-}
-
 // minimal pendulum (l = 1), or the double pendulum (pendulum + hanging) when two is set
 static dal_system *pendulum(int two) {
   return two ? scn_double_pendulum(NULL) : scn_pendulum(NULL);
@@ -70,11 +62,11 @@ static void test_minimal_in_ida(void) {
   double q[2] = {1.0, -0.5}, qd[2] = {0.0, 0.3}, tol = 1e-8;
   dal_formulation forms[2] = {DAL_FORM_GGL, DAL_FORM_INDEX3};
   CHECK_OK(dal_state_set(s, a, 0.0, q, qd));
-  dal_solve_opts ob = opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
+  dal_solve_opts ob = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
   CHECK_OK(dal_advance(s, a, &ob, 2.0));
   for (int i = 0; i < 2; ++i) {
     CHECK_OK(dal_state_set(s, b, 0.0, q, qd));
-    dal_solve_opts o = opts(forms[i], DAL_METHOD_BDF, tol);
+    dal_solve_opts o = scn_opts(forms[i], DAL_METHOD_BDF, tol);
     CHECK_OK(dal_advance(s, b, &o, 2.0));
     double e = fmax(fabs(dal_state_q(a)[0] - dal_state_q(b)[0]),
                     fabs(dal_state_q(a)[1] - dal_state_q(b)[1]));
@@ -122,7 +114,7 @@ static void test_tolerance_table(void) {
     for (int k = 4; k <= 12; ++k) {
       double tol = pow(10.0, -k), worst = 0.0;
       int bad = 0;
-      dal_solve_opts o = opts(rows[r].f, rows[r].m, tol);
+      dal_solve_opts o = scn_opts(rows[r].f, rows[r].m, tol);
       o.project = rows[r].project;
       for (int i = 0; i < 4; ++i) {
         double err;
@@ -204,7 +196,7 @@ static void test_bead_invariant(void) {
         CHECK_OK(dal_forward(s, st));
         dal_state_energies(st, &e);
         h0 = e.h;
-        dal_solve_opts o = opts(DAL_FORM_ODE, ms[i], tol);
+        dal_solve_opts o = scn_opts(DAL_FORM_ODE, ms[i], tol);
         o.max_steps = 100000000;
         CHECK_OK(dal_advance(s, st, &o, T));
         dal_state_energies(st, &e);
@@ -214,7 +206,7 @@ static void test_bead_invariant(void) {
         // the Cartesian bead in GGL: the Jacobi integral E - w L_z from the state itself
         double q[3] = {sin(0.3), 0.0, -cos(0.3)}, qd[3] = {0.0, w * sin(0.3), 0.0};
         CHECK_OK(dal_state_set(c, sc, 0.0, q, qd));
-        dal_solve_opts o = opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+        dal_solve_opts o = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
         o.max_steps = 100000000;
         double jac[2];
         for (int pass = 0; pass < 2; ++pass) {
@@ -251,7 +243,7 @@ static void test_no_stall(void) {
   for (int i = 0; i < 200; ++i) {
     double tol = 1e-14 * pow(1e4, i / 199.0), q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0};
     CHECK_OK(dal_state_set(s, st, 0.0, q, qd));
-    dal_solve_opts o = opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+    dal_solve_opts o = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
     o.max_steps = 200000;
     int rc = dal_advance(s, st, &o, 2.0);
     dal_stats ss;
@@ -298,40 +290,19 @@ static dal_moving_point drive = {drive_path, NULL};
 // Cartesian (rod to a moving anchor, a rheonomic constraint)
 static dal_system *forced_pendulum(int cartesian) {
   dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
+  scn_knobs k = scn_default();
+  int p, rc = scn_builder(&k, 2, &b);
   if (!cartesian) {
     // the built-in drive: pivot (ax cos(w t + ph), ay cos(w t + ph)); use the path through a
     // user map instead to match the Cartesian scene exactly
-    if (!rc) rc = dal_builder_add_coord(b, "theta", &c[0]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &c[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = 1.0;
-    pd.param[DAL_PENDULUM_AX] = 0.2;
-    pd.param[DAL_PENDULUM_W] = 3.0;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
+    k.ax = 0.2;
+    k.w = 3.0;
+    if (!rc) rc = scn_add_swing(b, &k, "bob", 1.0, -1, 1.0, "theta", &p);
   } else {
-    if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-    if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &p;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.0; // to the moving point 0 + x(t)
-    cd.ctx = &drive;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    k.pivot = &drive; // the rod to the moving point 0 + x(t)
+    if (!rc) rc = scn_add_xy(b, "bob", 1.0, "x", "y", &p);
+    if (!rc) rc = scn_add_rod(b, "rod", p, -1, 1.0, &k);
   }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
   dal_damper_def dd = dal_default_damper_def();
   dd.a = p;
   dd.anchor[1] = -2.0; // at (0, -2)
@@ -369,7 +340,7 @@ static void test_energy_bookkeeping(void) {
   double th = 0.8, thd = 0.0;
   dal_method ms[3] = {DAL_METHOD_DOPRI5, DAL_METHOD_BS, DAL_METHOD_ADAMS};
   for (int i = 0; i < 3; ++i) {
-    double e = energy_balance(m, &th, &thd, opts(DAL_FORM_ODE, ms[i], tol), T, &W);
+    double e = energy_balance(m, &th, &thd, scn_opts(DAL_FORM_ODE, ms[i], tol), T, &W);
     printf("  forced pendulum, minimal, %s: W = %.6f, |dE - W| = %.1e (%.1f x rtol)\n",
            dal_method_name(ms[i]), W, e, e / tol);
     CHECK_MSG(e < 20 * tol, "%s: %g", dal_method_name(ms[i]), e);
@@ -378,12 +349,12 @@ static void test_energy_bookkeeping(void) {
   // Cartesian coordinates, moving anchor (constraint power -lambda . phi_t): GGL in IDA and
   // index-1 with projection
   double q[2] = {sin(0.8), -cos(0.8)}, qd[2] = {0, 0};
-  dal_solve_opts og = opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+  dal_solve_opts og = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   double e = energy_balance(c, q, qd, og, T, &W);
   printf("  forced pendulum, Cartesian, GGL: W = %.6f, |dE - W| = %.1e (%.1f x rtol)\n", W, e,
          e / tol);
   CHECK_MSG(e < 20 * tol, "ggl: %g", e);
-  dal_solve_opts oi = opts(DAL_FORM_INDEX1, DAL_METHOD_BS, tol);
+  dal_solve_opts oi = scn_opts(DAL_FORM_INDEX1, DAL_METHOD_BS, tol);
   oi.project = 1;
   e = energy_balance(c, q, qd, oi, T, &W);
   printf("  forced pendulum, Cartesian, index-1 + projection (BS): |dE - W| = %.1e\n", e);
@@ -404,7 +375,7 @@ static void test_energy_bookkeeping(void) {
   dal_state_energies(st, &en);
   CHECK_MSG(isnan(en.h), "h of a redundant rheonomic scene is %g, not NaN", en.h);
   double Lz0 = qb[0] * vb[1] - qb[1] * vb[0], E0 = en.E;
-  dal_solve_opts ob = opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
+  dal_solve_opts ob = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
   ob.work = 1;
   CHECK_OK(dal_advance(cb, st, &ob, 3.0));
   dal_state_energies(st, &en);

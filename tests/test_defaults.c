@@ -11,87 +11,23 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define G 9.81
 
 // the planar chain of N unit links in minimal coordinates (pendulum + hanging links)
 static dal_system *chain(int N) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int rc = dal_builder_create(2, &b), prev = -1;
-  for (int i = 0; i < N && !rc; ++i) {
-    int c, p;
-    char name[16];
-    snprintf(name, sizeof name, "th%d", i);
-    rc = dal_builder_add_coord(b, name, &c);
-    snprintf(name, sizeof name, "bob%d", i);
-    if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    dal_place_def d = dal_default_place_def();
-    d.coords = &c;
-    d.ncoords = 1;
-    if (prev < 0) {
-      d.prim = &dal_map_pendulum;
-      d.param[DAL_PENDULUM_L] = 1.0;
-    } else {
-      d.prim = &dal_map_hanging;
-      d.parent = prev;
-      d.param[DAL_HANGING_L] = 1.0;
-    }
-    if (!rc) rc = dal_builder_place_def(b, p, &d);
-    prev = p;
-  }
-  double g[2] = {0, -G};
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.N = N;
+  return scn_chain(&k);
 }
 
 // the same chain in Cartesian coordinates with N rods, by the route `how`
 static dal_system *cart_chain(int N, dal_dynamics how) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_set_dynamics(b, how);
-  for (int i = 0; i < N && !rc; ++i) {
-    int c[2], p, ends[2];
-    char name[16];
-    snprintf(name, sizeof name, "x%d", i);
-    rc = dal_builder_add_coord(b, name, &c[0]);
-    snprintf(name, sizeof name, "y%d", i);
-    if (!rc) rc = dal_builder_add_coord(b, name, &c[1]);
-    snprintf(name, sizeof name, "p%d", i);
-    if (!rc) rc = dal_builder_add_particle(b, name, 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    snprintf(name, sizeof name, "rod%d", i);
-    cd.name = name;
-    if (i == 0) {
-      cd.prim = &dal_con_anchor2;
-      cd.parts = &p;
-      cd.nparts = 1;
-      cd.param[DAL_ANCHOR_L] = 1.0;
-    } else {
-      ends[0] = p - 1;
-      ends[1] = p;
-      cd.prim = &dal_con_distance2;
-      cd.parts = ends;
-      cd.nparts = 2;
-      cd.param[DAL_DISTANCE_L] = 1.0;
-    }
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  }
-  double g[2] = {0, -G};
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.N = N;
+  k.dynamics = how;
+  return scn_cart_chain(&k);
 }
 
 static int count_outputs(const dal_system *sys, const dal_state *st, void *ctx) {
@@ -142,8 +78,10 @@ static void test_auto_rule(void) {
   dal_system *one = chain(1), *two = chain(2), *three = chain(3);
   CHECK(one && two && three);
   if (!one || !two || !three) return;
-  // n <= 2: Bulirsch-Stoer at every rtol
-  expect_auto(one, 1e-2, 0, DAL_METHOD_BS);
+  // n <= 2: DOPRI5 from 1e-3 up, Bulirsch-Stoer below
+  expect_auto(one, 1e-2, 0, DAL_METHOD_DOPRI5);
+  expect_auto(two, 1e-3, 0, DAL_METHOD_DOPRI5);
+  expect_auto(one, 1e-4, 0, DAL_METHOD_BS);
   expect_auto(one, 1e-6, 0, DAL_METHOD_BS);
   expect_auto(two, 1e-10, 0, DAL_METHOD_BS);
   // n >= 3: DOPRI5 from 1e-3 up, Fehlberg 7(8) down to 1e-8, BS below

@@ -30,70 +30,13 @@ static dal_system *driven(void) {
 }
 
 // a particle on an anchor spring (rest length 0) at the origin, no gravity
-static dal_system *oscillator(void) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int q[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &q[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &q[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = q;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  dal_spring_def sd = dal_default_spring_def();
-  sd.a = p;
-  sd.k = 1.0;
-  if (!rc) rc = dal_builder_add_spring_def(b, &sd);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  return s;
-}
+static dal_system *oscillator(void) { return scn_oscillator(NULL); }
 
 // a closed loop (test_params.c): rod from (0.5, 0), ring of radius 1, link of 0.8
 static dal_system *loop(void) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int q[4], p[2], rc = dal_builder_create(2, &b);
-  double link = 0.8, g[2] = {0, -9.81};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, NULL, &q[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "p", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "s", 1.0, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = q;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd.coords = q + 2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p[0];
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.param[DAL_ANCHOR_X0] = 0.5;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd = dal_default_constraint_def();
-  cd.name = "ring";
-  cd.prim = &dal_con_circle2;
-  cd.parts = &p[1];
-  cd.nparts = 1;
-  cd.param[DAL_CIRCLE_R] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd = dal_default_constraint_def();
-  cd.name = "link";
-  cd.prim = &dal_con_distance2;
-  cd.parts = p;
-  cd.nparts = 2;
-  cd.param[DAL_DISTANCE_L] = link;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.x0 = 0.5;
+  return scn_closed_loop(&k, 0.8);
 }
 
 // reducer: final q, qdot, total energy and accepted steps
@@ -269,7 +212,7 @@ static void test_closed_form(void) {
   dal_sweep_grid(2, count, lo, hi, values);
   dal_param_ref par[2];
   CHECK_OK(dal_param_find(sys, "spring:0:k", &par[0], NULL, 0));
-  CHECK_OK(dal_param_find(sys, "mass:m", &par[1], NULL, 0));
+  CHECK_OK(dal_param_find(sys, "mass:bob", &par[1], NULL, 0));
   double q0[2] = {1.0, 0.0}, v0[2] = {0.0, 0.0};
   dal_solve_opts so = dal_default_solve_opts();
   so.rtol = 1e-11;

@@ -20,32 +20,13 @@
 #include "dalembert/dalembert.h"
 #include "scenes.h"
 
-static const double G0 = SCN_G;
-
 // double pendulum in angles (th1, th2), bob 1 on l1 about the origin, bob 2 on l2 from bob 1;
 // with_links: an anchored spring on bob 2 and a damper from bob 1 to an anchor
 static dal_system *dp_angles(int with_links) {
   dal_builder *b = NULL;
-  int c[2], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  if (!rc) rc = dal_builder_add_coord(b, "th1", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "th2", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "b1", 1.3, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "b2", 0.7, &p[1]);
-  dal_place_def d1 = dal_default_place_def();
-  d1.prim = &dal_map_pendulum;
-  d1.coords = &c[0];
-  d1.ncoords = 1;
-  d1.param[DAL_PENDULUM_L] = 0.9;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &d1);
-  dal_place_def d2 = dal_default_place_def();
-  d2.prim = &dal_map_hanging;
-  d2.parent = p[0];
-  d2.coords = &c[1];
-  d2.ncoords = 1;
-  d2.param[0] = 0.6;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &d2);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
+  int p[2], rc = scn_builder(NULL, 2, &b);
+  if (!rc) rc = scn_add_swing(b, NULL, "b1", 1.3, -1, 0.9, "th1", &p[0]);
+  if (!rc) rc = scn_add_swing(b, NULL, "b2", 0.7, p[0], 0.6, "th2", &p[1]);
   if (with_links) {
     dal_spring_def s = dal_default_spring_def();
     s.a = p[1];
@@ -219,35 +200,11 @@ static void minimal_params(void) {
 // Cartesian double pendulum (p1 on a rod to the origin, p2 on a rod to p1)
 static dal_system *dp_cartesian(void) {
   dal_builder *b = NULL;
-  int c[4], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  const char *nm[4] = {"x1", "y1", "x2", "y2"};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "p1", 1.3, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "p2", 0.7, &p[1]);
-  for (int k = 0; k < 2 && !rc; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    rc = dal_builder_place_def(b, p[k], &d);
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def k1 = dal_default_constraint_def();
-  k1.name = "rod1";
-  k1.prim = &dal_con_anchor2;
-  k1.parts = p;
-  k1.nparts = 1;
-  k1.param[DAL_ANCHOR_L] = 0.9;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k1, NULL);
-  dal_constraint_def k2 = dal_default_constraint_def();
-  k2.name = "rod2";
-  k2.prim = &dal_con_distance2;
-  k2.parts = p;
-  k2.nparts = 2;
-  k2.param[DAL_DISTANCE_L] = 0.6;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &k2, NULL);
+  int p[2], rc = scn_builder(NULL, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "p1", 1.3, "x1", "y1", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "p2", 0.7, "x2", "y2", &p[1]);
+  if (!rc) rc = scn_add_rod(b, "rod1", p[0], -1, 0.9, NULL);
+  if (!rc) rc = scn_add_rod(b, "rod2", p[0], p[1], 0.6, NULL);
   return scn_finish(b, rc);
 }
 

@@ -45,34 +45,16 @@ static dal_system *cart_minimal(void) {
 
 static dal_system *cart_cartesian(void) {
   dal_builder *b = NULL;
-  int c[4], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0};
-  const char *nm[4] = {"xc", "yc", "xb", "yb"};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "cart", MC, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", MB, &p[1]);
-  for (int k = 0; k < 2 && !rc; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    rc = dal_builder_place_def(b, p[k], &d);
-  }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
+  int p[2], rc = scn_builder(NULL, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "cart", MC, "xc", "yc", &p[0]);
+  if (!rc) rc = scn_add_xy(b, "bob", MB, "xb", "yb", &p[1]);
   dal_constraint_def rail = dal_default_constraint_def();
   rail.name = "rail";
   rail.prim = &dal_con_line2; // the x axis
   rail.parts = &p[0];
   rail.nparts = 1;
   if (!rc) rc = dal_builder_add_constraint_def(b, &rail, NULL);
-  dal_constraint_def rod = dal_default_constraint_def();
-  rod.name = "rod";
-  rod.prim = &dal_con_distance2;
-  rod.parts = p;
-  rod.nparts = 2;
-  rod.param[DAL_DISTANCE_L] = L;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &rod, NULL);
+  if (!rc) rc = scn_add_rod(b, "rod", p[0], p[1], L, NULL);
   return scn_finish(b, rc);
 }
 

@@ -9,8 +9,7 @@
 
 #include "check.h"
 #include "form/form.h"
-
-#define G0 9.81
+#include "scenes.h"
 
 static int wobble(dal_jet t, dal_jet *x, void *ctx) {
   (void)ctx;
@@ -22,43 +21,13 @@ static dal_moving_point mover = {wobble, NULL};
 
 // Cartesian double pendulum whose pivot moves (rheonomic) when moving is set
 static dal_system *scene(int moving) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int p[2], c[4], rc = dal_builder_create(2, &b);
-  double g[2] = {0.0, -G0}, l2 = 0.7;
-  const char *nm[4] = {"x1", "y1", "x2", "y2"};
-  if (!rc) rc = dal_builder_add_particle(b, "upper", 1.3, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "lower", 0.8, &p[1]);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, nm[i], &c[i]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd.coords = c + 2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod1";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p[0];
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.param[DAL_ANCHOR_X0] = 0.1;
-  cd.ctx = moving ? &mover : NULL;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd = dal_default_constraint_def();
-  cd.name = "rod2";
-  cd.prim = &dal_con_distance2;
-  cd.parts = p;
-  cd.nparts = 2;
-  cd.param[DAL_DISTANCE_L] = l2;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "scene: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.m = 1.3;
+  k.m2 = 0.8;
+  k.l2 = 0.7;
+  k.x0 = 0.1;
+  k.pivot = moving ? &mover : NULL;
+  return scn_cart_double_pendulum(&k);
 }
 
 static double urand(unsigned *s) {

@@ -16,6 +16,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 // the chain: p0 on a driven pendulum, p1 and p2 hanging; spring p0-p2, damper p1-p2,
 // anchor spring on p1
@@ -81,48 +82,12 @@ static dal_system *chain(const chain_par *P) {
 // radius R about the origin tied to the first by a rod "link" (a closed loop): 4 coordinates,
 // 2 + 1 + 1 constraint rows
 static dal_system *loop(double L, double x0, double R, double link, double m) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int q[4], p[2], rc = dal_builder_create(2, &b);
-  double g[2] = {0, -9.81};
-  for (int i = 0; i < 4 && !rc; ++i)
-    rc = dal_builder_add_coord(b, NULL, &q[i]);
-  if (!rc) rc = dal_builder_add_particle(b, "p", m, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "s", 1.0, &p[1]);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = q;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-  pd.coords = q + 2;
-  if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p[0];
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = L;
-  cd.param[DAL_ANCHOR_X0] = x0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd = dal_default_constraint_def();
-  cd.name = "ring";
-  cd.prim = &dal_con_circle2;
-  cd.parts = &p[1];
-  cd.nparts = 1;
-  cd.param[DAL_CIRCLE_R] = R;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  cd = dal_default_constraint_def();
-  cd.name = "link";
-  cd.prim = &dal_con_distance2;
-  cd.parts = p;
-  cd.nparts = 2;
-  cd.param[DAL_DISTANCE_L] = link;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "loop: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  scn_knobs k = scn_default();
+  k.l = L;
+  k.x0 = x0;
+  k.R = R;
+  k.m = m;
+  return scn_closed_loop(&k, link);
 }
 
 // advance st from (q0, v0) to t1; write the final (q, qdot) into out (2n); returns status

@@ -107,18 +107,14 @@ static int osc_damp(double t, const double *q, const double *qd, double *Q, void
 
 static dal_system *make_oscillator(osc_par *p, int lagrangian) {
   dal_builder *b = NULL;
-  int c[2], k, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
+  scn_knobs free = scn_weightless();
+  int c[2], k, rc = scn_builder(&free, 2, &b);
   if (lagrangian) {
+    if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
+    if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
     if (!rc) rc = dal_builder_set_lagrangian(b, osc_lag, p);
   } else {
-    if (!rc) rc = dal_builder_add_particle(b, "m", p->m, &k);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, k, &pd);
+    if (!rc) rc = scn_add_xy(b, "m", p->m, "x", "y", &k);
     if (!rc) rc = dal_builder_add_potential_q(b, osc_pot, p);
   }
   if (!rc && p->c > 0) rc = dal_builder_add_genforce(b, osc_damp, p);
@@ -211,53 +207,16 @@ static int hh_pot(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
 
 static dal_system *make_henon_heiles(void) {
   dal_builder *b = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "star", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  scn_knobs free = scn_weightless();
+  int p, rc = scn_builder(&free, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "star", 1.0, "x", "y", &p);
   if (!rc) rc = dal_builder_add_potential_q(b, hh_pot, NULL);
   return compile(b, rc);
 }
 
 // spherical pendulum (l = 1, m = 1, g = 9.81): minimal (theta, phi) or Cartesian on a rod
 static dal_system *make_spherical(int cartesian) {
-  dal_builder *b = NULL;
-  int q[3], p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -9.81};
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (cartesian) {
-    const char *nm[3] = {"x", "y", "z"};
-    for (int i = 0; i < 3 && !rc; ++i)
-      rc = dal_builder_add_coord(b, nm[i], &q[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian3;
-    pd.coords = q;
-    pd.ncoords = 3;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor3;
-    cd.parts = &p;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.0;
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  } else {
-    if (!rc) rc = dal_builder_add_coord(b, "theta", &q[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "phi", &q[1]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_spherical;
-    pd.coords = q;
-    pd.ncoords = 2;
-    pd.param[DAL_SPHERICAL_L] = 1.0;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  }
-  return compile(b, rc);
+  return built(cartesian ? scn_cart_spherical(NULL) : scn_spherical(NULL));
 }
 
 // bead on a ring of radius 1 turning at w about the vertical: minimal (dal_map_ring) or
@@ -834,15 +793,9 @@ static void test_failures(void) {
   dal_system_destroy(ps);
   {
     dal_builder *bb = NULL;
-    int c[2], p, rc = dal_builder_create(2, &bb);
-    if (!rc) rc = dal_builder_add_coord(bb, "x", &c[0]);
-    if (!rc) rc = dal_builder_add_coord(bb, "y", &c[1]);
-    if (!rc) rc = dal_builder_add_particle(bb, "m", 1.0, &p);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(bb, p, &pd);
+    scn_knobs free = scn_weightless();
+    int p, rc = scn_builder(&free, 2, &bb);
+    if (!rc) rc = scn_add_xy(bb, "m", 1.0, "x", "y", &p);
     dal_damper_def dd = dal_default_damper_def();
     dd.a = p;
     dd.c = 0.1;
@@ -937,45 +890,12 @@ static void test_stiff(void) {
 
 // RK4 for q'' = -q (unit mass and stiffness: the library's right-hand side is exact) on the
 // library's own time grid, in long double with compensation (the exact-arithmetic trajectory
-// to ~1e-19) or, with naive = 1, in double without compensation (the previous library code)
+// to ~1e-19) or, with naive = 1, in double without compensation (the previous library code);
+// the recurrence is the scene library's
 static void rk4_replica(const double *q0, const double *v0, double T, double H, int naive,
                         double *out) {
-  long double y[4] = {q0[0], q0[1], v0[0], v0[1]}, c[4] = {0, 0, 0, 0};
-  double yd[4] = {q0[0], q0[1], v0[0], v0[1]}, t = 0.0;
-  while (t < T) {
-    double tend = t + H;
-    if (tend > T - 1e-9 * H) tend = T;
-    double hd = tend - t;
-    long double h = hd;
-    if (naive) {
-      double k[4][4], yt[4];
-      for (int s = 0; s < 4; ++s) {
-        double a = s == 0 ? 0.0 : s == 3 ? hd : 0.5 * hd;
-        for (int i = 0; i < 4; ++i)
-          yt[i] = s ? yd[i] + a * k[s - 1][i] : yd[i];
-        k[s][0] = yt[2], k[s][1] = yt[3], k[s][2] = -yt[0], k[s][3] = -yt[1];
-      }
-      for (int i = 0; i < 4; ++i)
-        yd[i] = yd[i] + hd / 6.0 * (k[0][i] + 2.0 * (k[1][i] + k[2][i]) + k[3][i]);
-    } else {
-      long double k[4][4], yt[4];
-      for (int s = 0; s < 4; ++s) {
-        long double a = s == 0 ? 0.0L : s == 3 ? h : 0.5L * h;
-        for (int i = 0; i < 4; ++i)
-          yt[i] = s ? y[i] + a * k[s - 1][i] : y[i];
-        k[s][0] = yt[2], k[s][1] = yt[3], k[s][2] = -yt[0], k[s][3] = -yt[1];
-      }
-      for (int i = 0; i < 4; ++i) {
-        long double d = h / 6 * (k[0][i] + 2 * (k[1][i] + k[2][i]) + k[3][i]) - c[i];
-        long double s = y[i] + d;
-        c[i] = (s - y[i]) - d;
-        y[i] = s;
-      }
-    }
-    t = tend;
-  }
-  for (int i = 0; i < 4; ++i)
-    out[i] = naive ? yd[i] : (double)y[i];
+  double y0[4] = {q0[0], q0[1], v0[0], v0[1]};
+  scn_rk4_replica(y0, T, H, naive, out);
 }
 
 static void test_compensated(void) {

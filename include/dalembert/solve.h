@@ -23,11 +23,12 @@ extern "C" {
 ///
 /// DAL_METHOD_AUTO picks, for the ODE and index-1 forms, by opts.rtol and the number of
 /// coordinates n (never a symplectic method, see below):
-///   n <= 2: Bulirsch-Stoer;
-///   n >= 3: rtol >= 1e-3: DOPRI5;  1e-8 <= rtol < 1e-3: Fehlberg 7(8);  rtol < 1e-8: BS;
-/// except that dal_evolve with a monitor gets DOPRI5 where this says Fehlberg 7(8) (Fehlberg's
-/// dense output is a partial step: 12 right-hand sides per output time, 30-70x a plain
-/// advance with outputs every 0.001; DOPRI5's costs 1.1-1.5x, bench/dense_ir.c). The choice is
+///   rtol >= 1e-3: DOPRI5;
+///   rtol < 1e-3, n <= 2: Bulirsch-Stoer;
+///   rtol < 1e-3, n >= 3: Fehlberg 7(8) down to rtol 1e-8, BS below;
+/// except that dal_evolve with a monitor (and a run recording a dal_trajectory) gets DOPRI5
+/// where this says Fehlberg 7(8) (Fehlberg's dense output costs 1.6-2.6x a plain advance with
+/// outputs every 0.001, DOPRI5's 1.06-1.5x, bench/dense_ir.c). The choice is
 /// made when the integrator is created, and kept while the options stay the same;
 /// and BDF (IDA) for the GGL and index-3 forms. The rule is read off a work-precision table
 /// (bench/auto.sh, docs/performance.md "AUTO"): the instructions each method needs to reach
@@ -52,9 +53,12 @@ extern "C" {
 /// | Adams (CVODE)            | 0.001   | 1.2                         | 1.4                |
 /// | BDF (CVODE)              | 0.0001  | 2.2 to 1e-11; clamped below | 0.9                |
 /// | GGL (IDA)                | 0.001   | 2.4 to 1e-9; 12.9 at 1e-10  | 16.5 (to 1e-8)     |
-/// | index-1 + projection     | x 0.2   | 1.1 (BS), 2.1 (DOPRI5)      |                    |
-/// | index-1 in IDA           | 0.0002  | drifts: 34 to 1e-9, 77 at 1e-10 (no stabilization) |
-/// | index-3 in IDA           | 0.001   | 1e3 - 1e5 (kept to show where it fails)            |
+/// | index-1 + projection     | x 0.2   | 1.0 (BS), 2.1 (DOPRI5)      |                    |
+/// | index-1 in IDA           | 0.0002  | drifts: 47 to 1e-9, 778 at 1e-10 (no stabilization)|
+/// | index-3 in IDA           | 0.001   | 2e2 - 2e4 to 1e-9 (kept to show where it fails)    |
+///
+/// (The last two rows are that table's loop with those forms as rows, not in tests/test_core.c:
+/// their errors exceed its bound; tests/test_differential.c holds them to these figures.)
 ///
 /// Adams and BDF are calibrated over [0, 20] with outputs at 986 irregular times (the pendulum
 /// at 2.5 rad, by events at the times and by a dal_advance loop; tests/test_dense.c): the
@@ -79,7 +83,9 @@ extern "C" {
 /// tests/test_core.c). With the defaults, an IDA failure by convergence or step collapse falls
 /// back to that route from the last accepted step (opts.no_fallback; dal_stats.fallbacks;
 /// tests/test_dae_grid.c: 0 failures over 390 starts and random rod trees at rtol 1e-4 ...
-/// 1e-10). Ill-conditioned problems (chaos,
+/// 1e-10). On the car axis of the Bari test set (tests/test_caraxis.c, docs/dae.md) GGL reaches
+/// 7.5 significant correct digits at rtol 1e-9 and 7.6 below (the floor), AUTO's route 12.25
+/// at 1e-12 and 12.5 at 1e-13. Ill-conditioned problems (chaos,
 /// near-separatrix motion) amplify local errors further.
 ///
 /// Structure-preserving methods (AUTO never picks them: ask for them by name). They take the
@@ -342,6 +348,101 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 /// does) is quoted. On any early end the state is at that time, evaluated.
 DAL_API int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
                        double dt, dal_monitor_fn *monitor, void *ctx);
+
+/// Evolve from the current time to times[n - 1], calling `monitor` (may be NULL) at every
+/// output time times[0 .. n) (n >= 1, caller-owned, read during the call only; seconds), like
+/// solve_ivp's t_eval. The times must be finite, not before the current time and
+/// non-decreasing (integration runs forward; equal times are each served); the monitor is
+/// called at the current time only when times[0] equals it. The outputs are served exactly as
+/// dal_evolve serves its grid: from the method's dense output after each accepted step, so the
+/// steps, the end state and the statistics are bit for bit those of dal_evolve with a monitor
+/// to the same end time, whatever the list (tests/test_evolve_at.c). opts.max_steps counts the
+/// steps between two outputs. Returns DAL_OK at times[n - 1], DAL_STOPPED, DAL_EVENT or a
+/// negative status as dal_evolve does; a bad list is refused before any step with a message
+/// naming the index: times NULL or n = 0 DAL_E_ARG, a time NaN or inf DAL_E_NONFINITE,
+/// times[i] < times[i - 1] DAL_E_ARG, times[0] before the current time DAL_E_TIME.
+DAL_API int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                          const double *times, size_t n, dal_monitor_fn *monitor, void *ctx);
+
+/// A stored dense trajectory (solve_ivp's dense_output): recorded during dal_advance,
+/// dal_evolve and dal_evolve_at on a state it is attached to (dal_state_set_trajectory), and
+/// evaluable at any time of the covered span after the run (dal_trajectory_eval).
+///
+/// What is stored: after every accepted step [a, b] the method's own dense output (the one
+/// dal_evolve's outputs come from: see dal_evolve) is sampled at the 9 Chebyshev-Lobatto points
+/// of the step (a, b and 7 between; b is the accepted step itself), q and qdot, as one record;
+/// dal_trajectory_eval interpolates a record by the polynomial of degree 8 through its points
+/// (barycentric form). Bulirsch-Stoer's long steps carry an interpolant of degree up to
+/// 2 kappa + 1 and are stored as 4 records of a quarter step each. Where the method's
+/// interpolant is a polynomial of degree <= 8 in t (RK4's cubic Hermite, DOPRI5's, CVODE's BDF
+/// and IDA's of order <= 5) it is reproduced to rounding; for Adams (order up to 12),
+/// Bulirsch-Stoer, Fehlberg 7(8) (a partial step) and the symplectic methods the degree-8
+/// interpolation error over a record is added. Measured (tests/test_trajectory.c prints the
+/// table) against the elliptic pendulum released at 2 rad, at 2000 irregular times over
+/// [0, 10], as the worst of |q - q_ref| and |qdot - qdot_ref| / w0, over rtol:
+///
+/// | method (form)  | rtol 1e-6 | rtol 1e-9 | rtol 1e-12 | distance to the dense output   |
+/// |----------------|-----------|-----------|------------|--------------------------------|
+/// | DOPRI5         | 1.14      | 4.99      |            | <= 5.3e-15 (rounding)          |
+/// | Fehlberg 7(8)  | 0.51      | 0.32      |            | <= 6.5e-11 (interpolation)     |
+/// | Bulirsch-Stoer | 0.41      | 0.04      | 0.04       | <= 6.4e-13 (interpolation)     |
+/// | Adams (CVODE)  | 0.03      | 0.26      | 0.80       | <= 5.2e-15                     |
+/// | BDF (CVODE)    | 0.02      | 0.41      |            | <= 4.7e-15                     |
+/// | GGL (IDA; Cartesian pendulum) | 1.84 | 2.30 at 1e-8 |  | <= 1.0e-14                     |
+///
+/// and for the fixed-step methods at h = 0.01 (RK4, variational4; RATTLE4 on the Cartesian
+/// pendulum) the distance to their dense output is <= 1.1e-14 (the error against the closed
+/// form is then the method's own: 9.9e-8, 3.5e-7, 9.2e-5 rad),
+///
+/// so the stored trajectory is as accurate as the method's dense output (within the 16 x rtol
+/// that dal_evolve promises for the adaptive methods).
+///
+/// What it costs: 8 evaluations of the dense output per record (Fehlberg's is a partial step of
+/// 12 right-hand sides, so a recorded Fehlberg run costs several times an unrecorded one;
+/// DOPRI5, BS, CVODE and IDA interpolate from data they hold), and memory: 3 + 18 n doubles per
+/// record (n coordinates; 168 bytes for the pendulum), one record per accepted step (4 for
+/// Bulirsch-Stoer), grown by doubling (about log2(records) allocations over a run: a recorded
+/// run allocates, an unrecorded one does not). A recorded run takes the steps of a run with
+/// dense output (those of dal_evolve with a monitor: the same end state bit for bit; without
+/// monitor or events dal_advance may take other steps, within the tolerance), and recording
+/// changes neither the steps nor the outputs of dal_evolve / dal_evolve_at (bit for bit, every
+/// method of the table; tests/test_trajectory.c). Not thread-safe:
+/// one trajectory per state, read after the run (dal_trajectory_eval keeps its message in the
+/// trajectory).
+typedef struct dal_trajectory dal_trajectory;
+
+/// Create an empty trajectory for `sys` (borrowed; must outlive it). *out is NULL on failure.
+/// Returns DAL_OK, DAL_E_ARG (NULL argument), DAL_E_NOMEM.
+DAL_API int dal_trajectory_create(const dal_system *sys, dal_trajectory **out);
+
+/// Free the trajectory (NULL is fine). Detach it from its state first
+/// (dal_state_set_trajectory(st, NULL)).
+DAL_API void dal_trajectory_destroy(dal_trajectory *tr);
+
+/// Attach `tr` (borrowed; must stay alive while attached) to the state, or detach with NULL.
+/// Every later dal_advance / dal_evolve / dal_evolve_at on the state appends its accepted
+/// steps. A run must start where the trajectory ends (or the trajectory is empty): a run from
+/// another time (after dal_state_set, say) is refused with DAL_E_ARG naming both times. A run
+/// stopped inside a step (a terminal event, a monitor) leaves the trajectory ending at the stop.
+/// If storing a step fails for memory the run stops there with DAL_E_NOMEM (the state at that
+/// step). Returns DAL_E_ARG (NULL st), DAL_E_STATE (tr of another system, or the state is
+/// running), else DAL_OK.
+DAL_API int dal_state_set_trajectory(dal_state *st, dal_trajectory *tr);
+
+/// Evaluate the trajectory at time t of its span: q and qdot (n each, caller-owned; either may
+/// be NULL). Accuracy: see dal_trajectory above. Returns DAL_OK; DAL_E_ARG for a NULL tr, an
+/// empty trajectory, or t outside the span [t0, t1] (the message names the span and t);
+/// DAL_E_NONFINITE for t NaN or inf. The message is kept in the trajectory
+/// (dal_trajectory_errmsg).
+DAL_API int dal_trajectory_eval(dal_trajectory *tr, double t, double *q, double *qdot);
+
+/// The span [*t0, *t1] covered so far (seconds; each pointer may be NULL). Returns the number
+/// of stored records (one per accepted step, four per Bulirsch-Stoer step; 0 for an empty
+/// trajectory, whose span is NaN), or DAL_E_ARG for a NULL tr.
+DAL_API long dal_trajectory_span(const dal_trajectory *tr, double *t0, double *t1);
+
+/// Message of the last failing call on the trajectory ("" if none; "" for NULL).
+DAL_API const char *dal_trajectory_errmsg(const dal_trajectory *tr);
 
 /// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row.
 typedef struct dal_csv {

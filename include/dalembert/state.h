@@ -117,6 +117,24 @@ DAL_API const double *dal_state_forces(const dal_state *st);
 /// Constraint (reaction) forces N_k = m_k a_k - F_k on each particle (N x d): the force the
 /// constraints (built into the map, and explicit ones) exert on particle k.
 DAL_API const double *dal_state_reactions(const dal_state *st);
+/// Joint forces: F (N x d, row-major, caller-owned, force units, world frame) receives for each
+/// particle k the force its own placement exerts on it: the joint tying it to its parent
+/// particle, or to the world (a fixed or moving support) for a placement without parent. For a
+/// pendulum on a pivot it is the rod's pull, m (g cos theta + l thetadot^2) along the rod
+/// towards the pivot; for a particle placed in Cartesian coordinates (dal_map_cartesian2/3,
+/// nothing held) it is zero to rounding. Where dal_state_reactions gives the whole reaction
+/// N_k = m_k a_k - F_k (every joint and constraint touching k), this splits it by Newton's
+/// third law through the tree of placements (massless joints, point masses):
+/// J_k = N_k - C_k + sum over the children c of k of Lp_c' J_c, with C_k the explicit
+/// constraints' force on k (dal_constraint_forces) and Lp_c = dr_c/dr_k the child's parent
+/// block (the identity for a translating map). Forces that act on the placement's coordinates
+/// rather than on particles (a dal_con_prescribed row's drive, dal_builder_add_genforce, a
+/// potential U(q, t)) act through the joint and are part of its force.
+/// The state is only read (a monitor may call it). Returns DAL_E_ARG for a NULL st or F,
+/// DAL_E_STATE for a state of another system or one not evaluated at its (t, q, qdot) (as
+/// dal_constraint_forces), DAL_E_UNSUPPORTED for a system without placements (a Lagrangian,
+/// or one map r(q, t) for all particles: dal_state_reactions has the reactions there).
+DAL_API int dal_joint_forces(const dal_system *sys, const dal_state *st, double *F);
 /// Multipliers lambda (m), one per constraint row, after dal_forward or a DAE step; the
 /// generalized constraint force is G' lambda (NULL when m = 0).
 DAL_API const double *dal_state_lambda(const dal_state *st);

@@ -12,4 +12,12 @@
 int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                               dal_equilibrium_report *rep);
 
+/// The Newton step x of dal_equilibrium (n coordinate entries, then m multiplier entries)
+/// scaled to opts.max_step (max_step <= 0: unbounded): *big is its largest coordinate entry in
+/// magnitude (inf when any entry is not finite), *far the first coordinate that q_i + f x_i
+/// sends beyond reach (-1: none, not looked for when *big is not finite); returns the factor f
+/// (equilibrium.c)
+double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
+                         double reach, double *big, int *far);
+
 #endif

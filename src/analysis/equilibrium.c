@@ -118,6 +118,68 @@ static double scaled_residual(const dal_system *sys, const dal_state *st, const 
 
 // the equilibrium solve on a prepared workspace; on success the state is at (t, q*, 0),
 // evaluated, with the tangent (and dR/dt) of the solution in w->tg
+double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
+                         double reach, double *big, int *far) {
+  *big = 0.0;
+  *far = -1;
+  for (int i = 0; i < n; ++i) {
+    *big = fmax(*big, fabs(x[i]));
+    if (!isfinite(x[i])) *big = INFINITY;
+  }
+  for (int i = 0; i < m; ++i)
+    if (!isfinite(x[n + i])) *big = INFINITY;
+  if (!isfinite(*big)) return 1.0;
+  double f = max_step > 0 && *big > max_step ? max_step / *big : 1.0;
+  for (int i = 0; i < n && *far < 0; ++i)
+    if (!(fabs(q[i] + f * x[i]) <= reach)) *far = i;
+  return f;
+}
+
+// the Newton step K dq = R (R in w->x) taken from w->q, scaled down to max_step and kept
+// within reach of the start; *step: the largest relative change of q (0 when below xtol with
+// the full step), *length: the step's length
+static int newton_step(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
+                       newton_ws *w, double reach, double *step, double *length) {
+  int n = sys->n;
+  double t = st->t;
+  memcpy(w->K, w->tg->Rq, (size_t)n * (size_t)n * sizeof(double));
+  lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, 1, w->K, n, w->ipiv, w->x, n);
+  if (info != 0) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_SINGULAR,
+                    "equilibrium: the stiffness K is singular at t=%.17g, %s (pivot of "
+                    "coordinate '%s'): a bifurcation point, or a direction with no restoring "
+                    "force (a free or cyclic coordinate); fix that coordinate or move the "
+                    "parameter off the critical value",
+                    t, qs, sys->coord_names[info > 0 ? (int)info - 1 : 0]);
+  }
+  double big = 0.0, conv = 0.0;
+  int far = -1;
+  double f = dal__newton_scale(w->x, n, 0, w->q, o->max_step, reach, &big, &far);
+  if (!isfinite(big))
+    return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
+  // a step that leaves the start's neighbourhood (K nearly singular: a turning point of
+  // the potential) lands on no equilibrium the start was meant for (|q0| <= reach / 1e4)
+  if (far >= 0) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_CONV,
+                    "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
+                    "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the stiffness K "
+                    "is nearly singular there (a turning point of the potential); start closer "
+                    "to the equilibrium or bound the step (max_step)",
+                    t, qs, sys->coord_names[far], w->q[far] + f * w->x[far], reach);
+  }
+  for (int i = 0; i < n; ++i) {
+    w->q[i] += f * w->x[i];
+    conv = fmax(conv, fabs(f * w->x[i]) / (1.0 + fabs(w->q[i])));
+  }
+  *length = f * big;
+  *step = conv <= o->xtol && f == 1.0 ? 0.0 : conv;
+  return DAL_OK;
+}
+
 static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o, newton_ws *w,
                  dal_equilibrium_report *rep) {
   int n = sys->n, rc;
@@ -151,51 +213,8 @@ static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opt
                       "the equilibrium, bound the step (max_step) or raise max_iter",
                       o->max_iter, t, r.step, res, res_tol, qs);
     }
-    // K dq = R
-    memcpy(w->K, w->tg->Rq, (size_t)n * (size_t)n * sizeof(double));
-    lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, 1, w->K, n, w->ipiv, w->x, n);
-    if (info != 0) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      return DAL_FAIL(st, DAL_E_SINGULAR,
-                      "equilibrium: the stiffness K is singular at t=%.17g, %s (pivot of "
-                      "coordinate '%s'): a bifurcation point, or a direction with no restoring "
-                      "force (a free or cyclic coordinate); fix that coordinate or move the "
-                      "parameter off the critical value",
-                      t, qs, sys->coord_names[info > 0 ? (int)info - 1 : 0]);
-    }
-    double big = 0.0, conv = 0.0;
-    for (int i = 0; i < n; ++i) {
-      big = fmax(big, fabs(w->x[i]));
-      if (!isfinite(w->x[i])) big = INFINITY;
-    }
-    if (!isfinite(big))
-      return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
-    double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
-    // a step that leaves the start's neighbourhood (K nearly singular: a turning point of
-    // the potential) lands on no equilibrium the start was meant for
-    int far = -1;
-    for (int i = 0; i < n && far < 0; ++i)
-      if (!(fabs(w->q[i] + f * w->x[i]) <= reach)) // |q0| <= reach / 1e4
-        far = i;
-    if (far >= 0) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      return DAL_FAIL(
-          st, DAL_E_CONV,
-          "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
-          "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the stiffness K is "
-          "nearly singular there (a turning point of the potential); start closer to "
-          "the equilibrium or bound the step (max_step)",
-          t, qs, sys->coord_names[far], w->q[far] + f * w->x[far], reach);
-    }
-    for (int i = 0; i < n; ++i) {
-      w->q[i] += f * w->x[i];
-      conv = fmax(conv, fabs(f * w->x[i]) / (1.0 + fabs(w->q[i])));
-    }
+    if ((rc = newton_step(sys, st, o, w, reach, &step, &r.step)) != 0) return rc;
     r.iterations = it;
-    r.step = f * big;
-    step = conv <= o->xtol && f == 1.0 ? 0.0 : conv;
   }
   // the solution: residual and time dependence d qddot/dt = -M^-1 dR/dt
   if ((rc = dal__tangent_eval(sys, st, w->tg, 1)) != 0) return rc;
@@ -317,48 +336,107 @@ static int point_sign(cont_point *pt, double *work, lapack_int *ipiv) {
   return DAL_OK;
 }
 
+// the arguments of dal_continue; 0 or DAL_E_ARG with the report's message set
+static int check_cont_args(dal_rebuild_fn *rebuild, const double *q0,
+                           const dal_continuation_opts *o, dal_continuation_report *r) {
+  if (!rebuild || !q0 || !o) {
+    snprintf(r->msg, sizeof r->msg, "continue: rebuild, q0 and options are required");
+    return DAL_E_ARG;
+  }
+  if (o->cookie != DAL_CONT_COOKIE) {
+    snprintf(r->msg, sizeof r->msg,
+             "continuation options not initialized: call dal_default_continuation_opts");
+    return DAL_E_ARG;
+  }
+  if (!isfinite(o->p0) || !isfinite(o->p1) || o->p0 == o->p1 || o->npoints < 2 || !isfinite(o->t) ||
+      !(o->ptol >= 0)) {
+    snprintf(r->msg, sizeof r->msg,
+             "continuation options: p0 = %g and p1 = %g must be finite and differ, npoints = %d "
+             ">= 2, t = %g finite, ptol = %g >= 0",
+             o->p0, o->p1, o->npoints, o->t, o->ptol);
+    return DAL_E_ARG;
+  }
+  return check_eq_opts(&o->newton, r->msg, sizeof r->msg);
+}
+
+// what a continuation run shares with its bisections
+typedef struct cont_run {
+  dal_rebuild_fn *rebuild;
+  const dal_continuation_opts *o;
+  dal_branch_fn *point;
+  void *ctx;
+  dal_continuation_report *r;
+  int n;            // coordinates (-1 until the first point is solved)
+  double ptol;      // the bisection's parameter tolerance
+  double *work;     // (2 n^2) sign of det K
+  lapack_int *ipiv; // (n)
+} cont_run;
+
+// a sign change of det K between a (solution qa, sign sa; qa is overwritten) and b: bisect
+// for the critical parameter and report it to the point callback
+static int locate_critical(cont_run *c, double a, double b, int sa, double *qa) {
+  dal_continuation_report *r = c->r;
+  cont_point mid = {0};
+  int rc = DAL_OK;
+  while (fabs(b - a) > c->ptol) {
+    double pc = 0.5 * (a + b);
+    point_free(&mid);
+    rc = solve_point(c->rebuild, pc, qa, &c->n, c->o, &mid, r, c->ctx);
+    if (!rc) rc = point_sign(&mid, c->work, c->ipiv);
+    if (rc) break;
+    if (mid.sign == sa) {
+      a = pc;
+      memcpy(qa, mid.st->q, (size_t)c->n * sizeof(double));
+    } else {
+      b = pc;
+    }
+    if (mid.sign == 0) { // det K is exactly zero at pc: the critical point itself
+      a = pc;
+      break;
+    }
+  }
+  if (!rc) {
+    double pc = 0.5 * (a + b);
+    point_free(&mid);
+    rc = solve_point(c->rebuild, pc, qa, &c->n, c->o, &mid, r, c->ctx);
+    if (!rc) {
+      r->ncritical++;
+      if (c->point && c->point(pc, mid.sys, mid.st, mid.verdict, DAL_BRANCH_CRITICAL, c->ctx)) {
+        snprintf(r->msg, sizeof r->msg, "the point callback stopped at p=%.17g", pc);
+        rc = DAL_E_CALLBACK;
+      }
+    }
+  }
+  point_free(&mid);
+  return rc;
+}
+
 int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuation_opts *o,
                  dal_branch_fn *point, dal_continuation_report *rep, void *ctx) {
   dal_continuation_report r;
   memset(&r, 0, sizeof r);
-  int rc = DAL_OK;
-  if (!rebuild || !q0 || !o) {
-    snprintf(r.msg, sizeof r.msg, "continue: rebuild, q0 and options are required");
-    rc = DAL_E_ARG;
-  } else if (o->cookie != DAL_CONT_COOKIE) {
-    snprintf(r.msg, sizeof r.msg,
-             "continuation options not initialized: call dal_default_continuation_opts");
-    rc = DAL_E_ARG;
-  } else if (!isfinite(o->p0) || !isfinite(o->p1) || o->p0 == o->p1 || o->npoints < 2 ||
-             !isfinite(o->t) || !(o->ptol >= 0)) {
-    snprintf(r.msg, sizeof r.msg,
-             "continuation options: p0 = %g and p1 = %g must be finite and differ, npoints = %d "
-             ">= 2, t = %g finite, ptol = %g >= 0",
-             o->p0, o->p1, o->npoints, o->t, o->ptol);
-    rc = DAL_E_ARG;
-  } else {
-    rc = check_eq_opts(&o->newton, r.msg, sizeof r.msg);
-  }
+  int rc = check_cont_args(rebuild, q0, o, &r);
   if (rc) {
     if (rep) *rep = r;
     return rc;
   }
-  int n = -1;
-  double ptol = o->ptol > 0 ? o->ptol : 1e-10 * fabs(o->p1 - o->p0);
+  cont_run c = {.rebuild = rebuild, .o = o, .point = point, .ctx = ctx, .r = &r, .n = -1};
+  c.ptol = o->ptol > 0 ? o->ptol : 1e-10 * fabs(o->p1 - o->p0);
   cont_point cur = {0}, prev = {0};
-  double *hist = NULL, *guess = NULL, *work = NULL, pprev = o->p0;
-  lapack_int *ipiv = NULL;
+  double *hist = NULL, *guess = NULL, pprev = o->p0;
   for (int k = 0; k < o->npoints; ++k) {
+    int n = c.n;
     double p = k == o->npoints - 1 ? o->p1 : o->p0 + (o->p1 - o->p0) * k / (o->npoints - 1);
     // the guess: q0, the previous solution, or a secant through the two previous ones
     if (k == 0) {
-      rc = solve_point(rebuild, p, q0, &n, o, &cur, &r, ctx);
+      rc = solve_point(rebuild, p, q0, &c.n, o, &cur, &r, ctx);
+      n = c.n;
       if (!rc) {
         hist = calloc(2 * (size_t)n + 1, sizeof(double));
         guess = calloc((size_t)n + 1, sizeof(double));
-        work = calloc(2 * (size_t)n * n + 1, sizeof(double));
-        ipiv = calloc((size_t)n + 1, sizeof(lapack_int));
-        if (!hist || !guess || !work || !ipiv) {
+        c.work = calloc(2 * (size_t)n * n + 1, sizeof(double));
+        c.ipiv = calloc((size_t)n + 1, sizeof(lapack_int));
+        if (!hist || !guess || !c.work || !c.ipiv) {
           snprintf(r.msg, sizeof r.msg, "continue: out of memory");
           rc = DAL_E_NOMEM;
         }
@@ -366,51 +444,18 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
     } else {
       for (int i = 0; i < n; ++i)
         guess[i] = k == 1 ? hist[i] : hist[i] + (hist[i] - hist[n + i]);
-      rc = solve_point(rebuild, p, guess, &n, o, &cur, &r, ctx);
+      rc = solve_point(rebuild, p, guess, &c.n, o, &cur, &r, ctx);
     }
-    if (!rc) rc = point_sign(&cur, work, ipiv);
+    if (!rc) rc = point_sign(&cur, c.work, c.ipiv);
     if (rc) {
       if (!r.msg[0]) snprintf(r.msg, sizeof r.msg, "at p=%.17g: %s", p, dal_state_errmsg(cur.st));
       break;
     }
     // a sign change of det K since the previous point: bisect for the critical parameter
+    // (from the solution at the previous point, the guess for the midpoints)
     if (k > 0 && o->locate && cur.sign != prev.sign && cur.sign != 0 && prev.sign != 0) {
-      double a = pprev, b = p;
-      int sa = prev.sign;
-      cont_point mid = {0};
-      double *qa = guess; // the solution at a (guess for the midpoints)
-      memcpy(qa, prev.st->q, (size_t)n * sizeof(double));
-      while (fabs(b - a) > ptol) {
-        double c = 0.5 * (a + b);
-        point_free(&mid);
-        rc = solve_point(rebuild, c, qa, &n, o, &mid, &r, ctx);
-        if (!rc) rc = point_sign(&mid, work, ipiv);
-        if (rc) break;
-        if (mid.sign == sa) {
-          a = c;
-          memcpy(qa, mid.st->q, (size_t)n * sizeof(double));
-        } else {
-          b = c;
-        }
-        if (mid.sign == 0) { // det K is exactly zero at c: the critical point itself
-          a = c;
-          break;
-        }
-      }
-      if (!rc) {
-        double c = 0.5 * (a + b);
-        point_free(&mid);
-        rc = solve_point(rebuild, c, qa, &n, o, &mid, &r, ctx);
-        if (!rc) {
-          r.ncritical++;
-          if (point && point(c, mid.sys, mid.st, mid.verdict, DAL_BRANCH_CRITICAL, ctx)) {
-            snprintf(r.msg, sizeof r.msg, "the point callback stopped at p=%.17g", c);
-            rc = DAL_E_CALLBACK;
-          }
-        }
-      }
-      point_free(&mid);
-      if (rc) break;
+      memcpy(guess, prev.st->q, (size_t)n * sizeof(double));
+      if ((rc = locate_critical(&c, pprev, p, prev.sign, guess)) != 0) break;
     }
     r.npoints++;
     r.p_end = p;
@@ -431,8 +476,8 @@ int dal_continue(dal_rebuild_fn *rebuild, const double *q0, const dal_continuati
   point_free(&prev);
   free(hist);
   free(guess);
-  free(work);
-  free(ipiv);
+  free(c.work);
+  free(c.ipiv);
   if (rep) *rep = r;
   return rc;
 }

@@ -49,38 +49,159 @@ static double scaled_residual(const dal_system *sys, const dal_state *st, const 
   return worst;
 }
 
+// the Newton workspace on the manifold: the KKT matrix J (nk x nk), the step x (nk), the
+// coordinates q, the zero velocity, the multipliers lam; reach bounds |q_i|
+typedef struct mf_ws {
+  int n, m, nk;
+  double *J, *x, *q, *zero, *lam;
+  lapack_int *ipiv;
+  double reach;
+} mf_ws;
+
+// the Newton step: [K_full -G'; G 0] (dq; dlambda) = -(R - G' lambda; phi) at qdot = 0,
+// qddot = 0, into w->x; 0 or DAL_E_SINGULAR naming the pivot
+static int mf_solve(const dal_system *sys, dal_state *st, const dal_tangent *tg, mf_ws *w) {
+  int n = w->n, m = w->m, nk = w->nk;
+  size_t snk = (size_t)nk;
+  for (int j = 0; j < nk; ++j)
+    for (int i = 0; i < nk; ++i) {
+      double v = 0.0;
+      if (i < n && j < n)
+        v = tg->Rq[(size_t)j * n + i];
+      else if (i < n)
+        v = -tg->G[(size_t)i * m + (j - n)];
+      else if (j < n)
+        v = tg->G[(size_t)j * m + (i - n)];
+      w->J[(size_t)j * snk + i] = v;
+    }
+  for (int i = 0; i < n; ++i)
+    w->x[i] = -tg->res[i];
+  for (int i = 0; i < m; ++i)
+    w->x[n + i] = -tg->cres[i];
+  lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, nk, 1, w->J, nk, w->ipiv, w->x, nk);
+  if (info == 0) return DAL_OK;
+  char qs[256];
+  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  int piv = info > 0 ? (int)info - 1 : 0;
+  return DAL_FAIL(st, DAL_E_SINGULAR,
+                  "equilibrium: the Newton matrix on the constraint manifold [K -G'; G 0] is "
+                  "singular at t=%.17g, %s (pivot of %s '%s'): a bifurcation point, a "
+                  "direction with no restoring force, or dependent constraint rows; move the "
+                  "parameter off the critical value or drop a redundant constraint",
+                  st->t, qs, piv < n ? "coordinate" : "constraint",
+                  piv < n ? sys->coord_names[piv] : sys->con[sys->row_con[piv - n]].name);
+}
+
+// take the step w->x (scaled down to max_step), within the start's neighbourhood; *conv: the
+// largest relative change of q, r: iterations and step length
+static int mf_step(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o, mf_ws *w,
+                   int it, double *conv, dal_equilibrium_report *r) {
+  int n = w->n, m = w->m;
+  double *x = w->x, *q = w->q, big = 0.0;
+  int far = -1;
+  double f = dal__newton_scale(x, n, m, q, o->max_step, w->reach, &big, &far);
+  if (!isfinite(big))
+    return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", st->t);
+  // a step that leaves the start's neighbourhood lands on no equilibrium the start was
+  // meant for (the Newton matrix is nearly singular there)
+  if (far >= 0) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_CONV,
+                    "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
+                    "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the Newton "
+                    "matrix on the constraint manifold is nearly singular there; start closer "
+                    "to the equilibrium or bound the step (max_step)",
+                    st->t, qs, sys->coord_names[far], q[far] + f * x[far], w->reach);
+  }
+  *conv = 0.0;
+  for (int i = 0; i < n; ++i) {
+    q[i] += f * x[i];
+    *conv = fmax(*conv, fabs(f * x[i]) / (1.0 + fabs(q[i])));
+  }
+  for (int i = 0; i < m; ++i)
+    w->lam[i] += f * x[n + i];
+  r->iterations = it;
+  r->step = f * big;
+  return f == 1.0 ? DAL_OK : 1; // 1: a shortened step (not converged)
+}
+
+// a moving constraint whose motion carries the point (dphi/dt != 0): qdot = 0 is not on
+// the manifold there, and the point is no equilibrium of these coordinates
+static int mf_not_carried(const dal_system *sys, dal_state *st, const dal_tangent *tg) {
+  int n = sys->n, m = sys->m;
+  for (int i = 0; i < m; ++i) {
+    double gn = 0.0;
+    for (int j = 0; j < n; ++j)
+      gn += fabs(tg->G[(size_t)j * m + i]);
+    if (!(fabs(st->phit[i]) <= 1e-10 * (1.0 + gn))) {
+      char qs[256];
+      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "equilibrium: at t=%.17g, %s the moving constraint '%s' carries the point "
+                      "(dphi/dt = %.3g): a relative equilibrium, which redundant coordinates do "
+                      "not cover yet; describe the moving part by a coordinate map in its frame "
+                      "(dal_map_ring for a turning ring)",
+                      st->t, qs, sys->con[sys->row_con[i]].name, st->phit[i]);
+    }
+  }
+  return DAL_OK;
+}
+
+// the solution, evaluated with its KKT accelerations and multipliers (the static loads),
+// and its time dependence d qddot/dt into the report
+static int mf_finish(const dal_system *sys, dal_state *st, dal_tangent *tg,
+                     dal_equilibrium_report *r) {
+  int n = sys->n, rc;
+  tg->acc = NULL;
+  tg->lam = NULL;
+  double *ft = malloc(2 * (size_t)n * sizeof(double)); // df/dt at the solution
+  if (!ft) return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory");
+  if ((rc = dal__tangent_eval(sys, st, tg, 1)) == 0 &&
+      (rc = dal__tangent_kkt(sys, st, tg, NULL, ft, NULL)) == 0)
+    for (int i = 0; i < n; ++i) {
+      r->accel = fmax(r->accel, fabs(st->qddot[i]));
+      r->unsteady = fmax(r->unsteady, fabs(ft[n + i]));
+    }
+  free(ft);
+  return rc;
+}
+
 int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                               dal_equilibrium_report *rep) {
   int n = sys->n, m = sys->m, nk = n + m, rc;
   size_t sn = (size_t)n, snk = (size_t)nk;
-  double t = st->t, step = INFINITY, reach = 0.0, res = INFINITY;
+  double t = st->t, step = INFINITY, res = INFINITY;
   dal_tangent *tg = NULL;
   double *buf = calloc(snk * snk + 2 * snk + 2 * sn + 2 * (size_t)m + 1, sizeof(double));
-  lapack_int *ipiv = calloc(snk, sizeof(lapack_int));
-  if (!buf || !ipiv || dal__tangent_create(sys, &tg)) {
+  mf_ws w = {.n = n, .m = m, .nk = nk, .ipiv = calloc(snk, sizeof(lapack_int))};
+  if (!buf || !w.ipiv || dal__tangent_create(sys, &tg)) {
     free(buf);
-    free(ipiv);
+    free(w.ipiv);
     return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory for the Newton workspace");
   }
-  double *J = buf, *x = J + snk * snk, *q = x + snk, *zero = q + sn, *lam = zero + sn;
-  double *ftbuf = NULL; // 2n: df/dt at the solution
-  memcpy(q, st->q, sn * sizeof(double));
+  w.J = buf;
+  w.x = w.J + snk * snk;
+  w.q = w.x + snk;
+  w.zero = w.q + sn;
+  w.lam = w.zero + sn;
+  memcpy(w.q, st->q, sn * sizeof(double));
   // the same neighbourhood and residual test as dal_equilibrium (equilibrium.c)
   for (int i = 0; i < n; ++i)
-    reach = fmax(reach, fabs(q[i]));
-  reach = 1e4 * (1.0 + reach);
+    w.reach = fmax(w.reach, fabs(w.q[i]));
+  w.reach = 1e4 * (1.0 + w.reach);
   double res_tol = fmax(o->xtol, 1024.0 * DBL_EPSILON);
   dal_equilibrium_report r = {0, 0.0, 0.0, 0.0};
   // the multipliers start from the KKT solution at (q, 0)
-  if ((rc = dal__analysis_eval(sys, st, t, q, zero)) != 0) goto done;
-  memcpy(lam, st->lambda, (size_t)m * sizeof(double));
-  tg->acc = zero;
-  tg->lam = lam;
+  if ((rc = dal__analysis_eval(sys, st, t, w.q, w.zero)) != 0) goto done;
+  memcpy(w.lam, st->lambda, (size_t)m * sizeof(double));
+  tg->acc = w.zero;
+  tg->lam = w.lam;
   for (int it = 1;; ++it) {
-    if (it > 1 && (rc = dal__analysis_eval(sys, st, t, q, zero)) != 0) goto done;
+    if (it > 1 && (rc = dal__analysis_eval(sys, st, t, w.q, w.zero)) != 0) goto done;
     if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) goto done;
     // converged: the last step was below xtol and the scaled residual is small here
-    res = scaled_residual(sys, st, tg, lam);
+    res = scaled_residual(sys, st, tg, w.lam);
     if (step <= 0.0 && res <= res_tol) break;
     if (it > o->max_iter) {
       char qs[256];
@@ -93,110 +214,20 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
                     o->max_iter, t, r.step, res, res_tol, qs);
       goto done;
     }
-    // [K_full -G'; G 0] (dq; dlambda) = -(R - G' lambda; phi) at qdot = 0, qddot = 0
-    for (int j = 0; j < nk; ++j)
-      for (int i = 0; i < nk; ++i) {
-        double v = 0.0;
-        if (i < n && j < n)
-          v = tg->Rq[(size_t)j * n + i];
-        else if (i < n)
-          v = -tg->G[(size_t)i * m + (j - n)];
-        else if (j < n)
-          v = tg->G[(size_t)j * m + (i - n)];
-        J[(size_t)j * snk + i] = v;
-      }
-    for (int i = 0; i < n; ++i)
-      x[i] = -tg->res[i];
-    for (int i = 0; i < m; ++i)
-      x[n + i] = -tg->cres[i];
-    lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, nk, 1, J, nk, ipiv, x, nk);
-    if (info != 0) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      int piv = info > 0 ? (int)info - 1 : 0;
-      rc = DAL_FAIL(st, DAL_E_SINGULAR,
-                    "equilibrium: the Newton matrix on the constraint manifold [K -G'; G 0] is "
-                    "singular at t=%.17g, %s (pivot of %s '%s'): a bifurcation point, a "
-                    "direction with no restoring force, or dependent constraint rows; move the "
-                    "parameter off the critical value or drop a redundant constraint",
-                    t, qs, piv < n ? "coordinate" : "constraint",
-                    piv < n ? sys->coord_names[piv] : sys->con[sys->row_con[piv - n]].name);
+    double conv = 0.0;
+    if ((rc = mf_solve(sys, st, tg, &w)) != 0) goto done;
+    int shortened = mf_step(sys, st, o, &w, it, &conv, &r);
+    if (shortened < 0) {
+      rc = shortened;
       goto done;
     }
-    double big = 0.0, conv = 0.0;
-    for (int i = 0; i < n; ++i) {
-      big = fmax(big, fabs(x[i]));
-      if (!isfinite(x[i])) big = INFINITY;
-    }
-    for (int i = 0; i < m; ++i)
-      if (!isfinite(x[n + i])) big = INFINITY;
-    if (!isfinite(big)) {
-      rc = DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
-      goto done;
-    }
-    double f = o->max_step > 0 && big > o->max_step ? o->max_step / big : 1.0;
-    // a step that leaves the start's neighbourhood lands on no equilibrium the start was
-    // meant for (the Newton matrix is nearly singular there)
-    for (int i = 0; i < n; ++i)
-      if (!(fabs(q[i] + f * x[i]) <= reach)) {
-        char qs[256];
-        dal__fmt_q(sys, st->q, qs, sizeof qs);
-        rc = DAL_FAIL(st, DAL_E_CONV,
-                      "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
-                      "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the Newton "
-                      "matrix on the constraint manifold is nearly singular there; start closer "
-                      "to the equilibrium or bound the step (max_step)",
-                      t, qs, sys->coord_names[i], q[i] + f * x[i], reach);
-        goto done;
-      }
-    for (int i = 0; i < n; ++i) {
-      q[i] += f * x[i];
-      conv = fmax(conv, fabs(f * x[i]) / (1.0 + fabs(q[i])));
-    }
-    for (int i = 0; i < m; ++i)
-      lam[i] += f * x[n + i];
-    r.iterations = it;
-    r.step = f * big;
-    step = conv <= o->xtol && f == 1.0 ? 0.0 : conv;
+    step = conv <= o->xtol && !shortened ? 0.0 : conv;
   }
-  // a moving constraint whose motion carries the point (dphi/dt != 0): qdot = 0 is not on
-  // the manifold there, and the point is no equilibrium of these coordinates
-  for (int i = 0; i < m; ++i) {
-    double gn = 0.0;
-    for (int j = 0; j < n; ++j)
-      gn += fabs(tg->G[(size_t)j * m + i]);
-    if (!(fabs(st->phit[i]) <= 1e-10 * (1.0 + gn))) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "equilibrium: at t=%.17g, %s the moving constraint '%s' carries the point "
-                    "(dphi/dt = %.3g): a relative equilibrium, which redundant coordinates do "
-                    "not cover yet; describe the moving part by a coordinate map in its frame "
-                    "(dal_map_ring for a turning ring)",
-                    t, qs, sys->con[sys->row_con[i]].name, st->phit[i]);
-      goto done;
-    }
-  }
-  // the solution, evaluated with its KKT accelerations and multipliers (the static loads),
-  // and its time dependence d qddot/dt
-  tg->acc = NULL;
-  tg->lam = NULL;
-  ftbuf = malloc(2 * sn * sizeof(double));
-  if (!ftbuf) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory");
-    goto done;
-  }
-  if ((rc = dal__tangent_eval(sys, st, tg, 1)) != 0) goto done;
-  if ((rc = dal__tangent_kkt(sys, st, tg, NULL, ftbuf, NULL)) != 0) goto done;
-  for (int i = 0; i < n; ++i) {
-    r.accel = fmax(r.accel, fabs(st->qddot[i]));
-    r.unsteady = fmax(r.unsteady, fabs(ftbuf[n + i]));
-  }
-  if (rep) *rep = r;
+  if ((rc = mf_not_carried(sys, st, tg)) == 0 && (rc = mf_finish(sys, st, tg, &r)) == 0 && rep)
+    *rep = r;
 done:
-  free(ftbuf);
   free(buf);
-  free(ipiv);
+  free(w.ipiv);
   dal__tangent_free(tg);
   return rc;
 }

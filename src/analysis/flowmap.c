@@ -165,18 +165,11 @@ static int var_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *o
   return DAL_OK;
 }
 
-int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                         double t1, double *Phi, int nparam, const char *const *params, double *S) {
-  int rc = dal__check_pair(sys, st, "state_transition");
-  if (rc) return rc;
-  if (!Phi && !S) return DAL_FAIL(st, DAL_E_ARG, "state_transition: Phi and S are both NULL");
-  if (nparam < 0 || (nparam > 0 && (!params || !S)) || (nparam == 0 && S))
-    return DAL_FAIL(st, DAL_E_ARG,
-                    "state_transition: nparam = %d needs %s; S goes with nparam > 0 names", nparam,
-                    nparam > 0 ? "the names and S" : "S = NULL");
-  if (!isfinite(t1) || !(t1 > st->t))
-    return DAL_FAIL(st, DAL_E_ARG, "state_transition: t1 = %g must be finite and after t = %g", t1,
-                    st->t);
+// the options the variational equations run with (an explicit method, no Baumgarte terms,
+// the index-1 form with constraint rows); 0 or a status with the state's message set
+static int transition_opts(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                           dal_solve_opts *out) {
+  int rc;
   dal_solve_opts o;
   if (opts)
     o = *opts;
@@ -199,57 +192,84 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
   o.form = sys->m > 0 ? DAL_FORM_INDEX1 : o.form;
   o.work = 0;
   o.project = 0;
-  if ((rc = dal__tangent_supported(sys, st, "state_transition")) != 0) return rc;
+  *out = o;
+  return dal__tangent_supported(sys, st, "state_transition");
+}
 
-  var_problem vp;
-  memset(&vp, 0, sizeof vp);
-  vp.base = sys->m > 0 ? &dal__problem_index1 : &dal__problem_minimal;
-  vp.p = *vp.base;
-  vp.p.name = "variational";
-  vp.p.size = var_size;
-  vp.p.rhs = var_rhs;
-  vp.p.project = NULL;
-  vp.p.from_state = var_from_state;
-  vp.p.to_state = var_to_state;
-  vp.n = sys->n;
-  vp.m = sys->m;
-  vp.np = nparam;
+// the variational problem of (sys, nparam named parameters) into vp (zeroed first; its
+// memory is freed by var_free); 0 or a status with the state's message set
+static int var_setup(const dal_system *sys, dal_state *st, int nparam, const char *const *params,
+                     var_problem *vp) {
+  memset(vp, 0, sizeof *vp);
+  vp->base = sys->m > 0 ? &dal__problem_index1 : &dal__problem_minimal;
+  vp->p = *vp->base;
+  vp->p.name = "variational";
+  vp->p.size = var_size;
+  vp->p.rhs = var_rhs;
+  vp->p.project = NULL;
+  vp->p.from_state = var_from_state;
+  vp->p.to_state = var_to_state;
+  vp->n = sys->n;
+  vp->m = sys->m;
+  vp->np = nparam;
   size_t n = (size_t)sys->n, n2 = 2 * n, nk = n + (size_t)sys->m;
-  vp.p.ny = (int)(n2 * (1 + n2 + (size_t)nparam));
+  vp->p.ny = (int)(n2 * (1 + n2 + (size_t)nparam));
   char msg[256];
-  vp.ref = calloc((size_t)nparam + 1, sizeof *vp.ref);
-  vp.A = calloc(n2 * n2, sizeof(double));
-  vp.B = calloc(nk * (size_t)nparam + 1, sizeof(double));
-  vp.f = calloc((size_t)(sys->N * sys->dim) + 1, sizeof(double));
-  dal_ode_integ *ig = NULL;
-  if (!vp.ref || !vp.A || !vp.B || !vp.f || dal__tangent_create(sys, &vp.tg)) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "state_transition: out of memory");
-    goto done;
-  }
+  vp->ref = calloc((size_t)nparam + 1, sizeof *vp->ref);
+  vp->A = calloc(n2 * n2, sizeof(double));
+  vp->B = calloc(nk * (size_t)nparam + 1, sizeof(double));
+  vp->f = calloc((size_t)(sys->N * sys->dim) + 1, sizeof(double));
+  if (!vp->ref || !vp->A || !vp->B || !vp->f || dal__tangent_create(sys, &vp->tg))
+    return DAL_FAIL(st, DAL_E_NOMEM, "state_transition: out of memory");
   for (int j = 0; j < nparam; ++j) {
-    if ((rc = dal_param_find(sys, params[j], &vp.ref[j], msg, sizeof msg)) != 0) {
-      rc = DAL_FAIL(st, rc, "state_transition: parameter %d: %s", j, msg);
-      goto done;
-    }
-    dal_param_kind k = vp.ref[j].kind;
-    if (k == DAL_PARAM_PLACE || k == DAL_PARAM_CONSTRAINT || sys->lag) {
-      rc = DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "state_transition: parameter '%s' has no exact derivative (%s); "
-                    "sensitivities cover masses, gravity, springs and dampers of particle "
-                    "systems",
-                    params[j],
-                    sys->lag ? "the system is a Lagrangian"
-                             : "primitive parameters enter the jet functions as plain doubles");
-      goto done;
-    }
+    int rc = dal_param_find(sys, params[j], &vp->ref[j], msg, sizeof msg);
+    if (rc) return DAL_FAIL(st, rc, "state_transition: parameter %d: %s", j, msg);
+    dal_param_kind k = vp->ref[j].kind;
+    if (k == DAL_PARAM_PLACE || k == DAL_PARAM_CONSTRAINT || sys->lag)
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "state_transition: parameter '%s' has no exact derivative (%s); "
+                      "sensitivities cover masses, gravity, springs and dampers of particle "
+                      "systems",
+                      params[j],
+                      sys->lag ? "the system is a Lagrangian"
+                               : "primitive parameters enter the jet functions as plain doubles");
   }
+  return DAL_OK;
+}
+
+static void var_free(var_problem *vp) {
+  dal__tangent_free(vp->tg);
+  free(vp->ref);
+  free(vp->A);
+  free(vp->B);
+  free(vp->f);
+}
+
+int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                         double t1, double *Phi, int nparam, const char *const *params, double *S) {
+  int rc = dal__check_pair(sys, st, "state_transition");
+  if (rc) return rc;
+  if (!Phi && !S) return DAL_FAIL(st, DAL_E_ARG, "state_transition: Phi and S are both NULL");
+  if (nparam < 0 || (nparam > 0 && (!params || !S)) || (nparam == 0 && S))
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "state_transition: nparam = %d needs %s; S goes with nparam > 0 names", nparam,
+                    nparam > 0 ? "the names and S" : "S = NULL");
+  if (!isfinite(t1) || !(t1 > st->t))
+    return DAL_FAIL(st, DAL_E_ARG, "state_transition: t1 = %g must be finite and after t = %g", t1,
+                    st->t);
+  dal_solve_opts o;
+  if ((rc = transition_opts(sys, st, opts, &o)) != 0) return rc;
+  var_problem vp;
+  dal_ode_integ *ig = NULL;
+  size_t n = (size_t)sys->n, n2 = 2 * n;
+  if ((rc = var_setup(sys, st, nparam, params, &vp)) != 0) goto done;
   // a consistent start on the manifold (the tangent space is then invariant)
   if ((rc = dal__analysis_eval(sys, st, st->t, st->q, st->qdot)) != 0) goto done;
   if (sys->m > 0) {
     if ((rc = dal__tangent_eval(sys, st, vp.tg, 0)) != 0) goto done;
     if ((rc = dal__tangent_on_manifold(sys, st, vp.tg, "state_transition")) != 0) goto done;
   }
-  if ((rc = dal__ode_create(sys, st, &o, meth, &vp.p, &ig)) != 0) goto done;
+  if ((rc = dal__ode_create(sys, st, &o, o.method, &vp.p, &ig)) != 0) goto done;
   rc = ig->advance(ig, t1);
   if (rc == 0) {
     if (Phi) memcpy(Phi, ig->y + n2, n2 * n2 * sizeof(double));
@@ -261,11 +281,7 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
   }
 done:
   if (ig) dal__ode_destroy(ig);
-  dal__tangent_free(vp.tg);
-  free(vp.ref);
-  free(vp.A);
-  free(vp.B);
-  free(vp.f);
+  var_free(&vp);
   return rc;
 }
 
@@ -308,6 +324,26 @@ static int resolve_input(const dal_system *sys, dal_state *st, const char *name,
   return DAL_OK;
 }
 
+// without constraint rows: B = b, the first-order Af, and Bf = (0, M^-1 b); R holds the
+// columns b_j (n + m apart)
+static int inputs_free_space(const dal_system *sys, dal_state *st, dal_tangent *tg, int ninput,
+                             const double *R, double *B, double *Af, double *Bf) {
+  size_t sn = (size_t)sys->n, nk = sn + (size_t)sys->m, ni = (size_t)ninput;
+  int rc = dal__tangent_factor(sys, st, tg);
+  if (rc) return rc;
+  if (B) memcpy(B, R, sn * ni * sizeof(double));
+  if (Af) dal__tangent_flow(tg, Af, NULL);
+  if (Bf) {
+    for (size_t j = 0; j < ni; ++j) {
+      double *c = Bf + j * 2 * sn;
+      memset(c, 0, sn * sizeof(double));
+      memcpy(c + sn, R + j * nk, sn * sizeof(double));
+      dal__tangent_msolve(tg, 1, c + sn);
+    }
+  }
+  return DAL_OK;
+}
+
 int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
                          const char *const *inputs, double *B, double *Af, double *Bf) {
   int rc = dal__check_pair(sys, st, "linearize_inputs");
@@ -346,17 +382,7 @@ int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
   }
   // R columns now hold b_j = -dR/du_j: M dq'' + C dq' + K dq = b du (full space)
   if (m == 0) {
-    if ((rc = dal__tangent_factor(sys, st, tg)) != 0) goto done;
-    if (B) memcpy(B, R, sn * ni * sizeof(double));
-    if (Af) dal__tangent_flow(tg, Af, NULL);
-    if (Bf) {
-      for (size_t j = 0; j < ni; ++j) {
-        double *c = Bf + j * 2 * sn;
-        memset(c, 0, sn * sizeof(double));
-        memcpy(c + sn, R + j * nk, sn * sizeof(double));
-        dal__tangent_msolve(tg, 1, c + sn);
-      }
-    }
+    rc = inputs_free_space(sys, st, tg, ninput, R, B, Af, Bf);
   } else {
     // reduced: B_r = N' b, and the first-order Bf = (0, M_r^-1 B_r) = (0, N' da) with da from
     // the KKT system [M G'; G 0] (da; -dlambda) = (b; 0)

@@ -63,6 +63,10 @@ typedef struct lyap {
   // constraint rows: the full-space KKT tangent A (2n x 2n), and the basis N, Yb (n x k) of
   // the manifold's tangent space where the vectors start and are projected back at every QR
   double *A, *N, *Yb;
+  // the averages: sums of log |R_jj| after the transient, their blocking, the last QR's logs,
+  // the running estimates (p each)
+  double *sum, *lg, *est;
+  struct lyap_blocking *bk;
 } lyap;
 
 /// levels of the blocking analysis: blocks of 1, 2, 4, ... segments
@@ -285,6 +289,10 @@ static int orthonormalize(lyap *L, double *lg) {
 
 static void lyap_free(lyap *L) {
   dal__ode_destroy(L->ig);
+  free(L->sum);
+  free(L->lg);
+  free(L->est);
+  free(L->bk);
   free(L->Y);
   free(L->Z);
   free(L->tau);
@@ -353,143 +361,141 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
   return DAL_OK;
 }
 
-int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
-                 double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "lyapunov: the state belongs to another system");
-  if (dal__check_idle(st, "lyapunov")) return DAL_E_STATE;
-  if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
-  int rc = check_opts(sys, st, o);
-  if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
-  if (rc) return rc;
-
-  lyap L;
-  memset(&L, 0, sizeof L);
-  L.sys = sys;
-  L.o = o;
-  L.n = sys->n;
-  L.ny = 2 * sys->n;
-  L.p = o->nexp ? o->nexp : 2 * (sys->n - sys->m);
-  L.m = L.ny * (1 + L.p);
-  lyap_blocking *bk = NULL;
-  int nb = o->nblocks, ny = L.ny, p = L.p;
-  double *sum = NULL, *lg = NULL, *est = NULL;
-  size_t m = (size_t)L.m;
+// the work state, the augmented (y, V) and the workspaces of L for options o (sizes set), and
+// the integrator's options; 0 or a status with the caller's state message set
+static int lyap_alloc(lyap *L, const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
+  memset(L, 0, sizeof *L);
+  L->sys = sys;
+  L->o = o;
+  L->n = sys->n;
+  L->ny = 2 * sys->n;
+  L->p = o->nexp ? o->nexp : 2 * (sys->n - sys->m);
+  L->m = L->ny * (1 + L->p);
+  int ny = L->ny, p = L->p;
+  size_t m = (size_t)L->m;
   // the work state carries the state's parameter overrides (a sweep's per-trajectory values)
-  int ok = dal_state_create(sys, &L.st) == 0 && dal_state_copy_params(sys, L.st, st) == 0 &&
-           dal__tangent_create(sys, &L.tg) == 0;
-  ok = ok && (L.Y = calloc(m, sizeof(double))) &&
-       (L.Z = calloc((size_t)L.n * p + 2 * (size_t)L.n + 1, sizeof(double))) &&
-       (L.tau = calloc((size_t)p, sizeof(double))) && (sum = calloc((size_t)p, sizeof(double))) &&
-       (bk = calloc((size_t)p, sizeof *bk)) && (lg = calloc((size_t)p, sizeof(double))) &&
-       (est = calloc((size_t)p, sizeof(double)));
+  int ok = dal_state_create(sys, &L->st) == 0 && dal_state_copy_params(sys, L->st, st) == 0 &&
+           dal__tangent_create(sys, &L->tg) == 0;
+  ok = ok && (L->Y = calloc(m, sizeof(double))) &&
+       (L->Z = calloc((size_t)L->n * p + 2 * (size_t)L->n + 1, sizeof(double))) &&
+       (L->tau = calloc((size_t)p, sizeof(double))) &&
+       (L->sum = calloc((size_t)p, sizeof(double))) && (L->bk = calloc((size_t)p, sizeof *L->bk)) &&
+       (L->lg = calloc((size_t)p, sizeof(double))) && (L->est = calloc((size_t)p, sizeof(double)));
   if (ok && sys->m > 0)
-    ok = (L.A = calloc((size_t)ny * ny, sizeof(double))) &&
-         (L.N = calloc((size_t)L.n * L.n + 1, sizeof(double))) &&
-         (L.Yb = calloc((size_t)L.n * L.n + 1, sizeof(double)));
+    ok = (L->A = calloc((size_t)ny * ny, sizeof(double))) &&
+         (L->N = calloc((size_t)L->n * L->n + 1, sizeof(double))) &&
+         (L->Yb = calloc((size_t)L->n * L->n + 1, sizeof(double)));
   if (ok) {
     // workspace of the QR factorization and of forming Q
     double q1 = 0.0, q2 = 0.0;
-    ok = LAPACKE_dgeqrf_work(LAPACK_COL_MAJOR, ny, p, L.Y + ny, ny, L.tau, &q1, -1) == 0 &&
-         LAPACKE_dorgqr_work(LAPACK_COL_MAJOR, ny, p, p, L.Y + ny, ny, L.tau, &q2, -1) == 0;
-    L.lwork = (lapack_int)fmax(fmax(q1, q2), 1.0);
-    ok = ok && (L.qrwork = calloc((size_t)L.lwork, sizeof(double)));
+    ok = LAPACKE_dgeqrf_work(LAPACK_COL_MAJOR, ny, p, L->Y + ny, ny, L->tau, &q1, -1) == 0 &&
+         LAPACKE_dorgqr_work(LAPACK_COL_MAJOR, ny, p, p, L->Y + ny, ny, L->tau, &q2, -1) == 0;
+    L->lwork = (lapack_int)fmax(fmax(q1, q2), 1.0);
+    ok = ok && (L->qrwork = calloc((size_t)L->lwork, sizeof(double)));
   }
-  if (!ok) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "lyapunov: out of memory for %d tangent vectors", p);
-    goto done;
-  }
+  if (!ok) return DAL_FAIL(st, DAL_E_NOMEM, "lyapunov: out of memory for %d tangent vectors", p);
 
   // the integrator: the library's, on the augmented problem, with dal_advance's tolerances
-  L.fo.ny = L.m;
-  L.fo.rhs = aug_rhs;
-  L.fo.ctx = &L;
-  L.so = dal_default_solve_opts();
-  L.so.method = o->method;
-  L.so.rtol = o->rtol;
-  L.so.atol = o->atol;
-  L.so.fixed_step = o->h;
+  L->fo.ny = L->m;
+  L->fo.rhs = aug_rhs;
+  L->fo.ctx = L;
+  L->so = dal_default_solve_opts();
+  L->so.method = o->method;
+  L->so.rtol = o->rtol;
+  L->so.atol = o->atol;
+  L->so.fixed_step = o->h;
   // AUTO here keeps the rule it was validated with (tests/test_analysis_lyapunov.c), not the
   // ODE rule of solve.h (measured on plain trajectories, not on the augmented tangent system)
   dal_method am = o->rtol > 1e-6     ? DAL_METHOD_DOPRI5
                   : o->rtol >= 1e-12 ? DAL_METHOD_ADAMS
                                      : DAL_METHOD_BS;
-  L.meth = o->method == DAL_METHOD_AUTO ? am : o->method;
+  L->meth = o->method == DAL_METHOD_AUTO ? am : o->method;
+  return DAL_OK;
+}
 
-  // the start: trajectory from the state, tangent vectors orthonormalized
-  double t = st->t;
-  memcpy(L.Y, st->q, (size_t)L.n * sizeof(double));
-  memcpy(L.Y + L.n, st->qdot, (size_t)L.n * sizeof(double));
+// the start: trajectory from the state, tangent vectors (given or the unit vectors) on the
+// manifold's tangent space and orthonormalized; 0 or a status with st's message set
+static int lyap_start(lyap *L, dal_state *st) {
+  const dal_system *sys = L->sys;
+  const dal_lyapunov_opts *o = L->o;
+  int ny = L->ny, p = L->p, rc;
+  double t = st->t, *lg = L->lg;
+  memcpy(L->Y, st->q, (size_t)L->n * sizeof(double));
+  memcpy(L->Y + L->n, st->qdot, (size_t)L->n * sizeof(double));
   for (int j = 0; j < p; ++j)
     for (int i = 0; i < ny; ++i)
-      L.Y[(size_t)ny * (1 + j) + i] = o->y0 ? o->y0[(size_t)j * ny + i] : (i == j ? 1.0 : 0.0);
+      L->Y[(size_t)ny * (1 + j) + i] = o->y0 ? o->y0[(size_t)j * ny + i] : (i == j ? 1.0 : 0.0);
   if (sys->m > 0) { // a consistent start, the vectors on the manifold's tangent space
-    if ((rc = dal__analysis_eval(sys, L.st, t, L.Y, L.Y + L.n)) != 0 ||
-        (rc = dal__tangent_eval(sys, L.st, L.tg, 0)) != 0 ||
-        (rc = dal__tangent_on_manifold(sys, L.st, L.tg, "lyapunov")) != 0 ||
-        (rc = manifold_project(&L, t, 1)) != 0) {
-      memcpy(st->err, L.st->err, sizeof st->err);
-      goto done;
+    if ((rc = dal__analysis_eval(sys, L->st, t, L->Y, L->Y + L->n)) != 0 ||
+        (rc = dal__tangent_eval(sys, L->st, L->tg, 0)) != 0 ||
+        (rc = dal__tangent_on_manifold(sys, L->st, L->tg, "lyapunov")) != 0 ||
+        (rc = manifold_project(L, t, 1)) != 0) {
+      memcpy(st->err, L->st->err, sizeof st->err);
+      return rc;
     }
   }
-  if (orthonormalize(&L, lg) != 0) {
-    rc = DAL_FAIL(st, DAL_E_ARG, "lyapunov: the initial tangent vectors could not be factored");
-    goto done;
-  }
+  if (orthonormalize(L, lg) != 0)
+    return DAL_FAIL(st, DAL_E_ARG, "lyapunov: the initial tangent vectors could not be factored");
   for (int j = 0; j < p; ++j)
-    if (!(lg[j] > log(1e-12)) || !isfinite(lg[j])) {
-      rc = DAL_FAIL(st, DAL_E_ARG,
-                    "lyapunov: initial tangent vector %d depends on the previous ones (|R_%d%d| "
-                    "= %.3g); give linearly independent vectors",
-                    j, j, j, exp(lg[j]));
-      goto done;
-    }
+    if (!(lg[j] > log(1e-12)) || !isfinite(lg[j]))
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "lyapunov: initial tangent vector %d depends on the previous ones (|R_%d%d| "
+                      "= %.3g); give linearly independent vectors",
+                      j, j, j, exp(lg[j]));
+  return DAL_OK;
+}
 
-  // segments: QR every `renorm` and at the block boundaries of the averaging window
-  double ta = t + o->transient, span = o->t_end - ta;
-  int block = 0;
-  while (t < o->t_end) {
-    int averaging = t >= ta;
+// the segments from *t to o->t_end: QR every `renorm` and at the block boundaries of the
+// averaging window after the transient (which starts at ta); *t ends where the run stopped
+static int lyap_run(lyap *L, dal_state *st, double *t, double ta, dal_lyapunov_fn *monitor,
+                    void *ctx) {
+  const dal_lyapunov_opts *o = L->o;
+  int nb = o->nblocks, p = L->p, block = 0, rc;
+  double span = o->t_end - ta, *lg = L->lg;
+  while (*t < o->t_end) {
+    int averaging = *t >= ta;
     double bound = averaging ? ta + span * (block + 1) / nb : ta;
     if (averaging && block == nb - 1) bound = o->t_end;
-    double t1 = fmin(t + o->renorm, bound);
+    double t1 = fmin(*t + o->renorm, bound);
     if (bound - t1 < 1e-9 * o->renorm) t1 = bound;
-    double tprev = t;
-    rc = segment(&L, &t, t1);
-    if (!rc && !(t > tprev))
-      rc = DAL_FAIL(L.st, DAL_E_STEP, "lyapunov: no progress at t=%.17g (segment to %.17g)", t, t1);
+    double tprev = *t;
+    rc = segment(L, t, t1);
+    if (!rc && !(*t > tprev))
+      rc = DAL_FAIL(L->st, DAL_E_STEP, "lyapunov: no progress at t=%.17g (segment to %.17g)", *t,
+                    t1);
     if (rc == DAL_E_MAXSTEPS)
-      rc = DAL_FAIL(L.st, DAL_E_MAXSTEPS, "lyapunov: more than %ld steps before t=%.17g",
+      rc = DAL_FAIL(L->st, DAL_E_MAXSTEPS, "lyapunov: more than %ld steps before t=%.17g",
                     o->max_steps, o->t_end);
-    if (!rc && sys->m > 0) rc = manifold_project(&L, t, 0);
+    if (!rc && L->sys->m > 0) rc = manifold_project(L, *t, 0);
     if (rc) {
-      memcpy(st->err, L.st->err, sizeof st->err);
-      goto done;
+      memcpy(st->err, L->st->err, sizeof st->err);
+      return rc;
     }
-    if (orthonormalize(&L, lg) != 0) {
-      rc = DAL_FAIL(st, DAL_E_SINGULAR, "lyapunov: QR factorization failed at t=%.17g", t);
-      goto done;
-    }
+    if (orthonormalize(L, lg) != 0)
+      return DAL_FAIL(st, DAL_E_SINGULAR, "lyapunov: QR factorization failed at t=%.17g", *t);
     if (!averaging) continue;
     for (int j = 0; j < p; ++j) {
-      if (!isfinite(lg[j])) {
-        rc = DAL_FAIL(st, DAL_E_SINGULAR,
-                      "lyapunov: tangent vector %d collapsed at t=%.17g (|R| = %g); shorten "
-                      "renorm",
-                      j, t, exp(lg[j]));
-        goto done;
-      }
-      sum[j] += lg[j];
-      blocking_add(&bk[j], lg[j], t - tprev);
-      est[j] = sum[j] / (t - ta);
+      if (!isfinite(lg[j]))
+        return DAL_FAIL(st, DAL_E_SINGULAR,
+                        "lyapunov: tangent vector %d collapsed at t=%.17g (|R| = %g); shorten "
+                        "renorm",
+                        j, *t, exp(lg[j]));
+      L->sum[j] += lg[j];
+      blocking_add(&L->bk[j], lg[j], *t - tprev);
+      L->est[j] = L->sum[j] / (*t - ta);
     }
-    if (t >= bound && block < nb - 1) ++block;
-    if (monitor && monitor(t, est, p, ctx)) break;
+    if (*t >= bound && block < nb - 1) ++block;
+    if (monitor && monitor(*t, L->est, p, ctx)) break;
   }
+  return DAL_OK;
+}
+
+// the exponents averaged over [ta, t] and their errors, largest first
+static void lyap_results(const lyap *L, double t, double ta, double *exponents, double *errors) {
+  int p = L->p;
   for (int j = 0; j < p; ++j) {
-    exponents[j] = t > ta ? sum[j] / (t - ta) : NAN;
-    if (errors) errors[j] = blocking_error(&bk[j], nb);
+    exponents[j] = t > ta ? L->sum[j] / (t - ta) : NAN;
+    if (errors) errors[j] = blocking_error(&L->bk[j], L->o->nblocks);
   }
   // largest first (decoupled invariant subspaces keep the QR columns in their initial order)
   for (int i = 1; i < p; ++i)
@@ -503,13 +509,26 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
         errors[j - 1] = x;
       }
     }
-  // leave the user's state at the end of the trajectory, evaluated
-  rc = dal__analysis_eval(sys, st, t, L.Y, L.Y + L.n);
-done:
-  free(sum);
-  free(bk);
-  free(lg);
-  free(est);
+}
+
+int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
+                 double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx) {
+  if (!st) return DAL_E_ARG;
+  if (!sys || st->sys != sys)
+    return DAL_FAIL(st, DAL_E_STATE, "lyapunov: the state belongs to another system");
+  if (dal__check_idle(st, "lyapunov")) return DAL_E_STATE;
+  if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
+  int rc = check_opts(sys, st, o);
+  if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
+  if (rc) return rc;
+  lyap L;
+  double t = st->t, ta = t + o->transient;
+  if ((rc = lyap_alloc(&L, sys, st, o)) == 0 && (rc = lyap_start(&L, st)) == 0 &&
+      (rc = lyap_run(&L, st, &t, ta, monitor, ctx)) == 0) {
+    lyap_results(&L, t, ta, exponents, errors);
+    // leave the user's state at the end of the trajectory, evaluated
+    rc = dal__analysis_eval(sys, st, t, L.Y, L.Y + L.n);
+  }
   lyap_free(&L);
   return rc;
 }

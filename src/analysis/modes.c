@@ -64,6 +64,142 @@ static void sort_eigs(int m, double *wr, double *wi) {
   }
 }
 
+// the workspace of dal_normal_modes: k independent coordinates (n without constraints, n - m
+// on the manifold), the first-order Jacobian A (2k x 2k), the k x k mass, stiffness and
+// damping matrices with their rounding scales, the symmetric part Ks, the basis N (n x k)
+typedef struct modes_work {
+  int n, k;
+  double *A, *Ks, *Mc, *w, *wr, *wi, *Km, *Cm, *Ka, *Ca, *N;
+  // norms: K, K's asymmetry, C, M, the largest acceleration, the rounding scales of K and C
+  double kn, ka, cn, mn, acc, kabs, cabs;
+} modes_work;
+
+// the tangent at the evaluated state into the workspace: reduced to the manifold with
+// constraint rows (with the rounding scales |N|' Kabs |N|, |N|' Cabs |N|)
+static int modes_tangent(const dal_system *sys, dal_state *st, dal_tangent *tg, modes_work *W) {
+  int n = W->n, k = W->k, rc;
+  size_t sk = (size_t)k;
+  if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) return rc;
+  if (sys->m == 0) {
+    if ((rc = dal__tangent_factor(sys, st, tg)) != 0) return rc;
+    memcpy(W->Mc, tg->M, sk * sk * sizeof(double));
+    memcpy(W->Km, tg->Rq, sk * sk * sizeof(double));
+    memcpy(W->Cm, tg->Ru, sk * sk * sizeof(double));
+    memcpy(W->Ka, tg->Kabs, sk * sk * sizeof(double));
+    memcpy(W->Ca, tg->Cabs, sk * sk * sizeof(double));
+    dal__tangent_flow(tg, W->A, NULL);
+    return DAL_OK;
+  }
+  if ((rc = dal__tangent_on_manifold(sys, st, tg, "normal_modes")) != 0) return rc;
+  if ((rc = dal__tangent_reduced(sys, st, tg, W->N, W->A, W->Mc, W->Cm, W->Km)) != 0) return rc;
+  const double *N = W->N;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      double ka = 0.0, ca = 0.0;
+      for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+          double nn = fabs(N[(size_t)i * n + a] * N[(size_t)j * n + b]);
+          ka += nn * tg->Kabs[(size_t)b * n + a];
+          ca += nn * tg->Cabs[(size_t)b * n + a];
+        }
+      W->Ka[(size_t)j * k + i] = ka;
+      W->Ca[(size_t)j * k + i] = ca;
+    }
+  return DAL_OK;
+}
+
+// diagnostics: asymmetry of K, size of C, acceleration at the state; Ks = (K + K') / 2
+static void modes_norms(const dal_state *st, modes_work *W) {
+  int n = W->n, k = W->k;
+  W->kn = W->ka = W->cn = W->mn = W->acc = W->kabs = W->cabs = 0.0;
+  for (int j = 0; j < n; ++j)
+    W->acc = fmax(W->acc, fabs(st->qddot[j]));
+  for (int j = 0; j < k; ++j) {
+    for (int i = 0; i < k; ++i) {
+      size_t ji = (size_t)j * k + i;
+      W->kabs += W->Ka[ji] * W->Ka[ji];
+      W->cabs += W->Ca[ji] * W->Ca[ji];
+      double kij = W->Km[ji], kt = W->Km[(size_t)i * k + j];
+      W->kn += kij * kij;
+      W->ka += (kij - kt) * (kij - kt);
+      W->cn += W->Cm[ji] * W->Cm[ji];
+      W->mn += W->Mc[ji] * W->Mc[ji];
+      W->Ks[ji] = 0.5 * (kij + kt);
+    }
+  }
+  W->kn = sqrt(W->kn);
+}
+
+// undamped modes: Ks x = omega^2 M x (x' M x = 1), largest component of each shape positive
+static int modes_undamped(const dal_system *sys, dal_state *st, modes_work *W, double *omega2,
+                          double *shapes) {
+  int n = W->n, k = W->k;
+  lapack_int info =
+      LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, shapes ? 'V' : 'N', 'L', k, W->Ks, k, W->Mc, k, W->w);
+  if (info != 0)
+    return DAL_FAIL(st, DAL_E_SINGULAR,
+                    "normal_modes: LAPACK dsygv failed (info %d) at t=%.17g: %s", (int)info, st->t,
+                    info > k ? "the mass matrix is not positive definite"
+                             : "the eigenvalue iteration did not converge");
+  if (omega2) memcpy(omega2, W->w, (size_t)k * sizeof(double));
+  if (!shapes) return DAL_OK;
+  // with constraints the shape in the coordinates is N xi (still M-orthonormal)
+  for (int j = 0; j < k; ++j) {
+    const double *xi = W->Ks + (size_t)j * k;
+    double *x = shapes + (size_t)j * n, big = 0.0;
+    for (int i = 0; i < n; ++i) {
+      double v = xi[i < k ? i : 0];
+      if (sys->m > 0) {
+        v = 0.0;
+        for (int l = 0; l < k; ++l)
+          v += W->N[(size_t)l * n + i] * xi[l];
+      }
+      x[i] = v;
+      if (fabs(v) > fabs(big)) big = v;
+    }
+    if (big < 0)
+      for (int i = 0; i < n; ++i)
+        x[i] = -x[i];
+  }
+  return DAL_OK;
+}
+
+// the first-order Jacobian's eigenvalues decide stability (damping, gyroscopic terms)
+static int modes_stability(dal_state *st, modes_work *W, double *lambda_re, double *lambda_im,
+                           dal_modes *out) {
+  int k = W->k, k2 = 2 * k;
+  double *A = W->A, *wr = W->wr, *wi = W->wi;
+  double scale = fmax(sqrt(block_norm(A + k, k, (size_t)k2)),
+                      block_norm(A + (size_t)k * k2 + k, k, (size_t)k2));
+  lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', k2, A, k2, wr, wi, NULL, 1, NULL, 1);
+  if (info != 0)
+    return DAL_FAIL(st, DAL_E_SINGULAR,
+                    "normal_modes: LAPACK dgeev did not converge (info %d) at t=%.17g", (int)info,
+                    st->t);
+  sort_eigs(k2, wr, wi);
+  double lmax = 0.0;
+  for (int i = 0; i < k2; ++i)
+    lmax = fmax(lmax, hypot(wr[i], wi[i]));
+  // relative tolerance, and the rounding floor of K and C: a perturbation dK of K moves a
+  // zero eigenvalue by sqrt(|dK| / |M|), dC by |dC| / |M| (64 ulps of the terms' magnitudes)
+  double mf = sqrt(W->mn), ek = 64 * DBL_EPSILON * sqrt(W->kabs) / mf;
+  double ec = 64 * DBL_EPSILON * sqrt(W->cabs) / mf;
+  double tau = fmax(1e-6 * fmax(lmax, scale), fmax(sqrt(ek), ec)) + 1e-300, mr;
+  dal_stability v = classify(k2, wr, wi, tau, &mr);
+  if (lambda_re) memcpy(lambda_re, wr, (size_t)k2 * sizeof(double));
+  if (lambda_im) memcpy(lambda_im, wi, (size_t)k2 * sizeof(double));
+  if (out) {
+    double kn = W->kn, mn = W->mn, cn = W->cn;
+    out->verdict = v;
+    out->max_real = mr;
+    out->tau = tau;
+    out->asymmetry = kn > 0 ? sqrt(W->ka) / kn : 0.0;
+    out->gyroscopic = kn > 0 && mn > 0 ? sqrt(cn) / sqrt(kn * sqrt(mn)) : sqrt(cn);
+    out->accel = W->acc;
+  }
+  return DAL_OK;
+}
+
 int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
                      double *lambda_re, double *lambda_im, dal_modes *out) {
   if (!st) return DAL_E_ARG;
@@ -83,116 +219,22 @@ int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, doubl
     dal__tangent_free(tg);
     return DAL_FAIL(st, DAL_E_NOMEM, "normal_modes: out of memory");
   }
-  double *A = buf, *Ks = A + (size_t)k2 * k2, *Mc = Ks + sk * sk, *w = Mc + sk * sk;
-  double *wr = w + k2, *wi = wr + k2, *Km = wi + k2, *Cm = Km + sk * sk, *Ka = Cm + sk * sk;
-  double *N = Ka + sk * sk, *Ca = N + sn * sk;
-  if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) goto done;
-  if (sys->m > 0) {
-    // the reduced tangent on the manifold, and the rounding scales |N|' Kabs |N|, |N|' Cabs |N|
-    if ((rc = dal__tangent_on_manifold(sys, st, tg, "normal_modes")) != 0) goto done;
-    if ((rc = dal__tangent_reduced(sys, st, tg, N, A, Mc, Cm, Km)) != 0) goto done;
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i) {
-        double ka = 0.0, ca = 0.0;
-        for (int a = 0; a < n; ++a)
-          for (int b = 0; b < n; ++b) {
-            double nn = fabs(N[(size_t)i * n + a] * N[(size_t)j * n + b]);
-            ka += nn * tg->Kabs[(size_t)b * n + a];
-            ca += nn * tg->Cabs[(size_t)b * n + a];
-          }
-        Ka[(size_t)j * k + i] = ka;
-        Ca[(size_t)j * k + i] = ca;
-      }
-  } else {
-    if ((rc = dal__tangent_factor(sys, st, tg)) != 0) goto done;
-    memcpy(Mc, tg->M, sk * sk * sizeof(double));
-    memcpy(Km, tg->Rq, sk * sk * sizeof(double));
-    memcpy(Cm, tg->Ru, sk * sk * sizeof(double));
-    memcpy(Ka, tg->Kabs, sk * sk * sizeof(double));
-    memcpy(Ca, tg->Cabs, sk * sk * sizeof(double));
-    dal__tangent_flow(tg, A, NULL);
+  modes_work W = {.n = n, .k = k, .A = buf};
+  W.Ks = W.A + (size_t)k2 * k2;
+  W.Mc = W.Ks + sk * sk;
+  W.w = W.Mc + sk * sk;
+  W.wr = W.w + k2;
+  W.wi = W.wr + k2;
+  W.Km = W.wi + k2;
+  W.Cm = W.Km + sk * sk;
+  W.Ka = W.Cm + sk * sk;
+  W.N = W.Ka + sk * sk;
+  W.Ca = W.N + sn * sk;
+  if ((rc = modes_tangent(sys, st, tg, &W)) == 0) {
+    modes_norms(st, &W);
+    rc = modes_undamped(sys, st, &W, omega2, shapes);
+    if (!rc) rc = modes_stability(st, &W, lambda_re, lambda_im, out);
   }
-
-  // diagnostics: asymmetry of K, size of C, acceleration at the state
-  double kn = 0.0, ka = 0.0, cn = 0.0, mn = 0.0, acc = 0.0, kabs = 0.0, cabs = 0.0;
-  for (int j = 0; j < n; ++j)
-    acc = fmax(acc, fabs(st->qddot[j]));
-  for (int j = 0; j < k; ++j) {
-    for (int i = 0; i < k; ++i) {
-      kabs += Ka[(size_t)j * k + i] * Ka[(size_t)j * k + i];
-      cabs += Ca[(size_t)j * k + i] * Ca[(size_t)j * k + i];
-      double kij = Km[(size_t)j * k + i], kt = Km[(size_t)i * k + j];
-      kn += kij * kij;
-      ka += (kij - kt) * (kij - kt);
-      cn += Cm[(size_t)j * k + i] * Cm[(size_t)j * k + i];
-      mn += Mc[(size_t)j * k + i] * Mc[(size_t)j * k + i];
-      Ks[(size_t)j * k + i] = 0.5 * (kij + kt);
-    }
-  }
-  kn = sqrt(kn);
-
-  // undamped modes: Ks x = omega^2 M x (x' M x = 1), largest component of each shape positive
-  lapack_int info = LAPACKE_dsygv(LAPACK_COL_MAJOR, 1, shapes ? 'V' : 'N', 'L', k, Ks, k, Mc, k, w);
-  if (info != 0) {
-    rc = DAL_FAIL(st, DAL_E_SINGULAR, "normal_modes: LAPACK dsygv failed (info %d) at t=%.17g: %s",
-                  (int)info, st->t,
-                  info > k ? "the mass matrix is not positive definite"
-                           : "the eigenvalue iteration did not converge");
-    goto done;
-  }
-  if (omega2) memcpy(omega2, w, sk * sizeof(double));
-  if (shapes) {
-    // with constraints the shape in the coordinates is N xi (still M-orthonormal)
-    for (int j = 0; j < k; ++j) {
-      const double *xi = Ks + (size_t)j * k;
-      double *x = shapes + (size_t)j * n, big = 0.0;
-      for (int i = 0; i < n; ++i) {
-        double v = xi[i < k ? i : 0];
-        if (sys->m > 0) {
-          v = 0.0;
-          for (int l = 0; l < k; ++l)
-            v += N[(size_t)l * n + i] * xi[l];
-        }
-        x[i] = v;
-        if (fabs(v) > fabs(big)) big = v;
-      }
-      if (big < 0)
-        for (int i = 0; i < n; ++i)
-          x[i] = -x[i];
-    }
-  }
-
-  // the first-order Jacobian's eigenvalues decide stability (damping, gyroscopic terms)
-  double scale = fmax(sqrt(block_norm(A + k, k, (size_t)k2)),
-                      block_norm(A + (size_t)k * k2 + k, k, (size_t)k2));
-  info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', k2, A, k2, wr, wi, NULL, 1, NULL, 1);
-  if (info != 0) {
-    rc = DAL_FAIL(st, DAL_E_SINGULAR,
-                  "normal_modes: LAPACK dgeev did not converge (info %d) at t=%.17g", (int)info,
-                  st->t);
-    goto done;
-  }
-  sort_eigs(k2, wr, wi);
-  double lmax = 0.0;
-  for (int i = 0; i < k2; ++i)
-    lmax = fmax(lmax, hypot(wr[i], wi[i]));
-  // relative tolerance, and the rounding floor of K and C: a perturbation dK of K moves a
-  // zero eigenvalue by sqrt(|dK| / |M|), dC by |dC| / |M| (64 ulps of the terms' magnitudes)
-  double mf = sqrt(mn), ek = 64 * DBL_EPSILON * sqrt(kabs) / mf;
-  double ec = 64 * DBL_EPSILON * sqrt(cabs) / mf;
-  double tau = fmax(1e-6 * fmax(lmax, scale), fmax(sqrt(ek), ec)) + 1e-300, mr;
-  dal_stability v = classify(k2, wr, wi, tau, &mr);
-  if (lambda_re) memcpy(lambda_re, wr, (size_t)k2 * sizeof(double));
-  if (lambda_im) memcpy(lambda_im, wi, (size_t)k2 * sizeof(double));
-  if (out) {
-    out->verdict = v;
-    out->max_real = mr;
-    out->tau = tau;
-    out->asymmetry = kn > 0 ? sqrt(ka) / kn : 0.0;
-    out->gyroscopic = kn > 0 && mn > 0 ? sqrt(cn) / sqrt(kn * sqrt(mn)) : sqrt(cn);
-    out->accel = acc;
-  }
-done:
   free(buf);
   dal__tangent_free(tg);
   return rc;

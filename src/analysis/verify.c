@@ -98,6 +98,98 @@ static void compare(dal_verify_report *rep, const dal_verify_opts *o, int r, int
   }
 }
 
+// the workspace of check_fun: a point x (nin) and direction u (nin + 1, t last), the values at
+// 0, +-h, +-h/2 along u (nout each), jets in and out
+typedef struct vwork {
+  int nin, nout;
+  double *x, *u, *f0, *fp, *fm, *fp2, *fm2;
+  dal_jet *jin, *jout;
+} vwork;
+
+// a random point and a random unit direction over (inputs, t) into w->x, w->u and *t; returns
+// the scale max(1, |x|, |t|)
+static double random_point(vwork *w, const dal_verify_opts *o, unsigned long long *seed,
+                           double *t) {
+  int nin = w->nin;
+  double xmax = 1.0, un = 0.0, *x = w->x, *u = w->u;
+  for (int i = 0; i < nin; ++i) {
+    double lo = o->in_lo ? o->in_lo[i] : o->lo, hi = o->in_hi ? o->in_hi[i] : o->hi;
+    x[i] = lo + (hi - lo) * urand(seed);
+    xmax = fmax(xmax, fabs(x[i]));
+  }
+  *t = o->t_lo + (o->t_hi - o->t_lo) * urand(seed);
+  xmax = fmax(xmax, fabs(*t));
+  for (int i = 0; i <= nin; ++i) {
+    u[i] = 2.0 * urand(seed) - 1.0;
+    un += u[i] * u[i];
+  }
+  un = sqrt(un);
+  for (int i = 0; i <= nin; ++i)
+    u[i] /= un;
+  return xmax;
+}
+
+// sample s at (w->x, t) along w->u: the jets against central differences at h and h/2 of
+// every output; 0 or the status that ends the check (rep->msg set)
+static int check_sample(const vfun *f, const dal_verify_opts *o, vwork *w, int s, double t,
+                        double xmax, dal_verify_report *rep) {
+  int nin = w->nin, nout = w->nout;
+  double *x = w->x, *u = w->u;
+  dal_jet *jin = w->jin, *jout = w->jout;
+  // the jets along u
+  for (int i = 0; i < nin; ++i)
+    jin[i] = dal_var(x[i], u[i]);
+  int rc = vf_eval(f, jin, dal_var(t, u[nin]), jout), status = DAL_OK;
+  if (rc) {
+    snprintf(rep->msg, sizeof rep->msg, "%s: evaluation failed (returned %d) at sample %d, t=%g",
+             f->what, rc, s, t);
+    return DAL_E_CALLBACK;
+  }
+  rep->samples++;
+  dal_jet J[64];
+  int nkeep = nout < 64 ? nout : 64;
+  for (int r = 0; r < nout; ++r) {
+    if (!dal_jet_isfinite(jout[r])) {
+      rep->failures++;
+      snprintf(rep->msg, sizeof rep->msg,
+               "%s: output %d is not finite (%g, %g, %g) at sample %d, t=%g; restrict the "
+               "input ranges to the function's domain",
+               f->what, r, jout[r].v, jout[r].d, jout[r].dd, s, t);
+      status = DAL_E_DOMAIN;
+    }
+    if (r < nkeep) J[r] = jout[r];
+  }
+  if (status) return status;
+  // central differences at h and h/2
+  double h = o->h * xmax, *f0 = w->f0, *fp = w->fp, *fm = w->fm, *fp2 = w->fp2, *fm2 = w->fm2;
+  if ((rc = at(f, x, t, u, 0.0, jin, jout, f0)) || (rc = at(f, x, t, u, h, jin, jout, fp)) ||
+      (rc = at(f, x, t, u, -h, jin, jout, fm)) || (rc = at(f, x, t, u, 0.5 * h, jin, jout, fp2)) ||
+      (rc = at(f, x, t, u, -0.5 * h, jin, jout, fm2))) {
+    snprintf(rep->msg, sizeof rep->msg,
+             "%s: evaluation failed (returned %d) near sample %d, t=%g; shrink opts.h or the "
+             "input ranges",
+             f->what, rc, s, t);
+    return DAL_E_CALLBACK;
+  }
+  for (int r = 0; r < nout; ++r) {
+    // outputs beyond 64 are re-evaluated one at a time only for the jet (rare)
+    dal_jet jr = r < nkeep ? J[r] : dal_const(NAN);
+    if (r >= nkeep) {
+      for (int i = 0; i < nin; ++i)
+        jin[i] = dal_var(x[i], u[i]);
+      if (vf_eval(f, jin, dal_var(t, u[nin]), jout) == 0) jr = jout[r];
+    }
+    double fmag = fmax(fmax(fabs(f0[r]), fabs(fp[r])), fmax(fabs(fm[r]), xmax));
+    double epsf = 64.0 * DBL_EPSILON * fmag;
+    double d1h = (fp[r] - fm[r]) / (2.0 * h), d1h2 = (fp2[r] - fm2[r]) / h;
+    double d2h = (fp[r] - 2.0 * f0[r] + fm[r]) / (h * h);
+    double d2h2 = (fp2[r] - 2.0 * f0[r] + fm2[r]) / (0.25 * h * h);
+    compare(rep, o, r, 1, jr.d, d1h, d1h2, epsf, h, t);
+    compare(rep, o, r, 2, jr.dd, d2h, d2h2, epsf, h, t);
+  }
+  return DAL_OK;
+}
+
 static int check_fun(const vfun *f, const dal_verify_opts *opts, dal_verify_report *out) {
   dal_verify_opts o;
   if (opts)
@@ -120,91 +212,29 @@ static int check_fun(const vfun *f, const dal_verify_opts *opts, dal_verify_repo
   int nin = f->nin, nout = f->nout, status = DAL_OK;
   // one block: x, u (nin + 1), values at 5 points (5 nout), jets in (nin), out (nout)
   size_t nd = (size_t)nin * 2 + 1 + (size_t)nout * 5, nj = (size_t)nin + (size_t)nout;
-  double *x = malloc(nd * sizeof(double) + 1);
-  dal_jet *jin = malloc(nj * sizeof(dal_jet) + sizeof(dal_jet)), *jout = jin ? jin + nin : NULL;
-  if (!x || !jin) {
-    free(x);
-    free(jin);
+  vwork w = {.nin = nin, .nout = nout};
+  w.x = malloc(nd * sizeof(double) + 1);
+  w.jin = malloc(nj * sizeof(dal_jet) + sizeof(dal_jet));
+  if (!w.x || !w.jin) {
+    free(w.x);
+    free(w.jin);
     snprintf(rep->msg, sizeof rep->msg, "%s: out of memory", f->what);
     return DAL_E_NOMEM;
   }
-  double *u = x + nin, *f0 = u + nin + 1, *fp = f0 + nout, *fm = fp + nout, *fp2 = fm + nout,
-         *fm2 = fp2 + nout;
+  w.jout = w.jin + nin;
+  w.u = w.x + nin;
+  w.f0 = w.u + nin + 1;
+  w.fp = w.f0 + nout;
+  w.fm = w.fp + nout;
+  w.fp2 = w.fm + nout;
+  w.fm2 = w.fp2 + nout;
   unsigned long long seed = o.seed ? o.seed : 1;
   for (int s = 0; s < o.nsamples && status == DAL_OK; ++s) {
-    // a random point and a random unit direction over (inputs, t)
-    double xmax = 1.0, un = 0.0;
-    for (int i = 0; i < nin; ++i) {
-      double lo = o.in_lo ? o.in_lo[i] : o.lo, hi = o.in_hi ? o.in_hi[i] : o.hi;
-      x[i] = lo + (hi - lo) * urand(&seed);
-      xmax = fmax(xmax, fabs(x[i]));
-    }
-    double t = o.t_lo + (o.t_hi - o.t_lo) * urand(&seed);
-    xmax = fmax(xmax, fabs(t));
-    for (int i = 0; i <= nin; ++i) {
-      u[i] = 2.0 * urand(&seed) - 1.0;
-      un += u[i] * u[i];
-    }
-    un = sqrt(un);
-    for (int i = 0; i <= nin; ++i)
-      u[i] /= un;
-    // the jets along u
-    for (int i = 0; i < nin; ++i)
-      jin[i] = dal_var(x[i], u[i]);
-    int rc = vf_eval(f, jin, dal_var(t, u[nin]), jout);
-    if (rc) {
-      snprintf(rep->msg, sizeof rep->msg, "%s: evaluation failed (returned %d) at sample %d, t=%g",
-               f->what, rc, s, t);
-      status = DAL_E_CALLBACK;
-      break;
-    }
-    rep->samples++;
-    dal_jet J[64];
-    int nkeep = nout < 64 ? nout : 64;
-    for (int r = 0; r < nout; ++r) {
-      if (!dal_jet_isfinite(jout[r])) {
-        rep->failures++;
-        snprintf(rep->msg, sizeof rep->msg,
-                 "%s: output %d is not finite (%g, %g, %g) at sample %d, t=%g; restrict the "
-                 "input ranges to the function's domain",
-                 f->what, r, jout[r].v, jout[r].d, jout[r].dd, s, t);
-        status = DAL_E_DOMAIN;
-      }
-      if (r < nkeep) J[r] = jout[r];
-    }
-    if (status) break;
-    // central differences at h and h/2
-    double h = o.h * xmax;
-    if ((rc = at(f, x, t, u, 0.0, jin, jout, f0)) || (rc = at(f, x, t, u, h, jin, jout, fp)) ||
-        (rc = at(f, x, t, u, -h, jin, jout, fm)) ||
-        (rc = at(f, x, t, u, 0.5 * h, jin, jout, fp2)) ||
-        (rc = at(f, x, t, u, -0.5 * h, jin, jout, fm2))) {
-      snprintf(rep->msg, sizeof rep->msg,
-               "%s: evaluation failed (returned %d) near sample %d, t=%g; shrink opts.h or the "
-               "input ranges",
-               f->what, rc, s, t);
-      status = DAL_E_CALLBACK;
-      break;
-    }
-    for (int r = 0; r < nout; ++r) {
-      // outputs beyond 64 are re-evaluated one at a time only for the jet (rare)
-      dal_jet jr = r < nkeep ? J[r] : dal_const(NAN);
-      if (r >= nkeep) {
-        for (int i = 0; i < nin; ++i)
-          jin[i] = dal_var(x[i], u[i]);
-        if (vf_eval(f, jin, dal_var(t, u[nin]), jout) == 0) jr = jout[r];
-      }
-      double fmag = fmax(fmax(fabs(f0[r]), fabs(fp[r])), fmax(fabs(fm[r]), xmax));
-      double epsf = 64.0 * DBL_EPSILON * fmag;
-      double d1h = (fp[r] - fm[r]) / (2.0 * h), d1h2 = (fp2[r] - fm2[r]) / h;
-      double d2h = (fp[r] - 2.0 * f0[r] + fm[r]) / (h * h);
-      double d2h2 = (fp2[r] - 2.0 * f0[r] + fm2[r]) / (0.25 * h * h);
-      compare(rep, &o, r, 1, jr.d, d1h, d1h2, epsf, h, t);
-      compare(rep, &o, r, 2, jr.dd, d2h, d2h2, epsf, h, t);
-    }
+    double t = 0.0, xmax = random_point(&w, &o, &seed, &t);
+    status = check_sample(f, &o, &w, s, t, xmax, rep);
   }
-  free(x);
-  free(jin);
+  free(w.x);
+  free(w.jin);
   if (status == DAL_OK && rep->failures) status = DAL_E_VERIFY;
   if (status == DAL_OK || status == DAL_E_VERIFY)
     snprintf(rep->msg, sizeof rep->msg,

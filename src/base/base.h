@@ -231,6 +231,7 @@ struct dal_state {
   dal_init_report init_rep;         // the last consistent start's report (init.c)
   int init_rep_valid;               // init_rep holds a report
   struct dal_events *events;        // attached event set (borrowed; events.h)
+  struct dal_trajectory *traj;      // attached dense trajectory record (borrowed; solve.h)
   const struct dal_first_order *fo; // a first-order problem run on this work state by the
                                     // integrators (integrate.h: dal__ode_create_fo), or NULL
   int lazy;    // a callback holds the state at an output time, not yet evaluated: the public

@@ -67,9 +67,9 @@
 /// an optimized one KLU still wins well below 192 unknowns.
 #define DAL_SPARSE_THRESHOLD 12
 
-/// DAL_METHOD_AUTO for the ODE and index-1 forms (integrate/methods.c, solve.h): Bulirsch-Stoer
-/// for systems of at most DAL_AUTO_SMALL_N coordinates; otherwise DOPRI5 from rtol
-/// DAL_AUTO_LOOSE_RTOL up, Fehlberg 7(8) down to DAL_AUTO_TIGHT_RTOL, Bulirsch-Stoer below.
+/// DAL_METHOD_AUTO for the ODE and index-1 forms (integrate/methods.c, solve.h): DOPRI5 from
+/// rtol DAL_AUTO_LOOSE_RTOL up; below, Bulirsch-Stoer for systems of at most DAL_AUTO_SMALL_N
+/// coordinates, otherwise Fehlberg 7(8) down to DAL_AUTO_TIGHT_RTOL and Bulirsch-Stoer below.
 /// Read off the work-precision table of bench/auto.sh (instructions to reach an error band
 /// on the seed scenes and the chain, N = 1 ... 256; docs/performance.md "AUTO").
 #define DAL_AUTO_SMALL_N 2
@@ -84,6 +84,11 @@
 /// h = 5e-23 at 1e-13; the moving-pivot pendulum collapses at t = 1.9e-8 at 5e-14).
 /// Tighter requests are clamped to it and the clamp reported in dal_stats.rtol_used.
 #define DAL_IDA_TOL_FLOOR 1e-12
+/// An IDA failure blames the constraints when the smallest pivot ratio of their gradients (the
+/// rank test of dal_check_constraints) fell below this share of the start's (they are becoming
+/// dependent: the rod-and-rail scene of tests/test_dae_messages.c, 0.87 at the start and
+/// 2.2e-3 where IDA stops), or when a row's largest gradient entry did (a cusp).
+#define DAL_IDA_DEP_DROP 0.01
 
 /// Share of the velocity (position) tolerance that the Newton correction of a multiplier lambda
 /// (GGL's mu) may take through its effect h M^-1 G' d lambda on v (h G' d mu on q) in IDA's

@@ -37,4 +37,20 @@ int dal__events_record(dal_events *ev, const dal_state *st, int i, int dir);
 /// (an event function adding an event would move the items under the scan)
 void dal__events_hold(dal_events *ev, int on);
 
+/// attaching an object of system `owner` (NULL: detaching) to a state (events, trajectory):
+/// DAL_E_ARG for a NULL st, DAL_E_STATE for a running state or another system's object (with
+/// a message naming `what` and `thing`), else 0 (trajectory.c)
+int dal__attach_check(dal_state *st, const dal_system *owner, const char *what, const char *thing);
+/// the stored dense trajectory (trajectory.c): a run recording into tr starts at the state's
+/// time, which must be where tr ends (or tr is empty): 0 or DAL_E_ARG with a message in st
+int dal__traj_begin(dal_trajectory *tr, dal_state *st);
+/// store the step [a, b] just taken as `pieces` records of equal length, each sampled through
+/// `place` at its nodes, except b, the accepted step itself, through `place_end`; the state is
+/// moved. 0 or DAL_E_NOMEM (message in st)
+int dal__traj_step(dal_trajectory *tr, dal_state *st, double a, double b, int pieces,
+                   dal__place_fn *place, dal__place_fn *place_end, void *pctx);
+/// the run that dal__traj_begin let start ended with the state at time t: the record is valid
+/// up to t (a run stopped inside its last step by an event or a monitor); nothing otherwise
+void dal__traj_end(dal_trajectory *tr, double t);
+
 #endif

@@ -14,13 +14,8 @@
 // ---------------------------------------------------------------------------------------------
 // integrator handle kept in the state
 
-enum { KIND_ODE = 1, KIND_IDA = 2 };
-
 typedef struct dal_integ_handle {
-  int kind;
-  dal_ode_integ *ode;
-  void *ida;
-  double *yi;                // dense output of the ODE route (ny)
+  dal_integ *it;             // the integrator (either family, one interface)
   double t;                  // time of the state when last handed back
   double *qq;                // (q, qdot) handed back, to notice changes made outside the integrator
   char note[DAL_ERRMSG_LEN]; // a fallback's note, left in the state's message on success
@@ -30,65 +25,26 @@ typedef struct dal_integ_handle {
 static void handle_free(void *p) {
   dal_integ_handle *h = p;
   if (!h) return;
-  if (h->ode) dal__ode_destroy(h->ode);
-  if (h->ida) dal__ida_free(h->ida);
+  dal__integ_destroy(h->it);
   free(h->qq);
-  free(h->yi);
   free(h);
 }
 
-// resolve formulation and method; *prob is NULL for the IDA route; *tight is set when AUTO
-// chose the index-1 form with projection because IDA cannot honour the tolerance (solve.h)
-static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
-                   dal_method *meth, const dal_ode_problem **prob, int *tight) {
-  dal_formulation form = o->form;
-  dal_method m = o->method;
-  *tight = 0;
-  if (o->work && sys->lag)
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "opts.work: a Lagrangian-only system has no forces or constraints whose work "
-                    "could be tracked; its energy function is dal_energies.h (unset opts.work)");
-  if (dal__symplectic_method(m)) {
-    if (o->work)
-      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                      "opts.work is not supported by the fixed-step method '%s' (its energy "
-                      "error is bounded by construction); use an adaptive method to track W",
-                      dal_method_name(m));
-    *meth = m;
-    return dal__symplectic_resolve(sys, st, o, m, prob);
+// a handle for a fresh integrator of options o at the state's point (dense: outputs between
+// the steps), or NULL with the state's message set (*rc)
+static dal_integ_handle *handle_create(const dal_system *sys, dal_state *st,
+                                       const dal_solve_opts *o, int dense, int *rc) {
+  dal_integ_handle *h = calloc(1, sizeof *h);
+  if (!h || !(h->qq = calloc(2 * (size_t)sys->n + 1, sizeof(double)))) {
+    free(h);
+    *rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+    return NULL;
   }
-  if (form == DAL_FORM_AUTO && sys->m && m == DAL_METHOD_AUTO &&
-      dal__dae_tol_factor(DAL_FORM_GGL) * o->rtol < DAL_IDA_TOL_FLOOR) {
-    // IDA would be clamped at its floor: index-1 with projection and Bulirsch-Stoer honours
-    // such tolerances (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
-    *tight = 1;
-    *meth = DAL_METHOD_BS;
-    *prob = &dal__problem_index1;
-    return DAL_OK;
+  if ((*rc = dal__integ_create(sys, st, o, dense, &h->it)) != 0) {
+    handle_free(h);
+    return NULL;
   }
-  if (form == DAL_FORM_AUTO) form = sys->m ? DAL_FORM_GGL : DAL_FORM_ODE;
-  if (form == DAL_FORM_INDEX1 && sys->m == 0) form = DAL_FORM_ODE;
-  if (form == DAL_FORM_ODE && sys->m > 0)
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "formulation 'ode' needs minimal coordinates, but the system has %d "
-                    "constraint rows (first: '%s'); use DAL_FORM_GGL or DAL_FORM_INDEX1",
-                    sys->m, sys->con[0].name);
-  if (form == DAL_FORM_GGL || form == DAL_FORM_INDEX3 ||
-      (form == DAL_FORM_INDEX1 && m == DAL_METHOD_BDF)) {
-    if (m != DAL_METHOD_AUTO && m != DAL_METHOD_BDF)
-      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                      "formulation '%s' runs only with DAL_METHOD_BDF (IDA), not '%s'; use "
-                      "DAL_METHOD_BDF or DAL_METHOD_AUTO, or DAL_FORM_INDEX1 for explicit "
-                      "methods",
-                      dal_formulation_name(form), dal_method_name(m));
-    *meth = DAL_METHOD_BDF;
-    *prob = NULL;
-    return DAL_OK;
-  }
-  if (m == DAL_METHOD_AUTO) m = dal__auto_method(o->rtol, sys->n, dense);
-  *meth = m;
-  *prob = form == DAL_FORM_INDEX1 ? &dal__problem_index1 : &dal__problem_minimal;
-  return DAL_OK;
+  return h;
 }
 
 // remember what the state looked like when the integrator handed it back
@@ -104,6 +60,17 @@ static int handle_current(const dal_system *sys, const dal_state *st, const dal_
   size_t n = (size_t)sys->n;
   return h->t == st->t && memcmp(h->qq, st->q, n * sizeof(double)) == 0 &&
          memcmp(h->qq + n, st->qdot, n * sizeof(double)) == 0;
+}
+
+// the state keeps handle h, created for options o
+static void handle_keep(const dal_system *sys, dal_state *st, dal_integ_handle *h,
+                        const dal_solve_opts *o) {
+  handle_sync(sys, st, h);
+  st->integ = h;
+  st->integ_free = handle_free;
+  st->integ_opts = *o;
+  st->stats.method_used = h->it->method;
+  st->stats.form_used = h->it->form;
 }
 
 // notes for the state's message on success (issue: never silent where a request was not
@@ -126,21 +93,14 @@ static void start_notes(const dal_system *sys, dal_state *st, const dal_solve_op
           used ? "; " : "", st->t, sys->coord_names[j], r->dq_max, r->phi_before,
           r->phi_row >= 0 ? sys->con[sys->row_con[r->phi_row]].name : "-");
   }
-  if (h->kind == KIND_IDA && st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form) &&
-      used < sizeof h->note)
-    snprintf(h->note + used, sizeof h->note - used,
-             "%snote: rtol %g is below what IDA can honour: it ran at the local tolerance %g "
-             "(its floor, dal_stats.rtol_used), so expect errors above rtol; DAL_FORM_AUTO with "
-             "DAL_METHOD_AUTO runs the index-1 form with projection and Bulirsch-Stoer there",
-             used ? "; " : "", o->rtol, st->stats.rtol_used);
-  // an ODE method with a floor of its own (CVODE's BDF) ran at that floor
-  const dal_method_row *mr = h->ode ? dal__method_row(h->ode->method) : NULL;
-  if (mr && o->rtol < mr->min_rtol && used < sizeof h->note)
-    snprintf(h->note + used, sizeof h->note - used,
-             "%snote: rtol %g is below what %s can honour: it ran as rtol %g, atol scaled alike "
-             "(dal_stats.rtol_used has the local tolerance), so expect errors above rtol; "
-             "DAL_METHOD_BS or DAL_METHOD_AUTO honour tighter requests",
-             used ? "; " : "", o->rtol, mr->name, mr->min_rtol);
+  // what the integrator did not honour as asked (a tolerance floor)
+  const char *parts[2] = {used ? "; " : "", h->it->note};
+  for (int k = 0; k < 2 && h->it->note[0]; ++k) {
+    size_t len = strlen(parts[k]);
+    if (len > sizeof h->note - 1 - used) len = sizeof h->note - 1 - used;
+    memcpy(h->note + used, parts[k], len);
+    h->note[used += len] = 0;
+  }
 }
 
 // make sure st->integ is an integrator for these options at the state's current point (dense:
@@ -149,52 +109,13 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
   dal_integ_handle *h = st->integ;
   if (h && dal__same_opts(o, &st->integ_opts) && handle_current(sys, st, h)) return DAL_OK;
   dal__integ_reset(st);
-  dal_method meth = DAL_METHOD_AUTO;
-  const dal_ode_problem *prob = NULL;
-  int tight = 0;
-  int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
-  if (rc) return rc;
-  dal_solve_opts oc = *o;
   // the consistent start's report before this start (to notice a new one)
   dal_init_report before = st->init_rep;
   int before_valid = st->init_rep_valid;
-  if (tight) {
-    // the index-1 form starts from a consistent state too, and projects after every step
-    oc.form = DAL_FORM_INDEX1;
-    oc.project = 1;
-    if ((rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL))) != 0) return rc;
-    o = &oc;
-  }
-  h = calloc(1, sizeof *h);
-  if (!h) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
-  h->qq = calloc(2 * (size_t)sys->n + 1, sizeof(double));
-  if (!h->qq) {
-    free(h);
-    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
-  }
-  if (prob) {
-    h->kind = KIND_ODE;
-    rc = dal__ode_create(sys, st, o, meth, prob, &h->ode);
-    if (!rc && !(h->yi = calloc((size_t)h->ode->ny + 1, sizeof(double))))
-      rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
-  } else {
-    h->kind = KIND_IDA;
-    rc = dal__public_status(dal__ida_create(sys, st, o, &h->ida));
-  }
-  if (rc) {
-    handle_free(h);
-    return rc;
-  }
-  start_notes(sys, st, o, h, &before, before_valid);
-  handle_sync(sys, st, h);
-  st->integ = h;
-  st->integ_free = handle_free;
-  st->integ_opts = *o;
-  st->stats.method_used = meth;
-  st->stats.form_used = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
-                        : prob                       ? DAL_FORM_ODE
-                        : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
-                                                     : o->form;
+  int rc = 0;
+  if (!(h = handle_create(sys, st, o, dense, &rc))) return rc;
+  start_notes(sys, st, &h->it->opts, h, &before, before_valid);
+  handle_keep(sys, st, h, &h->it->opts);
   return DAL_OK;
 }
 
@@ -237,26 +158,10 @@ static int fall_back(const dal_system *sys, dal_state *st, const dal_solve_opts 
     memcpy(st->err, msg, sizeof st->err);
     return cause;
   }
-  dal_integ_handle *h = calloc(1, sizeof *h);
-  if (!h || !(h->qq = calloc(2 * (size_t)sys->n + 1, sizeof(double)))) {
-    free(h);
-    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the fallback integrator");
-  }
-  h->kind = KIND_ODE;
-  rc = dal__ode_create(sys, st, &oc, DAL_METHOD_BS, &dal__problem_index1, &h->ode);
-  if (!rc && !(h->yi = calloc((size_t)h->ode->ny + 1, sizeof(double))))
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the fallback integrator");
-  if (rc) {
-    handle_free(h);
-    return rc;
-  }
+  dal_integ_handle *h = handle_create(sys, st, &oc, 0, &rc);
+  if (!h) return rc;
   memcpy(h->why, why, sizeof why);
-  handle_sync(sys, st, h);
-  st->integ = h;
-  st->integ_free = handle_free;
-  st->integ_opts = *o;
-  st->stats.method_used = DAL_METHOD_BS;
-  st->stats.form_used = DAL_FORM_INDEX1;
+  handle_keep(sys, st, h, o);
   st->stats.fallbacks++;
   st->stats.fallback_t = t;
   st->stats.fallback_cause = cause;
@@ -313,20 +218,21 @@ typedef struct run {
   const dal_solve_opts *o;
   const char *what; // "advance" or "evolve" (messages)
   dal_integ_handle *h;
-  int outputs;       // evolve: the output grid below is served
-  double t0, dt, t1; // output times t0 + k dt (k <= K), then t1
-  long k, K;         // next output index
-  double last_out;   // time of the last output served
+  int outputs;         // evolve: the output grid below is served
+  double t0, dt, t1;   // output times t0 + k dt (k <= K), then t1
+  long k, K;           // next output index
+  const double *times; // evolve_at: the output times times[0 .. K] instead of the grid
+  double last_out;     // time of the last output served
   dal_monitor_fn *monitor;
   void *ctx;
   dal_events *ev; // attached events with at least one event, or NULL
-  long nsteps;    // steps since the last output (the IDA route's opts.max_steps)
   int status;     // why the hook stopped the run: DAL_STOPPED, DAL_EVENT, or a failure
 } run;
 
 // the next output time, or +inf when all are served
 static double out_time(const run *r) {
   if (!r->outputs) return INFINITY;
+  if (r->times) return r->k <= r->K ? r->times[r->k] : INFINITY;
   if (r->k <= r->K) {
     double tk = r->t0 + (double)r->k * r->dt;
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
@@ -339,12 +245,17 @@ static double out_time(const run *r) {
 // put the state at time t of the step just taken (dense output; not evaluated)
 static int place(void *p, double t) {
   run *r = p;
+  dal_integ *it = r->h->it;
+  return it->ops->place(it, t);
+}
+
+// put the state at the end of the step just taken: the accepted step itself (a stored trajectory
+// ends its steps where the integrator is)
+static int place_end(void *p, double t) {
+  run *r = p;
   dal_integ_handle *h = r->h;
   if (h->kind == KIND_IDA) return dal__ida_place(h->ida, t);
-  dal_ode_integ *ig = h->ode;
-  int rc = dal__ode_interp(ig, t, h->yi);
-  if (rc) return rc;
-  dal__ode_to_state(ig, t, h->yi);
+  dal__ode_to_state(h->ode, h->ode->t, h->ode->y);
   dal__state_moved(r->st);
   return DAL_OK;
 }
@@ -398,8 +309,7 @@ static int serve_output(run *r, double t, int at_state) {
   if (rc) return r->status = rc;
   r->last_out = t;
   r->k++;
-  r->nsteps = 0;
-  if (r->h && r->h->kind == KIND_ODE) r->h->ode->ncall = 0; // opts.max_steps per output
+  if (r->h) r->h->it->ops->new_output(r->h->it); // opts.max_steps per output
   if (!r->monitor) return DAL_OK;
   // the monitor reads the state; products are evaluated on its first read (dal__lazy_eval)
   st->lazy = !at_state;
@@ -413,14 +323,18 @@ static int after_step(void *p) {
   run *r = p;
   dal_state *st = r->st;
   double a = 0, b = 0;
-  if (r->h->kind == KIND_IDA) {
-    dal__ida_window(r->h->ida, &a, &b);
-  } else {
-    a = r->h->ode->tprev;
-    b = r->h->ode->t;
-  }
-  r->nsteps++;
+  r->h->it->ops->window(r->h->it, &a, &b);
   int rc, np = 0, kp = 0;
+  // Bulirsch-Stoer's long steps carry an interpolant of degree up to 2 kappa + 1: four records
+  // of degree 8 per step (solve.h, dal_trajectory)
+  int pieces = r->h->kind == KIND_ODE && r->h->ode->method == DAL_METHOD_BS ? 4 : 1;
+  if (st->traj && (rc = dal__traj_step(st->traj, st, a, b, pieces, place, place_end, r)) != 0) {
+    // out of memory: the run stops at the step's end, evaluated
+    char msg[DAL_ERRMSG_LEN];
+    memcpy(msg, st->err, sizeof msg);
+    if (place_end(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+    return r->status = rc;
+  }
   if (r->ev) {
     if ((rc = dal__events_scan(r->ev, st, a, b, place, r)) != 0) {
       // a failing event function: the run stops at the step's end, evaluated
@@ -447,22 +361,14 @@ static int after_step(void *p) {
       return stop_here(r, DAL_EVENT);
     }
   }
-  if (r->h->kind == KIND_IDA && r->nsteps >= r->o->max_steps && b < r->t1) {
-    place(r, b);
-    DAL_FAIL(st, DAL_E_MAXSTEPS,
-             "%ld steps taken at t=%.17g before the next output or the target t=%.17g "
-             "(opts.max_steps); raise max_steps or loosen the tolerances",
-             r->nsteps, b, r->t1);
-    return stop_here(r, DAL_E_MAXSTEPS);
-  }
   return DAL_OK;
 }
 
 // advance the run to t1 >= st->t with validated arguments
-static int run_to(run *r, double t1) {
+static int run_steps(run *r, double t1) {
   const dal_system *sys = r->sys;
   dal_state *st = r->st;
-  int rc = ensure_integ(sys, st, r->o, r->outputs && r->monitor);
+  int rc = ensure_integ(sys, st, r->o, (r->outputs && r->monitor) || st->traj);
   if (rc) return rc;
 again:;
   dal_integ_handle *h = st->integ;
@@ -477,40 +383,18 @@ again:;
     st->t = t1;
     return evaluate_here(sys, st);
   }
-  // the hook only when someone looks: a monitor at output times, or events
-  int hooked = (r->outputs && r->monitor) || r->ev;
+  // the hook only when someone looks: a monitor at output times, events, or a trajectory
+  int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
-  r->nsteps = 0;
-  if (h->kind == KIND_ODE) {
-    dal_ode_integ *ig = h->ode;
-    ig->tout = t1;
-    ig->ncall = 0;
-    ig->rhs_fatal = 0;
-    ig->ntiny = 0;
-    ig->nrecov = 0;
-    ig->hook = hooked ? after_step : NULL;
-    ig->hook_ctx = r;
-    rc = ig->advance(ig, t1);
-    ig->hook = NULL;
-    if (!rc) {
-      // the state at t1, evaluated there
-      dal__ode_to_state(ig, ig->t, ig->y);
-      rc = dal__public_status(dal__eval(sys, st, DAL_P_ALL));
-    }
-  } else {
-    dal__ida_set_hook(h->ida, hooked ? after_step : NULL, r);
-    rc = dal__ida_advance(sys, st, h->ida, t1);
-    if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
-    dal__ida_set_hook(h->ida, NULL, NULL);
-  }
+  rc = h->it->ops->advance(h->it, t1, hooked ? after_step : NULL, r);
   if (rc == DAL__HOOK_STOP) {
     // the hook left the state where the run stops, evaluated; the integrator is elsewhere
     dal__integ_reset(st);
     r->h = NULL; // freed with it
     return r->status;
   }
-  if (rc && h->kind == KIND_IDA && can_fall_back(r->o, rc) && st->t < t1) {
+  if (rc && h->it->can_fall_back && can_fall_back(r->o, rc) && st->t < t1) {
     // the fallback from the last accepted step (its own failure is returned as it is)
     r->h = NULL;
     int frc = fall_back(sys, st, r->o, rc);
@@ -540,6 +424,15 @@ again:;
   return DAL_OK;
 }
 
+// run_steps, recorded into the state's trajectory when one is attached
+static int run_to(run *r, double t1) {
+  dal_trajectory *tr = r->st->traj;
+  int rc = tr && t1 > r->st->t ? dal__traj_begin(tr, r->st) : DAL_OK;
+  if (!rc) rc = run_steps(r, t1);
+  if (tr) dal__traj_end(tr, r->st->t);
+  return rc;
+}
+
 static dal_events *active_events(const dal_state *st) {
   return st->events && dal_events_size(st->events) > 0 ? st->events : NULL;
 }
@@ -556,9 +449,8 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
     return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
   // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
   // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
-  int fixed =
-      o->method == DAL_METHOD_RK4 || dal__symplectic_method(o->method) ||
-      (o->fixed_erk && (o->method == DAL_METHOD_DOPRI5 || o->method == DAL_METHOD_FEHLBERG78));
+  const dal_method_row *mrow = dal__method_row(o->method);
+  int fixed = mrow && (mrow->fixed == 1 || (mrow->fixed == 2 && o->fixed_erk));
   const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
   const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
   for (int i = 0; i < 4; ++i)
@@ -590,34 +482,15 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   return rc;
 }
 
-static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-                  double dt, dal_monitor_fn *monitor, void *ctx);
-
-int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-               double dt, dal_monitor_fn *monitor, void *ctx) {
-  int rc = check_call(sys, st, opts, t1, "evolve");
-  if (rc) return rc;
-  // the state (and its events) belong to the run until it returns (dal__check_idle refuses
-  // its callbacks)
-  dal_events *ev = active_events(st);
-  st->busy = 1;
-  if (ev) dal__events_hold(ev, 1);
-  rc = evolve(sys, st, opts, t1, dt, monitor, ctx);
-  if (ev) dal__events_hold(ev, 0);
-  st->busy = 0;
-  return rc;
-}
-
-// dal_evolve with checked (system, state, options, t1)
-static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
-                  double dt, dal_monitor_fn *monitor, void *ctx) {
-  int rc;
+// the output grid t0 + k dt of dal_evolve, checked, into r
+static int grid_setup(run *r, double dt) {
+  dal_state *st = r->st;
   if (!isfinite(dt))
     return DAL_FAIL(st, DAL_E_NONFINITE,
                     "evolve: output interval dt = %g is not finite; give a positive finite dt", dt);
   if (!(dt > 0))
     return DAL_FAIL(st, DAL_E_ARG, "evolve: output interval dt = %g must be positive", dt);
-  double t0 = st->t, span = (t1 - t0) / dt;
+  double t0 = r->t0, t1 = r->t1, span = (t1 - t0) / dt;
   // a dt below the floating-point spacing of t would give output times that never advance
   if (t0 + dt == t0 || t1 + dt == t1)
     return DAL_FAIL(st, DAL_E_ARG,
@@ -628,37 +501,113 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
     return DAL_FAIL(st, DAL_E_ARG,
                     "evolve: %.3g output times between %g and %g (dt = %g); use a larger dt", span,
                     t0, t1, dt);
-  dal_solve_opts eff = dal__effective_opts(opts);
   // K = number of whole output intervals: t0 + K dt <= t1 in floating point
   long K = (long)floor(span);
   while (K > 0 && t0 + (double)K * dt > t1)
     --K;
   while (t0 + (double)(K + 1) * dt <= t1)
     ++K;
+  r->dt = dt;
+  r->K = K;
+  return DAL_OK;
+}
+
+// the output times of dal_evolve_at, checked (naming the index), into r
+static int list_setup(run *r, const double *times, size_t n) {
+  dal_state *st = r->st;
+  if (!times || n == 0)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "evolve_at: no output times (times %s, n = %zu); give at least one time, the "
+                    "last being the end of the run",
+                    times ? "given" : "NULL", n);
+  for (size_t i = 0; i < n; ++i) {
+    if (!isfinite(times[i]))
+      return DAL_FAIL(st, DAL_E_NONFINITE, "evolve_at: times[%zu] = %g is not finite", i, times[i]);
+    if (i > 0 && times[i] < times[i - 1])
+      return DAL_FAIL(st, DAL_E_ARG,
+                      "evolve_at: times[%zu] = %.17g lies before times[%zu] = %.17g; the output "
+                      "times must be non-decreasing (integration runs forward)",
+                      i, times[i], i - 1, times[i - 1]);
+  }
+  if (times[0] < st->t)
+    return DAL_FAIL(st, DAL_E_TIME,
+                    "evolve_at: times[0] = %.17g lies behind the current time %.17g; integration "
+                    "runs forward only (reset the state with dal_state_set to go back)",
+                    times[0], st->t);
+  r->times = times;
+  r->K = (long)n - 1;
+  return DAL_OK;
+}
+
+// the output times of a call: dal_evolve's grid of dt, or dal_evolve_at's list times[0 .. n)
+typedef struct out_spec {
+  int list;
+  double dt;
+  const double *times;
+  size_t n;
+} out_spec;
+
+// dal_evolve and dal_evolve_at with checked (system, state, options, t1)
+static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                  const out_spec *os, dal_monitor_fn *monitor, void *ctx) {
+  dal_solve_opts eff = dal__effective_opts(opts);
+  double t0 = st->t;
   run r = {.sys = sys,
            .st = st,
            .o = &eff,
            .what = "evolve",
            .outputs = 1,
            .t0 = t0,
-           .dt = dt,
            .t1 = t1,
            .k = 0,
-           .K = K,
            .last_out = -INFINITY,
            .monitor = monitor,
            .ctx = ctx,
            .ev = active_events(st)};
-  // the start (made consistent first in redundant coordinates), evaluated, is output 0
+  int rc = os->list ? list_setup(&r, os->times, os->n) : grid_setup(&r, os->dt);
+  if (rc) return rc;
+  // the start (made consistent first in redundant coordinates), evaluated
   if ((rc = run_to(&r, t0)) != 0) return rc;
   // an interval of a few ulps that cannot be integrated is refused before any output
   if (t1 > t0 && t1 - t0 <= DAL_TINY_STEP(t0) &&
       (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
     return rc;
-  if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  // the output times at the start (the grid's first), then the steps serve the others
+  while (out_time(&r) <= st->t)
+    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
   // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
-  if (out_time(&r) <= t1 && (rc = serve_output(&r, st->t, 1)) != 0)
-    return rc == DAL__HOOK_STOP ? r.status : rc;
+  while (out_time(&r) <= t1)
+    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   return DAL_OK;
+}
+
+// the public evolve calls: checks, then the state (and its events) belong to the run until it
+// returns (dal__check_idle refuses its callbacks)
+static int evolve_held(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+                       const out_spec *os, dal_monitor_fn *monitor, void *ctx) {
+  int rc = check_call(sys, st, opts, t1, os->list ? "evolve_at" : "evolve");
+  if (rc) return rc;
+  dal_events *ev = active_events(st);
+  st->busy = 1;
+  if (ev) dal__events_hold(ev, 1);
+  rc = evolve(sys, st, opts, t1, os, monitor, ctx);
+  if (ev) dal__events_hold(ev, 0);
+  st->busy = 0;
+  return rc;
+}
+
+int dal_evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1,
+               double dt, dal_monitor_fn *monitor, void *ctx) {
+  const out_spec os = {.dt = dt};
+  return evolve_held(sys, st, opts, t1, &os, monitor, ctx);
+}
+
+int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                  const double *times, size_t n, dal_monitor_fn *monitor, void *ctx) {
+  // the end time is the last output time; the list itself is checked later (naming the index)
+  double t1 = st ? st->t : 0.0;
+  if (st && times && n > 0 && isfinite(times[n - 1]) && times[n - 1] > t1) t1 = times[n - 1];
+  const out_spec os = {.list = 1, .times = times, .n = n};
+  return evolve_held(sys, st, opts, t1, &os, monitor, ctx);
 }

@@ -162,12 +162,8 @@ int dal_events_add(dal_events *ev, const dal_event_def *d) {
 }
 
 int dal_state_set_events(dal_state *st, dal_events *ev) {
-  if (!st) return DAL_E_ARG;
-  if (dal__check_idle(st, "state_set_events")) return DAL_E_STATE;
-  if (ev && ev->sys != st->sys)
-    return DAL_FAIL(st, DAL_E_STATE,
-                    "state_set_events: the event set belongs to another system; create it "
-                    "with this state's system");
+  int rc = dal__attach_check(st, ev ? ev->sys : NULL, "state_set_events", "event set");
+  if (rc) return rc;
   st->events = ev;
   return DAL_OK;
 }

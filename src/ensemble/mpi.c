@@ -36,6 +36,45 @@ static void move_slots(const dal_sweep *sw, dal_sweep_out *out, int r, int npart
   }
 }
 
+// gather every part's slots on rank 0 (each rank's count follows from the partition, blocks of
+// `block` trajectories); *all_ok: every rank had the memory; returns the MPI error bits
+static int gather_slots(const dal_sweep *sw, dal_sweep_out *out, MPI_Comm comm, int rank, int size,
+                        int block, int *all_ok) {
+  int ml = out->msgs ? out->msg_len : 0, nr = sw->nresult;
+  long mine = part_count(sw, rank, size, block);
+  long cap = rank == 0 ? 0 : mine;
+  for (int r = 1; r < size && rank == 0; ++r) {
+    long c = part_count(sw, r, size, block);
+    if (c > cap) cap = c;
+  }
+  double *res = malloc(((size_t)cap * (size_t)nr + 1) * sizeof(double));
+  int *status = malloc(((size_t)cap + 1) * sizeof(int));
+  char *msgs = malloc((size_t)cap * (size_t)ml + 1);
+  int ok = res && status && msgs;
+  *all_ok = 0;
+  MPI_Allreduce(&ok, all_ok, 1, MPI_INT, MPI_MIN, comm);
+  int merr = MPI_SUCCESS;
+  if (*all_ok && rank != 0) {
+    move_slots(sw, out, rank, size, block, res, status, msgs, 0);
+    merr |= MPI_Send(res, (int)(mine * nr), MPI_DOUBLE, 0, 1, comm);
+    merr |= MPI_Send(status, (int)mine, MPI_INT, 0, 2, comm);
+    merr |= MPI_Send(msgs, (int)(mine * ml), MPI_CHAR, 0, 3, comm);
+  } else if (*all_ok) {
+    // receive rank by rank in rank order: the unpacked layout does not depend on timing
+    for (int r = 1; r < size; ++r) {
+      long c = part_count(sw, r, size, block);
+      merr |= MPI_Recv(res, (int)(c * nr), MPI_DOUBLE, r, 1, comm, MPI_STATUS_IGNORE);
+      merr |= MPI_Recv(status, (int)c, MPI_INT, r, 2, comm, MPI_STATUS_IGNORE);
+      merr |= MPI_Recv(msgs, (int)(c * ml), MPI_CHAR, r, 3, comm, MPI_STATUS_IGNORE);
+      move_slots(sw, out, r, size, block, res, status, msgs, 1);
+    }
+  }
+  free(res);
+  free(status);
+  free(msgs);
+  return merr;
+}
+
 int dal_sweep_run_mpi(const dal_system *sys, const dal_sweep *sw, const dal_sweep_opts *opts,
                       dal_sweep_out *out, MPI_Comm comm, char *errmsg, size_t errlen) {
   int rank = 0, size = 1;
@@ -71,37 +110,7 @@ int dal_sweep_run_mpi(const dal_system *sys, const dal_sweep *sw, const dal_swee
   if (any_rejected) return worst;
 
   // gather every part's slots on rank 0 (each rank's count follows from the partition)
-  int block = o.part_block, ml = out->msgs ? out->msg_len : 0, nr = sw->nresult;
-  long mine = part_count(sw, rank, size, block);
-  long cap = rank == 0 ? 0 : mine;
-  for (int r = 1; r < size && rank == 0; ++r) {
-    long c = part_count(sw, r, size, block);
-    if (c > cap) cap = c;
-  }
-  double *res = malloc(((size_t)cap * (size_t)nr + 1) * sizeof(double));
-  int *status = malloc(((size_t)cap + 1) * sizeof(int));
-  char *msgs = malloc((size_t)cap * (size_t)ml + 1);
-  int ok = res && status && msgs, all_ok = 0;
-  MPI_Allreduce(&ok, &all_ok, 1, MPI_INT, MPI_MIN, comm);
-  int merr = MPI_SUCCESS;
-  if (all_ok && rank != 0) {
-    move_slots(sw, out, rank, size, block, res, status, msgs, 0);
-    merr |= MPI_Send(res, (int)(mine * nr), MPI_DOUBLE, 0, 1, comm);
-    merr |= MPI_Send(status, (int)mine, MPI_INT, 0, 2, comm);
-    merr |= MPI_Send(msgs, (int)(mine * ml), MPI_CHAR, 0, 3, comm);
-  } else if (all_ok) {
-    // receive rank by rank in rank order: the unpacked layout does not depend on timing
-    for (int r = 1; r < size; ++r) {
-      long c = part_count(sw, r, size, block);
-      merr |= MPI_Recv(res, (int)(c * nr), MPI_DOUBLE, r, 1, comm, MPI_STATUS_IGNORE);
-      merr |= MPI_Recv(status, (int)c, MPI_INT, r, 2, comm, MPI_STATUS_IGNORE);
-      merr |= MPI_Recv(msgs, (int)(c * ml), MPI_CHAR, r, 3, comm, MPI_STATUS_IGNORE);
-      move_slots(sw, out, r, size, block, res, status, msgs, 1);
-    }
-  }
-  free(res);
-  free(status);
-  free(msgs);
+  int all_ok = 0, merr = gather_slots(sw, out, comm, rank, size, o.part_block, &all_ok);
   long counts[2] = {out->nrun, out->nfailed}, sums[2] = {0, 0};
   merr |= MPI_Reduce(counts, sums, 2, MPI_LONG, MPI_SUM, 0, comm);
   if (rank == 0 && merr == MPI_SUCCESS) {

@@ -233,6 +233,32 @@ static inline void pass_up(const aba_node *nd, const int d, const double *Lp, co
 // The backward pass for d = 2 or 3 (a constant once inlined): articulated inertias and, for a
 // load tau on the coordinates (nullable), the bias forces in the same sweep, starting from the
 // particle loads m gamma - F when `loads` is set, else from 0.
+// the articulated inertia I (d x d) of a node as its parent sees it, added to the parent's
+// Ip: I itself across a translating link, else Lp' I Lp
+static inline void add_to_parent(double *restrict Ip, const double *restrict I, const double *Lp,
+                                 const int d, int tr) {
+  if (tr) {
+    for (int e = 0; e < d * d; ++e)
+      Ip[e] += I[e];
+    return;
+  }
+  double T[9];
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b) {
+      double s = 0.0;
+      for (int c = 0; c < d; ++c)
+        s += I[a * d + c] * Lp[c * d + b];
+      T[a * d + b] = s;
+    }
+  for (int a = 0; a < d; ++a)
+    for (int b = 0; b < d; ++b) {
+      double s = 0.0;
+      for (int c = 0; c < d; ++c)
+        s += Lp[c * d + a] * T[c * d + b];
+      Ip[a * d + b] += s;
+    }
+}
+
 static inline void factor_pass(struct dal_aba *w, const dal_state *st, const double *mass, int N,
                                const int d, const double *tau, int loads) {
   const int dd = d * d;
@@ -299,27 +325,7 @@ static inline void factor_pass(struct dal_aba *w, const dal_state *st, const dou
     }
     if (p < 0) continue;
     // what the parent sees: Lp' (IA - W W') Lp, and Lp' (pA + W z)
-    double *restrict Ip = IA + p * dd;
-    if (nd->tr) {
-      for (int e = 0; e < dd; ++e)
-        Ip[e] += I[e];
-    } else {
-      double T[9];
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b) {
-          double s = 0.0;
-          for (int c = 0; c < d; ++c)
-            s += I[a * d + c] * Lp[c * d + b];
-          T[a * d + b] = s;
-        }
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b) {
-          double s = 0.0;
-          for (int c = 0; c < d; ++c)
-            s += Lp[c * d + a] * T[c * d + b];
-          Ip[a * d + b] += s;
-        }
-    }
+    add_to_parent(IA + p * dd, I, Lp, d, nd->tr);
   }
 }
 

@@ -55,6 +55,37 @@ static int direction(const dal_system *sys, dal_state *st, const double *ra, con
 // applied Cartesian forces F (N x d) and their potential energy
 // pw (nullable): pw[0] += power of the non-conservative forces (dampers, force callbacks),
 // pw[1] += explicit time derivative of the potential energy (moving spring anchors, U(r,t))
+// the user potentials over positions: F -= grad U (exact by jets), U added to *U, and their
+// explicit time derivative to pw[1] when the power is asked for (pw not NULL)
+static int position_potentials(const dal_system *sys, dal_state *st, double *U, double *pw) {
+  int d = sys->dim, Nd = sys->N * d, rc;
+  for (int i = 0; i < sys->npotr; ++i) {
+    dal_jet Uj;
+    for (int j = 0; j < Nd; ++j)
+      st->jr[j] = dal_const(st->r[j]);
+    for (int j = 0; j < Nd; ++j) {
+      st->jr[j].d = 1.0;
+      rc = sys->potr[i].fn.potr(st->jr, dal_const(st->t), &Uj, sys->potr[i].ctx);
+      st->jr[j].d = 0.0;
+      if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
+      if (!dal_jet_isfinite(Uj))
+        return DAL_FAIL(st, DAL_E_DOMAIN,
+                        "potential U(r,t) #%d is not finite at t=%.17g (gradient along "
+                        "particle '%s', component %d)",
+                        i, st->t, sys->part_names[j / d], j % d);
+      st->F[j] -= Uj.d;
+    }
+    if (Nd == 0 || pw) {
+      // the value, and its explicit time derivative when the power is asked for
+      rc = sys->potr[i].fn.potr(st->jr, dal_var(st->t, pw ? 1.0 : 0.0), &Uj, sys->potr[i].ctx);
+      if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
+      if (pw) pw[1] += Uj.d;
+    }
+    *U += Uj.v;
+  }
+  return DAL_OK;
+}
+
 static int applied_forces(const dal_system *sys, dal_state *st, double *U, double *pw) {
   int d = sys->dim, N = sys->N, rc;
   memset(st->F, 0, (size_t)N * (size_t)d * sizeof(double));
@@ -108,30 +139,7 @@ static int applied_forces(const dal_system *sys, dal_state *st, double *U, doubl
   }
   // user potentials over positions: F -= grad U, exact by jets
   int Nd = N * d;
-  for (int i = 0; i < sys->npotr; ++i) {
-    dal_jet Uj;
-    for (int j = 0; j < Nd; ++j)
-      st->jr[j] = dal_const(st->r[j]);
-    for (int j = 0; j < Nd; ++j) {
-      st->jr[j].d = 1.0;
-      rc = sys->potr[i].fn.potr(st->jr, dal_const(st->t), &Uj, sys->potr[i].ctx);
-      st->jr[j].d = 0.0;
-      if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
-      if (!dal_jet_isfinite(Uj))
-        return DAL_FAIL(st, DAL_E_DOMAIN,
-                        "potential U(r,t) #%d is not finite at t=%.17g (gradient along "
-                        "particle '%s', component %d)",
-                        i, st->t, sys->part_names[j / d], j % d);
-      st->F[j] -= Uj.d;
-    }
-    if (Nd == 0 || pw) {
-      // the value, and its explicit time derivative when the power is asked for
-      rc = sys->potr[i].fn.potr(st->jr, dal_var(st->t, pw ? 1.0 : 0.0), &Uj, sys->potr[i].ctx);
-      if (rc) return dal__cb_status(st, rc, "potential U(r,t)");
-      if (pw) pw[1] += Uj.d;
-    }
-    *U += Uj.v;
-  }
+  if (sys->npotr > 0 && (rc = position_potentials(sys, st, U, pw)) != 0) return rc;
   // user Cartesian forces
   double *F0 = st->cf; // scratch (Nd): forces before the callbacks, for their power
   if (pw && sys->nforce) memcpy(F0, st->F, (size_t)Nd * sizeof(double));

@@ -144,15 +144,9 @@ void dal__power(const dal_system *sys, dal_state *st) {
   st->have |= DAL_P_POW;
 }
 
-int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
-  int m = sys->m, rc;
-  st->have = 0;
-  if ((rc = check_point(sys, st)) != 0) return rc;
-  if (sys->lag) return eval_lagrangian(sys, st, need);
-  // accelerations alone on the recursion, with every force on the particles: the forces F are
-  // all it reads (aba.c), so Q, c and the energies are skipped (an integrator's right-hand side)
-  int lean = sys->aba && m == 0 && !sys->npotq && !sys->ngenforce &&
-             (need & ~(DAL_P_KIN | DAL_P_ACC)) == 0 && (need & DAL_P_ACC);
+// the products a request needs, closed over what each product is computed from
+static unsigned needed_products(const dal_system *sys, unsigned need) {
+  int m = sys->m;
   if (need & DAL_P_POW) need |= DAL_P_OUT | DAL_P_PW;
   if (need & DAL_P_PW) need |= DAL_P_DYN;
   // what each product needs: outputs need accelerations; accelerations need forces and M
@@ -172,6 +166,19 @@ int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
   // to dal_state_jacobian, which forms them from the local blocks (O(N^2) storage and work
   // otherwise for a chain, once per output); callers that read J ask for it alone
   if (!sys->store_J || (sys->aba && (need & DAL_P_ALL) == DAL_P_ALL)) need &= ~DAL_P_J;
+  return need;
+}
+
+int dal__eval(const dal_system *sys, dal_state *st, unsigned need) {
+  int m = sys->m, rc;
+  st->have = 0;
+  if ((rc = check_point(sys, st)) != 0) return rc;
+  if (sys->lag) return eval_lagrangian(sys, st, need);
+  // accelerations alone on the recursion, with every force on the particles: the forces F are
+  // all it reads (aba.c), so Q, c and the energies are skipped (an integrator's right-hand side)
+  int lean = sys->aba && m == 0 && !sys->npotq && !sys->ngenforce &&
+             (need & ~(DAL_P_KIN | DAL_P_ACC)) == 0 && (need & DAL_P_ACC);
+  need = needed_products(sys, need);
   if ((rc = dal__kinematics(sys, st, (need & DAL_P_J) != 0)) != 0) return rc;
   // M of a tree with a link that is not a translation is assembled through J
   if ((need & DAL_P_MLOW) && sys->dense_M && !st->tree && !(st->have & DAL_P_J))

@@ -17,6 +17,11 @@ enum { DAL_KKT_IDENTITY = 0, DAL_KKT_MASS = 1 };
 /// DAL_E_SINGULAR / DAL_E_NOMEM with the state's message naming the culprit.
 int dal__kkt_factor(const dal_system *sys, dal_state *st, int metric, const char *what);
 
+/// 1 when dal__kkt_factor with the mass metric reads the dense st->M (the dense KKT matrix),
+/// 0 when it does not (the loop system of a tree, or the sparse KKT matrix assembled from the
+/// particle Jacobians): a caller then need not ask for DAL_P_MLOW, an O(n^2) assembly.
+int dal__kkt_reads_M(const dal_system *sys, const dal_state *st);
+
 /// Solve A x = a + G' y, G x = b with the last factorization: a (n), b (m) -> x (n), y (m).
 /// x may alias a and y may alias b. No allocation.
 void dal__kkt_solve(const dal_system *sys, dal_state *st, const double *a, const double *b,

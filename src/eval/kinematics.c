@@ -377,6 +377,72 @@ static int place_hanging(const dal_system *sys, dal_state *st, int k) {
   return 0;
 }
 
+// placement k by its map in general: the local Jacobian blocks Lp (parent) and Lc
+// (coordinates) at the current values, then r, v, gamma and dr/dt along the state's motion
+static int place_general(const dal_system *sys, dal_state *st, int k) {
+  const dal_place *pl = &sys->place[k];
+  int d = sys->dim, rc;
+  dal_inst in = dal__inst(sys, st, k);
+  int np = in.npart, nin = in.prim->nin, nc = pl->ncoord, p = pl->parent;
+  // local Jacobian at the current values; a translating map's parent block is I
+  int translates = np && (in.prim->flags & DAL_PRIM_TRANSLATES);
+  rc = local_jacobian(sys, st, &in, k, translates ? d : 0);
+  if (rc) return rc;
+  double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
+  const double *vp = st->v + (np ? p * d : 0), *rtp = st->drdt + (np ? p * d : 0);
+  if (translates) {
+    static const double eye[2][9] = {{1, 0, 0, 1}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+    memcpy(Lp, eye[d - 2], (size_t)(d * d) * sizeof(double));
+  } else if (np) {
+    int identity = 1;
+    for (int a = 0; a < d; ++a)
+      for (int b = 0; b < d; ++b) {
+        Lp[a * d + b] = st->loc[a * nin + b];
+        identity &= Lp[a * d + b] == (a == b);
+      }
+    st->tree &= identity;
+  }
+  if (nc == 1)
+    for (int a = 0; a < d; ++a)
+      Lk[a] = st->loc[a * nin + np * d];
+  else
+    for (int a = 0; a < d; ++a)
+      for (int i = 0; i < nc; ++i)
+        Lk[a * nc + i] = st->loc[a * nin + np * d + i];
+  // along the state's motion: the inputs keep their values and move along (v, gamma) of the
+  // parent and (qdot, 0) of the coordinates; r, v, gamma
+  dal_jet *jin = st->jin;
+  for (int b = 0; b < d && np; ++b) {
+    jin[b].d = vp[b];
+    jin[b].dd = st->gamma[p * d + b];
+  }
+  for (int i = 0; i < nc; ++i) {
+    jin[np * d + i].d = st->qdot[in.coords[i]];
+    jin[np * d + i].dd = 0.0;
+  }
+  rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k);
+  if (rc) return rc;
+  // dr/dt = v - J_k qdot, with J_k qdot = Lp_k (v_p - drdt_p) + Lc_k qdot_local
+  for (int a = 0; a < d; ++a) {
+    double s = 0.0, v = st->jout[a].d;
+    if (translates)
+      s = vp[a] - rtp[a];
+    else
+      for (int b = 0; b < d && np; ++b)
+        s += Lp[a * d + b] * (vp[b] - rtp[b]);
+    if (nc == 1)
+      s += Lk[a] * jin[np * d].d;
+    else
+      for (int i = 0; i < nc; ++i)
+        s += Lk[a * nc + i] * jin[np * d + i].d;
+    st->r[k * d + a] = st->jout[a].v;
+    st->v[k * d + a] = v;
+    st->gamma[k * d + a] = st->jout[a].dd;
+    st->drdt[k * d + a] = v - s;
+  }
+  return DAL_OK;
+}
+
 int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
   int d = sys->dim, rc;
   st->tree = sys->place != NULL;
@@ -400,64 +466,7 @@ int dal__kinematics(const dal_system *sys, dal_state *st, int want_J) {
       if (rc) return rc;
       continue;
     }
-    dal_inst in = dal__inst(sys, st, k);
-    int np = in.npart, nin = in.prim->nin, nc = pl->ncoord, p = pl->parent;
-    // local Jacobian at the current values; a translating map's parent block is I
-    int translates = np && (in.prim->flags & DAL_PRIM_TRANSLATES);
-    rc = local_jacobian(sys, st, &in, k, translates ? d : 0);
-    if (rc) return rc;
-    double *Lp = st->Lp + (size_t)k * d * d, *Lk = st->Lc + sys->ploc_off[k];
-    const double *vp = st->v + (np ? p * d : 0), *rtp = st->drdt + (np ? p * d : 0);
-    if (translates) {
-      static const double eye[2][9] = {{1, 0, 0, 1}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
-      memcpy(Lp, eye[d - 2], (size_t)(d * d) * sizeof(double));
-    } else if (np) {
-      int identity = 1;
-      for (int a = 0; a < d; ++a)
-        for (int b = 0; b < d; ++b) {
-          Lp[a * d + b] = st->loc[a * nin + b];
-          identity &= Lp[a * d + b] == (a == b);
-        }
-      st->tree &= identity;
-    }
-    if (nc == 1)
-      for (int a = 0; a < d; ++a)
-        Lk[a] = st->loc[a * nin + np * d];
-    else
-      for (int a = 0; a < d; ++a)
-        for (int i = 0; i < nc; ++i)
-          Lk[a * nc + i] = st->loc[a * nin + np * d + i];
-    // along the state's motion: the inputs keep their values and move along (v, gamma) of the
-    // parent and (qdot, 0) of the coordinates; r, v, gamma
-    dal_jet *jin = st->jin;
-    for (int b = 0; b < d && np; ++b) {
-      jin[b].d = vp[b];
-      jin[b].dd = st->gamma[p * d + b];
-    }
-    for (int i = 0; i < nc; ++i) {
-      jin[np * d + i].d = st->qdot[in.coords[i]];
-      jin[np * d + i].dd = 0.0;
-    }
-    rc = eval_checked(sys, st, &in, dal_var(st->t, 1.0), k);
-    if (rc) return rc;
-    // dr/dt = v - J_k qdot, with J_k qdot = Lp_k (v_p - drdt_p) + Lc_k qdot_local
-    for (int a = 0; a < d; ++a) {
-      double s = 0.0, v = st->jout[a].d;
-      if (translates)
-        s = vp[a] - rtp[a];
-      else
-        for (int b = 0; b < d && np; ++b)
-          s += Lp[a * d + b] * (vp[b] - rtp[b]);
-      if (nc == 1)
-        s += Lk[a] * jin[np * d].d;
-      else
-        for (int i = 0; i < nc; ++i)
-          s += Lk[a * nc + i] * jin[np * d + i].d;
-      st->r[k * d + a] = st->jout[a].v;
-      st->v[k * d + a] = v;
-      st->gamma[k * d + a] = st->jout[a].dd;
-      st->drdt[k * d + a] = v - s;
-    }
+    if ((rc = place_general(sys, st, k)) != 0) return rc;
   }
   st->have |= DAL_P_KIN;
   // global Jacobians only when asked for (the caller asks when the assembly of M for a link

@@ -304,6 +304,10 @@ int dal__kkt_factor(const dal_system *sys, dal_state *st, int metric, const char
   return rc;
 }
 
+int dal__kkt_reads_M(const dal_system *sys, const dal_state *st) {
+  return !sys->aba && sys->dense_M && (!st->kkt || !st->kkt->sparse);
+}
+
 void dal__kkt_solve(const dal_system *sys, dal_state *st, const double *a, const double *b,
                     double *x, double *y) {
   struct dal_kkt *k = st->kkt;

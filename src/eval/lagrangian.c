@@ -32,16 +32,11 @@ static int lag_eval(const dal_system *sys, dal_state *st, dal_jet t, dal_jet *L)
   return DAL_OK;
 }
 
-int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
-                          double *h_out, int energies) {
+// A = d2L/dqdot2 (n x n) at the state's jets (jq, jv constant): A_ii as second derivatives
+// along the velocity directions e_i, A_ij by polarization
+static int velocity_hessian(const dal_system *sys, dal_state *st, dal_jet t0, double *A) {
   int n = sys->n, rc;
   dal_jet L;
-  dal_jet t0 = dal_const(st->t), tw = dal_var(st->t, 1.0);
-  for (int i = 0; i < n; ++i) {
-    st->jq[i] = dal_const(st->q[i]);
-    st->jv[i] = dal_const(st->qdot[i]);
-  }
-  // A_ii = D2 along velocity direction e_i
   for (int i = 0; i < n; ++i) {
     st->jv[i].d = 1.0;
     rc = lag_eval(sys, st, t0, &L);
@@ -49,7 +44,6 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
     if (rc) return rc;
     A[(size_t)i * n + i] = L.dd;
   }
-  // off-diagonal A_ij by polarization
   for (int i = 0; i < n; ++i)
     for (int j = i + 1; j < n; ++j) {
       st->jv[i].d = 1.0;
@@ -62,6 +56,20 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
       A[(size_t)j * n + i] = aij;
       A[(size_t)i * n + j] = aij;
     }
+  return DAL_OK;
+}
+
+int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, double *rhs,
+                          double *h_out, int energies) {
+  int n = sys->n, rc;
+  dal_jet L;
+  dal_jet t0 = dal_const(st->t), tw = dal_var(st->t, 1.0);
+  for (int i = 0; i < n; ++i) {
+    st->jq[i] = dal_const(st->q[i]);
+    st->jv[i] = dal_const(st->qdot[i]);
+  }
+  // A = d2L/dqdot2
+  if ((rc = velocity_hessian(sys, st, t0, A)) != 0) return rc;
   // w = (dq = qdot, dt = 1): W = D2(w), X_i = (D2(e_i^v + w) - A_ii - W) / 2
   for (int i = 0; i < n; ++i)
     st->jq[i].d = st->qdot[i];

@@ -56,6 +56,49 @@ static void name_list(const dal_system *sys, const int *rows, int nrows, char *b
   *ncon_out = ns;
 }
 
+// the first dependent row after the pivoted QR A (n x m, pivots jpvt) of numerical rank
+// `rank` < m and the rows it combines (R_11 z = R(0:rank, rank); z, rows: m scratch), into the
+// report and a DAL_E_CONSTRAINT naming them
+static int report_dependent(const dal_system *sys, dal_state *st, const double *A,
+                            const lapack_int *jpvt, double *z, int *rows, int rank,
+                            dal_constraint_report *rep) {
+  int n = sys->n, m = sys->m;
+  int dep = (int)jpvt[rank] - 1, nrows = 0;
+  rows[nrows++] = dep;
+  double zmax = 0.0;
+  for (int i = rank - 1; i >= 0; --i) {
+    double s = A[(size_t)rank * n + i];
+    for (int j = i + 1; j < rank; ++j)
+      s -= A[(size_t)j * n + i] * z[j];
+    z[i] = s / A[(size_t)i * n + i];
+    if (fabs(z[i]) > zmax) zmax = fabs(z[i]);
+  }
+  for (int i = 0; i < rank; ++i)
+    if (fabs(z[i]) > 1e-8 * zmax) rows[nrows++] = (int)jpvt[i] - 1;
+  rep->ndependent = nrows;
+  for (int i = 0; i < nrows && i < 8; ++i)
+    rep->rows[i] = rows[i];
+  char names[320], qs[256];
+  int ncon = 0;
+  name_list(sys, rows, nrows, names, sizeof names, &ncon);
+  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  if (rank == 0 && nrows == 1)
+    return DAL_FAIL(st, DAL_E_CONSTRAINT,
+                    "constraint %s does not depend on the coordinates at t=%.17g, %s (rank 0 of "
+                    "%d): its gradient vanishes; check its inputs or reformulate it",
+                    names, st->t, qs, m);
+  if (ncon == 1)
+    return DAL_FAIL(st, DAL_E_CONSTRAINT,
+                    "constraint %s has dependent rows (rank %d of %d) at t=%.17g, %s: its rows "
+                    "restrict the same motion there (a singular configuration of the primitive)",
+                    names, rank, m, st->t, qs);
+  return DAL_FAIL(st, DAL_E_CONSTRAINT,
+                  "constraints %s are redundant (rank %d of %d) at t=%.17g, %s: one of them "
+                  "restricts nothing the others do not; remove one (or, if they disagree, they "
+                  "conflict: fix their parameters)",
+                  names, rank, m, st->t, qs);
+}
+
 int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report *rep) {
   int n = sys->n, m = sys->m;
   dal_constraint_report local;
@@ -103,42 +146,7 @@ int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report 
   }
   rep->rank = rank;
   if (rank == m) goto done;
-  // the first dependent row and the rows it combines: R_11 z = R(0:rank, rank)
-  int dep = (int)jpvt[rank] - 1, nrows = 0;
-  rows[nrows++] = dep;
-  double zmax = 0.0;
-  for (int i = rank - 1; i >= 0; --i) {
-    double s = A[(size_t)rank * n + i];
-    for (int j = i + 1; j < rank; ++j)
-      s -= A[(size_t)j * n + i] * z[j];
-    z[i] = s / A[(size_t)i * n + i];
-    if (fabs(z[i]) > zmax) zmax = fabs(z[i]);
-  }
-  for (int i = 0; i < rank; ++i)
-    if (fabs(z[i]) > 1e-8 * zmax) rows[nrows++] = (int)jpvt[i] - 1;
-  rep->ndependent = nrows;
-  for (int i = 0; i < nrows && i < 8; ++i)
-    rep->rows[i] = rows[i];
-  char names[320], qs[256];
-  int ncon = 0;
-  name_list(sys, rows, nrows, names, sizeof names, &ncon);
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
-  if (rank == 0 && nrows == 1)
-    rc = DAL_FAIL(st, DAL_E_CONSTRAINT,
-                  "constraint %s does not depend on the coordinates at t=%.17g, %s (rank 0 of "
-                  "%d): its gradient vanishes; check its inputs or reformulate it",
-                  names, st->t, qs, m);
-  else if (ncon == 1)
-    rc = DAL_FAIL(st, DAL_E_CONSTRAINT,
-                  "constraint %s has dependent rows (rank %d of %d) at t=%.17g, %s: its rows "
-                  "restrict the same motion there (a singular configuration of the primitive)",
-                  names, rank, m, st->t, qs);
-  else
-    rc = DAL_FAIL(st, DAL_E_CONSTRAINT,
-                  "constraints %s are redundant (rank %d of %d) at t=%.17g, %s: one of them "
-                  "restricts nothing the others do not; remove one (or, if they disagree, they "
-                  "conflict: fix their parameters)",
-                  names, rank, m, st->t, qs);
+  rc = report_dependent(sys, st, A, jpvt, z, rows, rank, rep);
 done:
   free(A);
   free(G);

@@ -318,15 +318,12 @@ static void chained_hessian(dal_dae *f, int ci, const double *wt) {
 }
 
 // every entry (values are ignored by the counting and key sinks; y may be NULL there)
-static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
+// the q rows (q' - v: cj and -1) and cj M in the v rows, particle by particle (values: the
+// entries, else the pattern only)
+static void assemble_mass(dal_dae *f, double cj, dal_dae_sink *s, int values) {
   const dal_system *sys = f->sys;
-  dal_state *st = f->st;
-  int n = f->n, d = sys->dim, rc, values = s->mode >= DAL_SINK_SPARSE;
-  s->n = 0;
-  double al = f->alpha, be = f->beta;
-  // W' - P: cj on the diagonal (dP/dy is left out: a Newton approximation)
-  if (f->off_w >= 0) jadd(f, s, f->off_w, f->off_w, cj);
-  // q' and v in the q rows; cj M in the v rows
+  const dal_state *st = f->st;
+  int n = f->n, d = sys->dim;
   for (int i = 0; i < n; ++i) {
     jadd(f, s, i, i, cj);
     jadd(f, s, i, n + i, -1.0);
@@ -343,6 +340,18 @@ static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
         jadd(f, s, n + dp[a], n + dp[b], cj * st->prm.mass[p] * v);
       }
   }
+}
+
+static int assemble(dal_dae *f, double cj, const double *y, dal_dae_sink *s) {
+  const dal_system *sys = f->sys;
+  dal_state *st = f->st;
+  int n = f->n, rc, values = s->mode >= DAL_SINK_SPARSE;
+  s->n = 0;
+  double al = f->alpha, be = f->beta;
+  // W' - P: cj on the diagonal (dP/dy is left out: a Newton approximation)
+  if (f->off_w >= 0) jadd(f, s, f->off_w, f->off_w, cj);
+  // q' and v in the q rows; cj M in the v rows
+  assemble_mass(f, cj, s, values);
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
     const int *dc = sys->cdep + c->dep_off;

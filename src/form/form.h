@@ -113,6 +113,10 @@ int dal__project_state(const dal_system *sys, dal_state *st, double tol, int max
 /// Start of a DAE run (init.c): rank check, then the consistent initialization (positions,
 /// velocities, KKT accelerations and multipliers) at the state's time; rep is nullable.
 int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep);
+/// dal__dae_start that also hands back the rank check's report (crep, nullable): the IDA glue
+/// compares the constraints' conditioning at a failure with the start's.
+int dal__dae_start_checked(const dal_system *sys, dal_state *st, double max_move,
+                           dal_init_report *rep, dal_constraint_report *crep);
 
 /// the exact tangent of the vector field (tangent.c, tangent_lagrangian.c)
 #include "dalembert/analysis.h"

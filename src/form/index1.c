@@ -66,9 +66,11 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
     rc = dal__eval(sys, st, need | DAL_P_ACC);
   } else {
     // G qddot = -(gamma_phi + 2 alpha (G v + dphi/dt) + beta^2 phi)
-    // (the KKT matrix reads the lower M; the loop system of aba.c needs none)
+    // (the dense KKT matrix reads the lower M; the loop system of aba.c and the sparse KKT
+    // matrix, assembled from the particle Jacobians, need none: its dense assembly was the
+    // O(n^2) per right-hand side of bench/cliff.sh up to DAL_DENSE_M_MAX coordinates)
     unsigned late = DAL_P_ACC | DAL_P_OUT | DAL_P_POW; // formed here, after the KKT solve
-    unsigned mass = sys->aba ? 0u : DAL_P_MLOW;
+    unsigned mass = dal__kkt_reads_M(sys, st) ? DAL_P_MLOW : 0u;
     rc = dal__eval(sys, st,
                    (need & ~late) | ((need & DAL_P_POW) ? DAL_P_PW : 0u) | DAL_P_CON | DAL_P_DYN |
                        mass);

@@ -30,6 +30,32 @@ double dal__max_abs(const double *x, int n, int *at) {
 }
 
 // positions onto phi = 0: damped minimum-norm Gauss-Newton
+// residuals above tol left on two or more constraints where Gauss-Newton stalled: each step
+// that reduces one increases another, so they conflict (at least near this guess); names them
+// all (DAL_E_CONSTRAINT), or 0 when fewer than two constraints are left
+static int conflicting_constraints(const dal_system *sys, dal_state *st, double tol) {
+  char names[256] = "", qs[256];
+  int nbad = 0, last = -1;
+  size_t used = 0;
+  for (int r = 0; r < sys->m; ++r) {
+    int ci = sys->row_con[r];
+    if (!(fabs(st->phi[r]) > tol) || ci == last) continue;
+    last = ci;
+    if (nbad++ < 4 && used < sizeof names)
+      used += (size_t)snprintf(names + used, sizeof names - used, "%s'%s' (%.3g)",
+                               nbad > 1 ? " and " : "", sys->con[ci].name, st->phi[r]);
+  }
+  if (nbad < 2) return DAL_OK;
+  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  return DAL_FAIL(st, DAL_E_CONSTRAINT,
+                  "constraints %s%s conflict: Gauss-Newton stalls at t=%.17g, %s with "
+                  "these residuals > %.3g (a step that reduces one increases another, or "
+                  "their gradients become dependent); no "
+                  "position near this guess satisfies them together: fix their parameters, "
+                  "or start from a guess near a common solution",
+                  names, nbad > 4 ? " and others" : "", st->t, qs, tol);
+}
+
 static int project_positions(const dal_system *sys, dal_state *st, double tol, int maxit,
                              int *iters) {
   int n = sys->n, m = sys->m, worst = 0, it = 0, rc, stalled = 0;
@@ -74,31 +100,8 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
     res = nres;
   }
   if (iters) *iters = it;
-  if (!(res <= tol) && stalled) {
-    // stalled with residuals left on two or more constraints: each step that reduces one
-    // increases another, so they conflict (at least near this guess); name them all
-    char names[256] = "", qs[256];
-    int nbad = 0, last = -1;
-    size_t used = 0;
-    for (int r = 0; r < m; ++r) {
-      int ci = sys->row_con[r];
-      if (!(fabs(st->phi[r]) > tol) || ci == last) continue;
-      last = ci;
-      if (nbad++ < 4 && used < sizeof names)
-        used += (size_t)snprintf(names + used, sizeof names - used, "%s'%s' (%.3g)",
-                                 nbad > 1 ? " and " : "", sys->con[ci].name, st->phi[r]);
-    }
-    if (nbad >= 2) {
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
-      return DAL_FAIL(st, DAL_E_CONSTRAINT,
-                      "constraints %s%s conflict: Gauss-Newton stalls at t=%.17g, %s with "
-                      "these residuals > %.3g (a step that reduces one increases another, or "
-                      "their gradients become dependent); no "
-                      "position near this guess satisfies them together: fix their parameters, "
-                      "or start from a guess near a common solution",
-                      names, nbad > 4 ? " and others" : "", st->t, qs, tol);
-    }
-  }
+  // stalled with residuals left on two or more constraints: they conflict
+  if (!(res <= tol) && stalled && (rc = conflicting_constraints(sys, st, tol)) != 0) return rc;
   if (!(res <= tol)) {
     char qs[256];
     dal__fmt_q(sys, st->q, qs, sizeof qs);
@@ -232,11 +235,17 @@ int dal_make_consistent(const dal_system *sys, dal_state *st, double tol, dal_in
   return make_consistent(sys, st, tol, 0.0, rep ? rep : &local);
 }
 
-// used by the IDA driver: rank check, then the consistent initialization
-int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep) {
+// used by the IDA driver: rank check (its report into *crep, nullable), then the consistent
+// initialization
+int dal__dae_start_checked(const dal_system *sys, dal_state *st, double max_move,
+                           dal_init_report *rep, dal_constraint_report *crep) {
   dal_init_report local;
   int rc = dal__eval_constraints(sys, st);
-  if (rc == 0) rc = dal__check_rank(sys, st, NULL);
+  if (rc == 0) rc = dal__check_rank(sys, st, crep);
   if (rc == 0) rc = make_consistent(sys, st, 0.0, max_move, rep ? rep : &local);
   return dal__public_status(rc);
+}
+
+int dal__dae_start(const dal_system *sys, dal_state *st, double max_move, dal_init_report *rep) {
+  return dal__dae_start_checked(sys, st, max_move, rep, NULL);
 }

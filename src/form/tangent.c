@@ -381,21 +381,15 @@ static dal_jet line(dal_tangent *tg, const double *q, double t, int i, int j) {
   return dal_var(t, (i == n) + (j == n));
 }
 
-int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t) {
-  int n = tg->n, nd = tg->nd, d = sys->dim, nt = want_t ? n + 1 : n, rc;
-  const double t = st->t, *q = st->q, *u = st->qdot, *a = tg->acc ? tg->acc : st->qddot;
-  double *H = tg->H;
-  int m = tg->m;
-  size_t ldh = (size_t)n + 1;
-  if (sys->lag) return dal__tangent_lagrangian(sys, st, tg, want_t);
-
-  // anchors of springs and dampers: x, x', x'' at t
+// anchors of springs and dampers: x, x', x'' at t
+static int tangent_anchors(const dal_system *sys, dal_state *st, dal_tangent *tg) {
+  int d = sys->dim, rc;
   for (int i = 0; i < sys->nspring + sys->ndamper; ++i) {
     int spring = i < sys->nspring;
     const dal_link *l = spring ? &st->prm.springs[i] : &st->prm.dampers[i - sys->nspring];
     if (l->b >= 0) continue;
     dal_jet x[3];
-    if ((rc = anchor_jets(sys, st, l, dal_var(t, 1.0), x, spring ? "spring" : "damper")) != 0)
+    if ((rc = anchor_jets(sys, st, l, dal_var(st->t, 1.0), x, spring ? "spring" : "damper")) != 0)
       return rc;
     for (int b = 0; b < d; ++b) {
       tg->link[9 * i + b] = x[b].v;
@@ -403,11 +397,17 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
       tg->link[9 * i + 6 + b] = x[b].dd;
     }
   }
+  return DAL_OK;
+}
 
-  // the state's curve (q + s qdot + s^2/2 qddot, t + s): positions, velocities, accelerations
+// the state's curve (q + s qdot + s^2/2 qddot, t + s): positions, velocities, accelerations,
+// the constraint residuals, the damper forces and the weights m a - Fd
+static int tangent_at_state(const dal_system *sys, dal_state *st, dal_tangent *tg,
+                            const double *a) {
+  int n = tg->n, nd = tg->nd, m = tg->m, d = sys->dim, rc;
   for (int c = 0; c < n; ++c)
-    tg->jq[c] = dal_jet_make3(q[c], u[c], a[c], 0.0);
-  if ((rc = curve(sys, st, tg, dal_var(t, 1.0), 0)) != 0) return rc;
+    tg->jq[c] = dal_jet_make3(st->q[c], st->qdot[c], a[c], 0.0);
+  if ((rc = curve(sys, st, tg, dal_var(st->t, 1.0), 0)) != 0) return rc;
   for (int c = 0; c < nd; ++c) {
     tg->r[c] = tg->jr[c].v;
     tg->v[c] = tg->jr[c].d;
@@ -421,9 +421,16 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
   dampers(sys, st, tg, NULL, NULL, 0.0, tg->Fd, NULL);
   for (int c = 0; c < nd; ++c)
     tg->w[c] = st->prm.mass[c / d] * tg->A[c] - tg->Fd[c];
+  return DAL_OK;
+}
 
-  // second derivatives of W in (q, t): diagonal along e_i (also J, dR at the state and the
-  // third derivatives of the particles along e_i), then e_i + e_j by polarization
+// second derivatives of W in (q, t) (nt of them): diagonal along e_i (also J, dR at the state
+// and the third derivatives of the particles along e_i), then e_i + e_j by polarization
+static int tangent_hessian(const dal_system *sys, dal_state *st, dal_tangent *tg, int nt) {
+  int n = tg->n, nd = tg->nd, m = tg->m, rc;
+  const double t = st->t, *q = st->q;
+  double *H = tg->H;
+  size_t ldh = (size_t)n + 1;
   for (int i = 0; i < nt; ++i) {
     dal_jet tj = line(tg, q, t, i, -1);
     if ((rc = curve(sys, st, tg, tj, 1)) != 0) return rc;
@@ -455,8 +462,12 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
       tg->Habs[j * ldh + i] = tg->Habs[i * ldh + j] =
           0.5 * (Wa + tg->Habs[i * ldh + i] + tg->Habs[j * ldh + j]);
     }
+  return DAL_OK;
+}
 
-  // M = sum_k m_k J_k' J_k from the particle Jacobian columns
+// M = sum_k m_k J_k' J_k from the particle Jacobian columns
+static void tangent_mass(const dal_system *sys, const dal_state *st, dal_tangent *tg) {
+  int n = tg->n, nd = tg->nd, d = sys->dim;
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
       double s = 0.0;
@@ -465,56 +476,75 @@ int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int
         s += st->prm.mass[c / d] * Ji[c] * Jj[c];
       tg->M[(size_t)j * n + i] = tg->M[(size_t)i * n + j] = s;
     }
+}
 
-  // each tangent direction: dq = e_i (i < n), dqdot = e_i (n <= i < 2n), dt = 1 (i = 2n)
-  int ndir = 2 * n + (want_t ? 1 : 0);
-  for (int z = 0; z < ndir; ++z) {
-    int qdir = z < n, udir = z >= n && z < 2 * n, i = qdir ? z : udir ? z - n : n;
-    for (int l = 0; l < 2; ++l) {
-      double lam = l ? -1.0 : 1.0;
-      for (int c = 0; c < n; ++c) {
-        double dq = qdir && c == i ? lam : 0.0, du = udir && c == i ? 2.0 * lam : 0.0;
-        tg->jq[c] = dal_jet_make3(q[c], u[c] + dq, a[c] + du, 0.0);
-      }
-      dal_jet tj = dal_var(t, udir || qdir ? 1.0 : 1.0 + lam);
-      if ((rc = curve(sys, st, tg, tj, 1)) != 0) return rc;
-      memcpy(l ? tg->cm : tg->cp, tg->jr, (size_t)nd * sizeof(dal_jet));
-      if (m > 0) memcpy(l ? tg->ccm : tg->ccp, tg->jc, (size_t)m * sizeof(dal_jet));
+// tangent direction z: dq = e_i (z < n), dqdot = e_i (n <= z < 2n), dt = 1 (z = 2n); the
+// columns of Rq, Ru or Rt (with their rounding scales) and of the constraint rows' residuals
+static int tangent_direction(const dal_system *sys, dal_state *st, dal_tangent *tg, const double *a,
+                             int z) {
+  int n = tg->n, nd = tg->nd, m = tg->m, d = sys->dim, rc;
+  const double t = st->t, *q = st->q, *u = st->qdot, *H = tg->H;
+  size_t ldh = (size_t)n + 1;
+  int qdir = z < n, udir = z >= n && z < 2 * n, i = qdir ? z : udir ? z - n : n;
+  for (int l = 0; l < 2; ++l) {
+    double lam = l ? -1.0 : 1.0;
+    for (int c = 0; c < n; ++c) {
+      double dq = qdir && c == i ? lam : 0.0, du = udir && c == i ? 2.0 * lam : 0.0;
+      tg->jq[c] = dal_jet_make3(q[c], u[c] + dq, a[c] + du, 0.0);
     }
-    const double *pure = udir ? NULL : tg->d3diag + (size_t)i * nd;
-    // the constraint rows' velocity and acceleration residuals along the direction
-    for (int r = 0; r < m; ++r) {
-      double cpure = udir ? 0.0 : tg->c3diag[(size_t)i * m + r];
-      double dacc = (0.5 * (tg->ccp[r].d3 - tg->ccm[r].d3) - cpure) / 3.0;
-      if (qdir) {
-        tg->Pq[(size_t)i * m + r] = 0.25 * (tg->ccp[r].dd - tg->ccm[r].dd);
-        tg->Aq[(size_t)i * m + r] = dacc;
-      } else if (udir) {
-        tg->Av[(size_t)i * m + r] = dacc;
-      } else {
-        tg->At[r] = dacc;
-      }
-    }
-    for (int c = 0; c < nd; ++c) {
-      tg->dr[c] = 0.5 * (tg->cp[c].d - tg->cm[c].d);
-      tg->dv[c] = 0.25 * (tg->cp[c].dd - tg->cm[c].dd);
-      tg->da[c] = (0.5 * (tg->cp[c].d3 - tg->cm[c].d3) - (pure ? pure[c] : 0.0)) / 3.0;
-    }
-    dampers(sys, st, tg, tg->dr, tg->dv, udir || qdir ? 0.0 : 1.0, NULL, tg->dF);
-    double *col = qdir ? tg->Rq + (size_t)i * n : udir ? tg->Ru + (size_t)i * n : tg->Rt;
-    double *cabs = qdir ? tg->Kabs + (size_t)i * n : udir ? tg->Cabs + (size_t)i * n : NULL;
-    for (int j = 0; j < n; ++j) {
-      const double *Jj = tg->J + (size_t)j * nd;
-      double s = udir ? 0.0 : H[i * ldh + j], sa = udir ? 0.0 : tg->Habs[i * ldh + j];
-      for (int c = 0; c < nd; ++c) {
-        double x = Jj[c] * (st->prm.mass[c / d] * tg->da[c] - tg->dF[c]);
-        s += x;
-        sa += fabs(x);
-      }
-      col[j] = s;
-      if (cabs) cabs[j] = sa;
+    dal_jet tj = dal_var(t, udir || qdir ? 1.0 : 1.0 + lam);
+    if ((rc = curve(sys, st, tg, tj, 1)) != 0) return rc;
+    memcpy(l ? tg->cm : tg->cp, tg->jr, (size_t)nd * sizeof(dal_jet));
+    if (m > 0) memcpy(l ? tg->ccm : tg->ccp, tg->jc, (size_t)m * sizeof(dal_jet));
+  }
+  const double *pure = udir ? NULL : tg->d3diag + (size_t)i * nd;
+  // the constraint rows' velocity and acceleration residuals along the direction
+  for (int r = 0; r < m; ++r) {
+    double cpure = udir ? 0.0 : tg->c3diag[(size_t)i * m + r];
+    double dacc = (0.5 * (tg->ccp[r].d3 - tg->ccm[r].d3) - cpure) / 3.0;
+    if (qdir) {
+      tg->Pq[(size_t)i * m + r] = 0.25 * (tg->ccp[r].dd - tg->ccm[r].dd);
+      tg->Aq[(size_t)i * m + r] = dacc;
+    } else if (udir) {
+      tg->Av[(size_t)i * m + r] = dacc;
+    } else {
+      tg->At[r] = dacc;
     }
   }
+  for (int c = 0; c < nd; ++c) {
+    tg->dr[c] = 0.5 * (tg->cp[c].d - tg->cm[c].d);
+    tg->dv[c] = 0.25 * (tg->cp[c].dd - tg->cm[c].dd);
+    tg->da[c] = (0.5 * (tg->cp[c].d3 - tg->cm[c].d3) - (pure ? pure[c] : 0.0)) / 3.0;
+  }
+  dampers(sys, st, tg, tg->dr, tg->dv, udir || qdir ? 0.0 : 1.0, NULL, tg->dF);
+  double *col = qdir ? tg->Rq + (size_t)i * n : udir ? tg->Ru + (size_t)i * n : tg->Rt;
+  double *cabs = qdir ? tg->Kabs + (size_t)i * n : udir ? tg->Cabs + (size_t)i * n : NULL;
+  for (int j = 0; j < n; ++j) {
+    const double *Jj = tg->J + (size_t)j * nd;
+    double s = udir ? 0.0 : H[i * ldh + j], sa = udir ? 0.0 : tg->Habs[i * ldh + j];
+    for (int c = 0; c < nd; ++c) {
+      double x = Jj[c] * (st->prm.mass[c / d] * tg->da[c] - tg->dF[c]);
+      s += x;
+      sa += fabs(x);
+    }
+    col[j] = s;
+    if (cabs) cabs[j] = sa;
+  }
+  return DAL_OK;
+}
+
+int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t) {
+  if (sys->lag) return dal__tangent_lagrangian(sys, st, tg, want_t);
+  int n = tg->n, nt = want_t ? n + 1 : n, rc;
+  const double *a = tg->acc ? tg->acc : st->qddot;
+  if ((rc = tangent_anchors(sys, st, tg)) != 0 || (rc = tangent_at_state(sys, st, tg, a)) != 0 ||
+      (rc = tangent_hessian(sys, st, tg, nt)) != 0)
+    return rc;
+  tangent_mass(sys, st, tg);
+  // each tangent direction: dq = e_i (i < n), dqdot = e_i (n <= i < 2n), dt = 1 (i = 2n)
+  int ndir = 2 * n + (want_t ? 1 : 0);
+  for (int z = 0; z < ndir; ++z)
+    if ((rc = tangent_direction(sys, st, tg, a, z)) != 0) return rc;
   return DAL_OK;
 }
 

@@ -71,13 +71,13 @@ static int potq_line(const dal_system *sys, dal_state *st, dal_tangent *tg, cons
   return DAL_OK;
 }
 
-int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t) {
+// the Hessian of L over (q, qdot, t) into tg->HL (its rounding scales into tg->HLabs):
+// diagonal along e_i, off-diagonal by polarization; - dL/dq_i into tg->res
+static int lagrangian_hessian(const dal_system *sys, dal_state *st, dal_tangent *tg) {
   int n = sys->n, np = 2 * n + 1, rc;
   size_t ld = (size_t)np;
-  double *HL = tg->HL, *d = tg->dr, *dd = tg->dv; // dr, dv: scratch of 2n + 1 here
+  double *HL = tg->HL, *Ha = tg->HLabs, *d = tg->dr; // dr: scratch of 2n + 1 here
   dal_jet L;
-  // Hessian of L over (q, qdot, t): diagonal along e_i, off-diagonal by polarization
-  double *Ha = tg->HLabs;
   for (int i = 0; i < np; ++i) {
     memset(d, 0, ld * sizeof(double));
     d[i] = 1.0;
@@ -94,6 +94,43 @@ int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *t
       HL[j * ld + i] = HL[i * ld + j] = 0.5 * (L.dd - HL[i * ld + i] - HL[j * ld + j]);
       Ha[j * ld + i] = Ha[i * ld + j] = 0.5 * (fabs(L.dd) + Ha[i * ld + i] + Ha[j * ld + j]);
     }
+  return DAL_OK;
+}
+
+// the Hessian of the potentials U(q, t) in (q, t) into tg->H (index n = time), and dU/dq
+// added to tg->res
+static int potential_hessian(const dal_system *sys, dal_state *st, dal_tangent *tg) {
+  int n = sys->n, nt = n + 1, rc;
+  size_t ldh = (size_t)n + 1;
+  double *dq = tg->dF;
+  dal_jet U;
+  for (int i = 0; i < nt; ++i) {
+    memset(dq, 0, (size_t)n * sizeof(double));
+    if (i < n) dq[i] = 1.0;
+    if ((rc = potq_line(sys, st, tg, dq, i == n, &U)) != 0) return rc;
+    tg->H[i * ldh + i] = U.dd;
+    if (i < n) tg->res[i] += U.d;
+  }
+  for (int i = 0; i < nt; ++i)
+    for (int j = i + 1; j < nt; ++j) {
+      memset(dq, 0, (size_t)n * sizeof(double));
+      if (i < n) dq[i] = 1.0;
+      if (j < n) dq[j] = 1.0;
+      if ((rc = potq_line(sys, st, tg, dq, (i == n) + (j == n), &U)) != 0) return rc;
+      tg->H[j * ldh + i] = tg->H[i * ldh + j] =
+          0.5 * (U.dd - tg->H[i * ldh + i] - tg->H[j * ldh + j]);
+    }
+  return DAL_OK;
+}
+
+int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t) {
+  int n = sys->n, np = 2 * n + 1, rc;
+  size_t ld = (size_t)np;
+  double *HL = tg->HL, *d = tg->dr, *dd = tg->dv; // dr, dv: scratch of 2n + 1 here
+  dal_jet L;
+  // Hessian of L over (q, qdot, t), and - dL/dq into tg->res
+  double *Ha = tg->HLabs;
+  if ((rc = lagrangian_hessian(sys, st, tg)) != 0) return rc;
   // M = d2L/dqdot2, and R_j = D^2 L[x_j, w] - dL/dq_j (+ dU/dq_j below)
   double *w = tg->da; // 2n + 1 entries
   for (int i = 0; i < n; ++i) {
@@ -110,28 +147,8 @@ int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *t
     tg->res[i] += s;
   }
   // potentials U(q, t): their Hessian in (q, t) into tg->H (index n = time)
-  int nt = n + 1;
   size_t ldh = (size_t)n + 1;
-  double *dq = tg->dF;
-  if (sys->npotq > 0) {
-    dal_jet U;
-    for (int i = 0; i < nt; ++i) {
-      memset(dq, 0, (size_t)n * sizeof(double));
-      if (i < n) dq[i] = 1.0;
-      if ((rc = potq_line(sys, st, tg, dq, i == n, &U)) != 0) return rc;
-      tg->H[i * ldh + i] = U.dd;
-      if (i < n) tg->res[i] += U.d;
-    }
-    for (int i = 0; i < nt; ++i)
-      for (int j = i + 1; j < nt; ++j) {
-        memset(dq, 0, (size_t)n * sizeof(double));
-        if (i < n) dq[i] = 1.0;
-        if (j < n) dq[j] = 1.0;
-        if ((rc = potq_line(sys, st, tg, dq, (i == n) + (j == n), &U)) != 0) return rc;
-        tg->H[j * ldh + i] = tg->H[i * ldh + j] =
-            0.5 * (U.dd - tg->H[i * ldh + i] - tg->H[j * ldh + j]);
-      }
-  }
+  if (sys->npotq > 0 && (rc = potential_hessian(sys, st, tg)) != 0) return rc;
 
   // each direction z: e_i in q (i < n), in qdot (n <= i < 2n), in t (i = 2n)
   int ndir = want_t ? np : 2 * n;

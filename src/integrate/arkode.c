@@ -19,14 +19,26 @@
 
 /// consecutive recoverable right-hand-side failures tolerated before giving up
 #define ERK_MAX_RECOVER 30
+/// accepted points before a step that Fehlberg 7(8)'s dense output interpolates through
+#define FEHL_HIST 5
 
 typedef struct erk_mem {
-  SUNContext ctx;
   void *ark;
-  N_Vector y, ele, ewt, dky;
-  ARKodeButcherTable fb;    // Fehlberg 7(8): its table for the dense output's partial steps
-  double *K, *yk;           // its stages (stages x ny) and stage argument (ny)
-  long nfe_base, netf_base; // counters already added to the state's statistics
+  dal_sun_vecs v;           // context and vectors
+  ARKodeButcherTable fb; // Fehlberg 7(8): its table for the dense output's partial steps
+  double *K, *yk;        // its stages (stages x ny) and stage argument (ny)
+  // Fehlberg 7(8)'s dense output (fehlberg_interp): the last FEHL_HIST accepted points of
+  // the run with their slopes, oldest first, and the interpolant of the current step
+  int nh;                      // points held
+  double ht[FEHL_HIST];        // their times
+  double *hy, *hf;             // their y and f (FEHL_HIST x ny each)
+  int nz;                      // nodes of the current step's interpolant
+  double zt[FEHL_HIST + 1];    // their times
+  double *zy, *zf;             // their y and f ((FEHL_HIST + 1) x ny each)
+  double *cf, *cf7;            // its Newton coefficients, and those of the check
+  double ct0, ct1;             // the step it was built for
+  long n_hist, n_mid, n_inner; // steps served by each of fehlberg_build's interpolants
+  long nfe_base, netf_base;    // counters already added to the state's statistics
 } erk_mem;
 
 static int erk_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
@@ -38,14 +50,16 @@ static void erk_free(void *p) {
   erk_mem *m = p;
   if (!m) return;
   if (m->ark) ERKStepFree(&m->ark);
-  if (m->y) N_VDestroy(m->y);
-  if (m->ele) N_VDestroy(m->ele);
-  if (m->ewt) N_VDestroy(m->ewt);
-  if (m->dky) N_VDestroy(m->dky);
   if (m->fb) ARKodeButcherTable_Free(m->fb);
   free(m->K);
   free(m->yk);
-  if (m->ctx) SUNContext_Free(&m->ctx);
+  free(m->hy);
+  free(m->hf);
+  free(m->zy);
+  free(m->zf);
+  free(m->cf);
+  free(m->cf7);
+  dal__sun_vecs_free(&m->v);
   free(m);
 }
 
@@ -60,9 +74,9 @@ static void erk_sync_stats(dal_ode_integ *ig, erk_mem *m) {
 // restart the integrator at the last accepted step with initial step h (0: estimate)
 static int erk_restart(dal_ode_integ *ig, erk_mem *m, double h) {
   erk_sync_stats(ig, m);
-  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  memcpy(N_VGetArrayPointer(m->v.y), ig->y, (size_t)ig->ny * sizeof(double));
   int flag = ERKStepSetInitStep(m->ark, h);
-  if (flag == ARK_SUCCESS) flag = ERKStepReset(m->ark, ig->t, m->y);
+  if (flag == ARK_SUCCESS) flag = ERKStepReset(m->ark, ig->t, m->v.y);
   // a reset forgets the stop time
   if (flag == ARK_SUCCESS) flag = ERKStepSetStopTime(m->ark, ig->tout);
   m->netf_base = 0;
@@ -95,9 +109,9 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
     // a callback that keeps asking for a smaller step, not the solution, stopped us
     if (dal__ode_recov_blocked(ig)) return dal__ode_recov_fail(ig, h);
     // dominating variable: the largest weighted local error estimate of the failed try
-    ERKStepGetEstLocalErrors(m->ark, m->ele);
-    ERKStepGetErrWeights(m->ark, m->ewt);
-    const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
+    ERKStepGetEstLocalErrors(m->ark, m->v.ele);
+    ERKStepGetErrWeights(m->ark, m->v.ewt);
+    const double *e = N_VGetArrayPointer(m->v.ele), *w = N_VGetArrayPointer(m->v.ewt);
     for (int i = 0; i < ig->ny; ++i)
       ig->ewt[i] = e[i] * w[i];
     int i = dal__ode_argmax(ig->ewt, ig->ny);
@@ -160,24 +174,20 @@ static int erk_set_fehlberg(void *ark) {
 // interpolation module keeps; the driver's cubic Hermite (ode.c) is its dense output
 static int erk_end_slope(dal_ode_integ *ig, double *f) {
   erk_mem *m = ig->impl;
-  int flag = ERKStepGetDky(m->ark, ig->t, 1, m->dky);
+  int flag = ERKStepGetDky(m->ark, ig->t, 1, m->v.dky);
   if (flag != ARK_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER, "ARKODE could not give the slope at t=%.17g (code %d)",
                     ig->t, flag);
-  memcpy(f, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  memcpy(f, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
   return DAL_OK;
 }
 
-// dense output of Fehlberg 7(8): one step of the method itself, of length t - tprev, from the
-// step's start (order 8 like the step; ARKODE's Hermite interpolant of degree 5 measured 400 x
-// rtol between Fehlberg's long steps). The first stage is shared by the outputs of a step.
-static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
+// y at tprev + tau of Fehlberg 7(8)'s step from (tprev, yprev): one step of the method
+// itself of length tau (order 8 like the step), its first stage the step's start slope hf0
+static int fehlberg_partial(dal_ode_integ *ig, double tau, double *yout) {
   erk_mem *m = ig->impl;
   ARKodeButcherTable F = m->fb;
   int ny = ig->ny, s = F->stages;
-  double tau = t - ig->tprev;
-  int rc = dal__ode_start_slope(ig);
-  if (rc) return rc;
   memcpy(m->K, ig->hf0, (size_t)ny * sizeof(double));
   for (int i = 1; i < s; ++i) {
     for (int k = 0; k < ny; ++k) {
@@ -186,7 +196,7 @@ static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
         a += F->A[i][j] * m->K[(size_t)j * ny + k];
       m->yk[k] = ig->yprev[k] + tau * a;
     }
-    rc = dal__ode_eval(ig, ig->tprev + F->c[i] * tau, m->yk, m->K + (size_t)i * ny, DAL_P_ACC);
+    int rc = dal__ode_eval(ig, ig->tprev + F->c[i] * tau, m->yk, m->K + (size_t)i * ny, DAL_P_ACC);
     if (rc) return dal__public_status(rc);
     ig->st->stats.rhs_evals++;
   }
@@ -199,6 +209,197 @@ static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
   return DAL_OK;
 }
 
+// Newton coefficients of the Hermite interpolant through nz nodes zt with values y (node x
+// ny) and slopes f: divided differences on the doubled nodes z_0, z_0, z_1, z_1, ... (2 nz
+// per component, component after component)
+static void hermite_newton(int ny, int nz, const double *zt, const double *y, const double *f,
+                           double *cf) {
+  double d[2 * (FEHL_HIST + 1)];
+  int Z = 2 * nz;
+  for (int k = 0; k < ny; ++k) {
+    for (int i = 0; i < Z; ++i)
+      d[i] = y[(size_t)(i / 2) * ny + k];
+    // order 1: the slope at a doubled node, else the difference quotient
+    for (int i = Z - 1; i >= 1; --i)
+      d[i] =
+          (i & 1) ? f[(size_t)(i / 2) * ny + k] : (d[i] - d[i - 1]) / (zt[i / 2] - zt[(i - 1) / 2]);
+    for (int o = 2; o < Z; ++o)
+      for (int i = Z - 1; i >= o; --i)
+        d[i] = (d[i] - d[i - 1]) / (zt[i / 2] - zt[(i - o) / 2]);
+    memcpy(cf + (size_t)k * Z, d, (size_t)Z * sizeof(double));
+  }
+}
+
+// the Newton form (hermite_newton) at t into yout
+static void hermite_eval(int ny, int nz, const double *zt, const double *cf, double t,
+                         double *yout) {
+  double dz[FEHL_HIST + 1];
+  int Z = 2 * nz;
+  for (int i = 0; i < nz; ++i)
+    dz[i] = t - zt[i];
+  for (int k = 0; k < ny; ++k, cf += Z) {
+    // nested form over the doubled nodes, two coefficients per node
+    double p = cf[Z - 1];
+    for (int i = nz - 1; i > 0; --i)
+      p = (p * dz[i] + cf[2 * i]) * dz[i - 1] + cf[2 * i - 1];
+    yout[k] = p * dz[0] + cf[0];
+  }
+}
+
+// the interpolant through the nz nodes in zt, zy, zf into cf; with check, the largest
+// difference at the quarter points of the step to the one without the oldest node, in units
+// of the requested tolerance (the error control runs at tol_factor of it)
+static double fehlberg_fit(dal_ode_integ *ig, int nz, int check) {
+  erk_mem *m = ig->impl;
+  int ny = ig->ny;
+  m->nz = nz;
+  hermite_newton(ny, nz, m->zt, m->zy, m->zf, m->cf);
+  if (!check) return 0.0;
+  hermite_newton(ny, nz - 1, m->zt + 1, m->zy + ny, m->zf + ny, m->cf7);
+  double c = 1.0 / dal__tol_factor(ig->method), h = ig->t - ig->tprev, worst = 0.0;
+  double *a = m->yk, *b = m->K;
+  for (int q = 1; q <= 3; ++q) {
+    double t = ig->tprev + 0.25 * q * h;
+    hermite_eval(ny, nz, m->zt, m->cf, t, a);
+    hermite_eval(ny, nz - 1, m->zt + 1, m->cf7, t, b);
+    for (int k = 0; k < ny; ++k)
+      worst = fmax(worst, fabs(a[k] - b[k]) / (c * (ig->atol + ig->rtol * fabs(a[k]))));
+  }
+  return worst;
+}
+
+// node i of the step's interpolant: the record's point r, or y and f at tprev + theta h (an
+// inner point: a partial step of the method and one right-hand side, 13 in all)
+static void fehlberg_node_rec(dal_ode_integ *ig, int i, int r) {
+  erk_mem *m = ig->impl;
+  size_t ny = (size_t)ig->ny;
+  m->zt[i] = m->ht[r];
+  memcpy(m->zy + i * ny, m->hy + r * ny, ny * sizeof(double));
+  memcpy(m->zf + i * ny, m->hf + r * ny, ny * sizeof(double));
+}
+static int fehlberg_node_inner(dal_ode_integ *ig, int i, double theta) {
+  erk_mem *m = ig->impl;
+  size_t ny = (size_t)ig->ny;
+  double tau = theta * (ig->t - ig->tprev), *yi = m->zy + i * ny, *fi = m->zf + i * ny;
+  int rc = dal__ode_start_slope(ig);
+  if (!rc) rc = fehlberg_partial(ig, tau, yi);
+  if (rc) return rc;
+  if ((rc = dal__ode_eval(ig, ig->tprev + tau, yi, fi, DAL_P_ACC)) != 0)
+    return dal__public_status(rc);
+  ig->st->stats.rhs_evals++;
+  m->zt[i] = ig->tprev + tau;
+  return DAL_OK;
+}
+static void fehlberg_node_end(dal_ode_integ *ig, int i) {
+  erk_mem *m = ig->impl;
+  size_t ny = (size_t)ig->ny;
+  m->zt[i] = ig->t;
+  memcpy(m->zy + i * ny, ig->y, ny * sizeof(double));
+  memcpy(m->zf + i * ny, ig->hf1, ny * sizeof(double));
+}
+
+// The step's interpolant, the cheapest that passes its check (its difference to the one
+// without its oldest node within the requested tolerance): (1) through the FEHL_HIST accepted
+// points before the step and its end (degree 9, no right-hand side); (2) through the newest
+// three of them, the step's midpoint and its end (degree 9, 13 right-hand sides); else (3)
+// through the step's start, two inner points and its end (degree 7, 13 or 26 right-hand
+// sides). A start or a gap in the record goes to (3) at once.
+static int fehlberg_build(dal_ode_integ *ig) {
+  erk_mem *m = ig->impl;
+  int rc = dal__ode_end_slope(ig), nh = m->nh, mid = 0;
+  if (rc) return rc;
+  int rec = nh > 0 && m->ht[nh - 1] == ig->tprev;
+  if (rec && nh == FEHL_HIST) {
+    for (int i = 0; i < FEHL_HIST; ++i)
+      fehlberg_node_rec(ig, i, i);
+    fehlberg_node_end(ig, FEHL_HIST);
+    if (fehlberg_fit(ig, FEHL_HIST + 1, 1) <= 1.0) {
+      m->n_hist++;
+      goto done;
+    }
+  }
+  if (rec && nh >= 3) {
+    for (int i = 0; i < 3; ++i)
+      fehlberg_node_rec(ig, i, nh - 3 + i);
+    if ((rc = fehlberg_node_inner(ig, 3, 0.5)) != 0) return rc;
+    fehlberg_node_end(ig, 4);
+    mid = 1;
+    if (fehlberg_fit(ig, 5, 1) <= 1.0) {
+      m->n_mid++;
+      goto done;
+    }
+  }
+  // (3): the midpoint already computed moves to node 2 (nodes 0, 1/4, 1/2, 1), else 1/3, 2/3
+  size_t ny = (size_t)ig->ny;
+  if (mid) {
+    m->zt[2] = m->zt[3];
+    memcpy(m->zy + 2 * ny, m->zy + 3 * ny, ny * sizeof(double));
+    memcpy(m->zf + 2 * ny, m->zf + 3 * ny, ny * sizeof(double));
+  } else if ((rc = fehlberg_node_inner(ig, 2, 2.0 / 3.0)) != 0) {
+    return rc;
+  }
+  if ((rc = fehlberg_node_inner(ig, 1, mid ? 0.25 : 1.0 / 3.0)) != 0) return rc;
+  m->zt[0] = ig->tprev;
+  memcpy(m->zy, ig->yprev, ny * sizeof(double));
+  memcpy(m->zf, ig->hf0, ny * sizeof(double));
+  fehlberg_node_end(ig, 3);
+  fehlberg_fit(ig, 4, 0);
+  m->n_inner++;
+done:
+  m->ct0 = ig->tprev;
+  m->ct1 = ig->t;
+  return DAL_OK;
+}
+
+// Dense output of Fehlberg 7(8), built once per step, then 2 nz multiply-adds per component
+// and output: the Hermite interpolant through y and f at the step's end and the FEHL_HIST
+// accepted points before it (Hairer-Norsett-Wanner I, sec. II.6; no right-hand side beyond the
+// slope at each step's end, the method's own last stage), where it passes its check, else
+// through two inner points of the step by partial steps. Before: one partial step per output
+// (12 right-hand sides each: 12-68x a plain advance at outputs every 0.001).
+static int fehlberg_interp(dal_ode_integ *ig, double t, double *yout) {
+  erk_mem *m = ig->impl;
+  if (m->ct0 != ig->tprev || m->ct1 != ig->t) {
+    int rc = fehlberg_build(ig);
+    if (rc) {
+      m->ct0 = m->ct1 = NAN;
+      return rc;
+    }
+  }
+  hermite_eval(ig->ny, m->nz, m->zt, m->cf, t, yout);
+  return DAL_OK;
+}
+
+// after an accepted step with a hook: the step's end (y, f) joins the record of the run that
+// Fehlberg's dense output interpolates through; a record that does not end at the step's
+// start (the first step, or steps taken without a hook) starts again
+static int fehlberg_record(dal_ode_integ *ig) {
+  erk_mem *m = ig->impl;
+  int ny = ig->ny, rc = dal__ode_end_slope(ig);
+  if (rc) return rc;
+  size_t bytes = (size_t)ny * sizeof(double);
+  if (m->nh == 0 || m->ht[m->nh - 1] != ig->tprev) {
+    m->nh = 0;
+    if (ig->hvalid & 1) {
+      m->ht[0] = ig->tprev;
+      memcpy(m->hy, ig->yprev, bytes);
+      memcpy(m->hf, ig->hf0, bytes);
+      m->nh = 1;
+    }
+  }
+  if (m->nh == FEHL_HIST) {
+    memmove(m->hy, m->hy + ny, (size_t)(FEHL_HIST - 1) * bytes);
+    memmove(m->hf, m->hf + ny, (size_t)(FEHL_HIST - 1) * bytes);
+    memmove(m->ht, m->ht + 1, (size_t)(FEHL_HIST - 1) * sizeof(double));
+    m->nh--;
+  }
+  m->ht[m->nh] = ig->t;
+  memcpy(m->hy + (size_t)m->nh * ny, ig->y, bytes);
+  memcpy(m->hf + (size_t)m->nh * ny, ig->hf1, bytes);
+  m->nh++;
+  return DAL_OK;
+}
+
 static int erk_advance(dal_ode_integ *ig, double tout) {
   erk_mem *m = ig->impl;
   int recover = 0, flag = ERKStepSetStopTime(m->ark, tout);
@@ -206,7 +407,7 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
   while (ig->t < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
-    flag = ERKStepEvolve(m->ark, tout, m->y, &tret, ARK_ONE_STEP);
+    flag = ERKStepEvolve(m->ark, tout, m->v.y, &tret, ARK_ONE_STEP);
     erk_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = ARK_RHSFUNC_FAIL;
     if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = ARK_ERR_FAILURE;
@@ -240,7 +441,8 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     if (flag == ARK_TSTOP_RETURN) tret = tout;
     if (tret > tout) return erk_failure(ig, m, ARK_BAD_T);
     int projected = 0;
-    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
+    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->v.y), &projected);
+    if (!rc && ig->hook && m->fb) rc = fehlberg_record(ig);
     if (rc) return rc;
     if (projected && ig->t < tout) {
       double h = 0;
@@ -251,6 +453,9 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
   return DAL_OK;
 }
 
+static const dal_sun_setters setters = {ERKStepSStolerances, ERKStepSetInitStep, ERKStepSetMinStep,
+                                        ERKStepSetMaxStep};
+
 int dal__erk_create(dal_ode_integ *ig) {
   dal_state *st = ig->st;
   const dal_solve_opts *o = &ig->opts;
@@ -260,19 +465,9 @@ int dal__erk_create(dal_ode_integ *ig) {
   ig->free_impl = erk_free;
   ig->advance = erk_advance;
   ig->end_slope = erk_end_slope;
-  int flag = SUNContext_Create(NULL, &m->ctx);
-  if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
-  m->y = N_VNew_Serial(ig->ny, m->ctx);
-  m->ele = N_VNew_Serial(ig->ny, m->ctx);
-  m->ewt = N_VNew_Serial(ig->ny, m->ctx);
-  m->dky = N_VNew_Serial(ig->ny, m->ctx);
-  if (!m->y || !m->ele || !m->ewt || !m->dky)
-    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
-  // the library's vector kernels (nvec.c); the integrator's work vectors are clones of y
-  dal__nvec_fast(m->y);
-  dal__nvec_fast(m->dky);
-  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
-  m->ark = ERKStepCreate(erk_rhs, ig->t, m->y, m->ctx);
+  int flag = dal__sun_vecs_create(ig, &m->v, "ERK");
+  if (flag) return flag;
+  m->ark = ERKStepCreate(erk_rhs, ig->t, m->v.y, m->v.ctx);
   if (!m->ark) return DAL_FAIL(st, DAL_E_NOMEM, "ERKStepCreate failed");
   flag = ERKStepSetErrHandlerFn(m->ark, dal__ode_sun_err, ig);
   if (!flag) flag = ERKStepSetUserData(m->ark, ig);
@@ -281,18 +476,24 @@ int dal__erk_create(dal_ode_integ *ig) {
     m->fb = ARKodeButcherTable_LoadERK(ARKODE_FEHLBERG_13_7_8);
     m->K = m->fb ? calloc((size_t)m->fb->stages * (size_t)ig->ny + 1, sizeof(double)) : NULL;
     m->yk = calloc((size_t)ig->ny + 1, sizeof(double));
-    if (!m->K || !m->yk)
+    size_t nz = FEHL_HIST + 1, ny1 = (size_t)ig->ny + 1;
+    m->hy = calloc(nz * ny1, sizeof(double));
+    m->hf = calloc(nz * ny1, sizeof(double));
+    m->zy = calloc(nz * ny1, sizeof(double));
+    m->zf = calloc(nz * ny1, sizeof(double));
+    m->cf = calloc(2 * nz * ny1, sizeof(double));
+    m->cf7 = calloc(2 * nz * ny1, sizeof(double));
+    m->ct0 = m->ct1 = NAN;
+    if (!m->K || !m->yk || !m->hy || !m->hf || !m->zy || !m->zf || !m->cf || !m->cf7)
       return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
     ig->interp = fehlberg_interp;
   } else if (!flag)
     flag = ERKStepSetTableNum(m->ark, ARKODE_DORMAND_PRINCE_7_4_5);
-  if (!flag) flag = ERKStepSStolerances(m->ark, ig->rtol, ig->atol);
   // ARKODE's interpolant serves only the end slope (Hermite of degree 3 keeps the stored f)
   if (!flag) flag = ERKStepSetInterpolantDegree(m->ark, 3);
   if (!flag && o->fixed_erk) flag = ERKStepSetFixedStep(m->ark, o->fixed_step);
-  if (!flag && o->h0 > 0) flag = ERKStepSetInitStep(m->ark, o->h0);
-  if (!flag && o->hmin > 0) flag = ERKStepSetMinStep(m->ark, o->hmin);
-  if (!flag && o->hmax > 0) flag = ERKStepSetMaxStep(m->ark, o->hmax);
+  // the local tolerances and step bounds
+  if (!flag) flag = dal__sun_set_tols(m->ark, &setters, ig);
   // steps are counted per advance call by the driver; one internal step per ERKStepEvolve
   if (!flag) flag = ERKStepSetMaxNumSteps(m->ark, 0);
   if (flag)

@@ -28,9 +28,8 @@
 #define NLS_COEF 0.01
 
 typedef struct cv_mem {
-  SUNContext ctx;
   void *cv;
-  N_Vector y, ele, ewt, dky;
+  dal_sun_vecs v; // context and vectors
   SUNMatrix A;
   SUNLinearSolver LS;
   SUNNonlinearSolver NLS;
@@ -80,9 +79,9 @@ static int cv_jac(realtype t, N_Vector y, N_Vector fy, SUNMatrix J, void *ud, N_
   int n = ig->ny;
   double h = 0, *yp = N_VGetArrayPointer(tmp2), *fp = N_VGetArrayPointer(tmp1);
   const double *y0 = N_VGetArrayPointer(y), *f0 = N_VGetArrayPointer(fy);
-  const double *w = N_VGetArrayPointer(m->ewt);
+  const double *w = N_VGetArrayPointer(m->v.ewt);
   CVodeGetCurrentStep(m->cv, &h);
-  CVodeGetErrWeights(m->cv, m->ewt);
+  CVodeGetErrWeights(m->cv, m->v.ewt);
   double fnorm = 0, uround = DBL_EPSILON, srur = sqrt(uround);
   for (int i = 0; i < n; ++i)
     fnorm += (f0[i] * w[i]) * (f0[i] * w[i]);
@@ -109,11 +108,7 @@ static void cv_free(void *p) {
   if (m->NLS) SUNNonlinSolFree(m->NLS);
   if (m->LS) SUNLinSolFree(m->LS);
   if (m->A) SUNMatDestroy(m->A);
-  if (m->y) N_VDestroy(m->y);
-  if (m->ele) N_VDestroy(m->ele);
-  if (m->ewt) N_VDestroy(m->ewt);
-  if (m->dky) N_VDestroy(m->dky);
-  if (m->ctx) SUNContext_Free(&m->ctx);
+  dal__sun_vecs_free(&m->v);
   if (m->tg) dal__tangent_free(m->tg);
   free(m->Af);
   free(m);
@@ -139,9 +134,9 @@ static void cv_sync_stats(dal_ode_integ *ig, cv_mem *m) {
 // restart at the last accepted step (after a projection) with initial step h
 static int cv_restart(dal_ode_integ *ig, cv_mem *m, double h) {
   cv_sync_stats(ig, m);
-  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
+  memcpy(N_VGetArrayPointer(m->v.y), ig->y, (size_t)ig->ny * sizeof(double));
   int flag = CVodeSetInitStep(m->cv, h);
-  if (flag == CV_SUCCESS) flag = CVodeReInit(m->cv, ig->t, m->y);
+  if (flag == CV_SUCCESS) flag = CVodeReInit(m->cv, ig->t, m->v.y);
   m->netf = m->nsf = m->nje = m->nni = 0;
   return flag;
 }
@@ -157,9 +152,9 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   // dominating variable: the largest weighted local error estimate of the failed try (only
   // after error tests or Newton iterations: before, CVODE's vectors hold no values)
   if (flag == CV_ERR_FAILURE || flag == CV_TOO_MUCH_ACC || flag == CV_CONV_FAILURE) {
-    CVodeGetEstLocalErrors(m->cv, m->ele);
-    CVodeGetErrWeights(m->cv, m->ewt);
-    const double *e = N_VGetArrayPointer(m->ele), *w = N_VGetArrayPointer(m->ewt);
+    CVodeGetEstLocalErrors(m->cv, m->v.ele);
+    CVodeGetErrWeights(m->cv, m->v.ewt);
+    const double *e = N_VGetArrayPointer(m->v.ele), *w = N_VGetArrayPointer(m->v.ewt);
     for (int i = 0; i < ig->ny; ++i)
       ig->ewt[i] = e[i] * w[i];
     dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var);
@@ -220,12 +215,12 @@ static int cv_moved(const dal_ode_integ *ig, const double *y) {
 // dense output: CVODE's interpolating polynomial of the current order (its Nordsieck array)
 static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
   cv_mem *m = ig->impl;
-  int flag = CVodeGetDky(m->cv, t, 0, m->dky);
+  int flag = CVodeGetDky(m->cv, t, 0, m->v.dky);
   if (flag != CV_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER,
                     "CVODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
                     t, ig->tprev, ig->t, flag);
-  memcpy(yout, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  memcpy(yout, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
   return DAL_OK;
 }
 
@@ -245,20 +240,20 @@ static int cv_advance_ahead(dal_ode_integ *ig, cv_mem *m, double tout) {
   while (tn < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
-    flag = CVode(m->cv, tout, m->y, &tret, CV_ONE_STEP);
+    flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
     if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
     if (flag < 0) return cv_failure(ig, m, flag);
     ig->st->stats.foreign_code = flag;
-    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), NULL);
+    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->v.y), NULL);
     if (rc) return rc;
     tn = tret;
   }
   // the state at tout from the last step's polynomial
-  flag = CVodeGetDky(m->cv, tout, 0, m->dky);
+  flag = CVodeGetDky(m->cv, tout, 0, m->v.dky);
   if (flag != CV_SUCCESS) return cv_failure(ig, m, flag);
-  memcpy(ig->y, N_VGetArrayPointer(m->dky), (size_t)ig->ny * sizeof(double));
+  memcpy(ig->y, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
   ig->tprev = ig->t = tout;
   return DAL_OK;
 }
@@ -279,7 +274,7 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
   while (ig->t < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
-    flag = CVode(m->cv, tout, m->y, &tret, CV_ONE_STEP);
+    flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
     if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
@@ -298,9 +293,9 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
     if (flag == CV_TSTOP_RETURN) tret = tout;
     if (tret > tout) return cv_failure(ig, m, CV_BAD_T);
     int projected = 0;
-    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->y), &projected);
+    int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->v.y), &projected);
     if (rc) return rc;
-    if (projected && ig->t < tout && cv_moved(ig, N_VGetArrayPointer(m->y))) {
+    if (projected && ig->t < tout && cv_moved(ig, N_VGetArrayPointer(m->v.y))) {
       double h = 0;
       CVodeGetCurrentStep(m->cv, &h);
       if ((flag = cv_restart(ig, m, h)) != CV_SUCCESS) return cv_failure(ig, m, flag);
@@ -309,6 +304,9 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
   }
   return DAL_OK;
 }
+
+static const dal_sun_setters setters = {CVodeSStolerances, CVodeSetInitStep, CVodeSetMinStep,
+                                        CVodeSetMaxStep};
 
 int dal__cvode_create(dal_ode_integ *ig) {
   dal_state *st = ig->st;
@@ -320,28 +318,17 @@ int dal__cvode_create(dal_ode_integ *ig) {
   ig->free_impl = cv_free;
   ig->advance = cv_advance;
   ig->interp = cv_interp;
-  int flag = SUNContext_Create(NULL, &m->ctx);
-  if (flag) return DAL_FAIL(st, DAL_E_SOLVER, "SUNContext_Create failed (%d)", flag);
-  m->y = N_VNew_Serial(ig->ny, m->ctx);
-  m->ele = N_VNew_Serial(ig->ny, m->ctx);
-  m->ewt = N_VNew_Serial(ig->ny, m->ctx);
-  m->dky = N_VNew_Serial(ig->ny, m->ctx);
-  if (!m->y || !m->ele || !m->ewt || !m->dky)
-    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
-  // the library's vector kernels (nvec.c); the integrator's work vectors are clones of y
-  dal__nvec_fast(m->y);
-  dal__nvec_fast(m->dky);
-  memcpy(N_VGetArrayPointer(m->y), ig->y, (size_t)ig->ny * sizeof(double));
-  m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->ctx);
+  int flag = dal__sun_vecs_create(ig, &m->v, "CVODE");
+  if (flag) return flag;
+  m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->v.ctx);
   if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
   flag = CVodeSetErrHandlerFn(m->cv, dal__ode_sun_err, ig);
-  if (!flag) flag = CVodeInit(m->cv, cv_rhs, ig->t, m->y);
+  if (!flag) flag = CVodeInit(m->cv, cv_rhs, ig->t, m->v.y);
   if (!flag) flag = CVodeSetUserData(m->cv, ig);
-  if (!flag) flag = CVodeSStolerances(m->cv, ig->rtol, ig->atol);
   if (!flag && bdf) {
     // Newton iteration on a dense difference-quotient Jacobian
-    m->A = SUNDenseMatrix(ig->ny, ig->ny, m->ctx);
-    m->LS = m->A ? SUNLinSol_Dense(m->y, m->A, m->ctx) : NULL;
+    m->A = SUNDenseMatrix(ig->ny, ig->ny, m->v.ctx);
+    m->LS = m->A ? SUNLinSol_Dense(m->v.y, m->A, m->v.ctx) : NULL;
     flag = m->LS ? CVodeSetLinearSolver(m->cv, m->LS, m->A) : CV_MEM_FAIL;
     if (!flag) flag = CVodeSetJacFn(m->cv, cv_jac);
     // the exact Newton matrix where the jets give it: minimal coordinates, no force callbacks
@@ -357,12 +344,11 @@ int dal__cvode_create(dal_ode_integ *ig) {
     if (!flag && m->tg) flag = CVodeSetNonlinConvCoef(m->cv, NLS_COEF);
   } else if (!flag) {
     // functional (fixed-point) iteration, no Jacobian
-    m->NLS = SUNNonlinSol_FixedPoint(m->y, 0, m->ctx);
+    m->NLS = SUNNonlinSol_FixedPoint(m->v.y, 0, m->v.ctx);
     flag = m->NLS ? CVodeSetNonlinearSolver(m->cv, m->NLS) : CV_MEM_FAIL;
   }
-  if (!flag && o->h0 > 0) flag = CVodeSetInitStep(m->cv, o->h0);
-  if (!flag && o->hmin > 0) flag = CVodeSetMinStep(m->cv, o->hmin);
-  if (!flag && o->hmax > 0) flag = CVodeSetMaxStep(m->cv, o->hmax);
+  // the local tolerances and step bounds
+  if (!flag) flag = dal__sun_set_tols(m->cv, &setters, ig);
   if (flag)
     return flag == CV_MEM_FAIL
                ? DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator")

@@ -7,6 +7,7 @@
 // The Newton matrix comes from form_dae.c (exact pieces, no difference quotients) with KLU, and
 // with the dense solver when it is the whole Jacobian (dal__dae_newton_exact); otherwise the
 // dense solver uses IDA's difference quotients.
+#include <float.h>
 #include <ida/ida.h>
 #include <math.h>
 #include <nvector/nvector_serial.h>
@@ -37,13 +38,21 @@ typedef struct ida_mem {
   void *ida;
   N_Vector y, yp, id, atol, w1, w2;
   SUNMatrix A;
-  SUNLinearSolver LS;
+  SUNLinearSolver LS, watch; // the dense or KLU solver, and the wrapper IDA calls (watch_*)
   // statistics already added to the state
   long nst, nre, nje, nni, netf, ncfn;
   // failures seen inside callbacks and from IDA's error handler
   int cb_status;
   char cb_msg[DAL_ERRMSG_LEN];
   char ida_msg[256];
+  // for failure messages: the vector of the last linear solve (a Newton correction) and IDA's
+  // current error weights (both IDA's own storage, alive while IDA is), the correction's
+  // largest error-weighted component (index, weighted size), the start's rank check
+  N_Vector ncor;
+  const double *ewt;
+  int ncor_i;
+  double ncor_v;
+  dal_constraint_report rank0;
   // dense output (driver.c): after every step from tprev to tcur, hook(hook_ctx)
   int (*hook)(void *ctx);
   void *hook_ctx;
@@ -68,14 +77,16 @@ static void unknown_name(const ida_mem *w, int i, char *buf, size_t len) {
   const dal_system *sys = w->sys;
   int n = w->n;
   if (i < n)
-    snprintf(buf, len, "q[%d] (coordinate '%s')", i, sys->coord_names[i]);
+    snprintf(buf, len, "q[%d] (position coordinate '%s')", i, sys->coord_names[i]);
   else if (i < 2 * n)
     snprintf(buf, len, "v[%d] (velocity of '%s')", i - n, sys->coord_names[i - n]);
+  else if (i == w->f.off_w)
+    snprintf(buf, len, "W (the work of the non-potential forces)");
   else if (i < w->off_l + w->m)
-    snprintf(buf, len, "lambda[%d] (constraint '%s')", i - w->off_l,
+    snprintf(buf, len, "lambda[%d] (multiplier of constraint '%s')", i - w->off_l,
              sys->con[sys->row_con[i - w->off_l]].name);
   else
-    snprintf(buf, len, "mu[%d] (constraint '%s')", i - w->off_mu,
+    snprintf(buf, len, "mu[%d] (GGL's velocity multiplier of constraint '%s')", i - w->off_mu,
              sys->con[sys->row_con[i - w->off_mu]].name);
 }
 
@@ -119,6 +130,49 @@ static int jacobian(double t, double cj, N_Vector yy, N_Vector yp, N_Vector rr, 
   return 0;
 }
 
+// The linear solver IDA sees: the dense or KLU solver, watched. The solution of each solve is
+// a Newton correction; the vector holding it is remembered (no copy: a step costs nothing
+// more), so that a convergence failure names the unknown that kept moving (newton_culprit),
+// not a guess from the last step's error.
+static ida_mem *watched(SUNLinearSolver S) { return S->content; }
+static SUNLinearSolver_Type watch_type(SUNLinearSolver S) {
+  return SUNLinSolGetType(watched(S)->LS);
+}
+static SUNLinearSolver_ID watch_id(SUNLinearSolver S) { return SUNLinSolGetID(watched(S)->LS); }
+static int watch_init(SUNLinearSolver S) { return SUNLinSolInitialize(watched(S)->LS); }
+static int watch_setup(SUNLinearSolver S, SUNMatrix A) { return SUNLinSolSetup(watched(S)->LS, A); }
+static sunindextype watch_lastflag(SUNLinearSolver S) { return SUNLinSolLastFlag(watched(S)->LS); }
+static int watch_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunrealtype tol) {
+  ida_mem *w = watched(S);
+  w->ncor = x;
+  return SUNLinSolSolve(w->LS, A, x, b, tol);
+}
+
+// after a convergence failure: the largest error-weighted component of the last correction
+static void newton_culprit(ida_mem *w) {
+  w->ncor_i = -1;
+  w->ncor_v = 0.0;
+  if (!w->ncor || !w->ewt) return;
+  const double *dx = N_VGetArrayPointer(w->ncor);
+  for (int i = 0; i < w->neq; ++i)
+    if (fabs(dx[i] * w->ewt[i]) > w->ncor_v) {
+      w->ncor_v = fabs(dx[i] * w->ewt[i]);
+      w->ncor_i = i;
+    }
+}
+static SUNLinearSolver watch_create(ida_mem *w) {
+  SUNLinearSolver S = SUNLinSolNewEmpty(w->ctx);
+  if (!S) return NULL;
+  S->content = w;
+  S->ops->gettype = watch_type;
+  S->ops->getid = watch_id;
+  S->ops->initialize = watch_init;
+  S->ops->setup = watch_setup;
+  S->ops->solve = watch_solve;
+  S->ops->lastflag = watch_lastflag;
+  return S;
+}
+
 // Error weights. q and v (and W): 1 / (rtol |y_i| + atol_i), IDA's own rule. The multipliers
 // are out of the error test but in the Newton convergence test, where IDA weighs them like
 // any unknown. An index-2 multiplier is determined by the iteration only to cj times the
@@ -136,6 +190,7 @@ static int ewt_fn(N_Vector yv, N_Vector ewt, void *data) {
   const double *y = N_VGetArrayPointer(yv), *at = N_VGetArrayPointer(w->atol);
   double *e = N_VGetArrayPointer(ewt);
   int n = w->n, m = w->m;
+  w->ewt = e;
   double tq = INFINITY, tv = INFINITY;
   for (int i = 0; i < w->neq; ++i) {
     double tol = w->rtol * fabs(y[i]) + at[i];
@@ -171,6 +226,7 @@ void dal__ida_free(void *mem) {
   ida_mem *w = mem;
   if (!w) return;
   if (w->ida) IDAFree(&w->ida);
+  if (w->watch) SUNLinSolFreeEmpty(w->watch);
   if (w->LS) SUNLinSolFree(w->LS);
   if (w->A) SUNMatDestroy(w->A);
   N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
@@ -229,10 +285,13 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
                     "a Lagrangian system has no particles or constraints for the DAE "
                     "integrator; use an ODE method");
   // consistent start: rank check, projections, KKT accelerations and multipliers
-  int rc = dal__dae_start(sys, st, opts->init_max_move, NULL);
+  dal_constraint_report rank0;
+  int rc = dal__dae_start_checked(sys, st, opts->init_max_move, NULL, &rank0);
   if (rc) return rc;
   ida_mem *w = calloc(1, sizeof *w);
   if (!w) return DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory");
+  w->rank0 = rank0;
+  w->ncor_i = -1;
   w->sys = sys;
   w->st = st;
   w->opts = *opts;
@@ -330,12 +389,13 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     w->A = SUNDenseMatrix(neq, neq, w->ctx);
     w->LS = w->A ? SUNLinSol_Dense(w->y, w->A, w->ctx) : NULL;
   }
-  if (!w->A || !w->LS) {
+  if (w->LS) w->watch = watch_create(w);
+  if (!w->A || !w->LS || !w->watch) {
     rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: cannot create the %s linear solver (%d unknowns)",
                   w->sparse ? "KLU" : "dense", w->neq);
     goto fail;
   }
-  IDA_CHECK(IDASetLinearSolver(w->ida, w->LS, w->A));
+  IDA_CHECK(IDASetLinearSolver(w->ida, w->watch, w->A));
   if (w->sparse || dal__dae_newton_exact(sys)) IDA_CHECK(IDASetJacFn(w->ida, jacobian));
   *mem = w;
   return DAL_OK;
@@ -402,73 +462,142 @@ static int dominating(ida_mem *w) {
   return best;
 }
 
-static int map_failure(ida_mem *w, int flag, double tfail) {
-  dal_state *st = w->st;
-  const char *what, *remedy;
-  int code;
+// what IDA's failure flag means and its usual remedy; *ask: the constraints could be to blame
+static int failure_kind(const ida_mem *w, int flag, const char **what, const char **remedy,
+                        int *ask) {
+  *ask = 0;
   switch (flag) {
   case IDA_TOO_MUCH_WORK:
-    code = DAL_E_MAXSTEPS;
-    what = "too many steps before the target time";
-    remedy = "raise opts.max_steps, or loosen the tolerances";
-    break;
+    *what = "too many steps before the target time";
+    *remedy = "raise opts.max_steps, or loosen the tolerances";
+    return DAL_E_MAXSTEPS;
   case IDA_TOO_MUCH_ACC:
-    code = DAL_E_STEP;
-    what = "the tolerances are too tight for double precision";
-    remedy = "loosen rtol/atol";
-    break;
+    *what = "the tolerances are too tight for double precision";
+    *remedy = "loosen rtol/atol";
+    return DAL_E_STEP;
   case IDA_ERR_FAIL:
-    code = DAL_E_STEP;
-    what = "repeated error-test failures (step size underflow)";
-    remedy = "loosen the tolerances, or check the forces for discontinuities and the "
-             "constraints for a near-singular configuration";
-    break;
+    *ask = 1;
+    *what = "repeated error-test failures (step size underflow)";
+    *remedy = "loosen the tolerances, or check the forces for discontinuities";
+    return DAL_E_STEP;
   case IDA_CONV_FAIL:
   case IDA_NLS_FAIL:
-    code = DAL_E_CONV;
-    what = "the Newton iteration failed to converge repeatedly";
-    // at a regular point this is no defect of the constraints (docs/dae.md); the rank check
-    // of the consistent start passed
-    remedy = "the index-1 form with projection goes on where IDA stops (the default options "
-             "fall back to it by themselves; asked for explicitly: DAL_FORM_INDEX1 with "
-             "opts.project and an ODE method); if the constraints become nearly dependent "
-             "here, dal_check_constraints names them";
-    break;
+    *ask = 1;
+    *what = "Newton failed repeatedly";
+    *remedy = "the index-1 form with projection goes on where IDA stops (DAL_FORM_INDEX1, "
+              "opts.project, an ODE method; the default options fall back to it)";
+    return DAL_E_CONV;
   case IDA_LINIT_FAIL:
   case IDA_LSETUP_FAIL:
   case IDA_LSOLVE_FAIL:
-    code = DAL_E_SOLVER;
-    what = "the linear solver failed (singular iteration matrix)";
-    remedy = "check for redundant constraints (dal_check_constraints) and positive masses";
-    break;
+    *ask = 1;
+    *what = "the linear solver failed (singular iteration matrix)";
+    *remedy = "check that every mass is positive";
+    return DAL_E_SOLVER;
   case IDA_RES_FAIL:
   case IDA_FIRST_RES_FAIL:
-    code = w->cb_status ? w->cb_status : DAL_E_CALLBACK;
-    what = "the residual evaluation failed";
-    remedy = "see the cause below";
-    break;
+    *what = "the residual evaluation failed";
+    *remedy = "see the cause below";
+    return w->cb_status ? w->cb_status : DAL_E_CALLBACK;
   case IDA_REP_RES_ERR:
-    code = DAL_E_CALLBACK;
-    what = "a callback asked for smaller steps repeatedly";
-    remedy = "check the callback's domain";
-    break;
+    *what = "a callback asked for smaller steps repeatedly";
+    *remedy = "check the callback's domain";
+    return DAL_E_CALLBACK;
   default:
-    code = DAL_E_SOLVER;
-    what = "IDA failed";
-    remedy = "see IDA's message";
-    break;
+    *what = "IDA failed";
+    *remedy = "see IDA's message";
+    return DAL_E_SOLVER;
   }
-  char var[160] = "no variable";
-  int dom = dominating(w);
-  if (dom >= 0) unknown_name(w, dom, var, sizeof var);
-  char cause[DAL_ERRMSG_LEN] = "";
+}
+
+// A constraint whose gradient nearly vanishes at the state (max_j |G_rj| below
+// DAL_IDA_DEP_DROP times the start's, which the relative rank test cannot see): a singular
+// point of that constraint (a cusp). Writes the verdict and returns 1 if one is found.
+static int vanishing_row(ida_mem *w, char *buf, size_t len) {
+  int m = w->m, worst = -1;
+  double *g = malloc(2 * (size_t)m * sizeof(double)), ratio = DAL_IDA_DEP_DROP;
+  if (!g || dal__dae_row_scales(&w->f, g, g + m)) {
+    free(g);
+    return 0;
+  }
+  for (int r = 0; r < m; ++r)
+    if (w->smu[r] > 0.0 && g[m + r] < ratio * w->smu[r]) {
+      ratio = g[m + r] / w->smu[r];
+      worst = r;
+    }
+  if (worst >= 0)
+    snprintf(buf, len,
+             "the gradient of constraint '%s' nearly vanishes here (max |dphi/dq| %.3g, %.3g at "
+             "the start), a singular point of it; check the constraints",
+             w->sys->con[w->sys->row_con[worst]].name, g[m + worst], w->smu[worst]);
+  free(g);
+  return worst >= 0;
+}
+
+// Are the constraints to blame? dal_check_constraints at the state (the last accepted step):
+// dependent rows, or gradients whose smallest pivot ratio fell below DAL_IDA_DEP_DROP times
+// the start's (becoming dependent: a singular point), or one that nearly vanishes, or nothing
+// wrong. The verdict goes into
+// buf; returns 1 when the constraints are the culprit.
+static int constraint_verdict(ida_mem *w, char *buf, size_t len) {
+  dal_state *st = w->st;
+  char keep[DAL_ERRMSG_LEN];
+  memcpy(keep, st->err, sizeof keep);
+  dal_constraint_report rep;
+  int rc = dal_check_constraints(w->sys, st, &rep), blame = 0;
+  if (rc == DAL_E_CONSTRAINT) {
+    snprintf(buf, len, "the constraint check fails here: %.260s; fix or remove them", st->err);
+    blame = 1;
+  } else if (rc != DAL_OK || rep.rank < 0) {
+    snprintf(buf, len, "the constraints were not checked here (%s)",
+             rc ? dal_status_name(rc) : "too many rows for the rank test");
+  } else if (rep.rmin < DAL_IDA_DEP_DROP * w->rank0.rmin) {
+    snprintf(buf, len,
+             "the constraints become dependent: the smallest pivot ratio of their gradients "
+             "(dal_check_constraints' rank test) fell from %.3g at the start to %.3g here, a "
+             "singular configuration; check the constraints",
+             w->rank0.rmin, rep.rmin);
+    blame = 1;
+  } else if ((blame = vanishing_row(w, buf, len)) == 0) {
+    snprintf(buf, len,
+             "the constraints pass dal_check_constraints here (rank %d of %d, smallest pivot "
+             "ratio %.3g, %.3g at the start): not their defect",
+             rep.rank, rep.m, rep.rmin, w->rank0.rmin);
+  }
+  memcpy(st->err, keep, sizeof keep);
+  return blame;
+}
+
+// The failure message: the state's time (its last accepted step) and the step IDA tried, what
+// failed, the unknown that dominated (the last Newton correction for a convergence failure,
+// the local error estimate otherwise), the constraints' verdict where they could be to blame,
+// the remedy, and IDA's own words.
+static int map_failure(ida_mem *w, int flag, double hfail) {
+  dal_state *st = w->st;
+  const char *what, *remedy;
+  int ask, code = failure_kind(w, flag, &what, &remedy, &ask);
+  if (code == DAL_E_CONV) newton_culprit(w);
+  char var[320] = "error dominated by no variable", name[160];
+  int conv = code == DAL_E_CONV && w->ncor_i >= 0, dom = conv ? w->ncor_i : dominating(w);
+  if (dom >= 0) unknown_name(w, dom, name, sizeof name);
+  if (conv)
+    snprintf(var, sizeof var, "correction dominated by %s (%.3g x its tolerance)", name, w->ncor_v);
+  else if (dom >= 0)
+    snprintf(var, sizeof var, "error dominated by %s", name);
+  char verdict[DAL_ERRMSG_LEN] = "";
+  if (ask && w->m > 0 && constraint_verdict(w, verdict, sizeof verdict)) remedy = "";
+  char cause[DAL_ERRMSG_LEN] = "", tres[160] = "";
   if (code == w->cb_status && w->cb_status)
     snprintf(cause, sizeof cause, "; cause: %.400s", w->cb_msg);
+  // far from t = 0, a step of a few ulps of t: the clock cannot resolve the motion here
+  if (fabs(st->t) > 1.0 && fabs(hfail) < 64.0 * DBL_EPSILON * fabs(st->t))
+    snprintf(tres, sizeof tres, ", %.0f ulps of t (restart the clock near t = 0)",
+             fabs(hfail) / (DBL_EPSILON * fabs(st->t)));
   return DAL_FAIL(st, code,
-                  "IDA (%s form, %s) at t=%.17g: %s; error dominated by %s; %s; the state "
-                  "holds the last accepted step (t=%.17g)%s [IDA flag %d: %.120s]",
-                  form_name(w->f.form), w->sparse ? "KLU" : "dense", tfail, what, var, remedy,
-                  st->t, cause, flag, w->ida_msg);
+                  "IDA (%s, %s) at t=%.17g (last accepted step), h=%.3g%s: %s; %s; "
+                  "%s%s%s%s [IDA flag %d: %.120s]",
+                  form_name(w->f.form), w->sparse ? "KLU" : "dense", st->t, hfail, tres, what, var,
+                  verdict, verdict[0] && remedy[0] ? "; " : "", remedy, cause, flag, w->ida_msg);
 }
 
 int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout) {
@@ -488,6 +617,7 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   }
   w->cb_status = 0;
   w->ida_msg[0] = 0;
+  w->ncor = NULL;
   // progress guard: no step below a few ulps of t (IDA would otherwise creep towards a point
   // it cannot pass, e.g. a callback that keeps returning > 0 or a constraint that becomes
   // unsatisfiable, with a million steps that do not move t); opts.hmin when larger
@@ -529,7 +659,7 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   }
   double hcur = 0.0;
   IDAGetCurrentStep(w->ida, &hcur);
-  int rc = map_failure(w, flag, tcur + hcur);
+  int rc = map_failure(w, flag, hcur);
   if (recov[0]) {
     char msg[DAL_ERRMSG_LEN];
     snprintf(msg, sizeof msg, "%.200s; it kept asking while IDA shrank the step: %.260s", recov,

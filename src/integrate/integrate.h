@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Private interface between the integration driver (solve.c), the ODE integrators
-// (ode_*.c) and the DAE side (dae_ida.c, init.c, kkt.c).
+// The integration layer's face: one integrator interface (dal_integ, integ.c) over the ODE
+// methods and IDA, the method table, and the services the ODE methods share.
 #ifndef DAL_SOLVE_INTERNAL_H
 #define DAL_SOLVE_INTERNAL_H
 
@@ -87,6 +87,9 @@ int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
 /// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
 /// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
 int dal__ode_start_slope(dal_ode_integ *ig);
+/// the slope f(t, y) at the end of the last step into ig->hf1, once per step: the method's own
+/// (end_slope) unless a projection moved y, else evaluated; 0 or a public status
+int dal__ode_end_slope(dal_ode_integ *ig);
 
 /// A first-order problem y' = F(t, y) of any size that is not a formulation of the system:
 /// the tangent (Lyapunov) and variational integrations of analysis/ run on the library's ODE
@@ -116,25 +119,39 @@ extern const dal_ode_problem dal__problem_first_order;
 int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                        dal_method meth, const dal_first_order *fo, dal_ode_integ **out);
 
+/// the bit of formulation f in a method row's formulation sets
+#define DAL__FORM_BIT(f) (1u << (unsigned)(f))
+/// the formulations that are first-order ODE problems (dal_ode_problem)
+#define DAL__ODE_FORMS (DAL__FORM_BIT(DAL_FORM_ODE) | DAL__FORM_BIT(DAL_FORM_INDEX1))
+/// the formulations that are DAEs in IDA's residual form
+#define DAL__DAE_FORMS                                                                             \
+  (DAL__FORM_BIT(DAL_FORM_GGL) | DAL__FORM_BIT(DAL_FORM_INDEX3) | DAL__FORM_BIT(DAL_FORM_INDEX1))
+
 /// One row per integration method (GSL's gsl_odeiv2_step_type): adding a method is one row
 /// in methods.c and one file. `tol_factor`: the method's local error control runs at
 /// tol_factor * rtol, tol_factor * atol (not below DAL_TOL_FLOOR), so that the global error
 /// tracks the requested tolerance (measurements in solve.h; like RADAU5's tolerance
 /// transformation, Hairer-Wanner, Solving ODEs II, sec. IV.8). `ode_create` runs the method
-/// on an ODE problem (NULL: none); `dae` marks the method that runs the DAE forms in IDA.
-/// `min_rtol`: the tightest request the method honours on an ODE problem (0: down to
-/// DAL_TOL_FLOOR / tol_factor); a tighter one runs as min_rtol, atol scaled alike, and the
-/// clamp shows in dal_stats.rtol_used.
+/// on an ODE problem (NULL: none). `ode_forms`: the formulations (DAL__FORM_BIT) the method
+/// runs as an ODE problem; `dae_forms`: those it runs as a DAE in IDA (AUTO: those it hands to
+/// the DAE method). `min_rtol`: the tightest request the method honours on an ODE problem (0:
+/// down to DAL_TOL_FLOOR / tol_factor); a tighter one runs as min_rtol, atol scaled alike, and
+/// the clamp shows in dal_stats.rtol_used. `fixed`: the method takes opts.fixed_step (1), or
+/// does with opts.fixed_erk (2), or not (0).
 typedef struct dal_method_row {
   dal_method id;
   const char *name;
   double tol_factor;
   int (*ode_create)(dal_ode_integ *ig);
-  int dae;
+  unsigned ode_forms, dae_forms;
   double min_rtol;
+  int fixed;
 } dal_method_row;
 /// the row of a method (AUTO has a row too, with no create function)
 const dal_method_row *dal__method_row(dal_method m);
+/// the method that runs formulation form as a DAE (the first row other than AUTO whose
+/// dae_forms holds it), or DAL_METHOD_AUTO when none does
+dal_method dal__dae_method(dal_formulation form);
 /// local tolerance factor of a method (its row's tol_factor)
 double dal__tol_factor(dal_method m);
 
@@ -204,6 +221,57 @@ int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (ode_arkode.c)
 int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (ode_cvode.c)
 int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (ode_bs.c)
 int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (ode_rk4.c)
+
+/// One integrator behind one interface, whatever its family (an ODE method on a formulation's
+/// dal_ode_problem, IDA on a DAE form): the driver and the events talk to nothing else (GSL's
+/// evolve object over its step types). Created from the method rows by dal__integ_create.
+typedef struct dal_integ dal_integ;
+typedef struct dal_integ_ops {
+  /// integrate from the state's time to tout (> it); after every accepted step hook(ctx) when
+  /// hook is set (0: go on, DAL__HOOK_STOP: stop, negative: fail). Returns 0 with the state at
+  /// tout, evaluated; DAL__HOOK_STOP (the state is what the hook left); or a negative public
+  /// status with the state at the last accepted step, evaluated, its message naming the cause
+  int (*advance)(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx);
+  /// the step just taken, [*t0, *t1]
+  void (*window)(const dal_integ *it, double *t0, double *t1);
+  /// the state's (t, q, qdot, W) at t in the step just taken from the method's dense output
+  /// (not evaluated); 0 or a negative status
+  int (*place)(dal_integ *it, double t);
+  /// an output was served inside the step: opts.max_steps counts from here
+  void (*new_output)(dal_integ *it);
+  void (*destroy)(dal_integ *it);
+} dal_integ_ops;
+struct dal_integ {
+  const dal_integ_ops *ops;
+  const dal_system *sys;
+  dal_state *st;
+  dal_solve_opts opts;  ///< the options it runs with (the automatic choice's form set)
+  dal_method method;    ///< resolved method (never AUTO)
+  dal_formulation form; ///< resolved formulation (never AUTO)
+  /// a failure of the Newton iteration or a step size collapse may be retried from the last
+  /// accepted step in another formulation (the fallback ladder, docs/dae.md)
+  int can_fall_back;
+  /// what creation did not honour as asked (a tolerance raised to a floor): "note: ..." for the
+  /// state's message on success, or empty
+  char note[DAL_ERRMSG_LEN];
+  void *impl; ///< the family's memory (dal_ode_integ, IDA's)
+  // after-step hook of the current advance call and the steps since the last output (the
+  // families that do not count opts.max_steps themselves)
+  int (*hook)(void *ctx);
+  void *hook_ctx;
+  long nsteps;
+  double tout;
+  double *yi; ///< dense output scratch of the ODE family (ny)
+};
+/// Resolve formulation and method for options o from the method rows (dense: a monitor reads
+/// outputs between the steps, which AUTO takes into account) and create the integrator at the
+/// state's current point. Where AUTO runs the index-1 form with projection because IDA cannot
+/// honour the tolerance, the consistent start is made first (it->opts says so). 0 or a
+/// negative public status with the state's message set (integ.c)
+int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
+                      dal_integ **out);
+/// destroy an integrator (NULL: nothing)
+void dal__integ_destroy(dal_integ *it);
 
 #include "symplectic.h"
 

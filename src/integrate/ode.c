@@ -329,19 +329,22 @@ int dal__ode_start_slope(dal_ode_integ *ig) {
   return DAL_OK;
 }
 
+int dal__ode_end_slope(dal_ode_integ *ig) {
+  if (ig->hvalid & 2) return DAL_OK;
+  // the method's own slope at the step's end when it has one (no projection moved y)
+  int own = ig->end_slope && !(ig->prob->project && ig->opts.project);
+  int rc = own ? ig->end_slope(ig, ig->hf1) : dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
+  if (rc) return dal__public_status(rc);
+  if (!own) ig->st->stats.rhs_evals++;
+  ig->hvalid |= 2;
+  return DAL_OK;
+}
+
 static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
   double h = ig->t - ig->tprev;
   int rc = dal__ode_start_slope(ig);
+  if (!rc) rc = dal__ode_end_slope(ig);
   if (rc) return rc;
-  if (!(ig->hvalid & 2)) {
-    // the method's own slope at the step's end when it has one (no projection moved y)
-    rc = ig->end_slope && !(ig->prob->project && ig->opts.project)
-             ? ig->end_slope(ig, ig->hf1)
-             : dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
-    if (rc) return dal__public_status(rc);
-    if (!ig->end_slope) ig->st->stats.rhs_evals++;
-    ig->hvalid |= 2;
-  }
   double s = (t - ig->tprev) / h, s1 = s - 1.0;
   for (int i = 0; i < ig->ny; ++i) {
     double y0 = ig->yprev[i], y1 = ig->y[i], d = y1 - y0;

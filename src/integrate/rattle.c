@@ -163,12 +163,60 @@ static double max_abs(const double *x, int n, int *at) {
   return mx;
 }
 
+// the positions of the step of h from (t, x = (q0, v0, lambda), compensation c): simplified
+// Newton on the multipliers (m->E the displacement beyond h v0) until phi(q1, t + h) = 0;
+// q1 into m->qt (compensation m->ct), the half-step velocity into m->vh, *res: the last
+// constraint residual
+static int rat_positions(const dal_system *sys, rat_mem *m, double t, double h, double *x,
+                         const double *c, double *res) {
+  dal_state *st = m->st;
+  int n = m->n, nc = m->m, rc, grow = 0, worst = 0;
+  double *q0 = x, *v0 = x + n, *lam = x + 2 * n, t1 = t + h, rprev = INFINITY;
+  for (int it = 0;; ++it) {
+    double qmax = 1.0;
+    for (int i = 0; i < n; ++i) {
+      m->qt[i] = q0[i];
+      m->ct[i] = c[i];
+      dal__ksum(&m->qt[i], &m->ct[i], h * v0[i] + m->E[i]);
+      m->vh[i] = v0[i] + m->E[i] / h;
+      qmax = fmax(qmax, fabs(m->qt[i]));
+    }
+    if ((rc = rat_eval(sys, m, t1, m->qt, m->vh, 0)) != 0) return rc;
+    if (!nc) return DAL_OK;
+    *res = max_abs(st->phi, nc, &worst);
+    double tol = RAT_PHI_ULPS * EPS * qmax;
+    if (*res <= tol || (it >= 2 && *res >= 0.5 * rprev && *res <= 1e3 * tol)) return DAL_OK;
+    grow = *res > rprev ? grow + 1 : 0;
+    if (!isfinite(*res) || grow >= RAT_MAXGROW || it >= RAT_MAXIT) {
+      char qs[256];
+      dal__fmt_q(sys, q0, qs, sizeof qs);
+      return DAL_FAIL(st, DAL_E_CONV,
+                      "RATTLE step from t=%.17g, %s (h=%.3g): the position constraints do not "
+                      "converge (constraint '%s', row %d, residual %.3g after %d iterations, %s); "
+                      "the step is too long for the motion or the constraints become dependent: "
+                      "reduce opts.fixed_step",
+                      t, qs, h, sys->con[sys->row_con[worst]].name, worst, *res, it,
+                      isfinite(*res) ? (grow >= RAT_MAXGROW ? "growing" : "converging too slowly")
+                                     : "not finite");
+    }
+    rprev = *res;
+    for (int r = 0; r < nc; ++r)
+      m->b[r] = -st->phi[r];
+    dal__kkt_solve(sys, st, m->zero, m->b, m->xk, m->yk);
+    st->stats.nonlin_iters++;
+    for (int i = 0; i < n; ++i)
+      m->E[i] += m->xk[i];
+    for (int r = 0; r < nc; ++r)
+      lam[r] += 2.0 * m->yk[r] / (h * h);
+  }
+}
+
 static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x, double *c) {
   rat_mem *m = mem;
   const dal_system *sys = ig->sys;
   dal_state *st = m->st;
-  int n = m->n, nc = m->m, rc, grow = 0, worst = 0;
-  double *q0 = x, *v0 = x + n, *lam = x + 2 * n, t1 = t + h, res = 0.0, rprev = INFINITY;
+  int n = m->n, nc = m->m, rc;
+  double *q0 = x, *v0 = x + n, *lam = x + 2 * n, res = 0.0;
   if (h == 0.0) return DAL_OK;
   if (!m->cache_ok && (rc = rat_start(sys, m, t, q0, v0)) != 0) return rc;
   m->cache_ok = 0;
@@ -180,43 +228,7 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
   for (int i = 0; i < n; ++i)
     m->E[i] = 0.5 * h * h * m->minv[i] * (m->F0[i] + m->u[i]);
   // positions: simplified Newton on the multipliers until phi(q1, t1) = 0
-  for (int it = 0;; ++it) {
-    double qmax = 1.0;
-    for (int i = 0; i < n; ++i) {
-      m->qt[i] = q0[i];
-      m->ct[i] = c[i];
-      dal__ksum(&m->qt[i], &m->ct[i], h * v0[i] + m->E[i]);
-      m->vh[i] = v0[i] + m->E[i] / h;
-      qmax = fmax(qmax, fabs(m->qt[i]));
-    }
-    if ((rc = rat_eval(sys, m, t1, m->qt, m->vh, 0)) != 0) return rc;
-    if (!nc) break;
-    res = max_abs(st->phi, nc, &worst);
-    double tol = RAT_PHI_ULPS * EPS * qmax;
-    if (res <= tol || (it >= 2 && res >= 0.5 * rprev && res <= 1e3 * tol)) break;
-    grow = res > rprev ? grow + 1 : 0;
-    if (!isfinite(res) || grow >= RAT_MAXGROW || it >= RAT_MAXIT) {
-      char qs[256];
-      dal__fmt_q(sys, q0, qs, sizeof qs);
-      return DAL_FAIL(st, DAL_E_CONV,
-                      "RATTLE step from t=%.17g, %s (h=%.3g): the position constraints do not "
-                      "converge (constraint '%s', row %d, residual %.3g after %d iterations, %s); "
-                      "the step is too long for the motion or the constraints become dependent: "
-                      "reduce opts.fixed_step",
-                      t, qs, h, sys->con[sys->row_con[worst]].name, worst, res, it,
-                      isfinite(res) ? (grow >= RAT_MAXGROW ? "growing" : "converging too slowly")
-                                    : "not finite");
-    }
-    rprev = res;
-    for (int r = 0; r < nc; ++r)
-      m->b[r] = -st->phi[r];
-    dal__kkt_solve(sys, st, m->zero, m->b, m->xk, m->yk);
-    st->stats.nonlin_iters++;
-    for (int i = 0; i < n; ++i)
-      m->E[i] += m->xk[i];
-    for (int r = 0; r < nc; ++r)
-      lam[r] += 2.0 * m->yk[r] / (h * h);
-  }
+  if ((rc = rat_positions(sys, m, t, h, x, c, &res)) != 0) return rc;
   // forces at q1 (kinematics and constraint rows are current at (t1, q1, v_h))
   if ((rc = dal__dynamics(sys, st, 1, NULL)) != 0) return rc;
   for (int i = 0; i < n; ++i)

@@ -326,6 +326,58 @@ int dal_constraint_def_set(dal_constraint_def *def, const char *name, double val
   return def ? set_def_param(def->prim, def->param, name, value) : DAL_E_ARG;
 }
 
+// split name "kind:target[:index]" at ':' into its fields f (lengths fl); returns their
+// number (4: more than three)
+static int split_fields(const char *name, const char *f[3], size_t fl[3]) {
+  int nf = 1;
+  for (const char *c = name;; ++c) {
+    if (*c == ':' || *c == 0) {
+      fl[nf - 1] = (size_t)(c - f[nf - 1]);
+      if (*c == 0) break;
+      if (nf == 3) return 4;
+      f[nf++] = c + 1;
+    }
+  }
+  return nf;
+}
+
+// the kind and target of a parameter from its nf fields (target -1: no such element); -1 for
+// an unknown form
+static int parse_kind(const dal_system *sys, const char *f[3], const size_t fl[3], int nf,
+                      dal_param_ref *r) {
+#define KIND_IS(s) (fl[0] == strlen(s) && memcmp(f[0], s, fl[0]) == 0)
+  if (KIND_IS("mass") && nf == 2) {
+    r->kind = DAL_PARAM_MASS;
+    r->target = find_name(sys->part_names, sys->N, f[1], fl[1]);
+  } else if (KIND_IS("place") && nf == 3) {
+    r->kind = DAL_PARAM_PLACE;
+    r->target = find_name(sys->part_names, sys->N, f[1], fl[1]);
+  } else if (KIND_IS("con") && nf == 3) {
+    r->kind = DAL_PARAM_CONSTRAINT;
+    r->target = -1;
+    for (int i = 0; i < sys->ncon && r->target < 0; ++i)
+      if (strlen(sys->con[i].name) == fl[1] && memcmp(sys->con[i].name, f[1], fl[1]) == 0)
+        r->target = i;
+    if (r->target < 0) {
+      int v = parse_index(f[1], fl[1]);
+      r->target = v < sys->ncon ? v : -1;
+    }
+  } else if (KIND_IS("gravity") && nf == 2) {
+    r->kind = DAL_PARAM_GRAVITY;
+    r->index = parse_index(f[1], fl[1]);
+  } else if (KIND_IS("spring") && nf == 3 && fl[2] == 1 && (f[2][0] == 'k' || f[2][0] == 'L')) {
+    r->kind = f[2][0] == 'k' ? DAL_PARAM_SPRING_K : DAL_PARAM_SPRING_L;
+    r->target = parse_index(f[1], fl[1]);
+  } else if (KIND_IS("damper") && nf == 3 && fl[2] == 1 && f[2][0] == 'c') {
+    r->kind = DAL_PARAM_DAMPER_C;
+    r->target = parse_index(f[1], fl[1]);
+  } else {
+    return -1;
+  }
+#undef KIND_IS
+  return 0;
+}
+
 int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, char *msg,
                    size_t len) {
   if (msg && len) msg[0] = 0;
@@ -336,53 +388,15 @@ int dal_param_find(const dal_system *sys, const char *name, dal_param_ref *out, 
   // split "kind:target[:index]" (names may not contain ':')
   const char *f[3] = {name, NULL, NULL};
   size_t fl[3] = {0, 0, 0};
-  int nf = 1;
-  for (const char *c = name;; ++c) {
-    if (*c == ':' || *c == 0) {
-      fl[nf - 1] = (size_t)(c - f[nf - 1]);
-      if (*c == 0) break;
-      if (nf == 3) {
-        nf = 4;
-        break;
-      }
-      f[nf++] = c + 1;
-    }
-  }
+  int nf = split_fields(name, f, fl);
   dal_param_ref r = {DAL_PARAM_NONE, 0, 0};
-  const char *kinds = "mass:<particle>, place:<particle>:<i or name>, "
-                      "con:<constraint>:<i or name>, "
-                      "gravity:<i>, spring:<j>:k, spring:<j>:L, damper:<j>:c";
-#define KIND_IS(s) (fl[0] == strlen(s) && memcmp(f[0], s, fl[0]) == 0)
-  if (KIND_IS("mass") && nf == 2) {
-    r.kind = DAL_PARAM_MASS;
-    r.target = find_name(sys->part_names, sys->N, f[1], fl[1]);
-  } else if (KIND_IS("place") && nf == 3) {
-    r.kind = DAL_PARAM_PLACE;
-    r.target = find_name(sys->part_names, sys->N, f[1], fl[1]);
-  } else if (KIND_IS("con") && nf == 3) {
-    r.kind = DAL_PARAM_CONSTRAINT;
-    r.target = -1;
-    for (int i = 0; i < sys->ncon && r.target < 0; ++i)
-      if (strlen(sys->con[i].name) == fl[1] && memcmp(sys->con[i].name, f[1], fl[1]) == 0)
-        r.target = i;
-    if (r.target < 0) {
-      int v = parse_index(f[1], fl[1]);
-      r.target = v < sys->ncon ? v : -1;
-    }
-  } else if (KIND_IS("gravity") && nf == 2) {
-    r.kind = DAL_PARAM_GRAVITY;
-    r.index = parse_index(f[1], fl[1]);
-  } else if (KIND_IS("spring") && nf == 3 && fl[2] == 1 && (f[2][0] == 'k' || f[2][0] == 'L')) {
-    r.kind = f[2][0] == 'k' ? DAL_PARAM_SPRING_K : DAL_PARAM_SPRING_L;
-    r.target = parse_index(f[1], fl[1]);
-  } else if (KIND_IS("damper") && nf == 3 && fl[2] == 1 && f[2][0] == 'c') {
-    r.kind = DAL_PARAM_DAMPER_C;
-    r.target = parse_index(f[1], fl[1]);
-  } else {
-    if (msg && len) snprintf(msg, len, "parameter '%s': unknown form; use one of %s", name, kinds);
+  if (parse_kind(sys, f, fl, nf, &r) != 0) {
+    if (msg && len)
+      snprintf(msg, len, "parameter '%s': unknown form; use one of %s", name,
+               "mass:<particle>, place:<particle>:<i or name>, con:<constraint>:<i or name>, "
+               "gravity:<i>, spring:<j>:k, spring:<j>:L, damper:<j>:c");
     return DAL_E_ARG;
   }
-#undef KIND_IS
   if (r.target < 0) {
     const char *what = r.kind == DAL_PARAM_CONSTRAINT                            ? "constraint"
                        : (r.kind == DAL_PARAM_MASS || r.kind == DAL_PARAM_PLACE) ? "particle"

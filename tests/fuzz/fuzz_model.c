@@ -25,7 +25,8 @@
 //   - the state's t, q, qdot are finite after every call; after advance/evolve t lies in
 //     [t0, t1], t == t1 on success, and DAL_E_MAXSTEPS means t moved (no zero-progress loop);
 //   - after DAL_OK from forward, advance, evolve or make_consistent every product is there and
-//     finite (qddot, positions, ..., lambda, phi, energies, Jacobians, constraint forces);
+//     finite (qddot, positions, ..., lambda, phi, energies, Jacobians, constraint and joint
+//     forces);
 //     products are handed out only while current (NULL or DAL_E_STATE otherwise);
 //   - make_consistent leaves max |phi| within its tolerance; check_constraints reports a rank
 //     consistent with its status; a monitor sees evaluated states at increasing times;
@@ -944,6 +945,10 @@ static void fz_products(fz *f, const fz_run_ctx *r, dal_state *st, const char *c
   if (rc || !fz_finite(buf, Nd)) fz_die(call, rc, "constraint forces of an evaluated state");
   rc = fz_s(f, st, "constraint_genforces", dal_constraint_genforces(r->sys, st, buf));
   if (rc || !fz_finite(buf, n)) fz_die(call, rc, "generalized constraint forces");
+  // joint forces: finite wherever there are placements (a Lagrangian or one global map has none)
+  rc = fz_s(f, st, "joint_forces", dal_joint_forces(r->sys, st, buf));
+  if (rc == DAL_OK ? !fz_finite(buf, Nd) : rc != DAL_E_UNSUPPORTED)
+    fz_die(call, rc, "joint forces of an evaluated state");
 }
 
 // after an advance or evolve from ta towards t1: the state is at a time in [ta, t1], t1 on

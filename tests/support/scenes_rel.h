@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Scenes shared by the determinism and thread tests: a chaotic double pendulum in minimal
-// coordinates (ODE) and a Cartesian double pendulum held by two rods (DAE), and a monitor
-// that records every output state into a flat buffer so runs can be compared bit for bit.
+// coordinates (ODE) and a Cartesian double pendulum held by two rods (DAE), built on the scene
+// library (scenes.h), and a monitor that records every output state into a flat buffer so runs
+// can be compared bit for bit.
 #ifndef DAL_TEST_SCENES_REL_H
 #define DAL_TEST_SCENES_REL_H
 
@@ -11,6 +12,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 /// |r - anchor| - L for one particle (inputs its d = 2 position; param (L, ax, ay))
 static inline int rel_rod_fixed(const dal_jet *in, dal_jet t, const double *p, dal_jet *out,
@@ -66,41 +68,15 @@ static const rel_drag rel_drag_ctx = {0.05};
 /// dae == 0, Cartesian with two rods (DAE) otherwise. Returns the compiled system or NULL.
 static inline dal_system *rel_double_pendulum(int dae) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  const double g[2] = {0.0, -9.81};
-  int rc = dal_builder_create(2, &b), p[2] = {0, 0};
-  if (!rc) rc = dal_builder_add_particle(b, "upper", 1.0, &p[0]);
-  if (!rc) rc = dal_builder_add_particle(b, "lower", 0.5, &p[1]);
+  int rc = scn_builder(NULL, 2, &b), p[2] = {0, 0};
   if (!dae) {
-    int th[2] = {0, 0};
-    if (!rc) rc = dal_builder_add_coord(b, "th1", &th[0]);
-    if (!rc) rc = dal_builder_add_coord(b, "th2", &th[1]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &th[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = 1.0;
-    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_hanging;
-    pd.parent = p[0];
-    pd.coords = &th[1];
-    pd.ncoords = 1;
-    pd.param[DAL_HANGING_L] = 0.7;
-    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    if (!rc) rc = scn_add_swing(b, NULL, "upper", 1.0, -1, 1.0, "th1", &p[0]);
+    if (!rc) rc = scn_add_swing(b, NULL, "lower", 0.5, p[0], 0.7, "th2", &p[1]);
   } else {
-    int c[4] = {0, 0, 0, 0};
-    const char *names[4] = {"x1", "y1", "x2", "y2"};
+    // the rods as user primitives (read-only contexts shared by threads)
     double rod1[3] = {1.0, 0.0, 0.0}, rod2 = 0.7;
-    for (int i = 0; i < 4 && !rc; ++i)
-      rc = dal_builder_add_coord(b, names[i], &c[i]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p[0], &pd);
-    pd.coords = c + 2;
-    if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
+    if (!rc) rc = scn_add_xy(b, "upper", 1.0, "x1", "y1", &p[0]);
+    if (!rc) rc = scn_add_xy(b, "lower", 0.5, "x2", "y2", &p[1]);
     dal_constraint_def cd = dal_default_constraint_def();
     cd.name = "rod1";
     cd.prim = &rel_prim_rod_fixed;
@@ -117,11 +93,8 @@ static inline dal_system *rel_double_pendulum(int dae) {
     cd.nparam_list = 1;
     if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
   }
-  if (!rc) rc = dal_builder_set_gravity(b, g);
   if (!rc) rc = dal_builder_add_force(b, rel_drag_force, (void *)&rel_drag_ctx);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  dal_builder_destroy(b);
-  return rc ? NULL : sys;
+  return scn_finish(b, rc);
 }
 
 /// a consistent initial state from the two angles and their rates

@@ -1,0 +1,250 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// One integrator interface: the formulation and method resolved from the method rows, and the
+// two families behind one handle (dal_integ): the ODE methods on a formulation's problem and
+// IDA on the DAE forms.
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "form/form.h"
+#include "integrate.h"
+
+// ---------------------------------------------------------------------------------------------
+// the ODE family: an ODE method on a dal_ode_problem
+
+static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+  dal_ode_integ *ig = it->impl;
+  ig->tout = tout;
+  ig->ncall = 0;
+  ig->rhs_fatal = 0;
+  ig->ntiny = 0;
+  ig->nrecov = 0;
+  ig->hook = hook;
+  ig->hook_ctx = ctx;
+  int rc = ig->advance(ig, tout);
+  ig->hook = NULL;
+  if (rc) return rc;
+  // the state at tout, evaluated there
+  dal__ode_to_state(ig, ig->t, ig->y);
+  return dal__public_status(dal__eval(it->sys, it->st, DAL_P_ALL));
+}
+
+static void ode_window(const dal_integ *it, double *t0, double *t1) {
+  const dal_ode_integ *ig = it->impl;
+  *t0 = ig->tprev;
+  *t1 = ig->t;
+}
+
+static int ode_place(dal_integ *it, double t) {
+  dal_ode_integ *ig = it->impl;
+  int rc = dal__ode_interp(ig, t, it->yi);
+  if (rc) return rc;
+  dal__ode_to_state(ig, t, it->yi);
+  dal__state_moved(it->st);
+  return DAL_OK;
+}
+
+static void ode_new_output(dal_integ *it) {
+  dal_ode_integ *ig = it->impl;
+  ig->ncall = 0; // opts.max_steps per output
+}
+
+static void ode_destroy(dal_integ *it) {
+  dal__ode_destroy(it->impl);
+  free(it->yi);
+}
+
+static const dal_integ_ops ode_ops = {ode_advance, ode_window, ode_place, ode_new_output,
+                                      ode_destroy};
+
+// ---------------------------------------------------------------------------------------------
+// the DAE family: IDA on the GGL, index-3 and index-1 forms
+
+static void ida_window(const dal_integ *it, double *t0, double *t1) {
+  dal__ida_window(it->impl, t0, t1);
+}
+
+static int ida_place(dal_integ *it, double t) { return dal__ida_place(it->impl, t); }
+
+static void ida_new_output(dal_integ *it) { it->nsteps = 0; }
+
+static void ida_destroy(dal_integ *it) { dal__ida_free(it->impl); }
+
+// after every step IDA takes: the caller's hook, then opts.max_steps counted from the last
+// output (IDA's own count runs per advance call)
+static int ida_after_step(void *p) {
+  dal_integ *it = p;
+  it->nsteps++;
+  int rc = it->hook(it->hook_ctx);
+  if (rc) return rc;
+  double a = 0, b = 0;
+  ida_window(it, &a, &b);
+  if (it->nsteps < it->opts.max_steps || !(b < it->tout)) return DAL_OK;
+  dal_state *st = it->st;
+  if ((rc = ida_place(it, b)) != 0) return rc;
+  DAL_FAIL(st, DAL_E_MAXSTEPS,
+           "%ld steps taken at t=%.17g before the next output or the target t=%.17g "
+           "(opts.max_steps); raise max_steps or loosen the tolerances",
+           it->nsteps, b, it->tout);
+  // the state where the run stops, evaluated there, with this message
+  char msg[DAL_ERRMSG_LEN];
+  memcpy(msg, st->err, sizeof msg);
+  if ((rc = dal__public_status(dal__eval(it->sys, st, DAL_P_ALL))) != 0) return rc;
+  memcpy(st->err, msg, sizeof msg);
+  return DAL_E_MAXSTEPS;
+}
+
+static int ida_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+  it->hook = hook;
+  it->hook_ctx = ctx;
+  it->nsteps = 0;
+  it->tout = tout;
+  dal__ida_set_hook(it->impl, hook ? ida_after_step : NULL, it);
+  int rc = dal__ida_advance(it->sys, it->st, it->impl, tout);
+  if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
+  dal__ida_set_hook(it->impl, NULL, NULL);
+  return rc;
+}
+
+static const dal_integ_ops ida_ops = {ida_advance, ida_window, ida_place, ida_new_output,
+                                      ida_destroy};
+
+// ---------------------------------------------------------------------------------------------
+// resolution and creation
+
+// resolve formulation and method from the rows; *prob is NULL for a DAE form; *tight is set
+// when AUTO chose the index-1 form with projection because IDA cannot honour the tolerance
+// (solve.h)
+static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
+                   dal_method *meth, const dal_ode_problem **prob, int *tight) {
+  dal_formulation form = o->form;
+  dal_method m = o->method;
+  *tight = 0;
+  if (o->work && sys->lag)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "opts.work: a Lagrangian-only system has no forces or constraints whose work "
+                    "could be tracked; its energy function is dal_energies.h (unset opts.work)");
+  if (dal__symplectic_method(m)) {
+    if (o->work)
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "opts.work is not supported by the fixed-step method '%s' (its energy "
+                      "error is bounded by construction); use an adaptive method to track W",
+                      dal_method_name(m));
+    *meth = m;
+    return dal__symplectic_resolve(sys, st, o, m, prob);
+  }
+  if (form == DAL_FORM_AUTO && sys->m && m == DAL_METHOD_AUTO &&
+      dal__dae_tol_factor(DAL_FORM_GGL) * o->rtol < DAL_IDA_TOL_FLOOR) {
+    // IDA would be clamped at its floor: index-1 with projection and Bulirsch-Stoer honours
+    // such tolerances (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
+    *tight = 1;
+    *meth = DAL_METHOD_BS;
+    *prob = &dal__problem_index1;
+    return DAL_OK;
+  }
+  if (form == DAL_FORM_AUTO) form = sys->m ? DAL_FORM_GGL : DAL_FORM_ODE;
+  if (form == DAL_FORM_INDEX1 && sys->m == 0) form = DAL_FORM_ODE;
+  if (form == DAL_FORM_ODE && sys->m > 0)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "formulation 'ode' needs minimal coordinates, but the system has %d "
+                    "constraint rows (first: '%s'); use DAL_FORM_GGL or DAL_FORM_INDEX1",
+                    sys->m, sys->con[0].name);
+  const dal_method_row *row = dal__method_row(m);
+  unsigned fb = DAL__FORM_BIT(form);
+  if (!row) return DAL_FAIL(st, DAL_E_UNSUPPORTED, "no integrator for method %d", (int)m);
+  if (!(row->ode_forms & fb)) {
+    // a DAE form: the method that runs it in IDA
+    if (!(row->dae_forms & fb))
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "formulation '%s' runs only with DAL_METHOD_BDF (IDA), not '%s'; use "
+                      "DAL_METHOD_BDF or DAL_METHOD_AUTO, or DAL_FORM_INDEX1 for explicit "
+                      "methods",
+                      dal_formulation_name(form), dal_method_name(m));
+    *meth = dal__dae_method(form);
+    *prob = NULL;
+    return DAL_OK;
+  }
+  if (m == DAL_METHOD_AUTO) m = dal__auto_method(o->rtol, sys->n, dense);
+  *meth = m;
+  *prob = form == DAL_FORM_INDEX1 ? &dal__problem_index1 : &dal__problem_minimal;
+  return DAL_OK;
+}
+
+// the ODE family's memory, and its note when the method ran at a floor of its own (CVODE's BDF)
+static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
+  dal_state *st = it->st;
+  const dal_solve_opts *o = &it->opts;
+  dal_ode_integ *ig = NULL;
+  int rc = dal__ode_create(it->sys, st, o, it->method, prob, &ig);
+  if (rc) return rc;
+  it->ops = &ode_ops;
+  it->impl = ig;
+  if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  const dal_method_row *mr = dal__method_row(it->method);
+  if (mr && o->rtol < mr->min_rtol)
+    snprintf(it->note, sizeof it->note,
+             "note: rtol %g is below what %s can honour: it ran as rtol %g, atol scaled alike "
+             "(dal_stats.rtol_used has the local tolerance), so expect errors above rtol; "
+             "DAL_METHOD_BS or DAL_METHOD_AUTO honour tighter requests",
+             o->rtol, mr->name, mr->min_rtol);
+  return DAL_OK;
+}
+
+// the DAE family's memory, and its note when IDA ran at its tolerance floor
+static int create_ida(dal_integ *it) {
+  dal_state *st = it->st;
+  const dal_solve_opts *o = &it->opts;
+  int rc = dal__public_status(dal__ida_create(it->sys, st, o, &it->impl));
+  if (rc) return rc;
+  it->ops = &ida_ops;
+  it->can_fall_back = 1;
+  if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
+    snprintf(it->note, sizeof it->note,
+             "note: rtol %g is below what IDA can honour: it ran at the local tolerance %g "
+             "(its floor, dal_stats.rtol_used), so expect errors above rtol; DAL_FORM_AUTO with "
+             "DAL_METHOD_AUTO runs the index-1 form with projection and Bulirsch-Stoer there",
+             o->rtol, st->stats.rtol_used);
+  return DAL_OK;
+}
+
+int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
+                      dal_integ **out) {
+  *out = NULL;
+  dal_method meth = DAL_METHOD_AUTO;
+  const dal_ode_problem *prob = NULL;
+  int tight = 0;
+  int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
+  if (rc) return rc;
+  dal_integ *it = calloc(1, sizeof *it);
+  if (!it) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  it->sys = sys;
+  it->st = st;
+  it->opts = *o;
+  it->method = meth;
+  it->form = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
+             : prob                       ? DAL_FORM_ODE
+             : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
+                                          : o->form;
+  if (tight) {
+    // the index-1 form starts from a consistent state too, and projects after every step
+    it->opts.form = DAL_FORM_INDEX1;
+    it->opts.project = 1;
+    rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+  }
+  if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
+  if (rc) {
+    dal__integ_destroy(it);
+    return rc;
+  }
+  *out = it;
+  return DAL_OK;
+}
+
+void dal__integ_destroy(dal_integ *it) {
+  if (!it) return;
+  if (it->ops) it->ops->destroy(it);
+  free(it);
+}
