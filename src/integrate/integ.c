@@ -59,6 +59,14 @@ static void ode_destroy(dal_integ *it) {
 static const dal_integ_ops ode_ops = {ode_advance, ode_window, ode_place, ode_new_output,
                                       ode_destroy};
 
+int dal__integ_place_end(dal_integ *it, double t) {
+  if (it->ops != &ode_ops) return it->ops->place(it, t);
+  dal_ode_integ *ig = it->impl;
+  dal__ode_to_state(ig, ig->t, ig->y);
+  dal__state_moved(it->st);
+  return DAL_OK;
+}
+
 // ---------------------------------------------------------------------------------------------
 // the DAE family: IDA on the GGL, index-3 and index-1 forms
 

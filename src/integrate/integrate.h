@@ -272,6 +272,10 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
                       dal_integ **out);
 /// destroy an integrator (NULL: nothing)
 void dal__integ_destroy(dal_integ *it);
+/// the state at the end t of the step just taken (not evaluated): the ODE families' accepted
+/// step itself (bit for bit what advance leaves), IDA's dense output at t; 0 or a negative
+/// status
+int dal__integ_place_end(dal_integ *it, double t);
 
 #include "symplectic.h"
 
