@@ -237,6 +237,9 @@ typedef struct dal_integ_ops {
   /// the state's (t, q, qdot, W) at t in the step just taken from the method's dense output
   /// (not evaluated); 0 or a negative status
   int (*place)(dal_integ *it, double t);
+  /// the state's (t, q, qdot, W) at the end of the step just taken: the accepted step itself,
+  /// not its interpolant (not evaluated); 0 or a negative status
+  int (*place_end)(dal_integ *it);
   /// an output was served inside the step: opts.max_steps counts from here
   void (*new_output)(dal_integ *it);
   void (*destroy)(dal_integ *it);
@@ -251,6 +254,9 @@ struct dal_integ {
   /// a failure of the Newton iteration or a step size collapse may be retried from the last
   /// accepted step in another formulation (the fallback ladder, docs/dae.md)
   int can_fall_back;
+  /// records per accepted step of a stored trajectory (dal_trajectory: degree 8 each); a
+  /// method whose interpolant has a higher degree over its long steps takes more (BS: 4)
+  int traj_pieces;
   /// what creation did not honour as asked (a tolerance raised to a floor): "note: ..." for the
   /// state's message on success, or empty
   char note[DAL_ERRMSG_LEN];
@@ -272,10 +278,6 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
                       dal_integ **out);
 /// destroy an integrator (NULL: nothing)
 void dal__integ_destroy(dal_integ *it);
-/// the state at the end t of the step just taken (not evaluated): the ODE families' accepted
-/// step itself (bit for bit what advance leaves), IDA's dense output at t; 0 or a negative
-/// status
-int dal__integ_place_end(dal_integ *it, double t);
 
 #include "symplectic.h"
 
