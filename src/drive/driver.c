@@ -253,11 +253,8 @@ static int place(void *p, double t) {
 // ends its steps where the integrator is)
 static int place_end(void *p, double t) {
   run *r = p;
-  dal_integ_handle *h = r->h;
-  if (h->kind == KIND_IDA) return dal__ida_place(h->ida, t);
-  dal__ode_to_state(h->ode, h->ode->t, h->ode->y);
-  dal__state_moved(r->st);
-  return DAL_OK;
+  dal_integ *it = r->h->it;
+  return it->ops->place(it, t);
 }
 
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
@@ -327,7 +324,7 @@ static int after_step(void *p) {
   int rc, np = 0, kp = 0;
   // Bulirsch-Stoer's long steps carry an interpolant of degree up to 2 kappa + 1: four records
   // of degree 8 per step (solve.h, dal_trajectory)
-  int pieces = r->h->kind == KIND_ODE && r->h->ode->method == DAL_METHOD_BS ? 4 : 1;
+  int pieces = r->h->it->method == DAL_METHOD_BS ? 4 : 1;
   if (st->traj && (rc = dal__traj_step(st->traj, st, a, b, pieces, place, place_end, r)) != 0) {
     // out of memory: the run stops at the step's end, evaluated
     char msg[DAL_ERRMSG_LEN];
