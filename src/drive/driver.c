@@ -253,8 +253,9 @@ static int place(void *p, double t) {
 // ends its steps where the integrator is)
 static int place_end(void *p, double t) {
   run *r = p;
+  (void)t;
   dal_integ *it = r->h->it;
-  return it->ops->place(it, t);
+  return it->ops->place_end(it);
 }
 
 // run the monitor at the state's time; 1 = stop requested (ok), negative = failure
@@ -324,7 +325,7 @@ static int after_step(void *p) {
   int rc, np = 0, kp = 0;
   // Bulirsch-Stoer's long steps carry an interpolant of degree up to 2 kappa + 1: four records
   // of degree 8 per step (solve.h, dal_trajectory)
-  int pieces = r->h->it->method == DAL_METHOD_BS ? 4 : 1;
+  int pieces = r->h->it->traj_pieces;
   if (st->traj && (rc = dal__traj_step(st->traj, st, a, b, pieces, place, place_end, r)) != 0) {
     // out of memory: the run stops at the step's end, evaluated
     char msg[DAL_ERRMSG_LEN];

@@ -124,10 +124,10 @@ static int project_velocities(const dal_system *sys, dal_state *st) {
   double *zero = dal__kkt_scratch(st, 0), *b = dal__kkt_scratch(st, 1);
   double *dv = dal__kkt_scratch(st, 3);
   if (dal__max_abs(st->phidot, m, NULL) == 0.0) return DAL_OK;
-  // M at q (dense systems assemble it in dynamics; M depends on q and t only)
-  // (the recursion of aba.c needs no M)
-  if (sys->dense_M && !sys->aba && (rc = dal__eval(sys, st, DAL_P_CON | DAL_P_MLOW)) != 0)
-    return rc;
+  // M at q (dense systems assemble it in dynamics; M depends on q and t only) where the KKT
+  // matrix reads it (the recursion of aba.c and the sparse KKT matrix need no dense M)
+  unsigned mass = dal__kkt_reads_M(sys, st) ? DAL_P_MLOW : 0u;
+  if (sys->dense_M && !sys->aba && (rc = dal__eval(sys, st, DAL_P_CON | mass)) != 0) return rc;
   rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "velocity projection");
   if (rc) return rc;
   memset(zero, 0, (size_t)n * sizeof(double));

@@ -24,7 +24,7 @@
 
 typedef struct erk_mem {
   void *ark;
-  dal_sun_vecs v;           // context and vectors
+  dal_sun_vecs v;        // context and vectors
   ARKodeButcherTable fb; // Fehlberg 7(8): its table for the dense output's partial steps
   double *K, *yk;        // its stages (stages x ny) and stage argument (ny)
   // Fehlberg 7(8)'s dense output (fehlberg_interp): the last FEHL_HIST accepted points of

@@ -46,6 +46,13 @@ static int ode_place(dal_integ *it, double t) {
   return DAL_OK;
 }
 
+static int ode_place_end(dal_integ *it) {
+  dal_ode_integ *ig = it->impl;
+  dal__ode_to_state(ig, ig->t, ig->y);
+  dal__state_moved(it->st);
+  return DAL_OK;
+}
+
 static void ode_new_output(dal_integ *it) {
   dal_ode_integ *ig = it->impl;
   ig->ncall = 0; // opts.max_steps per output
@@ -56,8 +63,8 @@ static void ode_destroy(dal_integ *it) {
   free(it->yi);
 }
 
-static const dal_integ_ops ode_ops = {ode_advance, ode_window, ode_place, ode_new_output,
-                                      ode_destroy};
+static const dal_integ_ops ode_ops = {ode_advance,   ode_window,     ode_place,
+                                      ode_place_end, ode_new_output, ode_destroy};
 
 // ---------------------------------------------------------------------------------------------
 // the DAE family: IDA on the GGL, index-3 and index-1 forms
@@ -67,6 +74,12 @@ static void ida_window(const dal_integ *it, double *t0, double *t1) {
 }
 
 static int ida_place(dal_integ *it, double t) { return dal__ida_place(it->impl, t); }
+
+static int ida_place_end(dal_integ *it) {
+  double a = 0, b = 0;
+  ida_window(it, &a, &b);
+  return ida_place(it, b);
+}
 
 static void ida_new_output(dal_integ *it) { it->nsteps = 0; }
 
@@ -108,8 +121,8 @@ static int ida_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void 
   return rc;
 }
 
-static const dal_integ_ops ida_ops = {ida_advance, ida_window, ida_place, ida_new_output,
-                                      ida_destroy};
+static const dal_integ_ops ida_ops = {ida_advance,   ida_window,     ida_place,
+                                      ida_place_end, ida_new_output, ida_destroy};
 
 // ---------------------------------------------------------------------------------------------
 // resolution and creation
@@ -181,6 +194,7 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   if (rc) return rc;
   it->ops = &ode_ops;
   it->impl = ig;
+  it->traj_pieces = it->method == DAL_METHOD_BS ? 4 : 1;
   if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   const dal_method_row *mr = dal__method_row(it->method);
@@ -200,6 +214,7 @@ static int create_ida(dal_integ *it) {
   int rc = dal__public_status(dal__ida_create(it->sys, st, o, &it->impl));
   if (rc) return rc;
   it->ops = &ida_ops;
+  it->traj_pieces = 1;
   it->can_fall_back = 1;
   if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
     snprintf(it->note, sizeof it->note,

@@ -237,6 +237,9 @@ typedef struct dal_integ_ops {
   /// the state's (t, q, qdot, W) at t in the step just taken from the method's dense output
   /// (not evaluated); 0 or a negative status
   int (*place)(dal_integ *it, double t);
+  /// the state's (t, q, qdot, W) at the end of the step just taken: the accepted step itself,
+  /// not its interpolant (not evaluated); 0 or a negative status
+  int (*place_end)(dal_integ *it);
   /// an output was served inside the step: opts.max_steps counts from here
   void (*new_output)(dal_integ *it);
   void (*destroy)(dal_integ *it);
@@ -251,6 +254,9 @@ struct dal_integ {
   /// a failure of the Newton iteration or a step size collapse may be retried from the last
   /// accepted step in another formulation (the fallback ladder, docs/dae.md)
   int can_fall_back;
+  /// records per accepted step of a stored trajectory (dal_trajectory: degree 8 each); a
+  /// method whose interpolant has a higher degree over its long steps takes more (BS: 4)
+  int traj_pieces;
   /// what creation did not honour as asked (a tolerance raised to a floor): "note: ..." for the
   /// state's message on success, or empty
   char note[DAL_ERRMSG_LEN];
