@@ -240,6 +240,33 @@ static int trig_merge(dal_alg *g, double *coef, int *rest, int m) {
   return 0;
 }
 
+// merge equal bases of m factors base^ex (exponents add); returns the number left
+static int merge_bases(dal_alg *g, int *base, int *ex, int m) {
+  for (int i = 0; i < m; ++i)
+    for (int j = i + 1; j < m; ++j)
+      if (base[j] == base[i]) {
+        int pair[2] = {ex[i], ex[j]};
+        ex[i] = dal__alg_add(g, pair, 2);
+        base[j] = base[m - 1];
+        ex[j] = ex[m - 1];
+        m--;
+        j--;
+      }
+  return m;
+}
+
+// 1 when two neighbours of the sorted factors have the same base
+static int repeats_base(dal_alg *g, const ivec *out) {
+  int again = 0;
+  for (int i = 0; i + 1 < out->n; ++i) {
+    int b1, e1, b2, e2;
+    base_exp(g, out->v[i], &b1, &e1);
+    base_exp(g, out->v[i + 1], &b2, &e2);
+    if (b1 == b2) again = 1;
+  }
+  return again;
+}
+
 int dal__alg_mul(dal_alg *g, const int *f, int n) {
   if (g->fail) return -1;
   double c = 1.0;
@@ -267,18 +294,7 @@ int dal__alg_mul(dal_alg *g, const int *f, int n) {
   }
   for (int i = 0; i < fs.n; ++i)
     base_exp(g, fs.v[i], &base[i], &ex[i]);
-  // merge equal bases (exponents add)
-  int m = fs.n;
-  for (int i = 0; i < m; ++i)
-    for (int j = i + 1; j < m; ++j)
-      if (base[j] == base[i]) {
-        int pair[2] = {ex[i], ex[j]};
-        ex[i] = dal__alg_add(g, pair, 2);
-        base[j] = base[m - 1];
-        ex[j] = ex[m - 1];
-        m--;
-        j--;
-      }
+  int m = merge_bases(g, base, ex, fs.n);
   for (int i = 0; i < m; ++i) {
     int p = dal__alg_pow(g, base[i], ex[i]);
     if (p < 0) break;
@@ -301,13 +317,7 @@ int dal__alg_mul(dal_alg *g, const int *f, int n) {
   }
   // factors that came apart may repeat a base: merge again when so
   if (out.n > 1) qsort(out.v, (size_t)out.n, sizeof *out.v, cmp_int);
-  int again = 0;
-  for (int i = 0; i + 1 < out.n; ++i) {
-    int b1, e1, b2, e2;
-    base_exp(g, out.v[i], &b1, &e1);
-    base_exp(g, out.v[i + 1], &b2, &e2);
-    if (b1 == b2) again = 1;
-  }
+  int again = repeats_base(g, &out);
   if (again && out.n < n + fs.n + 64) {
     int cnum = num(g, c);
     push(g, &out, cnum);
@@ -626,6 +636,38 @@ static int sum(dal_alg *g, int a, int b) {
 }
 static int powk(dal_alg *g, int a, double k) { return dal__alg_pow(g, a, num(g, k)); }
 
+// f'(u) of a one-argument function f (node x = f(u)); -1 for one that is not canonical
+static int outer(dal_alg *g, int op, int u, int x) {
+  switch (op) {
+  case X_SIN:
+    return dal__alg_fn(g, X_COS, u);
+  case X_COS:
+    return prod(g, num(g, -1.0), dal__alg_fn(g, X_SIN, u));
+  case X_TAN:
+    return powk(g, dal__alg_fn(g, X_COS, u), -2);
+  case X_ASIN:
+    return powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5);
+  case X_ACOS:
+    return prod(g, num(g, -1.0),
+                powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5));
+  case X_ATAN:
+    return powk(g, sum(g, num(g, 1.0), powk(g, u, 2)), -1);
+  case X_SINH:
+    return dal__alg_fn(g, X_COSH, u);
+  case X_COSH:
+    return dal__alg_fn(g, X_SINH, u);
+  case X_TANH:
+    return powk(g, dal__alg_fn(g, X_COSH, u), -2);
+  case X_EXP:
+    return x;
+  case X_LOG:
+    return powk(g, u, -1);
+  default:
+    g->fail = 1;
+    return -1; // SQRT, SUB, DIV, NEG are not canonical
+  }
+}
+
 static int deriv_node(dal_alg *g, int x, int var) {
   const dal_xnode n = *N(g, x);
   switch (n.op) {
@@ -665,46 +707,7 @@ static int deriv_node(dal_alg *g, int x, int var) {
   int u = n.a, du = deriv(g, u, var);
   if (g->fail) return -1;
   if (dal__alg_isnum(g, du, 0.0)) return du;
-  int f1;
-  switch (n.op) {
-  case X_SIN:
-    f1 = dal__alg_fn(g, X_COS, u);
-    break;
-  case X_COS:
-    f1 = prod(g, num(g, -1.0), dal__alg_fn(g, X_SIN, u));
-    break;
-  case X_TAN:
-    f1 = powk(g, dal__alg_fn(g, X_COS, u), -2);
-    break;
-  case X_ASIN:
-    f1 = powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5);
-    break;
-  case X_ACOS:
-    f1 = prod(g, num(g, -1.0),
-              powk(g, sum(g, num(g, 1.0), prod(g, num(g, -1.0), powk(g, u, 2))), -0.5));
-    break;
-  case X_ATAN:
-    f1 = powk(g, sum(g, num(g, 1.0), powk(g, u, 2)), -1);
-    break;
-  case X_SINH:
-    f1 = dal__alg_fn(g, X_COSH, u);
-    break;
-  case X_COSH:
-    f1 = dal__alg_fn(g, X_SINH, u);
-    break;
-  case X_TANH:
-    f1 = powk(g, dal__alg_fn(g, X_COSH, u), -2);
-    break;
-  case X_EXP:
-    f1 = x;
-    break;
-  case X_LOG:
-    f1 = powk(g, u, -1);
-    break;
-  default:
-    g->fail = 1;
-    return -1; // SQRT, SUB, DIV, NEG are not canonical
-  }
+  int f1 = outer(g, n.op, u, x);
   return prod(g, f1, du);
 }
 
@@ -746,6 +749,57 @@ static long gcdl(long a, long b) {
   return a < 0 ? -a : a;
 }
 
+// the coefficient that comes out of a sum of nt terms: with rational coefficients p_i/q over
+// one denominator q <= 64 their gcd(p_i)/q, negative when every coefficient is; else 1 or -1
+static double common_coef(dal_alg *g, const int *ts, int nt) {
+  long gc = 0, q = 0;
+  int allneg = 1, allint = 1;
+  for (long qq = 1; qq <= 64 && !q; ++qq) {
+    int ok = 1;
+    for (int i = 0; i < nt && ok; ++i) {
+      int rr;
+      double c = split(g, ts[i], &rr) * (double)qq;
+      ok = c == floor(c) && fabs(c) <= 1e9;
+    }
+    if (ok) q = qq;
+  }
+  for (int i = 0; i < nt; ++i) {
+    int rr;
+    double c = split(g, ts[i], &rr);
+    if (c >= 0) allneg = 0;
+    if (!q)
+      allint = 0;
+    else
+      gc = gcdl(gc, (long)(c * (double)q));
+  }
+  double cf = allint && gc > 0 && gc != q ? (double)gc / (double)q : 1.0;
+  return allneg ? -cf : cf;
+}
+
+// 1 when base b appears with a numeric exponent of the sign of *emin in terms 1 .. nt-1 too;
+// *emin becomes the exponent of smallest magnitude
+static int everywhere(dal_alg *g, const int *ts, int nt, int b, double *emin) {
+  double sg = *emin > 0 ? 1.0 : -1.0;
+  for (int i = 1; i < nt; ++i) {
+    int rr;
+    split(g, ts[i], &rr);
+    ivec fi = {0};
+    if (rr >= 0) factors(g, rr, &fi);
+    int found = 0;
+    for (int j = 0; j < fi.n; ++j) {
+      int bj, ej;
+      base_exp(g, fi.v[j], &bj, &ej);
+      if (bj == b && N(g, ej)->op == X_NUM && N(g, ej)->c * sg > 0) {
+        found = 1;
+        if (N(g, ej)->c * sg < *emin * sg) *emin = N(g, ej)->c;
+      }
+    }
+    free(fi.v);
+    if (!found) return 0;
+  }
+  return 1;
+}
+
 int dal__alg_factor(dal_alg *g, int x) {
   if (x < 0 || g->fail) return -1;
   const dal_xnode n = *N(g, x);
@@ -780,55 +834,15 @@ int dal__alg_factor(dal_alg *g, int x) {
   int rest0;
   double c0 = split(g, ts[0], &rest0);
   if (rest0 >= 0) factors(g, rest0, &f0);
-  // rational coefficients p_i/q over one denominator q <= 64: their gcd(p_i)/q comes out
-  long gc = 0, q = 0;
-  int allneg = 1, allint = 1;
-  for (long qq = 1; qq <= 64 && !q; ++qq) {
-    int ok = 1;
-    for (int i = 0; i < nt && ok; ++i) {
-      int rr;
-      double c = split(g, ts[i], &rr) * (double)qq;
-      ok = c == floor(c) && fabs(c) <= 1e9;
-    }
-    if (ok) q = qq;
-  }
-  for (int i = 0; i < nt; ++i) {
-    int rr;
-    double c = split(g, ts[i], &rr);
-    if (c >= 0) allneg = 0;
-    if (!q)
-      allint = 0;
-    else
-      gc = gcdl(gc, (long)(c * (double)q));
-  }
+  double cf = common_coef(g, ts, nt);
   (void)c0;
   for (int k = 0; k < f0.n && !g->fail; ++k) {
     int b, e;
     base_exp(g, f0.v[k], &b, &e);
     if (N(g, e)->op != X_NUM || N(g, e)->c == 0) continue;
-    double emin = N(g, e)->c, sg = emin > 0 ? 1.0 : -1.0;
-    int everywhere = 1;
-    for (int i = 1; i < nt && everywhere; ++i) {
-      int rr;
-      split(g, ts[i], &rr);
-      ivec fi = {0};
-      if (rr >= 0) factors(g, rr, &fi);
-      int found = 0;
-      for (int j = 0; j < fi.n; ++j) {
-        int bj, ej;
-        base_exp(g, fi.v[j], &bj, &ej);
-        if (bj == b && N(g, ej)->op == X_NUM && N(g, ej)->c * sg > 0) {
-          found = 1;
-          if (N(g, ej)->c * sg < emin * sg) emin = N(g, ej)->c;
-        }
-      }
-      free(fi.v);
-      if (!found) everywhere = 0;
-    }
-    if (everywhere) push(g, &common, powk(g, b, emin));
+    double emin = N(g, e)->c;
+    if (everywhere(g, ts, nt, b, &emin)) push(g, &common, powk(g, b, emin));
   }
-  double cf = allint && gc > 0 && gc != q ? (double)gc / (double)q : 1.0;
-  if (allneg) cf = -cf;
   int r;
   if (!common.n && cf == 1.0) {
     r = g->fail ? -1 : dal__alg_add(g, ts, nt);
