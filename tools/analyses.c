@@ -9,18 +9,6 @@
 
 #include "cli.h"
 
-int cli_grid(const char *spec, char *buf, size_t len, double *lo, double *hi, int *n) {
-  snprintf(buf, len, "%s", spec ? spec : "");
-  char *eq = strchr(buf, '=');
-  if (!eq || sscanf(eq + 1, "%lf:%lf:%d", lo, hi, n) != 3 || *n < 1 || !isfinite(*lo) ||
-      !isfinite(*hi)) {
-    fprintf(stderr, "dalembert: '%s' is not NAME=LO:HI:N (N >= 1)\n", spec ? spec : "");
-    return DAL_E_ARG;
-  }
-  *eq = 0;
-  return DAL_OK;
-}
-
 static double grid_at(double lo, double hi, int n, int k) {
   return n == 1 ? lo : lo + (hi - lo) * k / (n - 1);
 }

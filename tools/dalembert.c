@@ -31,25 +31,6 @@ int cli_usage(void) {
   return 64;
 }
 
-int cli_status_exit(int rc) { return rc < 0 ? -rc : 0; }
-
-int cli_fail(int rc, const char *msg) {
-  if (rc < 0) fprintf(stderr, "dalembert: %s\n", msg);
-  return rc;
-}
-
-void cli_progress(const cli *c, const char *what, double done, double total, const char *extra) {
-  static double last = -1; // the fraction shown last: a line every 0.5% (calls are serialized)
-  if (!c->progress) return;
-  double f = total > 0 ? done / total : 1;
-  if (f < 1 && last >= 0 && f - last < 0.005 && f >= last) return;
-  last = f >= 1 ? -1 : f;
-  fprintf(stderr, "\r%s: %.4g / %.4g%s%s   ", what, done, total, extra ? " " : "",
-          extra ? extra : "");
-  if (done >= total) fputc('\n', stderr);
-  fflush(stderr);
-}
-
 // a chart of the coordinates against t from the CSV, by gnuplot when it is installed
 static int chart(const dal_scene *sc, const char *csv, const char *png) {
   const dal_system *sys = dal_scene_system(sc);
@@ -69,20 +50,6 @@ static int chart(const dal_scene *sc, const char *csv, const char *png) {
   int rc = pclose(gp);
   if (rc) fprintf(stderr, "dalembert: gnuplot failed (status %d); no chart\n", rc);
   return rc ? DAL_E_IO : DAL_OK;
-}
-
-FILE *cli_out(const cli *c) {
-  FILE *fp = c->out ? fopen(c->out, "w") : stdout;
-  if (!fp) fprintf(stderr, "dalembert: cannot write %s\n", c->out);
-  return fp;
-}
-
-int cli_close(const cli *c, FILE *fp, int rc) {
-  if (fp && fp != stdout && fclose(fp) && rc >= 0) {
-    fprintf(stderr, "dalembert: writing %s failed\n", c->out);
-    return DAL_E_IO;
-  }
-  return rc;
 }
 
 static int cmd_run(cli *c) {
