@@ -376,15 +376,15 @@ DAL_API int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_
 /// 2 kappa + 1 and are stored as 4 records of a quarter step each. Where the method's
 /// interpolant is a polynomial of degree <= 8 in t (RK4's cubic Hermite, DOPRI5's, CVODE's BDF
 /// and IDA's of order <= 5) it is reproduced to rounding; for Adams (order up to 12),
-/// Bulirsch-Stoer, Fehlberg 7(8) (a partial step) and the symplectic methods the degree-8
-/// interpolation error over a record is added. Measured (tests/test_trajectory.c prints the
-/// table) against the elliptic pendulum released at 2 rad, at 2000 irregular times over
-/// [0, 10], as the worst of |q - q_ref| and |qdot - qdot_ref| / w0, over rtol:
+/// Bulirsch-Stoer, Fehlberg 7(8) (a Hermite of degree 9 or 7) and the symplectic methods the
+/// degree-8 interpolation error over a record is added. Measured (tests/test_trajectory.c prints
+/// the table) against the elliptic pendulum released at 2 rad, at 2000 irregular times over [0,
+/// 10], as the worst of |q - q_ref| and |qdot - qdot_ref| / w0, over rtol:
 ///
 /// | method (form)  | rtol 1e-6 | rtol 1e-9 | rtol 1e-12 | distance to the dense output   |
 /// |----------------|-----------|-----------|------------|--------------------------------|
 /// | DOPRI5         | 1.14      | 4.99      |            | <= 5.3e-15 (rounding)          |
-/// | Fehlberg 7(8)  | 0.51      | 0.32      |            | <= 6.5e-11 (interpolation)     |
+/// | Fehlberg 7(8)  | 1.56      | 0.99      |            | <= 1.0e-10 (interpolation)     |
 /// | Bulirsch-Stoer | 0.41      | 0.04      | 0.04       | <= 6.4e-13 (interpolation)     |
 /// | Adams (CVODE)  | 0.03      | 0.26      | 0.80       | <= 5.2e-15                     |
 /// | BDF (CVODE)    | 0.02      | 0.41      |            | <= 4.7e-15                     |
@@ -397,11 +397,10 @@ DAL_API int dal_evolve_at(const dal_system *sys, dal_state *st, const dal_solve_
 /// so the stored trajectory is as accurate as the method's dense output (within the 16 x rtol
 /// that dal_evolve promises for the adaptive methods).
 ///
-/// What it costs: 8 evaluations of the dense output per record (Fehlberg's is a partial step of
-/// 12 right-hand sides, so a recorded Fehlberg run costs several times an unrecorded one;
-/// DOPRI5, BS, CVODE and IDA interpolate from data they hold), and memory: 3 + 18 n doubles per
-/// record (n coordinates; 168 bytes for the pendulum), one record per accepted step (4 for
-/// Bulirsch-Stoer), grown by doubling (about log2(records) allocations over a run: a recorded
+/// What it costs: 8 evaluations of the dense output per record (each method interpolates from
+/// data it holds for the step: Fehlberg's Hermite is built once per step), and memory: 3 + 18 n
+/// doubles per record (n coordinates; 168 bytes for the pendulum), one record per accepted step (4
+/// for Bulirsch-Stoer), grown by doubling (about log2(records) allocations over a run: a recorded
 /// run allocates, an unrecorded one does not). A recorded run takes the steps of a run with
 /// dense output (those of dal_evolve with a monitor: the same end state bit for bit; without
 /// monitor or events dal_advance may take other steps, within the tolerance), and recording
