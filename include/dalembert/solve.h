@@ -331,7 +331,8 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 /// Dense output: the integrator takes its own steps towards t1 and the states at the output
 /// times come from the method's interpolant of each step (SUNDIALS' own for CVODE, ARKODE's
 /// DOPRI5 and IDA; Hairer-Norsett-Wanner's extrapolated dense output for Bulirsch-Stoer; for
-/// Fehlberg 7(8) a partial step of the method; a cubic Hermite for RK4; a partial composed step
+/// Fehlberg 7(8) a Hermite interpolant of degree 7 or 9 built once per step, docs/performance.md;
+/// a cubic Hermite for RK4; a partial composed step
 /// for the symplectic methods), accurate to the method's tolerance (tests/test_dense.c: within
 /// 16 x rtol of the closed forms for every method). So the outputs do not change the steps:
 /// the trajectory, its end state and the statistics are the same for any dt. opts.max_steps
