@@ -256,20 +256,20 @@ static void load_y(ida_mem *w) {
   }
 }
 
+// a SUNDIALS setup call; on a negative flag the state's message names the call (returns)
 #define IDA_CHECK(call)                                                                            \
   do {                                                                                             \
     int f_ = (call);                                                                               \
     if (f_ < 0) {                                                                                  \
-      st->stats.foreign_code = f_;                                                                 \
-      rc = DAL_FAIL(st, DAL_E_SOLVER, "IDA setup failed in %s (flag %d): %s", #call, f_,           \
-                    w->ida_msg);                                                                   \
-      goto fail;                                                                                   \
+      w->st->stats.foreign_code = f_;                                                              \
+      return DAL_FAIL(w->st, DAL_E_SOLVER, "IDA setup failed in %s (flag %d): %s", #call, f_,      \
+                      w->ida_msg);                                                                 \
     }                                                                                              \
   } while (0)
 
-int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem) {
-  *mem = NULL;
-  dal_formulation form = opts->form == DAL_FORM_AUTO ? DAL_FORM_GGL : opts->form;
+// the forms and systems IDA runs; 0 or DAL_E_UNSUPPORTED with the state's message set
+static int check_form(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                      dal_formulation form) {
   if (form != DAL_FORM_GGL && form != DAL_FORM_INDEX3 && form != DAL_FORM_INDEX1)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "the DAE integrator (IDA) runs the GGL, index-3 and index-1 forms, not "
@@ -284,13 +284,16 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "a Lagrangian system has no particles or constraints for the DAE "
                     "integrator; use an ODE method");
-  // consistent start: rank check, projections, KKT accelerations and multipliers
-  dal_constraint_report rank0;
-  int rc = dal__dae_start_checked(sys, st, opts->init_max_move, NULL, &rank0);
-  if (rc) return rc;
+  return 0;
+}
+
+// the workspace: the formulation and its sizes, the calibrated tolerance, the linear solver's
+// kind and the SUNDIALS context; 0 and *out, or a status (nothing left allocated)
+static int mem_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                      dal_formulation form, const dal_constraint_report *rank0, ida_mem **out) {
   ida_mem *w = calloc(1, sizeof *w);
   if (!w) return DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory");
-  w->rank0 = rank0;
+  w->rank0 = *rank0;
   w->ncor_i = -1;
   w->sys = sys;
   w->st = st;
@@ -318,6 +321,13 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     free(w);
     return DAL_FAIL(st, DAL_E_NOMEM, "IDA: cannot create the SUNDIALS context");
   }
+  *out = w;
+  return 0;
+}
+
+// IDA's vectors with the library's kernels; IDA's work vectors are clones of these and
+// inherit them. 0 or DAL_E_NOMEM (what was made is freed by dal__ida_free)
+static int vectors_create(ida_mem *w) {
   sunindextype neq = w->neq;
   w->y = N_VNew_Serial(neq, w->ctx);
   w->yp = N_VNew_Serial(neq, w->ctx);
@@ -325,52 +335,51 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   w->atol = N_VNew_Serial(neq, w->ctx);
   w->w1 = N_VNew_Serial(neq, w->ctx);
   w->w2 = N_VNew_Serial(neq, w->ctx);
-  if (!w->y || !w->yp || !w->id || !w->atol || !w->w1 || !w->w2) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d unknowns", w->neq);
-    goto fail;
+  if (!w->y || !w->yp || !w->id || !w->atol || !w->w1 || !w->w2)
+    return DAL_FAIL(w->st, DAL_E_NOMEM, "IDA: out of memory for %d unknowns", w->neq);
+  N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
+  for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
+    dal__nvec_fast(vs[i]);
+  return 0;
+}
+
+// error test on q and v; lambda and mu (algebraic) out of it. Index-3 keeps only q in
+// the error test, the usual practice for the higher-index variables of a BDF code (Brenan,
+// Campbell and Petzold, sec. 5.4): with v in it the steps collapse at rtol <= 1e-6.
+// Absolute tolerances: opts.atol for q and v; multipliers and mu get loose ones, they only
+// weigh Newton corrections. Then the multipliers' reach for their error weights (ewt_fn).
+// 0 or DAL_E_NOMEM
+static int weights_set(ida_mem *w) {
+  const dal_solve_opts *opts = &w->opts;
+  double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
+  // a clamped rtol raises atol in proportion: the requested ratio atol / rtol is kept
+  double fscale = 0.0, atol = opts->atol * (w->rtol / opts->rtol);
+  for (int r = 0; r < w->m; ++r)
+    fscale = fmax(fscale, fabs(w->st->lambda[r]));
+  dal__dae_mask(&w->f, id);
+  for (int i = 0; i < w->neq; ++i)
+    at[i] = atol;
+  for (int r = 0; r < w->m; ++r) {
+    at[w->off_l + r] = fmax(atol, w->rtol * fmax(fscale, 1.0));
+    if (w->off_mu >= 0) at[w->off_mu + r] = fmax(atol, sqrt(opts->atol));
   }
-  // the library's vector kernels; IDA's work vectors are clones of these and inherit them
-  {
-    N_Vector vs[] = {w->y, w->yp, w->id, w->atol, w->w1, w->w2};
-    for (size_t i = 0; i < sizeof vs / sizeof vs[0]; ++i)
-      dal__nvec_fast(vs[i]);
-  }
-  // error test on q and v; lambda and mu (algebraic) out of it. Index-3 keeps only q in
-  // the error test, the usual practice for the higher-index variables of a BDF code (Brenan,
-  // Campbell and Petzold, sec. 5.4): with v in it the steps collapse at rtol <= 1e-6.
-  // Absolute tolerances: opts.atol for q and v; multipliers and mu get loose ones, they only
-  // weigh Newton corrections.
-  {
-    double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
-    // a clamped rtol raises atol in proportion: the requested ratio atol / rtol is kept
-    double fscale = 0.0, atol = opts->atol * (w->rtol / opts->rtol);
-    for (int r = 0; r < w->m; ++r)
-      fscale = fmax(fscale, fabs(st->lambda[r]));
-    dal__dae_mask(&w->f, id);
-    for (int i = 0; i < w->neq; ++i)
-      at[i] = atol;
-    for (int r = 0; r < w->m; ++r) {
-      at[w->off_l + r] = fmax(atol, w->rtol * fmax(fscale, 1.0));
-      if (w->off_mu >= 0) at[w->off_mu + r] = fmax(atol, sqrt(opts->atol));
-    }
-  }
-  // the multipliers' reach for their error weights (ewt_fn)
+  // the multipliers' reach
   if (w->m > 0) {
     w->sl = malloc(2 * (size_t)w->m * sizeof(double));
-    if (!w->sl || dal__dae_row_scales(&w->f, w->sl, w->sl + w->m)) {
-      rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for %d constraint rows", w->m);
-      goto fail;
-    }
+    if (!w->sl || dal__dae_row_scales(&w->f, w->sl, w->sl + w->m))
+      return DAL_FAIL(w->st, DAL_E_NOMEM, "IDA: out of memory for %d constraint rows", w->m);
     w->smu = w->sl + w->m;
   }
-  load_y(w);
+  return 0;
+}
+
+// IDA itself on the loaded y, y': residual, error weights, algebraic mask, step bounds
+static int ida_setup(ida_mem *w) {
+  const dal_solve_opts *opts = &w->opts;
   w->ida = IDACreate(w->ctx);
-  if (!w->ida) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: IDACreate failed (out of memory)");
-    goto fail;
-  }
+  if (!w->ida) return DAL_FAIL(w->st, DAL_E_NOMEM, "IDA: IDACreate failed (out of memory)");
   IDA_CHECK(IDASetErrHandlerFn(w->ida, silent_handler, w));
-  IDA_CHECK(IDAInit(w->ida, residual, st->t, w->y, w->yp));
+  IDA_CHECK(IDAInit(w->ida, residual, w->st->t, w->y, w->yp));
   IDA_CHECK(IDAWFtolerances(w->ida, ewt_fn));
   IDA_CHECK(IDASetUserData(w->ida, w));
   IDA_CHECK(IDASetId(w->ida, w->id));
@@ -378,11 +387,16 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   IDA_CHECK(IDASetMaxNumSteps(w->ida, opts->max_steps > 0 ? opts->max_steps : 1000000));
   if (opts->hmax > 0) IDA_CHECK(IDASetMaxStep(w->ida, opts->hmax));
   if (opts->hmin > 0) IDA_CHECK(IDASetMinStep(w->ida, opts->hmin));
+  return 0;
+}
+
+// the KLU or dense linear solver behind the watch wrapper, and the Newton matrix callback
+// where it is exact
+static int linsol_setup(ida_mem *w) {
+  sunindextype neq = w->neq;
   if (w->sparse) {
-    if (dal__dae_pattern(&w->f)) {
-      rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: out of memory for the sparse Jacobian");
-      goto fail;
-    }
+    if (dal__dae_pattern(&w->f))
+      return DAL_FAIL(w->st, DAL_E_NOMEM, "IDA: out of memory for the sparse Jacobian");
     w->A = SUNSparseMatrix(neq, neq, w->f.pat.nnz, CSC_MAT, w->ctx);
     w->LS = w->A ? SUNLinSol_KLU(w->y, w->A, w->ctx) : NULL;
   } else {
@@ -390,18 +404,40 @@ int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
     w->LS = w->A ? SUNLinSol_Dense(w->y, w->A, w->ctx) : NULL;
   }
   if (w->LS) w->watch = watch_create(w);
-  if (!w->A || !w->LS || !w->watch) {
-    rc = DAL_FAIL(st, DAL_E_NOMEM, "IDA: cannot create the %s linear solver (%d unknowns)",
-                  w->sparse ? "KLU" : "dense", w->neq);
-    goto fail;
-  }
+  if (!w->A || !w->LS || !w->watch)
+    return DAL_FAIL(w->st, DAL_E_NOMEM, "IDA: cannot create the %s linear solver (%d unknowns)",
+                    w->sparse ? "KLU" : "dense", w->neq);
   IDA_CHECK(IDASetLinearSolver(w->ida, w->watch, w->A));
-  if (w->sparse || dal__dae_newton_exact(sys)) IDA_CHECK(IDASetJacFn(w->ida, jacobian));
+  if (w->sparse || dal__dae_newton_exact(w->sys)) IDA_CHECK(IDASetJacFn(w->ida, jacobian));
+  return 0;
+}
+
+int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem) {
+  *mem = NULL;
+  dal_formulation form = opts->form == DAL_FORM_AUTO ? DAL_FORM_GGL : opts->form;
+  int rc = check_form(sys, st, opts, form);
+  if (rc) return rc;
+  // consistent start: rank check, projections, KKT accelerations and multipliers
+  dal_constraint_report rank0;
+  rc = dal__dae_start_checked(sys, st, opts->init_max_move, NULL, &rank0);
+  if (rc) return rc;
+  // the workspace and context, the vectors, the weights, IDA, the linear solver
+  ida_mem *w = NULL;
+  rc = mem_create(sys, st, opts, form, &rank0, &w);
+  if (rc) return rc;
+  rc = vectors_create(w);
+  if (!rc) rc = weights_set(w);
+  if (!rc) {
+    load_y(w);
+    rc = ida_setup(w);
+  }
+  if (!rc) rc = linsol_setup(w);
+  if (rc) {
+    dal__ida_free(w);
+    return rc;
+  }
   *mem = w;
   return DAL_OK;
-fail:
-  dal__ida_free(w);
-  return rc;
 }
 
 // add IDA's counters since the last call to the state's statistics
