@@ -501,83 +501,164 @@ static int bs_initial_step(dal_ode_integ *ig, bs_mem *m, double tout, double *H)
   return DAL_OK;
 }
 
+// the start of a step: f at the step's start, and on the first step the initial step size
+static int bs_step_start(dal_ode_integ *ig, bs_mem *m, double tout) {
+  const dal_solve_opts *o = &ig->opts;
+  int rc;
+  if (!m->f0_ok) {
+    rc = dal__ode_rhs(ig, ig->t, ig->y, m->f0);
+    if (rc)
+      return dal__ode_fail(ig, rc,
+                           "%s; at an accepted step, where no smaller step can help; stopped "
+                           "at t=%.17g before the target t=%.17g",
+                           ig->rhs_err, ig->t, tout);
+    m->f0_ok = 1;
+  }
+  if (!(m->H > 0)) {
+    double H0 = o->h0;
+    if (!(H0 > 0) && (rc = bs_initial_step(ig, m, tout, &H0)) != 0) {
+      if (dal__is_retry(rc)) {
+        H0 = 1e-6 * fmax(1.0, tout - ig->t);
+      } else {
+        return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g before the target t=%.17g",
+                             ig->rhs_err, ig->t, tout);
+      }
+    }
+    m->H = H0;
+  }
+  return DAL_OK;
+}
+
+// the proposed step, bounded by hmax; a step that nearly reaches tout lands on it. Sets the
+// step *H, its end *t1 and whether it is *shortened; nonzero when the step size stalled.
+static inline int bs_step_size(dal_ode_integ *ig, bs_mem *m, double tout, double *H, double *t1,
+                               int *shortened) {
+  const dal_solve_opts *o = &ig->opts;
+  double Hprop = o->hmax > 0 ? fmin(m->H, o->hmax) : m->H, h = Hprop;
+  int last = 0;
+  if (ig->t + 1.01 * h >= tout) {
+    h = tout - ig->t;
+    last = 1;
+  }
+  // the progress guard: a step of a few ulps of t (a collapsed first-step estimate, or a
+  // step size control driven down) stops at once with its cause
+  double hfloor = fmax(o->hmin, DAL_TINY_STEP(ig->t));
+  if (h < hfloor && !last) return dal__ode_stall(ig, h, "the step size fell to a few ulps of t");
+  // a shortened step uses the order that sufficed for the last shortened one: with outputs
+  // denser than the natural steps a low order is cheapest; the natural order and step are
+  // kept for the next full step
+  *shortened = last && h < Hprop;
+  *t1 = last ? tout : ig->t + h;
+  // the step actually taken is the difference of the representable times (exact: t1 is
+  // t + H rounded); integrating H itself would shift the solution against t by the rounding
+  // of t + H, up to half an ulp of t in every step
+  *H = *t1 - ig->t;
+  return DAL_OK;
+}
+
+// one attempt of the step H to t1 at column *kc, with its interpolant (buffer *b, else -1)
+// when dense output is on. Returns bs_attempt's verdict, which the interpolation error can
+// turn into BS_REJECT.
+static inline int bs_step_try(dal_ode_integ *ig, bs_mem *m, double H, double t1, int shortened,
+                              int *kc, int *b) {
+  int rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, kc);
+  *b = -1;
+  if (rc == BS_ACCEPT && m->dense) {
+    // the interpolant needs f(t1, y1) (the next step's f0); its error estimate can still
+    // reject the step
+    rc = dal__ode_rhs(ig, t1, m->ynew, m->f1);
+    if (dal__is_retry(rc)) m->H = 0.5 * H;
+    if (rc == 0) {
+      *b = bs_dense_build(ig, m, *kc, H, t1);
+      if (!(m->errint <= BS_DENSE_REJECT)) {
+        m->H = H * bs_dense_fac(m->errint, m->dd[*b].deg, BS_DENSE_REJECT);
+        rc = BS_REJECT;
+      }
+    }
+  }
+  return rc;
+}
+
+// rejected: bs_attempt has set the order and step of the retry. Counts the rejection;
+// nonzero (the failure) after too many in a row.
+static int bs_step_rejected(dal_ode_integ *ig, bs_mem *m, int rc, double H, int *nrej) {
+  char var[128];
+  m->rejected_last = 1;
+  ig->st->stats.rejected++;
+  if (++*nrej > BS_MAX_REJECT) {
+    if (dal__is_retry(rc)) return dal__ode_recov_fail(ig, H);
+    return dal__ode_fail(ig, DAL_E_STEP,
+                         "step size underflow at t=%.17g (H=%.3g after %d rejections): "
+                         "error dominated by %s; loosen rtol/atol or check the model near "
+                         "this time",
+                         ig->t, H, *nrej,
+                         dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var));
+  }
+  return DAL_OK;
+}
+
+// accepted: choose the next order and step (9.27); a shortened step only chooses the
+// order of the next shortened step: the first column that converged, plus one
+static inline void bs_step_control(bs_mem *m, int kc, double H, int shortened, int b) {
+  if (!shortened || m->rejected_last) {
+    bs_select(m, kc, H);
+    m->kshort = m->k;
+  } else {
+    int jmin = kc;
+    for (int j = 2; j < kc; ++j)
+      if (m->err[j] <= 1.0) {
+        jmin = j;
+        break;
+      }
+    m->kshort = jmin + 1 < m->k ? jmin + 1 : m->k;
+  }
+  // the next step is limited by the interpolation error too
+  if (b >= 0 && !shortened)
+    m->H = fmin(m->H, H * bs_dense_fac(m->errint, m->dd[b].deg, BS_DENSE_TARGET));
+  m->rejected_last = 0;
+  m->f0_ok = 0;
+}
+
+// hands the accepted step to t1 (dense data in buffer b, or -1) to dal__ode_accept. Returns
+// its status; ig->t != t1 after it when the progress guard refused the step.
+static int bs_step_accept(dal_ode_integ *ig, bs_mem *m, double t1, int b) {
+  int projected = 0, prev = m->cur;
+  // the dense data of the step are ready before dal__ode_accept (which calls the hook)
+  m->cur = b;
+  int rc = dal__ode_accept(ig, t1, m->ynew, &projected);
+  if (ig->t != t1) {
+    // refused by the progress guard: the last step stays the one to read
+    m->cur = prev;
+    return rc;
+  }
+  // the compensation belongs to the accepted sum (a projection starts a new one)
+  double *sw = m->c;
+  m->c = m->cnew;
+  m->cnew = sw;
+  if (projected) memset(m->c, 0, (size_t)ig->ny * sizeof(double));
+  if (b >= 0 && !projected) {
+    // f(t1, y1) is the next step's f0
+    sw = m->f0;
+    m->f0 = m->f1;
+    m->f1 = sw;
+    m->f0_ok = 1;
+  }
+  return rc;
+}
+
 static int bs_advance(dal_ode_integ *ig, double tout) {
   bs_mem *m = ig->impl;
-  const dal_solve_opts *o = &ig->opts;
-  char var[128];
   int nrej = 0, rc;
   // dense output when a hook reads the steps (the driver sets it before advance)
   if ((ig->hook != NULL) != m->dense) bs_sequence(m, ig->hook != NULL);
   while (ig->t < tout) {
-    if (!m->f0_ok) {
-      rc = dal__ode_rhs(ig, ig->t, ig->y, m->f0);
-      if (rc)
-        return dal__ode_fail(ig, rc,
-                             "%s; at an accepted step, where no smaller step can help; stopped "
-                             "at t=%.17g before the target t=%.17g",
-                             ig->rhs_err, ig->t, tout);
-      m->f0_ok = 1;
-    }
-    if (!(m->H > 0)) {
-      double H0 = o->h0;
-      if (!(H0 > 0) && (rc = bs_initial_step(ig, m, tout, &H0)) != 0) {
-        if (dal__is_retry(rc)) {
-          H0 = 1e-6 * fmax(1.0, tout - ig->t);
-        } else {
-          return dal__ode_fail(ig, rc, "%s; stopped at t=%.17g before the target t=%.17g",
-                               ig->rhs_err, ig->t, tout);
-        }
-      }
-      m->H = H0;
-    }
-    // the proposed step, bounded by hmax; a step that nearly reaches tout lands on it
-    double Hprop = o->hmax > 0 ? fmin(m->H, o->hmax) : m->H, H = Hprop;
-    int last = 0;
-    if (ig->t + 1.01 * H >= tout) {
-      H = tout - ig->t;
-      last = 1;
-    }
-    // the progress guard: a step of a few ulps of t (a collapsed first-step estimate, or a
-    // step size control driven down) stops at once with its cause
-    double hfloor = fmax(o->hmin, DAL_TINY_STEP(ig->t));
-    if (H < hfloor && !last) return dal__ode_stall(ig, H, "the step size fell to a few ulps of t");
-    // a shortened step uses the order that sufficed for the last shortened one: with outputs
-    // denser than the natural steps a low order is cheapest; the natural order and step are
-    // kept for the next full step
-    int shortened = last && H < Hprop, kc = 0, b = -1;
-    double t1 = last ? tout : ig->t + H;
-    // the step actually taken is the difference of the representable times (exact: t1 is
-    // t + H rounded); integrating H itself would shift the solution against t by the rounding
-    // of t + H, up to half an ulp of t in every step
-    H = t1 - ig->t;
-    rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, &kc);
-    if (rc == BS_ACCEPT && m->dense) {
-      // the interpolant needs f(t1, y1) (the next step's f0); its error estimate can still
-      // reject the step
-      rc = dal__ode_rhs(ig, t1, m->ynew, m->f1);
-      if (dal__is_retry(rc)) m->H = 0.5 * H;
-      if (rc == 0) {
-        b = bs_dense_build(ig, m, kc, H, t1);
-        if (!(m->errint <= BS_DENSE_REJECT)) {
-          m->H = H * bs_dense_fac(m->errint, m->dd[b].deg, BS_DENSE_REJECT);
-          rc = BS_REJECT;
-        }
-      }
-    }
+    if ((rc = bs_step_start(ig, m, tout)) != 0) return rc;
+    double H = 0.0, t1 = 0.0;
+    int shortened = 0, kc = 0, b = -1;
+    if ((rc = bs_step_size(ig, m, tout, &H, &t1, &shortened)) != 0) return rc;
+    rc = bs_step_try(ig, m, H, t1, shortened, &kc, &b);
     if (dal__is_retry(rc) || rc == BS_REJECT || rc == BS_UNSTABLE) {
-      // rejected: bs_attempt has set the order and step of the retry
-      m->rejected_last = 1;
-      ig->st->stats.rejected++;
-      if (++nrej > BS_MAX_REJECT) {
-        if (dal__is_retry(rc)) return dal__ode_recov_fail(ig, H);
-        return dal__ode_fail(
-            ig, DAL_E_STEP,
-            "step size underflow at t=%.17g (H=%.3g after %d rejections): "
-            "error dominated by %s; loosen rtol/atol or check the model near "
-            "this time",
-            ig->t, H, nrej,
-            dal__ode_var_name(ig, dal__ode_argmax(ig->ewt, ig->ny), var, sizeof var));
-      }
+      if ((rc = bs_step_rejected(ig, m, rc, H, &nrej)) != 0) return rc;
       continue;
     }
     if (rc)
@@ -585,49 +666,12 @@ static int bs_advance(dal_ode_integ *ig, double tout) {
                            "%s; stopped at t=%.17g (last accepted step) before the "
                            "target t=%.17g",
                            ig->rhs_err, ig->t, tout);
-    // accepted: choose the next order and step (9.27); a shortened step only chooses the
-    // order of the next shortened step: the first column that converged, plus one
-    if (!shortened || m->rejected_last) {
-      bs_select(m, kc, H);
-      m->kshort = m->k;
-    } else {
-      int jmin = kc;
-      for (int j = 2; j < kc; ++j)
-        if (m->err[j] <= 1.0) {
-          jmin = j;
-          break;
-        }
-      m->kshort = jmin + 1 < m->k ? jmin + 1 : m->k;
-    }
-    // the next step is limited by the interpolation error too
-    if (b >= 0 && !shortened)
-      m->H = fmin(m->H, H * bs_dense_fac(m->errint, m->dd[b].deg, BS_DENSE_TARGET));
-    m->rejected_last = 0;
+    bs_step_control(m, kc, H, shortened, b);
     nrej = 0;
-    m->f0_ok = 0;
-    int projected = 0, prev = m->cur;
-    // the dense data of the step are ready before dal__ode_accept (which calls the hook)
-    m->cur = b;
-    rc = dal__ode_accept(ig, t1, m->ynew, &projected);
-    if (ig->t != t1) {
-      // refused by the progress guard: the last step stays the one to read
-      m->cur = prev;
-      return rc;
-    }
-    // the compensation belongs to the accepted sum (a projection starts a new one)
-    double *sw = m->c;
-    m->c = m->cnew;
-    m->cnew = sw;
-    if (projected) memset(m->c, 0, (size_t)ig->ny * sizeof(double));
-    if (b >= 0 && !projected) {
-      // f(t1, y1) is the next step's f0
-      sw = m->f0;
-      m->f0 = m->f1;
-      m->f1 = sw;
-      m->f0_ok = 1;
-    }
-    // accepted, then stopped: by the hook (DAL__HOOK_STOP) or opts.max_steps
-    if (rc) return rc;
+    // stopped after the step: refused by the progress guard, or accepted and stopped by the
+    // hook (DAL__HOOK_STOP) or opts.max_steps
+    rc = bs_step_accept(ig, m, t1, b);
+    if (rc || ig->t != t1) return rc;
   }
   return DAL_OK;
 }
