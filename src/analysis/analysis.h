@@ -19,5 +19,11 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
 /// (equilibrium_manifold.c)
 double dal__newton_scale(const double *x, int n, int m, const double *q, double max_step,
                          double reach, double *big, int *far);
+/// take the scaled Newton step q += f x (n = sys->n entries) after dal__newton_scale (big,
+/// far, reach from it): DAL_E_CONV with the state's message when the step is not finite or
+/// sends a coordinate beyond reach, `singular` naming the nearly singular matrix; *conv: the
+/// largest change relative to 1 + |q_i|
+int dal__newton_apply(const dal_system *sys, dal_state *st, const double *x, double *q, double f,
+                      double big, int far, double reach, const char *singular, double *conv);
 
 #endif

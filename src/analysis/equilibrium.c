@@ -140,24 +140,11 @@ static int newton_step(const dal_system *sys, dal_state *st, const dal_equilibri
   double big = 0.0, conv = 0.0;
   int far = -1;
   double f = dal__newton_scale(w->x, n, 0, w->q, o->max_step, reach, &big, &far);
-  if (!isfinite(big))
-    return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", t);
-  // a step that leaves the start's neighbourhood (K nearly singular: a turning point of
-  // the potential) lands on no equilibrium the start was meant for (|q0| <= reach / 1e4)
-  if (far >= 0) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
-    return DAL_FAIL(st, DAL_E_CONV,
-                    "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
-                    "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the stiffness K "
-                    "is nearly singular there (a turning point of the potential); start closer "
-                    "to the equilibrium or bound the step (max_step)",
-                    t, qs, sys->coord_names[far], w->q[far] + f * w->x[far], reach);
-  }
-  for (int i = 0; i < n; ++i) {
-    w->q[i] += f * w->x[i];
-    conv = fmax(conv, fabs(f * w->x[i]) / (1.0 + fabs(w->q[i])));
-  }
+  int rc = dal__newton_apply(sys, st, w->x, w->q, f, big, far, reach,
+                             "the stiffness K is nearly singular there (a turning point of the "
+                             "potential)",
+                             &conv);
+  if (rc) return rc;
   *length = f * big;
   *step = conv <= o->xtol && f == 1.0 ? 0.0 : conv;
   return DAL_OK;

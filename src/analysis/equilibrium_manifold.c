@@ -66,6 +66,29 @@ double dal__newton_scale(const double *x, int n, int m, const double *q, double 
   return f;
 }
 
+int dal__newton_apply(const dal_system *sys, dal_state *st, const double *x, double *q, double f,
+                      double big, int far, double reach, const char *singular, double *conv) {
+  if (!isfinite(big))
+    return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", st->t);
+  // a step that leaves the start's neighbourhood lands on no equilibrium the start was meant
+  // for (|q0| <= reach / 1e4)
+  if (far >= 0) {
+    char qs[256];
+    dal__fmt_q(sys, st->q, qs, sizeof qs);
+    return DAL_FAIL(st, DAL_E_CONV,
+                    "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
+                    "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: %s; start "
+                    "closer to the equilibrium or bound the step (max_step)",
+                    st->t, qs, sys->coord_names[far], q[far] + f * x[far], reach, singular);
+  }
+  *conv = 0.0;
+  for (int i = 0; i < sys->n; ++i) {
+    q[i] += f * x[i];
+    *conv = fmax(*conv, fabs(f * x[i]) / (1.0 + fabs(q[i])));
+  }
+  return DAL_OK;
+}
+
 // the Newton workspace on the manifold: the KKT matrix J (nk x nk), the step x (nk), the
 // coordinates q, the zero velocity, the multipliers lam; reach bounds |q_i|
 typedef struct mf_ws {
@@ -117,25 +140,11 @@ static int mf_step(const dal_system *sys, dal_state *st, const dal_equilibrium_o
   double *x = w->x, *q = w->q, big = 0.0;
   int far = -1;
   double f = dal__newton_scale(x, n, m, q, o->max_step, w->reach, &big, &far);
-  if (!isfinite(big))
-    return DAL_FAIL(st, DAL_E_CONV, "equilibrium: non-finite Newton step at t=%.17g", st->t);
-  // a step that leaves the start's neighbourhood lands on no equilibrium the start was
-  // meant for (the Newton matrix is nearly singular there)
-  if (far >= 0) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
-    return DAL_FAIL(st, DAL_E_CONV,
-                    "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
-                    "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: the Newton "
-                    "matrix on the constraint manifold is nearly singular there; start closer "
-                    "to the equilibrium or bound the step (max_step)",
-                    st->t, qs, sys->coord_names[far], q[far] + f * x[far], w->reach);
-  }
-  *conv = 0.0;
-  for (int i = 0; i < n; ++i) {
-    q[i] += f * x[i];
-    *conv = fmax(*conv, fabs(f * x[i]) / (1.0 + fabs(q[i])));
-  }
+  int rc = dal__newton_apply(sys, st, x, q, f, big, far, w->reach,
+                             "the Newton matrix on the constraint manifold is nearly singular "
+                             "there",
+                             conv);
+  if (rc) return rc;
   for (int i = 0; i < m; ++i)
     w->lam[i] += f * x[n + i];
   r->iterations = it;
