@@ -259,9 +259,62 @@ static void test_tight_irregular(void) {
   dal_system_destroy(s);
 }
 
+static int reads_nothing(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  (void)st;
+  (void)ctx;
+  return 0;
+}
+
+// a run with a monitor against one without (solve.h, dal_evolve): without a monitor evolve is
+// dal_advance's run bit for bit; DOPRI5 and Fehlberg 7(8) take the same steps with one;
+// Bulirsch-Stoer (dense mode) and CVODE's methods end within the tolerance of it
+static void test_monitor_or_not(void) {
+  const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,
+                           DAL_METHOD_ADAMS, DAL_METHOD_BDF};
+  const double rtol = 1e-9;
+  dal_system *s = scn_pendulum(NULL);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(s, &st));
+  for (size_t k = 0; k < sizeof ms / sizeof ms[0]; ++k) {
+    double q[3], v[3];
+    long steps[3];
+    for (int r = 0; r < 3; ++r) {
+      double q0 = 2.0, v0 = 0.0;
+      CHECK_OK(dal_state_set(s, st, 0.0, &q0, &v0));
+      dal_solve_opts o = dal_default_solve_opts();
+      o.method = ms[k];
+      o.rtol = o.atol = rtol;
+      int rc = r == 0   ? dal_advance(s, st, &o, 10.0)
+               : r == 1 ? dal_evolve(s, st, &o, 10.0, 0.1, NULL, NULL)
+                        : dal_evolve(s, st, &o, 10.0, 0.1, reads_nothing, NULL);
+      CHECK_MSG(rc == DAL_OK, "%s run %d: %s", dal_method_name(ms[k]), r, dal_state_errmsg(st));
+      q[r] = dal_state_q(st)[0];
+      v[r] = dal_state_qdot(st)[0];
+      dal_stats sts;
+      dal_state_stats(st, &sts);
+      steps[r] = sts.steps;
+    }
+    CHECK_MSG(q[1] == q[0] && v[1] == v[0] && steps[1] == steps[0],
+              "%s: evolve without a monitor is not dal_advance's run", dal_method_name(ms[k]));
+    int same = ms[k] == DAL_METHOD_DOPRI5 || ms[k] == DAL_METHOD_FEHLBERG78;
+    if (same)
+      CHECK_MSG(q[2] == q[0] && v[2] == v[0] && steps[2] == steps[0],
+                "%s: a monitor changed the steps", dal_method_name(ms[k]));
+    else
+      CHECK_MSG(fabs(q[2] - q[0]) <= 16 * rtol * (1 + fabs(q[0])),
+                "%s: with a monitor %.17g, without %.17g", dal_method_name(ms[k]), q[2], q[0]);
+    printf("monitor or not, %-12s steps %ld / %ld, |dq| %.2g\n", dal_method_name(ms[k]), steps[0],
+           steps[2], fabs(q[2] - q[0]));
+  }
+  dal_state_destroy(st);
+  dal_system_destroy(s);
+}
+
 int main(void) {
   test_adaptive();
   test_fixed();
   test_tight_irregular();
+  test_monitor_or_not();
   return check_summary("test_dense");
 }
