@@ -195,7 +195,7 @@ struct dal_state {
   const dal_system *sys;
   dal_params prm; // per-trajectory parameters (params.c)
   double t;
-  double *q, *qdot, *qddot;                 // n
+  double *q, *qdot, *qddot;                 // n; q and qdot one block (qdot = q + n)
   double *r, *v, *a, *drdt, *gamma, *F, *N; // N x d
   double *J;                                // compact per particle
   double *M;                                // n x n (dense_M) or NULL
@@ -310,6 +310,12 @@ const char *dal__builtin_param_check(const dal_primitive *prim, const double *pa
 int dal__eval(const dal_system *sys, dal_state *st, unsigned need);
 /// Kinematics and constraint rows at the state's (t, q, qdot) (no dynamics).
 int dal__eval_constraints(const dal_system *sys, dal_state *st);
+/// a slow path kept out of line, so that the fast path that calls it saves no registers
+#if defined(__GNUC__)
+#define DAL__COLD __attribute__((cold, noinline))
+#else
+#define DAL__COLD
+#endif
 /// the state's (t, q, qdot) changed: no product is current any more
 static inline void dal__state_moved(dal_state *st) { st->have = 0; }
 

@@ -223,6 +223,7 @@ typedef struct run {
   long k, K;           // next output index
   const double *times; // evolve_at: the output times times[0 .. K] instead of the grid
   double last_out;     // time of the last output served
+  double tnext;        // the next output time (out_time), +inf when all are served
   dal_monitor_fn *monitor;
   void *ctx;
   dal_events *ev; // attached events with at least one event, or NULL
@@ -258,12 +259,9 @@ static int place_end(void *p, double t) {
   return it->ops->place_end(it);
 }
 
-// run the monitor at the state's time; 1 = stop requested (ok), negative = failure
-static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
-  if (!monitor) return 0;
-  st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
-  st->lazy_rc = 0;
-  int mr = monitor(sys, st, ctx);
+// the outcome of a monitor that returned mr != 0 or saw a failing evaluation (its message in
+// the state); 1 = stop requested (ok), negative = failure
+static DAL__COLD int monitor_outcome(dal_state *st, int mr) {
   // a state the monitor could not have evaluated (it saw NULL products) fails the run there
   int rc = dal__lazy_end(st, "the output time");
   if (rc) return rc;
@@ -284,6 +282,16 @@ static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *mo
   return 0;
 }
 
+// run the monitor at the state's time; 1 = stop requested (ok), negative = failure
+static int call_monitor(const dal_system *sys, dal_state *st, dal_monitor_fn *monitor, void *ctx) {
+  if (!monitor) return 0;
+  st->err[0] = 0; // a monitor of the library (dal_csv_monitor) leaves its reason here
+  st->lazy_rc = 0;
+  int mr = monitor(sys, st, ctx);
+  st->lazy = 0;
+  return mr || st->lazy_rc ? monitor_outcome(st, mr) : 0;
+}
+
 // the state where the run stops, evaluated there; keeps the message already set
 static int stop_here(run *r, int status) {
   char msg[DAL_ERRMSG_LEN];
@@ -300,20 +308,33 @@ static int stop_here(run *r, int status) {
   return DAL__HOOK_STOP;
 }
 
-// serve output time t (inside the step just taken, or the state's own time when at_state)
-static int serve_output(run *r, double t, int at_state) {
+// the output at time t is in the state (placed inside the step just taken, or the state's own
+// time when at_state): the next output time, then the monitor
+static inline int output_done(run *r, double t, int at_state) {
   dal_state *st = r->st;
-  int rc = at_state ? DAL_OK : place(r, t);
-  if (rc) return r->status = rc;
   r->last_out = t;
   r->k++;
-  if (r->h) r->h->it->ops->new_output(r->h->it); // opts.max_steps per output
+  // the next output time (inside the grid directly)
+  r->tnext = !r->times && r->k < r->K ? r->t0 + (double)r->k * r->dt : out_time(r);
+  // opts.max_steps per output (after_step tells the integrator once per step)
+  if (at_state && r->h) r->h->it->ops->new_output(r->h->it);
   if (!r->monitor) return DAL_OK;
   // the monitor reads the state; products are evaluated on its first read (dal__lazy_eval)
   st->lazy = !at_state;
   int mr = call_monitor(r->sys, st, r->monitor, r->ctx);
   if (mr == 0) return DAL_OK;
   return stop_here(r, mr > 0 ? DAL_STOPPED : mr);
+}
+
+// serve the output at the state's own time
+static int serve_output(run *r) { return output_done(r, r->st->t, 1); }
+
+// serve the next output time, inside the step just taken
+static int serve_next(run *r) {
+  dal_integ *it = r->h->it;
+  int rc = it->ops->place(it, r->tnext);
+  if (rc) return r->status = rc;
+  return output_done(r, r->tnext, 0);
 }
 
 // after every accepted step [a, b]: the outputs and event crossings inside it, in time order
@@ -343,13 +364,13 @@ static int after_step(void *p) {
     }
     np = dal__events_npending(r->ev);
   }
+  long k0 = r->k;
   for (;;) {
-    double to = out_time(r), te = kp < np ? dal__events_pending(r->ev, kp)->t : INFINITY;
-    if (to > b && te > b) break;
-    if (to <= te) {
-      if ((rc = serve_output(r, to, 0)) != 0) return rc;
-      continue;
-    }
+    double te = kp < np ? dal__events_pending(r->ev, kp)->t : INFINITY, lim = te < b ? te : b;
+    // the outputs up to the next event crossing (an output first at a tie) or the step's end
+    while (r->tnext <= lim)
+      if ((rc = serve_next(r)) != 0) return rc;
+    if (!(te <= b)) break;
     const dal__pending *e = dal__events_pending(r->ev, kp++);
     if ((rc = place(r, e->t)) != 0 || (rc = dal__events_record(r->ev, st, e->event, e->dir)) != 0)
       return r->status = rc;
@@ -359,6 +380,8 @@ static int after_step(void *p) {
       return stop_here(r, DAL_EVENT);
     }
   }
+  // opts.max_steps counts from the last output
+  if (r->k != k0) r->h->it->ops->new_output(r->h->it);
   return DAL_OK;
 }
 
@@ -469,7 +492,13 @@ int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   int rc = check_call(sys, st, opts, t1, "advance");
   if (rc) return rc;
   dal_solve_opts eff = dal__effective_opts(opts);
-  run r = {.sys = sys, .st = st, .o = &eff, .what = "advance", .t1 = t1, .ev = active_events(st)};
+  run r = {.sys = sys,
+           .st = st,
+           .o = &eff,
+           .what = "advance",
+           .t1 = t1,
+           .tnext = INFINITY,
+           .ev = active_events(st)};
   // the state (and its events) belong to the run until it returns (dal__check_idle refuses
   // its callbacks)
   st->busy = 1;
@@ -564,6 +593,7 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
            .ev = active_events(st)};
   int rc = os->list ? list_setup(&r, os->times, os->n) : grid_setup(&r, os->dt);
   if (rc) return rc;
+  r.tnext = out_time(&r);
   // the start (made consistent first in redundant coordinates), evaluated
   if ((rc = run_to(&r, t0)) != 0) return rc;
   // an interval of a few ulps that cannot be integrated is refused before any output
@@ -571,12 +601,12 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
       (rc = check_unresolved(sys, st, &eff, t1, "evolve")))
     return rc;
   // the output times at the start (the grid's first), then the steps serve the others
-  while (out_time(&r) <= st->t)
-    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  while (r.tnext <= st->t)
+    if ((rc = serve_output(&r)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   if (t1 > st->t && (rc = run_to(&r, t1)) != 0) return rc;
   // outputs the steps did not reach (t1 itself after a step of a few ulps): the final state
-  while (out_time(&r) <= t1)
-    if ((rc = serve_output(&r, st->t, 1)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
+  while (r.tnext <= t1)
+    if ((rc = serve_output(&r)) != 0) return rc == DAL__HOOK_STOP ? r.status : rc;
   return DAL_OK;
 }
 

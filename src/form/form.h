@@ -97,6 +97,10 @@ typedef struct dal_ode_problem {
   /// form adds its own error: measured 30 x rtol with DOPRI5's factor alone, 0.2 brings it
   /// under 16)
   double tol_factor;
+  /// 1: y is (q, qdot) exactly as the state holds them (its one block q, qdot = q + n) and
+  /// to_state only copies t and y and marks the state moved; dense output may then write
+  /// straight into st->q
+  int state_layout;
 } dal_ode_problem;
 /// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (form_minimal.c)
 extern const dal_ode_problem dal__problem_minimal;

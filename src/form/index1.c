@@ -115,4 +115,5 @@ const dal_ode_problem dal__problem_index1 = {
     .from_state = index1_from_state,
     .to_state = index1_to_state,
     .tol_factor = 0.2,
+    .state_layout = 1,
 };

@@ -44,4 +44,5 @@ const dal_ode_problem dal__problem_minimal = {
     .from_state = minimal_from_state,
     .to_state = minimal_to_state,
     .tol_factor = 1.0,
+    .state_layout = 1,
 };

@@ -37,14 +37,7 @@ static void ode_window(const dal_integ *it, double *t0, double *t1) {
   *t1 = ig->t;
 }
 
-static int ode_place(dal_integ *it, double t) {
-  dal_ode_integ *ig = it->impl;
-  int rc = dal__ode_interp(ig, t, it->yi);
-  if (rc) return rc;
-  dal__ode_to_state(ig, t, it->yi);
-  dal__state_moved(it->st);
-  return DAL_OK;
-}
+static int ode_place(dal_integ *it, double t) { return dal__ode_place(it->impl, t); }
 
 static int ode_place_end(dal_integ *it) {
   dal_ode_integ *ig = it->impl;
@@ -197,6 +190,9 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   it->traj_pieces = it->method == DAL_METHOD_BS ? 4 : 1;
   if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  // dense output straight into the state's (q, qdot) where y has its layout
+  ig->place_direct = prob->state_layout && !o->work;
+  ig->yplace = ig->place_direct ? st->q : it->yi;
   const dal_method_row *mr = dal__method_row(it->method);
   if (mr && o->rtol < mr->min_rtol)
     snprintf(it->note, sizeof it->note,

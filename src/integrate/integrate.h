@@ -67,8 +67,14 @@ struct dal_ode_integ {
   /// after-step hook (NULL: none): 0 to go on, DAL__HOOK_STOP to stop, negative to fail
   int (*hook)(void *ctx);
   void *hook_ctx;
+  /// where dal__ode_place writes y (borrowed): the state's (q, qdot) block itself when
+  /// place_direct (the problem has the state's layout, dal_ode_problem.state_layout, and no
+  /// work W is integrated), else a scratch of ny that the problem's to_state copies
+  double *yplace;
+  int place_direct;
   double *hf0, *hf1; ///< Hermite fallback: f at tprev and t (ny each)
-  int hvalid;        ///< bit 0: hf0 is current for this step, bit 1: hf1
+  double *hc;        ///< Hermite fallback: the step's cubic, 4 coefficients per component
+  int hvalid;        ///< bit 0: hf0 is current for this step, bit 1: hf1, bit 2: hc
   /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
   /// last stage of an FSAL method); NULL: evaluated
   int (*end_slope)(dal_ode_integ *ig, double *f);
@@ -84,6 +90,9 @@ struct dal_ode_integ {
 /// y at t in [ig->tprev, ig->t] into yout: the method's interpolant, or the cubic Hermite
 /// fallback (two right-hand sides per step, evaluated on first use) (ode.c)
 int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
+/// the state's (t, q, qdot, W) at t in [ig->tprev, ig->t] from dal__ode_interp (through
+/// ig->yplace; not evaluated); 0 or a negative status (ode.c)
+int dal__ode_place(dal_ode_integ *ig, double t);
 /// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
 /// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
 int dal__ode_start_slope(dal_ode_integ *ig);

@@ -259,6 +259,7 @@ void dal__ode_destroy(void *p) {
   free(ig->yprev);
   free(ig->hf0);
   free(ig->hf1);
+  free(ig->hc);
   free(ig);
 }
 
@@ -292,8 +293,9 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   ig->yprev = calloc(ny, sizeof(double));
   ig->hf0 = calloc(ny, sizeof(double));
   ig->hf1 = calloc(ny, sizeof(double));
+  ig->hc = calloc(4 * ny, sizeof(double));
   ig->tprev = ig->t;
-  if (!ig->y || !ig->ydot || !ig->ewt || !ig->yprev || !ig->hf0 || !ig->hf1) {
+  if (!ig->y || !ig->ydot || !ig->ewt || !ig->yprev || !ig->hf0 || !ig->hf1 || !ig->hc) {
     dal__ode_destroy(ig);
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   }
@@ -340,21 +342,40 @@ int dal__ode_end_slope(dal_ode_integ *ig) {
   return DAL_OK;
 }
 
-static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
-  double h = ig->t - ig->tprev;
+// the cubic in s = (t - tprev) / h, once per step: with d = y1 - y0, a = h f0, b = h f1,
+// y(s) = y0 + s (a + s ((3 d - 2 a - b) + s (a + b - 2 d))), coefficients interleaved per
+// component (hc[4 i .. 4 i + 3])
+static int hermite_coeffs(dal_ode_integ *ig) {
   int rc = dal__ode_start_slope(ig);
   if (!rc) rc = dal__ode_end_slope(ig);
   if (rc) return rc;
-  double s = (t - ig->tprev) / h, s1 = s - 1.0;
+  double h = ig->t - ig->tprev;
   for (int i = 0; i < ig->ny; ++i) {
-    double y0 = ig->yprev[i], y1 = ig->y[i], d = y1 - y0;
-    yout[i] =
-        y0 + s * d + s * s1 * ((1.0 - 2.0 * s) * d + s1 * h * ig->hf0[i] + s * h * ig->hf1[i]);
+    double y0 = ig->yprev[i], d = ig->y[i] - y0, a = h * ig->hf0[i], b = h * ig->hf1[i];
+    double *c = ig->hc + 4 * (size_t)i;
+    c[0] = y0;
+    c[1] = a;
+    c[2] = 3.0 * d - 2.0 * a - b;
+    c[3] = a + b - 2.0 * d;
   }
+  ig->hvalid |= 4;
   return DAL_OK;
 }
 
-int dal__ode_interp(dal_ode_integ *ig, double t, double *yout) {
+static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
+  if (!(ig->hvalid & 4)) {
+    int rc = hermite_coeffs(ig);
+    if (rc) return rc;
+  }
+  // Horner per output
+  double s = (t - ig->tprev) / (ig->t - ig->tprev);
+  const double *c = ig->hc;
+  for (int i = 0; i < ig->ny; ++i, c += 4)
+    yout[i] = c[0] + s * (c[1] + s * (c[2] + s * c[3]));
+  return DAL_OK;
+}
+
+static inline int ode_interp(dal_ode_integ *ig, double t, double *yout) {
   // the step's ends are the accepted values themselves (projected where the form projects)
   if (t >= ig->t || ig->t == ig->tprev) {
     memcpy(yout, ig->y, (size_t)ig->ny * sizeof(double));
@@ -365,4 +386,35 @@ int dal__ode_interp(dal_ode_integ *ig, double t, double *yout) {
     return DAL_OK;
   }
   return ig->interp ? ig->interp(ig, t, yout) : ode_hermite(ig, t, yout);
+}
+
+int dal__ode_interp(dal_ode_integ *ig, double t, double *yout) { return ode_interp(ig, t, yout); }
+
+// dal__ode_place where the fast path does not apply: an end of the step, the method's own
+// interpolant, the step's first Hermite output, or y copied by the problem
+static DAL__COLD int ode_place_slow(dal_ode_integ *ig, double t) {
+  int rc = ode_interp(ig, t, ig->yplace);
+  if (rc) return rc;
+  // y is in the state's (q, qdot) already, or copied there by the problem
+  dal_state *st = ig->st;
+  if (ig->place_direct)
+    st->t = t;
+  else
+    dal__ode_to_state(ig, t, ig->yplace);
+  dal__state_moved(st);
+  return DAL_OK;
+}
+
+int dal__ode_place(dal_ode_integ *ig, double t) {
+  if (!((ig->hvalid & 4) && ig->place_direct && t > ig->tprev && t < ig->t))
+    return ode_place_slow(ig, t);
+  // inside the step, its Hermite cubic built: straight into the state's (q, qdot) (the same
+  // Horner sum as ode_hermite)
+  double s = (t - ig->tprev) / (ig->t - ig->tprev), *y = ig->yplace;
+  const double *c = ig->hc;
+  for (int i = 0; i < ig->ny; ++i, c += 4)
+    y[i] = c[0] + s * (c[1] + s * (c[2] + s * c[3]));
+  ig->st->t = t;
+  dal__state_moved(ig->st);
+  return DAL_OK;
 }

@@ -19,8 +19,10 @@ int dal_state_create(const dal_system *sys, dal_state **out) {
   size_t n = (size_t)sys->n, Nd = (size_t)sys->N * (size_t)sys->dim, m = (size_t)sys->m;
   st->sys = sys;
   dal__params_init(st);
-  st->q = calloc(n, sizeof(double));
-  st->qdot = calloc(n, sizeof(double));
+  // (q, qdot) in one block, the layout of y in the minimal and index-1 forms: their dense
+  // output writes straight into it
+  st->q = calloc(2 * n + 1, sizeof(double));
+  st->qdot = st->q ? st->q + n : NULL;
   st->qddot = calloc(n, sizeof(double));
   st->Q = calloc(n, sizeof(double));
   st->c = calloc(n, sizeof(double));
@@ -78,10 +80,10 @@ void dal_state_destroy(dal_state *st) {
   if (!st) return;
   dal__integ_reset(st);
   dal__params_free(st);
-  double *d[] = {st->q,   st->qdot, st->qddot,  st->Q,     st->c,      st->work, st->r,
-                 st->v,   st->a,    st->drdt,   st->gamma, st->F,      st->N,    st->J,
-                 st->M,   st->L,    st->lambda, st->phi,   st->phidot, st->gphi, st->G,
-                 st->loc, st->Lc,   st->cf,     st->Lp,    st->Gl,     st->dir,  st->phit};
+  double *d[] = {st->q,  st->qddot,  st->Q,     st->c,      st->work, st->r,   st->v,
+                 st->a,  st->drdt,   st->gamma, st->F,      st->N,    st->J,   st->M,
+                 st->L,  st->lambda, st->phi,   st->phidot, st->gphi, st->G,   st->loc,
+                 st->Lc, st->cf,     st->Lp,    st->Gl,     st->dir,  st->phit};
   for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i)
     free(d[i]);
   free(st->jin);
