@@ -310,10 +310,13 @@ const char *dal__builtin_param_check(const dal_primitive *prim, const double *pa
 int dal__eval(const dal_system *sys, dal_state *st, unsigned need);
 /// Kinematics and constraint rows at the state's (t, q, qdot) (no dynamics).
 int dal__eval_constraints(const dal_system *sys, dal_state *st);
-/// a slow path kept out of line, so that the fast path that calls it saves no registers
+/// a path kept out of line, so that the fast path that calls it saves no registers (COLD: a
+/// rare one, also optimized for size)
 #if defined(__GNUC__)
+#define DAL__NOINLINE __attribute__((noinline))
 #define DAL__COLD __attribute__((cold, noinline))
 #else
+#define DAL__NOINLINE
 #define DAL__COLD
 #endif
 /// the state's (t, q, qdot) changed: no product is current any more

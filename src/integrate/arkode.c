@@ -39,11 +39,19 @@ typedef struct erk_mem {
   double ct0, ct1;             // the step it was built for
   long n_hist, n_mid, n_inner; // steps served by each of fehlberg_build's interpolants
   long nfe_base, netf_base;    // counters already added to the state's statistics
+  // the last right-hand side ARKODE asked for: its time and vectors (borrowed from ARKODE)
+  double last_t;
+  const double *last_y, *last_f;
 } erk_mem;
 
 static int erk_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
   dal_ode_integ *ig = ud;
-  return dal__ode_rhs(ig, t, N_VGetArrayPointer(y), N_VGetArrayPointer(ydot));
+  erk_mem *m = ig->impl;
+  double *f = N_VGetArrayPointer(ydot);
+  m->last_t = t;
+  m->last_y = N_VGetArrayPointer(y);
+  m->last_f = f;
+  return dal__ode_rhs(ig, t, m->last_y, f);
 }
 
 static void erk_free(void *p) {
@@ -174,11 +182,19 @@ static int erk_set_fehlberg(void *ark) {
 // interpolation module keeps; the driver's cubic Hermite (ode.c) is its dense output
 static int erk_end_slope(dal_ode_integ *ig, double *f) {
   erk_mem *m = ig->impl;
+  size_t bytes = (size_t)ig->ny * sizeof(double);
+  // DOPRI5's last stage is evaluated at the step's end (its last row of A is b): when that
+  // was ARKODE's last call and succeeded, its slope is the one the interpolation module keeps
+  if (ig->method == DAL_METHOD_DOPRI5 && m->last_f && m->last_t == ig->t && ig->rhs_rc == 0 &&
+      memcmp(m->last_y, ig->y, bytes) == 0) {
+    memcpy(f, m->last_f, bytes);
+    return DAL_OK;
+  }
   int flag = ERKStepGetDky(m->ark, ig->t, 1, m->v.dky);
   if (flag != ARK_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER, "ARKODE could not give the slope at t=%.17g (code %d)",
                     ig->t, flag);
-  memcpy(f, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
+  memcpy(f, N_VGetArrayPointer(m->v.dky), bytes);
   return DAL_OK;
 }
 

@@ -392,7 +392,7 @@ int dal__ode_interp(dal_ode_integ *ig, double t, double *yout) { return ode_inte
 
 // dal__ode_place where the fast path does not apply: an end of the step, the method's own
 // interpolant, the step's first Hermite output, or y copied by the problem
-static DAL__COLD int ode_place_slow(dal_ode_integ *ig, double t) {
+static DAL__NOINLINE int ode_place_slow(dal_ode_integ *ig, double t) {
   int rc = ode_interp(ig, t, ig->yplace);
   if (rc) return rc;
   // y is in the state's (q, qdot) already, or copied there by the problem
