@@ -311,7 +311,77 @@ static void test_monitor_or_not(void) {
   dal_system_destroy(s);
 }
 
+// A particle driven by the generalized force Q(t) = (6 t - 4, -1.5 t) (unit mass, no gravity)
+// moves on the cubics x = t^3 - 2 t^2 + t / 2 + 1, y = -t^3 / 4 + t: DOPRI5 (order 5) and RK4
+// (order 4) step exactly to rounding, and the cubic Hermite through y and f at both ends of a
+// step is the solution itself, so every output between the steps matches the closed form to
+// rounding (a wrong coefficient, a slope from the wrong stage would be off by the step's
+// error). With opts.work the outputs are copied into the state, without they are written
+// straight into it: both placements are checked.
+static int cubic_force(double t, const double *q, const double *qdot, double *Q, void *ctx) {
+  (void)q, (void)qdot, (void)ctx;
+  Q[0] = 6.0 * t - 4.0;
+  Q[1] = -1.5 * t;
+  return 0;
+}
+
+typedef struct cubic_err {
+  double err;
+  int n;
+} cubic_err;
+
+static int cubic_mon(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  cubic_err *c = ctx;
+  double t = dal_state_time(st);
+  const double x[4] = {((t - 2.0) * t + 0.5) * t + 1.0, (-0.25 * t * t + 1.0) * t,
+                       (3.0 * t - 4.0) * t + 0.5, -0.75 * t * t + 1.0};
+  const double *q = dal_state_q(st), *v = dal_state_qdot(st);
+  const double got[4] = {q[0], q[1], v[0], v[1]};
+  for (int i = 0; i < 4; ++i)
+    c->err = fmax(c->err, fabs(got[i] - x[i]) / (1.0 + fabs(x[i])));
+  c->n++;
+  return 0;
+}
+
+static void test_cubic_exact(void) {
+  scn_knobs k = scn_weightless();
+  dal_builder *b = NULL;
+  int p = -1, rc = scn_builder(&k, 2, &b);
+  if (!rc) rc = scn_add_xy(b, "p", 1.0, "x", "y", &p);
+  if (!rc) rc = dal_builder_add_genforce(b, cubic_force, NULL);
+  dal_system *s = scn_finish(b, rc);
+  dal_state *st = NULL;
+  CHECK(s && dal_state_create(s, &st) == 0);
+  if (!st) {
+    dal_system_destroy(s);
+    return;
+  }
+  static const dal_method ms[] = {DAL_METHOD_DOPRI5, DAL_METHOD_RK4};
+  for (int mi = 0; mi < 2; ++mi)
+    for (int work = 0; work < 2; ++work) {
+      double q[2] = {1.0, 0.0}, v[2] = {0.5, 1.0};
+      CHECK_OK(dal_state_set(s, st, 0.0, q, v));
+      dal_solve_opts o = dal_default_solve_opts();
+      o.method = ms[mi];
+      o.work = work;
+      o.fixed_step = 0.37; // RK4: outputs every 0.01 fall inside its steps
+      cubic_err c = {0, 0};
+      CHECK_OK(dal_evolve(s, st, &o, 3.0, 0.01, cubic_mon, &c));
+      dal_stats sts;
+      dal_state_stats(st, &sts);
+      CHECK_MSG(c.n == 301 && c.err < 1e-14,
+                "%s (work %d): %d outputs, largest relative deviation from the cubic %.3g",
+                dal_method_name(ms[mi]), work, c.n, c.err);
+      printf("cubic, %-6s work %d: %ld steps, %d outputs, relative deviation %.2g\n",
+             dal_method_name(ms[mi]), work, sts.steps, c.n, c.err);
+    }
+  dal_state_destroy(st);
+  dal_system_destroy(s);
+}
+
 int main(void) {
+  test_cubic_exact();
   test_adaptive();
   test_fixed();
   test_tight_irregular();
