@@ -536,6 +536,36 @@ static int cmd_rules(const char *path) {
     printf("| %s | %.3f (%s, %.0e) | %s | %.3f (%s, %.0e) |\n", cls, now, sc[wn / NBAND].name,
            bands[wn % NBAND], text, r.worst, sc[r.where / NBAND].name, bands[r.where % NBAND]);
   }
+  // what the atol rule does on its own: per method, cost with atol = 1e-2 rtol over cost with
+  // atol = rtol at the same error band, over every scene and band
+  printf("\n| method | atol = 1e-2 rtol over atol = rtol at equal error: median | min | max | "
+         "cells |\n|---|---:|---:|---:|---:|\n");
+  for (int c = 0; c < NCONF; c += 2) {
+    double r[COUNT(scenes_full) * NBAND];
+    int nr = 0;
+    for (int i = 0; i < ns; ++i) {
+      pt c0[RMAX], c1[RMAX];
+      memset(c0, 0, sizeof c0);
+      memset(c1, 0, sizeof c1);
+      for (int k = 0; k < L; ++k) {
+        if (sc[i].at[c][k]) c0[k] = *sc[i].at[c][k];
+        if (sc[i].at[c + 1][k]) c1[k] = *sc[i].at[c + 1][k];
+      }
+      for (int b = 0; b < NBAND; ++b) {
+        double r0 = 0, x = cost_at(c1, L, bands[b], &r0) / cost_at(c0, L, bands[b], &r0);
+        if (isfinite(x)) r[nr++] = x;
+      }
+    }
+    for (int a = 1; a < nr; ++a) // insertion sort: a few dozen cells
+      for (int b = a; b > 0 && r[b] < r[b - 1]; --b) {
+        double t = r[b];
+        r[b] = r[b - 1];
+        r[b - 1] = t;
+      }
+    if (nr > 0)
+      printf("| %s | %.3f | %.2f | %.2f | %d |\n", conf_meth[c / 2],
+             nr % 2 ? r[nr / 2] : 0.5 * (r[nr / 2 - 1] + r[nr / 2]), r[0], r[nr - 1], nr);
+  }
   free(sc);
   free(p);
   return 0;
