@@ -15,7 +15,8 @@
 
 #define G0 SCN_G
 
-// the worst deviation from the closed form over the outputs, and their count
+// the worst deviation from the closed form over the outputs, and their count (th0, cart: the
+// pendulum's)
 typedef struct cmp {
   double th0, err;
   int cart, n;
@@ -325,14 +326,9 @@ static int cubic_force(double t, const double *q, const double *qdot, double *Q,
   return 0;
 }
 
-typedef struct cubic_err {
-  double err;
-  int n;
-} cubic_err;
-
 static int cubic_mon(const dal_system *sys, const dal_state *st, void *ctx) {
   (void)sys;
-  cubic_err *c = ctx;
+  cmp *c = ctx;
   double t = dal_state_time(st);
   const double x[4] = {((t - 2.0) * t + 0.5) * t + 1.0, (-0.25 * t * t + 1.0) * t,
                        (3.0 * t - 4.0) * t + 0.5, -0.75 * t * t + 1.0};
@@ -366,7 +362,7 @@ static void test_cubic_exact(void) {
       o.method = ms[mi];
       o.work = work;
       o.fixed_step = 0.37; // RK4: outputs every 0.01 fall inside its steps
-      cubic_err c = {0, 0};
+      cmp c = {0, 0, 0, 0};
       CHECK_OK(dal_evolve(s, st, &o, 3.0, 0.01, cubic_mon, &c));
       dal_stats sts;
       dal_state_stats(st, &sts);
