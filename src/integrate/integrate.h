@@ -60,7 +60,7 @@ struct dal_ode_integ {
   double tprev;  ///< start of the last accepted step (= t before the first step)
   double *yprev; ///< y at tprev (ny): kept by dal__ode_accept for the Hermite fallback
   /// y at any t in [tprev, t] into yout (ny) from the method's own interpolant, accurate to
-  /// the method's tolerance; NULL: the cubic Hermite of dal__ode_hermite (ode.c) is used.
+  /// the method's tolerance; NULL: the cubic Hermite of ode_hermite (ode.c) is used.
   /// Returns 0 or a negative status. Must not change the integration (no state of the method
   /// is touched); may use ig->st as workspace.
   int (*interp)(dal_ode_integ *ig, double t, double *yout);
@@ -87,11 +87,10 @@ struct dal_ode_integ {
 /// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)
 #define DAL__HOOK_STOP 1000
 
-/// y at t in [ig->tprev, ig->t] into yout: the method's interpolant, or the cubic Hermite
-/// fallback (two right-hand sides per step, evaluated on first use) (ode.c)
-int dal__ode_interp(dal_ode_integ *ig, double t, double *yout);
-/// the state's (t, q, qdot, W) at t in [ig->tprev, ig->t] from dal__ode_interp (through
-/// ig->yplace; not evaluated); 0 or a negative status (ode.c)
+/// the state's (t, q, qdot, W) at t in [ig->tprev, ig->t] (not evaluated): the accepted values
+/// at the step's ends, inside it the method's interpolant or the cubic Hermite fallback (two
+/// right-hand sides per step, evaluated on first use; its coefficients once per step), through
+/// ig->yplace; 0 or a negative status (ode.c)
 int dal__ode_place(dal_ode_integ *ig, double t);
 /// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
 /// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status

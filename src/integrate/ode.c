@@ -362,20 +362,25 @@ static int hermite_coeffs(dal_ode_integ *ig) {
   return DAL_OK;
 }
 
+// the step's cubic at t (hermite_coeffs done): Horner per output
+static inline void hermite_horner(const dal_ode_integ *ig, double t, double *yout) {
+  double s = (t - ig->tprev) / (ig->t - ig->tprev);
+  const double *c = ig->hc;
+  for (int i = 0; i < ig->ny; ++i, c += 4)
+    yout[i] = c[0] + s * (c[1] + s * (c[2] + s * c[3]));
+}
+
 static int ode_hermite(dal_ode_integ *ig, double t, double *yout) {
   if (!(ig->hvalid & 4)) {
     int rc = hermite_coeffs(ig);
     if (rc) return rc;
   }
-  // Horner per output
-  double s = (t - ig->tprev) / (ig->t - ig->tprev);
-  const double *c = ig->hc;
-  for (int i = 0; i < ig->ny; ++i, c += 4)
-    yout[i] = c[0] + s * (c[1] + s * (c[2] + s * c[3]));
+  hermite_horner(ig, t, yout);
   return DAL_OK;
 }
 
-static inline int ode_interp(dal_ode_integ *ig, double t, double *yout) {
+// y at t in [tprev, t] into yout
+static int ode_interp(dal_ode_integ *ig, double t, double *yout) {
   // the step's ends are the accepted values themselves (projected where the form projects)
   if (t >= ig->t || ig->t == ig->tprev) {
     memcpy(yout, ig->y, (size_t)ig->ny * sizeof(double));
@@ -387,8 +392,6 @@ static inline int ode_interp(dal_ode_integ *ig, double t, double *yout) {
   }
   return ig->interp ? ig->interp(ig, t, yout) : ode_hermite(ig, t, yout);
 }
-
-int dal__ode_interp(dal_ode_integ *ig, double t, double *yout) { return ode_interp(ig, t, yout); }
 
 // dal__ode_place where the fast path does not apply: an end of the step, the method's own
 // interpolant, the step's first Hermite output, or y copied by the problem
@@ -408,12 +411,8 @@ static DAL__NOINLINE int ode_place_slow(dal_ode_integ *ig, double t) {
 int dal__ode_place(dal_ode_integ *ig, double t) {
   if (!((ig->hvalid & 4) && ig->place_direct && t > ig->tprev && t < ig->t))
     return ode_place_slow(ig, t);
-  // inside the step, its Hermite cubic built: straight into the state's (q, qdot) (the same
-  // Horner sum as ode_hermite)
-  double s = (t - ig->tprev) / (ig->t - ig->tprev), *y = ig->yplace;
-  const double *c = ig->hc;
-  for (int i = 0; i < ig->ny; ++i, c += 4)
-    y[i] = c[0] + s * (c[1] + s * (c[2] + s * c[3]));
+  // inside the step, its Hermite cubic built: straight into the state's (q, qdot)
+  hermite_horner(ig, t, ig->yplace);
   ig->st->t = t;
   dal__state_moved(ig->st);
   return DAL_OK;
