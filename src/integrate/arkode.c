@@ -39,19 +39,23 @@ typedef struct erk_mem {
   double ct0, ct1;             // the step it was built for
   long n_hist, n_mid, n_inner; // steps served by each of fehlberg_build's interpolants
   long nfe_base, netf_base;    // counters already added to the state's statistics
-  // the last right-hand side ARKODE asked for: its time and vectors (borrowed from ARKODE)
+  // the last right-hand side ARKODE asked for in a run with an after-step hook: its time and
+  // vectors (borrowed from ARKODE)
   double last_t;
   const double *last_y, *last_f;
 } erk_mem;
 
 static int erk_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
   dal_ode_integ *ig = ud;
-  erk_mem *m = ig->impl;
-  double *f = N_VGetArrayPointer(ydot);
-  m->last_t = t;
-  m->last_y = N_VGetArrayPointer(y);
-  m->last_f = f;
-  return dal__ode_rhs(ig, t, m->last_y, f);
+  double *yv = N_VGetArrayPointer(y), *f = N_VGetArrayPointer(ydot);
+  if (ig->hook) {
+    // kept for erk_end_slope (the dense output)
+    erk_mem *m = ig->impl;
+    m->last_t = t;
+    m->last_y = yv;
+    m->last_f = f;
+  }
+  return dal__ode_rhs(ig, t, yv, f);
 }
 
 static void erk_free(void *p) {
