@@ -74,7 +74,9 @@ struct dal_ode_integ {
   int place_direct;
   double *hf0, *hf1; ///< Hermite fallback: f at tprev and t (ny each)
   double *hc;        ///< Hermite fallback: the step's cubic, 4 coefficients per component
-  int hvalid;        ///< bit 0: hf0 is current for this step, bit 1: hf1, bit 2: hc
+  /// bit 0: hf0 is current for this step, bit 1: hf1, bit 2: hc, bit 3: hc with place_direct
+  /// (dal__ode_place's fast path)
+  int hvalid;
   /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
   /// last stage of an FSAL method); NULL: evaluated
   int (*end_slope)(dal_ode_integ *ig, double *f);

@@ -358,7 +358,7 @@ static int hermite_coeffs(dal_ode_integ *ig) {
     c[2] = 3.0 * d - 2.0 * a - b;
     c[3] = a + b - 2.0 * d;
   }
-  ig->hvalid |= 4;
+  ig->hvalid |= ig->place_direct ? 4 | 8 : 4;
   return DAL_OK;
 }
 
@@ -409,8 +409,7 @@ static DAL__NOINLINE int ode_place_slow(dal_ode_integ *ig, double t) {
 }
 
 int dal__ode_place(dal_ode_integ *ig, double t) {
-  if (!((ig->hvalid & 4) && ig->place_direct && t > ig->tprev && t < ig->t))
-    return ode_place_slow(ig, t);
+  if (!((ig->hvalid & 8) && t > ig->tprev && t < ig->t)) return ode_place_slow(ig, t);
   // inside the step, its Hermite cubic built: straight into the state's (q, qdot)
   hermite_horner(ig, t, ig->yplace);
   ig->st->t = t;
