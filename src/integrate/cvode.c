@@ -27,6 +27,10 @@
 /// 22.9 x rtol there; 0.1 x the default keeps it within the bound, see test_core)
 #define NLS_COEF 0.01
 
+/// CVODE's highest order (Adams; BDF stops at 5): the dense-output polynomial has at most
+/// CV_QMAX + 1 coefficients per component
+#define CV_QMAX 12
+
 typedef struct cv_mem {
   void *cv;
   dal_sun_vecs v; // context and vectors
@@ -37,6 +41,20 @@ typedef struct cv_mem {
   dal_tangent *tg; // exact Newton matrix for BDF in minimal coordinates (NULL: differences)
   double *Af;      // its vector-field Jacobian (2n x 2n, column-major)
   int ahead;       // CVODE's time is beyond the state's (cv_advance_ahead)
+  // dense output (cv_interp): CVodeGetDky(t, 0) sums the Nordsieck columns zn[q..0] with the
+  // powers of s = (t - tn) / h by N_VLinearCombination on its output vector. Into `probe` (a
+  // vector of the library's own kind whose only operation is that sum) it hands the columns
+  // over: read once per step, they give every further output of the step without a call
+  N_Vector probe;
+  double *pout;                  // the probe's sum (ny)
+  const double *px[CV_QMAX + 1]; // the columns of the last probed call, zn[q] first
+  double pc[CV_QMAX + 1];        // and their coefficients
+  int pn;                        // their number (q + 1); 0: not kept
+  int ny;                        // the size of the vectors
+  double ptn, ph;                // tn and h of the step, as CVodeGetDky reads them
+  int pfast;                     // the columns and coefficients of this step reproduce CVodeGetDky
+  int pbroken; // a probed call did not match the assumed form: CVodeGetDky every output
+  long nfast;  // outputs served without a CVodeGetDky call (dal__cvode_fast_outputs)
 } cv_mem;
 
 static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
@@ -111,6 +129,8 @@ static void cv_free(void *p) {
   dal__sun_vecs_free(&m->v);
   if (m->tg) dal__tangent_free(m->tg);
   free(m->Af);
+  if (m->probe) N_VFreeEmpty(m->probe);
+  free(m->pout);
   free(m);
 }
 
@@ -138,6 +158,7 @@ static int cv_restart(dal_ode_integ *ig, cv_mem *m, double h) {
   int flag = CVodeSetInitStep(m->cv, h);
   if (flag == CV_SUCCESS) flag = CVodeReInit(m->cv, ig->t, m->v.y);
   m->netf = m->nsf = m->nje = m->nni = 0;
+  m->pfast = 0; // new columns
   return flag;
 }
 
@@ -212,16 +233,112 @@ static int cv_moved(const dal_ode_integ *ig, const double *y) {
   return s > ig->ny;
 }
 
-// dense output: CVODE's interpolating polynomial of the current order (its Nordsieck array)
-static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
-  cv_mem *m = ig->impl;
-  int flag = CVodeGetDky(m->cv, t, 0, m->v.dky);
+// Dense output: CVODE's interpolating polynomial of the last step, the Nordsieck sum
+// p(t) = sum_j zn[j] s^j, s = (t - tn) / h, j = 0..q (Hindmarsh et al. 2005, sec. 2.1), read by
+// CVodeGetDky(t, 0). A call of the packaged SUNDIALS costs ~800-1300 instructions (its
+// coefficient loop runs j iterations per column), more than the rest of an output. The first
+// output of a step calls it with the probe vector, whose linear combination keeps the columns
+// and coefficients it is handed; the step's further outputs form the same coefficients (s^j as
+// CVODE forms them: j products from 1) and the same sum themselves, so every output is bit for
+// bit what CVodeGetDky returns into the probe, whichever path served it (a run that samples
+// more, a stored trajectory, gives the same outputs). Every probed call checks the assumed form
+// (q + 1 columns, coefficients the powers of s); a mismatch (another SUNDIALS) leaves every
+// output to CVodeGetDky.
+
+// sum_i c[i] x[i] into out (ny): the probe's operation and the fast path's, one order of sums
+static void cv_sum(int nvec, const double *c, const double *const *x, int ny, double *out) {
+  for (int i = 0; i < ny; ++i) {
+    double y = c[0] * x[0][i];
+    for (int j = 1; j < nvec; ++j)
+      y += c[j] * x[j][i];
+    out[i] = y;
+  }
+}
+
+// the coefficients CVodeGetDky(t, 0) forms for nvec columns zn[nvec - 1..0]: s^(nvec - 1 - i),
+// each a product of that many factors s from 1, as the power before times s
+static void cv_powers(const cv_mem *m, double t, int nvec, double *c) {
+  double s = (t - m->ptn) / m->ph, p = 1.0;
+  c[nvec - 1] = p;
+  for (int i = nvec - 2; i >= 0; --i)
+    c[i] = p *= s;
+}
+
+// the probe's N_VLinearCombination: keep the columns and coefficients, and sum them
+static int cv_probe_sum(int nvec, realtype *c, N_Vector *x, N_Vector z) {
+  cv_mem *m = z->content;
+  int keep = nvec >= 1 && nvec <= CV_QMAX + 1;
+  m->pn = keep ? nvec : 0;
+  for (int i = 0; keep && i < nvec; ++i) {
+    m->px[i] = N_VGetArrayPointer(x[i]);
+    m->pc[i] = c[i];
+    if (!m->px[i]) m->pn = 0;
+  }
+  if (m->pn) {
+    cv_sum(nvec, c, m->px, m->ny, m->pout);
+    return 0;
+  }
+  // not kept (too many columns, or not of the serial kind): the plain sum, column by column
+  int ny = m->ny;
+  for (int i = 0; i < ny; ++i)
+    m->pout[i] = 0.0;
+  for (int j = 0; j < nvec; ++j) {
+    const double *xj = N_VGetArrayPointer(x[j]);
+    if (!xj) return -1;
+    for (int i = 0; i < ny; ++i)
+      m->pout[i] += c[j] * xj[i];
+  }
+  return 0;
+}
+
+// CVodeGetDky(t, 0) into yout through the probe; on the step's first call, whether its columns
+// and coefficients serve the step's further outputs
+static int cv_probe(dal_ode_integ *ig, cv_mem *m, double t, double *yout) {
+  int first = !m->pfast && !m->pbroken;
+  m->pn = 0;
+  int flag = CVodeGetDky(m->cv, t, 0, m->probe);
   if (flag != CV_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER,
                     "CVODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
                     t, ig->tprev, ig->t, flag);
-  memcpy(yout, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
+  memcpy(yout, m->pout, (size_t)ig->ny * sizeof(double));
+  if (!first) return DAL_OK;
+  // the step's tn and h, and the coefficients as the fast path forms them
+  double c[CV_QMAX + 1];
+  CVodeGetCurrentTime(m->cv, &m->ptn);
+  CVodeGetLastStep(m->cv, &m->ph);
+  if (m->pn > 0) cv_powers(m, t, m->pn, c);
+  m->pfast = m->pn > 0 && m->ph != 0 && memcmp(c, m->pc, (size_t)m->pn * sizeof(double)) == 0;
+  m->pbroken = !m->pfast;
   return DAL_OK;
+}
+
+static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
+  cv_mem *m = ig->impl;
+  if (!(t >= ig->tprev && t <= ig->t))
+    return DAL_FAIL(ig->st, DAL_E_ARG,
+                    "CVODE's dense output asked at t=%.17g outside the last step [%.17g, %.17g]", t,
+                    ig->tprev, ig->t);
+  if (!m->pfast) return cv_probe(ig, m, t, yout);
+  // the sum CVodeGetDky(t, 0) forms, with the step's columns
+  double c[CV_QMAX + 1];
+  cv_powers(m, t, m->pn, c);
+  cv_sum(m->pn, c, m->px, ig->ny, yout);
+  m->nfast++;
+  return DAL_OK;
+}
+
+// CVODE steps on (or fails and rescales its columns): the columns probed before are stale
+static void cv_new_step(cv_mem *m) { m->pfast = 0; }
+
+long dal__cvode_fast_outputs(const dal_ode_integ *ig) { return ((const cv_mem *)ig->impl)->nfast; }
+
+int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out) {
+  cv_mem *m = ig->impl;
+  int flag = CVodeGetDky(m->cv, t, k, m->v.dky);
+  if (flag == CV_SUCCESS)
+    memcpy(out, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
+  return flag;
 }
 
 // Without dense output and projection: CVODE steps on at its own pace (no stop at tout) and
@@ -240,6 +357,7 @@ static int cv_advance_ahead(dal_ode_integ *ig, cv_mem *m, double tout) {
   while (tn < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
+    cv_new_step(m);
     flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
@@ -274,6 +392,7 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
   while (ig->t < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
+    cv_new_step(m);
     flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
@@ -320,6 +439,13 @@ int dal__cvode_create(dal_ode_integ *ig) {
   ig->interp = cv_interp;
   int flag = dal__sun_vecs_create(ig, &m->v, "CVODE");
   if (flag) return flag;
+  // the dense output's probe: a vector of the library's own kind (content: this memory)
+  m->pout = malloc((size_t)ig->ny * sizeof(double));
+  m->probe = m->pout ? N_VNewEmpty(m->v.ctx) : NULL;
+  if (!m->probe) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
+  m->probe->content = m;
+  m->ny = ig->ny;
+  m->probe->ops->nvlinearcombination = cv_probe_sum;
   m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->v.ctx);
   if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
   flag = CVodeSetErrHandlerFn(m->cv, dal__ode_sun_err, ig);
