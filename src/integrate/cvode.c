@@ -44,15 +44,15 @@ typedef struct cv_mem {
   // dense output (cv_interp): CVodeGetDky(t, 0) sums the Nordsieck columns zn[q..0] with the
   // powers of s = (t - tn) / h by N_VLinearCombination on its output vector. Into `probe` (a
   // vector of the library's own kind whose only operation is that sum) it hands the columns
-  // over: read once per step, they give every further output of the step without a call
+  // over: copied once per step, they give every output of the step by Horner in s
   N_Vector probe;
-  double *pout;                  // the probe's sum (ny)
-  const double *px[CV_QMAX + 1]; // the columns of the last probed call, zn[q] first
-  double pc[CV_QMAX + 1];        // and their coefficients
-  int pn;                        // their number (q + 1); 0: not kept
-  int ny;                        // the size of the vectors
-  double ptn, ph;                // tn and h of the step, as CVodeGetDky reads them
-  int pfast;                     // the columns and coefficients of this step reproduce CVodeGetDky
+  double *pout; // the probe's sum (ny)
+  double *zc;   // the columns, component by component: zc[i (CV_QMAX + 1) + j] = zn[q - j]_i
+  double pc[CV_QMAX + 1]; // the coefficients CVODE handed over
+  int pn;                 // their number (q + 1); 0: not kept
+  int ny;                 // the size of the vectors
+  double ptn, ph;         // tn and h of the step, as CVodeGetDky reads them
+  int pfast;   // zc holds this step's columns (a probed call in this step matched the form)
   int pbroken; // a probed call did not match the assumed form: CVodeGetDky every output
   long nfast;  // outputs served without a CVodeGetDky call (dal__cvode_fast_outputs)
 } cv_mem;
@@ -131,6 +131,7 @@ static void cv_free(void *p) {
   free(m->Af);
   if (m->probe) N_VFreeEmpty(m->probe);
   free(m->pout);
+  free(m->zc);
   free(m);
 }
 
@@ -237,79 +238,106 @@ static int cv_moved(const dal_ode_integ *ig, const double *y) {
 // p(t) = sum_j zn[j] s^j, s = (t - tn) / h, j = 0..q (Hindmarsh et al. 2005, sec. 2.1), read by
 // CVodeGetDky(t, 0). A call of the packaged SUNDIALS costs ~800-1300 instructions (its
 // coefficient loop runs j iterations per column), more than the rest of an output. The first
-// output of a step calls it with the probe vector, whose linear combination keeps the columns
-// and coefficients it is handed; the step's further outputs form the same coefficients (s^j as
-// CVODE forms them: j products from 1) and the same sum themselves, so every output is bit for
-// bit what CVodeGetDky returns into the probe, whichever path served it (a run that samples
-// more, a stored trajectory, gives the same outputs). Every probed call checks the assumed form
-// (q + 1 columns, coefficients the powers of s); a mismatch (another SUNDIALS) leaves every
-// output to CVodeGetDky.
+// output of a step calls it with the probe vector, whose linear combination copies the columns
+// it is handed; every output of the step, that one included, is then the Horner sum of the
+// columns in s. An output is thus the same bits whichever call of the step read the columns (a
+// run that samples more, a stored trajectory, gives the same outputs). The probed call checks
+// the assumed form (q + 1 columns, coefficients the powers of s as CVODE forms them); a mismatch
+// (another SUNDIALS) leaves every output to CVodeGetDky.
 
-// sum_i c[i] x[i] into out (ny): the probe's operation and the fast path's, one order of sums
-static void cv_sum(int nvec, const double *c, const double *const *x, int ny, double *out) {
-  for (int i = 0; i < ny; ++i) {
-    double y = c[0] * x[0][i];
-    for (int j = 1; j < nvec; ++j)
-      y += c[j] * x[j][i];
+// the powers s^(n - 1 - i) that CVodeGetDky(t, 0) hands over with n columns zn[n - 1..0], each
+// the product of that many factors s from 1
+static void cv_powers(const cv_mem *m, double t, int n, double *c) {
+  double s = (t - m->ptn) / m->ph, p = 1.0;
+  c[n - 1] = p;
+  for (int i = n - 2; i >= 0; --i)
+    c[i] = p *= s;
+}
+
+// p(t) into yout from the step's columns: Horner in s, two components at a time
+static void cv_horner(const cv_mem *m, double t, double *yout) {
+  double s = (t - m->ptn) / m->ph;
+  int n = m->pn, ny = m->ny, i = 0;
+  for (; i + 1 < ny; i += 2) {
+    const double *z0 = m->zc + (size_t)i * (CV_QMAX + 1), *z1 = z0 + CV_QMAX + 1;
+    double y0 = z0[0], y1 = z1[0];
+    for (int j = 1; j < n; ++j) {
+      y0 = y0 * s + z0[j];
+      y1 = y1 * s + z1[j];
+    }
+    yout[i] = y0;
+    yout[i + 1] = y1;
+  }
+  if (i < ny) {
+    const double *z = m->zc + (size_t)i * (CV_QMAX + 1);
+    double y = z[0];
+    for (int j = 1; j < n; ++j)
+      y = y * s + z[j];
+    yout[i] = y;
+  }
+}
+
+// sum_j c[j] zc[., j] over the n copied columns into out: CVODE's sum (after a mismatch)
+static void cv_column_sum(const cv_mem *m, int n, const double *c, double *out) {
+  for (int i = 0; i < m->ny; ++i) {
+    const double *z = m->zc + (size_t)i * (CV_QMAX + 1);
+    double y = 0.0;
+    for (int j = 0; j < n; ++j)
+      y += c[j] * z[j];
     out[i] = y;
   }
 }
 
-// the coefficients CVodeGetDky(t, 0) forms for nvec columns zn[nvec - 1..0]: s^(nvec - 1 - i),
-// each a product of that many factors s from 1, as the power before times s
-static void cv_powers(const cv_mem *m, double t, int nvec, double *c) {
-  double s = (t - m->ptn) / m->ph, p = 1.0;
-  c[nvec - 1] = p;
-  for (int i = nvec - 2; i >= 0; --i)
-    c[i] = p *= s;
-}
-
-// the probe's N_VLinearCombination: keep the columns and coefficients, and sum them
+// the probe's N_VLinearCombination: copy the columns and coefficients (pn = nvec); when they do
+// not fit, sum them into pout (pn = 0)
 static int cv_probe_sum(int nvec, realtype *c, N_Vector *x, N_Vector z) {
   cv_mem *m = z->content;
-  int keep = nvec >= 1 && nvec <= CV_QMAX + 1;
-  m->pn = keep ? nvec : 0;
-  for (int i = 0; keep && i < nvec; ++i) {
-    m->px[i] = N_VGetArrayPointer(x[i]);
-    m->pc[i] = c[i];
-    if (!m->px[i]) m->pn = 0;
-  }
-  if (m->pn) {
-    cv_sum(nvec, c, m->px, m->ny, m->pout);
-    return 0;
-  }
-  // not kept (too many columns, or not of the serial kind): the plain sum, column by column
-  int ny = m->ny;
+  int ny = m->ny, keep = nvec >= 1 && nvec <= CV_QMAX + 1;
+  m->pn = 0;
   for (int i = 0; i < ny; ++i)
     m->pout[i] = 0.0;
   for (int j = 0; j < nvec; ++j) {
     const double *xj = N_VGetArrayPointer(x[j]);
     if (!xj) return -1;
-    for (int i = 0; i < ny; ++i)
-      m->pout[i] += c[j] * xj[i];
+    if (keep) {
+      m->pc[j] = c[j];
+      for (int i = 0; i < ny; ++i)
+        m->zc[(size_t)i * (CV_QMAX + 1) + j] = xj[i];
+    } else {
+      for (int i = 0; i < ny; ++i)
+        m->pout[i] += c[j] * xj[i];
+    }
   }
+  if (keep) m->pn = nvec;
   return 0;
 }
 
-// CVodeGetDky(t, 0) into yout through the probe; on the step's first call, whether its columns
-// and coefficients serve the step's further outputs
+// CVodeGetDky(t, 0) through the probe into yout; on the step's first call, whether the columns
+// it copied serve the step's outputs (then yout is their Horner sum)
 static int cv_probe(dal_ode_integ *ig, cv_mem *m, double t, double *yout) {
-  int first = !m->pfast && !m->pbroken;
   m->pn = 0;
   int flag = CVodeGetDky(m->cv, t, 0, m->probe);
   if (flag != CV_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER,
                     "CVODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
                     t, ig->tprev, ig->t, flag);
-  memcpy(yout, m->pout, (size_t)ig->ny * sizeof(double));
-  if (!first) return DAL_OK;
-  // the step's tn and h, and the coefficients as the fast path forms them
+  if (m->pn == 0) {
+    memcpy(yout, m->pout, (size_t)ig->ny * sizeof(double));
+    return DAL_OK;
+  }
+  // the step's tn and h, and the coefficients as the powers of s
   double c[CV_QMAX + 1];
-  CVodeGetCurrentTime(m->cv, &m->ptn);
-  CVodeGetLastStep(m->cv, &m->ph);
-  if (m->pn > 0) cv_powers(m, t, m->pn, c);
-  m->pfast = m->pn > 0 && m->ph != 0 && memcmp(c, m->pc, (size_t)m->pn * sizeof(double)) == 0;
-  m->pbroken = !m->pfast;
+  if (!m->pbroken) {
+    CVodeGetCurrentTime(m->cv, &m->ptn);
+    CVodeGetLastStep(m->cv, &m->ph);
+    if (m->ph != 0) cv_powers(m, t, m->pn, c);
+    m->pfast = m->ph != 0 && memcmp(c, m->pc, (size_t)m->pn * sizeof(double)) == 0;
+    m->pbroken = !m->pfast;
+  }
+  if (m->pfast)
+    cv_horner(m, t, yout);
+  else
+    cv_column_sum(m, m->pn, m->pc, yout);
   return DAL_OK;
 }
 
@@ -320,10 +348,7 @@ static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
                     "CVODE's dense output asked at t=%.17g outside the last step [%.17g, %.17g]", t,
                     ig->tprev, ig->t);
   if (!m->pfast) return cv_probe(ig, m, t, yout);
-  // the sum CVodeGetDky(t, 0) forms, with the step's columns
-  double c[CV_QMAX + 1];
-  cv_powers(m, t, m->pn, c);
-  cv_sum(m->pn, c, m->px, ig->ny, yout);
+  cv_horner(m, t, yout);
   m->nfast++;
   return DAL_OK;
 }
@@ -441,7 +466,8 @@ int dal__cvode_create(dal_ode_integ *ig) {
   if (flag) return flag;
   // the dense output's probe: a vector of the library's own kind (content: this memory)
   m->pout = malloc((size_t)ig->ny * sizeof(double));
-  m->probe = m->pout ? N_VNewEmpty(m->v.ctx) : NULL;
+  m->zc = malloc((CV_QMAX + 1) * (size_t)ig->ny * sizeof(double));
+  m->probe = m->pout && m->zc ? N_VNewEmpty(m->v.ctx) : NULL;
   if (!m->probe) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
   m->probe->content = m;
   m->ny = ig->ny;
