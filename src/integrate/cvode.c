@@ -46,7 +46,7 @@ typedef struct cv_mem {
   // vector of the library's own kind whose only operation is that sum) it hands the columns
   // over: copied once per step, they give every output of the step by Horner in s
   N_Vector probe;
-  double *pout; // the probe's sum (ny)
+  double *pout; // the probe's sum when the columns do not fit (ny)
   double *zc;   // the columns, component by component: zc[i (CV_QMAX + 1) + j] = zn[q - j]_i
   double pc[CV_QMAX + 1]; // the coefficients CVODE handed over
   int pn;                 // their number (q + 1); 0: not kept
@@ -297,7 +297,10 @@ static int cv_probe_sum(int nvec, realtype *c, N_Vector *x, N_Vector z) {
   for (int i = 0; i < ny; ++i)
     m->pout[i] = 0.0;
   for (int j = 0; j < nvec; ++j) {
-    const double *xj = N_VGetArrayPointer(x[j]);
+    // CVODE's columns are serial vectors (clones of y): their data without two calls
+    const double *xj = x[j]->ops->nvgetarraypointer == N_VGetArrayPointer_Serial
+                           ? NV_DATA_S(x[j])
+                           : N_VGetArrayPointer(x[j]);
     if (!xj) return -1;
     if (keep) {
       m->pc[j] = c[j];
@@ -330,9 +333,11 @@ static int cv_probe(dal_ode_integ *ig, cv_mem *m, double t, double *yout) {
   if (!m->pbroken) {
     CVodeGetCurrentTime(m->cv, &m->ptn);
     CVodeGetLastStep(m->cv, &m->ph);
-    if (m->ph != 0) cv_powers(m, t, m->pn, c);
-    m->pfast = m->ph != 0 && memcmp(c, m->pc, (size_t)m->pn * sizeof(double)) == 0;
-    m->pbroken = !m->pfast;
+    if (m->ph != 0) {
+      cv_powers(m, t, m->pn, c);
+      m->pfast = memcmp(c, m->pc, (size_t)m->pn * sizeof(double)) == 0;
+      m->pbroken = !m->pfast;
+    }
   }
   if (m->pfast)
     cv_horner(m, t, yout);
