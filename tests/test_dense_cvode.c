@@ -7,7 +7,9 @@
 // bit), and against the elliptic pendulum (within the tolerance).
 //
 // The integrator is created directly (dal__ode_create) with an after-step hook that samples
-// interp at NS points inside every step (NS = 1: CVodeGetDky only; NS = 40: the fast path).
+// interp at NS points inside every step (NS = 1: one CVodeGetDky call a step, the sample asked
+// again by the fast path; NS = 40: the fast path; and NS = 40 with every output by CVodeGetDky,
+// the path after a mismatch of the columns' form).
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -24,6 +26,7 @@
 typedef struct probe {
   dal_ode_integ *ig;
   int ns;           // samples per step
+  int slow;         // every output by CVodeGetDky (dal__cvode_slow_dense)
   double th0, tol;  // release angle, rtol = atol
   double worst_ulp; // worst |interp - CVodeGetDky| / (eps (|y| + h |y'|)), both components
   long again_diff;  // first samples of a step that differ when asked again (fast path)
@@ -83,6 +86,7 @@ static void run(const dal_system *sys, dal_state *st, dal_method m, probe *pr, l
   dal_ode_integ *ig = NULL;
   CHECK_OK(dal__ode_create(sys, st, &o, m, &dal__problem_minimal, &ig));
   pr->ig = ig;
+  if (pr->slow) dal__cvode_slow_dense(ig);
   ig->hook = probe_hook;
   ig->hook_ctx = pr;
   ig->tout = 10.0;
@@ -101,24 +105,27 @@ static void test_against_getdky(void) {
   CHECK_OK(dal_state_create(s, &st));
   static const dal_method ms[] = {DAL_METHOD_ADAMS, DAL_METHOD_BDF};
   static const double tols[] = {1e-6, 1e-10};
-  static const int nss[] = {1, 40};
+  // samples a step, and whether every output takes CVodeGetDky (the path after a mismatch)
+  static const int nss[] = {1, 40, 40}, slows[] = {0, 0, 1};
   printf("  pendulum from 2 rad to t = 10: interp against CVodeGetDky at the same times "
          "(ulps of |y| + h |y'|) and against the elliptic solution (x rtol)\n");
-  printf("  %-6s %6s %3s %6s %9s %8s %8s %9s\n", "method", "rtol", "ns", "steps", "fast", "ulps",
-         "inside", "stepends");
+  printf("  %-6s %6s %3s %4s %6s %9s %8s %8s %9s\n", "method", "rtol", "ns", "slow", "steps",
+         "fast", "ulps", "inside", "stepends");
   for (int mi = 0; mi < 2; ++mi)
     for (int ti = 0; ti < 2; ++ti)
-      for (int ni = 0; ni < 2; ++ni) {
-        probe pr = {.ns = nss[ni], .th0 = 2.0, .tol = tols[ti]};
+      for (int ni = 0; ni < 3; ++ni) {
+        probe pr = {.ns = nss[ni], .slow = slows[ni], .th0 = 2.0, .tol = tols[ti]};
         long fast = 0;
         run(s, st, ms[mi], &pr, &fast);
-        printf("  %-6s %6.0e %3d %6ld %9ld %8.2f %8.2f %9.2f\n", dal_method_name(ms[mi]), tols[ti],
-               nss[ni], pr.steps, fast, pr.worst_ulp, pr.worst_ref, pr.worst_pt);
+        printf("  %-6s %6.0e %3d %4d %6ld %9ld %8.2f %8.2f %9.2f\n", dal_method_name(ms[mi]),
+               tols[ti], nss[ni], slows[ni], pr.steps, fast, pr.worst_ulp, pr.worst_ref,
+               pr.worst_pt);
         CHECK_MSG(pr.bad == 0, "%ld samples failed", pr.bad);
         CHECK(pr.samples >= pr.steps * nss[ni] * 9 / 10);
-        // every sample but the first of a step (and the first asked again) by the fast path
-        CHECK_MSG(fast == pr.samples, "%ld of %ld outputs without a CVodeGetDky call", fast,
-                  pr.samples);
+        // every sample but the first of a step (and the first asked again) by the fast path;
+        // none after a mismatch
+        CHECK_MSG(fast == (slows[ni] ? 0 : pr.samples),
+                  "%ld of %ld outputs without a CVodeGetDky call", fast, pr.samples);
         CHECK_MSG(pr.again_diff == 0, "%ld of %ld steps: the fast path differs from CVodeGetDky",
                   pr.again_diff, pr.steps);
         // the same polynomial as CVodeGetDky into a vector of the library's kernels: equal up

@@ -361,6 +361,12 @@ static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
 // CVODE steps on (or fails and rescales its columns): the columns probed before are stale
 static void cv_new_step(cv_mem *m) { m->pfast = 0; }
 
+void dal__cvode_slow_dense(dal_ode_integ *ig) {
+  cv_mem *m = ig->impl;
+  m->pbroken = 1;
+  m->pfast = 0;
+}
+
 long dal__cvode_fast_outputs(const dal_ode_integ *ig) { return ((const cv_mem *)ig->impl)->nfast; }
 
 int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out) {

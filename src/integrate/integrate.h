@@ -228,6 +228,9 @@ int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out);
 /// the outputs of a CVODE integrator that ig->interp served without a CVodeGetDky call (with the
 /// Nordsieck columns read by the step's first output)
 long dal__cvode_fast_outputs(const dal_ode_integ *ig);
+/// for tests: every further output of a CVODE integrator by a CVodeGetDky call (the path taken
+/// when CVODE hands over columns of another form than the fast path assumes)
+void dal__cvode_slow_dense(dal_ode_integ *ig);
 
 /// One integrator behind one interface, whatever its family (an ODE method on a formulation's
 /// dal_ode_problem, IDA on a DAE form): the driver and the events talk to nothing else (GSL's
