@@ -31,6 +31,14 @@
 /// CV_QMAX + 1 coefficients per component
 #define CV_QMAX 12
 
+struct cv_mem;
+/// the dense output's probe vector's content: a serial vector's (on the probe's sum), so that
+/// every serial operation works on it, then the integrator memory its linear combination fills
+typedef struct cv_probe_content {
+  struct _N_VectorContent_Serial serial;
+  struct cv_mem *m;
+} cv_probe_content;
+
 typedef struct cv_mem {
   void *cv;
   dal_sun_vecs v; // context and vectors
@@ -43,9 +51,10 @@ typedef struct cv_mem {
   int ahead;       // CVODE's time is beyond the state's (cv_advance_ahead)
   // dense output (cv_interp): CVodeGetDky(t, 0) sums the Nordsieck columns zn[q..0] with the
   // powers of s = (t - tn) / h by N_VLinearCombination on its output vector. Into `probe` (a
-  // vector of the library's own kind whose only operation is that sum) it hands the columns
-  // over: copied once per step, they give every output of the step by Horner in s
+  // serial vector whose linear combination is cv_probe_sum) it hands the columns over: copied
+  // once per step, they give every output of the step by Horner in s
   N_Vector probe;
+  cv_probe_content pcontent;
   double *pout; // the probe's sum when the columns do not fit (ny)
   double *zc;   // the columns, component by component: zc[i (CV_QMAX + 1) + j] = zn[q - j]_i
   double pc[CV_QMAX + 1]; // the coefficients CVODE handed over
@@ -291,7 +300,7 @@ static void cv_column_sum(const cv_mem *m, int n, const double *c, double *out) 
 // the probe's N_VLinearCombination: copy the columns and coefficients (pn = nvec); when they do
 // not fit, sum them into pout (pn = 0)
 static int cv_probe_sum(int nvec, realtype *c, N_Vector *x, N_Vector z) {
-  cv_mem *m = z->content;
+  cv_mem *m = ((cv_probe_content *)z->content)->m;
   int ny = m->ny, keep = nvec >= 1 && nvec <= CV_QMAX + 1;
   m->pn = 0;
   for (int i = 0; i < ny; ++i)
@@ -475,13 +484,19 @@ int dal__cvode_create(dal_ode_integ *ig) {
   ig->interp = cv_interp;
   int flag = dal__sun_vecs_create(ig, &m->v, "CVODE");
   if (flag) return flag;
-  // the dense output's probe: a vector of the library's own kind (content: this memory)
+  // the dense output's probe: a serial vector on pout (the operations of y) whose linear
+  // combination keeps the columns
+  m->ny = ig->ny;
   m->pout = malloc((size_t)ig->ny * sizeof(double));
   m->zc = malloc((CV_QMAX + 1) * (size_t)ig->ny * sizeof(double));
   m->probe = m->pout && m->zc ? N_VNewEmpty(m->v.ctx) : NULL;
-  if (!m->probe) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
-  m->probe->content = m;
-  m->ny = ig->ny;
+  if (!m->probe || N_VCopyOps(m->v.y, m->probe) != 0)
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
+  m->pcontent.serial.length = ig->ny;
+  m->pcontent.serial.own_data = SUNFALSE;
+  m->pcontent.serial.data = m->pout;
+  m->pcontent.m = m;
+  m->probe->content = &m->pcontent;
   m->probe->ops->nvlinearcombination = cv_probe_sum;
   m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->v.ctx);
   if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
