@@ -105,6 +105,7 @@ typedef struct bs_mem {
   double errint;         // interpolation error estimate of the step being accepted
   struct bs_dense {
     double t0, t1, H; // the step
+    double slack;     // interp accepts t in [t0 - slack, t1 + slack] (rounding of t0, t1)
     int deg;          // degree of the interpolant in s = (t - t0) / H - 1/2
     double *y0, *y1;  // y at t0 and t1 (ny each)
     double *a;        // coefficients a_q of s^q, a[q ny + i] (BS_NCOEF x ny)
@@ -171,12 +172,10 @@ static void bs_dense_row(dal_ode_integ *ig, bs_mem *m, double H, int j, int N) {
   for (int i = 0; i < ny; ++i)
     D[ny + i] = H * F[(size_t)mid * ny + i];
   for (int q = 1; q < lmax; ++q) {
-    for (int p = 0; p <= N - 2 * q; ++p) {
-      double *g = F + (size_t)p * ny;
-      const double *g2 = g + 2 * (size_t)ny;
-      for (int i = 0; i < ny; ++i)
-        g[i] = g2[i] - g[i];
-    }
+    // the grid points p = 0 .. N - 2q at once (F is contiguous)
+    const double *F2 = F + 2 * (size_t)ny;
+    for (size_t x = 0; x < (size_t)(N - 2 * q + 1) * ny; ++x)
+      F[x] = F2[x] - F[x];
     sc *= 0.5 * n;
     const double *g = F + (size_t)(mid - q) * ny;
     for (int i = 0; i < ny; ++i)
@@ -381,26 +380,26 @@ static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double
   int ny = ig->ny, b = m->cur == 0 ? 1 : 0, mu = 2 * kc - 3, p = mu + 1;
   struct bs_dense *d = &m->dd[b];
   double *a = d->a;
-  // extrapolate derivative l over the rows j0 .. kc that hold it (Aitken-Neville in h^2,
-  // in place in D, descending j)
-  double fact = 1.0;
-  for (int l = 0; l <= mu; ++l) {
-    int j0 = l <= 1 ? 1 : (l + 1) / 2;
-    while (m->lmax[j0] < l)
-      ++j0;
-    for (int q = 1; q <= kc - j0; ++q) {
-      for (int j = kc; j >= j0 + q; --j) {
-        double r = (double)m->nseq[j] / m->nseq[j - q], den = r * r - 1.0;
-        double *cur = m->D + (size_t)(j * j - 1 + l) * ny;
-        const double *prev = m->D + (size_t)((j - 1) * (j - 1) - 1 + l) * ny;
-        for (int i = 0; i < ny; ++i)
-          cur[i] += (cur[i] - prev[i]) / den;
-      }
+  // extrapolate each derivative l <= mu over the rows j0(l) .. kc that hold it (Aitken-Neville
+  // in h^2, in place in D, descending j). Level q of row j needs row j - 1 and the sequence
+  // ratio n_j / n_{j-q}; it applies to the derivatives that row j - q holds (lmax grows with
+  // j), which lie next to each other in row j: one sweep over them per (q, j)
+  for (int q = 1; q < kc; ++q) {
+    for (int j = kc; j > q; --j) {
+      int L = m->lmax[j - q] < mu ? m->lmax[j - q] : mu;
+      double r = (double)m->nseq[j] / m->nseq[j - q], den = r * r - 1.0;
+      double *cur = m->D + (size_t)(j * j - 1) * ny;
+      const double *prev = m->D + (size_t)((j - 1) * (j - 1) - 1) * ny;
+      for (size_t x = 0; x < (size_t)(L + 1) * ny; ++x)
+        cur[x] += (cur[x] - prev[x]) / den;
     }
+  }
+  double fact = 1.0;
+  const double *dk = m->D + (size_t)(kc * kc - 1) * ny;
+  for (int l = 0; l <= mu; ++l) {
     if (l > 1) fact *= l;
-    const double *dl = m->D + (size_t)(kc * kc - 1 + l) * ny;
     for (int i = 0; i < ny; ++i)
-      a[(size_t)l * ny + i] = dl[i] / fact;
+      a[(size_t)l * ny + i] = dk[(size_t)l * ny + i] / fact;
   }
   // the cubic R from the end conditions: with e = Y - T (value) and e' (derivative) at
   // sigma = +-1/2, R(sigma) = e / sigma^p, R'(sigma) = (e' - p e / sigma) / sigma^p
@@ -435,6 +434,7 @@ static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double
   d->t0 = ig->t;
   d->t1 = t1;
   d->H = H;
+  d->slack = 4.0 * DBL_EPSILON * fmax(fabs(d->t0), fabs(d->t1));
   d->deg = mu + 4;
   memcpy(d->y0, ig->y, (size_t)ny * sizeof(double));
   memcpy(d->y1, m->ynew, (size_t)ny * sizeof(double));
@@ -446,6 +446,23 @@ static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double
 static double bs_dense_fac(double errint, int deg, double target) {
   double fac = 0.94 * pow(target / fmax(errint, 1e-300), 1.0 / deg);
   return fmin(4.0, fmax(0.2, fac));
+}
+
+// y0 + P(s) for the w <= 4 components from i0 (Horner's rule; w is a constant where this is
+// inlined, so that the w sums stay in registers while the coefficients are read once)
+static inline void bs_horner(const struct bs_dense *d, int ny, int i0, int w, double s,
+                             double *yout) {
+  double acc[4];
+  const double *a = d->a + (size_t)d->deg * ny + i0;
+  for (int k = 0; k < w; ++k)
+    acc[k] = a[k];
+  for (int q = d->deg; q > 0; --q) {
+    a -= ny;
+    for (int k = 0; k < w; ++k)
+      acc[k] = acc[k] * s + a[k];
+  }
+  for (int k = 0; k < w; ++k)
+    yout[i0 + k] = d->y0[i0 + k] + acc[k];
 }
 
 // y at t in [tprev, t] of the last accepted step, from its interpolant (the integration is not
@@ -464,8 +481,7 @@ static int bs_interp(dal_ode_integ *ig, double t, double *yout) {
                     ig->t);
   }
   const struct bs_dense *d = &m->dd[m->cur];
-  double slack = 4.0 * DBL_EPSILON * fmax(fabs(d->t0), fabs(d->t1));
-  if (!(t >= d->t0 - slack && t <= d->t1 + slack))
+  if (!(t >= d->t0 - d->slack && t <= d->t1 + d->slack))
     return DAL_FAIL(ig->st, DAL_E_ARG,
                     "Bulirsch-Stoer dense output: t=%.17g lies outside the last step "
                     "[%.17g, %.17g]",
@@ -475,12 +491,12 @@ static int bs_interp(dal_ode_integ *ig, double t, double *yout) {
     return DAL_OK;
   }
   double s = (t - d->t0) / d->H - 0.5;
-  for (int i = 0; i < ny; ++i) {
-    double acc = d->a[(size_t)d->deg * ny + i];
-    for (int q = d->deg - 1; q >= 0; --q)
-      acc = acc * s + d->a[(size_t)q * ny + i];
-    yout[i] = d->y0[i] + acc;
-  }
+  int i = 0;
+  for (; i + 4 <= ny; i += 4)
+    bs_horner(d, ny, i, 4, s, yout);
+  for (; i + 2 <= ny; i += 2)
+    bs_horner(d, ny, i, 2, s, yout);
+  if (i < ny) bs_horner(d, ny, i, 1, s, yout);
   return DAL_OK;
 }
 
