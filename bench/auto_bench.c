@@ -19,6 +19,12 @@
 //       the AUTO table from a joined sweep (the columns above plus ir): for each scene, N and
 //       error band 1e-4, 1e-8, 1e-11 the cheapest configuration (method, atol rule, rtol
 //       interpolated) and AUTO's cost over it, as markdown on stdout.
+//   dal_bench_auto rules SWEEP.csv
+//       the rule search: for each number of coordinates that several scenes share, and for
+//       n <= 2 and n >= 3, the rule
+//       keyed on rtol (a method and atol rule per decade, at most three switches; every such rule
+//       is replayed from the named methods' rows) with the smallest worst AUTO / best, beside
+//       the worst of AUTO's own rows, as markdown on stdout.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -226,11 +232,13 @@ static double cost_at(const pt *p, int n, double band, double *rt) {
   return INFINITY;
 }
 
-static int cmd_table(const char *path) {
+// the rows of a joined sweep (row,scene,N,method,atol_rule,rtol,status,err,rhs,steps,wall_s,ir),
+// in file order; NULL when it cannot be read
+static pt *load_sweep(const char *path, int *count) {
   FILE *fp = fopen(path, "r");
   if (!fp) {
     perror(path);
-    return 1;
+    return NULL;
   }
   int cap = 4096, n = 0;
   pt *p = malloc((size_t)cap * sizeof *p);
@@ -238,9 +246,8 @@ static int cmd_table(const char *path) {
   if (!p || !fgets(line, sizeof line, fp)) {
     fclose(fp);
     free(p);
-    return 1;
+    return NULL;
   }
-  // row,scene,N,method,atol_rule,rtol,status,err,rhs,steps,wall_s,ir
   while (fgets(line, sizeof line, fp)) {
     if (n == cap) {
       pt *q = realloc(p, (size_t)(cap *= 2) * sizeof *p);
@@ -259,6 +266,14 @@ static int cmd_table(const char *path) {
     ++n;
   }
   fclose(fp);
+  *count = n;
+  return p;
+}
+
+static int cmd_table(const char *path) {
+  int n = 0;
+  pt *p = load_sweep(path, &n);
+  if (!p) return 1;
   printf("| scene | N | band | best: method, atol rule, rtol | AUTO: method at that band, rtol "
          "| AUTO / best | best with atol = 1e-2 rtol / best with the default atol |\n");
   printf("|---|---:|---:|---|---|---:|---:|\n");
@@ -324,6 +339,238 @@ static int cmd_table(const char *path) {
   return 0;
 }
 
+// ---------------------------------------------------------------- the rule search
+
+#define RMAX 16 // decades of rtol in a sweep
+#define NCONF 8 // configurations a rule may pick: four methods x two atol rules
+static const char *conf_meth[] = {"dopri5", "fehlberg78", "bs", "adams"};
+static const char *conf_rule[] = {"default", "0.01rtol"};
+
+typedef struct rscene {
+  const char *name;
+  int n;                     // coordinates
+  const pt *at[NCONF][RMAX]; // the run of each configuration at each rtol (NULL: none)
+  double best[NBAND];        // the cheapest of all configurations at each band
+  double now[NBAND];         // AUTO's own runs (the rule the library has)
+} rscene;
+
+// the number of coordinates of a scene of the sweep (built once, not integrated)
+static int scene_ncoords(const char *name) {
+  for (int i = 0; i < COUNT(scenes_full); ++i) {
+    bench_scene sc;
+    scene_init(&sc, scenes_full[i].kind, scenes_full[i].N, 0);
+    if (strcmp(sc.name, name) != 0) continue;
+    bench_model m;
+    char err[200];
+    if (scene_model(&sc, 0, &m, err, sizeof err)) return -1;
+    int n = dal_system_ncoords(m.sys);
+    scene_model_free(&m);
+    return n;
+  }
+  return -1;
+}
+
+// the worst AUTO / best over the scenes [s, s + ns) with coordinates in [nlo, nhi] when AUTO
+// runs configuration seq[k] at rtol k (the replay: AUTO's run at an rtol is the run of the
+// named method it resolves to, tests/test_defaults.c); *where: that scene and band
+static double rule_worst(const rscene *sc, int ns, int nlo, int nhi, const int *seq, int L,
+                         int *where) {
+  double worst = 0;
+  for (int i = 0; i < ns; ++i) {
+    if (sc[i].n < nlo || sc[i].n > nhi) continue;
+    pt curve[RMAX];
+    for (int k = 0; k < L; ++k) {
+      const pt *x = sc[i].at[seq[k]][k];
+      if (x)
+        curve[k] = *x;
+      else
+        memset(&curve[k], 0, sizeof curve[k]);
+    }
+    for (int b = 0; b < NBAND; ++b) {
+      if (!isfinite(sc[i].best[b])) continue;
+      double rt = 0, r = cost_at(curve, L, bands[b], &rt) / sc[i].best[b];
+      if (r > worst) {
+        worst = r;
+        *where = i * NBAND + b;
+      }
+    }
+  }
+  return worst;
+}
+
+// a rule as text: runs of one configuration, loosest rtol first
+static void rule_text(const int *seq, const double *rt, int L, char *out, size_t len) {
+  size_t k = 0;
+  out[0] = 0;
+  for (int i = 0; i < L; ++i) {
+    if (i > 0 && seq[i] == seq[i - 1]) continue;
+    int c = seq[i];
+    k += (size_t)snprintf(out + k, len > k ? len - k : 0, "%s%s%s from %.0e", i ? "; " : "",
+                          conf_meth[c / 2], c % 2 ? " (atol 1e-2 rtol)" : "", rt[i]);
+  }
+}
+
+// the best rule for one class of systems: a configuration per decade of rtol with at most
+// RULE_SWITCHES switches (every such rule is replayed), the smallest worst AUTO / best first,
+// fewer switches on a tie
+#define RULE_SWITCHES 3
+typedef struct rsearch {
+  const rscene *sc;
+  int ns, nlo, nhi, L;
+  int seq[RMAX], best[RMAX], where;
+  double worst;
+} rsearch;
+
+static void rule_walk(rsearch *r, int k, int switches) {
+  if (k == r->L) {
+    int w = 0;
+    double x = rule_worst(r->sc, r->ns, r->nlo, r->nhi, r->seq, r->L, &w);
+    if (x < r->worst - 1e-12) {
+      r->worst = x;
+      r->where = w;
+      memcpy(r->best, r->seq, sizeof r->seq);
+    }
+    return;
+  }
+  for (int c = 0; c < NCONF; ++c) {
+    int sw = k > 0 && c != r->seq[k - 1];
+    if (switches + sw > RULE_SWITCHES) continue;
+    r->seq[k] = c;
+    rule_walk(r, k + 1, switches + sw);
+  }
+}
+
+static int cmd_rules(const char *path) {
+  int n = 0;
+  pt *p = load_sweep(path, &n);
+  if (!p) return 1;
+  // the decades of rtol, loosest first
+  double rt[RMAX];
+  int L = 0;
+  for (int i = 0; i < n; ++i) {
+    int k = 0;
+    while (k < L && rt[k] != p[i].rtol)
+      ++k;
+    if (k == L && L < RMAX) rt[L++] = p[i].rtol;
+  }
+  for (int i = 1; i < L; ++i)
+    for (int j = i; j > 0 && rt[j] > rt[j - 1]; --j) {
+      double t = rt[j];
+      rt[j] = rt[j - 1];
+      rt[j - 1] = t;
+    }
+  rscene *sc = calloc(COUNT(scenes_full), sizeof *sc);
+  int ns = 0;
+  for (int i = 0; sc && i < n;) {
+    int j = i;
+    while (j < n && strcmp(p[j].scene, p[i].scene) == 0)
+      ++j;
+    rscene *x = &sc[ns++];
+    x->name = p[i].scene;
+    x->n = scene_ncoords(p[i].scene);
+    for (int k = i; k < j; ++k)
+      for (int c = 0; c < NCONF; ++c)
+        for (int r = 0; r < L; ++r)
+          if (strcmp(p[k].meth, conf_meth[c / 2]) == 0 &&
+              strcmp(p[k].rule, conf_rule[c % 2]) == 0 && p[k].rtol == rt[r])
+            x->at[c][r] = &p[k];
+    for (int b = 0; b < NBAND; ++b) {
+      x->best[b] = x->now[b] = INFINITY;
+      for (int k = i; k < j;) {
+        int l = k;
+        while (l < j && strcmp(p[l].meth, p[k].meth) == 0 && strcmp(p[l].rule, p[k].rule) == 0)
+          ++l;
+        double r = 0, c = cost_at(p + k, l - k, bands[b], &r);
+        if (strcmp(p[k].meth, "auto") == 0)
+          x->now[b] = c;
+        else if (c < x->best[b])
+          x->best[b] = c;
+        k = l;
+      }
+    }
+    if (x->n < 0 || ns == COUNT(scenes_full)) break;
+    i = j;
+  }
+  if (!sc || ns == 0 || sc[ns - 1].n < 0) {
+    fprintf(stderr, "rules: a scene of %s is not one of this program's\n", path);
+    free(sc);
+    free(p);
+    return 1;
+  }
+  // the classes: every number of coordinates that two or more scenes share (one scene alone is
+  // fitted exactly by some rule, which says nothing), then n <= 2 and n >= 3 (the split of the
+  // rule the library has)
+  int lo[64], hi[64], nc = 0;
+  for (int i = 0; i < ns; ++i) {
+    int k = 0;
+    while (k < nc && lo[k] != sc[i].n)
+      ++k;
+    int shared = 0;
+    for (int j = 0; j < ns; ++j)
+      shared += sc[j].n == sc[i].n;
+    if (k == nc && shared > 1) lo[nc] = hi[nc] = sc[i].n, ++nc;
+  }
+  lo[nc] = 1, hi[nc++] = 2;
+  lo[nc] = 3, hi[nc++] = 1 << 30;
+  printf("| coordinates | AUTO now: worst AUTO / best (scene, band) | best rule keyed on rtol "
+         "alone (at most three switches) | its worst (scene, band) |\n|---|---|---|---|\n");
+  for (int k = 0; k < nc; ++k) {
+    double now = 0;
+    int wn = -1;
+    for (int i = 0; i < ns; ++i)
+      for (int b = 0; b < NBAND; ++b)
+        if (sc[i].n >= lo[k] && sc[i].n <= hi[k] && isfinite(sc[i].best[b]) &&
+            sc[i].now[b] / sc[i].best[b] > now)
+          now = sc[i].now[b] / sc[i].best[b], wn = i * NBAND + b;
+    rsearch r = {.sc = sc, .ns = ns, .nlo = lo[k], .nhi = hi[k], .L = L, .worst = INFINITY};
+    rule_walk(&r, 0, 0);
+    char text[400], cls[32];
+    rule_text(r.best, rt, L, text, sizeof text);
+    if (lo[k] == hi[k])
+      snprintf(cls, sizeof cls, "%d", lo[k]);
+    else if (hi[k] == 1 << 30)
+      snprintf(cls, sizeof cls, "%d and more", lo[k]);
+    else
+      snprintf(cls, sizeof cls, "%d to %d", lo[k], hi[k]);
+    if (wn < 0) continue;
+    printf("| %s | %.3f (%s, %.0e) | %s | %.3f (%s, %.0e) |\n", cls, now, sc[wn / NBAND].name,
+           bands[wn % NBAND], text, r.worst, sc[r.where / NBAND].name, bands[r.where % NBAND]);
+  }
+  // what the atol rule does on its own: per method, cost with atol = 1e-2 rtol over cost with
+  // atol = rtol at the same error band, over every scene and band
+  printf("\n| method | atol = 1e-2 rtol over atol = rtol at equal error: median | min | max | "
+         "cells |\n|---|---:|---:|---:|---:|\n");
+  for (int c = 0; c < NCONF; c += 2) {
+    double r[COUNT(scenes_full) * NBAND];
+    int nr = 0;
+    for (int i = 0; i < ns; ++i) {
+      pt c0[RMAX], c1[RMAX];
+      memset(c0, 0, sizeof c0);
+      memset(c1, 0, sizeof c1);
+      for (int k = 0; k < L; ++k) {
+        if (sc[i].at[c][k]) c0[k] = *sc[i].at[c][k];
+        if (sc[i].at[c + 1][k]) c1[k] = *sc[i].at[c + 1][k];
+      }
+      for (int b = 0; b < NBAND; ++b) {
+        double r0 = 0, x = cost_at(c1, L, bands[b], &r0) / cost_at(c0, L, bands[b], &r0);
+        if (isfinite(x)) r[nr++] = x;
+      }
+    }
+    for (int a = 1; a < nr; ++a) // insertion sort: a few dozen cells
+      for (int b = a; b > 0 && r[b] < r[b - 1]; --b) {
+        double t = r[b];
+        r[b] = r[b - 1];
+        r[b - 1] = t;
+      }
+    if (nr > 0)
+      printf("| %s | %.3f | %.2f | %.2f | %d |\n", conf_meth[c / 2],
+             nr % 2 ? r[nr / 2] : 0.5 * (r[nr / 2 - 1] + r[nr / 2]), r[0], r[nr - 1], nr);
+  }
+  free(sc);
+  free(p);
+  return 0;
+}
+
 int main(int argc, char **argv) {
   int quick = 0;
   const char *only = NULL;
@@ -336,7 +583,8 @@ int main(int argc, char **argv) {
   if (argc >= 3 && strcmp(argv[1], "refs") == 0) return cmd_refs(argv[2], quick);
   if (argc >= 3 && strcmp(argv[1], "sweep") == 0) return cmd_sweep(argv[2], quick, only, only_rtol);
   if (argc >= 3 && strcmp(argv[1], "table") == 0) return cmd_table(argv[2]);
+  if (argc >= 3 && strcmp(argv[1], "rules") == 0) return cmd_rules(argv[2]);
   fprintf(stderr, "usage: dal_bench_auto refs OUT.csv [--quick] | sweep REFS.csv [--quick] "
-                  "[--method NAME] [--rtol R] | table SWEEP.csv\n");
+                  "[--method NAME] [--rtol R] | table SWEEP.csv | rules SWEEP.csv\n");
   return 2;
 }

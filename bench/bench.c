@@ -336,7 +336,8 @@ static void exp_wp(const bench_cfg *cfg) {
 static void exp_overhead(const bench_cfg *cfg) {
   FILE *fp = bench_csv_open(cfg->out, "overhead.csv",
                             "N,method,rtol,wall_lib_s,wall_hand_s,ratio,rhs_lib,rhs_hand,"
-                            "steps_lib,steps_hand,err_lib,err_hand,ratio_per_rhs");
+                            "steps_lib,steps_hand,err_lib,err_hand,ratio_per_rhs,pairs,"
+                            "ratio_min,ratio_max");
   if (!fp) return;
   static const double quick_tols[] = {1e-8}, full_tols[] = {1e-6, 1e-8, 1e-10};
   const double *tols = cfg->quick ? quick_tols : full_tols;
@@ -379,10 +380,18 @@ static void exp_overhead(const bench_cfg *cfg) {
           hand_once(ch, y0, y, hand_methods[mi], tols[ti], t1, r, &tmp);
           wh[i] = tmp.wall;
         }
+        // the spread: the ratio of each interleaved pair (both runs saw the same load)
+        double lo = INFINITY, hi = 0;
+        for (int i = 0; i < reps; ++i) {
+          double q = wl[i] / wh[i];
+          lo = q < lo ? q : lo;
+          hi = q > hi ? q : hi;
+        }
         double a = bench_median(wl, reps), b = bench_median(wh, reps);
-        fprintf(fp, "%d,%s,%.0e,%.6e,%.6e,%.4f,%ld,%ld,%ld,%ld,%.3e,%.3e,%.4f\n", N,
+        fprintf(fp, "%d,%s,%.0e,%.6e,%.6e,%.4f,%ld,%ld,%ld,%ld,%.3e,%.3e,%.4f,%d,%.4f,%.4f\n", N,
                 dal_method_name(o.method), tols[ti], a, b, a / b, rl.rhs, rh.rhs, rl.steps,
-                rh.steps, rl.err, rh.err, (a / (double)rl.rhs) / (b / (double)rh.rhs));
+                rh.steps, rl.err, rh.err, (a / (double)rl.rhs) / (b / (double)rh.rhs), reps, lo,
+                hi);
         fflush(fp);
         fprintf(stderr,
                 "overhead N=%d %s rtol %.0e: lib %.3g s hand %.3g s ratio %.2f "

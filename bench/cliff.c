@@ -3,7 +3,7 @@
 // dal_bench_cliff: the cost of one step of the N-link chain against N, in every formulation,
 // to show where a switch of route (recursion or KKT matrix, dense or sparse) changes it.
 //
-// Usage: dal_bench_cliff FORM ROUTE N [N ...]
+// Usage: dal_bench_cliff [--fixed-h H] FORM ROUTE N [N ...]
 //   FORM: ode (minimal coordinates, DOPRI5), ggl (Cartesian, IDA BDF), index1 (Cartesian,
 //   IDA BDF), index3 (Cartesian, IDA BDF), index1-proj (Cartesian, DOPRI5 with projection),
 //   index1-baumgarte (Cartesian, DOPRI5 with Baumgarte terms); ROUTE: auto, dense or
@@ -14,6 +14,10 @@
 //   status); under valgrind --tool=callgrind --toggle-collect='cliff_region*' the program asks
 //   callgrind to dump its counts after each region (labelled rowK), so bench/cliff.sh can
 //   divide the region's instructions by its steps.
+//   --fixed-h H: every step of length H (h0 = hmin = hmax = H). IDA's adaptive runs vary from
+//   one N to the next in Newton iterations per step (1.2 ... 2.9 residuals) and in how often the
+//   Jacobian is refreshed; at a fixed step the work per step is the same at every N, so the
+//   cost per step shows the code paths' own growth (bench/cliff.sh runs the IDA forms so too).
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -58,15 +62,24 @@ static int form_opts(const char *form, dal_solve_opts *o) {
 
 int main(int argc, char **argv) {
   dal_solve_opts o;
+  double fixed_h = 0;
+  if (argc >= 3 && strcmp(argv[1], "--fixed-h") == 0) {
+    fixed_h = atof(argv[2]);
+    argv += 2;
+    argc -= 2;
+  }
   int redundant = argc >= 4 ? form_opts(argv[1], &o) : -1;
   dal_dynamics how = DAL_DYNAMICS_AUTO;
   if (argc >= 4 && strcmp(argv[2], "dense") == 0) how = DAL_DYNAMICS_DENSE;
   if (argc >= 4 && strcmp(argv[2], "recursive") == 0) how = DAL_DYNAMICS_RECURSIVE;
   if (redundant < 0) {
-    fprintf(stderr, "usage: dal_bench_cliff ode|ggl|index1|index3|index1-proj|index1-baumgarte "
-                    "auto|dense|recursive N [N ...]\n");
+    fprintf(
+        stderr,
+        "usage: dal_bench_cliff [--fixed-h H] ode|ggl|index1|index3|index1-proj|index1-baumgarte "
+        "auto|dense|recursive N [N ...]\n");
     return 2;
   }
+  if (fixed_h > 0) o.h0 = o.hmax = fixed_h;
   printf("row,form,route,N,unknowns,steps,rhs,status\n");
   for (int a = 3; a < argc; ++a) {
     int N = atoi(argv[a]);

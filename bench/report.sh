@@ -27,13 +27,17 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
     echo "articulated-body recursion) and derived by hand in plain C (lean dense form: sin and"
     echo "cos once per link, c in O(N), LAPACKE Cholesky), integrated by the same SUNDIALS"
     echo "integrator at the same tolerance, runs interleaved in one process, horizon 2 s."
+    echo "The ratio is of the medians; \"pairs\" gives how many interleaved pairs ran and the"
+    echo "smallest and largest ratio of one pair (both of its runs saw the same load): the spread"
+    echo "of the wall-time ratio on this machine."
     echo
-    echo "| N | rtol | fastest library method | library (ms) | hand-written, same method (ms) | ratio | ratio range over methods |"
-    echo "|---:|---:|---|---:|---:|---:|---:|"
+    echo "| N | rtol | fastest library method | library (ms) | hand-written, same method (ms) | ratio | pairs: min - max | ratio range over methods |"
+    echo "|---:|---:|---|---:|---:|---:|---:|---:|"
     awk -F, 'NR > 1 {
         key = $1 "," $3
         if (!(key in best) || $4 < bl[key]) {
           best[key] = $2; bl[key] = $4; bh[key] = $5; br[key] = $6
+          sp[key] = NF >= 16 ? sprintf("%d: %.2f - %.2f", $14, $15, $16) : "-"
         }
         if (!(key in lo) || $6 < lo[key]) lo[key] = $6
         if (!(key in hi) || $6 > hi[key]) hi[key] = $6
@@ -42,8 +46,8 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
       END {
         for (i = 1; i <= n; ++i) {
           k = order[i]; split(k, p, ",")
-          printf "| %d | %s | %s | %.3f | %.3f | %.2f | %.2f - %.2f |\n", p[1], p[2], best[k],
-                 1e3 * bl[k], 1e3 * bh[k], br[k], lo[k], hi[k]
+          printf "| %d | %s | %s | %.3f | %.3f | %.2f | %s | %.2f - %.2f |\n", p[1], p[2], best[k],
+                 1e3 * bl[k], 1e3 * bh[k], br[k], sp[k], lo[k], hi[k]
         }
       }' "$dir/overhead.csv"
     echo

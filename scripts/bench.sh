@@ -26,7 +26,9 @@ mkdir -p "$out"
   echo "machine=$(uname -m)"
   echo "nproc=$(nproc)"
   echo "cpu=$(awk -F': ' '/^model name/ {print $2; exit}' /proc/cpuinfo)"
-  echo "version=$(awk -F'[ )]+' '/^project\(dalembert/ {print $3; exit}' "$root/CMakeLists.txt")"
+  # the version is written once, in include/dalembert/base.h
+  echo "version=$(awk '/^#define DAL_VERSION_(MAJOR|MINOR|PATCH) / {v = v (v == "" ? "" : ".") $3}
+                       END {print v}' "$root/include/dalembert/base.h")"
   echo "commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)"
   echo "mode=$mode"
 } >"$out/machine.txt"

@@ -121,6 +121,17 @@ static void equilibria(void) {
   }
   CHECK_MSG(got && bottom, "theta* = %.15f or the bottom not among %d equilibria", ts, tab.nrow);
   printf("equilibria of the bead above: theta* = acos(g/(R w^2)) = %.15f found: %d\n", ts, got);
+  // the pendulum from 15 starts over [-3.5, 3.5]: the bottom and the top, the top once although
+  // Newton reaches it at theta = -pi and at +pi (the same point of the bob)
+  CHECK(cli("equilibria " SCENES "/driven_pendulum.scene --set a=0 --scan theta=-3.5:3.5:15") == 0);
+  int top = 0, low = 0;
+  for (int i = 0; i < tab.nrow; ++i) {
+    top += fabs(fabs(tab.v[i][0]) - acos(-1.0)) < 1e-12;
+    low += fabs(tab.v[i][0]) < 1e-12;
+  }
+  CHECK_MSG(tab.nrow == 2 && top == 1 && low == 1,
+            "the pendulum: %d equilibria (top %d, bottom %d), expected the bottom and the top once",
+            tab.nrow, top, low);
 }
 
 static void lyapunov(void) {

@@ -66,17 +66,18 @@ int cli_modes(cli *c) {
   return cli_fail(rc, c->msg);
 }
 
-// the equilibria found so far (n each)
+// the equilibria found so far, as the particles' positions (np each): two coordinate vectors
+// that place every particle alike (an angle and the angle + 2 pi) are one equilibrium
 typedef struct found {
-  double *q;
+  double *r;
   int count, cap;
 } found;
 
-static int seen(const found *f, const double *q, int n) {
+static int seen(const found *f, const double *r, int np) {
   for (int j = 0; j < f->count; ++j) {
     int same = 1;
-    for (int i = 0; i < n && same; ++i)
-      same = fabs(f->q[j * n + i] - q[i]) <= 1e-8 * (1 + fabs(q[i]));
+    for (int i = 0; i < np && same; ++i)
+      same = fabs(f->r[j * np + i] - r[i]) <= 1e-8 * (1 + fabs(r[i]));
     if (same) return 1;
   }
   return 0;
@@ -92,16 +93,18 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   int rc = dal_state_set(sys, st, t0, q, zero);
   if (!rc) rc = dal_equilibrium(sys, st, NULL, &rep);
   if (rc) return rc;
-  const double *qs = dal_state_q(st);
-  if (seen(f, qs, n)) return DAL_OK;
+  const double *qs = dal_state_q(st), *r = dal_state_positions(st);
+  int np = dal_system_nparticles(sys) * dal_system_dim(sys);
+  if (!r) return DAL_E_STATE;
+  if (seen(f, r, np)) return DAL_OK;
   if (f->count == f->cap) {
     int cap = f->cap ? 2 * f->cap : 8;
-    double *v = realloc(f->q, (size_t)cap * (size_t)n * sizeof *v);
+    double *v = realloc(f->r, (size_t)cap * (size_t)np * sizeof *v);
     if (!v) return DAL_E_NOMEM;
-    f->q = v;
+    f->r = v;
     f->cap = cap;
   }
-  memcpy(f->q + (size_t)f->count++ * (size_t)n, qs, (size_t)n * sizeof *qs);
+  memcpy(f->r + (size_t)f->count++ * (size_t)np, r, (size_t)np * sizeof *r);
   dal_modes m;
   int k = n - dal_system_nconstraints(sys);
   double *w2 = calloc((size_t)k + 1, sizeof *w2);
@@ -156,7 +159,7 @@ int cli_equilibria(cli *c) {
     rc = last;
   }
   free(q);
-  free(f.q);
+  free(f.r);
   dal_state_destroy(st);
   return rc;
 }

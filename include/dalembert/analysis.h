@@ -189,7 +189,9 @@ typedef struct dal_modes {
 /// With m constraint rows the sizes are k = n - m: omega2 (k), lambda_re / lambda_im (2k),
 /// from the reduced matrices of dal_linearize, and shapes (n x k) are mapped back to the
 /// coordinates (x = N xi, still M-orthonormal); the state must be on the manifold.
-/// Statuses of dal_linearize; DAL_E_SINGULAR if LAPACK fails (named in the message).
+/// Statuses of dal_linearize; DAL_E_SINGULAR if LAPACK fails (named in the message);
+/// DAL_E_UNSUPPORTED when k = 0 (the constraint rows fix every coordinate: no modes, no
+/// verdict).
 DAL_API int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
                              double *lambda_re, double *lambda_im, dal_modes *out);
 

@@ -210,6 +210,12 @@ int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, doubl
   if (rc) return rc;
   // k independent coordinates: n without constraints, n - m on the manifold
   int n = sys->n, k = n - sys->m, k2 = 2 * k;
+  if (k <= 0)
+    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                    "normal_modes: the system has no degrees of freedom (%d constraint row(s) "
+                    "on %d coordinate(s), first '%s'): nothing can oscillate, so there are no "
+                    "modes and no verdict; if some rows repeat others, remove them",
+                    sys->m, n, sys->m ? sys->con[0].name : "");
   size_t sn = (size_t)n, sk = (size_t)k;
   dal_tangent *tg = NULL;
   double *buf = NULL;

@@ -120,6 +120,16 @@ static int store(dal_trajectory *tr, dal_state *st, double a, double b, int end,
     double *v = s + HEAD + (size_t)j * 2 * n;
     memcpy(v, st->q, n * sizeof(double));
     memcpy(v + n, st->qdot, n * sizeof(double));
+    for (size_t i = 0; i < 2 * n; ++i)
+      if (!isfinite(v[i]))
+        // the method's dense output overflowed inside an accepted step (derivatives beyond
+        // double range: a step of 1e-157 s over which qdot grows to 1e142, say): nothing to
+        // store that evaluation could trust
+        return DAL_FAIL(st, DAL_E_NONFINITE,
+                        "trajectory: the dense output of the step [%.17g, %.17g] is not finite at "
+                        "t=%.17g (%s[%zu] = %g): the motion leaves double range there; the run "
+                        "stopped at that step and the trajectory ends before it",
+                        a, b, t, i < n ? "q" : "qdot", i % n, v[i]);
   }
   tr->nsteps++;
   return DAL_OK;
@@ -164,6 +174,22 @@ static long find_step(const dal_trajectory *tr, double t) {
   return t <= tr->data[(size_t)lo * tr->stride + 2] ? lo : -1;
 }
 
+// the barycentric sum of the NODES values v[0], v[stride], ... with weights w (sum den); values
+// near the end of double range (|v| ~ 1e308, whose weighted partial sums overflow) are summed
+// scaled by their largest magnitude
+static double bary(const double *w, double den, const double *v, size_t stride) {
+  double sum = 0.0, big = 0.0;
+  for (int j = 0; j < NODES; ++j) {
+    sum += w[j] * v[(size_t)j * stride];
+    big = fmax(big, fabs(v[(size_t)j * stride]));
+  }
+  if (isfinite(sum / den) || !isfinite(big) || big == 0.0) return sum / den;
+  sum = 0.0;
+  for (int j = 0; j < NODES; ++j)
+    sum += w[j] * (v[(size_t)j * stride] / big);
+  return sum / den * big;
+}
+
 int dal_trajectory_eval(dal_trajectory *tr, double t, double *q, double *qdot) {
   if (!tr) return DAL_E_ARG;
   if (!isfinite(t))
@@ -203,13 +229,13 @@ int dal_trajectory_eval(dal_trajectory *tr, double t, double *q, double *qdot) {
       sq = s[HEAD + (size_t)hit * 2 * n + i];
       sv = s[HEAD + (size_t)hit * 2 * n + n + i];
     } else {
-      for (int j = 0; j < NODES; ++j) {
-        sq += w[j] * s[HEAD + (size_t)j * 2 * n + i];
-        sv += w[j] * s[HEAD + (size_t)j * 2 * n + n + i];
-      }
-      sq /= den;
-      sv /= den;
+      sq = bary(w, den, s + HEAD + i, 2 * n);
+      sv = bary(w, den, s + HEAD + n + i, 2 * n);
     }
+    if (!isfinite(sq) || !isfinite(sv))
+      return dal__set_err(tr->err, DAL_E_NONFINITE,
+                          "trajectory_eval: %s[%zu] at t = %.17g is beyond double range",
+                          isfinite(sq) ? "qdot" : "q", i, t);
     if (q) q[i] = sq;
     if (qdot) qdot[i] = sv;
   }

@@ -118,11 +118,13 @@ static int composed_step(dal_ode_integ *ig, symp_mem *m, double t, double h, dou
 // the last accepted grid point as the integrator's last accepted step (failures)
 static void back_to_grid(dal_ode_integ *ig, symp_mem *m) {
   double t = grid_time(m, m->k);
-  // if even the conversion fails, the previous output point stays the last accepted step
-  if (m->base.to_y(ig, m->base.mem, t, m->x, ig->ydot) == 0) {
-    memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
-    ig->t = t;
-  }
+  // if even the conversion fails, or gives values beyond double range (a velocity from momenta
+  // that overflow), the previous output point stays the last accepted step
+  if (m->base.to_y(ig, m->base.mem, t, m->x, ig->ydot) != 0) return;
+  for (int i = 0; i < ig->ny; ++i)
+    if (!isfinite(ig->ydot[i])) return;
+  memcpy(ig->y, ig->ydot, (size_t)ig->ny * sizeof(double));
+  ig->t = t;
 }
 
 static int fail_step(dal_ode_integ *ig, symp_mem *m, int rc) {

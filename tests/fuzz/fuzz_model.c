@@ -37,6 +37,9 @@
 //   - analysis: dal_equilibrium's DAL_OK is a point at rest with a consistent report, inside
 //     the neighbourhood it promises; normal modes and Lyapunov exponents are finite on DAL_OK,
 //     and a Lyapunov run takes no more segments than its span allows (no zero-progress loop);
+//   - dal_evolve_at with byte-chosen output times: a refused list leaves the state where it
+//     was; a trajectory recorded during a run spans part of it, is finite inside its span and
+//     refuses times beyond it and NaN;
 //   - symplectic methods (any of the six, any step) and every integration: DAL_E_ARG leaves
 //     the state's time where it was; a monitor that calls dal_state_set or dal_advance on its
 //     own state gets DAL_E_STATE with a message, and the run goes on.
@@ -152,7 +155,7 @@ static void fz_die(const char *what, int rc, const char *msg) {
 
 static void fz_status(const char *call, int rc) {
   // DAL_STOPPED (> 0) is evolve's status for a monitor that asked to stop
-  if ((rc > 0 && (rc != DAL_STOPPED || strcmp(call, "evolve") != 0)) ||
+  if ((rc > 0 && (rc != DAL_STOPPED || strncmp(call, "evolve", 6) != 0)) ||
       strcmp(dal_status_name(rc), "DAL_UNKNOWN") == 0)
     fz_die(call, rc, NULL);
 }
@@ -966,6 +969,33 @@ static void fz_progress(fz *f, const fz_run_ctx *r, dal_state *st, double ta, do
   if (rc == DAL_OK) fz_products(f, r, st, call);
 }
 
+// a trajectory recorded during a run from ta: detached, its span inside [ta, the state's time],
+// every evaluation inside the span finite (its records come from accepted steps), outside it
+// DAL_E_ARG, at NaN DAL_E_NONFINITE (or DAL_E_ARG when empty); then destroyed
+static void fz_trajectory(fz *f, dal_state *st, dal_trajectory *tr, double ta, int n) {
+  if (dal_state_set_trajectory(st, NULL) != DAL_OK) fz_die("detaching a trajectory", 0, NULL);
+  double s0 = NAN, s1 = NAN, q[FZ_NQ], qd[FZ_NQ];
+  long nrec = dal_trajectory_span(tr, &s0, &s1);
+  fz_hash(f, &nrec, sizeof nrec);
+  if (nrec < 0) fz_die("trajectory span", (int)nrec, dal_trajectory_errmsg(tr));
+  if (nrec > 0) {
+    if (!(s0 >= ta && s1 >= s0 && s1 <= dal_state_time(st)))
+      fz_die("a trajectory's span outside its run", 0, dal_trajectory_errmsg(tr));
+    for (int k = 0; k <= 4; ++k) {
+      int rc = dal_trajectory_eval(tr, s0 + 0.25 * k * (s1 - s0), q, qd);
+      if (rc != DAL_OK || !fz_finite(q, n) || !fz_finite(qd, n))
+        fz_die("a trajectory inside its span", rc, dal_trajectory_errmsg(tr));
+      fz_hash(f, q, (size_t)n * sizeof *q);
+    }
+    if (dal_trajectory_eval(tr, s1 + 1.0 + fabs(s1), q, qd) != DAL_E_ARG)
+      fz_die("a trajectory evaluated beyond its span", 0, dal_trajectory_errmsg(tr));
+  }
+  int rn = dal_trajectory_eval(tr, NAN, q, qd);
+  if (!(rn == DAL_E_NONFINITE || (nrec == 0 && rn == DAL_E_ARG)) || !dal_trajectory_errmsg(tr)[0])
+    fz_die("a trajectory at NaN", 0, dal_trajectory_errmsg(tr));
+  dal_trajectory_destroy(tr);
+}
+
 // ---------------------------------------------------------------- solving
 typedef struct fz_path_ctx {
   int n;
@@ -983,6 +1013,7 @@ typedef struct fz_mon {
   double t0, t1, last;
   int calls, stop_at, stopped, n, csv;
   int unevaluated; // the state could not be evaluated at an output time (evolve must fail)
+  int repeats;     // output times may repeat (a list for dal_evolve_at)
   int reenter;     // 1, 2: the monitor calls dal_state_set / dal_advance on its own state
   dal_csv out;
 } fz_mon;
@@ -991,7 +1022,8 @@ static int fz_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   fz_mon *mo = ctx;
   double t = dal_state_time(st);
   if (!(t >= mo->t0 && t <= mo->t1)) fz_die("monitor time outside [t0, t1]", 0, NULL);
-  if (mo->calls && !(t > mo->last)) fz_die("monitor times do not increase", 0, NULL);
+  if (mo->calls && !(t > mo->last || (mo->repeats && t == mo->last)))
+    fz_die("monitor times do not increase", 0, NULL);
   mo->last = t;
   const double *q = dal_state_q(st), *qdd = dal_state_qddot(st);
   if (!fz_finite(q, mo->n)) fz_die("monitor sees a non-finite q", 0, NULL);
@@ -1123,9 +1155,39 @@ static void fz_integrate(fz *f, fz_run_ctx *r, dal_state *st) {
     } else {
       dt = fz_num(f);
     }
-    int rc = fz_s(f, st, "evolve", dal_evolve(r->sys, st, &o, t1, dt, fz_monitor, &mo));
+    // now and then a list of output times instead of the grid (dal_evolve_at: sorted, or with
+    // a byte-chosen value anywhere, NaN and decreasing ones included), and a trajectory
+    // recorded during the run
+    int at = fz_pick(f, 4) == 0;
+    int record = fz_pick(f, 4) == 0;
+    double times[8];
+    int nt = 0, bad = 0; // bad: a list dal_evolve_at must refuse before any step
+    if (at) {
+      nt = 1 + fz_pick(f, 8);
+      for (int i = 0; i < nt; ++i) {
+        int raw = fz_u8(f) >= 240;
+        times[i] = raw ? fz_num(f) : ta + hz * (i + 1) / nt;
+        if (!isfinite(times[i]) || (i > 0 && times[i] < times[i - 1]) || times[i] < ta) bad = 1;
+      }
+      t1 = times[nt - 1];
+      mo.t1 = t1;
+      mo.repeats = 1;
+    }
+    dal_trajectory *tr = NULL;
+    if (record && dal_trajectory_create(r->sys, &tr) == DAL_OK &&
+        fz_s(f, st, "set_trajectory", dal_state_set_trajectory(st, tr)) != DAL_OK)
+      fz_die("a fresh trajectory was refused by an idle state", 0, dal_state_errmsg(st));
+    const char *call = at ? "evolve_at" : "evolve";
+    int rc = fz_s(f, st, call,
+                  at ? dal_evolve_at(r->sys, st, &o, times, (size_t)nt, fz_monitor, &mo)
+                     : dal_evolve(r->sys, st, &o, t1, dt, fz_monitor, &mo));
+    // a bad list is refused, and moves nothing
+    if (bad && (rc >= 0 || dal_state_time(st) != ta || mo.calls))
+      fz_die("a bad list of output times was not refused before any step", rc,
+             dal_state_errmsg(st));
+    if (tr) fz_trajectory(f, st, tr, ta, r->n);
     // a monitor that stopped the run early leaves the state before t1
-    fz_progress(f, r, st, ta, t1, rc, "evolve", mo.stopped);
+    fz_progress(f, r, st, ta, t1, rc, call, mo.stopped);
     if (rc == DAL_OK && mo.calls < 1 && isfinite(t1) && t1 >= ta && !mo.unevaluated)
       fz_die("evolve succeeded without calling the monitor", rc, NULL);
     if (mo.unevaluated && rc >= 0)
