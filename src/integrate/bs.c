@@ -36,15 +36,15 @@
 // mu + 4 in s = theta - 1/2 through y0, H f0, y1, H f1 (f1 = f(t1, y1), reused as the next
 // step's f0) and the scaled derivatives H^l y^(l)(mid), l = 0 .. mu, with mu = 2 kappa - 3
 // (kappa the accepted column; ODEX's default). Its last term a_{mu+4} (s^2 - 1/4)^2 s^mu
-// estimates the interpolation error; a step whose estimate exceeds ten tolerances (the norm of
+// estimates the interpolation error; a step whose estimate exceeds the tolerance (the norm of
 // err) gets one more column (when its error estimate converges, the step ends with it and the
 // interpolant of the next degree), else it is rejected; the next step is limited by the
-// estimate (on bench/dense_ir.c's double pendulum the extra column saves 6.7% and 8.6% of the
-// right-hand sides at rtol 1e-10 and 1e-6 against rejecting at once). Without a hook n_j = 2j runs
-// (or Bulirsch's sequence at tight tolerances, above), and no dense data is kept (measured on the
-// pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs about the same right-hand sides but
-// takes longer steps whose error at the step points between 0 and 10 reaches 127 x rtol; the
-// step error counted BS_DENSE_ERRFAC times keeps it below 16).
+// estimate. Against rejecting at once, the extra column takes 4.4% fewer right-hand sides and
+// halves the worst error over the pendulum sweep of tests/test_dense_bs.c (19 -> 10 x rtol).
+// Without a hook n_j = 2j runs (or Bulirsch's sequence at tight tolerances, above), and no dense
+// data is kept (measured on the pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs about the
+// same right-hand sides but takes longer steps whose error at the step points between 0 and 10
+// reaches 127 x rtol; the interpolation error control keeps it below 16).
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -66,26 +66,17 @@
 #define BS_NMAX (4 * BS_KMAX - 2)
 /// coefficients of the interpolant: degree mu + 4 <= 2 BS_KMAX + 1
 #define BS_NCOEF (2 * BS_KMAX + 2)
-/// the interpolation error estimate above which a step is rejected (scaled norm, like err;
-/// ODEX's bound). The estimate is the difference to the interpolant with one midpoint
-/// derivative less, and overestimates the interpolant's own error: measured against the exact
-/// local flow of the oscillator (tests/test_dense_bs.c), the interpolant stays within 0.5
-/// local tolerances at rtol 1e-4 ... 1e-12 with this bound
-#define BS_DENSE_REJECT 10.0
+/// the interpolation error estimate above which a step is rejected (scaled norm, like err).
+/// Looser bounds and aims (1 ... 10, 0.1 ... 1, some with the step error counted 2 ... 5 times
+/// in the dense mode) save up to 8% of the right-hand sides but raise the worst error of the
+/// pendulum sweep of tests/test_dense_bs.c (352 runs, 90 ... 176 degrees, rtol 1e-4 ... 1e-11)
+/// from 10 to 14 ... 62 x rtol
+#define BS_DENSE_REJECT 1.0
 /// the interpolation error the next step aims at: the estimate (one coefficient) scatters by
 /// a factor of ten between neighbouring steps, so that aiming at the bound itself gets many
 /// steps rejected (a retry after a rejection aims at the bound, as ODEX's step after a
 /// dense-output rejection)
-#define BS_DENSE_TARGET 1.0
-/// with dense output the step's error estimate counts this many times: the sequence
-/// n_j = 4j - 2 takes longer steps for the same estimate, whose error at the step points
-/// exceeds the library's calibration (16 x rtol at t = 10, tests/test_core.c) unless a
-/// tighter control limits them. Bounding the steps through this factor rather than through
-/// the interpolation error alone (bound 1, target 0.1 before) keeps the accuracy with fewer
-/// steps: on tests/test_dense_bs.c's pendulums and oscillator 8% fewer right-hand sides and a
-/// third fewer steps; on the double pendulum of bench/dense_ir.c (rtol 1e-6, 1e-10) 27 and 44
-/// interpolation rejections become 7 and 19, 117 and 181 steps 85 and 115
-#define BS_DENSE_ERRFAC 5.0
+#define BS_DENSE_TARGET 0.1
 
 // outcomes of an attempt, apart from the internal retry codes (DAL__RECOVERABLE ...)
 enum { BS_ACCEPT = 0, BS_REJECT = 100, BS_UNSTABLE = 101 };
@@ -115,8 +106,8 @@ typedef struct bs_mem {
   int endf;              // rows j <= endf evaluate f at their end point (dense)
   double *F;             // f at the grid points of the current row ((BS_NMAX + 1) x ny)
   double *D;             // scaled midpoint derivatives H^l y^(l), row j at (j^2 - 1) ny,
-  double *Dkeep;         // D as the rows left it (bs_dense_build extrapolates D in place)
                          // l = 0 .. lmax[j] (l = 0: the midpoint value as an increment)
+  double *Dkeep;         // D as the rows left it (bs_dense_build extrapolates D in place)
   int lmax[BS_KMAX + 2]; // highest derivative row j holds
   double *f1;            // f(t1, y1) of the step being accepted (ny)
   double errint;         // interpolation error estimate of the step being accepted
@@ -291,8 +282,7 @@ static void bs_estimate(dal_ode_integ *ig, bs_mem *m, double H, int j) {
     ig->ewt[i] = e; // kept to name the dominating variable
     s += e * e;
   }
-  double err = sqrt(s / ny) * (m->dense ? BS_DENSE_ERRFAC : 1.0), expo = 1.0 / (2 * j - 1),
-         facmin = pow(0.02, expo);
+  double err = sqrt(s / ny), expo = 1.0 / (2 * j - 1), facmin = pow(0.02, expo);
   double fac = err > 0 ? 0.94 * pow(0.65 / err, expo) : 1.0 / facmin;
   fac = fmin(1.0 / facmin, fmax(facmin / 4.0, fac));
   m->err[j] = err;
