@@ -27,6 +27,18 @@
 /// 22.9 x rtol there; 0.1 x the default keeps it within the bound, see test_core)
 #define NLS_COEF 0.01
 
+/// CVODE's highest order (Adams; BDF stops at 5): the dense-output polynomial has at most
+/// CV_QMAX + 1 coefficients per component
+#define CV_QMAX 12
+
+struct cv_mem;
+/// the dense output's probe vector's content: a serial vector's (on the probe's sum), so that
+/// every serial operation works on it, then the integrator memory its linear combination fills
+typedef struct cv_probe_content {
+  struct _N_VectorContent_Serial serial;
+  struct cv_mem *m;
+} cv_probe_content;
+
 typedef struct cv_mem {
   void *cv;
   dal_sun_vecs v; // context and vectors
@@ -37,6 +49,21 @@ typedef struct cv_mem {
   dal_tangent *tg; // exact Newton matrix for BDF in minimal coordinates (NULL: differences)
   double *Af;      // its vector-field Jacobian (2n x 2n, column-major)
   int ahead;       // CVODE's time is beyond the state's (cv_advance_ahead)
+  // dense output (cv_interp): CVodeGetDky(t, 0) sums the Nordsieck columns zn[q..0] with the
+  // powers of s = (t - tn) / h by N_VLinearCombination on its output vector. Into `probe` (a
+  // serial vector whose linear combination is cv_probe_sum) it hands the columns over: copied
+  // once per step, they give every output of the step by Horner in s
+  N_Vector probe;
+  cv_probe_content pcontent;
+  double *pout; // the probe's sum when the columns do not fit (ny)
+  double *zc;   // the columns, component by component: zc[i (CV_QMAX + 1) + j] = zn[q - j]_i
+  double pc[CV_QMAX + 1]; // the coefficients CVODE handed over
+  int pn;                 // their number (q + 1); 0: not kept
+  int ny;                 // the size of the vectors
+  double ptn, ph;         // tn and h of the step, as CVodeGetDky reads them
+  int pfast;   // zc holds this step's columns (a probed call in this step matched the form)
+  int pbroken; // a probed call did not match the assumed form: CVodeGetDky every output
+  long nfast;  // outputs served without a CVodeGetDky call (dal__cvode_fast_outputs)
 } cv_mem;
 
 static int cv_rhs(realtype t, N_Vector y, N_Vector ydot, void *ud) {
@@ -111,6 +138,9 @@ static void cv_free(void *p) {
   dal__sun_vecs_free(&m->v);
   if (m->tg) dal__tangent_free(m->tg);
   free(m->Af);
+  if (m->probe) N_VFreeEmpty(m->probe);
+  free(m->pout);
+  free(m->zc);
   free(m);
 }
 
@@ -138,6 +168,7 @@ static int cv_restart(dal_ode_integ *ig, cv_mem *m, double h) {
   int flag = CVodeSetInitStep(m->cv, h);
   if (flag == CV_SUCCESS) flag = CVodeReInit(m->cv, ig->t, m->v.y);
   m->netf = m->nsf = m->nje = m->nni = 0;
+  m->pfast = 0; // new columns
   return flag;
 }
 
@@ -212,16 +243,147 @@ static int cv_moved(const dal_ode_integ *ig, const double *y) {
   return s > ig->ny;
 }
 
-// dense output: CVODE's interpolating polynomial of the current order (its Nordsieck array)
-static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
-  cv_mem *m = ig->impl;
-  int flag = CVodeGetDky(m->cv, t, 0, m->v.dky);
+// Dense output: CVODE's interpolating polynomial of the last step, the Nordsieck sum
+// p(t) = sum_j zn[j] s^j, s = (t - tn) / h, j = 0..q (Hindmarsh et al. 2005, sec. 2.1), read by
+// CVodeGetDky(t, 0). A call of the packaged SUNDIALS costs ~800-1300 instructions (its
+// coefficient loop runs j iterations per column), more than the rest of an output. The first
+// output of a step calls it with the probe vector, whose linear combination copies the columns
+// it is handed; every output of the step, that one included, is then the Horner sum of the
+// columns in s. An output is thus the same bits whichever call of the step read the columns (a
+// run that samples more, a stored trajectory, gives the same outputs). The probed call checks
+// the assumed form (q + 1 columns, coefficients the powers of s as CVODE forms them); a mismatch
+// (another SUNDIALS) leaves every output to CVodeGetDky.
+
+// the powers s^(n - 1 - i) that CVodeGetDky(t, 0) hands over with n columns zn[n - 1..0], each
+// the product of that many factors s from 1
+static void cv_powers(const cv_mem *m, double t, int n, double *c) {
+  double s = (t - m->ptn) / m->ph, p = 1.0;
+  c[n - 1] = p;
+  for (int i = n - 2; i >= 0; --i)
+    c[i] = p *= s;
+}
+
+// p(t) into yout from the step's columns: Horner in s, two components at a time
+static void cv_horner(const cv_mem *m, double t, double *yout) {
+  double s = (t - m->ptn) / m->ph;
+  int n = m->pn, ny = m->ny, i = 0;
+  for (; i + 1 < ny; i += 2) {
+    const double *z0 = m->zc + (size_t)i * (CV_QMAX + 1), *z1 = z0 + CV_QMAX + 1;
+    double y0 = z0[0], y1 = z1[0];
+    for (int j = 1; j < n; ++j) {
+      y0 = y0 * s + z0[j];
+      y1 = y1 * s + z1[j];
+    }
+    yout[i] = y0;
+    yout[i + 1] = y1;
+  }
+  if (i < ny) {
+    const double *z = m->zc + (size_t)i * (CV_QMAX + 1);
+    double y = z[0];
+    for (int j = 1; j < n; ++j)
+      y = y * s + z[j];
+    yout[i] = y;
+  }
+}
+
+// sum_j c[j] zc[., j] over the n copied columns into out: CVODE's sum (after a mismatch)
+static void cv_column_sum(const cv_mem *m, int n, const double *c, double *out) {
+  for (int i = 0; i < m->ny; ++i) {
+    const double *z = m->zc + (size_t)i * (CV_QMAX + 1);
+    double y = 0.0;
+    for (int j = 0; j < n; ++j)
+      y += c[j] * z[j];
+    out[i] = y;
+  }
+}
+
+// the probe's N_VLinearCombination: copy the columns and coefficients (pn = nvec); when they do
+// not fit, sum them into pout (pn = 0)
+static int cv_probe_sum(int nvec, realtype *c, N_Vector *x, N_Vector z) {
+  cv_mem *m = ((cv_probe_content *)z->content)->m;
+  int ny = m->ny, keep = nvec >= 1 && nvec <= CV_QMAX + 1;
+  m->pn = 0;
+  for (int i = 0; i < ny; ++i)
+    m->pout[i] = 0.0;
+  for (int j = 0; j < nvec; ++j) {
+    // CVODE's columns are serial vectors (clones of y): their data without two calls
+    const double *xj = x[j]->ops->nvgetarraypointer == N_VGetArrayPointer_Serial
+                           ? NV_DATA_S(x[j])
+                           : N_VGetArrayPointer(x[j]);
+    if (!xj) return -1;
+    if (keep) {
+      m->pc[j] = c[j];
+      for (int i = 0; i < ny; ++i)
+        m->zc[(size_t)i * (CV_QMAX + 1) + j] = xj[i];
+    } else {
+      for (int i = 0; i < ny; ++i)
+        m->pout[i] += c[j] * xj[i];
+    }
+  }
+  if (keep) m->pn = nvec;
+  return 0;
+}
+
+// CVodeGetDky(t, 0) through the probe into yout; on the step's first call, whether the columns
+// it copied serve the step's outputs (then yout is their Horner sum)
+static int cv_probe(dal_ode_integ *ig, cv_mem *m, double t, double *yout) {
+  m->pn = 0;
+  int flag = CVodeGetDky(m->cv, t, 0, m->probe);
   if (flag != CV_SUCCESS)
     return DAL_FAIL(ig->st, DAL_E_SOLVER,
                     "CVODE could not interpolate at t=%.17g in the step [%.17g, %.17g] (code %d)",
                     t, ig->tprev, ig->t, flag);
-  memcpy(yout, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
+  if (m->pn == 0) {
+    memcpy(yout, m->pout, (size_t)ig->ny * sizeof(double));
+    return DAL_OK;
+  }
+  // the step's tn and h, and the coefficients as the powers of s
+  double c[CV_QMAX + 1];
+  if (!m->pbroken) {
+    CVodeGetCurrentTime(m->cv, &m->ptn);
+    CVodeGetLastStep(m->cv, &m->ph);
+    if (m->ph != 0) {
+      cv_powers(m, t, m->pn, c);
+      m->pfast = memcmp(c, m->pc, (size_t)m->pn * sizeof(double)) == 0;
+      m->pbroken = !m->pfast;
+    }
+  }
+  if (m->pfast)
+    cv_horner(m, t, yout);
+  else
+    cv_column_sum(m, m->pn, m->pc, yout);
   return DAL_OK;
+}
+
+static int cv_interp(dal_ode_integ *ig, double t, double *yout) {
+  cv_mem *m = ig->impl;
+  if (!(t >= ig->tprev && t <= ig->t))
+    return DAL_FAIL(ig->st, DAL_E_ARG,
+                    "CVODE's dense output asked at t=%.17g outside the last step [%.17g, %.17g]", t,
+                    ig->tprev, ig->t);
+  if (!m->pfast) return cv_probe(ig, m, t, yout);
+  cv_horner(m, t, yout);
+  m->nfast++;
+  return DAL_OK;
+}
+
+// CVODE steps on (or fails and rescales its columns): the columns probed before are stale
+static void cv_new_step(cv_mem *m) { m->pfast = 0; }
+
+void dal__cvode_slow_dense(dal_ode_integ *ig) {
+  cv_mem *m = ig->impl;
+  m->pbroken = 1;
+  m->pfast = 0;
+}
+
+long dal__cvode_fast_outputs(const dal_ode_integ *ig) { return ((const cv_mem *)ig->impl)->nfast; }
+
+int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out) {
+  cv_mem *m = ig->impl;
+  int flag = CVodeGetDky(m->cv, t, k, m->v.dky);
+  if (flag == CV_SUCCESS)
+    memcpy(out, N_VGetArrayPointer(m->v.dky), (size_t)ig->ny * sizeof(double));
+  return flag;
 }
 
 // Without dense output and projection: CVODE steps on at its own pace (no stop at tout) and
@@ -240,6 +402,7 @@ static int cv_advance_ahead(dal_ode_integ *ig, cv_mem *m, double tout) {
   while (tn < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
+    cv_new_step(m);
     flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
@@ -274,6 +437,7 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
   while (ig->t < tout) {
     realtype tret = ig->t;
     ig->rhs_rc = 0;
+    cv_new_step(m);
     flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
     cv_sync_stats(ig, m);
     if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
@@ -320,6 +484,20 @@ int dal__cvode_create(dal_ode_integ *ig) {
   ig->interp = cv_interp;
   int flag = dal__sun_vecs_create(ig, &m->v, "CVODE");
   if (flag) return flag;
+  // the dense output's probe: a serial vector on pout (the operations of y) whose linear
+  // combination keeps the columns
+  m->ny = ig->ny;
+  m->pout = malloc((size_t)ig->ny * sizeof(double));
+  m->zc = malloc((CV_QMAX + 1) * (size_t)ig->ny * sizeof(double));
+  m->probe = m->pout && m->zc ? N_VNewEmpty(m->v.ctx) : NULL;
+  if (!m->probe || N_VCopyOps(m->v.y, m->probe) != 0)
+    return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
+  m->pcontent.serial.length = ig->ny;
+  m->pcontent.serial.own_data = SUNFALSE;
+  m->pcontent.serial.data = m->pout;
+  m->pcontent.m = m;
+  m->probe->content = &m->pcontent;
+  m->probe->ops->nvlinearcombination = cv_probe_sum;
   m->cv = CVodeCreate(bdf ? CV_BDF : CV_ADAMS, m->v.ctx);
   if (!m->cv) return DAL_FAIL(st, DAL_E_NOMEM, "CVodeCreate failed");
   flag = CVodeSetErrHandlerFn(m->cv, dal__ode_sun_err, ig);

@@ -221,6 +221,16 @@ int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (ode_arkode.c)
 int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (ode_cvode.c)
 int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (ode_bs.c)
 int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (ode_rk4.c)
+/// CVODE's own dense output for a CVODE integrator ig: CVodeGetDky(t, k) into out (ny), the
+/// k-th derivative of the last step's polynomial at t; returns CVODE's code (0: success).
+/// For tests: ig->interp reads the same polynomial without a call per output
+int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out);
+/// the outputs of a CVODE integrator that ig->interp served without a CVodeGetDky call (with the
+/// Nordsieck columns read by the step's first output)
+long dal__cvode_fast_outputs(const dal_ode_integ *ig);
+/// for tests: every further output of a CVODE integrator by a CVodeGetDky call (the path taken
+/// when CVODE hands over columns of another form than the fast path assumes)
+void dal__cvode_slow_dense(dal_ode_integ *ig);
 
 /// One integrator behind one interface, whatever its family (an ODE method on a formulation's
 /// dal_ode_problem, IDA on a DAE form): the driver and the events talk to nothing else (GSL's
