@@ -341,7 +341,7 @@ typedef int dal_monitor_fn(const dal_system *sys, const dal_state *st, void *ctx
 /// dense mode, whose interpolation error control changes its steps, and CVODE's Adams and BDF
 /// end in the last digits elsewhere; their end states agree within the tolerance, not bit for
 /// bit, and a chaotic scene magnifies the difference (the double pendulum from (2, 2) rad at
-/// rtol 1e-10, t = 30, Bulirsch-Stoer: q[0] = -5.607 without a monitor, -5.087 with one).
+/// rtol 1e-10, t = 30, Bulirsch-Stoer: q[0] = -5.607 without a monitor, -11.15 with one).
 /// DOPRI5 and Fehlberg 7(8) take the same steps either way.
 ///
 /// The monitor gets the state at the output time with (t, q, qdot) set; everything else

@@ -37,11 +37,14 @@
 // step's f0) and the scaled derivatives H^l y^(l)(mid), l = 0 .. mu, with mu = 2 kappa - 3
 // (kappa the accepted column; ODEX's default). Its last term a_{mu+4} (s^2 - 1/4)^2 s^mu
 // estimates the interpolation error; a step whose estimate exceeds the tolerance (the norm of
-// err) is rejected, and the next step is limited by it. Without a hook n_j = 2j runs (or
-// Bulirsch's sequence at tight tolerances, above), and no dense data is kept (measured on the
-// pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs about the same right-hand sides but
-// takes longer steps whose error at the step points between 0 and 10 reaches 127 x rtol; the
-// interpolation error control keeps it below 16).
+// err) gets one more column (when its error estimate converges, the step ends with it and the
+// interpolant of the next degree), else it is rejected; the next step is limited by the
+// estimate. Against rejecting at once, the extra column takes 4.4% fewer right-hand sides and
+// halves the worst error over the pendulum sweep of tests/test_dense_bs.c (19 -> 10 x rtol).
+// Without a hook n_j = 2j runs (or Bulirsch's sequence at tight tolerances, above), and no dense
+// data is kept (measured on the pendulum, tests/test_dense_bs.c: n_j = 4j - 2 alone costs about the
+// same right-hand sides but takes longer steps whose error at the step points between 0 and 10
+// reaches 127 x rtol; the interpolation error control keeps it below 16).
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
@@ -63,7 +66,11 @@
 #define BS_NMAX (4 * BS_KMAX - 2)
 /// coefficients of the interpolant: degree mu + 4 <= 2 BS_KMAX + 1
 #define BS_NCOEF (2 * BS_KMAX + 2)
-/// the interpolation error estimate above which a step is rejected (scaled norm, like err)
+/// the interpolation error estimate above which a step is rejected (scaled norm, like err).
+/// Looser bounds and aims (1 ... 10, 0.1 ... 1, some with the step error counted 2 ... 5 times
+/// in the dense mode) save up to 8% of the right-hand sides but raise the worst error of the
+/// pendulum sweep of tests/test_dense_bs.c (352 runs, 90 ... 176 degrees, rtol 1e-4 ... 1e-11)
+/// from 10 to 14 ... 62 x rtol
 #define BS_DENSE_REJECT 1.0
 /// the interpolation error the next step aims at: the estimate (one coefficient) scatters by
 /// a factor of ten between neighbouring steps, so that aiming at the bound itself gets many
@@ -100,11 +107,13 @@ typedef struct bs_mem {
   double *F;             // f at the grid points of the current row ((BS_NMAX + 1) x ny)
   double *D;             // scaled midpoint derivatives H^l y^(l), row j at (j^2 - 1) ny,
                          // l = 0 .. lmax[j] (l = 0: the midpoint value as an increment)
+  double *Dkeep;         // D as the rows left it (bs_dense_build extrapolates D in place)
   int lmax[BS_KMAX + 2]; // highest derivative row j holds
   double *f1;            // f(t1, y1) of the step being accepted (ny)
   double errint;         // interpolation error estimate of the step being accepted
   struct bs_dense {
     double t0, t1, H; // the step
+    double slack;     // interp accepts t in [t0 - slack, t1 + slack] (rounding of t0, t1)
     int deg;          // degree of the interpolant in s = (t - t0) / H - 1/2
     double *y0, *y1;  // y at t0 and t1 (ny each)
     double *a;        // coefficients a_q of s^q, a[q ny + i] (BS_NCOEF x ny)
@@ -128,6 +137,7 @@ static void bs_free(void *p) {
   free(m->cb);
   free(m->F);
   free(m->D);
+  free(m->Dkeep);
   free(m->f1);
   for (int b = 0; b < 2; ++b) {
     free(m->dd[b].y0);
@@ -171,12 +181,10 @@ static void bs_dense_row(dal_ode_integ *ig, bs_mem *m, double H, int j, int N) {
   for (int i = 0; i < ny; ++i)
     D[ny + i] = H * F[(size_t)mid * ny + i];
   for (int q = 1; q < lmax; ++q) {
-    for (int p = 0; p <= N - 2 * q; ++p) {
-      double *g = F + (size_t)p * ny;
-      const double *g2 = g + 2 * (size_t)ny;
-      for (int i = 0; i < ny; ++i)
-        g[i] = g2[i] - g[i];
-    }
+    // the grid points p = 0 .. N - 2q at once (F is contiguous)
+    const double *F2 = F + 2 * (size_t)ny;
+    for (size_t x = 0; x < (size_t)(N - 2 * q + 1) * ny; ++x)
+      F[x] = F2[x] - F[x];
     sc *= 0.5 * n;
     const double *g = F + (size_t)(mid - q) * ny;
     for (int i = 0; i < ny; ++i)
@@ -312,6 +320,16 @@ static void bs_reject(bs_mem *m, int kc) {
   m->H = m->hopt[knew];
 }
 
+// the step's result T_{j,j}: y + increment, compensated, into m->ynew
+static inline void bs_take(dal_ode_integ *ig, bs_mem *m, int j) {
+  const double *Tj = m->T + (size_t)(j - 1) * ig->ny;
+  for (int i = 0; i < ig->ny; ++i) {
+    m->ynew[i] = ig->y[i];
+    m->cnew[i] = m->c[i];
+    dal__ksum(&m->ynew[i], &m->cnew[i], Tj[i]);
+  }
+}
+
 // one attempt of a step of size H from (ig->t, ig->y); BS_ACCEPT (result in m->ynew and the
 // accepted column in *kc), BS_REJECT (m->k, m->H set for the retry), or a negative code.
 // A recoverable right-hand-side failure or the stability check halve the step.
@@ -348,13 +366,7 @@ static int bs_attempt(dal_ode_integ *ig, bs_mem *m, double H, int k, int *kc) {
       reject = !accept;
     }
     if (accept) {
-      // y + increment, compensated
-      const double *Tj = m->T + (size_t)(j - 1) * ig->ny;
-      for (int i = 0; i < ig->ny; ++i) {
-        m->ynew[i] = ig->y[i];
-        m->cnew[i] = m->c[i];
-        dal__ksum(&m->ynew[i], &m->cnew[i], Tj[i]);
-      }
+      bs_take(ig, m, j);
       *kc = j;
       return BS_ACCEPT;
     }
@@ -381,26 +393,26 @@ static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double
   int ny = ig->ny, b = m->cur == 0 ? 1 : 0, mu = 2 * kc - 3, p = mu + 1;
   struct bs_dense *d = &m->dd[b];
   double *a = d->a;
-  // extrapolate derivative l over the rows j0 .. kc that hold it (Aitken-Neville in h^2,
-  // in place in D, descending j)
-  double fact = 1.0;
-  for (int l = 0; l <= mu; ++l) {
-    int j0 = l <= 1 ? 1 : (l + 1) / 2;
-    while (m->lmax[j0] < l)
-      ++j0;
-    for (int q = 1; q <= kc - j0; ++q) {
-      for (int j = kc; j >= j0 + q; --j) {
-        double r = (double)m->nseq[j] / m->nseq[j - q], den = r * r - 1.0;
-        double *cur = m->D + (size_t)(j * j - 1 + l) * ny;
-        const double *prev = m->D + (size_t)((j - 1) * (j - 1) - 1 + l) * ny;
-        for (int i = 0; i < ny; ++i)
-          cur[i] += (cur[i] - prev[i]) / den;
-      }
+  // extrapolate each derivative l <= mu over the rows j0(l) .. kc that hold it (Aitken-Neville
+  // in h^2, in place in D, descending j). Level q of row j needs row j - 1 and the sequence
+  // ratio n_j / n_{j-q}; it applies to the derivatives that row j - q holds (lmax grows with
+  // j), which lie next to each other in row j: one sweep over them per (q, j)
+  for (int q = 1; q < kc; ++q) {
+    for (int j = kc; j > q; --j) {
+      int L = m->lmax[j - q] < mu ? m->lmax[j - q] : mu;
+      double r = (double)m->nseq[j] / m->nseq[j - q], den = r * r - 1.0;
+      double *cur = m->D + (size_t)(j * j - 1) * ny;
+      const double *prev = m->D + (size_t)((j - 1) * (j - 1) - 1) * ny;
+      for (size_t x = 0; x < (size_t)(L + 1) * ny; ++x)
+        cur[x] += (cur[x] - prev[x]) / den;
     }
+  }
+  double fact = 1.0;
+  const double *dk = m->D + (size_t)(kc * kc - 1) * ny;
+  for (int l = 0; l <= mu; ++l) {
     if (l > 1) fact *= l;
-    const double *dl = m->D + (size_t)(kc * kc - 1 + l) * ny;
     for (int i = 0; i < ny; ++i)
-      a[(size_t)l * ny + i] = dl[i] / fact;
+      a[(size_t)l * ny + i] = dk[(size_t)l * ny + i] / fact;
   }
   // the cubic R from the end conditions: with e = Y - T (value) and e' (derivative) at
   // sigma = +-1/2, R(sigma) = e / sigma^p, R'(sigma) = (e' - p e / sigma) / sigma^p
@@ -435,6 +447,7 @@ static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double
   d->t0 = ig->t;
   d->t1 = t1;
   d->H = H;
+  d->slack = 4.0 * DBL_EPSILON * fmax(fabs(d->t0), fabs(d->t1));
   d->deg = mu + 4;
   memcpy(d->y0, ig->y, (size_t)ny * sizeof(double));
   memcpy(d->y1, m->ynew, (size_t)ny * sizeof(double));
@@ -446,6 +459,23 @@ static int bs_dense_build(dal_ode_integ *ig, bs_mem *m, int kc, double H, double
 static double bs_dense_fac(double errint, int deg, double target) {
   double fac = 0.94 * pow(target / fmax(errint, 1e-300), 1.0 / deg);
   return fmin(4.0, fmax(0.2, fac));
+}
+
+// y0 + P(s) for the w <= 4 components from i0 (Horner's rule; w is a constant where this is
+// inlined, so that the w sums stay in registers while the coefficients are read once)
+static inline void bs_horner(const struct bs_dense *d, int ny, int i0, int w, double s,
+                             double *yout) {
+  double acc[4];
+  const double *a = d->a + (size_t)d->deg * ny + i0;
+  for (int k = 0; k < w; ++k)
+    acc[k] = a[k];
+  for (int q = d->deg; q > 0; --q) {
+    a -= ny;
+    for (int k = 0; k < w; ++k)
+      acc[k] = acc[k] * s + a[k];
+  }
+  for (int k = 0; k < w; ++k)
+    yout[i0 + k] = d->y0[i0 + k] + acc[k];
 }
 
 // y at t in [tprev, t] of the last accepted step, from its interpolant (the integration is not
@@ -464,8 +494,7 @@ static int bs_interp(dal_ode_integ *ig, double t, double *yout) {
                     ig->t);
   }
   const struct bs_dense *d = &m->dd[m->cur];
-  double slack = 4.0 * DBL_EPSILON * fmax(fabs(d->t0), fabs(d->t1));
-  if (!(t >= d->t0 - slack && t <= d->t1 + slack))
+  if (!(t >= d->t0 - d->slack && t <= d->t1 + d->slack))
     return DAL_FAIL(ig->st, DAL_E_ARG,
                     "Bulirsch-Stoer dense output: t=%.17g lies outside the last step "
                     "[%.17g, %.17g]",
@@ -475,12 +504,12 @@ static int bs_interp(dal_ode_integ *ig, double t, double *yout) {
     return DAL_OK;
   }
   double s = (t - d->t0) / d->H - 0.5;
-  for (int i = 0; i < ny; ++i) {
-    double acc = d->a[(size_t)d->deg * ny + i];
-    for (int q = d->deg - 1; q >= 0; --q)
-      acc = acc * s + d->a[(size_t)q * ny + i];
-    yout[i] = d->y0[i] + acc;
-  }
+  int i = 0;
+  for (; i + 4 <= ny; i += 4)
+    bs_horner(d, ny, i, 4, s, yout);
+  for (; i + 2 <= ny; i += 2)
+    bs_horner(d, ny, i, 2, s, yout);
+  if (i < ny) bs_horner(d, ny, i, 1, s, yout);
   return DAL_OK;
 }
 
@@ -563,20 +592,35 @@ static inline int bs_step_try(dal_ode_integ *ig, bs_mem *m, double H, double t1,
                               int *kc, int *b) {
   int rc = bs_attempt(ig, m, H, shortened ? m->kshort : m->k, kc);
   *b = -1;
-  if (rc == BS_ACCEPT && m->dense) {
-    // the interpolant needs f(t1, y1) (the next step's f0); its error estimate can still
-    // reject the step
-    rc = dal__ode_rhs(ig, t1, m->ynew, m->f1);
-    if (dal__is_retry(rc)) m->H = 0.5 * H;
-    if (rc == 0) {
-      *b = bs_dense_build(ig, m, *kc, H, t1);
-      if (!(m->errint <= BS_DENSE_REJECT)) {
-        m->H = H * bs_dense_fac(m->errint, m->dd[*b].deg, BS_DENSE_REJECT);
-        rc = BS_REJECT;
-      }
+  if (rc != BS_ACCEPT || !m->dense) return rc;
+  // the interpolant needs f(t1, y1) (the next step's f0); its error estimate can still
+  // reject the step. Too large an estimate first gets one more column (a higher-degree
+  // interpolant from the same step, n_{kc+1} right-hand sides instead of a new step)
+  size_t nkeep = (size_t)((*kc + 1) * (*kc + 1) - 1) * ig->ny;
+  for (int more = *kc < BS_KMAX;; more = 0) {
+    if (more) memcpy(m->Dkeep, m->D, nkeep * sizeof(double));
+    if ((rc = dal__ode_rhs(ig, t1, m->ynew, m->f1)) != 0) {
+      if (dal__is_retry(rc)) m->H = 0.5 * H;
+      return rc;
     }
+    *b = bs_dense_build(ig, m, *kc, H, t1);
+    if (m->errint <= BS_DENSE_REJECT) return BS_ACCEPT;
+    if (more) {
+      memcpy(m->D, m->Dkeep, nkeep * sizeof(double));
+      int j = *kc + 1;
+      rc = bs_column(ig, m, ig->t, H, j);
+      if (rc == 0) bs_estimate(ig, m, H, j);
+      if (rc == 0 && m->err[j] <= 1.0) {
+        bs_take(ig, m, j);
+        *kc = j;
+        continue;
+      }
+      if (dal__is_retry(rc) || rc == BS_UNSTABLE) m->H = 0.5 * H;
+      if (rc) return rc;
+    }
+    m->H = H * bs_dense_fac(m->errint, m->dd[*b].deg, BS_DENSE_REJECT);
+    return BS_REJECT;
   }
-  return rc;
 }
 
 // rejected: bs_attempt has set the order and step of the retry. Counts the rejection;
@@ -705,9 +749,10 @@ int dal__bs_create(dal_ode_integ *ig) {
   m->cb = calloc(ny, sizeof(double));
   m->F = calloc((BS_NMAX + 1) * ny, sizeof(double));
   m->D = calloc((size_t)(BS_KMAX * BS_KMAX + 2 * BS_KMAX) * ny, sizeof(double));
+  m->Dkeep = calloc((size_t)(BS_KMAX * BS_KMAX + 2 * BS_KMAX) * ny, sizeof(double));
   m->f1 = calloc(ny, sizeof(double));
   int ok = m->f0 && m->za && m->zb && m->ca && m->cb && m->fz && m->ynew && m->T && m->c &&
-           m->cnew && m->yz && m->F && m->D && m->f1;
+           m->cnew && m->yz && m->F && m->D && m->Dkeep && m->f1;
   for (int b = 0; b < 2; ++b) {
     m->dd[b].y0 = calloc(ny, sizeof(double));
     m->dd[b].y1 = calloc(ny, sizeof(double));
