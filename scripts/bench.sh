@@ -34,8 +34,9 @@ mkdir -p "$out"
 } >"$out/machine.txt"
 "$bdir/bench/dal_bench" "$mode" --out "$out"
 "$root/bench/overhead_ir.sh" "$bdir/bench/dal_bench" "$out" "$mode"
-# the charts bench/plots.gp draws; the symplectic ones (sym_*) belong to bench_symplectic.sh
-find "$out" -maxdepth 1 \( -name '*.png' -o -name '*.svg' \) ! -name 'sym_*' -delete
+# the charts bench/plots.gp draws; the symplectic ones (sym_*) belong to bench_symplectic.sh,
+# the cliff chart to bench/cliff.sh
+find "$out" -maxdepth 1 \( -name '*.png' -o -name '*.svg' \) ! -name 'sym_*' ! -name 'cliff.*' -delete
 # (gnuplot warns about curves without points, e.g. a formulation that failed at every rtol)
 gnuplot -e "dir='$out'" "$root/bench/plots.gp" 2>&1 | { grep -v "Skipping data file" || true; } >&2
 "$root/bench/report.sh" "$out" "$root/docs/performance.md"
