@@ -90,8 +90,9 @@ static void test_auto_rule(void) {
   expect_auto(three, 1e-6, 0, DAL_METHOD_FEHLBERG78);
   expect_auto(three, 1e-8, 0, DAL_METHOD_FEHLBERG78);
   expect_auto(three, 1e-10, 0, DAL_METHOD_BS);
-  // under a monitor DOPRI5 where the rule says Fehlberg 7(8)
-  expect_auto(three, 1e-6, 1, DAL_METHOD_DOPRI5);
+  // under a monitor (n >= 3): DOPRI5 down to rtol 1e-5, Bulirsch-Stoer below
+  expect_auto(three, 1e-4, 1, DAL_METHOD_DOPRI5);
+  expect_auto(three, 1e-6, 1, DAL_METHOD_BS);
   expect_auto(three, 1e-10, 1, DAL_METHOD_BS);
   // the default atol is rtol: the same run as atol set to rtol explicitly
   dal_solve_opts d = dal_default_solve_opts(), e = dal_default_solve_opts();

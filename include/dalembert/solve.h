@@ -26,9 +26,12 @@ extern "C" {
 ///   rtol >= 1e-3: DOPRI5;
 ///   rtol < 1e-3, n <= 2: Bulirsch-Stoer;
 ///   rtol < 1e-3, n >= 3: Fehlberg 7(8) down to rtol 1e-8, BS below;
-/// except that dal_evolve with a monitor (and a run recording a dal_trajectory) gets DOPRI5
-/// where this says Fehlberg 7(8) (Fehlberg's dense output costs 1.6-2.6x a plain advance with
-/// outputs every 0.001, DOPRI5's 1.06-1.5x, bench/dense_ir.c). The choice is
+/// except that dal_evolve with a monitor (and a run recording a dal_trajectory) on n >= 3
+/// gets DOPRI5 down to rtol 1e-5 and Bulirsch-Stoer below, from a second table: outputs every
+/// 0.001 on the chain (N = 1 ... 64; bench/dense_auto.sh, docs/performance.md "AUTO with
+/// outputs"), where DOPRI5 costs 1.3-2.7x the cheapest method at errors 1e-8 ... 1e-10, Fehlberg
+/// 7(8) 1.1-1.5x (its dense output needs extra right-hand sides), Bulirsch-Stoer at most 1.2x
+/// there and 1.44x at 1e-7. The choice is
 /// made when the integrator is created, and kept while the options stay the same;
 /// and BDF (IDA) for the GGL and index-3 forms. The rule is read off a work-precision table
 /// (bench/auto.sh, docs/performance.md "AUTO"): the instructions each method needs to reach

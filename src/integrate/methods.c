@@ -58,11 +58,12 @@ const char *dal_method_name(dal_method m) {
 /// The automatic method for an ODE formulation, by relative tolerance and number of
 /// coordinates (documented in solve.h; derived from bench/auto.sh's work-precision table):
 /// rtol >= 1e-3: DOPRI5; below, n <= 2: Bulirsch-Stoer; otherwise Fehlberg 7(8) down to 1e-8
-/// and Bulirsch-Stoer below; with dense outputs DOPRI5 instead of Fehlberg 7(8), whose dense
-/// output costs 1.6-2.6x a plain advance at outputs every 0.001 (DOPRI5's 1.06-1.5x).
+/// and Bulirsch-Stoer below; with dense outputs (n >= 3) DOPRI5 down to DAL_AUTO_DENSE_RTOL
+/// and Bulirsch-Stoer below (bench/dense_auto.sh's table).
 dal_method dal__auto_method(double rtol, int n, int dense) {
   if (rtol >= DAL_AUTO_LOOSE_RTOL) return DAL_METHOD_DOPRI5;
   if (n <= DAL_AUTO_SMALL_N) return DAL_METHOD_BS;
-  if (rtol >= DAL_AUTO_TIGHT_RTOL) return dense ? DAL_METHOD_DOPRI5 : DAL_METHOD_FEHLBERG78;
+  if (dense) return rtol >= DAL_AUTO_DENSE_RTOL ? DAL_METHOD_DOPRI5 : DAL_METHOD_BS;
+  if (rtol >= DAL_AUTO_TIGHT_RTOL) return DAL_METHOD_FEHLBERG78;
   return DAL_METHOD_BS;
 }
