@@ -231,14 +231,15 @@ typedef struct run {
 } run;
 
 // the next output time, or +inf when all are served
-static double out_time(const run *r) {
+static inline double out_time(const run *r) {
+  // the common case first: a grid time before the last (K = 0 without outputs)
+  if (!r->times && r->k < r->K) return r->t0 + (double)r->k * r->dt;
   if (!r->outputs) return INFINITY;
   if (r->times) return r->k <= r->K ? r->times[r->k] : INFINITY;
-  if (r->k <= r->K) {
+  if (r->k == r->K) {
     double tk = r->t0 + (double)r->k * r->dt;
     // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
-    if (r->k == r->K && r->t1 - tk <= 1e-9 * r->dt) tk = r->t1;
-    return tk;
+    return r->t1 - tk <= 1e-9 * r->dt ? r->t1 : tk;
   }
   return r->last_out < r->t1 ? r->t1 : INFINITY;
 }
@@ -314,8 +315,7 @@ static inline int output_done(run *r, double t, int at_state) {
   dal_state *st = r->st;
   r->last_out = t;
   r->k++;
-  // the next output time (inside the grid directly)
-  r->tnext = !r->times && r->k < r->K ? r->t0 + (double)r->k * r->dt : out_time(r);
+  r->tnext = out_time(r);
   // opts.max_steps per output (after_step tells the integrator once per step)
   if (at_state && r->h) r->h->it->ops->new_output(r->h->it);
   if (!r->monitor) return DAL_OK;

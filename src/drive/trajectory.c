@@ -179,11 +179,12 @@ static long find_step(const dal_trajectory *tr, double t) {
 // scaled by their largest magnitude
 static double bary(const double *w, double den, const double *v, size_t stride) {
   double sum = 0.0, big = 0.0;
-  for (int j = 0; j < NODES; ++j) {
+  for (int j = 0; j < NODES; ++j)
     sum += w[j] * v[(size_t)j * stride];
+  if (isfinite(sum / den)) return sum / den;
+  for (int j = 0; j < NODES; ++j)
     big = fmax(big, fabs(v[(size_t)j * stride]));
-  }
-  if (isfinite(sum / den) || !isfinite(big) || big == 0.0) return sum / den;
+  if (!isfinite(big) || big == 0.0) return sum / den;
   sum = 0.0;
   for (int j = 0; j < NODES; ++j)
     sum += w[j] * (v[(size_t)j * stride] / big);
