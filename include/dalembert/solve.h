@@ -30,8 +30,8 @@ extern "C" {
 /// created, and kept while the options stay the same. AUTO takes a method only where its
 /// error estimate holds on a differential set (tests/test_auto_set.c: 300 random planar trees
 /// of 3 ... 6 pendulums with a spring between two siblings, a third of them passing each other
-/// within a few cm, to t = 2, against Bulirsch-Stoer at 1e-13 or DOPRI5 at 1e-12, which agree
-/// to 6.4e-12): the default options stay within 16 x rtol times the scene's amplification of
+/// within a few cm, to t = 2, against Bulirsch-Stoer at 1e-13 or Adams at 1e-12, which agree
+/// to 2.3e-11): the default options stay within 16 x rtol times the scene's amplification of
 /// a start perturbation at every rtol 1e-4 ... 1e-10 (the test checks every run). Fehlberg
 /// 7(8), the cheapest on the seed scenes at 1e-5 ... 1e-8 and AUTO's choice there before 0.4,
 /// reached 22.8 ... 117 x on that set (`test_auto_set --full` prints the table for every
