@@ -45,13 +45,19 @@ static int print_modes(const dal_system *sys, dal_state *st, char *msg, size_t l
   return rc;
 }
 
+const cli_opt cli_modes_opts[] = {
+    {"here", 0, CLI_FLAG, NULL, "at the initial q (no Newton search)", 0},
+    CLI_END,
+};
+
 int cli_modes(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
+  int here = cli_given(c, "here");
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "modes: the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   dal_equilibrium_report rep;
-  if (!c->here && (rc = dal_equilibrium(sys, st, NULL, &rep))) {
+  if (!here && (rc = dal_equilibrium(sys, st, NULL, &rep))) {
     snprintf(c->msg, sizeof c->msg,
              "%s: no equilibrium from the initial q (%s); start nearer one, or --here for the "
              "modes at the initial q",
@@ -59,11 +65,11 @@ int cli_modes(cli *c) {
   } else {
     printf("# normal modes of %s at t = %.17g, ", c->path, dal_state_time(st));
     print_q(sys, dal_state_q(st));
-    printf("%s\n", c->here ? "" : " (the equilibrium found from the initial q)");
+    printf("%s\n", here ? "" : " (the equilibrium found from the initial q)");
     rc = print_modes(sys, st, c->msg, sizeof c->msg);
   }
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  return cli_fail(c, rc, c->msg);
 }
 
 // the equilibria found so far, as the particles' positions (np each): two coordinate vectors
@@ -118,28 +124,33 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   return DAL_OK;
 }
 
+const cli_opt cli_equilibria_opts[] = {
+    {"scan", 0, CLI_TEXT, "COORD=LO:HI:N", "also Newton from N starts of coordinate COORD", 0},
+    CLI_END,
+};
+
 int cli_equilibria(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
   int n = dal_system_ncoords(sys), npts = 0, coord = -1, failed = 0, last = DAL_OK;
   double lo = 0, hi = 0;
   char name[256];
-  if (c->scan) {
-    int rc = cli_grid(c->scan, name, sizeof name, &lo, &hi, &npts);
+  const char *scan = cli_text(c, "scan");
+  if (scan) {
+    int rc = cli_grid(c, "scan", scan, name, sizeof name, &lo, &hi, &npts);
     for (int i = 0; i < n && !rc; ++i)
       if (!strcmp(dal_system_coord_name(sys, i), name)) coord = i;
-    if (rc || coord < 0) {
-      if (!rc) fprintf(stderr, "dalembert: --scan: no coordinate '%s'\n", name);
-      return DAL_E_ARG;
-    }
+    if (rc) return rc;
+    if (coord < 0)
+      return cli_error(c, DAL_E_ARG, "--scan: %s has no coordinate '%s'", c->path, name);
   }
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "equilibria: the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   double *q = malloc(2 * (size_t)n * sizeof *q);
   found f = {0};
   if (!q) rc = DAL_E_NOMEM;
   printf("# equilibria of %s (Newton from the initial q%s)\n", c->path,
-         c->scan ? " and the scanned starts" : "");
+         scan ? " and the scanned starts" : "");
   for (int i = 0; i < n; ++i)
     printf("%s,", dal_system_coord_name(sys, i));
   printf("stability,omega2_min,accel,unsteady\n");
@@ -153,57 +164,72 @@ int cli_equilibria(cli *c) {
     if (r) failed++, last = r;
     cli_progress(c, "equilibria: starts", s + 2, npts + 1, NULL);
   }
-  if (failed) fprintf(stderr, "dalembert: %d of %d starts did not converge\n", failed, npts + 1);
-  if (!rc && !f.count) {
-    fprintf(stderr, "dalembert: %s: no equilibrium found (%s)\n", c->path, dal_status_string(last));
-    rc = last;
-  }
+  if (failed) cli_error(c, 0, "%d of %d starts did not converge", failed, npts + 1);
+  if (!rc && !f.count)
+    rc = cli_error(c, last, "%s: no equilibrium found (%s)", c->path, dal_status_string(last));
   free(q);
   free(f.r);
   dal_state_destroy(st);
   return rc;
 }
 
-static int method_named(const char *name, dal_method *m) {
+static int method_named(const cli *c, const char *name, dal_method *m) {
   for (int k = DAL_METHOD_AUTO; k <= DAL_METHOD_RATTLE6; ++k)
     if (!strcmp(dal_method_name((dal_method)k), name)) {
       *m = (dal_method)k;
       return DAL_OK;
     }
-  fprintf(stderr, "dalembert: --method: unknown method '%s'\n", name);
-  return DAL_E_ARG;
+  return cli_error(c, CLI_USAGE, "--method: unknown method '%s'", name);
 }
 
+typedef struct lyap_ctx {
+  const cli *c;
+  double t1;
+} lyap_ctx;
+
 static int lyap_progress(double t, const double *ex, int nexp, void *ctx) {
-  const cli *c = ctx;
+  const lyap_ctx *l = ctx;
   char extra[64];
   snprintf(extra, sizeof extra, "lambda_1 %.4f", nexp ? ex[0] : NAN);
-  cli_progress(c, "lyapunov: t", t, c->t1, extra);
+  cli_progress(l->c, "lyapunov: t", t, l->t1, extra);
   return 0;
 }
+
+const cli_opt cli_lyapunov_opts[] = {
+    CLI_OPT_T1,
+    {"transient", 0, CLI_NONNEG, "T", "time discarded before the average", 0},
+    {"renorm", 0, CLI_POSITIVE, "T", "time between renormalizations", 0},
+    {"nexp", 0, CLI_COUNT, "K", "the K largest exponents (default 0: all)", 1 << 20},
+    {"method", 0, CLI_TEXT, "M", "the integration method (dal_method_name; default: the scene's)",
+     0},
+    {"h", 0, CLI_POSITIVE, "H", "the step of a fixed-step method", 0},
+    CLI_END,
+};
 
 int cli_lyapunov(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
   double t0, t1;
   const dal_solve_opts *so = dal_scene_opts(c->sc, &t0, &t1, NULL);
   dal_lyapunov_opts o = dal_default_lyapunov_opts();
-  o.t_end = c->t1 > 0 ? c->t1 : t1;
-  c->t1 = o.t_end;
-  if (c->transient >= 0) o.transient = c->transient;
-  if (c->renorm > 0) o.renorm = c->renorm;
-  if (c->h > 0) o.h = c->h;
-  o.nexp = (int)c->nexp;
+  o.t_end = cli_num(c, "t1", t1);
+  o.transient = cli_num(c, "transient", o.transient);
+  o.renorm = cli_num(c, "renorm", o.renorm);
+  o.h = cli_num(c, "h", o.h);
+  o.nexp = (int)cli_num(c, "nexp", 0);
   o.method = so->method;
   o.rtol = so->rtol;
   if (so->atol > 0) o.atol = so->atol; // else dal_lyapunov's default (it needs one > 0)
-  if (c->method && method_named(c->method, &o.method)) return DAL_E_ARG;
+  const char *method = cli_text(c, "method");
+  int rc = DAL_OK;
+  if (method && (rc = method_named(c, method, &o.method))) return rc;
   int k = 2 * (dal_system_ncoords(sys) - dal_system_nconstraints(sys));
   if (o.nexp > 0 && o.nexp < k) k = o.nexp;
   dal_state *st;
-  int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "lyapunov: the scene's initial state was refused");
+  rc = dal_scene_state(c->sc, &st);
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   double *ex = calloc((size_t)k + 1, sizeof *ex), *er = calloc((size_t)k + 1, sizeof *er);
-  rc = ex && er ? dal_lyapunov(sys, st, &o, ex, er, lyap_progress, c) : DAL_E_NOMEM;
+  lyap_ctx lc = {c, o.t_end};
+  rc = ex && er ? dal_lyapunov(sys, st, &o, ex, er, lyap_progress, &lc) : DAL_E_NOMEM;
   if (rc) {
     snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
   } else {
@@ -221,7 +247,7 @@ int cli_lyapunov(cli *c) {
   free(ex);
   free(er);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  return cli_fail(c, rc, c->msg);
 }
 
 // the monitor of cli_evolve: the progress line and the CSV row
@@ -242,16 +268,17 @@ int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
   const dal_system *sys = dal_scene_system(c->sc);
   double t1;
   const dal_solve_opts *so = dal_scene_opts(c->sc, NULL, &t1, NULL);
+  t1 = cli_num(c, "t1", t1);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   if (ev) rc = dal_state_set_events(st, ev);
-  rows r = {c, {fp, 0, c->wrap}, t1, what};
+  rows r = {c, {fp, 0, cli_given(c, "wrap")}, t1, what};
   if (!rc) rc = dal_evolve(sys, st, so, t1, dt, row, &r);
   if (rc < 0) snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
   dal_state_set_events(st, NULL);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  return cli_fail(c, rc, c->msg);
 }
 
 // the crossings of the surface sections: "t,section,<q>,<qdot>"
@@ -273,7 +300,7 @@ static int write_crossings(cli *c, const dal_events *ev, FILE *fp) {
     fprintf(fp, "%.17g,%s", r.t, dal_events_name(ev, r.event));
     for (int i = 0; i < 2 * n; ++i) {
       double x = q[i];
-      if (c->wrap && i < n)
+      if (cli_given(c, "wrap") && i < n)
         x -= 2 * 3.14159265358979323846 * floor(x / (2 * 3.14159265358979323846) + 0.5);
       fprintf(fp, ",%.17g", x);
     }
@@ -283,18 +310,24 @@ static int write_crossings(cli *c, const dal_events *ev, FILE *fp) {
   return DAL_OK;
 }
 
+const cli_opt cli_section_opts[] = {
+    CLI_OPT_OUTPUT("the section's points"),
+    {"surface", 0, CLI_FLAG, NULL, "the surface section (a 'section ... rising =' line)", 0},
+    CLI_OPT_WRAP,
+    CLI_OPT_T1,
+    CLI_END,
+};
+
 int cli_section(cli *c) {
-  int nsurf = 0;
+  int nsurf = 0, surface = cli_given(c, "surface");
   for (int i = 0; dal_scene_event_is_section(c->sc, i) >= 0; ++i)
     nsurf += dal_scene_event_is_section(c->sc, i);
-  int strobo = dal_scene_strobe(c->sc) > 0 && !c->surface;
-  if (!strobo && !nsurf) {
-    fprintf(stderr,
-            "dalembert: %s has no %ssection line ('section <name> period=<T>' or 'section "
-            "<name> rising = <formula>')\n",
-            c->path, c->surface ? "surface " : "");
-    return DAL_E_ARG;
-  }
+  int strobo = dal_scene_strobe(c->sc) > 0 && !surface;
+  if (!strobo && !nsurf)
+    return cli_error(c, DAL_E_ARG,
+                     "%s has no %ssection line ('section <name> period=<T>' or 'section <name> "
+                     "rising = <formula>')",
+                     c->path, surface ? "surface " : "");
   FILE *fp = cli_out(c);
   if (!fp) return DAL_E_IO;
   dal_events *ev = NULL;

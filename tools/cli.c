@@ -1,18 +1,345 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// The command line's services below its commands: exit status, messages, the progress line,
+// The command line's services below its commands: options parsed by getopt_long from each
+// command's table, help printed from the same rows, exit status, messages, the progress line,
 // the output file and grid specifications (cli.h).
+#define _GNU_SOURCE // getopt_long
+#include <getopt.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
 
-int cli_status_exit(int rc) { return rc < 0 ? -rc : 0; }
+// the options every command takes (parsed here, not by the command)
+enum { COMMON_SET, COMMON_PROGRESS, COMMON_NO_PROGRESS, COMMON_HELP, NCOMMON };
+static const cli_opt common[NCOMMON + 1] = {
+    {"set", 0, CLI_TEXT, "NAME=VALUE", "a scene parameter's value (repeatable)", 0},
+    {"progress", 0, CLI_FLAG, NULL, "a progress line on stderr (default: on a terminal, not in CI)",
+     0},
+    {"no-progress", 0, CLI_FLAG, NULL, "no progress line", 0},
+    {"help", 'h', CLI_FLAG, NULL, "this help", 0},
+    CLI_END,
+};
 
-int cli_fail(int rc, const char *msg) {
-  if (rc < 0) fprintf(stderr, "dalembert: %s\n", msg);
+// getopt_long's codes: a command's row k is ROW + k, a common row COMMON + k, an operand 1
+enum { ROW = 1000, COMMON = 2000 };
+
+static const char *const exit_help =
+    "exit status:\n"
+    "  0        success (a run stopped at a terminal event included)\n"
+    "  1 ... 17 the library's failure status, negated: 1 invalid argument (a scene parameter,\n"
+    "           a value the library refuses), 4 domain error, 8 no consistent start,\n"
+    "           11 convergence failure, 15 unsupported combination, 16 a read or write failed\n"
+    "           (standard output included) ... (the list in dalembert/base.h)\n"
+    "  64       a command line it does not understand (an unknown command or option, an option\n"
+    "           of another command, a missing or malformed value)\n"
+    "  130      interrupted (Ctrl-C): the output ends with whole rows\n";
+
+static int nrows(const cli_opt *t) {
+  int n = 0;
+  while (t && t[n].name)
+    ++n;
+  return n;
+}
+
+// one option's help line: "  -o, --output FILE.csv   what"
+static void help_row(FILE *fp, const cli_opt *o) {
+  char head[64];
+  snprintf(head, sizeof head, "%c%c%c --%s%s%s", o->short_name ? '-' : ' ',
+           o->short_name ? o->short_name : ' ', o->short_name ? ',' : ' ', o->name,
+           o->meta ? " " : "", o->meta ? o->meta : "");
+  fprintf(fp, "  %-26s %s\n", head, o->help);
+}
+
+static void help_command(FILE *fp, const cli_cmd *cmd) {
+  fprintf(fp, "usage: dalembert %s %s [options]\n%s\n", cmd->name, cmd->operand, cmd->help);
+  if (nrows(cmd->opts)) fprintf(fp, "\noptions:\n");
+  for (int k = 0; k < nrows(cmd->opts); ++k)
+    help_row(fp, &cmd->opts[k]);
+  fprintf(fp, "\noptions of every command:\n");
+  for (int k = 0; k < NCOMMON; ++k)
+    help_row(fp, &common[k]);
+  fprintf(fp, "\n%s", exit_help);
+}
+
+static void help_global(FILE *fp, const cli_cmd *commands) {
+  fprintf(fp, "usage: dalembert COMMAND SCENE [options]   (dalembert COMMAND --help: its options)\n"
+              "       dalembert --help | --version\n\ncommands:\n");
+  for (const cli_cmd *k = commands; k->name; ++k)
+    fprintf(fp, "  %-11s %s\n", k->name, k->help);
+  fprintf(fp, "\noptions of every command:\n");
+  for (int k = 0; k < NCOMMON; ++k)
+    help_row(fp, &common[k]);
+  fprintf(fp, "\n%s", exit_help);
+}
+
+// the commands owning option `name` (the long name, or the letter when letter is set) as "a, b"
+static void owners(const cli_cmd *commands, const char *name, int letter, char *buf, size_t len) {
+  buf[0] = 0;
+  for (const cli_cmd *k = commands; k->name; ++k)
+    for (int r = 0; r < nrows(k->opts); ++r)
+      if (letter ? k->opts[r].short_name == letter : !strcmp(k->opts[r].name, name)) {
+        size_t u = strlen(buf);
+        snprintf(buf + u, len - u, "%s%s", u ? ", " : "", k->name);
+        break;
+      }
+}
+
+// getopt_long refused argv word `word` (short option letter `letter` when it was one)
+static int refuse(const cli *c, const cli_cmd *commands, const char *word, int letter) {
+  char name[64], who[256];
+  if (letter)
+    snprintf(name, sizeof name, "%c", letter);
+  else
+    snprintf(name, sizeof name, "%.*s", (int)strcspn(word + 2, "="), word + 2);
+  owners(commands, name, letter, who, sizeof who);
+  int prefix = 0; // an abbreviation of two or more of its options
+  for (int k = 0; !letter && k < nrows(c->cmd->opts) + NCOMMON; ++k) {
+    const char *o =
+        k < nrows(c->cmd->opts) ? c->cmd->opts[k].name : common[k - nrows(c->cmd->opts)].name;
+    prefix += !strncmp(o, name, strlen(name));
+  }
+  if (prefix > 1)
+    fprintf(
+        stderr,
+        "dalembert %s: '--%s' is short for more than one of its options (dalembert %s --help)\n",
+        c->cmd->name, name, c->cmd->name);
+  else if (who[0])
+    fprintf(stderr, "dalembert %s: %s%s is an option of %s, not of %s (dalembert %s --help)\n",
+            c->cmd->name, letter ? "-" : "--", name, who, c->cmd->name, c->cmd->name);
+  else
+    fprintf(stderr, "dalembert %s: unknown option '%s%s' (dalembert %s --help lists its options)\n",
+            c->cmd->name, letter ? "-" : "", letter ? name : word, c->cmd->name);
+  return CLI_USAGE;
+}
+
+// the value of row o as its kind requires
+static int check_value(const cli *c, const cli_opt *o, const char *v, double *x) {
+  if (o->kind == CLI_FLAG || o->kind == CLI_TEXT) return 0;
+  char *end;
+  *x = strtod(v, &end);
+  int ok = end != v && !*end && isfinite(*x);
+  const char *need = "a finite number";
+  if (o->kind == CLI_POSITIVE) ok = ok && *x > 0, need = "a number > 0";
+  if (o->kind == CLI_NONNEG) ok = ok && *x >= 0, need = "a number >= 0";
+  if (o->kind == CLI_COUNT) {
+    ok = ok && *x >= 0 && *x <= o->max && *x == floor(*x);
+    need = "an integer";
+  }
+  if (ok) return 0;
+  if (o->kind == CLI_COUNT)
+    fprintf(stderr, "dalembert %s: --%s %s: %s from 0 to %d\n", c->cmd->name, o->name, v, need,
+            o->max);
+  else
+    fprintf(stderr, "dalembert %s: --%s %s: %s\n", c->cmd->name, o->name, v, need);
+  return CLI_USAGE;
+}
+
+static const cli_cmd *find_command(const cli_cmd *commands, const char *name) {
+  for (const cli_cmd *k = commands; k->name; ++k)
+    if (!strcmp(k->name, name)) return k;
+  return NULL;
+}
+
+static int unknown_command(const cli_cmd *commands, const char *word) {
+  fprintf(stderr, "dalembert: unknown command '%s' (commands:", word);
+  for (const cli_cmd *k = commands; k->name; ++k)
+    fprintf(stderr, " %s", k->name);
+  fprintf(stderr, "; dalembert --help)\n");
+  return CLI_USAGE;
+}
+
+// the words before a command: --help, --version, help [COMMAND]
+static int global(const cli_cmd *commands, int argc, char **argv, int *done) {
+  *done = 1;
+  if (argc < 2) {
+    fprintf(stderr, "dalembert: no command (dalembert --help lists them)\n");
+    return CLI_USAGE;
+  }
+  const char *w = argv[1];
+  if (!strcmp(w, "--version") || !strcmp(w, "-V")) {
+    printf("dalembert %d.%d.%d\n", DAL_VERSION_MAJOR, DAL_VERSION_MINOR, DAL_VERSION_PATCH);
+    return 0;
+  }
+  if (!strcmp(w, "--help") || !strcmp(w, "-h") || (!strcmp(w, "help") && argc == 2)) {
+    help_global(stdout, commands);
+    return 0;
+  }
+  if (!strcmp(w, "help")) {
+    const cli_cmd *k = find_command(commands, argv[2]);
+    if (!k) return unknown_command(commands, argv[2]);
+    help_command(stdout, k);
+    return 0;
+  }
+  if (w[0] == '-') {
+    fprintf(stderr, "dalembert: unknown option '%s' before the command (dalembert --help)\n", w);
+    return CLI_USAGE;
+  }
+  if (!find_command(commands, w)) return unknown_command(commands, w);
+  *done = 0;
+  return 0;
+}
+
+// getopt_long's table and short-option string from the command's rows and the common ones
+static void build(const cli_cmd *cmd, struct option *lo, char *so) {
+  int n = 0, s = 0;
+  so[s++] = '-'; // operands in place, as code 1
+  so[s++] = ':'; // a missing value as ':'
+  for (int pass = 0; pass < 2; ++pass) {
+    const cli_opt *t = pass ? common : cmd->opts;
+    for (int k = 0; k < nrows(t); ++k) {
+      int arg = t[k].kind == CLI_FLAG ? no_argument : required_argument;
+      int code = (pass ? COMMON : ROW) + k;
+      lo[n++] = (struct option){t[k].name, arg, NULL, code};
+      if (t[k].short_name) {
+        so[s++] = t[k].short_name;
+        if (arg == required_argument) so[s++] = ':';
+      }
+    }
+  }
+  lo[n] = (struct option){NULL, 0, NULL, 0};
+  so[s] = 0;
+}
+
+// the getopt code of short option letter ch
+static int short_code(const cli_cmd *cmd, int ch) {
+  for (int k = 0; k < nrows(cmd->opts); ++k)
+    if (cmd->opts[k].short_name == ch) return ROW + k;
+  for (int k = 0; k < NCOMMON; ++k)
+    if (common[k].short_name == ch) return COMMON + k;
+  return -1;
+}
+
+// one option row given with value v (NULL for a flag)
+static int take(cli *c, int code, const char *v, int *help) {
+  if (code >= COMMON) {
+    switch (code - COMMON) {
+    case COMMON_SET:
+      c->sets[c->nsets++] = v;
+      break;
+    case COMMON_PROGRESS:
+      c->progress = 1;
+      break;
+    case COMMON_NO_PROGRESS:
+      c->progress = 0;
+      break;
+    default:
+      *help = 1;
+    }
+    return 0;
+  }
+  int k = code - ROW;
+  c->given[k]++;
+  c->val[k] = v ? v : "";
+  return v ? check_value(c, &c->cmd->opts[k], v, &c->num[k]) : 0;
+}
+
+int cli_parse(cli *c, const cli_cmd *commands, int argc, char **argv, int *done) {
+  int rc = global(commands, argc, argv, done);
+  if (*done) return rc;
+  *done = 1;
+  c->cmd = find_command(commands, argv[1]);
+  if (nrows(c->cmd->opts) > CLI_MAXOPT) {
+    fprintf(stderr, "dalembert %s: more than %d options in its table\n", c->cmd->name, CLI_MAXOPT);
+    return CLI_USAGE;
+  }
+  c->sets = calloc((size_t)argc, sizeof *c->sets);
+  if (!c->sets) return cli_exit(DAL_E_NOMEM);
+  struct option lo[CLI_MAXOPT + NCOMMON + 1];
+  char so[3 * (CLI_MAXOPT + NCOMMON) + 3];
+  build(c->cmd, lo, so);
+  int help = 0, nops = 0, ch;
+  const char *extra = NULL;
+  char **av = argv + 1; // the command as getopt's argv[0]
+  int ac = argc - 1;
+  opterr = 0;
+  optind = 1;
+  while (!rc && (ch = getopt_long(ac, av, so, lo, NULL)) != -1) {
+    if (ch == 1) {
+      if (nops++ == 0)
+        c->path = optarg;
+      else if (!extra)
+        extra = optarg;
+    } else if (ch == ':') {
+      const char *w = av[optind - 1];
+      int code = optopt >= ROW ? optopt : optopt ? short_code(c->cmd, optopt) : -1;
+      const cli_opt *o = code >= COMMON ? &common[code - COMMON]
+                         : code >= ROW  ? &c->cmd->opts[code - ROW]
+                                        : NULL;
+      fprintf(stderr, "dalembert %s: %s needs a value%s%s\n", c->cmd->name, w, o ? " " : "",
+              o ? o->meta : "");
+      rc = CLI_USAGE;
+    } else if (ch == '?' && optopt >= ROW) {
+      rc = cli_error(c, CLI_USAGE, "%.*s takes no value", (int)strcspn(av[optind - 1], "="),
+                     av[optind - 1]);
+    } else if (ch == '?') {
+      rc = refuse(c, commands, optopt ? "" : av[optind - 1], optopt);
+    } else {
+      rc = take(c, ch < ROW ? short_code(c->cmd, ch) : ch, optarg, &help);
+    }
+  }
+  for (int k = optind; k < ac && !rc; ++k) // after "--"
+    if (nops++ == 0)
+      c->path = av[k];
+    else if (!extra)
+      extra = av[k];
+  if (rc) return rc;
+  if (help) {
+    help_command(stdout, c->cmd);
+    return 0;
+  }
+  if (!c->path) {
+    fprintf(stderr, "dalembert %s: needs %s (dalembert %s --help)\n", c->cmd->name, c->cmd->operand,
+            c->cmd->name);
+    return CLI_USAGE;
+  }
+  if (extra) {
+    fprintf(stderr, "dalembert %s: unexpected word '%s' (one %s only; dalembert %s --help)\n",
+            c->cmd->name, extra, c->cmd->operand, c->cmd->name);
+    return CLI_USAGE;
+  }
+  *done = 0;
+  return 0;
+}
+
+static int row_of(const cli *c, const char *name) {
+  for (int k = 0; c->cmd && k < nrows(c->cmd->opts); ++k)
+    if (!strcmp(c->cmd->opts[k].name, name)) return k;
+  return -1;
+}
+
+int cli_given(const cli *c, const char *name) {
+  int k = row_of(c, name);
+  return k < 0 ? 0 : c->given[k];
+}
+
+const char *cli_text(const cli *c, const char *name) {
+  int k = row_of(c, name);
+  return k < 0 ? NULL : c->val[k];
+}
+
+double cli_num(const cli *c, const char *name, double dflt) {
+  int k = row_of(c, name);
+  return k < 0 || !c->given[k] ? dflt : c->num[k];
+}
+
+int cli_exit(int rc) { return rc < 0 ? -rc : 0; }
+
+int cli_error(const cli *c, int rc, const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  fprintf(stderr, "dalembert %s: ", c->cmd ? c->cmd->name : "");
+  vfprintf(stderr, fmt, ap);
+  fputc('\n', stderr);
+  va_end(ap);
+  return rc;
+}
+
+int cli_fail(const cli *c, int rc, const char *msg) {
+  if (rc < 0) cli_error(c, rc, "%s", msg);
   return rc;
 }
 
@@ -29,27 +356,25 @@ void cli_progress(const cli *c, const char *what, double done, double total, con
 }
 
 FILE *cli_out(const cli *c) {
-  FILE *fp = c->out ? fopen(c->out, "w") : stdout;
-  if (!fp) fprintf(stderr, "dalembert: cannot write %s\n", c->out);
+  const char *path = cli_text(c, "output");
+  FILE *fp = path ? fopen(path, "w") : stdout;
+  if (!fp) cli_error(c, DAL_E_IO, "cannot write %s", path);
   return fp;
 }
 
 int cli_close(const cli *c, FILE *fp, int rc) {
-  if (fp && fp != stdout && fclose(fp) && rc >= 0) {
-    fprintf(stderr, "dalembert: writing %s failed\n", c->out);
-    return DAL_E_IO;
-  }
+  if (fp && fp != stdout && fclose(fp) && rc >= 0)
+    return cli_error(c, DAL_E_IO, "writing %s failed", cli_text(c, "output"));
   return rc;
 }
 
-int cli_grid(const char *spec, char *buf, size_t len, double *lo, double *hi, int *n) {
+int cli_grid(const cli *c, const char *opt, const char *spec, char *buf, size_t len, double *lo,
+             double *hi, int *n) {
   snprintf(buf, len, "%s", spec ? spec : "");
   char *eq = strchr(buf, '=');
   if (!eq || sscanf(eq + 1, "%lf:%lf:%d", lo, hi, n) != 3 || *n < 1 || !isfinite(*lo) ||
-      !isfinite(*hi)) {
-    fprintf(stderr, "dalembert: '%s' is not NAME=LO:HI:N (N >= 1)\n", spec ? spec : "");
-    return DAL_E_ARG;
-  }
+      !isfinite(*hi))
+    return cli_error(c, DAL_E_ARG, "--%s '%s' is not NAME=LO:HI:N (N >= 1)", opt, spec ? spec : "");
   *eq = 0;
   return DAL_OK;
 }

@@ -91,7 +91,8 @@ static int write_rows(const sweep_ctx *s, const dal_sweep_out *o, int n, FILE *f
 static int run_sweep(cli *c, const dal_sweep *sw, dal_sweep_opts *so, dal_sweep_out *o,
                      int *writer) {
   *writer = 1;
-  if (!c->mpi) return dal_sweep_run(dal_scene_system(c->sc), sw, so, o, c->msg, sizeof c->msg);
+  if (!cli_given(c, "mpi"))
+    return dal_sweep_run(dal_scene_system(c->sc), sw, so, o, c->msg, sizeof c->msg);
 #ifdef DAL_CLI_MPI
   int rank = 0, was = 0;
   MPI_Initialized(&was);
@@ -115,17 +116,19 @@ static int run_sweep(cli *c, const dal_sweep *sw, dal_sweep_opts *so, dal_sweep_
 #endif
 }
 
+const cli_opt cli_sweep_opts[] = {
+    {"param", 0, CLI_TEXT, "NAME=LO:HI:N", "the scene parameter and its grid (required)", 0},
+    {"threads", 0, CLI_COUNT, "K", "threads (default 1; 0: every processor)", 1024},
+    {"mpi", 0, CLI_FLAG, NULL, "over MPI ranks (start with mpirun; rank 0 writes)", 0},
+    CLI_OPT_OUTPUT("the final states"),
+    CLI_END,
+};
+
 static int sweep_setup(cli *c, sweep_ctx *s) {
-  if (!c->param) {
-    fprintf(stderr, "dalembert: sweep needs --param NAME=LO:HI:N (a scene parameter)\n");
-    return DAL_E_ARG;
-  }
-  int rc = cli_grid(c->param, s->name, sizeof s->name, &s->lo, &s->hi, &s->npts);
+  const char *param = cli_text(c, "param");
+  if (!param) return cli_error(c, CLI_USAGE, "needs --param NAME=LO:HI:N (a scene parameter)");
+  int rc = cli_grid(c, "param", param, s->name, sizeof s->name, &s->lo, &s->hi, &s->npts);
   if (rc) return rc;
-  if (!(c->threads >= 0 && c->threads <= 1024 && c->threads == floor(c->threads))) {
-    fprintf(stderr, "dalembert: --threads %g: 0 (every processor) to 1024\n", c->threads);
-    return DAL_E_ARG;
-  }
   FILE *m = open_memstream(&s->text, &s->len);
   if (!m) return DAL_E_NOMEM;
   rc = dal_scene_write(c->sc, m);
@@ -160,7 +163,7 @@ int cli_sweep(cli *c) {
       sw.qdot0 = dal_state_qdot(st0);
     }
     dal_sweep_opts so = dal_default_sweep_opts();
-    so.nthreads = (int)c->threads;
+    so.nthreads = (int)cli_num(c, "threads", 1);
     so.worker_create = worker_create;
     so.worker_destroy = worker_destroy;
     so.worker_ctx = &s;
@@ -169,14 +172,14 @@ int cli_sweep(cli *c) {
     if (!rc) rc = run_sweep(c, &sw, &so, &o, &writer);
   }
   dal_state_destroy(st0);
-  if (rc < 0) fprintf(stderr, "dalembert: %s\n", c->msg);
+  if (rc < 0) cli_error(c, rc, "%s", c->msg);
   if (!rc && writer) {
     FILE *fp = cli_out(c);
     rc = fp ? write_rows(&s, &o, n, fp) : DAL_E_IO;
     rc = cli_close(c, fp, rc);
     if (!rc && o.nfailed)
-      fprintf(stderr, "dalembert: %ld of %d trajectories failed (their messages are in the CSV)\n",
-              o.nfailed, s.npts);
+      cli_error(c, 0, "%ld of %d trajectories failed (their messages are in the CSV)", o.nfailed,
+                s.npts);
   }
   free(o.results);
   free(o.status);
