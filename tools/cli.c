@@ -4,12 +4,16 @@
 // command's table, help printed from the same rows, exit status, messages, the progress line,
 // the output file and grid specifications (cli.h).
 #define _GNU_SOURCE // getopt_long
+#include <errno.h>
 #include <getopt.h>
 #include <math.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "cli.h"
 
@@ -119,6 +123,13 @@ static int refuse(const cli *c, const cli_cmd *commands, const char *word, int l
 // the value of row o as its kind requires
 static int check_value(const cli *c, const cli_opt *o, const char *v, double *x) {
   if (o->kind == CLI_FLAG || o->kind == CLI_TEXT) return 0;
+  if (o->kind == CLI_CHOICE) {
+    size_t n = strlen(v);
+    for (const char *w = o->meta; w && *w; w += strcspn(w, "|"), w += *w == '|')
+      if (n && strcspn(w, "|") == n && !strncmp(w, v, n)) return 0;
+    fprintf(stderr, "dalembert %s: --%s %s: one of %s\n", c->cmd->name, o->name, v, o->meta);
+    return CLI_USAGE;
+  }
   char *end;
   *x = strtod(v, &end);
   int ok = end != v && !*end && isfinite(*x);
@@ -326,12 +337,33 @@ double cli_num(const cli *c, const char *name, double dflt) {
   return k < 0 || !c->given[k] ? dflt : c->num[k];
 }
 
+int cli_set_params(const cli *c, dal_scene *sc, char *msg, size_t len) {
+  for (int k = 0; k < c->nsets; ++k) {
+    const char *arg = c->sets[k], *eq = strchr(arg, '=');
+    char name[256], *end;
+    if (!eq || eq == arg || (size_t)(eq - arg) >= sizeof name)
+      return cli_error(c, CLI_USAGE, "--set '%s' is not NAME=VALUE", arg);
+    snprintf(name, sizeof name, "%.*s", (int)(eq - arg), arg);
+    double v = strtod(eq + 1, &end);
+    if (end == eq + 1 || *end)
+      return cli_error(c, CLI_USAGE, "--set %s: '%s' is not a number", name, eq + 1);
+    int rc = dal_scene_set_param(sc, name, v, msg, len);
+    if (rc) return rc;
+  }
+  return DAL_OK;
+}
+
+int cli_json_asked(const cli *c) {
+  const char *f = cli_text(c, "format");
+  return f && !strcmp(f, "json");
+}
+
 int cli_exit(int rc) { return rc < 0 ? -rc : 0; }
 
 int cli_error(const cli *c, int rc, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
-  fprintf(stderr, "dalembert %s: ", c->cmd ? c->cmd->name : "");
+  fprintf(stderr, "dalembert%s%s: ", c->cmd ? " " : "", c->cmd ? c->cmd->name : "");
   vfprintf(stderr, fmt, ap);
   fputc('\n', stderr);
   va_end(ap);
@@ -355,26 +387,151 @@ void cli_progress(const cli *c, const char *what, double done, double total, con
   fflush(stderr);
 }
 
-FILE *cli_out(const cli *c) {
-  const char *path = cli_text(c, "output");
-  FILE *fp = path ? fopen(path, "w") : stdout;
-  if (!fp) cli_error(c, DAL_E_IO, "cannot write %s", path);
-  return fp;
+int cli_open(const cli *c, const char *path, cli_file *f) {
+  *f = (cli_file){path ? NULL : stdout, path, NULL};
+  if (!path) return DAL_OK;
+  // a plain file (or a new one) is written under a temporary name beside it
+  struct stat sb;
+  if (stat(path, &sb) != 0 || S_ISREG(sb.st_mode)) {
+    size_t len = strlen(path) + 16;
+    f->tmp = malloc(len);
+    if (!f->tmp) return cli_error(c, DAL_E_NOMEM, "out of memory for the name of %s", path);
+    snprintf(f->tmp, len, "%s.partXXXXXX", path);
+    int fd = mkstemp(f->tmp);
+    if (fd < 0) {
+      int e = errno;
+      free(f->tmp);
+      f->tmp = NULL;
+      return cli_error(c, DAL_E_IO, "cannot write %s (%s)", path, strerror(e));
+    }
+    mode_t mask = umask(0);
+    umask(mask);
+    if (fchmod(fd, 0666 & ~mask) != 0 || !(f->fp = fdopen(fd, "w"))) {
+      int e = errno;
+      close(fd);
+      remove(f->tmp);
+      free(f->tmp);
+      f->tmp = NULL;
+      return cli_error(c, DAL_E_IO, "cannot write %s (%s)", path, strerror(e));
+    }
+    return DAL_OK;
+  }
+  // a device or a pipe: written in place
+  f->fp = fopen(path, "w");
+  if (!f->fp) return cli_error(c, DAL_E_IO, "cannot write %s (%s)", path, strerror(errno));
+  return DAL_OK;
 }
 
-int cli_close(const cli *c, FILE *fp, int rc) {
-  if (fp && fp != stdout && fclose(fp) && rc >= 0)
-    return cli_error(c, DAL_E_IO, "writing %s failed", cli_text(c, "output"));
-  return rc;
+int cli_commit(const cli *c, cli_file *f, int rc) {
+  if (!f->fp) return rc;
+  const char *name = f->path ? f->path : "standard output";
+  errno = 0;
+  int bad = fflush(f->fp) != 0 || ferror(f->fp);
+  int e = errno;
+  if (f->fp != stdout && fclose(f->fp) != 0 && !bad) bad = 1, e = errno;
+  f->fp = NULL;
+  if (bad)
+    cli_error(c, DAL_E_IO, "writing %s failed (%s)%s", name, e ? strerror(e) : "write error",
+              f->tmp ? "; nothing written there" : "");
+  if (bad && !f->path) clearerr(stdout); // said once
+  if (f->tmp) {
+    if (bad || rc < 0) {
+      remove(f->tmp);
+      if (!bad) cli_error(c, rc, "%s not written (the command failed)", f->path);
+    } else if (rename(f->tmp, f->path) != 0) {
+      e = errno;
+      remove(f->tmp);
+      bad = 1;
+      cli_error(c, DAL_E_IO, "cannot write %s (%s)", f->path, strerror(e));
+    }
+    free(f->tmp);
+    f->tmp = NULL;
+  }
+  return bad && rc >= 0 ? DAL_E_IO : rc;
+}
+
+FILE *cli_out(cli *c) { return cli_open(c, cli_text(c, "output"), &c->out) ? NULL : c->out.fp; }
+
+int cli_close(cli *c, int rc) { return cli_commit(c, &c->out, rc); }
+
+char *cli_read_text(const cli *c, const char *path) {
+  FILE *fp = fopen(path, "rb");
+  if (!fp) {
+    cli_error(c, DAL_E_IO, "%s: cannot open (%s)", path, strerror(errno));
+    return NULL;
+  }
+  size_t cap = 4096, n = 0;
+  char *buf = malloc(cap);
+  for (size_t k; buf && (k = fread(buf + n, 1, cap - n - 1, fp)) > 0;) {
+    n += k;
+    if (n + 1 < cap) continue;
+    char *nb = cap < ((size_t)1 << 30) ? realloc(buf, 2 * cap) : NULL;
+    if (!nb) free(buf);
+    buf = nb;
+    cap *= 2;
+  }
+  int bad = ferror(fp);
+  fclose(fp);
+  if (!buf || bad) {
+    free(buf);
+    cli_error(c, DAL_E_IO, "%s: cannot read (%s)", path, bad ? "read error" : "too large");
+    return NULL;
+  }
+  buf[n] = 0;
+  return buf;
+}
+
+// the flag SIGINT sets: the one mutable global of the command line, as a handler needs
+static volatile sig_atomic_t interrupted;
+
+static void on_sigint(int sig) {
+  (void)sig;
+  interrupted = 1;
+}
+
+void cli_catch_interrupt(void) {
+  struct sigaction sa, old;
+  // an interrupt ignored by the parent (nohup, a background job) stays ignored
+  if (sigaction(SIGINT, NULL, &old) == 0 && old.sa_handler == SIG_IGN) return;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = on_sigint;
+  sa.sa_flags = SA_RESETHAND; // a second Ctrl-C ends the process at once
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, NULL);
+}
+
+int cli_interrupted(void) { return interrupted != 0; }
+
+int cli_cancel(void *ctx) {
+  (void)ctx;
+  return interrupted != 0;
+}
+
+void cli_note(const cli *c, const dal_state *st) {
+  const char *m = st ? dal_state_errmsg(st) : "";
+  if (m && *m) cli_error(c, 0, "%s%s", strncmp(m, "note", 4) ? "note: " : "", m);
 }
 
 int cli_grid(const cli *c, const char *opt, const char *spec, char *buf, size_t len, double *lo,
              double *hi, int *n) {
   snprintf(buf, len, "%s", spec ? spec : "");
-  char *eq = strchr(buf, '=');
-  if (!eq || sscanf(eq + 1, "%lf:%lf:%d", lo, hi, n) != 3 || *n < 1 || !isfinite(*lo) ||
-      !isfinite(*hi))
-    return cli_error(c, DAL_E_ARG, "--%s '%s' is not NAME=LO:HI:N (N >= 1)", opt, spec ? spec : "");
+  char *eq = strchr(buf, '='), *end;
+  long count = 0;
+  int ok =
+      eq && eq != buf && sscanf(eq + 1, "%lf:%lf:", lo, hi) == 2 && isfinite(*lo) && isfinite(*hi);
+  const char *last = ok ? strrchr(eq + 1, ':') : NULL;
+  if (ok) {
+    errno = 0;
+    count = strtol(last + 1, &end, 10);
+    ok = end != last + 1 && !*end && count >= 1;
+  }
+  if (!ok)
+    return cli_error(c, CLI_USAGE, "--%s '%s' is not NAME=LO:HI:N (finite LO and HI, N >= 1)", opt,
+                     spec ? spec : "");
+  if (errno == ERANGE || count > CLI_GRID_MAX)
+    return cli_error(c, CLI_USAGE, "--%s '%s': %s points are too many (at most %d)", opt, spec,
+                     last + 1, CLI_GRID_MAX);
+  *n = (int)count;
   *eq = 0;
   return DAL_OK;
 }

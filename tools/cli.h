@@ -36,6 +36,7 @@ typedef enum cli_kind {
   CLI_POSITIVE, // a finite number > 0
   CLI_NONNEG,   // a finite number >= 0
   CLI_COUNT,    // an integer 0 ... max
+  CLI_CHOICE,   // one of the words of meta, "csv|json"
 } cli_kind;
 
 // one option of a command: --name [value] (and -s when short is set)
@@ -63,10 +64,19 @@ typedef struct cli_cmd {
   const char *help;    // one line
 } cli_cmd;
 
+// an output: standard output, or a file written under a temporary name and renamed to its own
+// when the command ends well (or is interrupted: its rows are whole), removed when it fails
+typedef struct cli_file {
+  FILE *fp;
+  const char *path; // NULL: standard output
+  char *tmp;        // the temporary file (NULL for stdout and for a path that is no plain file)
+} cli_file;
+
 // the parsed command line and the scene it names
 struct cli {
   const cli_cmd *cmd;          // the command running
   const char *path;            // the scene file (its operand)
+  char *text;                  // its text
   dal_scene *sc;               // read from it, --set applied
   int progress;                // the progress line on stderr
   const char *val[CLI_MAXOPT]; // the value of each option row given (NULL: not given)
@@ -74,6 +84,7 @@ struct cli {
   int given[CLI_MAXOPT];       // times given
   const char **sets;           // the --set NAME=VALUE texts, in order
   int nsets;
+  cli_file out;   // -o FILE or stdout (cli_out)
   char msg[2048]; // the library's messages
 };
 
@@ -98,6 +109,8 @@ CLI_COMMAND(sweep);
   { "wrap", 0, CLI_FLAG, NULL, "angles wrapped into [-pi, pi) (every coordinate taken as one)", 0 }
 #define CLI_OPT_T1                                                                                 \
   { "t1", 0, CLI_POSITIVE, "T", "end time (default: the scene's t1)", 0 }
+#define CLI_OPT_FORMAT                                                                             \
+  { "format", 0, CLI_CHOICE, "csv|json", "csv (default) or json (docs/cli.md: the schema)", 0 }
 
 // --- parsing (cli.c) ---
 
@@ -112,6 +125,11 @@ int cli_given(const cli *c, const char *name);
 const char *cli_text(const cli *c, const char *name);
 // its number (dflt when not given)
 double cli_num(const cli *c, const char *name, double dflt);
+// apply the --set values to sc in their order: DAL_OK, CLI_USAGE (a malformed NAME=VALUE; said
+// on stderr), or dal_scene_set_param's status (its message in msg)
+int cli_set_params(const cli *c, dal_scene *sc, char *msg, size_t len);
+// --format json given
+int cli_json_asked(const cli *c);
 
 // --- services (cli.c) ---
 
@@ -127,11 +145,30 @@ int cli_error(const cli *c, int rc, const char *fmt, ...)
     ;
 // the progress line on stderr (when enabled): what, done of total, extra text
 void cli_progress(const cli *c, const char *what, double done, double total, const char *extra);
-// -o FILE or stdout (NULL and a message when it cannot be opened)
-FILE *cli_out(const cli *c);
-// close what cli_out opened; DAL_E_IO when that fails and rc was not already an error
-int cli_close(const cli *c, FILE *fp, int rc);
-// NAME=LO:HI:N into its parts (name points into the copy buf of len bytes)
+// open an output (path NULL: standard output); DAL_E_IO with a message when it cannot be
+int cli_open(const cli *c, const char *path, cli_file *f);
+// end an output after the command's status rc: every write checked (fflush, ferror, fclose);
+// a file renamed to its name when rc >= 0, removed when rc < 0 or a write failed. Returns rc,
+// or DAL_E_IO (with a message) when a write failed and rc was not already an error.
+int cli_commit(const cli *c, cli_file *f, int rc);
+// -o FILE or stdout into c->out (NULL and a message when it cannot be opened)
+FILE *cli_out(cli *c);
+// cli_commit of c->out
+int cli_close(cli *c, int rc);
+// the scene file's text (NULL and a message naming it when it cannot be read)
+char *cli_read_text(const cli *c, const char *path);
+
+// Ctrl-C: the first SIGINT sets the flag (a second one ends the process); runs stop at their
+// next step or output with whole rows, the command says where, and the exit status is 130
+void cli_catch_interrupt(void);
+int cli_interrupted(void);
+// the cancel hook / monitor answer: nonzero once interrupted
+int cli_cancel(void *ctx);
+
+// a note the library left in the state's message after success, on stderr
+void cli_note(const cli *c, const dal_state *st);
+// NAME=LO:HI:N into its parts (name points into the copy buf of len bytes), 1 <= N <= CLI_GRID_MAX
+enum { CLI_GRID_MAX = 10000000 };
 int cli_grid(const cli *c, const char *opt, const char *spec, char *buf, size_t len, double *lo,
              double *hi, int *n);
 

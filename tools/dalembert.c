@@ -56,13 +56,14 @@ int cli_run(cli *c) {
   dal_scene_opts(c->sc, NULL, NULL, &dt);
   if (!rc) rc = cli_evolve(c, fp, ev, dt, "run: t");
   if (rc >= 0 && evpath) {
-    FILE *ef = fopen(evpath, "w");
-    if (!ef || dal_events_write_csv(ev, ef, -1, 0))
-      rc = cli_error(c, DAL_E_IO, "cannot write %s", evpath);
-    if (ef && fclose(ef)) rc = DAL_E_IO;
+    cli_file ef;
+    int er = cli_open(c, evpath, &ef);
+    if (!er && dal_events_write_csv(ev, ef.fp, -1, 0)) er = DAL_E_IO;
+    er = cli_commit(c, &ef, er);
+    if (er < 0) rc = er;
   }
   dal_events_destroy(ev);
-  rc = cli_close(c, fp, rc);
+  rc = cli_close(c, rc);
   if (rc >= 0 && png) rc = chart(c->sc, cli_text(c, "output"), png);
   return rc;
 }
@@ -106,19 +107,6 @@ static const cli_cmd commands[] = {
     {NULL, NULL, NULL, NULL, NULL},
 };
 
-// one NAME=VALUE of --set
-static int set_one(cli *c, const char *arg) {
-  const char *eq = strchr(arg, '=');
-  char name[256], *end;
-  if (!eq || eq == arg || (size_t)(eq - arg) >= sizeof name)
-    return cli_error(c, CLI_USAGE, "--set '%s' is not NAME=VALUE", arg);
-  snprintf(name, sizeof name, "%.*s", (int)(eq - arg), arg);
-  double v = strtod(eq + 1, &end);
-  if (end == eq + 1 || *end)
-    return cli_error(c, CLI_USAGE, "--set %s: '%s' is not a number", name, eq + 1);
-  return cli_fail(c, dal_scene_set_param(c->sc, name, v, c->msg, sizeof c->msg), c->msg);
-}
-
 int main(int argc, char **argv) {
   cli c;
   memset(&c, 0, sizeof c);
@@ -126,14 +114,20 @@ int main(int argc, char **argv) {
   c.progress = isatty(2) && !(ci && *ci);
   int done, rc = cli_parse(&c, commands, argc, argv, &done);
   if (!done) {
-    rc = dal_scene_read(c.path, &c.sc, c.msg, sizeof c.msg);
-    if (rc) cli_fail(&c, rc, c.msg);
-    for (int k = 0; k < c.nsets && !rc; ++k)
-      rc = set_one(&c, c.sets[k]);
+    cli_catch_interrupt();
+    c.text = cli_read_text(&c, c.path);
+    rc = c.text ? dal_scene_parse(c.text, c.path, &c.sc, c.msg, sizeof c.msg) : DAL_E_IO;
+    if (rc && c.text) cli_fail(&c, rc, c.msg);
+    if (!rc && (rc = cli_set_params(&c, c.sc, c.msg, sizeof c.msg)) < 0) cli_fail(&c, rc, c.msg);
     if (!rc) rc = c.cmd->fn(&c);
     dal_scene_destroy(c.sc);
+    free(c.text);
     rc = rc == CLI_USAGE ? rc : cli_exit(rc);
   }
+  // standard output too: a result that could not be written is a failure
+  cli_file out = {stdout, NULL, NULL};
+  if (cli_commit(&c, &out, DAL_OK) < 0 && rc == 0) rc = cli_exit(DAL_E_IO);
+  if (cli_interrupted() && rc != CLI_USAGE) rc = CLI_INTERRUPTED;
   free(c.sets);
   return rc;
 }
