@@ -526,6 +526,7 @@ static void interrupt(void) {
   remove("cli_int.csv");
   pid_t pid = fork();
   if (pid == 0) {
+    signal(SIGINT, SIG_DFL); // a test started in the background inherits it ignored
     if (!freopen("cli_int.err", "w", stderr)) _exit(127);
     execl(CLI, CLI, "run", SCENES "/driven_pendulum.scene", "--t1", "1e6", "-o", "cli_int.csv",
           "--no-progress", (char *)NULL);
@@ -543,8 +544,10 @@ static void interrupt(void) {
     nanosleep(&(struct timespec){0, 10000000}, NULL);
   }
   kill(pid, SIGINT);
-  int st = 0;
-  waitpid(pid, &st, 0);
+  int st = 0, k = 0;
+  while (waitpid(pid, &st, WNOHANG) == 0 && k++ < 3000) // 30 s at most
+    nanosleep(&(struct timespec){0, 10000000}, NULL);
+  if (k > 3000) kill(pid, SIGKILL), waitpid(pid, &st, 0);
   CHECK_MSG(WIFEXITED(st) && WEXITSTATUS(st) == 130, "interrupted run: status %d", st);
   FILE *f = fopen("cli_int.csv", "r");
   char line[512];

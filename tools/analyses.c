@@ -402,13 +402,14 @@ static int row(const dal_system *sys, const dal_state *st, void *ctx) {
 static int evolve(cli *c, rows *r, dal_events *ev, double dt) {
   const dal_system *sys = dal_scene_system(c->sc);
   double t1;
-  const dal_solve_opts *so = dal_scene_opts(c->sc, NULL, &t1, NULL);
+  dal_solve_opts so = *dal_scene_opts(c->sc, NULL, &t1, NULL);
+  so.cancel = cli_cancel; // Ctrl-C: the run stops at its next step, outputs up to it served
   r->t1 = t1 = cli_num(c, "t1", t1);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   if (ev) rc = dal_state_set_events(st, ev);
-  if (!rc) rc = dal_evolve(sys, st, so, t1, dt, row, r);
+  if (!rc) rc = dal_evolve(sys, st, &so, t1, dt, row, r);
   FILE *fp = r->json ? r->json->fp : r->csv.fp;
   if (rc < 0 && fp && ferror(fp)) {
     rc = DAL_E_IO; // the output's failure, said by cli_commit

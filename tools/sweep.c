@@ -62,7 +62,9 @@ static int reduce(const dal_system *sys, dal_state *st, const dal_traj *tr, void
   if (!rc) {
     double t1, dt;
     dal_solve_opts so = *dal_scene_opts(ws, NULL, &t1, &dt);
+    so.cancel = cli_cancel; // Ctrl-C: a trajectory under way stops at its next step
     rc = dal_evolve(dal_scene_system(ws), fin, &so, t1, dt, NULL, NULL);
+    if (rc == DAL_CANCELLED) rc = DAL_E_CALLBACK; // not finished: no result
     if (rc < 0) snprintf(tr->msg, DAL_SWEEP_MSG_LEN, "%s: %s", s->c->path, dal_state_errmsg(fin));
   }
   if (fin && rc >= 0) {
@@ -226,8 +228,9 @@ int cli_sweep(cli *c) {
     long run = 0;
     for (long k = 0; k < s.npts; ++k)
       run += o.status[k] != DAL_E_CALLBACK;
-    cli_error(c, 0, "interrupted after %ld of %d trajectories: the others are marked not run", run,
-              s.npts);
+    cli_error(c, 0,
+              "interrupted: %ld of %d trajectories finished; the others are marked DAL_E_CALLBACK",
+              run, s.npts);
     rc = DAL_OK;
   }
   if (!rc && writer) {
