@@ -366,6 +366,11 @@ static void progress(void) {
   CHECK(system(cmd) != 0);
 }
 
+static void write_file(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  CHECK(f && fputs(text, f) >= 0 && fclose(f) == 0);
+}
+
 // the CLI's stdout and stderr together in out (its exit status returned)
 static char said[8192];
 static int cli_said(const char *args) {
@@ -429,11 +434,27 @@ static void manners(void) {
   says(a, 64, "--set 'a' is not NAME=VALUE", NULL);
   snprintf(a, sizeof a, "run %s --set nope=1", dp);
   says(a, 1, "no parameter 'nope'", NULL);
-}
-
-static void write_file(const char *path, const char *text) {
-  FILE *f = fopen(path, "w");
-  CHECK(f && fputs(text, f) >= 0 && fclose(f) == 0);
+  // the culprit named: the scene file and its line, the option and its word
+  write_file("cli_bad2.scene", "dim 2\ncoord th\nparticle b mass=1\nplace b = l*sin(th); 0\n");
+  says("run cli_bad2.scene", 1, "cli_bad2.scene:4: place b:", "unknown symbol 'l'");
+  says("run cli_missing.scene", 16, "cli_missing.scene: cannot open (No such file or directory)",
+       NULL);
+  snprintf(a, sizeof a, "run %s --chart x.png", dp);
+  says(a, 64, "--chart needs -o FILE.csv", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --method nope", dp);
+  says(a, 64, "--method: unknown method 'nope'", NULL);
+  says("equilibria " SCENES "/bead_ring_above.scene --scan phi=0:1:2", 1,
+       "bead_ring_above.scene has no coordinate 'phi'", NULL);
+  says("equilibria " SCENES "/bead_ring_above.scene --scan theta=0:x:2", 64,
+       "--scan 'theta=0:x:2' is not NAME=LO:HI:N", NULL);
+  says("section " SCENES "/bead_ring_below.scene", 1, "bead_ring_below.scene has no section line",
+       NULL);
+  says("sweep " SCENES "/bead_ring_below.scene --param nope=0:1:2", 1,
+       "bead_ring_below.scene has no parameter 'nope'", NULL);
+  says("modes " SCENES "/bead_ring_below.scene --format xml", 64, "--format xml: one of csv|json",
+       NULL);
+  says("help frob", 64, "unknown command 'frob'", NULL);
+  says("--frob", 64, "unknown option '--frob' before the command", NULL);
 }
 
 // the line of `file` that starts with `start` (0: none)
