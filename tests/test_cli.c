@@ -480,6 +480,16 @@ static void regressions(void) {
        "residual 0.69 on 'rod'");
   CHECK(cli("run cli_rod.scene --no-progress 2>/dev/null") == 0 && tab.nrow == 11);
   CHECK_CLOSE(tab.v[0][2], -1.0, 1e-12);
+  // ... and in a sweep, in the trajectory's message (the start y0 = -1 needs no move)
+  write_file("cli_rod2.scene", "dim 2\nparam y0 = -1.3\ncoord x q=0 v=0\ncoord y q=y0 v=0\n"
+                               "particle b mass=1\nplace b = x; y\n"
+                               "constraint rod parts=b = x_b^2 + y_b^2 - 1\n"
+                               "gravity 0 -9.8\nrun t1=1 dt=0.1\n");
+  says("sweep cli_rod2.scene --param y0=-1.3:-1:2", 0, "\n0,-1.3,DAL_OK,",
+       "1 of 2 trajectories left a note");
+  const char *note = strstr(said, "\"cli_rod2.scene: note: the consistent start at t=0 moved "
+                                  "coordinate 'y' by 0.3 ");
+  CHECK(note && !strstr(note + 1, "note: the consistent") && strstr(said, ",\"\"\n"));
   // --t1 of run is honoured (the scene's t1 is 100)
   CHECK(cli("run " SCENES "/driven_pendulum.scene --t1 5") == 0 && tab.nrow == 501);
   CHECK_CLOSE(tab.v[tab.nrow - 1][0], 5.0, 0);
