@@ -198,7 +198,8 @@ static void errors(void) {
   refused("dim 2\ncoord th\nparticle b mass=1\nplace c = sin(th); -cos(th)\n", "bad.scene:4",
           "particle 'c' is not defined above");
   refused("dim 2\n# comment\ncoord th\nwobble 3\n", "bad.scene:4", "unknown element 'wobble'");
-  refused("param g = nine\n", "bad.scene:1", "'nine' is not a finite number");
+  refused("param g = nine\n", "bad.scene:1: param g: formula 1 'nine'", "unknown symbol 'nine'");
+  refused("param g = 1/0\n", "bad.scene:1: param g", "is not finite");
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b = sin(th)\n", "bad.scene:4",
           "1 formulas for dimension 2");
   refused("dim 2\ncoord th\nparticle b mass=1\nplace b pendulum th\n", "bad.scene:4",

@@ -158,17 +158,8 @@ static char *text_of(const dal_expr *e, int k) {
 // a formula over the coordinates (and their rates when vel), t and the parameters
 static int compile(const dal_scene *sc, const char *name, const char *f, int vel, dal_expr **e,
                    char *msg, size_t msglen) {
-  dal_expr_def ed = dal_default_expr_def();
-  ed.name = name;
-  ed.formulas = &f;
-  ed.nout = 1;
-  ed.inputs = (const char *const *)sc->cname;
-  ed.nin = sc->ncoord;
-  ed.velocities = vel;
-  ed.params = (const char *const *)sc->pname;
-  ed.values = sc->pval;
-  ed.nparam = sc->nparam;
-  return dal_expr_create(&ed, e, msg, msglen);
+  return dal__scene_expr(sc, name, &f, 1, (const char *const *)sc->cname, sc->ncoord, vel, e, msg,
+                         msglen);
 }
 
 // what the lines give beyond T and U: the damping forces (Rayleigh's D) and the constraints
@@ -391,9 +382,9 @@ typedef struct model {
 
 // a placement: by formulas (the parent's x_<p> replaced by its position) or a built-in map
 static int collect_place(const dal_scene *sc, const sline *l, model *m, char *msg, size_t len) {
-  int d = m->d, p = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  int d = m->d, p = dal__scene_part(sc, l->tok[1]);
   const char *ps = dal__scene_kv(l, 2, "parent");
-  int parent = ps ? dal__scene_find(sc->partname, sc->npart, ps) : -1;
+  int parent = ps ? dal__scene_part(sc, ps) : -1;
   char *par[3] = {NULL, NULL, NULL};
   if (parent >= 0)
     for (int c = 0; c < d; ++c)
@@ -430,7 +421,7 @@ static int collect_place(const dal_scene *sc, const sline *l, model *m, char *ms
 // spring a b ... / spring a anchor=..: the other end's position (a particle's or the anchor)
 static void other_end(const sline *l, const model *m, const dal_scene *sc, int c, char anc[3][128],
                       const char **end) {
-  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_part(sc, l->tok[2]);
   *end = b >= 0 ? (m->pos[b * m->d + c] ? m->pos[b * m->d + c] : "0") : anc[c];
 }
 
@@ -448,7 +439,7 @@ static void anchor_of(const sline *l, char anc[3][128]) {
 
 // a spring's potential 1/2 k (|r_a - r_b| - L)^2 added to U
 static void collect_spring(const dal_scene *sc, const sline *l, model *m) {
-  int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  int a = dal__scene_part(sc, l->tok[1]);
   const char *kk = dal__scene_kv(l, 2, "k"), *LL = dal__scene_kv(l, 2, "L"), *end;
   char anc[3][128];
   anchor_of(l, anc);
@@ -495,8 +486,8 @@ static int velocity(const dal_scene *sc, const char *r, str *v, char *msg, size_
 // (the library's damper force -c ((v_a - v_b) . e) e), added to D
 static int collect_damper(const dal_scene *sc, const sline *l, const model *m, extras *x, char *msg,
                           size_t len) {
-  int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]), rc = DAL_OK, d = m->d;
-  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+  int a = dal__scene_part(sc, l->tok[1]), rc = DAL_OK, d = m->d;
+  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_part(sc, l->tok[2]);
   const char *c = dal__scene_kv(l, 2, "c"), *end;
   char anc[3][128];
   anchor_of(l, anc);
@@ -558,7 +549,7 @@ static int collect_constraint(const dal_scene *sc, const sline *l, const model *
   snprintf(buf, sizeof buf, "%s", pl ? pl : "");
   for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && n + m->d <= 48;
        s = strtok_r(NULL, ",", &sv)) {
-    int p = dal__scene_find(sc->partname, sc->npart, s);
+    int p = dal__scene_part(sc, s);
     for (int c = 0; c < m->d; ++c, ++n) {
       snprintf(nm[n], sizeof nm[n], "%c_%s", "xyz"[c], s);
       from[n] = nm[n];
@@ -642,11 +633,28 @@ static int show_model(const dal_scene *sc, const model *m, const extras *x, FILE
   md.positions = (const char *const *)m->pos;
   md.gravity = m->grav[0] ? (const char *const *)m->grav : NULL;
   md.potential = m->pot.n ? m->pot.s : NULL;
-  md.params = (const char *const *)sc->pname;
-  md.values = sc->pval;
-  md.nparam = sc->nparam;
+  // the parameters the model's formulas name
+  int nt = 0, np = 0;
+  const char **texts = malloc(((size_t)m->np * (size_t)(m->d + 1) + 4) * sizeof *texts);
+  const char **pn = NULL;
+  double *pv = NULL;
+  if (!texts) return DAL_E_NOMEM;
+  for (int i = 0; i < m->np * m->d; ++i)
+    texts[nt++] = m->pos[i];
+  for (int i = 0; i < m->np; ++i)
+    texts[nt++] = m->mass[i];
+  for (int c = 0; c < 3; ++c)
+    if (m->grav[c]) texts[nt++] = m->grav[c];
+  if (m->pot.n) texts[nt++] = m->pot.s;
+  rc = dal__scene_params(sc, texts, nt, &pn, &pv, &np);
+  free(texts);
+  md.params = pn;
+  md.values = pv;
+  md.nparam = np;
   dal_expr *T = NULL, *U = NULL, *L = NULL;
-  rc = dal_expr_model_energies(&md, &T, &U, &L, msg, msglen);
+  if (!rc) rc = dal_expr_model_energies(&md, &T, &U, &L, msg, msglen);
+  free(pn);
+  free(pv);
   if (!rc) rc = show_equations(sc, fp, fmt, T, U, L, x, msg, msglen);
   dal_expr_destroy(T);
   dal_expr_destroy(U);
