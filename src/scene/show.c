@@ -768,9 +768,8 @@ static int show_model(const dal_scene *sc, const model *m, const extras *x, FILE
   return rc;
 }
 
-int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg, size_t msglen) {
-  if (msg && msglen) msg[0] = 0;
-  if (!sc || !fp) return DAL_E_ARG;
+static int show_scene(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
+                      size_t msglen) {
   for (int i = 0; i < sc->nlines; ++i)
     if (!strcmp(sc->lines[i].tok[0], "lagrangian"))
       return show_lagrangian(sc, &sc->lines[i], fp, fmt, msg, msglen);
@@ -809,5 +808,21 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
     free(x.gq[i].s);
   free(x.gq);
   if (!rc && ferror(fp)) rc = DAL_E_IO;
+  return rc;
+}
+
+int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg, size_t msglen) {
+  if (msg && msglen) msg[0] = 0;
+  if (!sc || !fp) return DAL_E_ARG;
+  int rc = show_scene(sc, fp, fmt, msg, msglen);
+  if (rc == DAL_E_TOO_LARGE && msg && msglen) {
+    // the scene's name first, then what the algebra said (or the printer's bound)
+    char *inner = msg[0] ? strdup(msg) : NULL;
+    snprintf(msg, msglen, "%s: an equation is too large to show%s%s", sc->name,
+             inner ? ": " : " (more than 1 MiB of text or 2^23 operations of the algebra); "
+                            "simplify the formulas or show fewer coordinates",
+             inner ? inner : "");
+    free(inner);
+  }
   return rc;
 }
