@@ -274,8 +274,8 @@ static void long_lists(void) {
   double y1[4], y2[4];
   run_text(shortt, 2.0, y1, 2);
   run_text(longt, 2.0, y2, 2);
-  CHECK_MSG(!memcmp(y1, y2, sizeof y1), "long anchor list: (%g, %g) against (%g, %g)", y2[0],
-            y2[1], y1[0], y1[1]);
+  CHECK_MSG(!memcmp(y1, y2, sizeof y1), "long anchor list: (%g, %g) against (%g, %g)", y2[0], y2[1],
+            y1[0], y1[1]);
   const char *pf = "dim 2\ncoord x q=0.6\ncoord y q=-0.8\ncoord z q=3\n"
                    "particle %s mass=1\nplace %s fixed2 x=0 y=0\nparticle %s mass=1\n"
                    "place %s = x; y\nparticle %s mass=1\nplace %s = z; 0\n"
@@ -334,8 +334,8 @@ static void param_formulas(void) {
   double y1[2], y2[2];
   run_text(derived, 2.0, y1, 1);
   run_text(plain, 2.0, y2, 1);
-  CHECK_MSG(!memcmp(y1, y2, sizeof y1), "param omega = 2*sqrt(g): theta %.17g against %.17g",
-            y1[0], y2[0]);
+  CHECK_MSG(!memcmp(y1, y2, sizeof y1), "param omega = 2*sqrt(g): theta %.17g against %.17g", y1[0],
+            y2[0]);
   // g = 4 through set_param: omega becomes 4, as the scene written with those numbers
   dal_scene *sc = NULL;
   char msg[512];

@@ -75,7 +75,7 @@ extern "C" {
   X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                        \
   X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                           \
   X(DAL_E_IO, -16, "file input/output failed")                                                     \
-  X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")                  \
+  X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")                   \
   X(DAL_E_TOO_LARGE, -18, "too large to show (a size or work bound of the symbolic algebra)")
 
 #ifdef DAL_DOXYGEN

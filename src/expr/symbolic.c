@@ -44,7 +44,7 @@ int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, siz
   dal__alg_init(&g, &s);
   int r = dal__ximport(&s, &e->tree, e->roots[k]);
   r = dal__alg_factor(&g, dal__alg_simplify(&g, r));
-  int n = r >= 0 ? dal__xprint(&s, r, (int)fmt, buf, len)
+  int n = r >= 0        ? dal__xprint(&s, r, (int)fmt, buf, len)
           : g.too_large ? DAL_E_TOO_LARGE
                         : DAL_E_NOMEM;
   dal__alg_free(&g);

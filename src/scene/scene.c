@@ -496,8 +496,8 @@ static void free_list(char **items, int n) {
 }
 
 // a comma-separated list of particle names into indices (*idx malloc'd)
-static int part_list(dal_scene *sc, const sline *l, const char *list, int **idx, int *n,
-                     char *msg, size_t len) {
+static int part_list(dal_scene *sc, const sline *l, const char *list, int **idx, int *n, char *msg,
+                     size_t len) {
   char **it;
   int m, rc = split_list(list, &it, &m);
   if (rc) return rc;
@@ -523,7 +523,7 @@ static int element_expr(dal_scene *sc, const sline *l, const char *what, const i
   int rc = DAL_OK;
   for (int k = 0; k < nparts && !rc; ++k)
     for (int i = 0; i < d && !rc; ++i)
-      if (!(in[k * d + i] = strf("%c_%s", "xyz"[i], sc->partname[parts[k]]))) rc = DAL_E_NOMEM;
+      if (!(in[k * d + i] = strf("%c_%s", "xyz"[i], sc -> partname[parts[k]]))) rc = DAL_E_NOMEM;
   for (int j = 0; j < sc->ncoord && !rc; ++j)
     in[nparts * d + j] = sc->cname[j];
   dal_expr *all = NULL;
@@ -645,8 +645,8 @@ static int el_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
     int other = xs ? dal__tab_get(&sc->syms, xs) : -1;
     free(xs);
     return err(sc, l->line, msg, len, DAL_E_ARG,
-               "particle %s: the name '%s' is given twice (line %d and here)", l->tok[1],
-               l->tok[1], other);
+               "particle %s: the name '%s' is given twice (line %d and here)", l->tok[1], l->tok[1],
+               other);
   }
   for (int c = 0; c < 3 && !rc; ++c)
     rc = claim_sym(sc, l, c == 0 ? "x_" : c == 1 ? "y_" : "z_", l->tok[1], "", msg, len);
@@ -819,8 +819,8 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
   int n, rc = split_list(an, &it, &n);
   if (rc) return rc;
   if (n > sc->dim)
-    rc = err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: anchor of %d components for dimension %d",
-             k, l->tok[1], n, sc->dim);
+    rc = err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: anchor of %d components for dimension %d", k,
+             l->tok[1], n, sc->dim);
   for (int i = 0; i < n && !rc; ++i)
     rc = number(sc, l, "anchor", it[i], &anchor[i], msg, len);
   free_list(it, n);

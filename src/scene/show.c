@@ -197,8 +197,8 @@ static int compile(const dal_scene *sc, const char *name, const char *f, int vel
 
 // what the lines give beyond T and U: the damping forces (Rayleigh's D) and the constraints
 typedef struct extras {
-  str D;      // D(q, qdot, t) = sum 1/2 c |v_a - v_b|^2 ("" when no damper)
-  str *phi;   // the constraint rows as formulas of q and t
+  str D;    // D(q, qdot, t) = sum 1/2 c |v_a - v_b|^2 ("" when no damper)
+  str *phi; // the constraint rows as formulas of q and t
   char **name;
   int nphi;
   str *gq;    // the force lines' sum per coordinate (ncoord; "" when none)
@@ -385,8 +385,8 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
   // the force lines' generalized forces join the dampers' Q
   for (int i = 0; i < n && x && x->forced && !rc; ++i) {
     str q = {0};
-    if (adds(&q, Q[i] ? Q[i] : "0") || adds(&q, " + (") || adds(&q, x->gq[i].n ? x->gq[i].s : "0") ||
-        adds(&q, ")"))
+    if (adds(&q, Q[i] ? Q[i] : "0") || adds(&q, " + (") ||
+        adds(&q, x->gq[i].n ? x->gq[i].s : "0") || adds(&q, ")"))
       rc = DAL_E_NOMEM;
     free(Q[i]);
     Q[i] = q.s;
@@ -637,8 +637,8 @@ static int collect_constraint(const dal_scene *sc, const sline *l, const model *
   if (names) x->name = names;
   if (!rc && (!phi || !names)) rc = DAL_E_NOMEM;
   for (int r = 0; r < rows && !rc; ++r) {
-    char *row = t >= 0 ? fill(cons[t].f[r], dal_primitive_find(l->tok[2]), l, cn, nc, NULL, pn, np)
-                       : NULL;
+    char *row =
+        t >= 0 ? fill(cons[t].f[r], dal_primitive_find(l->tok[2]), l, cn, nc, NULL, pn, np) : NULL;
     char *f = subst(t >= 0 ? row : l->f[r], from, to, np * d);
     str nm = {0};
     x->phi[x->nphi] = (str){0};
@@ -819,8 +819,9 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
     // the scene's name first, then what the algebra said (or the printer's bound)
     char *inner = msg[0] ? strdup(msg) : NULL;
     snprintf(msg, msglen, "%s: an equation is too large to show%s%s", sc->name,
-             inner ? ": " : " (more than 1 MiB of text or 2^23 operations of the algebra); "
-                            "simplify the formulas or show fewer coordinates",
+             inner ? ": "
+                   : " (more than 1 MiB of text or 2^23 operations of the algebra); "
+                     "simplify the formulas or show fewer coordinates",
              inner ? inner : "");
     free(inner);
   }
