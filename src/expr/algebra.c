@@ -845,6 +845,10 @@ int dal__alg_factor(dal_alg *g, int x) {
   }
   for (int i = 0; i < nt; ++i)
     ts[i] = dal__alg_factor(g, ts[i]);
+  if (g->fail) { // a term failed (memory, or past the session's bounds)
+    free(ts);
+    return -1;
+  }
   // common bases with positive numeric exponents (the smallest), and the coefficients' gcd
   ivec common = {0}, f0 = {0};
   int rest0;

@@ -20,7 +20,7 @@ typedef struct dal_alg {
 
 /// bounds of one algebra session: beyond them it fails with too_large (DAL_E_TOO_LARGE)
 #define DAL_ALG_MAX_NODES (1 << 19)
-#define DAL_ALG_MAX_WORK (1L << 23)
+#define DAL_ALG_MAX_WORK (1L << 22)
 
 void dal__alg_init(dal_alg *g, dal_xtree *tr);
 void dal__alg_free(dal_alg *g);

@@ -24,8 +24,8 @@ typedef struct sb {
 
 // bounds of one print (DAL_E_TOO_LARGE beyond): the text, and the bytes of every sort key made
 // or copied on the way (keys of keys of a deep tree shared many times over)
-#define MAX_TEXT (1u << 20)
-#define MAX_KEY_BYTES (1u << 24)
+#define MAX_TEXT (1u << 18)
+#define MAX_KEY_BYTES (1u << 22)
 
 static void put(sb *b, const char *fmt, ...) {
   if (b->fail) return;
