@@ -341,9 +341,9 @@ static void sw_dal_evolve_at(void) {
   st_intact();
 }
 static void sw_dal_csv_monitor(void) {
-  dal_csv none = {NULL, 0, 0};
+  dal_csv none = {NULL, 0, 0, NULL};
   FILE *fp = tmpfile();
-  dal_csv ok = {fp, 0, 0};
+  dal_csv ok = {fp, 0, 0, NULL};
   ST(dal_csv_monitor(F.A, NULL, &ok), DAL_E_ARG, NULL);
   ST(dal_csv_monitor(NULL, F.stA, &ok), DAL_E_STATE, F.stA);
   ST(dal_csv_monitor(F.B, F.stA, &ok), DAL_E_STATE, F.stA);
