@@ -212,11 +212,46 @@ static void bad_selections(void) {
   dal_system_destroy(sys);
 }
 
+// the viewer's page: 10^4 frames of a 10-particle chain within 2 MB; bad options refused
+static void view_size(void) {
+  scn_knobs k = scn_default();
+  k.N = 10;
+  dal_system *sys = scn_chain(&k);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q[10] = {0.5, 0.4, 0.3, 0.2, 0.1, 0, -0.1, -0.2, -0.3, -0.4}, qd[10] = {0};
+  CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+  dal_view_opts o = dal_default_view_opts();
+  dal_solve_opts so = scn_opts(DAL_FORM_AUTO, DAL_METHOD_DOPRI5, 1e-6);
+  o.solve = &so;
+  o.fps = 1000;
+  o.t1 = 9.999; // frames 0 ... 9999
+  FILE *fp = tmpfile();
+  CHECK_OK(dal_view_write(sys, st, &o, NULL, fp));
+  long size = ftell(fp);
+  fclose(fp);
+  printf("viewer: 10^4 frames of 10 particles (2-D chain): %ld bytes, %.1f bytes per frame and "
+         "particle\n",
+         size, (double)size / 1e5);
+  CHECK(size < 2000000);
+  // refused: no stream, t1 not after t, fps <= 0
+  o.t1 = dal_state_time(st);
+  CHECK(dal_view_write(sys, st, &o, NULL, stdout) == DAL_E_ARG);
+  CHECK(strstr(dal_state_errmsg(st), "t1 after") != NULL);
+  o.t1 = 100, o.fps = 0;
+  CHECK(dal_view_write(sys, st, &o, NULL, stdout) == DAL_E_ARG);
+  o.fps = 60;
+  CHECK(dal_view_write(sys, st, &o, NULL, NULL) == DAL_E_ARG);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
 int main(void) {
   pendulum_tension();
   cartesian_rod();
   damper_work();
   default_csv();
   bad_selections();
+  view_size();
   return check_summary("test_output");
 }

@@ -246,8 +246,10 @@ int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
   int rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(rc, "the scene's initial state was refused");
   if (ev) rc = dal_state_set_events(st, ev);
-  rows r = {c, {fp, 0, c->wrap}, t1, what};
-  if (!rc) rc = dal_evolve(sys, st, so, t1, dt, row, &r);
+  rows r = {c, {fp, 0, c->wrap, c->cols}, t1, what};
+  dal_solve_opts o = *so;
+  if (dal_columns_need_work(c->cols)) o.work = 1; // W is integrated only when asked for
+  if (!rc) rc = dal_evolve(sys, st, &o, t1, dt, row, &r);
   if (rc < 0) snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
   dal_state_set_events(st, NULL);
   dal_state_destroy(st);

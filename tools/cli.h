@@ -3,6 +3,8 @@
 // The command line's shared parts: its options and the analysis commands.
 //
 //   dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]
+//                       [--columns LIST]      named columns (output.h), e.g. 'x:*,y:*,lambda:*'
+//   dalembert view SCENE [-o FILE.html] [--t1 T] [--fps F]   the motion as one HTML page
 //   dalembert show SCENE [--text | --latex | --scheme]
 //   dalembert write SCENE
 //   dalembert modes SCENE [--here]            normal modes at the equilibrium Newton finds
@@ -28,6 +30,9 @@ typedef struct cli {
   dal_scene *sc;                          // read from it
   const char *out, *png, *events;         // -o, --chart, --events
   const char *scan, *param, *method;      // --scan, --param, --method
+  const char *columns;                    // --columns (run)
+  dal_columns *cols;                      // made from it before any output is opened
+  double fps;                             // --fps (view; -1: the default)
   double t1, transient, renorm, h;        // lyapunov (-1: the default)
   double nexp, threads;                   // --nexp, --threads
   int here, surface, wrap, mpi, progress; // flags
@@ -59,5 +64,6 @@ int cli_equilibria(cli *c);
 int cli_lyapunov(cli *c);
 int cli_section(cli *c);
 int cli_sweep(cli *c);
+int cli_view(cli *c);
 
 #endif

@@ -19,6 +19,8 @@ int cli_usage(void) {
   fprintf(
       stderr,
       "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]\n"
+      "           [--columns LIST]\n"
+      "       dalembert view SCENE [-o FILE.html] [--t1 T] [--fps F]\n"
       "       dalembert show SCENE [--text | --latex | --scheme]\n"
       "       dalembert write SCENE\n"
       "       dalembert modes SCENE [--here]\n"
@@ -56,6 +58,12 @@ static int cmd_run(cli *c) {
   if (c->png && !c->out) {
     fprintf(stderr, "dalembert: --chart needs -o FILE.csv\n");
     return DAL_E_ARG;
+  }
+  // the columns are checked before the output is opened: a bad name leaves no file behind
+  if (c->columns) {
+    int rc = dal_columns_create(dal_scene_system(c->sc), c->columns, &c->cols, c->msg,
+                                sizeof c->msg);
+    if (rc) return cli_fail(rc, c->msg);
   }
   FILE *fp = cli_out(c);
   if (!fp) return DAL_E_IO;
@@ -105,9 +113,11 @@ static int num_arg(int argc, char **argv, int *i, double *v) {
 
 // options that take a string
 static int str_opt(cli *c, const char *o, const char *v) {
-  static const char *const names[] = {"-o", "--chart", "--events", "--scan", "--param", "--method"};
-  const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method};
-  for (int k = 0; k < 6; ++k)
+  static const char *const names[] = {"-o",      "--chart",  "--events", "--scan",
+                                      "--param", "--method", "--columns"};
+  const char **dst[] = {&c->out,   &c->png,    &c->events, &c->scan,
+                        &c->param, &c->method, &c->columns};
+  for (int k = 0; k < 7; ++k)
     if (!strcmp(o, names[k])) {
       *dst[k] = v;
       return 1;
@@ -117,10 +127,10 @@ static int str_opt(cli *c, const char *o, const char *v) {
 
 // options that take a number
 static double *num_opt(cli *c, const char *o) {
-  static const char *const names[] = {"--t1", "--transient", "--renorm",
-                                      "--h",  "--nexp",      "--threads"};
-  double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads};
-  for (int k = 0; k < 6; ++k)
+  static const char *const names[] = {"--t1", "--transient", "--renorm", "--h",
+                                      "--nexp", "--threads",  "--fps"};
+  double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads, &c->fps};
+  for (int k = 0; k < 7; ++k)
     if (!strcmp(o, names[k])) return dst[k];
   return NULL;
 }
@@ -187,6 +197,7 @@ static const struct {
     {"lyapunov", cli_lyapunov},
     {"section", cli_section},
     {"sweep", cli_sweep},
+    {"view", cli_view},
 };
 
 int main(int argc, char **argv) {
@@ -201,7 +212,7 @@ int main(int argc, char **argv) {
   c.fmt = DAL_EXPR_TEXT;
   c.nexp = 0;
   c.threads = 1;
-  c.t1 = c.transient = c.renorm = c.h = -1;
+  c.t1 = c.transient = c.renorm = c.h = c.fps = -1;
   const char *ci = getenv("CI");
   c.progress = isatty(2) && !(ci && *ci);
   c.argc = argc;
@@ -213,6 +224,7 @@ int main(int argc, char **argv) {
   }
   rc = parse(&c, argc, argv);
   if (!rc) rc = fn(&c);
+  dal_columns_destroy(c.cols);
   dal_scene_destroy(c.sc);
   return rc == 64 ? cli_usage() : cli_status_exit(rc);
 }
