@@ -253,14 +253,24 @@
   function timePlot(id, title, arr, names, stride) {
     var c = axes(document.getElementById(id), title), n = D.nplot, T = plotT(n - 1) - D.t0 || 1;
     var xOf = function (s) { return 6 + 368 * (plotT(s) - D.t0) / T; };
-    var leg = 14 + c.measureText(title).width;
-    for (var j = 0; j < stride; j++) {
+    var leg = 14 + c.measureText(title).width, yr = [Infinity, -Infinity];
+    for (var j = 0; j < stride; j++) { // one scale for the plot's series
+      var rj = range(arr, stride, j, n);
+      yr = [Math.min(yr[0], rj[0]), Math.max(yr[1], rj[1])];
+    }
+    for (j = 0; j < stride; j++) {
       var col = palette[j % palette.length];
-      series(c, xOf, arr, stride, j, n, col, range(arr, stride, j, n));
+      series(c, xOf, arr, stride, j, n, col, yr);
       c.fillStyle = col;
       c.fillText(names[j] || '', leg, 12);
       leg += 8 + c.measureText(names[j] || '').width;
     }
+    c.fillStyle = '#888'; // the scale: the largest and smallest value shown
+    c.textAlign = 'right';
+    c.fillText(yr[1].toPrecision(3), 374, 24);
+    c.fillText(yr[0].toPrecision(3), 374, 108);
+    c.fillText('t = ' + plotT(n - 1).toPrecision(3), 374, 12);
+    c.textAlign = 'left';
     var x = 6 + 368 * (frame * D.dt) / T;
     c.strokeStyle = '#000';
     c.beginPath();
