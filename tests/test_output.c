@@ -246,6 +246,52 @@ static void view_size(void) {
   dal_system_destroy(sys);
 }
 
+// the picture: each exposure's bob where the library's own run puts it, seen from the pivot
+static void picture(void) {
+  dal_system *sys = scn_pendulum(NULL);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  double q = 1.0, qd = 0.0, times[3] = {0.0, 0.4, 0.9}, th[3];
+  dal_solve_opts o = scn_opts(DAL_FORM_AUTO, DAL_METHOD_DOPRI5, 1e-10);
+  for (int i = 0; i < 3; ++i) { // the reference angles by separate runs
+    CHECK_OK(dal_state_set(sys, st, 0.0, &q, &qd));
+    if (times[i] > 0) CHECK_OK(dal_evolve_at(sys, st, &o, &times[i], 1, NULL, NULL));
+    th[i] = dal_state_q(st)[0];
+  }
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &qd));
+  FILE *fp = tmpfile();
+  CHECK_OK(dal_picture_write(sys, st, times, 3, &o, fp));
+  long len = ftell(fp);
+  char *svg = calloc((size_t)len + 1, 1);
+  rewind(fp);
+  CHECK(svg && fread(svg, 1, (size_t)len, fp) == (size_t)len);
+  fclose(fp);
+  // the pivot's square and the three bobs
+  double px = NAN, py = NAN, cx[3], cy[3], worst = 0;
+  const char *r = strstr(svg, "<rect x=");
+  CHECK(r && sscanf(r, "<rect x=\"%lf\" y=\"%lf\"", &px, &py) == 2);
+  px += 4, py += 4;
+  const char *c = svg;
+  int nb = 0;
+  while (nb < 3 && (c = strstr(c, "<circle cx="))) {
+    CHECK(sscanf(c, "<circle cx=\"%lf\" cy=\"%lf\"", &cx[nb], &cy[nb]) == 2);
+    ++nb, ++c;
+  }
+  CHECK(nb == 3);
+  for (int i = 0; i < nb; ++i) { // screen y grows downwards: theta = atan2(dx, dy)
+    double a = atan2(cx[i] - px, cy[i] - py);
+    worst = fmax(worst, fabs(a - th[i]));
+    CHECK_CLOSE(hypot(cx[i] - px, cy[i] - py), hypot(cx[0] - px, cy[0] - py), 1e-3);
+  }
+  printf("picture: 3 exposures, bob angles from the pivot within %.1e rad of the library's\n",
+         worst);
+  CHECK(worst < 1e-4); // the picture's %.2f px over a rod of some 200 px
+  CHECK(dal_picture_write(sys, st, times, 0, &o, stdout) == DAL_E_ARG);
+  free(svg);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
 int main(void) {
   pendulum_tension();
   cartesian_rod();
@@ -253,5 +299,6 @@ int main(void) {
   default_csv();
   bad_selections();
   view_size();
+  picture();
   return check_summary("test_output");
 }

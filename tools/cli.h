@@ -5,6 +5,7 @@
 //   dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]
 //                       [--columns LIST]      named columns (output.h), e.g. 'x:*,y:*,lambda:*'
 //   dalembert view SCENE [-o FILE.html] [--t1 T] [--fps F]   the motion as one HTML page
+//   dalembert picture SCENE -o FILE.svg [--times T1,T2,...] [--t1 T]   a multi-exposure
 //   dalembert show SCENE [--text | --latex | --scheme]
 //   dalembert write SCENE
 //   dalembert modes SCENE [--here]            normal modes at the equilibrium Newton finds
@@ -31,6 +32,7 @@ typedef struct cli {
   const char *out, *png, *events;         // -o, --chart, --events
   const char *scan, *param, *method;      // --scan, --param, --method
   const char *columns;                    // --columns (run)
+  const char *times;                      // --times (picture)
   dal_columns *cols;                      // made from it before any output is opened
   double fps;                             // --fps (view; -1: the default)
   double t1, transient, renorm, h;        // lyapunov (-1: the default)
@@ -65,5 +67,6 @@ int cli_lyapunov(cli *c);
 int cli_section(cli *c);
 int cli_sweep(cli *c);
 int cli_view(cli *c);
+int cli_picture(cli *c);
 
 #endif

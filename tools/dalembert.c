@@ -21,6 +21,7 @@ int cli_usage(void) {
       "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]\n"
       "           [--columns LIST]\n"
       "       dalembert view SCENE [-o FILE.html] [--t1 T] [--fps F]\n"
+      "       dalembert picture SCENE -o FILE.svg [--times T1,T2,...] [--t1 T]\n"
       "       dalembert show SCENE [--text | --latex | --scheme]\n"
       "       dalembert write SCENE\n"
       "       dalembert modes SCENE [--here]\n"
@@ -114,10 +115,10 @@ static int num_arg(int argc, char **argv, int *i, double *v) {
 // options that take a string
 static int str_opt(cli *c, const char *o, const char *v) {
   static const char *const names[] = {"-o",      "--chart",  "--events", "--scan",
-                                      "--param", "--method", "--columns"};
-  const char **dst[] = {&c->out,   &c->png,    &c->events, &c->scan,
-                        &c->param, &c->method, &c->columns};
-  for (int k = 0; k < 7; ++k)
+                                      "--param", "--method", "--columns", "--times"};
+  const char **dst[] = {&c->out,   &c->png,    &c->events,  &c->scan,
+                        &c->param, &c->method, &c->columns, &c->times};
+  for (int k = 0; k < 8; ++k)
     if (!strcmp(o, names[k])) {
       *dst[k] = v;
       return 1;
@@ -198,6 +199,7 @@ static const struct {
     {"section", cli_section},
     {"sweep", cli_sweep},
     {"view", cli_view},
+    {"picture", cli_picture},
 };
 
 int main(int argc, char **argv) {

@@ -59,3 +59,58 @@ int cli_view(cli *c) {
   dal_state_destroy(st);
   return cli_fail(rc, c->msg);
 }
+
+int cli_picture(cli *c) {
+  if (!c->out) {
+    fprintf(stderr, "dalembert: picture needs -o FILE.svg\n");
+    return DAL_E_ARG;
+  }
+  const dal_system *sys = dal_scene_system(c->sc);
+  double t0, t1;
+  const dal_solve_opts *so = dal_scene_opts(c->sc, &t0, &t1, NULL);
+  // the times: --times, else 9 over the first 2 s (or --t1 T) of the run
+  double times[1000];
+  size_t n = 0;
+  if (c->times) {
+    const char *p = c->times;
+    while (*p && n < 1000) {
+      char *end;
+      times[n] = strtod(p, &end);
+      if (end == p || (*end && *end != ',')) {
+        fprintf(stderr, "dalembert: --times '%s': not a comma-separated list of numbers\n",
+                c->times);
+        return DAL_E_ARG;
+      }
+      ++n;
+      p = *end ? end + 1 : end;
+    }
+  } else {
+    double span = c->t1 > 0 ? c->t1 : (t1 - t0 < 2 ? t1 - t0 : 2);
+    for (n = 0; n < 9; ++n)
+      times[n] = t0 + span * (double)n / 8;
+  }
+  char tmp[1100];
+  snprintf(tmp, sizeof tmp, "%.1000s.part", c->out);
+  dal_state *st = NULL;
+  int rc = dal_scene_state(c->sc, &st);
+  if (rc) return cli_fail(rc, "the scene's initial state was refused");
+  FILE *fp = fopen(tmp, "w");
+  if (!fp) {
+    snprintf(c->msg, sizeof c->msg, "cannot write %.1000s", tmp);
+    rc = DAL_E_IO;
+  } else {
+    rc = dal_picture_write(sys, st, times, n, so, fp);
+    if (rc) snprintf(c->msg, sizeof c->msg, "%.1000s: %.900s", c->path, dal_state_errmsg(st));
+    if (fclose(fp) && !rc) {
+      snprintf(c->msg, sizeof c->msg, "writing %.1000s failed", tmp);
+      rc = DAL_E_IO;
+    }
+    if (!rc && rename(tmp, c->out)) {
+      snprintf(c->msg, sizeof c->msg, "cannot rename %.1000s", tmp);
+      rc = DAL_E_IO;
+    }
+    if (rc) remove(tmp);
+  }
+  dal_state_destroy(st);
+  return cli_fail(rc, c->msg);
+}

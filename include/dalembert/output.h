@@ -107,6 +107,17 @@ DAL_API dal_view_opts dal_default_view_opts(void);
 DAL_API int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *opts,
                            dal_events *ev, FILE *fp);
 
+/// Write an SVG picture to fp: the configurations of `st`'s motion at times[0 .. n) (1 <= n <=
+/// 1000, non-decreasing, not before the state's time; seconds) drawn over each other, the later
+/// ones more opaque (the textbook figure of a swinging pendulum): particles sized by mass, the
+/// links, pivots and anchors the viewer draws (springs dashed finely, dampers coarsely), and the
+/// curves of circles at the last time. The state runs to times[n - 1] (dal_evolve_at with
+/// `solve`, nullable: the defaults). Returns DAL_OK, DAL_E_ARG (NULL sys, st, fp or times; n out
+/// of range; a system without particles), DAL_E_NOMEM, DAL_E_IO, or the run's status, which
+/// refuses a bad list (message in the state); on failure the picture is not complete.
+DAL_API int dal_picture_write(const dal_system *sys, dal_state *st, const double *times, size_t n,
+                              const dal_solve_opts *solve, FILE *fp);
+
 #ifdef __cplusplus
 }
 #endif

@@ -20,6 +20,7 @@
 enum { PT_PIVOT, PT_PIVOT_U, PT_PIVOT_W, PT_ANCHOR, PT_CONST, PT_TURN_U, PT_LINK_ANCHOR };
 typedef struct xpoint {
   int kind, owner, sub; // owner: placement, constraint or link; sub: coordinate or x0 offset
+  int dir;              // a direction (a circle's plane, a line's direction), not a place
   double c[3];          // a constant point (PT_CONST)
 } xpoint;
 
@@ -223,6 +224,7 @@ static int geometry(viewer *v, const dal_state *st) {
     int c = add_point(v, PT_PIVOT, k, j, NULL), u = add_point(v, PT_PIVOT_U, k, j, NULL),
         w = add_point(v, PT_PIVOT_W, k, j, NULL);
     if (c < 0 || u < 0 || w < 0) return DAL_E_NOMEM;
+    v->xp[u].dir = v->xp[w].dir = 1;
     rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"rod\"],", N + c, k);
     if (!rc)
       rc = app(&v->circles, &v->clen, &v->ccap, "[%d,%d,%d,%.9g,1],", N + c, N + u, N + w, rho);
@@ -259,6 +261,7 @@ static int geometry(viewer *v, const dal_state *st) {
                                                                   c, 0, uu),
           pw = add_point(v, PT_CONST, c, 0, ww);
       if (pc < 0 || pu < 0 || pw < 0) return DAL_E_NOMEM;
+      v->xp[pu].dir = v->xp[pw].dir = 1;
       rc = app(&v->circles, &v->clen, &v->ccap, "[%d,%d,%d,%.9g,0],", N + pc, N + pu, N + pw,
                par[0]);
     } else if (pr == &dal_con_line2 || pr == &dal_con_line3) {
@@ -266,6 +269,7 @@ static int geometry(viewer *v, const dal_state *st) {
              aa[3] = {par[d], par[d + 1], d == 3 ? par[5] : 0};
       int pc = add_point(v, PT_CONST, c, 0, cc), pa = add_point(v, PT_CONST, c, 0, aa);
       if (pc < 0 || pa < 0) return DAL_E_NOMEM;
+      v->xp[pa].dir = 1;
       rc = app(&v->lines, &v->nlen, &v->ncap, "[%d,%d],", N + pc, N + pa);
     }
   }
@@ -457,6 +461,38 @@ static int write_page(viewer *v, const dal_view_opts *o, dal_events *ev, FILE *f
   return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
+// evaluate the geometry at the start, then run to the last time recording every frame (a
+// terminal event or a stopping monitor ends the motion early: the frames up to it are kept)
+static int frames_run(viewer *v, dal_state *st, const dal_solve_opts *solve, dal_events *ev,
+                      const char *who) {
+  const dal_system *sys = v->sys;
+  size_t nf = v->nframes;
+  int rc = dal_forward(sys, st);
+  if (!rc) rc = geometry(v, st);
+  if (!rc) {
+    v->pos = malloc(nf * (size_t)(v->N * v->d) * sizeof *v->pos);
+    v->xs = malloc((nf * (size_t)v->nxp * 3 + 1) * sizeof *v->xs);
+    v->pq = malloc((v->nplot * (size_t)v->n + 1) * sizeof *v->pq);
+    v->pqd = malloc((v->nplot * (size_t)v->n + 1) * sizeof *v->pqd);
+    v->pe = malloc((v->nplot + 1) * sizeof *v->pe);
+    v->pf = malloc((v->nplot * (size_t)v->nf + 1) * sizeof *v->pf);
+    if (!v->pos || !v->xs || !v->pq || !v->pqd || !v->pe || !v->pf) rc = DAL_E_NOMEM;
+  }
+  if (rc == DAL_E_NOMEM) return DAL_FAIL(st, rc, "%s: out of memory for %zu frames", who, nf);
+  dal_solve_opts so = solve ? *solve : dal_default_solve_opts();
+  if (!rc && ev) rc = dal_state_set_events(st, ev);
+  if (!rc) {
+    rc = dal_evolve_at(sys, st, &so, v->times, v->nt, record, v);
+    if (ev) dal_state_set_events(st, NULL);
+    if (rc == DAL_EVENT || rc == DAL_STOPPED) {
+      v->nframes = v->fcount ? v->fcount : 1;
+      v->nplot = (v->nframes + v->pstride - 1) / v->pstride;
+      rc = DAL_OK;
+    }
+  }
+  return rc;
+}
+
 dal_view_opts dal_default_view_opts(void) {
   dal_view_opts o;
   memset(&o, 0, sizeof o);
@@ -532,34 +568,175 @@ int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *op
   v.nframes = nf;
   v.pstride = (nf + MAX_PLOT - 1) / MAX_PLOT;
   v.nplot = (nf + v.pstride - 1) / v.pstride;
-  if (!rc) {
-    rc = dal_forward(sys, st);
-    if (!rc) rc = geometry(&v, st);
-  }
-  if (!rc) {
-    v.pos = malloc(nf * (size_t)(v.N * v.d) * sizeof *v.pos);
-    v.xs = malloc((nf * (size_t)v.nxp * 3 + 1) * sizeof *v.xs);
-    v.pq = malloc((v.nplot * (size_t)v.n + 1) * sizeof *v.pq);
-    v.pqd = malloc((v.nplot * (size_t)v.n + 1) * sizeof *v.pqd);
-    v.pe = malloc((v.nplot + 1) * sizeof *v.pe);
-    v.pf = malloc((v.nplot * (size_t)v.nf + 1) * sizeof *v.pf);
-    if (!v.pos || !v.xs || !v.pq || !v.pqd || !v.pe || !v.pf) rc = DAL_E_NOMEM;
-  }
-  if (rc == DAL_E_NOMEM) DAL_FAIL(st, rc, "view_write: out of memory for %zu frames", nf);
-  dal_solve_opts so = o.solve ? *o.solve : dal_default_solve_opts();
-  if (!rc && ev) rc = dal_state_set_events(st, ev);
-  if (!rc) {
-    rc = dal_evolve_at(sys, st, &so, times, v.nt, record, &v);
-    if (ev) dal_state_set_events(st, NULL);
-    // a terminal event ends the motion early: the page holds the frames up to it
-    if (rc == DAL_EVENT || rc == DAL_STOPPED) {
-      v.nframes = v.fcount ? v.fcount : 1;
-      v.nplot = (v.nframes + v.pstride - 1) / v.pstride;
-      rc = DAL_OK;
-    }
-  }
+  if (!rc) rc = frames_run(&v, st, o.solve, ev, "view_write");
   if (!rc) rc = write_page(&v, &o, ev, fp);
   if (rc == DAL_E_IO) DAL_FAIL(st, rc, "view_write: writing the page failed (disk full?)");
+  viewer_free(&v);
+  return rc;
+}
+
+// the picture's view: world -> px (the page's default view: from the side in 2-D; turned by
+// yaw -0.6 and tilted by pitch 0.35 in 3-D), fitted to w x h
+typedef struct proj {
+  double A[2][4];
+} proj;
+
+static void fit(const viewer *v, const double *circR, double w, double h, proj *P) {
+  double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+  for (size_t f = 0; f < v->nframes; ++f) {
+    for (int i = 0; i < v->N + v->nxp; ++i) {
+      if (i >= v->N && v->xp[i - v->N].dir) continue;
+      double x[3] = {0, 0, 0}, r = 0;
+      if (i < v->N)
+        for (int b = 0; b < v->d; ++b)
+          x[b] = v->pos[(f * (size_t)v->N + (size_t)i) * (size_t)v->d + (size_t)b];
+      else {
+        for (int b = 0; b < 3; ++b)
+          x[b] = v->xs[(f * (size_t)v->nxp + (size_t)(i - v->N)) * 3 + (size_t)b];
+        r = circR[i - v->N];
+      }
+      if (!isfinite(x[0] + x[1] + x[2])) continue;
+      for (int b = 0; b < 3; ++b)
+        lo[b] = fmin(lo[b], x[b] - r), hi[b] = fmax(hi[b], x[b] + r);
+    }
+  }
+  double c[3], R0[3] = {1, 0, 0}, R1[3] = {0, 1, 0}, s;
+  for (int b = 0; b < 3; ++b)
+    c[b] = (lo[b] + hi[b]) / 2;
+  if (v->d == 2) {
+    c[2] = 0;
+    s = 0.9 * fmin(w / fmax(hi[0] - lo[0], 1e-9), h / fmax(hi[1] - lo[1], 1e-9));
+  } else {
+    double yaw = -0.6, pitch = 0.35, ext = fmax(fmax(hi[0] - lo[0], hi[1] - lo[1]), hi[2] - lo[2]);
+    R0[0] = cos(yaw), R0[1] = -sin(yaw), R0[2] = 0;
+    R1[0] = sin(pitch) * sin(yaw), R1[1] = sin(pitch) * cos(yaw), R1[2] = cos(pitch);
+    s = 0.5 * fmin(w, h) / (0.5 * sqrt(3.0) * fmax(ext, 1e-9));
+  }
+  double c0 = R0[0] * c[0] + R0[1] * c[1] + R0[2] * c[2];
+  double c1 = R1[0] * c[0] + R1[1] * c[1] + R1[2] * c[2];
+  for (int b = 0; b < 3; ++b)
+    P->A[0][b] = s * R0[b], P->A[1][b] = -s * R1[b];
+  P->A[0][3] = w / 2 - s * c0;
+  P->A[1][3] = h / 2 + s * c1;
+}
+
+// point i (a particle, or N + extra point) of frame f on the picture; dir: no translation
+static void onscreen(const viewer *v, const proj *P, size_t f, int i, int dir, double *px) {
+  double x[3] = {0, 0, 0};
+  if (i < v->N)
+    for (int b = 0; b < v->d; ++b)
+      x[b] = v->pos[(f * (size_t)v->N + (size_t)i) * (size_t)v->d + (size_t)b];
+  else
+    for (int b = 0; b < 3; ++b)
+      x[b] = v->xs[(f * (size_t)v->nxp + (size_t)(i - v->N)) * 3 + (size_t)b];
+  for (int r = 0; r < 2; ++r)
+    px[r] = P->A[r][0] * x[0] + P->A[r][1] * x[1] + P->A[r][2] * x[2] + (dir ? 0 : P->A[r][3]);
+}
+
+static int write_svg(viewer *v, FILE *fp) {
+  const dal_system *sys = v->sys;
+  const double W = 800, H = 600;
+  double *circR = calloc((size_t)v->nxp + 1, sizeof *circR);
+  if (!circR) return DAL_E_NOMEM;
+  // circles: "[c,u,w,R,pivot]," rows of the geometry text
+  int nc = 0, cs[64][3];
+  double cr[64];
+  for (const char *p = v->circles; p && *p && nc < 64;) {
+    int a, b, c, piv;
+    double R;
+    if (sscanf(p, "[%d,%d,%d,%lf,%d]", &a, &b, &c, &R, &piv) != 5) break;
+    cs[nc][0] = a, cs[nc][1] = b, cs[nc][2] = c, cr[nc++] = R;
+    circR[a - v->N] = R;
+    p = strchr(p, ']');
+    p = p ? p + 2 : NULL;
+  }
+  proj P;
+  fit(v, circR, W, H, &P);
+  free(circR);
+  fprintf(fp,
+          "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%g\" height=\"%g\" viewBox=\"0 0 %g "
+          "%g\">\n<rect width=\"100%%\" height=\"100%%\" fill=\"#fff\"/>\n",
+          W, H, W, H);
+  size_t last = v->nframes - 1;
+  // the curves at the last time, faint
+  for (int k = 0; k < nc; ++k) {
+    fputs("<polyline fill=\"none\" stroke=\"#bbb\" points=\"", fp);
+    double C[2], u[2], w[2];
+    onscreen(v, &P, last, cs[k][0], 0, C);
+    onscreen(v, &P, last, cs[k][1], 1, u);
+    onscreen(v, &P, last, cs[k][2], 1, w);
+    for (int j = 0; j <= 96; ++j) {
+      double a = 2 * 3.14159265358979323846 * j / 96, ca = cos(a) * cr[k], sa = sin(a) * cr[k];
+      fprintf(fp, "%.2f,%.2f ", C[0] + ca * u[0] + sa * w[0], C[1] + ca * u[1] + sa * w[1]);
+    }
+    fputs("\"/>\n", fp);
+  }
+  // each time: links, then particles, more opaque as time goes on
+  for (size_t f = 0; f < v->nframes; ++f) {
+    double op = v->nframes > 1 ? 0.2 + 0.8 * (double)f / (double)last : 1;
+    fprintf(fp, "<g opacity=\"%.3f\">\n", op);
+    for (const char *p = v->links; p && *p;) {
+      int a, b;
+      char kind[16];
+      if (sscanf(p, "[%d,%d,\"%15[a-z]\"]", &a, &b, kind) != 3) break;
+      double pa[2], pb[2];
+      onscreen(v, &P, f, a, 0, pa);
+      onscreen(v, &P, f, b, 0, pb);
+      fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#444\" "
+                  "stroke-width=\"2\"%s/>\n",
+              pa[0], pa[1], pb[0], pb[1],
+              !strcmp(kind, "spring")   ? " stroke-dasharray=\"3 2\""
+              : !strcmp(kind, "damper") ? " stroke-dasharray=\"8 3\""
+                                        : "");
+      if (a >= v->N)
+        fprintf(fp, "<rect x=\"%.2f\" y=\"%.2f\" width=\"8\" height=\"8\" fill=\"#444\"/>\n",
+                pa[0] - 4, pa[1] - 4);
+      p = strchr(p, ']');
+      p = p ? p + 2 : NULL;
+    }
+    double mmax = 0;
+    for (int k = 0; k < v->N; ++k)
+      mmax = fmax(mmax, sys->mass[k]);
+    for (int k = 0; k < v->N; ++k) {
+      double c[2];
+      onscreen(v, &P, f, k, 0, c);
+      fprintf(fp, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"#1f77b4\"/>\n", c[0], c[1],
+              fmax(3, 10 * cbrt(sys->mass[k] / mmax)));
+    }
+    fprintf(fp, "</g>\n");
+  }
+  fprintf(fp, "</svg>\n");
+  return ferror(fp) ? DAL_E_IO : DAL_OK;
+}
+
+int dal_picture_write(const dal_system *sys, dal_state *st, const double *times, size_t n,
+                      const dal_solve_opts *solve, FILE *fp) {
+  if (!st) return DAL_E_ARG;
+  int pair = dal__check_pair(sys, st, "picture_write");
+  if (pair) return pair;
+  if (!fp || !times || n < 1 || n > 1000)
+    return DAL_FAIL(st, DAL_E_ARG, "picture_write: needs a stream and 1 to 1000 times (got %zu)",
+                    n);
+  if (!sys->N)
+    return DAL_FAIL(st, DAL_E_ARG,
+                    "picture_write: the system has no particles to draw (a Lagrangian only)");
+  viewer v;
+  memset(&v, 0, sizeof v);
+  v.sys = sys, v.d = sys->dim, v.N = sys->N, v.n = sys->n, v.m = sys->m;
+  v.nf = v.m ? v.m : v.N;
+  double *t = malloc(n * sizeof *t);
+  v.is_frame = malloc(n * sizeof *v.is_frame);
+  int rc = t && v.is_frame ? DAL_OK : DAL_E_NOMEM;
+  for (size_t i = 0; !rc && i < n; ++i)
+    t[i] = times[i], v.is_frame[i] = 1;
+  v.times = t;
+  v.nt = v.nframes = n;
+  v.pstride = n, v.nplot = 1;
+  if (rc) DAL_FAIL(st, rc, "picture_write: out of memory");
+  // dal_evolve_at checks the list (finite, not before the state's time, in order)
+  if (!rc) rc = frames_run(&v, st, solve, NULL, "picture_write");
+  if (!rc) rc = write_svg(&v, fp);
+  if (rc == DAL_E_IO) DAL_FAIL(st, rc, "picture_write: writing the picture failed (disk full?)");
   viewer_free(&v);
   return rc;
 }

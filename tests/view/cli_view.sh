@@ -41,5 +41,15 @@ printf 'dim 0\ncoord x q=1 v=0\nlagrangian = 1/2*xdot^2 - 1/2*x^2\nrun t1=1 dt=0
 grep -q "no particles" err.txt || fail "the message: $(cat err.txt)"
 [ ! -e lag.html ] && [ ! -e lag.html.part ] || fail "lag.html left behind"
 
+# picture: a multi-exposure SVG; a bad list of times leaves nothing
+"$cli" picture "$scenes/driven_pendulum.scene" -o pend.svg --times 0,0.5,1 ||
+  fail "picture failed"
+[ "$(grep -c '<g opacity' pend.svg)" = 3 ] || fail "pend.svg has not 3 exposures"
+"$cli" picture "$scenes/driven_pendulum.scene" -o bad.svg --times 1,0.5 2> err.txt &&
+  fail "decreasing times were accepted"
+[ ! -e bad.svg ] && [ ! -e bad.svg.part ] || fail "bad.svg left behind"
+"$cli" picture "$scenes/driven_pendulum.scene" -o bad.svg --times 0,x 2> err.txt &&
+  fail "--times 0,x was accepted"
+
 [ $fails = 0 ] && echo "cli_view: all checks passed"
 exit $((fails > 0))
