@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "base/base.h"
+#include "model/model.h"
 #include "dalembert/output.h"
 #include "drive/drive.h"
 
