@@ -527,6 +527,10 @@ int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *op
   if (pair) return pair;
   dal_view_opts o = opts ? *opts : dal_default_view_opts();
   double t0 = st->t;
+  if (!isfinite(o.t1) || !isfinite(o.fps) || !isfinite(o.trail) || !isfinite(o.strobe))
+    return DAL_FAIL(st, DAL_E_NONFINITE,
+                    "view_write: t1 (%g), fps (%g), trail (%g) and strobe (%g) must be finite",
+                    o.t1, o.fps, o.trail, o.strobe);
   if (!fp || !(o.fps > 0) || !isfinite(o.fps) || !(o.t1 > t0) || !isfinite(o.t1))
     return DAL_FAIL(st, DAL_E_ARG,
                     "view_write: needs a stream, fps > 0 (got %g) and t1 after the state's time "
