@@ -48,7 +48,7 @@
   }
   // extra points that are directions (a circle's plane, a line's direction), not places
   var isDir = {};
-  D.circles.forEach(function (c) { isDir[c[1]] = isDir[c[2]] = true; });
+  D.circles.forEach(function (c) { if (c[1] >= 0) isDir[c[1]] = isDir[c[2]] = true; });
   D.lines.forEach(function (l) { isDir[l[1]] = true; });
 
   // the bounding box of everything drawn
@@ -155,7 +155,8 @@
     ctx.strokeStyle = '#bbb';
     ctx.lineWidth = 1;
     D.circles.forEach(function (c) {
-      var C = pt(f, c[0]), u = pt(f, c[1]), w = pt(f, c[2]), R = c[3];
+      var C = pt(f, c[0]), R = c[3]; // a 2-D circle (c[1] < 0) lies in the page's own plane
+      var u = c[1] < 0 ? [1, 0, 0] : pt(f, c[1]), w = c[1] < 0 ? [0, 1, 0] : pt(f, c[2]);
       ctx.beginPath();
       for (var k = 0; k <= 96; k++) {
         var a = 2 * Math.PI * k / 96, ca = Math.cos(a) * R, sa = Math.sin(a) * R;
@@ -267,7 +268,7 @@
     }
     c.fillStyle = '#888'; // the scale: the largest and smallest value shown
     c.textAlign = 'right';
-    c.fillText(yr[1].toPrecision(3), 374, 24);
+    c.fillText(yr[1].toPrecision(3), 374, 27);
     c.fillText(yr[0].toPrecision(3), 374, 108);
     c.fillText('t = ' + plotT(n - 1).toPrecision(3), 374, 12);
     c.textAlign = 'left';

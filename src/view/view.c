@@ -221,10 +221,14 @@ static int geometry(viewer *v, const dal_state *st) {
     double rho;
     int j = pl->ncoord ? circle_coord(v, st, k, &rho) : -1;
     if (j < 0) continue;
-    int c = add_point(v, PT_PIVOT, k, j, NULL), u = add_point(v, PT_PIVOT_U, k, j, NULL),
-        w = add_point(v, PT_PIVOT_W, k, j, NULL);
-    if (c < 0 || u < 0 || w < 0) return DAL_E_NOMEM;
-    v->xp[u].dir = v->xp[w].dir = 1;
+    // the circle's plane: the page's own in 2-D (no floats stored), turning with it in 3-D
+    int c = add_point(v, PT_PIVOT, k, j, NULL), u = -1 - N, w = -1 - N;
+    if (d == 3) {
+      u = add_point(v, PT_PIVOT_U, k, j, NULL), w = add_point(v, PT_PIVOT_W, k, j, NULL);
+      if (u < 0 || w < 0) return DAL_E_NOMEM;
+      v->xp[u].dir = v->xp[w].dir = 1;
+    }
+    if (c < 0) return DAL_E_NOMEM;
     rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"rod\"],", N + c, k);
     if (!rc)
       rc = app(&v->circles, &v->clen, &v->ccap, "[%d,%d,%d,%.9g,1],", N + c, N + u, N + w, rho);
@@ -257,11 +261,14 @@ static int geometry(viewer *v, const dal_state *st) {
         ww[2] = nx * uu[1] - ny * uu[0];
       }
       if (turning) ww[1] = 0, ww[2] = 1;
-      int pc = add_point(v, PT_CONST, c, 0, cc), pu = add_point(v, turning ? PT_TURN_U : PT_CONST,
-                                                                  c, 0, uu),
-          pw = add_point(v, PT_CONST, c, 0, ww);
-      if (pc < 0 || pu < 0 || pw < 0) return DAL_E_NOMEM;
-      v->xp[pu].dir = v->xp[pw].dir = 1;
+      int pc = add_point(v, PT_CONST, c, 0, cc), pu = -1 - N, pw = -1 - N;
+      if (d == 3) {
+        pu = add_point(v, turning ? PT_TURN_U : PT_CONST, c, 0, uu);
+        pw = add_point(v, PT_CONST, c, 0, ww);
+        if (pu < 0 || pw < 0) return DAL_E_NOMEM;
+        v->xp[pu].dir = v->xp[pw].dir = 1;
+      }
+      if (pc < 0) return DAL_E_NOMEM;
       rc = app(&v->circles, &v->clen, &v->ccap, "[%d,%d,%d,%.9g,0],", N + pc, N + pu, N + pw,
                par[0]);
     } else if (pr == &dal_con_line2 || pr == &dal_con_line3) {
@@ -667,8 +674,12 @@ static int write_svg(viewer *v, FILE *fp) {
     fputs("<polyline fill=\"none\" stroke=\"#bbb\" points=\"", fp);
     double C[2], u[2], w[2];
     onscreen(v, &P, last, cs[k][0], 0, C);
-    onscreen(v, &P, last, cs[k][1], 1, u);
-    onscreen(v, &P, last, cs[k][2], 1, w);
+    if (cs[k][1] < 0) // a 2-D circle: the plane's own axes
+      u[0] = P.A[0][0], u[1] = P.A[1][0], w[0] = P.A[0][1], w[1] = P.A[1][1];
+    else {
+      onscreen(v, &P, last, cs[k][1], 1, u);
+      onscreen(v, &P, last, cs[k][2], 1, w);
+    }
     for (int j = 0; j <= 96; ++j) {
       double a = 2 * 3.14159265358979323846 * j / 96, ca = cos(a) * cr[k], sa = sin(a) * cr[k];
       fprintf(fp, "%.2f,%.2f ", C[0] + ca * u[0] + sa * w[0], C[1] + ca * u[1] + sa * w[1]);
