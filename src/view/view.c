@@ -3,6 +3,7 @@
 // The viewer (output.h: dal_view_write): frames of a motion from the dense output, the scene's
 // drawable geometry, and one self-contained HTML page (src/view/page.* embedded at build time).
 #include <math.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,7 +57,6 @@ static int app(char **buf, size_t *len, size_t *cap, const char *fmt, ...)
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
-#include <stdarg.h>
 static int app(char **buf, size_t *len, size_t *cap, const char *fmt, ...) {
   va_list ap;
   for (;;) {
