@@ -16,6 +16,7 @@
 #include "dalembert/dalembert.h"
 
 static char chromium[256];
+static char profile[1100]; // the browser's own profile folder (no HOME needed; one per scene)
 
 // the value of attribute `name` in the DOM text (HTML-unescaped into out)
 static int attr(const char *dom, const char *name, char *out, size_t len) {
@@ -56,8 +57,8 @@ static char *dom_at(const char *html, const char *frag) {
   char cmd[2048];
   snprintf(cmd, sizeof cmd,
            "'%s' --headless --no-sandbox --disable-gpu --no-first-run --disable-extensions "
-           "--virtual-time-budget=3000 --dump-dom 'file://%s#%s' 2>/dev/null",
-           chromium, html, frag);
+           "--user-data-dir='%s' --virtual-time-budget=3000 --dump-dom 'file://%s#%s' 2>/dev/null",
+           chromium, profile, html, frag);
   FILE *p = popen(cmd, "r");
   if (!p) return NULL;
   size_t cap = 1 << 16, len = 0;
@@ -178,6 +179,7 @@ int main(int argc, char **argv) {
   base = base ? base + 1 : argv[1];
   char html[1024];
   snprintf(html, sizeof html, "%s/%.*s.html", argv[2], (int)strcspn(base, "."), base);
+  snprintf(profile, sizeof profile, "%s/chromium-%.*s", argv[2], (int)strcspn(base, "."), base);
   // the page of the first second at 60 frames per second
   const dal_system *sys = dal_scene_system(sc);
   double t0;
@@ -226,9 +228,9 @@ int main(int argc, char **argv) {
     char cmd[3000];
     snprintf(cmd, sizeof cmd,
              "'%s' --headless --no-sandbox --disable-gpu --no-first-run --hide-scrollbars "
-             "--virtual-time-budget=3000 --window-size=1060,540 --screenshot='%s' "
-             "'file://%s#t=0.5' >/dev/null 2>&1",
-             chromium, argv[3], html);
+             "--user-data-dir='%s' --virtual-time-budget=3000 --window-size=1060,540 "
+             "--screenshot='%s' 'file://%s#t=0.5' >/dev/null 2>&1",
+             chromium, profile, argv[3], html);
     CHECK(system(cmd) == 0);
   }
   dal_scene_destroy(sc);
