@@ -22,7 +22,7 @@ int cli_view(cli *c) {
   dal_solve_opts so = *dal_scene_opts(c->sc, &t0, &t1, NULL);
   so.cancel = cli_cancel; // Ctrl-C: the page ends where the motion stopped
   dal_view_opts o = dal_default_view_opts();
-  o.t1 = cli_given(c, "t1") ? t0 + cli_num(c, "t1", 0) : t1;
+  o.t1 = cli_num(c, "t1", t1); // an end time, as every command's --t1
   o.fps = cli_num(c, "fps", o.fps);
   o.solve = &so;
   o.title = c->path;
@@ -59,7 +59,7 @@ int cli_view(cli *c) {
 
 const cli_opt cli_picture_opts[] = {
     {"output", 'o', CLI_TEXT, "FILE.svg", "the picture (required)", 0},
-    {"times", 0, CLI_TEXT, "T1,T2,...", "the times drawn (default: 9 over the first 2 s or --t1)",
+    {"times", 0, CLI_TEXT, "T1,T2,...", "the times drawn (default: 9 from t0 to --t1, or over the first 2 s)",
      0},
     CLI_OPT_T1,
     CLI_END,
@@ -72,7 +72,7 @@ int cli_picture(cli *c) {
   double t0, t1;
   dal_solve_opts so = *dal_scene_opts(c->sc, &t0, &t1, NULL);
   so.cancel = cli_cancel;
-  // the times: --times, else 9 over the first 2 s (or --t1 T) of the run
+  // the times: --times, else 9 from t0 to --t1 (default: the first 2 s of the run)
   double times[1000];
   size_t n = 0;
   if (list) {
@@ -85,7 +85,7 @@ int cli_picture(cli *c) {
       p = *end ? end + 1 : end;
     }
   } else {
-    double span = cli_num(c, "t1", t1 - t0 < 2 ? t1 - t0 : 2);
+    double span = cli_num(c, "t1", t1 - t0 < 2 ? t1 : t0 + 2) - t0;
     for (n = 0; n < 9; ++n)
       times[n] = t0 + span * (double)n / 8;
   }
