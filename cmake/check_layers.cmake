@@ -3,7 +3,7 @@
 # The layer check (ctest `layers`): every folder of src/ is a layer, listed here from the bottom
 # up; a file may include its own folder's headers and the face header X/X.h of a folder X at
 # or below its own, nothing else of src/. Run: cmake -DSRC=<repo>/src -P check_layers.cmake
-set(layers base expr linalg eval model form integrate drive analysis ensemble scene)
+set(layers base expr codegen linalg eval model form integrate drive analysis ensemble scene)
 file(GLOB folders RELATIVE ${SRC} ${SRC}/*)
 set(bad 0)
 set(nfiles 0)

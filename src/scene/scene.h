@@ -57,6 +57,8 @@ struct dal_scene {
   scene_event *ev; // the event and surface-section lines, in order
   int nev;
   double strobe; // period of the stroboscopic section (0: none)
+  int native;    // 1: the expressions run native code (dal_scene_native), again after a rebuild
+  dal_codegen_opts native_opts;
 };
 
 #endif
