@@ -14,6 +14,7 @@
 //   dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]   the scene's Poincare section
 //   dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]
 //                                             final states over a grid of a scene parameter
+//   dalembert compile SCENE [-o FILE.c]       the scene's formulas as a standalone C source
 //   every command: [--set NAME=VALUE]... [--progress | --no-progress]
 #ifndef DAL_TOOLS_CLI_H
 #define DAL_TOOLS_CLI_H
@@ -59,5 +60,6 @@ int cli_equilibria(cli *c);
 int cli_lyapunov(cli *c);
 int cli_section(cli *c);
 int cli_sweep(cli *c);
+int cli_compile(cli *c);
 
 #endif

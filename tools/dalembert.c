@@ -27,6 +27,7 @@ int cli_usage(void) {
       "                          [--method M] [--h H]\n"
       "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
       "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
+      "       dalembert compile SCENE [-o FILE.c]\n"
       "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
   return 64;
 }
@@ -187,6 +188,7 @@ static const struct {
     {"lyapunov", cli_lyapunov},
     {"section", cli_section},
     {"sweep", cli_sweep},
+    {"compile", cli_compile},
 };
 
 int main(int argc, char **argv) {

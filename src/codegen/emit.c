@@ -56,11 +56,12 @@ void dal__cg_preamble(dal_cgbuf *b) {
     p += n;
   }
   // a power with an exponent known only at run time (compile.c's jpow)
-  dal__cg_printf(b, "\nstatic inline dal_jet dal_cg_jpow(dal_jet a, double k) {\n"
+  dal__cg_printf(b, "\n#ifndef DAL_CG_JPOW\n#define DAL_CG_JPOW\n"
+                    "static inline dal_jet dal_cg_jpow(dal_jet a, double k) {\n"
                     "  if (k == floor(k) && fabs(k) <= 1e9) return k == 2.0 ? dal_sq(a) : "
                     "dal_powi(a, (int)k);\n"
                     "  if (k == 0.5) return dal_sqrt(a);\n"
-                    "  return dal_pow(a, k);\n}\n");
+                    "  return dal_pow(a, k);\n}\n#endif\n");
 }
 
 // operand kinds of compile.c (M_*: binary jet ops; P_*: powers)

@@ -742,6 +742,12 @@ int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t
   return DAL_OK;
 }
 
+int dal_scene_nexprs(const dal_scene *sc) { return sc ? sc->nex : 0; }
+
+const dal_expr *dal_scene_expr(const dal_scene *sc, int i) {
+  return sc && i >= 0 && i < sc->nex ? sc->ex[i] : NULL;
+}
+
 int dal_scene_write_c(const dal_scene *sc, const char *prefix, FILE *fp) {
   if (!sc) return DAL_E_ARG;
   return dal_codegen_write(sc->ex, sc->nex, prefix, fp);
