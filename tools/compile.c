@@ -1,15 +1,35 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// dalembert compile SCENE [-o model.c]: the scene's formulas as a standalone C source
-// (dal_scene_write_c); the functions' prefix is the output file's base name (else "model").
+// dalembert compile SCENE [-o model.c] [--prefix NAME]: the scene's formulas as a standalone C
+// source (dal_scene_write_c, interface in dalembert/codegen.h).
 #include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "cli.h"
 
-// the prefix: the base name of path without its extension, made an identifier
-static void prefix_of(const char *path, char *p, size_t len) {
+const cli_opt cli_compile_opts[] = {
+    {"output", 'o', CLI_TEXT, "FILE.c", "the C source (default: stdout)", 0},
+    {"prefix", 0, CLI_TEXT, "NAME",
+     "the functions' prefix (default: the output file's base name, else model)", 0},
+    CLI_END,
+};
+
+// the prefix: --prefix, else the base name of -o without its extension made an identifier
+static int prefix_of(const cli *c, char *p, size_t len) {
+  const char *given = cli_text(c, "prefix");
+  if (given) {
+    size_t k = strlen(given);
+    int ok = k > 0 && k < 40 && (isalpha((unsigned char)given[0]) || given[0] == '_');
+    for (size_t i = 0; ok && i < k; ++i)
+      ok = isalnum((unsigned char)given[i]) || given[i] == '_';
+    if (!ok)
+      return cli_error(c, CLI_USAGE, "--prefix '%s' is not a C name of at most 39 characters",
+                       given);
+    snprintf(p, len, "%s", given);
+    return DAL_OK;
+  }
+  const char *path = cli_text(c, "output");
   const char *b = path ? strrchr(path, '/') : NULL;
   b = b ? b + 1 : path;
   size_t k = 0;
@@ -17,14 +37,16 @@ static void prefix_of(const char *path, char *p, size_t len) {
     p[k] = isalnum((unsigned char)b[k]) ? b[k] : '_';
   p[k] = 0;
   if (!k || isdigit((unsigned char)p[0])) snprintf(p, len, "model");
+  return DAL_OK;
 }
 
 int cli_compile(cli *c) {
   char prefix[48];
-  prefix_of(c->out, prefix, sizeof prefix);
+  int rc = prefix_of(c, prefix, sizeof prefix);
+  if (rc) return rc;
   FILE *fp = cli_out(c);
   if (!fp) return DAL_E_IO;
-  int rc = dal_scene_write_c(c->sc, prefix, fp);
-  if (rc) fprintf(stderr, "dalembert: compile %s: %s\n", c->path, dal_status_string(rc));
-  return cli_close(c, fp, rc);
+  rc = dal_scene_write_c(c->sc, prefix, fp);
+  if (rc) cli_error(c, rc, "%s", dal_status_string(rc));
+  return cli_close(c, rc);
 }

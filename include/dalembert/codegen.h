@@ -36,7 +36,7 @@ typedef struct dal_codegen_opts {
 DAL_API dal_codegen_opts dal_codegen_default_opts(void);
 
 /// Write a standalone C source for the n expressions e[0 .. n-1] to fp: no parser, no library,
-/// no allocation; it needs only <math.h> (link with -lm). For expression i it defines
+/// no allocation; it needs only the C math library (-lm). For expression i it defines
 ///
 ///     int PREFIX_i(const dal_jet *in, dal_jet t, const double *param, dal_jet *out, void *ctx);
 ///
