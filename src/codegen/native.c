@@ -219,7 +219,8 @@ static int trusted(const char *so, const char *sum, const char *key) {
 // split the compiler command at blanks into argv (at most 32 words)
 static int words(char *s, char **argv, int max) {
   int n = 0;
-  for (char *p = strtok(s, " \t"); p && n < max; p = strtok(NULL, " \t"))
+  char *save = NULL;
+  for (char *p = strtok_r(s, " \t", &save); p && n < max; p = strtok_r(NULL, " \t", &save))
     argv[n++] = p;
   return n;
 }
@@ -328,7 +329,10 @@ int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts *o, cha
                "dal_codegen_default_opts()%s%s",
                "", "");
   for (int i = 0; i < n; ++i)
-    if (!e[i]) return say(msg, msglen, DAL_E_ARG, "dal_codegen_attach: e[%s] is NULL%s", "i", "");
+    if (!e[i]) {
+      if (msg && msglen) snprintf(msg, msglen, "dal_codegen_attach: e[%d] is NULL", i);
+      return DAL_E_ARG;
+    }
   const char *cc = o->cc ? o->cc : getenv("CC");
   if (!cc || !*cc) cc = "cc";
   // the source and its key: the hash of source and compiler
