@@ -11,7 +11,8 @@
 // 3. The cache: a second attach loads the same object without compiling (its file unchanged);
 //    an object changed after it was written, or put there without its sum file, is refused
 //    and compiled again; a directory others may write to is refused (nothing attached); a
-//    missing compiler (opts and the CC variable) leaves the bytecode running, with a message.
+//    missing compiler (opts and the CC variable) leaves the bytecode running, with a message;
+//    four processes compiling one entry at once all attach.
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdarg.h>
@@ -19,6 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "check.h"
@@ -316,6 +318,34 @@ static void cache_rules(void) {
   CHECK(unsetenv("CC") == 0);
 }
 
+// four processes compiling the same entry into a fresh cache at once: every one attaches
+static void concurrent(void) {
+  char sub[300];
+  snprintf(sub, sizeof sub, "%s/race", cache);
+  pid_t pid[4];
+  for (int k = 0; k < 4; ++k) {
+    pid[k] = fork();
+    if (pid[k] == 0) {
+      dal_codegen_opts o = dal_codegen_default_opts();
+      o.cache_dir = sub;
+      dal_expr *e = small();
+      char m[400];
+      int rc = e ? dal_codegen_attach(&e, 1, &o, m, sizeof m) : -1;
+      if (rc) fprintf(stderr, "process %d: %s\n", k, m);
+      int ok = !rc && value_ok(e);
+      dal_expr_destroy(e);
+      _exit(ok ? 0 : 1);
+    }
+  }
+  int good = 0;
+  for (int k = 0; k < 4; ++k) {
+    int st;
+    good += pid[k] > 0 && waitpid(pid[k], &st, 0) == pid[k] && WIFEXITED(st) && !WEXITSTATUS(st);
+  }
+  CHECK_MSG(good == 4, "%d of 4 processes attached", good);
+  printf("4 processes compiling one entry at once: %d attached\n", good);
+}
+
 int main(void) {
   // a fresh private cache for this run
   snprintf(cache, sizeof cache, "/tmp/dal_codegen_test.XXXXXX");
@@ -323,6 +353,7 @@ int main(void) {
   example_scenes();
   random_models();
   cache_rules();
+  concurrent();
   char cmd[400];
   snprintf(cmd, sizeof cmd, "rm -rf %s", cache);
   CHECK(system(cmd) == 0);

@@ -349,14 +349,16 @@ int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts *o, cha
   if (rc) goto done;
   snprintf(so, sizeof so, "%s/%s.so", dir, key);
   snprintf(sum, sizeof sum, "%s/%s.sum", dir, key);
-  // a cached object only when it passes; else compile (anew)
-  if (!trusted(so, sum, key)) {
-    rc = build(dir, cc, &src, so, sum, key, msg, msglen);
-    if (rc) goto done;
-    if (!trusted(so, sum, key)) {
-      rc = say(msg, msglen, DAL_E_IO, "codegen: the cache entry %s changed under us%s", so, "");
+  // a cached object only when it passes; else compile (anew). Another process compiling the
+  // same entry at once may pair its object with our sum for a moment: then build again
+  for (int tries = 0; !trusted(so, sum, key); ++tries) {
+    if (tries == 3) {
+      rc = say(msg, msglen, DAL_E_IO, "codegen: the cache entry %s keeps changing under us%s", so,
+               "");
       goto done;
     }
+    rc = build(dir, cc, &src, so, sum, key, msg, msglen);
+    if (rc) goto done;
   }
   lib *l = malloc(sizeof *l);
   void *hd = l ? dlopen(so, RTLD_NOW | RTLD_LOCAL) : NULL;
