@@ -169,7 +169,12 @@ void dal__cg_function(dal_cgbuf *b, const dal_expr *e, const char *fname) {
   // the scalar part: parameters read, constants folded
   for (int i = 0; i < p->nscalar; ++i) {
     const dal_xins *x = &p->ins[i];
-    sval *d = &S[x->dst], a = S[x->a], bb = S[x->b];
+    // operands are registers but for a constant and a parameter (whose a is its index)
+    sval *d = &S[x->dst], a = {0, 0.0, 0}, bb = {0, 0.0, 0};
+    if (x->op != X_NUM && x->op != X_PAR) {
+      a = S[x->a];
+      bb = S[x->b];
+    }
     sval r = {0, 0.0, i};
     if (x->op == X_NUM) {
       r.known = 1;
@@ -204,8 +209,10 @@ void dal__cg_function(dal_cgbuf *b, const dal_expr *e, const char *fname) {
   for (int i = p->nscalar; i < p->nscalar + p->njet; ++i) {
     const dal_xins *x = &p->ins[i];
     char ja[24], jb[24];
-    snprintf(ja, sizeof ja, "j%d", J[x->a]);
-    snprintf(jb, sizeof jb, "j%d", J[x->b]);
+    // the jet operands' locals (a and b may be an input index or a scalar register instead:
+    // read only in range, used only where they are jet registers)
+    snprintf(ja, sizeof ja, "j%d", x->a < nj ? J[x->a] : -1);
+    snprintf(jb, sizeof jb, "j%d", x->b < nj ? J[x->b] : -1);
     dal__cg_printf(b, "  const dal_jet j%d = ", i);
     switch (x->op) {
     case X_IN:
