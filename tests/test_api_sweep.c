@@ -2063,6 +2063,7 @@ static void sw_dal_scene_native(void) {
   CHECK(dal_codegen_attached(dal_scene_expr(sc, 0)) == 0);
   dal_scene_destroy(sc);
 }
+static void sw_dal_scene_help(void) { CHECK(dal_scene_help(NULL) == DAL_E_ARG); }
 static void sw_dal_scene_nexprs(void) { CHECK(dal_scene_nexprs(NULL) == 0); }
 static void sw_dal_scene_expr(void) {
   dal_scene *sc = sweep_scene();
@@ -2157,6 +2158,7 @@ static const sweep_row rows[] = {
     ROW(dal_scene_run),
     ROW(dal_scene_show),
     ROW(dal_scene_native),
+    ROW(dal_scene_help),
     ROW(dal_scene_nexprs),
     ROW(dal_scene_expr),
     ROW(dal_scene_write_c),
