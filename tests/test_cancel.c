@@ -84,6 +84,40 @@ static void one(const char *what, dal_system *sys, const double *q0, const doubl
   dal_state_destroy(ref);
 }
 
+static int never(void *ctx) {
+  (void)ctx;
+  return 0;
+}
+
+// a hook that never cancels leaves the run as it is: the same steps (bit for bit) for the
+// one-step methods, Bulirsch-Stoer included (its dense mode is for outputs only); CVODE steps
+// one at a time with a hook and ends at t1 within the tolerance
+static void same_run(const char *what, dal_system *sys, double q0, dal_method m, double tol) {
+  dal_state *a = NULL, *b = NULL;
+  double qd0 = 0.0;
+  CHECK_OK(dal_state_create(sys, &a));
+  CHECK_OK(dal_state_create(sys, &b));
+  CHECK_OK(dal_state_set(sys, a, 0.0, &q0, &qd0));
+  CHECK_OK(dal_state_set(sys, b, 0.0, &q0, &qd0));
+  dal_solve_opts o = scn_opts(DAL_FORM_ODE, m, 1e-10), oc = o;
+  oc.cancel = never;
+  CHECK_OK(dal_advance(sys, a, &o, 7.3));
+  CHECK_OK(dal_advance(sys, b, &oc, 7.3));
+  dal_stats sa, sb;
+  CHECK_OK(dal_state_stats(a, &sa));
+  CHECK_OK(dal_state_stats(b, &sb));
+  if (tol == 0.0) {
+    CHECK_MSG(dal_state_q(a)[0] == dal_state_q(b)[0] && dal_state_qdot(a)[0] == dal_state_qdot(b)[0],
+              "%s: %.17g vs %.17g with a hook", what, dal_state_q(a)[0], dal_state_q(b)[0]);
+    CHECK_MSG(sa.steps == sb.steps, "%s: %ld steps, %ld with a hook", what, sa.steps,
+              sb.steps);
+  } else {
+    CHECK_CLOSE(dal_state_q(b)[0], dal_state_q(a)[0], tol);
+  }
+  dal_state_destroy(a);
+  dal_state_destroy(b);
+}
+
 int main(void) {
   scn_knobs k = scn_default();
   dal_system *pend = scn_pendulum(&k);
@@ -97,6 +131,11 @@ int main(void) {
   one("adams", pend, &q, &qd, DAL_FORM_ODE, DAL_METHOD_ADAMS, 1e-7);
   one("bdf", pend, &q, &qd, DAL_FORM_ODE, DAL_METHOD_BDF, 1e-7);
   one("variational", pend, &q, &qd, DAL_FORM_ODE, DAL_METHOD_VARIATIONAL, 1e-13);
+  same_run("dopri5", pend, 1.0, DAL_METHOD_DOPRI5, 0.0);
+  same_run("fehlberg78", pend, 1.0, DAL_METHOD_FEHLBERG78, 0.0);
+  same_run("bs", pend, 1.0, DAL_METHOD_BS, 0.0);
+  same_run("rk4", pend, 1.0, DAL_METHOD_RK4, 0.0);
+  same_run("adams", pend, 1.0, DAL_METHOD_ADAMS, 1e-7);
   dal_system_destroy(pend);
   // redundant coordinates: IDA's GGL form
   dal_system *cart = scn_cart_pendulum(&k);

@@ -236,7 +236,10 @@ typedef enum dal_linsol {
 /// up to it has been served to the monitor, and dal_state_errmsg says where it stopped. It must
 /// be cheap and must not touch the state; a flag set by a signal handler or another thread (read
 /// as volatile or atomic) is the intended use (the command line's Ctrl-C, Python's
-/// KeyboardInterrupt).
+/// KeyboardInterrupt). A hook that never cancels leaves the steps as they are: DOPRI5,
+/// Fehlberg 7(8), Bulirsch-Stoer and RK4 end bit for bit where they end without it; CVODE
+/// (Adams, BDF) and IDA then take their steps one at a time, as with a monitor, and end within
+/// the tolerance of the run without it (tests/test_cancel.c).
 typedef int dal_cancel_fn(void *ctx);
 
 /// Options for advance/evolve. Always start from dal_default_solve_opts().

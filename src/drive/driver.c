@@ -419,9 +419,12 @@ again:;
     return evaluate_here(sys, st);
   }
   // the hook only when someone looks: a monitor at output times, events, or a trajectory
-  int hooked = (r->outputs && r->monitor) || r->ev || st->traj || r->o->cancel;
+  // (the cancel hook alone asks after every step but reads no dense output: same steps)
+  int dense = (r->outputs && r->monitor) || r->ev || st->traj;
+  int hooked = dense || r->o->cancel;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
+  h->it->dense_steps = dense;
   rc = h->it->ops->advance(h->it, t1, hooked ? after_step : NULL, r);
   if (rc == DAL__HOOK_STOP) {
     // the hook left the state where the run stops, evaluated; the integrator is elsewhere

@@ -25,7 +25,7 @@
 // representable times it joins (t + H rounded, minus t), so that y and t do not drift apart
 // by the rounding of t + H in every step.
 //
-// Dense output (an advance call that starts with an after-step hook set, ig->hook): the
+// Dense output (an advance call whose after-step hook reads the steps, ig->dense): the
 // extrapolated dense output of Hairer & Ostermann (1990), HNW sec. II.9 "dense output for
 // extrapolation methods", as in ODEX. The step numbers become n_j = 4j - 2 (2, 6, 10, ...), so
 // that the midpoint of the step is a grid point of odd index in every row and the values
@@ -693,8 +693,9 @@ static int bs_step_accept(dal_ode_integ *ig, bs_mem *m, double t1, int b) {
 static int bs_advance(dal_ode_integ *ig, double tout) {
   bs_mem *m = ig->impl;
   int nrej = 0, rc;
-  // dense output when a hook reads the steps (the driver sets it before advance)
-  if ((ig->hook != NULL) != m->dense) bs_sequence(m, ig->hook != NULL);
+  // dense output when a hook reads the steps (the driver says so before advance; a hook that
+  // only asks the cancel hook keeps the plain sequence and so the plain run's steps)
+  if (ig->dense != m->dense) bs_sequence(m, ig->dense);
   while (ig->t < tout) {
     if ((rc = bs_step_start(ig, m, tout)) != 0) return rc;
     double H = 0.0, t1 = 0.0;

@@ -23,6 +23,7 @@ static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void 
   ig->nrecov = 0;
   ig->hook = hook;
   ig->hook_ctx = ctx;
+  ig->dense = hook && it->dense_steps;
   int rc = ig->advance(ig, tout);
   ig->hook = NULL;
   if (rc) return rc;

@@ -67,6 +67,10 @@ struct dal_ode_integ {
   /// after-step hook (NULL: none): 0 to go on, DAL__HOOK_STOP to stop, negative to fail
   int (*hook)(void *ctx);
   void *hook_ctx;
+  /// the hook reads the steps' dense output (outputs, events, a stored trajectory); 0 when it
+  /// only asks the caller's cancel hook, which must not change the steps (Bulirsch-Stoer's
+  /// dense mode would)
+  int dense;
   /// where dal__ode_place writes y (borrowed): the state's (q, qdot) block itself when
   /// place_direct (the problem has the state's layout, dal_ode_problem.state_layout, and no
   /// work W is integrated), else a scratch of ny that the problem's to_state copies
@@ -277,6 +281,9 @@ struct dal_integ {
   /// records per accepted step of a stored trajectory (dal_trajectory: degree 8 each); a
   /// method whose interpolant has a higher degree over its long steps takes more (BS: 4)
   int traj_pieces;
+  /// set by the driver before advance: the hook reads the steps' dense output (0: the hook, if
+  /// any, only asks the cancel hook)
+  int dense_steps;
   /// what creation did not honour as asked (a tolerance raised to a floor): "note: ..." for the
   /// state's message on success, or empty
   char note[DAL_ERRMSG_LEN];
