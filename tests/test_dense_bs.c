@@ -135,6 +135,7 @@ static run_out run(const dal_system *sys, dal_state *st, const double *q0, const
   CHECK(ig->interp != NULL);
   ig->hook = hook;
   ig->hook_ctx = pr;
+  ig->dense = hook != NULL; // the hook reads the steps (the driver says so the same way)
   ig->tout = T;
   ig->ncall = 0;
   if (pr) {
