@@ -50,6 +50,8 @@
 #ifndef DAL_ANALYSIS_H
 #define DAL_ANALYSIS_H
 
+#include <stddef.h>
+
 #include "dalembert/base.h"
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
@@ -171,6 +173,9 @@ typedef struct dal_modes {
   double asymmetry;      ///< ||K - K'||_F / ||K||_F: 0 for a conservative equilibrium
   double gyroscopic;     ///< ||C||_F / (||K||_F ||M||_F)^1/2: 0 without damping or Coriolis
   double accel;          ///< max_i |qddot_i| at the state: 0 at an equilibrium
+  int frozen;            ///< 1: the system depends on time explicitly and these are the modes
+                         ///< of the linearization frozen at the state's t
+                         ///< (dal_normal_modes_frozen); 0 otherwise
 } dal_modes;
 
 /// Normal modes at the state: the generalized symmetric eigenproblem
@@ -204,6 +209,9 @@ typedef struct dal_equilibrium_opts {
   double xtol;     ///< converged when every Newton step |dq_i| <= xtol (1 + |q_i|); 1e-12
   int max_iter;    ///< Newton iterations at most; 50
   double max_step; ///< largest |dq_i| of one step (the step is scaled down to it); 0: none
+  int frozen_time; ///< 1: accept an equilibrium of the equations frozen at the state's t for
+                   ///< an explicitly time-dependent system (dal_time_dependence), and let
+                   ///< dal_continue classify it by dal_normal_modes_frozen; 0 (default)
 } dal_equilibrium_opts;
 
 /// Fill *o with the defaults (xtol 1e-12, 50 iterations, no step bound).
@@ -376,6 +384,82 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 /// dal_vector_field_jacobian at the failing time.
 DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
                          double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
+
+
+// ---------------------------------------------------------------------------------------------
+// periodic motion: explicit time dependence, Floquet multipliers, periodic orbits
+
+/// Whether the equations of motion of sys depend on time explicitly (a drive, a moving pivot,
+/// a potential or constraint in t) in its coordinates. Decided on the exact df/dt of the
+/// vector field (dal_vector_field_jacobian's ft, from jets) at the state and at five
+/// pseudo-random points around it (t moved by up to 7 time units, q and qdot by up to 30% of
+/// 1 + |.|; with constraint rows each point is made consistent first): dependent when
+/// |df/dt| > 1e-9 ||A|| (|f| + ||A|| |y|) at one of them. This covers user jet callbacks
+/// alike; a dependence confined to a region no probe reaches (a drive that switches on
+/// later than t + 7) is missed. A scene that moves steadily in its own coordinates (a bead
+/// measured in a uniformly turning ring) is not dependent: its equations are those of the
+/// co-rotating frame, where equilibria and modes mean what they say (relative equilibria).
+///  what (len bytes, nullable): the finding in words, naming what moves with t (placements
+///    with dr/dt != 0 at fixed q, constraints with dphi/dt != 0) at the state.
+/// The state is left as given, evaluated. Returns 1 (dependent), 0 (not), or a negative
+/// status of dal_vector_field_jacobian at the state (the tangent must cover the system).
+DAL_API int dal_time_dependence(const dal_system *sys, dal_state *st, char *what, size_t len);
+
+/// dal_normal_modes of the linearization frozen at the state's time, asked for by name for
+/// an explicitly time-dependent system (dal_normal_modes refuses one): out->frozen is then 1.
+/// The verdict describes the frozen equations only, not the driven motion (use dal_floquet).
+DAL_API int dal_normal_modes_frozen(const dal_system *sys, dal_state *st, double *omega2,
+                                    double *shapes, double *lambda_re, double *lambda_im,
+                                    dal_modes *out);
+
+/// What dal_floquet found. The verdict uses dal_stability with these meanings (names by
+/// dal_floquet_verdict_name): DAL_UNSTABLE a multiplier |mu| > 1 + accuracy; DAL_ASYMPTOTIC
+/// every |mu| < 1 - accuracy; DAL_MARGINAL ("boundary") some |mu| within the accuracy of 1 and
+/// within twice it of +1 or -1, where a pair can leave the unit circle (a fold or
+/// period-doubling boundary: the linearization cannot decide); DAL_NEUTRAL ("stable") the
+/// rest: multipliers on the unit circle away from +-1 (Hamiltonian scenes) or inside it.
+/// (Pairs colliding on the circle away from +-1, Krein collisions, are not examined.)
+typedef struct dal_floquet_report {
+  dal_stability verdict; ///< see above
+  int count;             ///< multipliers: 2n, or 2(n - m) with m constraint rows
+  double period;         ///< the period T used (time)
+  double max_abs;        ///< the largest |mu|
+  double accuracy;       ///< the multipliers' error estimate: the largest distance between
+                         ///< them at rtol and at 10 rtol (matched nearest first), at least
+                         ///< 1000 ulps of ||monodromy||
+  double det;            ///< product of the multipliers: exp(int_0^T tr A dt), 1 for a scene
+                         ///< without damping (Liouville)
+  double trace;          ///< trace of the monodromy (sum of the multipliers)
+  double gap;            ///< max_i |y_i(T) - y_i(0)| / (1 + |y_i(0)|): how far the state is
+                         ///< from returning (0 on a T-periodic solution)
+} dal_floquet_report;
+
+/// Floquet analysis of the T-periodic solution through the state (an equilibrium of a
+/// periodically driven scene such as the driven pendulum's bottom, or a periodic orbit from
+/// dal_periodic_orbit): the monodromy matrix Phi(t + T, t) by dal_state_transition (exact
+/// variational equations), its eigenvalues mu (Floquet multipliers; the exponents are
+/// log(mu) / T, real part the growth rate in 1/time, imaginary part defined modulo 2 pi / T),
+/// computed twice (opts->rtol and 10 rtol) for their accuracy, and the verdict.
+///  opts: the integrator (an explicit method, see dal_state_transition); NULL: the defaults
+///    with rtol 1e-10.
+///  period: T > 0, e.g. the drive's period 2 pi / omega or a multiple of it.
+///  mu_re, mu_im (count each, nullable): the multipliers by decreasing |mu|, then argument.
+///  monodromy (count x count, column-major, nullable): the monodromy at opts->rtol, in
+///    (q, qdot) without constraints; with m constraint rows reduced to the manifold's
+///    tangent space in the coordinates (xi, eta) of dal_linearize (dq = N xi,
+///    dqdot = N eta + Y xi, N at the state): count = 2(n - m).
+///  rep (nullable): verdict, accuracy, det, trace, gap.
+/// The state must lie on a T-periodic solution: a state that does not return within
+/// 1e-6 + 1000 rtol (relative) is DAL_E_ARG naming the coordinate that misses most. With
+/// constraint rows it must be consistent. On return the state is back at its start,
+/// evaluated. Returns DAL_OK; DAL_E_ARG; DAL_E_UNSUPPORTED (no degrees of freedom, or see
+/// dal_state_transition); the statuses of dal_state_transition; DAL_E_SINGULAR (LAPACK).
+DAL_API int dal_floquet(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                        double period, double *mu_re, double *mu_im, double *monodromy,
+                        dal_floquet_report *rep);
+
+/// The name of a Floquet verdict: "unstable", "boundary", "stable", "asymptotically stable".
+DAL_API const char *dal_floquet_verdict_name(dal_stability s);
 
 #ifdef __cplusplus
 }

@@ -26,4 +26,19 @@ double dal__newton_scale(const double *x, int n, int m, const double *q, double 
 int dal__newton_apply(const dal_system *sys, dal_state *st, const double *x, double *q, double f,
                       double big, int far, double reach, const char *singular, double *conv);
 
+/// Put the state back at (t, y = (q, qdot)), evaluated, keeping the message of a failure rc
+/// (floquet.c): returns rc when it is a failure, else the status of the evaluation
+int dal__restore_state(const dal_system *sys, dal_state *st, double t, const double *y, int rc);
+/// DAL_OK when the equations of motion of sys do not depend on time explicitly; else
+/// DAL_E_UNSUPPORTED with "<what>: <the dependence>: a linearization frozen at t=... says
+/// nothing about the motion; <remedy>" in the state's message (floquet.c); the state is left
+/// as given, evaluated
+int dal__time_dependence_refusal(const dal_system *sys, dal_state *st, const char *what,
+                                 const char *remedy);
+/// 1 when the state's q (with qdot = 0) is an equilibrium at six pseudo-random times in
+/// [t, t + 7] (accelerations, and with constraint rows phi and dphi/dt, within 1e-8 of their
+/// scales), 0 when not (*worst: the largest scaled residual, *t_at its time), or a status
+/// (floquet.c); the state is left as given, evaluated
+int dal__equilibrium_all_times(const dal_system *sys, dal_state *st, double *worst, double *t_at);
+
 #endif
