@@ -20,15 +20,21 @@ static void print_q(const dal_system *sys, const double *q) {
 }
 
 // normal modes at the state: "mode,omega2,omega,period" rows and the verdict
-static int print_modes(const dal_system *sys, dal_state *st, char *msg, size_t len) {
+static int print_modes(const dal_system *sys, dal_state *st, int frozen, char *msg, size_t len) {
   int n = dal_system_ncoords(sys), k = n - dal_system_nconstraints(sys);
   double *w2 = calloc((size_t)k + 1, sizeof *w2), *lre = calloc(2 * (size_t)k + 1, sizeof *lre),
          *lim = calloc(2 * (size_t)k + 1, sizeof *lim);
   dal_modes m;
-  int rc = w2 && lre && lim ? dal_normal_modes(sys, st, w2, NULL, lre, lim, &m) : DAL_E_NOMEM;
+  int rc = w2 && lre && lim ? (frozen ? dal_normal_modes_frozen : dal_normal_modes)(
+                                   sys, st, w2, NULL, lre, lim, &m)
+                             : DAL_E_NOMEM;
   if (rc) {
     snprintf(msg, len, "modes: %s", dal_state_errmsg(st));
   } else {
+    if (m.frozen)
+      printf("# frozen at t = %.17g (--frozen): the scene depends on time; these modes are not "
+             "the driven motion's (dalembert floquet)\n",
+             dal_state_time(st));
     printf("# verdict: %s (largest real part %.3g, tolerance %.3g, acceleration %.3g)\n",
            dal_stability_name(m.verdict), m.max_real, m.tau, m.accel);
     printf("mode,omega2,omega,period\n");
@@ -51,7 +57,9 @@ int cli_modes(cli *c) {
   int rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(rc, "modes: the scene's initial state was refused");
   dal_equilibrium_report rep;
-  if (!c->here && (rc = dal_equilibrium(sys, st, NULL, &rep))) {
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
+  eo.frozen_time = c->frozen;
+  if (!c->here && (rc = dal_equilibrium(sys, st, &eo, &rep))) {
     snprintf(c->msg, sizeof c->msg,
              "%s: no equilibrium from the initial q (%s); start nearer one, or --here for the "
              "modes at the initial q",
@@ -60,7 +68,7 @@ int cli_modes(cli *c) {
     printf("# normal modes of %s at t = %.17g, ", c->path, dal_state_time(st));
     print_q(sys, dal_state_q(st));
     printf("%s\n", c->here ? "" : " (the equilibrium found from the initial q)");
-    rc = print_modes(sys, st, c->msg, sizeof c->msg);
+    rc = print_modes(sys, st, c->frozen, c->msg, sizeof c->msg);
   }
   dal_state_destroy(st);
   return cli_fail(rc, c->msg);
@@ -90,8 +98,10 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   double t0;
   dal_scene_opts(c->sc, &t0, NULL, NULL);
   dal_equilibrium_report rep;
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
+  eo.frozen_time = c->frozen;
   int rc = dal_state_set(sys, st, t0, q, zero);
-  if (!rc) rc = dal_equilibrium(sys, st, NULL, &rep);
+  if (!rc) rc = dal_equilibrium(sys, st, &eo, &rep);
   if (rc) return rc;
   const double *qs = dal_state_q(st), *r = dal_state_positions(st);
   int np = dal_system_nparticles(sys) * dal_system_dim(sys);
@@ -109,11 +119,24 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   int k = n - dal_system_nconstraints(sys);
   double *w2 = calloc((size_t)k + 1, sizeof *w2);
   if (!w2) return DAL_E_NOMEM;
-  int mr = dal_normal_modes(sys, st, w2, NULL, NULL, NULL, &m);
+  int mr = (c->frozen ? dal_normal_modes_frozen : dal_normal_modes)(sys, st, w2, NULL, NULL,
+                                                                    NULL, &m);
+  // a driven scene's equilibrium has no frozen verdict unless asked for: say which call fits
+  const char *verdict = mr ? "unknown" : dal_stability_name(m.verdict);
+  char why[512];
+  snprintf(why, sizeof why, "%s", dal_state_errmsg(st));
+  if (mr == DAL_E_UNSUPPORTED && dal_time_dependence(sys, st, NULL, 0) == 1) {
+    verdict = "driven";
+    fprintf(stderr, "dalembert: %s\n", why);
+  } else if (!mr && m.frozen) {
+    verdict = m.verdict == DAL_UNSTABLE   ? "unstable-frozen"
+              : m.verdict == DAL_NEUTRAL  ? "neutral-frozen"
+              : m.verdict == DAL_MARGINAL ? "marginal-frozen"
+                                          : "asymptotic-frozen";
+  }
   for (int i = 0; i < n; ++i)
     printf("%.17g,", qs[i]);
-  printf("%s,%.17g,%.3g,%.3g\n", mr ? "unknown" : dal_stability_name(m.verdict), mr ? NAN : w2[0],
-         rep.accel, rep.unsteady);
+  printf("%s,%.17g,%.3g,%.3g\n", verdict, mr ? NAN : w2[0], rep.accel, rep.unsteady);
   free(w2);
   return DAL_OK;
 }

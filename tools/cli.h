@@ -14,6 +14,11 @@
 //   dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]   the scene's Poincare section
 //   dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]
 //                                             final states over a grid of a scene parameter
+//   dalembert floquet SCENE [--period T] [--format json]   Floquet multipliers of the initial
+//                                             state over T (default: the scene's strobe period)
+//   dalembert orbit SCENE [--period T] [--free] [--format json]   a periodic orbit from the
+//                                             initial state by shooting, and its multipliers
+//   modes, equilibria: [--frozen] the linearization frozen at t0 of a time-dependent scene
 //   every command: [--set NAME=VALUE]... [--progress | --no-progress]
 #ifndef DAL_TOOLS_CLI_H
 #define DAL_TOOLS_CLI_H
@@ -31,6 +36,9 @@ typedef struct cli {
   double t1, transient, renorm, h;        // lyapunov (-1: the default)
   double nexp, threads;                   // --nexp, --threads
   int here, surface, wrap, mpi, progress; // flags
+  double period;                          // --period (-1: the scene's)
+  const char *format;                     // --format (json)
+  int json, frozen, free_period;          // --format json, --frozen, --free
   dal_expr_format fmt;                    // show
   int argc;
   char **argv;
@@ -59,5 +67,7 @@ int cli_equilibria(cli *c);
 int cli_lyapunov(cli *c);
 int cli_section(cli *c);
 int cli_sweep(cli *c);
+int cli_floquet(cli *c); // periodic.c
+int cli_orbit(cli *c);
 
 #endif

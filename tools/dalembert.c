@@ -27,6 +27,9 @@ int cli_usage(void) {
       "                          [--method M] [--h H]\n"
       "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
       "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
+      "       dalembert floquet SCENE [--period T] [--format json]\n"
+      "       dalembert orbit SCENE [--period T] [--free] [--format json]\n"
+      "modes, equilibria: [--frozen] (the linearization frozen at t0, by name)\n"
       "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
   return 64;
 }
@@ -105,9 +108,10 @@ static int num_arg(int argc, char **argv, int *i, double *v) {
 
 // options that take a string
 static int str_opt(cli *c, const char *o, const char *v) {
-  static const char *const names[] = {"-o", "--chart", "--events", "--scan", "--param", "--method"};
-  const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method};
-  for (int k = 0; k < 6; ++k)
+  static const char *const names[] = {"-o",      "--chart",  "--events", "--scan",
+                                      "--param", "--method", "--format"};
+  const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method, &c->format};
+  for (int k = 0; k < 7; ++k)
     if (!strcmp(o, names[k])) {
       *dst[k] = v;
       return 1;
@@ -118,18 +122,19 @@ static int str_opt(cli *c, const char *o, const char *v) {
 // options that take a number
 static double *num_opt(cli *c, const char *o) {
   static const char *const names[] = {"--t1", "--transient", "--renorm",
-                                      "--h",  "--nexp",      "--threads"};
-  double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads};
-  for (int k = 0; k < 6; ++k)
+                                      "--h",  "--nexp",      "--threads", "--period"};
+  double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads, &c->period};
+  for (int k = 0; k < 7; ++k)
     if (!strcmp(o, names[k])) return dst[k];
   return NULL;
 }
 
 // flags
 static int flag_opt(cli *c, const char *o) {
-  static const char *const names[] = {"--here", "--surface", "--wrap", "--mpi"};
-  int *dst[] = {&c->here, &c->surface, &c->wrap, &c->mpi};
-  for (int k = 0; k < 4; ++k)
+  static const char *const names[] = {"--here", "--surface", "--wrap",
+                                      "--mpi",  "--frozen",  "--free"};
+  int *dst[] = {&c->here, &c->surface, &c->wrap, &c->mpi, &c->frozen, &c->free_period};
+  for (int k = 0; k < 6; ++k)
     if (!strcmp(o, names[k])) {
       *dst[k] = 1;
       return 1;
@@ -187,6 +192,8 @@ static const struct {
     {"lyapunov", cli_lyapunov},
     {"section", cli_section},
     {"sweep", cli_sweep},
+    {"floquet", cli_floquet},
+    {"orbit", cli_orbit},
 };
 
 int main(int argc, char **argv) {
@@ -211,7 +218,15 @@ int main(int argc, char **argv) {
     fprintf(stderr, "dalembert: %s\n", c.msg);
     return cli_status_exit(rc);
   }
+  c.period = -1;
   rc = parse(&c, argc, argv);
+  if (!rc && c.format) {
+    c.json = !strcmp(c.format, "json");
+    if (!c.json && strcmp(c.format, "text")) {
+      fprintf(stderr, "dalembert: --format %s: 'json' or 'text'\n", c.format);
+      rc = DAL_E_ARG;
+    }
+  }
   if (!rc) rc = fn(&c);
   dal_scene_destroy(c.sc);
   return rc == 64 ? cli_usage() : cli_status_exit(rc);

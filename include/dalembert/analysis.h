@@ -461,6 +461,51 @@ DAL_API int dal_floquet(const dal_system *sys, dal_state *st, const dal_solve_op
 /// The name of a Floquet verdict: "unstable", "boundary", "stable", "asymptotically stable".
 DAL_API const char *dal_floquet_verdict_name(dal_stability s);
 
+/// Options of dal_periodic_orbit. Always start from dal_default_orbit_opts().
+typedef struct dal_orbit_opts {
+  int cookie;           ///< set by dal_default_orbit_opts; do not touch
+  double period;        ///< the period T (> 0, required): k times the drive period for a
+                        ///< driven scene, or the first guess of a free period
+  int free_period;      ///< 1: an autonomous scene whose period is an unknown, fixed by the
+                        ///< phase condition f(y0) . dy0 = 0; 0 (default): T fixed
+  double xtol;          ///< converged when max_i |y_i(T) - y_i(0)| / (1 + |y_i(0)|) <= xtol;
+                        ///< 1e-9 (above the integration error at solve.rtol)
+  int max_iter;         ///< Newton iterations at most; 30
+  dal_solve_opts solve; ///< the integrator of the arcs and of the multipliers (an explicit
+                        ///< method, see dal_state_transition); defaults with rtol 1e-11
+} dal_orbit_opts;
+
+/// The defaults (see the fields); period must still be set.
+DAL_API dal_orbit_opts dal_default_orbit_opts(void);
+
+/// What dal_periodic_orbit found.
+typedef struct dal_orbit_report {
+  int iterations;             ///< Newton steps taken
+  double period;              ///< the orbit's period (the fixed one, or the one found)
+  double residual;            ///< the final return gap max_i |y_i(T) - y_i(0)| / (1 + |y_i(0)|)
+  dal_floquet_report floquet; ///< the orbit's multipliers' report (dal_floquet); with a free
+                              ///< period the trivial multiplier along the orbit (and its
+                              ///< partner when det = 1, the neighbouring orbits of other
+                              ///< energy) is left out of the verdict
+} dal_orbit_report;
+
+/// A periodic orbit through (near) the state by Newton shooting on the exact
+/// state-transition matrix (single shooting): y(t + T; y0) = y0, Newton matrix Phi - I from
+/// dal_state_transition, with the free period as one more unknown and the phase condition
+/// f(y0) . dy0 = 0 for an autonomous scene. With m constraint rows the correction lies in the
+/// tangent space of the manifold (the basis of dal_floquet) and the start is made consistent
+/// after each step (dal_make_consistent). The start time is the state's t (the drive's phase).
+///  mu_re, mu_im (2(n - m) each, nullable): the orbit's Floquet multipliers (dal_floquet).
+///  rep (nullable): iterations, period, residual, multipliers' report.
+/// On success the state holds the orbit's start (t, q, qdot), evaluated; on failure the state
+/// as given. An orbit whose arc is too unstable for one shot (|mu| ~ 1/rtol) needs a start
+/// close to it (multiple shooting is not offered).
+/// Returns DAL_OK; DAL_E_ARG (options); DAL_E_CONV (no convergence in max_iter steps: the
+/// message gives the gap, start and period); DAL_E_SINGULAR (Phi - I singular: a multiplier at
+/// 1); the statuses of dal_state_transition, dal_make_consistent and dal_floquet.
+DAL_API int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opts *o,
+                               double *mu_re, double *mu_im, dal_orbit_report *rep);
+
 #ifdef __cplusplus
 }
 #endif

@@ -40,5 +40,10 @@ int dal__time_dependence_refusal(const dal_system *sys, dal_state *st, const cha
 /// scales), 0 when not (*worst: the largest scaled residual, *t_at its time), or a status
 /// (floquet.c); the state is left as given, evaluated
 int dal__equilibrium_all_times(const dal_system *sys, dal_state *st, double *worst, double *t_at);
+/// The Floquet verdict of dal_floquet_report from k2 multipliers and their accuracy, leaving
+/// out the multipliers of index skip1 and skip2 (-1: none; the trivial ones of an autonomous
+/// orbit); *max_abs the largest |mu| of the others (floquet.c)
+dal_stability dal__floquet_verdict(int k2, const double *re, const double *im, double acc,
+                                   int skip1, int skip2, double *max_abs);
 
 #endif

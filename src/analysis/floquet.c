@@ -293,11 +293,12 @@ static double mult_distance(int k2, const double *ar, const double *ai, const do
 }
 
 // the verdict from the multipliers and their accuracy (see dal_floquet_report)
-static dal_stability floquet_verdict(int k2, const double *re, const double *im, double acc,
-                                     double *max_abs) {
+dal_stability dal__floquet_verdict(int k2, const double *re, const double *im, double acc,
+                                   int skip1, int skip2, double *max_abs) {
   double big = 0.0, small = INFINITY;
   int edge = 0;
   for (int i = 0; i < k2; ++i) {
+    if (i == skip1 || i == skip2) continue;
     double a = hypot(re[i], im[i]);
     big = fmax(big, a);
     small = fmin(small, a);
@@ -308,6 +309,7 @@ static dal_stability floquet_verdict(int k2, const double *re, const double *im,
       edge = 1;
   }
   *max_abs = big;
+  if (big == 0.0 && small == INFINITY) return DAL_NEUTRAL; // every multiplier skipped
   if (big > 1.0 + acc) return DAL_UNSTABLE;
   if (big < 1.0 - acc) return DAL_ASYMPTOTIC;
   return edge ? DAL_MARGINAL : DAL_NEUTRAL;
@@ -385,7 +387,7 @@ int dal_floquet(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   r.period = period;
   r.accuracy = acc;
   r.gap = gap;
-  r.verdict = floquet_verdict((int)k2, ar, ai, acc, &r.max_abs);
+  r.verdict = dal__floquet_verdict((int)k2, ar, ai, acc, -1, -1, &r.max_abs);
   double complex det = 1.0;
   for (size_t i = 0; i < k2; ++i) {
     det *= ar[i] + I * ai[i];
