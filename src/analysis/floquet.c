@@ -70,7 +70,8 @@ static void td_culprits(const dal_system *sys, const dal_state *st, char *buf, s
 }
 
 // the largest |df/dt| relative to its scale at the state's (t, q, qdot), or a status < 0
-static double td_probe(const dal_system *sys, dal_state *st, double *A, double *ft, int *rc) {
+static double td_probe(const dal_system *sys, dal_state *st, double ytyp, double *A, double *ft,
+                       int *rc) {
   int n2 = 2 * sys->n;
   *rc = dal_vector_field_jacobian(sys, st, A, ft);
   if (*rc) return 0.0;
@@ -86,8 +87,10 @@ static double td_probe(const dal_system *sys, dal_state *st, double *A, double *
     fn = fmax(fn, fmax(fabs(st->qdot[i]), fabs(st->qddot[i])));
     yn = fmax(yn, fmax(fabs(st->q[i]), fabs(st->qdot[i])));
   }
-  double scale = an * (fn + an * yn);
-  // at rest at the origin with no field (scale 0) nothing can be judged: other probes decide
+  // |y| at least the probes' spread: near rest at the origin f and y vanish, and rounding in
+  // df/dt would be measured against nothing
+  double scale = an * (fn + an * fmax(yn, ytyp));
+  // with no field at all (scale 0) nothing can be judged: other probes decide
   return tn > 0 && scale > 0 ? tn / scale : 0.0;
 }
 
@@ -102,7 +105,10 @@ int dal_time_dependence(const dal_system *sys, dal_state *st, char *what, size_t
   double *A = buf, *ft = A + n2 * n2, *y0 = ft + n2, *y = y0 + n2, t0 = st->t;
   memcpy(y0, st->q, sn * sizeof(double));
   memcpy(y0 + sn, st->qdot, sn * sizeof(double));
-  double worst = 0.0, worst_t = t0;
+  double worst = 0.0, worst_t = t0, ytyp = 0.0;
+  for (size_t i = 0; i < n2; ++i)
+    ytyp = fmax(ytyp, fabs(y0[i]));
+  ytyp = 0.3 * (1.0 + ytyp);
   unsigned long long seed = 0x9e3779b97f4a7c15ULL;
   int tried = 0;
   char who[384] = "";
@@ -117,7 +123,7 @@ int dal_time_dependence(const dal_system *sys, dal_state *st, char *what, size_t
     }
     int prc = dal_state_set(sys, st, t, y, y + sn);
     if (!prc && sys->m > 0) prc = dal_make_consistent(sys, st, 0.0, NULL);
-    double r = prc ? 0.0 : td_probe(sys, st, A, ft, &prc);
+    double r = prc ? 0.0 : td_probe(sys, st, ytyp, A, ft, &prc);
     if (prc && p == 0) { // the state itself must evaluate (the tangent covers the system)
       rc = prc;
       break;
@@ -424,7 +430,7 @@ int dal__equilibrium_all_times(const dal_system *sys, dal_state *st, double *wor
                                double *t_out) {
   int n = sys->n, m = sys->m, d = sys->dim;
   size_t sn = (size_t)n;
-  double *y = calloc(2 * sn + 1, sizeof(double));
+  double *y = calloc(2 * sn + 4 * sn * sn + 1, sizeof(double)), *A = y + 2 * sn;
   if (!y) return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory");
   memcpy(y, st->q, sn * sizeof(double));
   double t0 = st->t, worst = 0.0, wt = t0, qs = 0.0;
@@ -450,8 +456,21 @@ int dal__equilibrium_all_times(const dal_system *sys, dal_state *st, double *wor
     }
     double as = mt > 0 ? fs / sqrt(mt) : fs, vs = sqrt(as * qs) + 1e-300;
     fs += 1e-300;
-    // (M qddot)_i / sqrt(M_ii) against fs; with constraint rows phi against 1 + |q| and
-    // dphi/dt (= G qdot + phi_t at qdot = 0) against the velocity scale sqrt(a L)
+    // without constraint rows: qddot_i against the change a move by 1 + |q| makes,
+    // sum_j |df_i/dq_j| (1 + |q|) (near the origin the forces themselves vanish)
+    if (m == 0) {
+      if ((rc = dal_vector_field_jacobian(sys, st, A, NULL)) != 0) break;
+      for (int i = 0; i < n; ++i) {
+        double s = 0.0;
+        for (int j = 0; j < n; ++j)
+          s += fabs(A[(size_t)j * 2 * n + n + i]);
+        double r = fabs(st->qddot[i]) / (s * qs + 1e-300);
+        if (!(r <= worst)) worst = r, wt = t;
+      }
+      continue;
+    }
+    // with them: (M qddot)_i / sqrt(M_ii) against fs, phi against 1 + |q|, dphi/dt
+    // (= G qdot + phi_t at qdot = 0) against the velocity scale sqrt(a L)
     for (int i = 0; i < n; ++i) {
       double s = 0.0, mii = sqrt(fabs(M[(size_t)i * n + i])) + 1e-300;
       for (int j = 0; j < n; ++j)
