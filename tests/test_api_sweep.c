@@ -1218,6 +1218,18 @@ static void sw_dal_periodic_orbit(void) {
   CHECK(fabs(dal_state_q(st)[0]) < 1e-9 && r.period == 0.5);
   dal_state_destroy(st);
 }
+static void sw_dal_relative_equilibrium(void) {
+  double axis[3] = {0, 0, 1}, zero[3] = {0, 0, 0}, re[2], im[2];
+  dal_relative_report r;
+  ST(dal_relative_equilibrium(F.B, NULL, axis, 1.0, re, im, &r), DAL_E_ARG, NULL);
+  ST(dal_relative_equilibrium(NULL, F.stB, axis, 1.0, re, im, &r), DAL_E_STATE, F.stB);
+  ST(dal_relative_equilibrium(F.A, F.stB, axis, 1.0, re, im, &r), DAL_E_STATE, F.stB);
+  ST(dal_relative_equilibrium(F.B, F.stB, axis, 1.0, re, im, &r), DAL_E_ARG, F.stB); // 2D
+  ST(dal_relative_equilibrium(F.B, F.stB, NULL, 1.0, re, im, &r), DAL_E_ARG, F.stB);
+  ST(dal_relative_equilibrium(F.B, F.stB, zero, 1.0, re, im, &r), DAL_E_ARG, F.stB);
+  ST(dal_relative_equilibrium(F.B, F.stB, axis, NAN, re, im, &r), DAL_E_ARG, F.stB);
+  st_intact();
+}
 static void sw_dal_stability_name(void) {
   CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
   CHECK(strcmp(dal_stability_name((dal_stability)-2), "unknown") == 0);
@@ -2303,6 +2315,7 @@ static const sweep_row rows[] = {
     ROW(dal_floquet_verdict_name),
     ROW(dal_default_orbit_opts),
     ROW(dal_periodic_orbit),
+    ROW(dal_relative_equilibrium),
     ROW(dal_normal_modes),
     ROW(dal_default_equilibrium_opts),
     ROW(dal_equilibrium),

@@ -506,6 +506,37 @@ typedef struct dal_orbit_report {
 DAL_API int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opts *o,
                                double *mu_re, double *mu_im, dal_orbit_report *rep);
 
+/// What dal_relative_equilibrium found.
+typedef struct dal_relative_report {
+  int iterations;  ///< Newton steps taken
+  double residual; ///< max |g(y)| / max(|qddot|, |P qdot|) at the solution (g: the
+                   ///< co-rotating field, zero at a relative equilibrium)
+} dal_relative_report;
+
+/// A relative equilibrium of a scene in Cartesian coordinates turning uniformly at `rate`
+/// (rad/time) about the axis through the origin along `axis` (3 values, any length > 0): the
+/// motion q(t) = exp(P (t - t0)) q*, qdot = P q, with P the rotation generator acting on every
+/// particle's (x, y, z) (a conical pendulum, a bead on a turning circle, in Cartesian
+/// coordinates). Found by Newton's method (minimum-norm steps: the relative equilibria of a
+/// symmetric scene form a circle) on the co-rotating field g(y) = f(t0, y) - diag(P, P) y in
+/// the constraint manifold's tangent space, starting from the state's q (its qdot is replaced
+/// by P q). The scene must be equivariant under the rotation (gravity along the axis,
+/// constraints symmetric about it or turning with the frame).
+///  lambda_re, lambda_im (2(n - m) each, nullable): the eigenvalues of Dg on the manifold's
+///    tangent space, sorted by decreasing real part: the small oscillations seen from the
+///    turning frame (+-i omega; zeros for the directions along the family).
+///  rep (nullable): iterations and residual.
+/// Every particle must be placed by dal_map_cartesian3 on three coordinates of its own (no
+/// parent); else DAL_E_UNSUPPORTED (a scene in co-rotating coordinates is steady:
+/// dal_equilibrium and dal_normal_modes apply there). On success the state holds (t0, q*, P q*),
+/// evaluated; on failure the state as given.
+/// Returns DAL_OK; DAL_E_ARG (not 3D, axis, rate); DAL_E_UNSUPPORTED; DAL_E_CONV (no convergence
+/// in 50 steps); DAL_E_SINGULAR (LAPACK); the statuses of dal_make_consistent and
+/// dal_vector_field_jacobian.
+DAL_API int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double *axis,
+                                     double rate, double *lambda_re, double *lambda_im,
+                                     dal_relative_report *rep);
+
 #ifdef __cplusplus
 }
 #endif
