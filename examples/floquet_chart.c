@@ -155,6 +155,7 @@ int main(int argc, char **argv) {
     if (gp) {
       fprintf(gp,
               "set terminal pngcairo size 900,600\nset output 'floquet_chart.png'\n"
+              "set xrange [3:60]\nset yrange [0:0.31]\nset palette maxcolors 4\n"
               "set datafile separator ','\nset logscale x\nset xlabel 'drive frequency w "
               "(rad/s)'\nset ylabel 'drive amplitude a (m), l = 1'\n"
               "set title 'driven pendulum: Floquet stability (dal\\_floquet)'\n"

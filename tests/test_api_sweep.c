@@ -1230,6 +1230,34 @@ static void sw_dal_relative_equilibrium(void) {
   ST(dal_relative_equilibrium(F.B, F.stB, axis, NAN, re, im, &r), DAL_E_ARG, F.stB);
   st_intact();
 }
+static int sw_orbit_rebuild(double p, dal_system **out, void *ctx) {
+  (void)p;
+  (void)ctx;
+  *out = NULL;
+  return 1; // refuses: the continuation must stop with its message
+}
+static void sw_dal_default_orbit_continuation_opts(void) {
+  dal_orbit_continuation_opts o;
+  memset(&o, 0xff, sizeof o);
+  o = dal_default_orbit_continuation_opts();
+  CHECK(o.p0 == 0.0 && o.p1 == 1.0 && o.npoints == 41 && o.locate == 1 && o.ptol == 0.0);
+  CHECK(o.orbit.max_iter == 30 && o.orbit.period == 0.0);
+}
+static void sw_dal_orbit_continue(void) {
+  dal_orbit_continuation_opts o = dal_default_orbit_continuation_opts(), raw;
+  memset(&raw, 0, sizeof raw);
+  dal_continuation_report r;
+  double y0[2] = {0, 0};
+  CHECK(dal_orbit_continue(NULL, y0, &o, NULL, &r, NULL) == DAL_E_ARG && r.msg[0]);
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, NULL, &o, NULL, &r, NULL) == DAL_E_ARG);
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, NULL, NULL, &r, NULL) == DAL_E_ARG);
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, &raw, NULL, NULL, NULL) == DAL_E_ARG);
+  o.p1 = NAN;
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, &o, NULL, &r, NULL) == DAL_E_ARG);
+  o.p1 = 1.0;
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, &o, NULL, &r, NULL) == DAL_E_CALLBACK);
+  CHECK(strstr(r.msg, "rebuild") != NULL);
+}
 static void sw_dal_stability_name(void) {
   CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
   CHECK(strcmp(dal_stability_name((dal_stability)-2), "unknown") == 0);
@@ -2316,6 +2344,8 @@ static const sweep_row rows[] = {
     ROW(dal_default_orbit_opts),
     ROW(dal_periodic_orbit),
     ROW(dal_relative_equilibrium),
+    ROW(dal_default_orbit_continuation_opts),
+    ROW(dal_orbit_continue),
     ROW(dal_normal_modes),
     ROW(dal_default_equilibrium_opts),
     ROW(dal_equilibrium),

@@ -196,10 +196,107 @@ static void test_errors(void) {
   dal_system_destroy(sys);
 }
 
+
+// ---------------------------------------------------------------------------------------------
+// continuation: the bottom of the vertically driven pendulum in the amplitude a at fixed w
+// (Mathieu A = 4 g / w^2 = 0.9) enters the first tongue, where a multiplier passes -1: the
+// period doubling against the test's own long-double Mathieu monodromy (trace = -2, bisection)
+
+static double vert_trace(long double a, long double w) {
+  const int steps = 20000;
+  long double T = 2 * LPI / w, h = T / steps, y[4] = {1, 0, 0, 1}, k[4][4], z[4];
+  for (int i = 0; i < steps; ++i) {
+    long double t = i * h;
+    for (int s = 0; s < 4; ++s) {
+      long double ts = t + (s == 0 ? 0 : s == 3 ? h : h / 2);
+      for (int j = 0; j < 4; ++j)
+        z[j] = y[j] + (s == 0 ? 0 : (s == 3 ? h : h / 2) * k[s - 1][j]);
+      long double kk = (SCN_G - a * w * w * cosl(w * ts));
+      k[s][0] = z[1];
+      k[s][1] = -kk * z[0];
+      k[s][2] = z[3];
+      k[s][3] = -kk * z[2];
+    }
+    for (int j = 0; j < 4; ++j)
+      y[j] += h / 6 * (k[0][j] + 2 * k[1][j] + 2 * k[2][j] + k[3][j]);
+  }
+  return (double)(y[0] + y[3]);
+}
+
+typedef struct vctx {
+  double w;
+  int pd, regular;
+  double p_pd;
+} vctx;
+
+static int vrebuild(double a, dal_system **out, void *ctx) {
+  const vctx *v = ctx;
+  scn_knobs k = scn_default();
+  k.ay = a;
+  k.w = v->w;
+  *out = scn_pendulum(&k);
+  return *out ? 0 : 1;
+}
+
+static int vpoint(double p, const dal_system *sys, const dal_state *st, const dal_orbit_report *rep,
+                  const double *re, const double *im, dal_orbit_kind kind, void *ctx) {
+  vctx *v = ctx;
+  (void)sys;
+  (void)st;
+  (void)re;
+  (void)im;
+  CHECK(rep->floquet.count == 2);
+  if (kind == DAL_ORBIT_PERIOD_DOUBLING) {
+    ++v->pd;
+    v->p_pd = p;
+    CHECK_CLOSE(rep->floquet.trace, -2.0, 1e-6);
+  } else {
+    CHECK(kind == DAL_ORBIT_REGULAR);
+    ++v->regular;
+  }
+  return 0;
+}
+
+static void test_continue(void) {
+  vctx v = {2 * sqrt(SCN_G / 0.9), 0, 0, 0.0};
+  // the reference: trace(a) + 2 changes sign once on [0.01, 0.15]
+  double lo = 0.01, hi = 0.15;
+  CHECK(vert_trace(lo, v.w) > -2 && vert_trace(hi, v.w) < -2);
+  for (int i = 0; i < 50; ++i) {
+    double mid = 0.5 * (lo + hi);
+    if (vert_trace(mid, v.w) > -2)
+      lo = mid;
+    else
+      hi = mid;
+  }
+  double a_ref = 0.5 * (lo + hi);
+  dal_orbit_continuation_opts o = dal_default_orbit_continuation_opts();
+  o.p0 = 0.01;
+  o.p1 = 0.15;
+  o.npoints = 8;
+  o.orbit.period = 2 * PI / v.w;
+  double y0[2] = {0.0, 0.0};
+  dal_continuation_report rep;
+  CHECK_OK(dal_orbit_continue(vrebuild, y0, &o, vpoint, &rep, &v));
+  CHECK(rep.npoints == 8 && rep.ncritical == 1 && v.pd == 1 && v.regular == 8);
+  CHECK_MSG(fabs(v.p_pd - a_ref) < 1e-8, "period doubling at a = %.12g, reference %.12g", v.p_pd,
+            a_ref);
+  // Mathieu's series for the boundary b1(Q) = 1 - Q - Q^2/8 + Q^3/64 - Q^4/1536 = 0.9 (A&S
+  // 20.2.25, Q = 2 a): within its truncation
+  double Q = 2 * a_ref;
+  CHECK(fabs(1 - Q - Q * Q / 8 + Q * Q * Q / 64 - pow(Q, 4) / 1536 - 0.9) < 1e-6);
+  // bad options
+  dal_orbit_continuation_opts bad = o;
+  bad.npoints = 1;
+  CHECK(dal_orbit_continue(vrebuild, y0, &bad, vpoint, &rep, &v) == DAL_E_ARG);
+  CHECK(dal_orbit_continue(vrebuild, NULL, &o, vpoint, &rep, &v) == DAL_E_ARG);
+}
+
 int main(void) {
   test_forced();
   test_forced_cartesian();
   test_free_period();
   test_errors();
+  test_continue();
   return check_summary("test_periodic_orbit");
 }

@@ -537,6 +537,50 @@ DAL_API int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const
                                      double rate, double *lambda_re, double *lambda_im,
                                      dal_relative_report *rep);
 
+/// Kind of a point reported along a branch of periodic orbits.
+typedef enum dal_orbit_kind {
+  DAL_ORBIT_REGULAR = 0,         ///< a point of the parameter grid
+  DAL_ORBIT_FOLD = 1,            ///< located: a real multiplier crosses +1 (prod (mu - 1)
+                                 ///< changes sign: a fold, or a branch point of orbits)
+  DAL_ORBIT_PERIOD_DOUBLING = 2, ///< located: a real multiplier crosses -1 (prod (mu + 1)
+                                 ///< changes sign): orbits of twice the period branch off
+} dal_orbit_kind;
+
+/// Called at every point of a branch of orbits: the parameter, the system and the state at
+/// the orbit's start, the orbit's report and its multipliers (2(n - m) each), the point's kind.
+/// All valid during the call only. Return 0 to continue, non-zero to stop.
+typedef int dal_orbit_branch_fn(double p, const dal_system *sys, const dal_state *st,
+                                const dal_orbit_report *rep, const double *mu_re,
+                                const double *mu_im, dal_orbit_kind kind, void *ctx);
+
+/// Options of dal_orbit_continue. Always start from dal_default_orbit_continuation_opts().
+typedef struct dal_orbit_continuation_opts {
+  int cookie;           ///< set by dal_default_orbit_continuation_opts; do not touch
+  double p0, p1;        ///< the parameter range (p1 may be below p0); 0 and 1
+  int npoints;          ///< grid points, both ends included (>= 2); 41
+  double t;             ///< the orbits' start time (the drive's phase); 0
+  int locate;           ///< locate folds and period doublings by bisection; 1
+  double ptol;          ///< their parameter tolerance; 0: 1e-10 |p1 - p0|
+  dal_orbit_opts orbit; ///< the shooting at every point (period, free_period, xtol, solve)
+} dal_orbit_continuation_opts;
+
+/// The defaults (see the fields); orbit.period must still be set.
+DAL_API dal_orbit_continuation_opts dal_default_orbit_continuation_opts(void);
+
+/// Natural-parameter continuation of one branch of periodic orbits: for p on the grid from p0
+/// to p1 build the system (rebuild, as for dal_continue), find the orbit by dal_periodic_orbit
+/// from the previous one's start (y0 = (q, qdot), 2n values, at the first point), and report
+/// it. Between grid points where prod (mu_i - 1) or prod (mu_i + 1) changes sign the crossing
+/// is located by bisection (every trial an orbit solve) and reported as DAL_ORBIT_FOLD or
+/// DAL_ORBIT_PERIOD_DOUBLING before the grid point. Past a fold the branch turns back in p:
+/// the next solve fails or jumps to another branch (the message says where it stopped); no
+/// pseudo-arclength continuation is offered.
+/// Returns DAL_OK (p1 reached); DAL_E_ARG; DAL_E_CALLBACK (rebuild failed or point asked to
+/// stop); the statuses of dal_periodic_orbit (rep->msg names the parameter). rep nullable.
+DAL_API int dal_orbit_continue(dal_rebuild_fn *rebuild, const double *y0,
+                               const dal_orbit_continuation_opts *o, dal_orbit_branch_fn *point,
+                               dal_continuation_report *rep, void *ctx);
+
 #ifdef __cplusplus
 }
 #endif
