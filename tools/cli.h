@@ -16,8 +16,10 @@
 //                                             final states over a grid of a scene parameter
 //   dalembert floquet SCENE [--period T] [--format json]   Floquet multipliers of the initial
 //                                             state over T (default: the scene's strobe period)
-//   dalembert orbit SCENE [--period T] [--free] [--format json]   a periodic orbit from the
-//                                             initial state by shooting, and its multipliers
+//   dalembert orbit SCENE [--period T] [--free] [--continue NAME=LO:HI:N] [--format json]
+//                                             a periodic orbit from the initial state by
+//                                             shooting, its multipliers (and its branch in a
+//                                             parameter with folds and period doublings)
 //   modes, equilibria: [--frozen] the linearization frozen at t0 of a time-dependent scene
 //   every command: [--set NAME=VALUE]... [--progress | --no-progress]
 #ifndef DAL_TOOLS_CLI_H
@@ -39,6 +41,7 @@ typedef struct cli {
   double period;                          // --period (-1: the scene's)
   const char *format;                     // --format (json)
   int json, frozen, free_period;          // --format json, --frozen, --free
+  const char *cont;                       // orbit --continue NAME=LO:HI:N
   dal_expr_format fmt;                    // show
   int argc;
   char **argv;

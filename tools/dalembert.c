@@ -28,7 +28,8 @@ int cli_usage(void) {
       "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
       "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
       "       dalembert floquet SCENE [--period T] [--format json]\n"
-      "       dalembert orbit SCENE [--period T] [--free] [--format json]\n"
+      "       dalembert orbit SCENE [--period T] [--free] [--continue NAME=LO:HI:N]\n"
+      "                       [--format json]\n"
       "modes, equilibria: [--frozen] (the linearization frozen at t0, by name)\n"
       "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
   return 64;
@@ -109,9 +110,10 @@ static int num_arg(int argc, char **argv, int *i, double *v) {
 // options that take a string
 static int str_opt(cli *c, const char *o, const char *v) {
   static const char *const names[] = {"-o",      "--chart",  "--events", "--scan",
-                                      "--param", "--method", "--format"};
-  const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method, &c->format};
-  for (int k = 0; k < 7; ++k)
+                                      "--param", "--method", "--format", "--continue"};
+  const char **dst[] = {&c->out,   &c->png,    &c->events, &c->scan,
+                        &c->param, &c->method, &c->format, &c->cont};
+  for (int k = 0; k < 8; ++k)
     if (!strcmp(o, names[k])) {
       *dst[k] = v;
       return 1;

@@ -562,6 +562,9 @@ typedef struct dal_orbit_continuation_opts {
   int locate;           ///< locate folds and period doublings by bisection; 1
   double ptol;          ///< their parameter tolerance; 0: 1e-10 |p1 - p0|
   dal_orbit_opts orbit; ///< the shooting at every point (period, free_period, xtol, solve)
+  int borrowed;         ///< 1: the systems rebuild gives stay the caller's, valid until
+                        ///< dal_orbit_continue returns (a scene's); 0 (default): the
+                        ///< continuation destroys each with dal_system_destroy
 } dal_orbit_continuation_opts;
 
 /// The defaults (see the fields); orbit.period must still be set.

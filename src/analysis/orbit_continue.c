@@ -36,11 +36,12 @@ typedef struct opoint {
   dal_orbit_report rep;
   double *re, *im;
   int fold, pd;
+  int borrowed; // the system is the caller's
 } opoint;
 
 static void opoint_free(opoint *p) {
   dal_state_destroy(p->st);
-  dal_system_destroy(p->sys);
+  if (!p->borrowed) dal_system_destroy(p->sys);
   free(p->re);
   memset(p, 0, sizeof *p);
 }
@@ -69,6 +70,7 @@ typedef struct orun {
 // the orbit at p from the start y (2n values)
 static int solve_at(orun *c, double p, const double *y, opoint *pt) {
   memset(pt, 0, sizeof *pt);
+  pt->borrowed = c->o->borrowed != 0;
   int rc = c->rebuild(p, &pt->sys, c->ctx);
   if (rc || !pt->sys) {
     snprintf(c->r->msg, sizeof c->r->msg, "rebuild at p=%.17g failed (%d)", p, rc);
@@ -161,7 +163,7 @@ int dal_orbit_continue(dal_rebuild_fn *rebuild, const double *y0,
     return DAL_E_CALLBACK;
   }
   int n = dal_system_ncoords(first);
-  dal_system_destroy(first);
+  if (!o->borrowed) dal_system_destroy(first);
   orun c = {rebuild, o, point, &r, ctx, 2 * n};
   double *y = calloc(4 * (size_t)n + 1, sizeof(double)), *yw = y + 2 * n;
   if (!y) return DAL_E_NOMEM;
