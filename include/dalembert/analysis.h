@@ -556,7 +556,8 @@ typedef int dal_orbit_branch_fn(double p, const dal_system *sys, const dal_state
 /// Options of dal_orbit_continue. Always start from dal_default_orbit_continuation_opts().
 typedef struct dal_orbit_continuation_opts {
   int cookie;           ///< set by dal_default_orbit_continuation_opts; do not touch
-  double p0, p1;        ///< the parameter range (p1 may be below p0); 0 and 1
+  double p0;            ///< the first parameter value; 0
+  double p1;            ///< the last parameter value (may be below p0); 1
   int npoints;          ///< grid points, both ends included (>= 2); 41
   double t;             ///< the orbits' start time (the drive's phase); 0
   int locate;           ///< locate folds and period doublings by bisection; 1
