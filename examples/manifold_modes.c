@@ -180,9 +180,6 @@ int main(int argc, char **argv) {
   double wc = sqrt(G / R), found = 0.0, q0[3] = {0.0, 0.0, -R};
   dal_continuation_opts o = dal_default_continuation_opts();
   o.p0 = 0.5 * wc;
-  // the circle turns with t in these coordinates (dal_time_dependence): the linearization at
-  // the bottom is the one frozen at t, asked for by name; its det K locates the pitchfork
-  o.newton.frozen_time = 1;
   o.p1 = 1.5 * wc;
   o.npoints = check ? 6 : 21;
   dal_continuation_report crep;

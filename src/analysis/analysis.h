@@ -29,12 +29,6 @@ int dal__newton_apply(const dal_system *sys, dal_state *st, const double *x, dou
 /// Put the state back at (t, y = (q, qdot)), evaluated, keeping the message of a failure rc
 /// (floquet.c): returns rc when it is a failure, else the status of the evaluation
 int dal__restore_state(const dal_system *sys, dal_state *st, double t, const double *y, int rc);
-/// DAL_OK when the equations of motion of sys do not depend on time explicitly; else
-/// DAL_E_UNSUPPORTED with "<what>: <the dependence>: a linearization frozen at t=... says
-/// nothing about the motion; <remedy>" in the state's message (floquet.c); the state is left
-/// as given, evaluated
-int dal__time_dependence_refusal(const dal_system *sys, dal_state *st, const char *what,
-                                 const char *remedy);
 /// 1 when the state's q (with qdot = 0) is an equilibrium at six pseudo-random times in
 /// [t, t + 7] (accelerations, and with constraint rows phi and dphi/dt, within 1e-8 of their
 /// scales), 0 when not (*worst: the largest scaled residual, *t_at its time), or a status
@@ -45,5 +39,12 @@ int dal__equilibrium_all_times(const dal_system *sys, dal_state *st, double *wor
 /// orbit); *max_abs the largest |mu| of the others (floquet.c)
 dal_stability dal__floquet_verdict(int k2, const double *re, const double *im, double acc,
                                    int skip1, int skip2, double *max_abs);
+/// 1 when the motion through the state is steady for its linearization: the eigenvalues of
+/// the frozen (reduced) linearization at the state and at t + 0.37, 1.9, 4.3 along the motion
+/// (dal_advance at rtol 1e-10 on a copy of the state) agree within 1e-6 of their size or the
+/// verdict's tolerance tau of dal_modes, whichever is larger (a
+/// relative equilibrium of a turning constraint); 0 when not (*worst: the largest relative
+/// difference, inf when the motion could not be followed), or a status (floquet.c)
+int dal__steady_modes(const dal_system *sys, dal_state *st, double *worst);
 
 #endif

@@ -218,16 +218,27 @@ static int normal_modes(const dal_system *sys, dal_state *st, double *omega2, do
                     "on %d coordinate(s), first '%s'): nothing can oscillate, so there are no "
                     "modes and no verdict; if some rows repeat others, remove them",
                     sys->m, n, sys->m ? sys->con[0].name : "");
-  // time dependence is never frozen silently
-  int td = 0;
-  if (frozen) {
-    if ((td = dal_time_dependence(sys, st, NULL, 0)) < 0) return td;
-  } else if ((rc = dal__time_dependence_refusal(
-                  sys, st, "normal_modes",
-                  "for a periodic drive use dal_floquet (dalembert floquet) over its period; "
-                  "dal_normal_modes_frozen (dalembert modes --frozen) gives the frozen modes by "
-                  "name")) != 0) {
-    return rc;
+  // time dependence is never frozen silently: on a time-dependent scene the modes hold only
+  // where the motion through the state is steady for its linearization (a relative
+  // equilibrium of a turning constraint); else refused unless asked for by name
+  char why[512];
+  int td = dal_time_dependence(sys, st, why, sizeof why);
+  if (td < 0) return td;
+  if (td == 1 && !frozen) {
+    double worst = 0.0;
+    int steady = dal__steady_modes(sys, st, &worst);
+    if (steady < 0) return steady;
+    if (steady) {
+      td = 0; // the modes of a steady motion are not frozen ones
+    } else {
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "normal_modes: %s, and the linearization changes along the motion "
+                      "(eigenvalues %.3g apart, relative, within t + 4.3): a linearization "
+                      "frozen at t=%.6g says nothing about the motion; for a periodic drive use "
+                      "dal_floquet (dalembert floquet) over its period; dal_normal_modes_frozen "
+                      "(dalembert modes --frozen) gives the frozen modes by name",
+                      why, worst, st->t);
+    }
   }
   size_t sn = (size_t)n, sk = (size_t)k;
   dal_tangent *tg = NULL;
