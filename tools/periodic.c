@@ -1,95 +1,127 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The command line's periodic motion: Floquet multipliers of the scene's initial state over a
-// period (`floquet`) and periodic orbits by shooting (`orbit`), as text or JSON.
-//
-// JSON of `floquet` (and of `orbit`, which adds "orbit"):
-//   {"scene": PATH, "t0": T0, "period": T, "verdict": "unstable|boundary|stable|asymptotically
-//    stable", "accuracy": A, "trace": TR, "det": D, "max_abs": M, "gap": G,
-//    "multipliers": [{"re": R, "im": I, "abs": |mu|, "exp_re": log|mu|/T, "exp_im": arg/T}],
-//    "orbit": {"iterations": K, "residual": R, "q": {NAME: V, ...}, "qdot": {NAME: V, ...}}}
-// `orbit --continue NAME=LO:HI:N` prints one CSV row per orbit of the branch (text), or a JSON
-// array of {"p": P, "kind": "regular|fold|period-doubling", "verdict": V, "max_abs": M,
-// "trace": TR, "period": T, "q": {...}, "qdot": {...}}.
-#define _POSIX_C_SOURCE 200809L
+// period (`floquet`) and periodic orbits by shooting, with their branch in a parameter
+// (`orbit`), as CSV or JSON (the schemas: docs/analysis.md, "Periodic motion").
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cli.h"
+#include "json.h"
 
-// the period: --period, else the scene's stroboscopic section (its drive period)
+#define CLI_OPT_PERIOD                                                                             \
+  { "period", 0, CLI_POSITIVE, "T", "the period (default: the scene's strobe period)", 0 }
+
+const cli_opt cli_floquet_opts[] = {
+    CLI_OPT_PERIOD,
+    CLI_OPT_FORMAT,
+    CLI_END,
+};
+
+const cli_opt cli_orbit_opts[] = {
+    CLI_OPT_PERIOD,
+    {"free", 0, CLI_FLAG, NULL, "an autonomous scene: the period is an unknown (--period guesses)",
+     0},
+    {"continue", 0, CLI_TEXT, "NAME=LO:HI:N", "follow the orbit's branch in parameter NAME", 0},
+    CLI_OPT_FORMAT,
+    CLI_END,
+};
+
+// the period: --period, else the scene's stroboscopic section (its drive period); < 0: none
 static double period_of(cli *c) {
-  if (c->period > 0) return c->period;
-  double T = dal_scene_strobe(c->sc);
+  double T = cli_num(c, "period", -1.0);
+  if (T > 0) return T;
+  T = dal_scene_strobe(c->sc);
   return T > 0 ? T : -1.0;
 }
 
-static void print_multipliers(int json, int k2, const double *re, const double *im, double T) {
-  if (!json) printf("multiplier,re,im,abs,exponent_re,exponent_im\n");
-  for (int i = 0; i < k2; ++i) {
-    double a = hypot(re[i], im[i]), er = log(a) / T, ei = atan2(im[i], re[i]) / T;
-    if (json)
-      printf("%s{\"re\": %.17g, \"im\": %.17g, \"abs\": %.17g, \"exp_re\": %.17g, "
-             "\"exp_im\": %.17g}",
-             i ? ", " : "", re[i], im[i], a, er, ei);
-    else
-      printf("%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", i + 1, re[i], im[i], a, er, ei);
-  }
+static void json_coords(cli_json *j, const char *key, const dal_system *sys, const double *x) {
+  cli_json_object(j, key);
+  for (int i = 0; i < dal_system_ncoords(sys); ++i)
+    cli_json_num(j, dal_system_coord_name(sys, i), x[i]);
+  cli_json_end(j);
 }
 
-static void print_report(cli *c, int json, double t0, const dal_floquet_report *r,
-                         const double *re, const double *im) {
-  if (json) {
-    printf("{\"scene\": \"%s\", \"t0\": %.17g, \"period\": %.17g, \"verdict\": \"%s\", "
-           "\"accuracy\": %.3g, \"trace\": %.17g, \"det\": %.17g, \"max_abs\": %.17g, "
-           "\"gap\": %.3g, \"multipliers\": [",
-           c->path, t0, r->period, dal_floquet_verdict_name(r->verdict), r->accuracy, r->trace,
-           r->det, r->max_abs, r->gap);
-    print_multipliers(1, r->count, re, im, r->period);
-    printf("]");
+// the multipliers and the report: members of an open JSON object, or CSV lines
+static void write_report(cli_json *j, FILE *fp, const dal_floquet_report *r, const double *re,
+                         const double *im) {
+  double T = r->period;
+  if (j) {
+    cli_json_num(j, "period", T);
+    cli_json_str(j, "verdict", dal_floquet_verdict_name(r->verdict));
+    cli_json_num(j, "accuracy", r->accuracy);
+    cli_json_num(j, "trace", r->trace);
+    cli_json_num(j, "det", r->det);
+    cli_json_num(j, "max_abs", r->max_abs);
+    cli_json_num(j, "gap", r->gap);
+    cli_json_array(j, "multipliers");
+    for (int i = 0; i < r->count; ++i) {
+      double a = hypot(re[i], im[i]);
+      cli_json_object(j, NULL);
+      cli_json_num(j, "re", re[i]);
+      cli_json_num(j, "im", im[i]);
+      cli_json_num(j, "abs", a);
+      cli_json_num(j, "exp_re", log(a) / T);
+      cli_json_num(j, "exp_im", atan2(im[i], re[i]) / T);
+      cli_json_end(j);
+    }
+    cli_json_end(j);
     return;
   }
-  printf("# Floquet multipliers of %s over T = %.17g from t = %.17g\n", c->path, r->period, t0);
-  printf("# verdict: %s (largest |mu| %.12g, accuracy %.3g; trace %.12g, det %.12g)\n",
-         dal_floquet_verdict_name(r->verdict), r->max_abs, r->accuracy, r->trace, r->det);
-  print_multipliers(0, r->count, re, im, r->period);
+  fprintf(fp, "# verdict: %s (largest |mu| %.12g, accuracy %.3g; trace %.12g, det %.12g)\n",
+          dal_floquet_verdict_name(r->verdict), r->max_abs, r->accuracy, r->trace, r->det);
+  fprintf(fp, "multiplier,re,im,abs,exponent_re,exponent_im\n");
+  for (int i = 0; i < r->count; ++i) {
+    double a = hypot(re[i], im[i]);
+    fprintf(fp, "%d,%.17g,%.17g,%.17g,%.17g,%.17g\n", i + 1, re[i], im[i], a, log(a) / T,
+            atan2(im[i], re[i]) / T);
+  }
 }
 
 int cli_floquet(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
   double T = period_of(c);
-  if (T <= 0) {
-    snprintf(c->msg, sizeof c->msg,
-             "floquet: %s declares no period (a 'section NAME period=T' line): give --period T",
-             c->path);
-    return cli_fail(DAL_E_ARG, c->msg);
-  }
+  if (T <= 0)
+    return cli_error(c, DAL_E_ARG, "%s declares no period (a 'section NAME period=T' line): "
+                                   "give --period T",
+                     c->path);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "floquet: the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   int k2 = 2 * (dal_system_ncoords(sys) - dal_system_nconstraints(sys));
   double *re = calloc((size_t)k2 + 1, sizeof *re), *im = calloc((size_t)k2 + 1, sizeof *im);
   dal_floquet_report r;
   double t0 = dal_state_time(st);
-  rc = re && im ? dal_floquet(sys, st, NULL, T, re, im, NULL, &r) : DAL_E_NOMEM;
-  if (rc) {
+  FILE *fp = cli_out(c);
+  rc = !fp ? DAL_E_IO : re && im ? dal_floquet(sys, st, NULL, T, re, im, NULL, &r) : DAL_E_NOMEM;
+  if (rc && fp) {
     snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
-  } else {
-    print_report(c, c->json, t0, &r, re, im);
-    if (c->json) printf("}\n");
+  } else if (!rc && cli_json_asked(c)) {
+    cli_json j = cli_json_start(fp);
+    cli_json_str(&j, "command", "floquet");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_num(&j, "t0", t0);
+    write_report(&j, fp, &r, re, im);
+    cli_json_finish(&j);
+  } else if (!rc) {
+    fprintf(fp, "# Floquet multipliers of %s over T = %.17g from t = %.17g\n", c->path, T, t0);
+    write_report(NULL, fp, &r, re, im);
   }
   free(re);
   free(im);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  if (rc != DAL_E_IO) cli_fail(c, rc, c->msg);
+  return cli_close(c, rc);
 }
 
-// --continue: every point of the branch is a fresh scene with the parameter set (the
-// continuation borrows its system; all are destroyed at the end)
+// --continue: every point of the branch is a fresh scene (--set values and the parameter
+// applied); the continuation borrows its system, all are destroyed at the end
 typedef struct branch {
   cli *c;
+  FILE *fp;
+  cli_json *j; // NULL: CSV
   char name[256];
   dal_scene **scenes;
   int count, cap, rows;
@@ -105,18 +137,13 @@ static int branch_rebuild(double p, dal_system **out, void *ctx) {
     b->scenes = v;
     b->cap = cap;
   }
-  // the scene as given, --set values included (written normalized, read back), at p
   dal_scene *sc = NULL;
-  char msg[512] = "out of memory";
-  char *text = NULL;
-  size_t len = 0;
-  FILE *mem = open_memstream(&text, &len);
-  int rc = !mem || dal_scene_write(b->c->sc, mem);
-  if (mem && fclose(mem)) rc = 1;
-  if (!rc) rc = dal_scene_parse(text, b->c->path, &sc, msg, sizeof msg);
-  free(text);
-  if (rc || dal_scene_set_param(sc, b->name, p, msg, sizeof msg)) {
-    fprintf(stderr, "dalembert: %s\n", msg);
+  char msg[512];
+  int rc = dal_scene_parse(b->c->text, b->c->path, &sc, msg, sizeof msg);
+  if (!rc) rc = cli_set_params(b->c, sc, msg, sizeof msg);
+  if (!rc) rc = dal_scene_set_param(sc, b->name, p, msg, sizeof msg);
+  if (rc) {
+    cli_error(b->c, rc, "--continue at %s = %.17g: %s", b->name, p, msg);
     dal_scene_destroy(sc);
     return 1;
   }
@@ -137,48 +164,46 @@ static int branch_point(double p, const dal_system *sys, const dal_state *st,
                   : kind == DAL_ORBIT_PERIOD_DOUBLING ? "period-doubling"
                                                       : "regular";
   const dal_floquet_report *f = &rep->floquet;
-  if (b->c->json) {
-    printf("%s{\"p\": %.17g, \"kind\": \"%s\", \"verdict\": \"%s\", \"max_abs\": %.17g, "
-           "\"trace\": %.17g, \"period\": %.17g, \"q\": {",
-           b->rows ? ",\n " : "", p, k, dal_floquet_verdict_name(f->verdict), f->max_abs,
-           f->trace, rep->period);
-    for (int i = 0; i < n; ++i)
-      printf("%s\"%s\": %.17g", i ? ", " : "", dal_system_coord_name(sys, i), q[i]);
-    printf("}, \"qdot\": {");
-    for (int i = 0; i < n; ++i)
-      printf("%s\"%s\": %.17g", i ? ", " : "", dal_system_coord_name(sys, i), v[i]);
-    printf("}}");
+  if (b->j) {
+    cli_json_object(b->j, NULL);
+    cli_json_num(b->j, "p", p);
+    cli_json_str(b->j, "kind", k);
+    cli_json_str(b->j, "verdict", dal_floquet_verdict_name(f->verdict));
+    cli_json_num(b->j, "max_abs", f->max_abs);
+    cli_json_num(b->j, "trace", f->trace);
+    cli_json_num(b->j, "period", rep->period);
+    json_coords(b->j, "q", sys, q);
+    json_coords(b->j, "qdot", sys, v);
+    cli_json_end(b->j);
   } else {
     if (!b->rows) {
-      printf("%s,kind,verdict,max_abs,trace,period", b->name);
+      fprintf(b->fp, "%s,kind,verdict,max_abs,trace,period", b->name);
       for (int i = 0; i < n; ++i)
-        printf(",%s,%s_dot", dal_system_coord_name(sys, i), dal_system_coord_name(sys, i));
-      printf("\n");
+        fprintf(b->fp, ",%s,%s_dot", dal_system_coord_name(sys, i), dal_system_coord_name(sys, i));
+      fprintf(b->fp, "\n");
     }
-    printf("%.17g,%s,%s,%.17g,%.17g,%.17g", p, k, dal_floquet_verdict_name(f->verdict),
-           f->max_abs, f->trace, rep->period);
+    fprintf(b->fp, "%.17g,%s,%s,%.17g,%.17g,%.17g", p, k, dal_floquet_verdict_name(f->verdict),
+            f->max_abs, f->trace, rep->period);
     for (int i = 0; i < n; ++i)
-      printf(",%.17g,%.17g", q[i], v[i]);
-    printf("\n");
+      fprintf(b->fp, ",%.17g,%.17g", q[i], v[i]);
+    fprintf(b->fp, "\n");
   }
   ++b->rows;
-  return 0;
+  return cli_interrupted();
 }
 
-static int orbit_branch(cli *c, double T) {
-  branch b = {c, "", NULL, 0, 0, 0};
+static int orbit_branch(cli *c, FILE *fp, dal_state *st, double T) {
+  branch b = {c, fp, NULL, "", NULL, 0, 0, 0};
   double lo, hi;
-  int npts;
-  if (cli_grid(c->cont, b.name, sizeof b.name, &lo, &hi, &npts) || npts < 2) {
-    fprintf(stderr, "dalembert: --continue %s: NAME=LO:HI:N with N >= 2\n", c->cont);
-    return DAL_E_ARG;
-  }
-  const dal_system *sys = dal_scene_system(c->sc);
-  dal_state *st;
-  int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "orbit: the scene's initial state was refused");
-  int n = dal_system_ncoords(sys);
+  int npts, rc = cli_grid(c, "continue", cli_text(c, "continue"), b.name, sizeof b.name, &lo, &hi,
+                          &npts);
+  if (rc) return rc;
+  if (npts < 2) return cli_error(c, CLI_USAGE, "--continue: N must be at least 2");
+  int n = dal_system_ncoords(dal_scene_system(c->sc));
   double *y0 = calloc(2 * (size_t)n + 1, sizeof *y0);
+  if (!y0) return DAL_E_NOMEM;
+  memcpy(y0, dal_state_q(st), (size_t)n * sizeof *y0);
+  memcpy(y0 + n, dal_state_qdot(st), (size_t)n * sizeof *y0);
   dal_orbit_continuation_opts o = dal_default_orbit_continuation_opts();
   o.p0 = lo;
   o.p1 = hi;
@@ -186,68 +211,85 @@ static int orbit_branch(cli *c, double T) {
   o.t = dal_state_time(st);
   o.borrowed = 1;
   o.orbit.period = T;
-  o.orbit.free_period = c->free_period;
+  o.orbit.free_period = cli_given(c, "free") > 0;
   dal_continuation_report rep;
-  if (y0) {
-    memcpy(y0, dal_state_q(st), (size_t)n * sizeof *y0);
-    memcpy(y0 + n, dal_state_qdot(st), (size_t)n * sizeof *y0);
+  cli_json j;
+  if (cli_json_asked(c)) {
+    j = cli_json_start(fp);
+    cli_json_str(&j, "command", "orbit");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_str(&j, "parameter", b.name);
+    cli_json_array(&j, "branch");
+    b.j = &j;
   }
-  if (c->json) printf("[");
-  rc = y0 ? dal_orbit_continue(branch_rebuild, y0, &o, branch_point, &rep, &b) : DAL_E_NOMEM;
-  if (c->json) printf("]\n");
-  if (rc) snprintf(c->msg, sizeof c->msg, "%s: orbit --continue: %s", c->path, rep.msg);
+  rc = dal_orbit_continue(branch_rebuild, y0, &o, branch_point, &rep, &b);
+  if (b.j) {
+    cli_json_end(&j);
+    cli_json_finish(&j);
+  }
+  if (rc) snprintf(c->msg, sizeof c->msg, "%s: --continue: %s", c->path, rep.msg);
   for (int i = 0; i < b.count; ++i)
     dal_scene_destroy(b.scenes[i]);
   free(b.scenes);
   free(y0);
-  dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  return rc;
 }
 
 int cli_orbit(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
   double T = period_of(c);
-  if (T <= 0) {
-    snprintf(c->msg, sizeof c->msg, "orbit: %s declares no period: give --period T", c->path);
-    return cli_fail(DAL_E_ARG, c->msg);
-  }
-  if (c->cont) return orbit_branch(c, T);
+  if (T <= 0) return cli_error(c, DAL_E_ARG, "%s declares no period: give --period T", c->path);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "orbit: the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
+  FILE *fp = cli_out(c);
+  if (!fp) {
+    dal_state_destroy(st);
+    return cli_close(c, DAL_E_IO);
+  }
+  if (cli_given(c, "continue")) {
+    rc = orbit_branch(c, fp, st, T);
+    dal_state_destroy(st);
+    if (rc < 0 && rc != DAL_E_IO && c->msg[0]) cli_fail(c, rc, c->msg);
+    return cli_close(c, rc);
+  }
   int n = dal_system_ncoords(sys), k2 = 2 * (n - dal_system_nconstraints(sys));
   double *re = calloc((size_t)k2 + 1, sizeof *re), *im = calloc((size_t)k2 + 1, sizeof *im);
   dal_orbit_opts o = dal_default_orbit_opts();
   o.period = T;
-  o.free_period = c->free_period;
+  o.free_period = cli_given(c, "free") > 0;
   dal_orbit_report r;
   double t0 = dal_state_time(st);
   rc = re && im ? dal_periodic_orbit(sys, st, &o, re, im, &r) : DAL_E_NOMEM;
+  const double *q = dal_state_q(st), *v = dal_state_qdot(st);
   if (rc) {
     snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
+  } else if (cli_json_asked(c)) {
+    cli_json j = cli_json_start(fp);
+    cli_json_str(&j, "command", "orbit");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_num(&j, "t0", t0);
+    write_report(&j, fp, &r.floquet, re, im);
+    cli_json_object(&j, "orbit");
+    cli_json_int(&j, "iterations", r.iterations);
+    cli_json_num(&j, "residual", r.residual);
+    json_coords(&j, "q", sys, q);
+    json_coords(&j, "qdot", sys, v);
+    cli_json_end(&j);
+    cli_json_finish(&j);
   } else {
-    const double *q = dal_state_q(st), *v = dal_state_qdot(st);
-    print_report(c, c->json, t0, &r.floquet, re, im);
-    if (c->json) {
-      printf(", \"orbit\": {\"iterations\": %d, \"residual\": %.3g, \"q\": {", r.iterations,
-             r.residual);
-      for (int i = 0; i < n; ++i)
-        printf("%s\"%s\": %.17g", i ? ", " : "", dal_system_coord_name(sys, i), q[i]);
-      printf("}, \"qdot\": {");
-      for (int i = 0; i < n; ++i)
-        printf("%s\"%s\": %.17g", i ? ", " : "", dal_system_coord_name(sys, i), v[i]);
-      printf("}}}\n");
-    } else {
-      printf("# orbit start at t = %.17g (%d Newton steps, return gap %.3g):", t0, r.iterations,
-             r.residual);
-      for (int i = 0; i < n; ++i)
-        printf(" %s = %.17g, %s' = %.17g", dal_system_coord_name(sys, i), q[i],
-               dal_system_coord_name(sys, i), v[i]);
-      printf("\n");
-    }
+    fprintf(fp, "# periodic orbit of %s, period %.17g, from t = %.17g (%d Newton steps, return "
+                "gap %.3g):",
+            c->path, r.period, t0, r.iterations, r.residual);
+    for (int i = 0; i < n; ++i)
+      fprintf(fp, " %s = %.17g, %s' = %.17g", dal_system_coord_name(sys, i), q[i],
+              dal_system_coord_name(sys, i), v[i]);
+    fprintf(fp, "\n");
+    write_report(NULL, fp, &r.floquet, re, im);
   }
   free(re);
   free(im);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  if (rc) cli_fail(c, rc, c->msg);
+  return cli_close(c, rc);
 }

@@ -238,8 +238,9 @@ static inline double out_time(const run *r) {
   if (r->times) return r->k <= r->K ? r->times[r->k] : INFINITY;
   if (r->k == r->K) {
     double tk = r->t0 + (double)r->k * r->dt;
-    // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
-    return r->t1 - tk <= 1e-9 * r->dt ? r->t1 : tk;
+    // a later grid time within rounding of t1 is t1 itself (no near-duplicate output); the
+    // first (t0) is always served, however large dt is against t1 - t0 (issue 31)
+    return r->k > 0 && r->t1 - tk <= 1e-9 * r->dt ? r->t1 : tk;
   }
   return r->last_out < r->t1 ? r->t1 : INFINITY;
 }
@@ -337,6 +338,17 @@ static int serve_next(run *r) {
   return output_done(r, r->tnext, 0);
 }
 
+// the cancel hook asked to stop after the step [a, b]: the state at b, evaluated
+static DAL__COLD int cancel_here(run *r, double b) {
+  int rc = place_end(r, b);
+  if (rc) return r->status = rc;
+  DAL_FAIL(r->st, DAL_CANCELLED,
+           "%s cancelled by the caller's cancel hook at t=%.17g (the last accepted step; the "
+           "state holds it)",
+           r->what, r->st->t);
+  return stop_here(r, DAL_CANCELLED);
+}
+
 // after every accepted step [a, b]: the outputs and event crossings inside it, in time order
 static int after_step(void *p) {
   run *r = p;
@@ -382,6 +394,8 @@ static int after_step(void *p) {
   }
   // opts.max_steps counts from the last output
   if (r->k != k0) r->h->it->ops->new_output(r->h->it);
+  // the caller's cancel hook: the run ends at this accepted step, evaluated
+  if (r->o->cancel && r->o->cancel(r->o->cancel_ctx)) return cancel_here(r, b);
   return DAL_OK;
 }
 
@@ -405,7 +419,7 @@ again:;
     return evaluate_here(sys, st);
   }
   // the hook only when someone looks: a monitor at output times, events, or a trajectory
-  int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
+  int hooked = (r->outputs && r->monitor) || r->ev || st->traj || r->o->cancel;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
   rc = h->it->ops->advance(h->it, t1, hooked ? after_step : NULL, r);
@@ -593,6 +607,13 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
            .ev = active_events(st)};
   int rc = os->list ? list_setup(&r, os->times, os->n) : grid_setup(&r, os->dt);
   if (rc) return rc;
+  if (!monitor) {
+    // no one looks at the output times: dal_advance's run to t1 (solve.h), never a walk over
+    // every output time (t1 = 1000, dt = 1e-9 took an hour; issue 31)
+    run a = {.sys = sys, .st = st, .o = &eff, .what = r.what, .t1 = t1, .tnext = INFINITY,
+             .ev = r.ev};
+    return run_to(&a, t1);
+  }
   r.tnext = out_time(&r);
   // the start (made consistent first in redundant coordinates), evaluated
   if ((rc = run_to(&r, t0)) != 0) return rc;
