@@ -33,7 +33,7 @@ extern "C" {
 /// within a few cm, to t = 2, against Bulirsch-Stoer at 1e-13 or Adams at 1e-12, which agree
 /// to 2.3e-11): the default options stay within 16 x rtol times the scene's amplification of
 /// a start perturbation at every rtol 1e-4 ... 1e-10 (the test checks every run). Fehlberg
-/// 7(8), the cheapest on the seed scenes at 1e-5 ... 1e-8 and AUTO's choice there before 0.4,
+/// 7(8), the cheapest on the seed scenes at 1e-5 ... 1e-8 and AUTO's choice there before,
 /// reached 22.8 ... 117 x on that set (`test_auto_set --full` prints the table for every
 /// method); it is there by name only. Among the others the rule is read off the
 /// work-precision tables (bench/auto.sh and bench/dense_auto.sh, docs/performance.md "AUTO"):
