@@ -2105,6 +2105,15 @@ static void sw_dal_scene_write(void) {
   CHECK(dal_scene_write(NULL, stdout) == DAL_E_ARG && dal_scene_write(sc, NULL) == DAL_E_ARG);
   dal_scene_destroy(sc);
 }
+static void sw_dal_scene_help(void) {
+  CHECK(dal_scene_help(NULL) == DAL_E_ARG);
+  FILE *fp = tmpfile();
+  CHECK(fp != NULL);
+  if (!fp) return;
+  CHECK_OK(dal_scene_help(fp));
+  CHECK(ftell(fp) > 0);
+  fclose(fp);
+}
 static void sw_dal_scene_set_param(void) {
   dal_scene *sc = sweep_scene();
   char msg[128];
@@ -2213,6 +2222,7 @@ static const sweep_row rows[] = {
     ROW(dal_scene_read),
     ROW(dal_scene_destroy),
     ROW(dal_scene_write),
+    ROW(dal_scene_help),
     ROW(dal_scene_set_param),
     ROW(dal_scene_system),
     ROW(dal_scene_opts),
