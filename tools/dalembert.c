@@ -42,6 +42,8 @@ const cli_opt cli_run_opts[] = {
     {"events", 0, CLI_TEXT, "FILE.csv", "the log of the scene's events", 0},
     CLI_OPT_WRAP,
     CLI_OPT_T1,
+    {"columns", 0, CLI_TEXT, "LIST",
+     "named columns, e.g. 't,x:*,y:*,lambda:*' (docs/guide.md: Seeing the motion)", 0},
     CLI_END,
 };
 
@@ -108,6 +110,12 @@ static const cli_cmd commands[] = {
      "Floquet multipliers of the initial state over a period (the scene's strobe period)"},
     {"orbit", cli_orbit, cli_orbit_opts, "SCENE",
      "a periodic orbit by shooting from the initial state, its multipliers and branch"},
+    {"view", cli_view, cli_view_opts, "SCENE",
+     "the motion as one self-contained HTML page (scene, trails, linked plots)"},
+    {"picture", cli_picture, cli_picture_opts, "SCENE",
+     "a multi-exposure SVG of the configurations at chosen times"},
+    {"compile", cli_compile, cli_compile_opts, "SCENE",
+     "the scene's formulas as a standalone C source (dalembert/codegen.h)"},
     {NULL, NULL, NULL, NULL, NULL},
 };
 
