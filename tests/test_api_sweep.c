@@ -1140,6 +1140,125 @@ static void sw_dal_state_transition(void) {
   CHECK(dal_state_time(st) == 0.5 && Phi[0] != 0.0 && S[0] != 0.0);
   dal_state_destroy(st);
 }
+// periodic motion (floquet.c, periodic_orbit.c): the pendulum B is autonomous; at rest at the
+// bottom it is T-periodic for any T, at 0.3 it does not return after 0.5
+static void sw_dal_time_dependence(void) {
+  char what[256];
+  ST(dal_time_dependence(F.B, NULL, what, sizeof what), DAL_E_ARG, NULL);
+  ST(dal_time_dependence(NULL, F.stB, what, sizeof what), DAL_E_STATE, F.stB);
+  ST(dal_time_dependence(F.A, F.stB, what, sizeof what), DAL_E_STATE, F.stB);
+  CHECK(dal_time_dependence(F.B, F.stB, NULL, 0) == 0);
+  CHECK(dal_time_dependence(F.B, F.stB, what, 1) == 0 && what[0] == 0);
+  st_intact();
+}
+static void sw_dal_normal_modes_frozen(void) {
+  double w2[1] = {0};
+  dal_modes md;
+  ST(dal_normal_modes_frozen(F.B, NULL, w2, NULL, NULL, NULL, &md), DAL_E_ARG, NULL);
+  ST(dal_normal_modes_frozen(F.A, F.stB, w2, NULL, NULL, NULL, &md), DAL_E_STATE, F.stB);
+  ST(dal_normal_modes_frozen(F.B, F.stB, w2, NULL, NULL, NULL, &md), DAL_OK, F.stB);
+  CHECK(md.frozen == 0); // autonomous: nothing frozen
+  st_intact();
+}
+static void sw_dal_floquet(void) {
+  double re[2], im[2], mono[4];
+  dal_floquet_report r;
+  ST(dal_floquet(F.B, NULL, NULL, 1.0, re, im, mono, &r), DAL_E_ARG, NULL);
+  ST(dal_floquet(NULL, F.stB, NULL, 1.0, re, im, mono, &r), DAL_E_STATE, F.stB);
+  ST(dal_floquet(F.A, F.stB, NULL, 1.0, re, im, mono, &r), DAL_E_STATE, F.stB);
+  ST(dal_floquet(F.B, F.stB, NULL, 0.0, re, im, mono, &r), DAL_E_ARG, F.stB);
+  ST(dal_floquet(F.B, F.stB, NULL, NAN, re, im, mono, &r), DAL_E_ARG, F.stB);
+  ST(dal_floquet(F.B, F.stB, NULL, INFINITY, re, im, mono, &r), DAL_E_ARG, F.stB);
+  ST(dal_floquet(F.B, F.stB, NULL, 0.5, re, im, mono, &r), DAL_E_ARG, F.stB); // no return
+  st_intact();
+  dal_state *st = state_b();
+  double z = 0.0;
+  CHECK_OK(dal_state_set(F.B, st, 0.0, &z, &z));
+  ST(dal_floquet(F.B, st, NULL, 0.5, NULL, NULL, NULL, NULL), DAL_OK, NULL);
+  ST(dal_floquet(F.B, st, NULL, 0.5, re, im, mono, &r), DAL_OK, NULL);
+  // the bottom: mu = exp(+-i sqrt(g) T) on the unit circle
+  CHECK(r.count == 2 && r.verdict == DAL_NEUTRAL);
+  CHECK_CLOSE(r.trace, 2 * cos(sqrt(9.81) * 0.5), 1e-9);
+  CHECK(dal_state_time(st) == 0.0);
+  dal_state_destroy(st);
+}
+static void sw_dal_floquet_verdict_name(void) {
+  CHECK(strcmp(dal_floquet_verdict_name((dal_stability)7), "unknown") == 0);
+  CHECK(strcmp(dal_floquet_verdict_name(DAL_MARGINAL), "boundary") == 0);
+  CHECK(strcmp(dal_floquet_verdict_name(DAL_NEUTRAL), "stable") == 0);
+  CHECK(strcmp(dal_floquet_verdict_name(DAL_UNSTABLE), "unstable") == 0);
+}
+static void sw_dal_default_orbit_opts(void) {
+  dal_orbit_opts o;
+  memset(&o, 0xff, sizeof o);
+  o = dal_default_orbit_opts();
+  CHECK(o.period == 0.0 && o.free_period == 0 && o.xtol == 1e-9 && o.max_iter == 30);
+  CHECK(o.solve.rtol == 1e-11);
+}
+static void sw_dal_periodic_orbit(void) {
+  dal_orbit_opts o = dal_default_orbit_opts(), raw;
+  memset(&raw, 0, sizeof raw);
+  double re[2], im[2];
+  dal_orbit_report r;
+  o.period = 0.5;
+  ST(dal_periodic_orbit(F.B, NULL, &o, re, im, &r), DAL_E_ARG, NULL);
+  ST(dal_periodic_orbit(NULL, F.stB, &o, re, im, &r), DAL_E_STATE, F.stB);
+  ST(dal_periodic_orbit(F.A, F.stB, &o, re, im, &r), DAL_E_STATE, F.stB);
+  ST(dal_periodic_orbit(F.B, F.stB, NULL, re, im, &r), DAL_E_ARG, F.stB);
+  ST(dal_periodic_orbit(F.B, F.stB, &raw, re, im, &r), DAL_E_ARG, F.stB);
+  o.period = NAN;
+  ST(dal_periodic_orbit(F.B, F.stB, &o, re, im, &r), DAL_E_ARG, F.stB);
+  o.period = 0.5;
+  o.max_iter = 0;
+  ST(dal_periodic_orbit(F.B, F.stB, &o, re, im, &r), DAL_E_ARG, F.stB);
+  st_intact();
+  // a fixed period of the autonomous pendulum from 0.3: Newton lands on the bottom
+  dal_state *st = state_b();
+  o.max_iter = 30;
+  ST(dal_periodic_orbit(F.B, st, &o, re, im, &r), DAL_OK, NULL);
+  CHECK(fabs(dal_state_q(st)[0]) < 1e-9 && r.period == 0.5);
+  dal_state_destroy(st);
+}
+static void sw_dal_relative_equilibrium(void) {
+  double axis[3] = {0, 0, 1}, zero[3] = {0, 0, 0}, re[2], im[2];
+  dal_relative_report r;
+  ST(dal_relative_equilibrium(F.B, NULL, axis, 1.0, re, im, &r), DAL_E_ARG, NULL);
+  ST(dal_relative_equilibrium(NULL, F.stB, axis, 1.0, re, im, &r), DAL_E_STATE, F.stB);
+  ST(dal_relative_equilibrium(F.A, F.stB, axis, 1.0, re, im, &r), DAL_E_STATE, F.stB);
+  ST(dal_relative_equilibrium(F.B, F.stB, axis, 1.0, re, im, &r), DAL_E_ARG, F.stB); // 2D
+  ST(dal_relative_equilibrium(F.B, F.stB, NULL, 1.0, re, im, &r), DAL_E_ARG, F.stB);
+  ST(dal_relative_equilibrium(F.B, F.stB, zero, 1.0, re, im, &r), DAL_E_ARG, F.stB);
+  ST(dal_relative_equilibrium(F.B, F.stB, axis, NAN, re, im, &r), DAL_E_ARG, F.stB);
+  st_intact();
+}
+static int sw_orbit_rebuild(double p, dal_system **out, void *ctx) {
+  (void)p;
+  (void)ctx;
+  *out = NULL;
+  return 1; // refuses: the continuation must stop with its message
+}
+static void sw_dal_default_orbit_continuation_opts(void) {
+  dal_orbit_continuation_opts o;
+  memset(&o, 0xff, sizeof o);
+  o = dal_default_orbit_continuation_opts();
+  CHECK(o.p0 == 0.0 && o.p1 == 1.0 && o.npoints == 41 && o.locate == 1 && o.ptol == 0.0);
+  CHECK(o.orbit.max_iter == 30 && o.orbit.period == 0.0);
+}
+static void sw_dal_orbit_continue(void) {
+  dal_orbit_continuation_opts o = dal_default_orbit_continuation_opts(), raw;
+  memset(&raw, 0, sizeof raw);
+  dal_continuation_report r;
+  double y0[2] = {0, 0};
+  CHECK(dal_orbit_continue(NULL, y0, &o, NULL, &r, NULL) == DAL_E_ARG && r.msg[0]);
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, NULL, &o, NULL, &r, NULL) == DAL_E_ARG);
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, NULL, NULL, &r, NULL) == DAL_E_ARG);
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, &raw, NULL, NULL, NULL) == DAL_E_ARG);
+  o.p1 = NAN;
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, &o, NULL, &r, NULL) == DAL_E_ARG);
+  o.p1 = 1.0;
+  CHECK(dal_orbit_continue(sw_orbit_rebuild, y0, &o, NULL, &r, NULL) == DAL_E_CALLBACK);
+  CHECK(strstr(r.msg, "rebuild") != NULL);
+}
 static void sw_dal_stability_name(void) {
   CHECK(strcmp(dal_stability_name((dal_stability)7), "unknown") == 0);
   CHECK(strcmp(dal_stability_name((dal_stability)-2), "unknown") == 0);
@@ -2376,6 +2495,15 @@ static const sweep_row rows[] = {
     ROW(dal_state_transition),
     ROW(dal_vector_field_jacobian),
     ROW(dal_stability_name),
+    ROW(dal_time_dependence),
+    ROW(dal_normal_modes_frozen),
+    ROW(dal_floquet),
+    ROW(dal_floquet_verdict_name),
+    ROW(dal_default_orbit_opts),
+    ROW(dal_periodic_orbit),
+    ROW(dal_relative_equilibrium),
+    ROW(dal_default_orbit_continuation_opts),
+    ROW(dal_orbit_continue),
     ROW(dal_normal_modes),
     ROW(dal_default_equilibrium_opts),
     ROW(dal_equilibrium),

@@ -40,6 +40,7 @@ static int refused(int rc) { return rc == DAL_E_UNSUPPORTED || rc == DAL_E_ARG; 
 
 const cli_opt cli_modes_opts[] = {
     {"here", 0, CLI_FLAG, NULL, "at the initial q (no Newton search)", 0},
+    CLI_OPT_FROZEN,
     CLI_OPT_FORMAT,
     CLI_END,
 };
@@ -51,7 +52,10 @@ static int print_modes(cli *c, FILE *fp, const dal_system *sys, dal_state *st) {
   double *w2 = calloc((size_t)k + 1, sizeof *w2), *lre = calloc(2 * (size_t)k + 1, sizeof *lre),
          *lim = calloc(2 * (size_t)k + 1, sizeof *lim);
   dal_modes m;
-  int rc = w2 && lre && lim ? dal_normal_modes(sys, st, w2, NULL, lre, lim, &m) : DAL_E_NOMEM;
+  int rc = w2 && lre && lim ? (cli_given(c, "frozen") ? dal_normal_modes_frozen
+                                                      : dal_normal_modes)(sys, st, w2, NULL, lre,
+                                                                          lim, &m)
+                             : DAL_E_NOMEM;
   if (rc) {
     snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
   } else if (cli_json_asked(c)) {
@@ -65,6 +69,7 @@ static int print_modes(cli *c, FILE *fp, const dal_system *sys, dal_state *st) {
     cli_json_num(&j, "max_real", m.max_real);
     cli_json_num(&j, "tolerance", m.tau);
     cli_json_num(&j, "acceleration", m.accel);
+    if (m.frozen) cli_json_bool(&j, "frozen", 1); // asked for by --frozen on a driven scene
     cli_json_array(&j, "modes");
     for (int i = 0; i < k; ++i) {
       double w = sqrt(fabs(w2[i]));
@@ -80,6 +85,11 @@ static int print_modes(cli *c, FILE *fp, const dal_system *sys, dal_state *st) {
     fprintf(fp, "# normal modes of %s at t = %.17g, ", c->path, dal_state_time(st));
     print_q(fp, sys, dal_state_q(st));
     fprintf(fp, "%s\n", here ? "" : " (the equilibrium found from the initial q)");
+    if (m.frozen)
+      fprintf(fp,
+              "# frozen at t = %.17g (--frozen): the scene depends on time; these modes are not "
+              "the driven motion's (dalembert floquet)\n",
+              dal_state_time(st));
     fprintf(fp, "# verdict: %s (largest real part %.3g, tolerance %.3g, acceleration %.3g)\n",
             dal_stability_name(m.verdict), m.max_real, m.tau, m.accel);
     fprintf(fp, "mode,omega2,omega,period\n");
@@ -103,9 +113,11 @@ int cli_modes(cli *c) {
   if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   FILE *fp = cli_out(c);
   dal_equilibrium_report rep;
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
+  eo.frozen_time = cli_given(c, "frozen") > 0;
   if (!fp)
     rc = DAL_E_IO;
-  else if (!cli_given(c, "here") && (rc = dal_equilibrium(sys, st, NULL, &rep)))
+  else if (!cli_given(c, "here") && (rc = dal_equilibrium(sys, st, &eo, &rep)))
     // a refusal (a request the analysis cannot honour) is said as the library says it
     snprintf(c->msg, sizeof c->msg, "%s: %s%s%s", c->path,
              refused(rc) ? "" : "no equilibrium from the initial q: ", dal_state_errmsg(st),
@@ -147,8 +159,10 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   double t0;
   dal_scene_opts(c->sc, &t0, NULL, NULL);
   dal_equilibrium_report rep;
+  dal_equilibrium_opts eo = dal_default_equilibrium_opts();
+  eo.frozen_time = cli_given(c, "frozen") > 0;
   int rc = dal_state_set(sys, st, t0, q, zero);
-  if (!rc) rc = dal_equilibrium(sys, st, NULL, &rep);
+  if (!rc) rc = dal_equilibrium(sys, st, &eo, &rep);
   if (rc) return rc;
   const double *qs = dal_state_q(st), *r = dal_state_positions(st);
   int np = dal_system_nparticles(sys) * dal_system_dim(sys);
@@ -166,8 +180,21 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   int k = n - dal_system_nconstraints(sys);
   double *w2 = calloc((size_t)k + 1, sizeof *w2);
   if (!w2) return DAL_E_NOMEM;
-  int mr = dal_normal_modes(sys, st, w2, NULL, NULL, NULL, &m);
+  int mr = (cli_given(c, "frozen") ? dal_normal_modes_frozen : dal_normal_modes)(
+      sys, st, w2, NULL, NULL, NULL, &m);
   const char *verdict = mr ? "unknown" : dal_stability_name(m.verdict);
+  // a driven scene's equilibrium has no frozen verdict unless asked for: say which call fits
+  char why[512];
+  snprintf(why, sizeof why, "%s", dal_state_errmsg(st));
+  if (mr == DAL_E_UNSUPPORTED && dal_time_dependence(sys, st, NULL, 0) == 1) {
+    verdict = "driven";
+    cli_error(c, 0, "%s", why);
+  } else if (!mr && m.frozen) {
+    verdict = m.verdict == DAL_UNSTABLE   ? "unstable-frozen"
+              : m.verdict == DAL_NEUTRAL  ? "neutral-frozen"
+              : m.verdict == DAL_MARGINAL ? "marginal-frozen"
+                                          : "asymptotic-frozen";
+  }
   if (o->j) {
     cli_json_object(o->j, NULL);
     json_coords(o->j, "q", sys, qs, 0);
@@ -187,6 +214,7 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
 
 const cli_opt cli_equilibria_opts[] = {
     {"scan", 0, CLI_TEXT, "COORD=LO:HI:N", "also Newton from N starts of coordinate COORD", 0},
+    CLI_OPT_FROZEN,
     CLI_OPT_FORMAT,
     CLI_END,
 };

@@ -102,6 +102,8 @@ CLI_COMMAND(equilibria);
 CLI_COMMAND(lyapunov);
 CLI_COMMAND(section);
 CLI_COMMAND(sweep);
+CLI_COMMAND(floquet); // periodic.c
+CLI_COMMAND(orbit);
 CLI_COMMAND(view);
 CLI_COMMAND(picture);
 CLI_COMMAND(compile);
@@ -113,6 +115,8 @@ CLI_COMMAND(compile);
   { "wrap", 0, CLI_FLAG, NULL, "angles wrapped into [-pi, pi) (every coordinate taken as one)", 0 }
 #define CLI_OPT_T1                                                                                 \
   { "t1", 0, CLI_POSITIVE, "T", "end time (default: the scene's t1)", 0 }
+#define CLI_OPT_FROZEN                                                                             \
+  { "frozen", 0, CLI_FLAG, NULL, "the linearization frozen at t0 of a time-dependent scene", 0 }
 #define CLI_OPT_FORMAT                                                                             \
   { "format", 0, CLI_CHOICE, "csv|json", "csv (default) or json (docs/cli.md: the schema)", 0 }
 

@@ -50,6 +50,8 @@
 #ifndef DAL_ANALYSIS_H
 #define DAL_ANALYSIS_H
 
+#include <stddef.h>
+
 #include "dalembert/base.h"
 #include "dalembert/solve.h"
 #include "dalembert/state.h"
@@ -171,6 +173,9 @@ typedef struct dal_modes {
   double asymmetry;      ///< ||K - K'||_F / ||K||_F: 0 for a conservative equilibrium
   double gyroscopic;     ///< ||C||_F / (||K||_F ||M||_F)^1/2: 0 without damping or Coriolis
   double accel;          ///< max_i |qddot_i| at the state: 0 at an equilibrium
+  int frozen;            ///< 1: the system depends on time explicitly and these are the modes
+                         ///< of the linearization frozen at the state's t
+                         ///< (dal_normal_modes_frozen); 0 otherwise
 } dal_modes;
 
 /// Normal modes at the state: the generalized symmetric eigenproblem
@@ -189,9 +194,16 @@ typedef struct dal_modes {
 /// With m constraint rows the sizes are k = n - m: omega2 (k), lambda_re / lambda_im (2k),
 /// from the reduced matrices of dal_linearize, and shapes (n x k) are mapped back to the
 /// coordinates (x = N xi, still M-orthonormal); the state must be on the manifold.
+/// Time dependence is never frozen silently: on a scene whose equations depend on time
+/// explicitly (dal_time_dependence) the modes are given only where the motion through the
+/// state is steady for its linearization (its eigenvalues at t + 0.37, 1.9 and 4.3 along the
+/// motion, followed by dal_advance at rtol 1e-10, agree with those at t within 1e-6 of their
+/// size or tau: the bottom of a turning circle in Cartesian coordinates, a relative
+/// equilibrium carried by a turning constraint); elsewhere (a driven pendulum's bottom) it is
+/// DAL_E_UNSUPPORTED naming the dependence, dal_floquet and dal_normal_modes_frozen.
 /// Statuses of dal_linearize; DAL_E_SINGULAR if LAPACK fails (named in the message);
 /// DAL_E_UNSUPPORTED when k = 0 (the constraint rows fix every coordinate: no modes, no
-/// verdict).
+/// verdict), or see above.
 DAL_API int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
                              double *lambda_re, double *lambda_im, dal_modes *out);
 
@@ -204,6 +216,9 @@ typedef struct dal_equilibrium_opts {
   double xtol;     ///< converged when every Newton step |dq_i| <= xtol (1 + |q_i|); 1e-12
   int max_iter;    ///< Newton iterations at most; 50
   double max_step; ///< largest |dq_i| of one step (the step is scaled down to it); 0: none
+  int frozen_time; ///< 1: accept an equilibrium of the equations frozen at the state's t for
+                   ///< an explicitly time-dependent system (dal_time_dependence), and let
+                   ///< dal_continue classify it by dal_normal_modes_frozen; 0 (default)
 } dal_equilibrium_opts;
 
 /// Fill *o with the defaults (xtol 1e-12, 50 iterations, no step bound).
@@ -378,6 +393,206 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 /// dal_vector_field_jacobian at the failing time.
 DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
                          double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
+
+
+// ---------------------------------------------------------------------------------------------
+// periodic motion: explicit time dependence, Floquet multipliers, periodic orbits
+
+/// Whether the equations of motion of sys depend on time explicitly (a drive, a moving pivot,
+/// a potential or constraint in t) in its coordinates. Decided on the exact df/dt of the
+/// vector field (dal_vector_field_jacobian's ft, from jets) at the state and at five
+/// pseudo-random points around it (t moved by up to 7 time units, q and qdot by up to 30% of
+/// 1 + |.|; with constraint rows each point is made consistent first): dependent when
+/// |df/dt| > 1e-9 ||A|| (|f| + ||A|| |y|) at one of them. This covers user jet callbacks
+/// alike; a dependence confined to a region no probe reaches (a drive that switches on
+/// later than t + 7) is missed. A scene that moves steadily in its own coordinates (a bead
+/// measured in a uniformly turning ring) is not dependent: its equations are those of the
+/// co-rotating frame, where equilibria and modes mean what they say (relative equilibria).
+///  what (len bytes, nullable): the finding in words, naming what moves with t (placements
+///    with dr/dt != 0 at fixed q, constraints with dphi/dt != 0) at the state.
+/// The state is left as given, evaluated. Returns 1 (dependent), 0 (not), or a negative
+/// status of dal_vector_field_jacobian at the state (the tangent must cover the system).
+DAL_API int dal_time_dependence(const dal_system *sys, dal_state *st, char *what, size_t len);
+
+/// dal_normal_modes of the linearization frozen at the state's time, asked for by name for
+/// an explicitly time-dependent system (dal_normal_modes refuses one): out->frozen is then 1.
+/// The verdict describes the frozen equations only, not the driven motion (use dal_floquet).
+DAL_API int dal_normal_modes_frozen(const dal_system *sys, dal_state *st, double *omega2,
+                                    double *shapes, double *lambda_re, double *lambda_im,
+                                    dal_modes *out);
+
+/// What dal_floquet found. The verdict uses dal_stability with these meanings (names by
+/// dal_floquet_verdict_name): DAL_UNSTABLE a multiplier |mu| > 1 + accuracy; DAL_ASYMPTOTIC
+/// every |mu| < 1 - accuracy; DAL_MARGINAL ("boundary") some |mu| within the accuracy of 1 and
+/// within twice it of +1 or -1, where a pair can leave the unit circle (a fold or
+/// period-doubling boundary: the linearization cannot decide); DAL_NEUTRAL ("stable") the
+/// rest: multipliers on the unit circle away from +-1 (Hamiltonian scenes) or inside it.
+/// (Pairs colliding on the circle away from +-1, Krein collisions, are not examined.)
+typedef struct dal_floquet_report {
+  dal_stability verdict; ///< see above
+  int count;             ///< multipliers: 2n, or 2(n - m) with m constraint rows
+  double period;         ///< the period T used (time)
+  double max_abs;        ///< the largest |mu|
+  double accuracy;       ///< the multipliers' error estimate: the largest distance between
+                         ///< them at rtol and at 10 rtol (matched nearest first), at least
+                         ///< 1000 ulps of ||monodromy||
+  double det;            ///< product of the multipliers: exp(int_0^T tr A dt), 1 for a scene
+                         ///< without damping (Liouville)
+  double trace;          ///< trace of the monodromy (sum of the multipliers)
+  double gap;            ///< max_i |y_i(T) - y_i(0)| / (1 + |y_i(0)|): how far the state is
+                         ///< from returning (0 on a T-periodic solution)
+} dal_floquet_report;
+
+/// Floquet analysis of the T-periodic solution through the state (an equilibrium of a
+/// periodically driven scene such as the driven pendulum's bottom, or a periodic orbit from
+/// dal_periodic_orbit): the monodromy matrix Phi(t + T, t) by dal_state_transition (exact
+/// variational equations), its eigenvalues mu (Floquet multipliers; the exponents are
+/// log(mu) / T, real part the growth rate in 1/time, imaginary part defined modulo 2 pi / T),
+/// computed twice (opts->rtol and 10 rtol) for their accuracy, and the verdict.
+///  opts: the integrator (an explicit method, see dal_state_transition); NULL: the defaults
+///    with rtol 1e-10.
+///  period: T > 0, e.g. the drive's period 2 pi / omega or a multiple of it.
+///  mu_re, mu_im (count each, nullable): the multipliers by decreasing |mu|, then argument.
+///  monodromy (count x count, column-major, nullable): the monodromy at opts->rtol, in
+///    (q, qdot) without constraints; with m constraint rows reduced to the manifold's
+///    tangent space in the coordinates (xi, eta) of dal_linearize (dq = N xi,
+///    dqdot = N eta + Y xi, N at the state): count = 2(n - m).
+///  rep (nullable): verdict, accuracy, det, trace, gap.
+/// The state must lie on a T-periodic solution: a state that does not return within
+/// 1e-6 + 1000 rtol (relative) is DAL_E_ARG naming the coordinate that misses most. With
+/// constraint rows it must be consistent. On return the state is back at its start,
+/// evaluated. Returns DAL_OK; DAL_E_ARG; DAL_E_UNSUPPORTED (no degrees of freedom, or see
+/// dal_state_transition); the statuses of dal_state_transition; DAL_E_SINGULAR (LAPACK).
+DAL_API int dal_floquet(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
+                        double period, double *mu_re, double *mu_im, double *monodromy,
+                        dal_floquet_report *rep);
+
+/// The name of a Floquet verdict: "unstable", "boundary", "stable", "asymptotically stable".
+DAL_API const char *dal_floquet_verdict_name(dal_stability s);
+
+/// Options of dal_periodic_orbit. Always start from dal_default_orbit_opts().
+typedef struct dal_orbit_opts {
+  int cookie;           ///< set by dal_default_orbit_opts; do not touch
+  double period;        ///< the period T (> 0, required): k times the drive period for a
+                        ///< driven scene, or the first guess of a free period
+  int free_period;      ///< 1: an autonomous scene whose period is an unknown, fixed by the
+                        ///< phase condition f(y0) . dy0 = 0; 0 (default): T fixed
+  double xtol;          ///< converged when max_i |y_i(T) - y_i(0)| / (1 + |y_i(0)|) <= xtol;
+                        ///< 1e-9 (above the integration error at solve.rtol)
+  int max_iter;         ///< Newton iterations at most; 30
+  dal_solve_opts solve; ///< the integrator of the arcs and of the multipliers (an explicit
+                        ///< method, see dal_state_transition); defaults with rtol 1e-11
+} dal_orbit_opts;
+
+/// The defaults (see the fields); period must still be set.
+DAL_API dal_orbit_opts dal_default_orbit_opts(void);
+
+/// What dal_periodic_orbit found.
+typedef struct dal_orbit_report {
+  int iterations;             ///< Newton steps taken
+  double period;              ///< the orbit's period (the fixed one, or the one found)
+  double residual;            ///< the final return gap max_i |y_i(T) - y_i(0)| / (1 + |y_i(0)|)
+  dal_floquet_report floquet; ///< the orbit's multipliers' report (dal_floquet); with a free
+                              ///< period the trivial multiplier along the orbit (and its
+                              ///< partner when det = 1, the neighbouring orbits of other
+                              ///< energy) is left out of the verdict
+} dal_orbit_report;
+
+/// A periodic orbit through (near) the state by Newton shooting on the exact
+/// state-transition matrix (single shooting): y(t + T; y0) = y0, Newton matrix Phi - I from
+/// dal_state_transition, with the free period as one more unknown and the phase condition
+/// f(y0) . dy0 = 0 for an autonomous scene. With m constraint rows the correction lies in the
+/// tangent space of the manifold (the basis of dal_floquet) and the start is made consistent
+/// after each step (dal_make_consistent). The start time is the state's t (the drive's phase).
+///  mu_re, mu_im (2(n - m) each, nullable): the orbit's Floquet multipliers (dal_floquet).
+///  rep (nullable): iterations, period, residual, multipliers' report.
+/// On success the state holds the orbit's start (t, q, qdot), evaluated; on failure the state
+/// as given. An orbit whose arc is too unstable for one shot (|mu| ~ 1/rtol) needs a start
+/// close to it (multiple shooting is not offered).
+/// Returns DAL_OK; DAL_E_ARG (options); DAL_E_CONV (no convergence in max_iter steps: the
+/// message gives the gap, start and period); DAL_E_SINGULAR (Phi - I singular: a multiplier at
+/// 1); the statuses of dal_state_transition, dal_make_consistent and dal_floquet.
+DAL_API int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opts *o,
+                               double *mu_re, double *mu_im, dal_orbit_report *rep);
+
+/// What dal_relative_equilibrium found.
+typedef struct dal_relative_report {
+  int iterations;  ///< Newton steps taken
+  double residual; ///< max |g(y)| / max(|qddot|, |P qdot|) at the solution (g: the
+                   ///< co-rotating field, zero at a relative equilibrium)
+} dal_relative_report;
+
+/// A relative equilibrium of a scene in Cartesian coordinates turning uniformly at `rate`
+/// (rad/time) about the axis through the origin along `axis` (3 values, any length > 0): the
+/// motion q(t) = exp(P (t - t0)) q*, qdot = P q, with P the rotation generator acting on every
+/// particle's (x, y, z) (a conical pendulum, a bead on a turning circle, in Cartesian
+/// coordinates). Found by Newton's method (minimum-norm steps: the relative equilibria of a
+/// symmetric scene form a circle) on the co-rotating field g(y) = f(t0, y) - diag(P, P) y in
+/// the constraint manifold's tangent space, starting from the state's q (its qdot is replaced
+/// by P q). The scene must be equivariant under the rotation (gravity along the axis,
+/// constraints symmetric about it or turning with the frame).
+///  lambda_re, lambda_im (2(n - m) each, nullable): the eigenvalues of Dg on the manifold's
+///    tangent space, sorted by decreasing real part: the small oscillations seen from the
+///    turning frame (+-i omega; zeros for the directions along the family).
+///  rep (nullable): iterations and residual.
+/// Every particle must be placed by dal_map_cartesian3 on three coordinates of its own (no
+/// parent); else DAL_E_UNSUPPORTED (a scene in co-rotating coordinates is steady:
+/// dal_equilibrium and dal_normal_modes apply there). On success the state holds (t0, q*, P q*),
+/// evaluated; on failure the state as given.
+/// Returns DAL_OK; DAL_E_ARG (not 3D, axis, rate); DAL_E_UNSUPPORTED; DAL_E_CONV (no convergence
+/// in 50 steps); DAL_E_SINGULAR (LAPACK); the statuses of dal_make_consistent and
+/// dal_vector_field_jacobian.
+DAL_API int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double *axis,
+                                     double rate, double *lambda_re, double *lambda_im,
+                                     dal_relative_report *rep);
+
+/// Kind of a point reported along a branch of periodic orbits.
+typedef enum dal_orbit_kind {
+  DAL_ORBIT_REGULAR = 0,         ///< a point of the parameter grid
+  DAL_ORBIT_FOLD = 1,            ///< located: a real multiplier crosses +1 (prod (mu - 1)
+                                 ///< changes sign: a fold, or a branch point of orbits)
+  DAL_ORBIT_PERIOD_DOUBLING = 2, ///< located: a real multiplier crosses -1 (prod (mu + 1)
+                                 ///< changes sign): orbits of twice the period branch off
+} dal_orbit_kind;
+
+/// Called at every point of a branch of orbits: the parameter, the system and the state at
+/// the orbit's start, the orbit's report and its multipliers (2(n - m) each), the point's kind.
+/// All valid during the call only. Return 0 to continue, non-zero to stop.
+typedef int dal_orbit_branch_fn(double p, const dal_system *sys, const dal_state *st,
+                                const dal_orbit_report *rep, const double *mu_re,
+                                const double *mu_im, dal_orbit_kind kind, void *ctx);
+
+/// Options of dal_orbit_continue. Always start from dal_default_orbit_continuation_opts().
+typedef struct dal_orbit_continuation_opts {
+  int cookie;           ///< set by dal_default_orbit_continuation_opts; do not touch
+  double p0;            ///< the first parameter value; 0
+  double p1;            ///< the last parameter value (may be below p0); 1
+  int npoints;          ///< grid points, both ends included (>= 2); 41
+  double t;             ///< the orbits' start time (the drive's phase); 0
+  int locate;           ///< locate folds and period doublings by bisection; 1
+  double ptol;          ///< their parameter tolerance; 0: 1e-10 |p1 - p0|
+  dal_orbit_opts orbit; ///< the shooting at every point (period, free_period, xtol, solve)
+  int borrowed;         ///< 1: the systems rebuild gives stay the caller's, valid until
+                        ///< dal_orbit_continue returns (a scene's); 0 (default): the
+                        ///< continuation destroys each with dal_system_destroy
+} dal_orbit_continuation_opts;
+
+/// The defaults (see the fields); orbit.period must still be set.
+DAL_API dal_orbit_continuation_opts dal_default_orbit_continuation_opts(void);
+
+/// Natural-parameter continuation of one branch of periodic orbits: for p on the grid from p0
+/// to p1 build the system (rebuild, as for dal_continue), find the orbit by dal_periodic_orbit
+/// from the previous one's start (y0 = (q, qdot), 2n values, at the first point), and report
+/// it. Between grid points where prod (mu_i - 1) or prod (mu_i + 1) changes sign the crossing
+/// is located by bisection (every trial an orbit solve) and reported as DAL_ORBIT_FOLD or
+/// DAL_ORBIT_PERIOD_DOUBLING before the grid point. Past a fold the branch turns back in p:
+/// the next solve fails or jumps to another branch (the message says where it stopped); no
+/// pseudo-arclength continuation is offered.
+/// Returns DAL_OK (p1 reached); DAL_E_ARG; DAL_E_CALLBACK (rebuild failed or point asked to
+/// stop); the statuses of dal_periodic_orbit (rep->msg names the parameter). rep nullable.
+DAL_API int dal_orbit_continue(dal_rebuild_fn *rebuild, const double *y0,
+                               const dal_orbit_continuation_opts *o, dal_orbit_branch_fn *point,
+                               dal_continuation_report *rep, void *ctx);
 
 #ifdef __cplusplus
 }

@@ -199,6 +199,29 @@ static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opt
   return DAL_OK;
 }
 
+// time dependence is never frozen silently: a point found for an explicitly time-dependent
+// system must be an equilibrium at every time (the driven pendulum's bottom), unless the frozen
+// one is asked for by name
+static int steady(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o) {
+  if (o->frozen_time) return DAL_OK;
+  char why[512];
+  int td = dal_time_dependence(sys, st, why, sizeof why);
+  if (td <= 0) return td;
+  double worst, when;
+  int all = dal__equilibrium_all_times(sys, st, &worst, &when);
+  if (all < 0) return all;
+  if (all) return DAL_OK;
+  char qs[256];
+  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                  "equilibrium: %s, and the point found at t=%.6g, %s, is no equilibrium at "
+                  "t=%.6g (scaled residual %.3g): it holds for the equations frozen at t=%.6g "
+                  "only; for a periodic drive look for a periodic orbit (dal_periodic_orbit, "
+                  "dalembert orbit), or ask for the frozen one by name (opts.frozen_time, "
+                  "dalembert equilibria --frozen)",
+                  why, st->t, qs, when, worst, st->t);
+}
+
 int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                     dal_equilibrium_report *rep) {
   if (!st) return DAL_E_ARG;
@@ -214,13 +237,16 @@ int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_
   int rc = check_eq_opts(o, err, sizeof err);
   if (rc) return DAL_FAIL(st, rc, "%s", err);
   if ((rc = dal__tangent_supported(sys, st, "equilibrium")) != 0) return rc;
-  if (sys->m > 0) return dal__equilibrium_manifold(sys, st, o, rep);
-  newton_ws w;
-  if (newton_alloc(sys, &w))
-    return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory for the Newton workspace");
-  rc = solve(sys, st, o, &w, rep);
-  newton_free(&w);
-  return rc;
+  if (sys->m > 0) {
+    rc = dal__equilibrium_manifold(sys, st, o, rep);
+  } else {
+    newton_ws w;
+    if (newton_alloc(sys, &w))
+      return DAL_FAIL(st, DAL_E_NOMEM, "equilibrium: out of memory for the Newton workspace");
+    rc = solve(sys, st, o, &w, rep);
+    newton_free(&w);
+  }
+  return rc ? rc : steady(sys, st, o);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -286,7 +312,9 @@ static int solve_point(dal_rebuild_fn *rebuild, double p, const double *guess, i
   if (z != zero) free(z);
   if (!rc) rc = dal_equilibrium(pt->sys, pt->st, &o->newton, NULL);
   dal_modes md;
-  if (!rc) rc = dal_normal_modes(pt->sys, pt->st, NULL, NULL, NULL, NULL, &md);
+  if (!rc)
+    rc = (o->newton.frozen_time ? dal_normal_modes_frozen : dal_normal_modes)(
+        pt->sys, pt->st, NULL, NULL, NULL, NULL, &md);
   if (rc) {
     snprintf(r->msg, sizeof r->msg, "at p=%.17g: %s", p, dal_state_errmsg(pt->st));
     point_free(pt);

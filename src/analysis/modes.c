@@ -200,8 +200,10 @@ static int modes_stability(dal_state *st, modes_work *W, double *lambda_re, doub
   return DAL_OK;
 }
 
-int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
-                     double *lambda_re, double *lambda_im, dal_modes *out) {
+// the modes at the state; frozen: 1 to accept an explicitly time-dependent system (its
+// frozen linearization), 0 to refuse one
+static int normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
+                        double *lambda_re, double *lambda_im, dal_modes *out, int frozen) {
   if (!st) return DAL_E_ARG;
   if (!sys || st->sys != sys)
     return DAL_FAIL(st, DAL_E_STATE, "normal_modes: the state belongs to another system");
@@ -216,6 +218,28 @@ int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, doubl
                     "on %d coordinate(s), first '%s'): nothing can oscillate, so there are no "
                     "modes and no verdict; if some rows repeat others, remove them",
                     sys->m, n, sys->m ? sys->con[0].name : "");
+  // time dependence is never frozen silently: on a time-dependent scene the modes hold only
+  // where the motion through the state is steady for its linearization (a relative
+  // equilibrium of a turning constraint); else refused unless asked for by name
+  char why[512];
+  int td = dal_time_dependence(sys, st, why, sizeof why);
+  if (td < 0) return td;
+  if (td == 1 && !frozen) {
+    double worst = 0.0;
+    int steady = dal__steady_modes(sys, st, &worst);
+    if (steady < 0) return steady;
+    if (steady) {
+      td = 0; // the modes of a steady motion are not frozen ones
+    } else {
+      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
+                      "normal_modes: %s, and the linearization changes along the motion "
+                      "(eigenvalues %.3g apart, relative, within t + 4.3): a linearization "
+                      "frozen at t=%.6g says nothing about the motion; for a periodic drive use "
+                      "dal_floquet (dalembert floquet) over its period; dal_normal_modes_frozen "
+                      "(dalembert modes --frozen) gives the frozen modes by name",
+                      why, worst, st->t);
+    }
+  }
   size_t sn = (size_t)n, sk = (size_t)k;
   dal_tangent *tg = NULL;
   double *buf = NULL;
@@ -241,7 +265,18 @@ int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, doubl
     rc = modes_undamped(sys, st, &W, omega2, shapes);
     if (!rc) rc = modes_stability(st, &W, lambda_re, lambda_im, out);
   }
+  if (!rc && out) out->frozen = td == 1;
   free(buf);
   dal__tangent_free(tg);
   return rc;
+}
+
+int dal_normal_modes(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
+                     double *lambda_re, double *lambda_im, dal_modes *out) {
+  return normal_modes(sys, st, omega2, shapes, lambda_re, lambda_im, out, 0);
+}
+
+int dal_normal_modes_frozen(const dal_system *sys, dal_state *st, double *omega2, double *shapes,
+                            double *lambda_re, double *lambda_im, dal_modes *out) {
+  return normal_modes(sys, st, omega2, shapes, lambda_re, lambda_im, out, 1);
 }
