@@ -68,6 +68,7 @@ typedef struct {
   ...;
 } dal_stats;
 int dal_state_stats(const dal_state *st, dal_stats *out);
+int dal_advance(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t1);
 
 typedef struct {
   double T; double U; double E; double h; double W;

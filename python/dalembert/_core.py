@@ -570,9 +570,10 @@ class Scene:
         v0 = v0 if qdot is None else _vector("qdot", qdot, n)
         return self._state(t0, np.concatenate([q0, v0]))
 
-    def equilibrium(self, q=None, t=None, xtol=None, max_iter=None):
+    def equilibrium(self, q=None, t=None, xtol=None, max_iter=None, max_step=None):
         """An equilibrium by Newton from q (default the initial q) at time t, with its normal
-        modes: an Equilibrium (q, multipliers, report, modes)."""
+        modes: an Equilibrium (q, multipliers, report, modes). max_step bounds each Newton
+        step (|dq_i|), which keeps it near the start."""
         n = lib.dal_system_ncoords(self._h.sys)
         st = self._analysis_state(t, q, np.zeros(n))
         o = ffi.new("dal_equilibrium_opts *", lib.dal_default_equilibrium_opts())
@@ -582,6 +583,8 @@ class Scene:
             if isinstance(max_iter, bool) or not isinstance(max_iter, numbers.Integral):
                 raise TypeError("max_iter must be an int")
             o.max_iter = int(max_iter)
+        if max_step is not None:
+            o.max_step = _real("max_step", max_step, positive=True)
         rep = ffi.new("dal_equilibrium_report *")
         rc = lib.dal_equilibrium(self._h.sys, st, o, rep)
         if rc:
@@ -593,7 +596,7 @@ class Scene:
         return Equilibrium(qs, lam, dict(iterations=rep.iterations, step=rep.step,
                                          accel=rep.accel, unsteady=rep.unsteady), modes)
 
-    def equilibria(self, starts=None, t=None):
+    def equilibria(self, starts=None, t=None, max_step=None):
         """Equilibria found by Newton from the initial q and from each q of `starts`,
         duplicates (within 1e-8) removed."""
         n = lib.dal_system_ncoords(self._h.sys)
@@ -602,7 +605,7 @@ class Scene:
         found = []
         for q in qs:
             try:
-                e = self.equilibrium(q, t)
+                e = self.equilibrium(q, t, max_step=max_step)
             except (ModelError, IntegrationError):
                 continue
             if not any(np.max(np.abs(e.q - f.q)) <= 1e-8 * (1 + np.max(np.abs(f.q)))
@@ -746,11 +749,11 @@ class Scene:
         return t[order], y[order]
 
     def sweep(self, grid, t1=None, y0=None, threads=1, what="final", method=None, rtol=None,
-              atol=None):
+              atol=None, max_step=None):
         """Runs over the grid of parameter values (a dict name -> values; the last name runs
         fastest), `threads` at a time in C. what="final": the state at t1 of each run
         (a SweepResult with y: points x 2n); what="equilibrium": the equilibrium Newton finds
-        from y0's q at each point and its stability. Scene parameters (`param` lines) rebuild
+        from y0's q at each point (max_step: Newton's step bound) and its stability. Scene parameters (`param` lines) rebuild
         the model per point; library parameter names (params.h: "mass:bob", "gravity:1",
         "spring:0:k") run through dal_sweep_run on one system."""
         if not isinstance(grid, dict) or not grid:
@@ -787,8 +790,10 @@ class Scene:
         t1 = self.run["t1"] if t1 is None else _real("t1", t1)
         if lib_names and what == "final":
             return self._sweep_lib(names, values, y0, t0, t1, threads, method, rtol, atol)
+        if max_step is not None:
+            max_step = _real("max_step", max_step, positive=True)
         return self._sweep_rebuild(names, values, y0, t0, t1, threads, what, method, rtol,
-                                   atol)
+                                   atol, max_step)
 
     def _sweep_lib(self, names, values, y0, t0, t1, threads, method, rtol, atol):
         sys = self._h.sys
@@ -809,7 +814,8 @@ class Scene:
         m = [ffi.string(msgs + 256 * i).decode() for i in range(ntraj)]
         return SweepResult(names, values, res, status, m, None)
 
-    def _sweep_rebuild(self, names, values, y0, t0, t1, threads, what, method, rtol, atol):
+    def _sweep_rebuild(self, names, values, y0, t0, t1, threads, what, method, rtol, atol,
+                       max_step):
         ntraj = values.shape[0]
         n = lib.dal_system_ncoords(self._h.sys)
         res = np.full((ntraj, 2 * n), np.nan)
@@ -828,7 +834,7 @@ class Scene:
                             raise ValueError(f"what='{what}' sweeps scene parameters only")
                         sc.params[p] = values[i, j]
                     if what == "equilibrium":
-                        e = sc.equilibrium(y0[:n], t0)
+                        e = sc.equilibrium(y0[:n], t0, max_step=max_step)
                         res[i, :n], res[i, n:] = e.q, 0.0
                         verdict[i] = e.modes.verdict
                     else:
@@ -857,7 +863,8 @@ class Scene:
 
 
 def _p(a):
-    return ffi.from_buffer("double[]", a)
+    # a column-major (order="F") matrix is the C-contiguous buffer of its transpose
+    return ffi.from_buffer("double[]", a if a.flags.c_contiguous else a.T)
 
 
 def _vec(p, n):
