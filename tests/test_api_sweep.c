@@ -209,7 +209,8 @@ static void sw_dal_status_string(void) {
   CHECK(strcmp(dal_status_string(DAL_OK), "ok") == 0);
 }
 static void sw_dal_status_name(void) {
-  CHECK(strcmp(dal_status_name(3), "DAL_UNKNOWN") == 0);
+  CHECK(strcmp(dal_status_name(4), "DAL_UNKNOWN") == 0);
+  CHECK(strcmp(dal_status_name(3), "DAL_CANCELLED") == 0);
   CHECK(strcmp(dal_status_name(1), "DAL_STOPPED") == 0); // the positive statuses
   CHECK(strcmp(dal_status_name(2), "DAL_EVENT") == 0);
   CHECK(strcmp(dal_status_name(INT_MAX), "DAL_UNKNOWN") == 0);

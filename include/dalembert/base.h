@@ -50,13 +50,15 @@ extern "C" {
 /// The one list of status codes: X(name, value, description).
 /// 0 is success; every failure is negative. The positive codes are not failures: dal_evolve
 /// returns DAL_STOPPED when a monitor asked to stop before the end time, dal_advance and
-/// dal_evolve return DAL_EVENT when a terminal event stopped them (events.h). A detailed
+/// dal_evolve return DAL_EVENT when a terminal event stopped them (events.h), and every run
+/// returns DAL_CANCELLED when the cancel hook of its options asked it to stop (solve.h). A detailed
 /// message naming the culprit and a remedy is kept by the object that failed (dal_builder_errmsg,
 /// dal_state_errmsg).
 #define DAL_STATUS_LIST(X)                                                                         \
   X(DAL_OK, 0, "ok")                                                                               \
   X(DAL_STOPPED, 1, "stopped early by a monitor (not an error)")                                   \
   X(DAL_EVENT, 2, "stopped at a terminal event (not an error)")                                    \
+  X(DAL_CANCELLED, 3, "cancelled by the caller's cancel hook (not an error)")                      \
   X(DAL_E_ARG, -1, "invalid argument (index, dimension, count or option)")                         \
   X(DAL_E_NOMEM, -2, "out of memory")                                                              \
   X(DAL_E_NONFINITE, -3, "non-finite input (NaN or inf)")                                          \
@@ -76,7 +78,7 @@ extern "C" {
   X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")
 
 #ifdef DAL_DOXYGEN
-/// Status codes returned by every fallible dalembert call: DAL_OK (0), the two positive
+/// Status codes returned by every fallible dalembert call: DAL_OK (0), the three positive
 /// statuses that are not failures, and the negative failure codes. (The API reference reads
 /// this spelled-out copy; the compiler reads DAL_STATUS_LIST. The reference's ctest checks that
 /// both give the same names and values.)
@@ -84,6 +86,7 @@ typedef enum dal_status {
   DAL_OK = 0,              ///< ok
   DAL_STOPPED = 1,         ///< stopped early by a monitor (not an error)
   DAL_EVENT = 2,           ///< stopped at a terminal event (not an error)
+  DAL_CANCELLED = 3,       ///< cancelled by the caller's cancel hook (not an error)
   DAL_E_ARG = -1,          ///< invalid argument (index, dimension, count or option)
   DAL_E_NOMEM = -2,        ///< out of memory
   DAL_E_NONFINITE = -3,    ///< non-finite input (NaN or inf)

@@ -216,6 +216,16 @@ typedef enum dal_linsol {
   DAL_LINSOL_KLU,      ///< sparse KLU with a library-assembled Jacobian (DAE forms)
 } dal_linsol;
 
+/// Cancel hook of a run (dal_solve_opts.cancel): called with opts.cancel_ctx once after every
+/// accepted step of dal_advance, dal_evolve and dal_evolve_at (and of the analyses that run
+/// them). Return 0 to go on, nonzero to stop there: the run returns DAL_CANCELLED (a positive
+/// status, not an error), the state holds that last accepted step, evaluated, every output time
+/// up to it has been served to the monitor, and dal_state_errmsg says where it stopped. It must
+/// be cheap and must not touch the state; a flag set by a signal handler or another thread (read
+/// as volatile or atomic) is the intended use (the command line's Ctrl-C, Python's
+/// KeyboardInterrupt).
+typedef int dal_cancel_fn(void *ctx);
+
 /// Options for advance/evolve. Always start from dal_default_solve_opts().
 typedef struct dal_solve_opts {
   int cookie;             ///< set by dal_default_solve_opts; do not touch
@@ -262,6 +272,9 @@ typedef struct dal_solve_opts {
                           ///< docs/dae.md), recorded in dal_stats and in the state's message.
                           ///< An explicit formulation or method is honoured as asked: its
                           ///< failure message names this fallback as the remedy.
+  dal_cancel_fn *cancel;  ///< cancel hook (dal_cancel_fn), or NULL (default): asked after every
+                          ///< accepted step; nonzero stops the run with DAL_CANCELLED
+  void *cancel_ctx;       ///< passed to cancel (borrowed), default NULL
 } dal_solve_opts;
 
 /// atol = DAL_ATOL_PER_RTOL * rtol when opts.atol is 0 (the default). atol = rtol reaches a

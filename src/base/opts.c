@@ -131,8 +131,11 @@ int dal__check_opts(dal_state *st, const dal_solve_opts *o) {
 // clang-format on
 #define DAL_OPTS_SIZE(f) +sizeof(((dal_solve_opts *)0)->f)
 // a new field changes the size: add it to DAL_OPTS_FIELDS, then update this check
-// (4 bytes of padding follow no_fallback)
-_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) + 4 == 120 && sizeof(dal_solve_opts) == 120,
+// (4 bytes of padding follow no_fallback). The cancel hook and its context are read by each
+// run from its own options, so a changed hook keeps the integrator: they are not listed
+_Static_assert(0 DAL_OPTS_FIELDS(DAL_OPTS_SIZE) + 4 + sizeof(dal_cancel_fn *) + sizeof(void *) ==
+                       136 &&
+                   sizeof(dal_solve_opts) == 136,
                "dal_solve_opts changed: list every field in DAL_OPTS_FIELDS");
 
 dal_solve_opts dal__effective_opts(const dal_solve_opts *o) {

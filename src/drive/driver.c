@@ -337,6 +337,17 @@ static int serve_next(run *r) {
   return output_done(r, r->tnext, 0);
 }
 
+// the cancel hook asked to stop after the step [a, b]: the state at b, evaluated
+static DAL__COLD int cancel_here(run *r, double b) {
+  int rc = place_end(r, b);
+  if (rc) return r->status = rc;
+  DAL_FAIL(r->st, DAL_CANCELLED,
+           "%s cancelled by the caller's cancel hook at t=%.17g (the last accepted step; the "
+           "state holds it)",
+           r->what, r->st->t);
+  return stop_here(r, DAL_CANCELLED);
+}
+
 // after every accepted step [a, b]: the outputs and event crossings inside it, in time order
 static int after_step(void *p) {
   run *r = p;
@@ -382,6 +393,8 @@ static int after_step(void *p) {
   }
   // opts.max_steps counts from the last output
   if (r->k != k0) r->h->it->ops->new_output(r->h->it);
+  // the caller's cancel hook: the run ends at this accepted step, evaluated
+  if (r->o->cancel && r->o->cancel(r->o->cancel_ctx)) return cancel_here(r, b);
   return DAL_OK;
 }
 
@@ -405,7 +418,7 @@ again:;
     return evaluate_here(sys, st);
   }
   // the hook only when someone looks: a monitor at output times, events, or a trajectory
-  int hooked = (r->outputs && r->monitor) || r->ev || st->traj;
+  int hooked = (r->outputs && r->monitor) || r->ev || st->traj || r->o->cancel;
   if (r->ev && (rc = dal__events_begin(r->ev, st)) != 0) return rc;
   r->status = DAL_OK;
   rc = h->it->ops->advance(h->it, t1, hooked ? after_step : NULL, r);
