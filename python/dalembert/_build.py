@@ -16,12 +16,10 @@ import cffi
 # Only names: every struct is partial ("...;") and every enum takes its values from the
 # headers ("..."), so nothing here can drift from the C declarations.
 CDEF = r"""
-typedef enum { DAL_OK, DAL_STOPPED, DAL_EVENT, DAL_E_ARG, DAL_E_NOMEM,
+typedef enum { DAL_OK, DAL_STOPPED, DAL_EVENT, DAL_CANCELLED, DAL_E_ARG, DAL_E_NOMEM,
   DAL_E_NONFINITE, DAL_E_DOMAIN, DAL_E_SINGULAR, DAL_E_CALLBACK, DAL_E_CONSTRAINT, DAL_E_INIT,
   DAL_E_STEP, DAL_E_MAXSTEPS, DAL_E_CONV, DAL_E_SOLVER, DAL_E_TIME, DAL_E_STATE,
   DAL_E_UNSUPPORTED, DAL_E_IO, DAL_E_VERIFY, ... } dal_status;
-#define PYD_HAVE_CANCEL ...
-#define PYD_CANCELLED ...
 const char *dal_status_string(int status);
 const char *dal_status_name(int status);
 const char *dal_version(void);
@@ -185,15 +183,6 @@ SOURCE = r"""
 #include <dalembert/analysis.h>
 #include <dalembert/ensemble.h>
 
-/* the cancel hook (solve.h) when the headers have it */
-#ifndef PYD_HAVE_CANCEL
-#define PYD_HAVE_CANCEL 0
-#endif
-#if PYD_HAVE_CANCEL
-#define PYD_CANCELLED DAL_CANCELLED
-#else
-#define PYD_CANCELLED 3
-#endif
 
 typedef struct pyd_rows {
   long cap, len;
@@ -234,13 +223,10 @@ static int pyd_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
 
 static int pyd_cancel_fn(void *ctx) { return __atomic_load_n((int *)ctx, __ATOMIC_RELAXED); }
 
+/* the cancel hook (solve.h): the int Ctrl-C sets, read after every accepted step */
 static void pyd_set_cancel(dal_solve_opts *o, int *cancel) {
-#if PYD_HAVE_CANCEL
   o->cancel = cancel ? pyd_cancel_fn : NULL;
   o->cancel_ctx = cancel;
-#else
-  (void)o, (void)cancel, (void)pyd_cancel_fn;
-#endif
 }
 
 int pyd_solve(const dal_system *sys, dal_state *st, dal_solve_opts *o, int grid, double t1,

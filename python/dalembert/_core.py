@@ -141,15 +141,26 @@ def _cancellable(fn, *args, cancel):
     if threading.current_thread() is not threading.main_thread():
         return fn(*args), False
     box = []
-    th = threading.Thread(target=lambda: box.append(fn(*args)), daemon=True)
+    done = threading.Event()
+
+    def work():
+        try:
+            box.append(fn(*args))
+        finally:
+            done.set()
+
+    th = threading.Thread(target=work, daemon=True)
     th.start()
     interrupted = False
-    while th.is_alive():
+    # wait on an Event, not in Thread.join: a KeyboardInterrupt inside join can leave the
+    # thread marked as finished while it still runs (CPython issue 90882)
+    while not done.is_set():
         try:
-            th.join(0.02)
+            done.wait(0.02)
         except KeyboardInterrupt:
             cancel[0] = 1
             interrupted = True
+    th.join()
     return box[0], interrupted
 
 
@@ -550,7 +561,7 @@ class Scene:
                                        evs if evs is not None else ffi.NULL, cancel,
                                        cancel=cancel)
         res = Result(self, st, rc, rows.len, bufs, n, tr, evs, evnames)
-        if rc == lib.PYD_CANCELLED or interrupted:
+        if rc == lib.DAL_CANCELLED or interrupted:
             raise Cancelled(res.message or "cancelled by Ctrl-C", res)
         if rc < 0:
             raise _error(rc, res.message, res)
@@ -913,7 +924,7 @@ class Result:
 
     def __init__(self, scene, st, rc, k, bufs, n, tr, evs, evnames):
         self.status = rc
-        self.success = rc >= 0 and rc != lib.PYD_CANCELLED
+        self.success = rc >= 0 and rc != lib.DAL_CANCELLED
         self.message = _s(lib.dal_state_errmsg(st)) or ("reached the end of t_span" if rc == 0
                                                          else _s(lib.dal_status_string(rc)))
         self.t = bufs["t"][:k]
