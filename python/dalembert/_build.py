@@ -158,6 +158,8 @@ int pyd_solve(const dal_system *sys, dal_state *st, dal_solve_opts *o, int grid,
               dal_events *ev, int *cancel);
 int pyd_lyapunov(const dal_system *sys, dal_state *st, dal_lyapunov_opts *o, double *exps,
                  double *errs, int *cancel);
+void pyd_sigint_begin(int *cancel);
+void pyd_sigint_end(void);
 char *pyd_scene_text(const dal_scene *sc, int show, dal_expr_format fmt, int *rc, char *msg,
                      size_t msglen);
 void pyd_free(void *p);
@@ -174,6 +176,7 @@ int pyd_sweep(const dal_system *sys, int nparam, const char *const *names,
 SOURCE = r"""
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -222,6 +225,31 @@ static int pyd_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
 }
 
 static int pyd_cancel_fn(void *ctx) { return __atomic_load_n((int *)ctx, __ATOMIC_RELAXED); }
+
+/* Ctrl-C during a C call of the main thread: Python's SIGINT handler is replaced by one that
+   sets the run's cancel flag, and put back after the call (one call at a time: the main
+   thread's; the module's only mutable statics) */
+static int *pyd_sig_flag;
+static struct sigaction pyd_sig_old;
+
+static void pyd_on_sigint(int sig) {
+  (void)sig;
+  if (pyd_sig_flag) __atomic_store_n(pyd_sig_flag, 1, __ATOMIC_RELAXED);
+}
+
+void pyd_sigint_begin(int *cancel) {
+  struct sigaction sa;
+  memset(&sa, 0, sizeof sa);
+  sa.sa_handler = pyd_on_sigint;
+  sigemptyset(&sa.sa_mask);
+  pyd_sig_flag = cancel;
+  sigaction(SIGINT, &sa, &pyd_sig_old);
+}
+
+void pyd_sigint_end(void) {
+  sigaction(SIGINT, &pyd_sig_old, NULL);
+  pyd_sig_flag = NULL;
+}
 
 /* the cancel hook (solve.h): the int Ctrl-C sets, read after every accepted step */
 static void pyd_set_cancel(dal_solve_opts *o, int *cancel) {

@@ -4,7 +4,10 @@
 import math
 import numbers
 import os
+import signal
 import threading
+
+import _signal
 
 import numpy as np
 
@@ -133,35 +136,23 @@ def _choice(name, x, table):
 
 
 # ---------------------------------------------------------------------------------------------
-# running C work cancellably: the C call in a worker thread (cffi releases the GIL), the main
-# thread waiting in short joins; Ctrl-C sets the int the C cancel hook reads
+# running C work cancellably: in the main thread, with Python's default SIGINT handler in
+# place, the C call runs under a C handler that sets the int the library's cancel hook reads
+# (dal_solve_opts.cancel: asked after every accepted step); the GIL is released meanwhile (cffi).
+# A worker thread with the main thread waiting in short joins was the first design: its
+# hand-off cost 0.2 - 1 ms per call, more than a small run.
 
 
 def _cancellable(fn, *args, cancel):
-    if threading.current_thread() is not threading.main_thread():
+    if threading.current_thread() is not threading.main_thread() or \
+            _signal.getsignal(_signal.SIGINT) is not signal.default_int_handler:
         return fn(*args), False
-    box = []
-    done = threading.Event()
-
-    def work():
-        try:
-            box.append(fn(*args))
-        finally:
-            done.set()
-
-    th = threading.Thread(target=work, daemon=True)
-    th.start()
-    interrupted = False
-    # wait on an Event, not in Thread.join: a KeyboardInterrupt inside join can leave the
-    # thread marked as finished while it still runs (CPython issue 90882)
-    while not done.is_set():
-        try:
-            done.wait(0.02)
-        except KeyboardInterrupt:
-            cancel[0] = 1
-            interrupted = True
-    th.join()
-    return box[0], interrupted
+    lib.pyd_sigint_begin(cancel)
+    try:
+        rc = fn(*args)
+    finally:
+        lib.pyd_sigint_end()
+    return rc, bool(cancel[0])
 
 
 # ---------------------------------------------------------------------------------------------
@@ -351,6 +342,13 @@ class Scene:
         return (f"Scene({self._h.name!r}: coords {self.coords}, particles {self.particles}, "
                 f"params {dict(self.params.items())})")
 
+    def _initial_state(self):
+        st = ffi.new("dal_state **")
+        rc = lib.dal_scene_state(self._h.ptr, st)
+        if rc:
+            raise _error(rc, f"{self._h.name}: the scene's initial state was refused")
+        return ffi.gc(st[0], lib.dal_state_destroy)
+
     def _initial(self):
         st = ffi.new("dal_state **")
         rc = lib.dal_scene_state(self._h.ptr, st)
@@ -396,19 +394,22 @@ class Scene:
         return o
 
     def _state(self, t0, y0):
-        n = lib.dal_system_ncoords(self._h.sys)
-        st = ffi.new("dal_state **")
-        rc = lib.dal_state_create(self._h.sys, st)
-        if rc:
-            raise _error(rc, "creating a state failed")
-        st = ffi.gc(st[0], lib.dal_state_destroy)
+        sys = self._h.sys
+        n = lib.dal_system_ncoords(sys)
         if y0 is None:
-            _, q, v = self._initial()
+            # the scene's initial state, moved to t0 when that is another time
+            st = self._initial_state()
+            if lib.dal_state_time(st) == t0:
+                return st
+            q, v = _vec(lib.dal_state_q(st), n), _vec(lib.dal_state_qdot(st), n)
         else:
-            q, v = y0[:n], y0[n:]
-        q, v = np.ascontiguousarray(q), np.ascontiguousarray(v)
-        rc = lib.dal_state_set(self._h.sys, st, t0, ffi.from_buffer("double[]", q),
-                               ffi.from_buffer("double[]", v))
+            p = ffi.new("dal_state **")
+            rc = lib.dal_state_create(sys, p)
+            if rc:
+                raise _error(rc, "creating a state failed")
+            st = ffi.gc(p[0], lib.dal_state_destroy)
+            q, v = np.ascontiguousarray(y0[:n]), np.ascontiguousarray(y0[n:])
+        rc = lib.dal_state_set(sys, st, t0, _p(q), _p(v))
         if rc:
             raise _error(rc, _s(lib.dal_state_errmsg(st)))
         return st
