@@ -437,6 +437,8 @@ class Scene:
             if rc:
                 raise _error(rc, "the scene's events")
             evs = ffi.gc(ev[0], lib.pyd_events_destroy)
+            if lib.dal_events_size(evs) == 0:
+                return None, []  # an empty set attached would still ask for dense output
             names = [_s(lib.dal_events_name(evs, i)) for i in range(lib.dal_events_size(evs))]
             return evs, names
         if isinstance(events, (str, dict)):

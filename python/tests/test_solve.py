@@ -155,3 +155,14 @@ def test_methods_are_honoured():
         assert r.stats["method"] == name
     r = sc.solve((0, 1), method="rk4", fixed_step=1e-3)
     assert r.stats["method"] == "rk4"
+
+
+def test_a_single_output_agrees_with_dal_advance():
+    # the sweep advances each point by dal_advance without hooks; solve's run has a monitor
+    # and the cancel hook (Bulirsch-Stoer in its dense mode): equal within the tolerance
+    sc = dal.Scene.parse(PENDULUM)
+    one = sc.solve((0, 2), t_eval=[2.0])
+    swept = sc.sweep({"g": [9.81]}, t1=2.0)
+    assert one.t.size == 1 and one.t[0] == 2.0
+    assert np.max(np.abs(one.y[:, 0] - swept.y[0])) < 1e-9
+    np.testing.assert_array_equal(one.y_final, one.y[:, 0])
