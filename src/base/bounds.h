@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Every threshold that chooses a code path or a tolerance, in one place, with its reason.
-#ifndef DAL_BOUNDS_H
-#define DAL_BOUNDS_H
+#ifndef DAL_BASE_BOUNDS_H
+#define DAL_BASE_BOUNDS_H
 
 #include <float.h>
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// SUNDIALS IDA glue for the DAE formulations of form_dae.c (GGL, index-3, index-1): setup,
+// SUNDIALS IDA glue for the DAE formulations of form/dae.c (GGL, index-3, index-1): setup,
 // tolerances, the residual and Newton-matrix callbacks, advance, and failures named.
 //
 // lambda and mu are algebraic and kept out of IDA's error test (IDASetId + IDASetSuppressAlg).
-// The Newton matrix comes from form_dae.c (exact pieces, no difference quotients) with KLU, and
+// The Newton matrix comes from form/dae.c (exact pieces, no difference quotients) with KLU, and
 // with the dense solver when it is the whole Jacobian (dal__dae_newton_exact); otherwise the
 // dense solver uses IDA's difference quotients.
 #include <float.h>

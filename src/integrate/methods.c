@@ -23,7 +23,7 @@ static const dal_method_row rows[] = {
     // [0, 20] on the pendulum at 2.5 rad a request of 1e-12 gave 62 ... 190 x rtol, so it runs
     // as 1e-11: tests/test_dense.c
     {DAL_METHOD_BDF, "bdf", 0.0001, dal__cvode_create, ODE_ONLY, DAL__DAE_FORMS, 1e-11, 0},
-    // fixed-step structure-preserving methods (ode_symplectic.c): no error control
+    // fixed-step structure-preserving methods (symplectic.c): no error control
     {DAL_METHOD_VARIATIONAL, "variational", 1.0, dal__symplectic_create, 0, 0, 0, 1},
     {DAL_METHOD_VARIATIONAL4, "variational4", 1.0, dal__symplectic_create, 0, 0, 0, 1},
     {DAL_METHOD_VARIATIONAL6, "variational6", 1.0, dal__symplectic_create, 0, 0, 0, 1},
