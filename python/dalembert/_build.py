@@ -151,8 +151,10 @@ typedef struct {
   long cap, len;
   int n, N, d, m, drop;
   double *t, *q, *qdot, *pos, *lam, *energy;
+  double tnow;
   ...;
 } pyd_rows;
+double pyd_progress(pyd_rows *rows);
 int pyd_solve(const dal_system *sys, dal_state *st, dal_solve_opts *o, int grid, double t1,
               double dt, const double *times, size_t ntimes, pyd_rows *rows, dal_trajectory *tr,
               dal_events *ev, int *cancel);
@@ -192,7 +194,14 @@ typedef struct pyd_rows {
   int n, N, d, m;
   int drop; /* rows past cap: dropped (the end time added to t_eval) or a failure */
   double *t, *q, *qdot, *pos, *lam, *energy;
+  double tnow; /* time of the last output, read by the progress bar's thread */
 } pyd_rows;
+
+double pyd_progress(pyd_rows *r) {
+  double t;
+  __atomic_load(&r->tnow, &t, __ATOMIC_RELAXED);
+  return t;
+}
 
 /* one output row into the caller's numpy buffers: no Python per step */
 static int pyd_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
@@ -201,7 +210,9 @@ static int pyd_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   if (r->len >= r->cap) return r->drop ? 0 : -1;
   long i = r->len;
   size_t n = (size_t)r->n;
-  r->t[i] = dal_state_time(st);
+  double t = dal_state_time(st);
+  r->t[i] = t;
+  __atomic_store(&r->tnow, &t, __ATOMIC_RELAXED);
   memcpy(r->q + i * n, dal_state_q(st), n * sizeof(double));
   memcpy(r->qdot + i * n, dal_state_qdot(st), n * sizeof(double));
   if (r->pos) {

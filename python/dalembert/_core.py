@@ -155,6 +155,32 @@ def _cancellable(fn, *args, cancel):
     return rc, bool(cancel[0])
 
 
+class _Progress:
+    """A text progress bar on sys.stderr, redrawn every 0.1 s by a thread while C works."""
+
+    def __init__(self, rows, t0, t1):
+        self.rows, self.t0, self.t1 = rows, t0, t1
+        self.stop = threading.Event()
+        self.th = threading.Thread(target=self._run, daemon=True)
+        self.th.start()
+
+    def _draw(self, end="\r"):
+        import sys
+        t = lib.pyd_progress(self.rows)
+        f = min(1.0, (t - self.t0) / (self.t1 - self.t0)) if self.t1 > self.t0 else 1.0
+        sys.stderr.write(f"\r[{'#' * int(30 * f):<30}] {100 * f:5.1f}%  t = {t:.6g}{end}")
+        sys.stderr.flush()
+
+    def _run(self):
+        while not self.stop.wait(0.1):
+            self._draw()
+
+    def close(self):
+        self.stop.set()
+        self.th.join()
+        self._draw("\n")
+
+
 # ---------------------------------------------------------------------------------------------
 # scenes
 
@@ -486,7 +512,7 @@ class Scene:
 
     def solve(self, t_span=None, y0=None, method=None, rtol=None, atol=None, t_eval=None,
               dense_output=False, events=None, *, dt=None, formulation=None, max_steps=None,
-              fixed_step=None):
+              fixed_step=None, progress=False):
         """Integrate the scene, like scipy.integrate.solve_ivp (docs/python.md).
 
         t_span (t0, t1): default the scene's run line. y0: (q, qdot) of 2n values; default the
@@ -494,7 +520,8 @@ class Scene:
         default the scene's run line. rtol, atol: default the scene's. t_eval: output times
         (sorted, inside t_span); default the grid t0 + k dt (dt: the scene's). events: None
         (the scene's event and section lines), [] (none), or formulas g(t, q, qdot) as strings
-        or dicts {g, direction, terminal, name}. Returns a Result; a failure raises an Error
+        or dicts {g, direction, terminal, name}. progress=True draws a progress bar on
+        sys.stderr (from a thread, by the time of the last output). Returns a Result; a failure raises an Error
         subclass with the partial result attached; Ctrl-C raises Cancelled with it."""
         sys = self._h.sys
         n = lib.dal_system_ncoords(sys)
@@ -503,6 +530,8 @@ class Scene:
             y0 = _vector("y0", y0, 2 * n)
         if not isinstance(dense_output, bool):
             raise TypeError("dense_output must be a bool")
+        if not isinstance(progress, bool):
+            raise TypeError("progress must be a bool")
         o = self._opts(method, formulation, rtol, atol, max_steps, fixed_step)
         grid = t_eval is None
         if grid:
@@ -559,10 +588,16 @@ class Scene:
                 raise _error(rc, "creating the trajectory failed")
             tr = ffi.gc(trp[0], lib.dal_trajectory_destroy)
         cancel = ffi.new("int[1]")
-        rc, interrupted = _cancellable(lib.pyd_solve, sys, st, o, int(grid), t1,
-                                       dt if grid else 0.0, times, ntimes, rows, tr,
-                                       evs if evs is not None else ffi.NULL, cancel,
-                                       cancel=cancel)
+        rows.tnow = t0
+        bar = _Progress(rows, t0, t1) if progress else None
+        try:
+            rc, interrupted = _cancellable(lib.pyd_solve, sys, st, o, int(grid), t1,
+                                           dt if grid else 0.0, times, ntimes, rows, tr,
+                                           evs if evs is not None else ffi.NULL, cancel,
+                                           cancel=cancel)
+        finally:
+            if bar:
+                bar.close()
         res = Result(self, st, rc, rows.len, bufs, n, tr, evs, evnames)
         if rc == lib.DAL_CANCELLED or interrupted:
             raise Cancelled(res.message or "cancelled by Ctrl-C", res)

@@ -166,3 +166,12 @@ def test_a_single_output_agrees_with_dal_advance():
     assert one.t.size == 1 and one.t[0] == 2.0
     assert np.max(np.abs(one.y[:, 0] - swept.y[0])) < 1e-9
     np.testing.assert_array_equal(one.y_final, one.y[:, 0])
+
+
+def test_progress_bar(capsys):
+    sc = dal.Scene.parse(PENDULUM)
+    r = sc.solve((0, 5), progress=True)
+    err = capsys.readouterr().err
+    assert err.endswith("100.0%  t = 5\n") and r.success
+    with pytest.raises(TypeError, match="progress"):
+        sc.solve(progress=1)
