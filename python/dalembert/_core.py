@@ -837,7 +837,9 @@ class Scene:
         y0 = self.y0 if y0 is None else _vector("y0", y0, 2 * n)
         t0 = self.run["t0"]
         t1 = self.run["t1"] if t1 is None else _real("t1", t1)
-        if lib_names and what == "final":
+        if lib_names and what != "final":
+            raise ValueError(f"what='{what}' sweeps scene parameters only, not {lib_names}")
+        if lib_names:
             return self._sweep_lib(names, values, y0, t0, t1, threads, method, rtol, atol)
         if max_step is not None:
             max_step = _real("max_step", max_step, positive=True)
@@ -874,13 +876,17 @@ class Scene:
         text, name = self.text, self._h.name
         o = self._opts(method, None, rtol, atol, None, None)[0]
 
+        failures = []
+
         def work(rows):
-            sc = Scene(_parse(text, name))
+            try:
+                sc = Scene(_parse(text, name))
+            except Exception as e:  # handed to the caller below, never lost in a thread
+                failures.append(e)
+                return
             for i in rows:
                 try:
                     for j, p in enumerate(names):
-                        if ":" in p:
-                            raise ValueError(f"what='{what}' sweeps scene parameters only")
                         sc.params[p] = values[i, j]
                     if what == "equilibrium":
                         e = sc.equilibrium(y0[:n], t0, max_step=max_step)
@@ -890,6 +896,9 @@ class Scene:
                         res[i] = sc._final(y0, t0, t1, o)
                 except Error as e:
                     status[i], msgs[i] = e.status, e.message
+                except Exception as e:
+                    failures.append(e)
+                    return
         chunks = [range(k, ntraj, threads) for k in range(threads)]
         ths = [threading.Thread(target=work, args=(c,)) for c in chunks[1:]]
         for th in ths:
@@ -897,6 +906,8 @@ class Scene:
         work(chunks[0])
         for th in ths:
             th.join()
+        if failures:
+            raise failures[0]
         return SweepResult(names, values, res, status, msgs,
                            verdict if what == "equilibrium" else None)
 

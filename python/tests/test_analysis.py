@@ -105,3 +105,12 @@ def test_sweep_final_states_both_routes():
     sn = ellipj(ellipk(k * k) - w * 1.0, k * k)[0]
     np.testing.assert_allclose(a.y[:, 0], 2 * np.arcsin(k * sn), rtol=0, atol=1e-8)
     assert a.values.shape == (3, 1) and np.all(a.status == 0)
+
+
+def test_a_failing_point_does_not_stop_the_sweep():
+    sc = dal.Scene.parse(PENDULUM)
+    s = sc.sweep({"m": [1.0, -1.0, 2.0]}, t1=0.5, threads=2)
+    assert list(s.status == 0) == [True, False, True]
+    assert "mass" in s.messages[1] and np.all(np.isnan(s.y[1]))
+    # the mass does not change a pendulum's motion: the other points agree bit for bit
+    np.testing.assert_array_equal(s.y[0], s.y[2])

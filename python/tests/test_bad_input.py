@@ -88,6 +88,10 @@ def test_analysis_arguments():
         SC.sweep({"g": [1, float("nan")]})
     with pytest.raises(ValueError, match="threads"):
         SC.sweep({"g": [1]}, threads=0)
+    with pytest.raises(ValueError, match="scene parameters only"):
+        SC.sweep({"gravity:1": [-9]}, what="equilibrium")
+    with pytest.raises(ValueError, match="mix"):
+        SC.sweep({"g": [9], "gravity:1": [-9]})
     with pytest.raises(TypeError, match="text"):
         dal.Scene.parse(b"dim 2")
     with pytest.raises(TypeError, match="path"):
