@@ -23,10 +23,10 @@ def blocks(path):
 
 def main():
     src = pathlib.Path(os.environ.get("DALEMBERT_SOURCE", pathlib.Path(__file__).parents[2]))
+    pages = [pathlib.Path(p).resolve() for p in sys.argv[1:]]
     os.chdir(src)
     total = 0
-    for page in sys.argv[1:]:
-        page = pathlib.Path(page)
+    for page in pages:
         ns = {"__name__": "__doc__"}
         found = blocks(page)
         if not found:
