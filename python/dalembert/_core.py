@@ -922,6 +922,148 @@ class Scene:
         return np.concatenate([_vec(lib.dal_state_q(st), n), _vec(lib.dal_state_qdot(st), n)])
 
 
+class Builder:
+    """A scene written by calls that mirror the scene grammar (scene.h), one line each;
+    build() hands the text to the C reader, whose messages name the line:
+
+        b = Builder(dim=2)
+        b.param("l", 1).param("g", 9.81)
+        b.coord("theta", q=1, v=0).particle("bob", mass=1)
+        b.place("bob", "l*sin(theta)", "-l*cos(theta)").gravity(0, "-g")
+        scene = b.build("pendulum")
+
+    Values are numbers (written with repr: exact) or formulas of the parameters (strings)."""
+
+    def __init__(self, dim=2):
+        if isinstance(dim, bool) or dim not in (0, 2, 3):
+            raise ValueError(f"dim must be 0, 2 or 3, got {dim!r}")
+        self.lines = [f"dim {dim}"]
+
+    @staticmethod
+    def _name(what, x):
+        if not isinstance(x, str) or not x.isidentifier():
+            raise ValueError(f"{what} must be a name (letters, digits, _), got {x!r}")
+        return x
+
+    @staticmethod
+    def _val(what, x, spaces=False):
+        if isinstance(x, str):
+            if not x.strip() or (not spaces and any(c.isspace() for c in x)) or \
+                    any(c in x for c in "#\n;"):
+                raise ValueError(f"{what}: formula {x!r} must be non-empty, on one line, "
+                                 f"{'' if spaces else 'without spaces, '}without # or ;")
+            return x.strip()
+        return repr(_real(what, x))
+
+    def _kv(self, what, kw):
+        return "".join(f" {k}={self._val(f'{what} {k}', v)}" for k, v in kw.items()
+                       if v is not None)
+
+    def param(self, name, value):
+        self.lines.append(f"param {self._name('param', name)} = {self._val(name, value)}")
+        return self
+
+    def coord(self, name, q=0.0, v=0.0):
+        self.lines.append(f"coord {self._name('coord', name)}" + self._kv(name, dict(q=q, v=v)))
+        return self
+
+    def particle(self, name, mass=1.0):
+        self.lines.append(f"particle {self._name('particle', name)} mass="
+                          f"{self._val(name + ' mass', mass)}")
+        return self
+
+    def place(self, particle, *formulas, parent=None, primitive=None, coords=(), **params):
+        """place p = f1; f2 (formulas of the coordinates, t, parameters, and with parent= the
+        parent's x_<parent>, y_<parent>), or place p <primitive> <coords> name=value..."""
+        head = f"place {self._name('particle', particle)}"
+        if parent is not None:
+            head += f" parent={self._name('parent', parent)}"
+        if primitive is not None:
+            if formulas:
+                raise ValueError("place: formulas or a primitive, not both")
+            coords = [self._name("coord", c) for c in coords]
+            self.lines.append(f"{head} {self._name('primitive', primitive)} "
+                              + " ".join(coords) + self._kv(particle, params))
+        else:
+            if not formulas or params or coords:
+                raise ValueError("place: give the formulas of the position (one per axis)")
+            self.lines.append(head + " = " + "; ".join(
+                self._val(f"place {particle}", f, True) for f in formulas))
+        return self
+
+    def constraint(self, name, *formulas, parts=(), primitive=None, **params):
+        head = f"constraint {self._name('constraint', name)}"
+        if primitive is not None:
+            head += f" {self._name('primitive', primitive)}"
+        if parts:
+            head += " parts=" + ",".join(self._name("part", p) for p in parts)
+        if primitive is not None:
+            self.lines.append(head + self._kv(name, params))
+        else:
+            if not formulas:
+                raise ValueError(f"constraint {name}: give its formulas or a primitive")
+            self.lines.append(head + " = " + "; ".join(
+                self._val(f"constraint {name}", f, True) for f in formulas))
+        return self
+
+    def _ends(self, kind, a, b, anchor):
+        s = f"{kind} {self._name('particle', a)}"
+        if b is not None:
+            s += f" {self._name('particle', b)}"
+        if anchor is not None:
+            s += " anchor=" + ",".join(self._val(f"{kind} anchor", x) for x in anchor)
+        if (b is None) == (anchor is None):
+            raise ValueError(f"{kind}: give a second particle or an anchor, one of them")
+        return s
+
+    def spring(self, a, b=None, *, anchor=None, k, L=0.0):
+        self.lines.append(self._ends("spring", a, b, anchor) + self._kv("spring", dict(k=k, L=L)))
+        return self
+
+    def damper(self, a, b=None, *, anchor=None, c):
+        self.lines.append(self._ends("damper", a, b, anchor) + self._kv("damper", dict(c=c)))
+        return self
+
+    def gravity(self, *g):
+        self.lines.append("gravity " + " ".join(self._val("gravity", x) for x in g))
+        return self
+
+    def potential(self, formula):
+        self.lines.append("potential = " + self._val("potential", formula, True))
+        return self
+
+    def lagrangian(self, formula):
+        self.lines.append("lagrangian = " + self._val("lagrangian", formula, True))
+        return self
+
+    def event(self, name, formula, direction=0, terminal=False, section=False):
+        word = {1: " rising", -1: " falling", 0: ""}.get(direction)
+        if word is None or isinstance(direction, bool):
+            raise ValueError(f"event {name}: direction must be -1, 0 or 1")
+        kind = "section" if section else "event"
+        self.lines.append(f"{kind} {self._name(kind, name)}{word}"
+                          f"{' terminal' if terminal else ''} = "
+                          + self._val(f"{kind} {name}", formula, True))
+        return self
+
+    def strobe(self, name, period):
+        self.lines.append(f"section {self._name('section', name)} period="
+                          f"{self._val('period', period)}")
+        return self
+
+    def run(self, method=None, rtol=None, atol=None, t1=None, dt=None):
+        self.lines.append("run" + self._kv("run", dict(method=method, rtol=rtol, atol=atol,
+                                                        t1=t1, dt=dt)))
+        return self
+
+    @property
+    def text(self):
+        return "\n".join(self.lines) + "\n"
+
+    def build(self, name="<builder>"):
+        return Scene.parse(self.text, name)
+
+
 def _p(a):
     # a column-major (order="F") matrix is the C-contiguous buffer of its transpose
     return ffi.from_buffer("double[]", a if a.flags.c_contiguous else a.T)
