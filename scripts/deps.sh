@@ -4,7 +4,7 @@
 # As root: installs with apt-get. Otherwise: prints the exact install line and exits 1.
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev liblapacke-dev
-      libopenblas-dev gnuplot-nox libopenmpi-dev openmpi-bin doxygen
+      libopenblas-dev gnuplot-nox libopenmpi-dev openmpi-bin doxygen python3
       python3-dev python3-numpy python3-cffi python3-setuptools python3-pip python3-pytest
       python3-hypothesis python3-scipy python3-sympy jupyter-nbconvert python3-nbconvert
       python3-ipykernel)
