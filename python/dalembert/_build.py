@@ -165,6 +165,8 @@ void pyd_sigint_end(void);
 char *pyd_scene_text(const dal_scene *sc, int show, dal_expr_format fmt, int *rc, char *msg,
                      size_t msglen);
 void pyd_free(void *p);
+int pyd_formula_value(const char *formula, int nparam, const char *const *pnames,
+                      const double *pvals, double *out, char *msg, size_t msglen);
 int pyd_add_event(dal_events *ev, const dal_system *sys, const char *name, const char *formula,
                   int nparam, const char *const *pnames, const double *pvals, int direction,
                   int terminal, char *msg, size_t msglen);
@@ -316,6 +318,26 @@ char *pyd_scene_text(const dal_scene *sc, int show, dal_expr_format fmt, int *rc
 }
 
 void pyd_free(void *p) { free(p); }
+
+/* the value of a formula of parameters (a `param` line written back as its formula) */
+int pyd_formula_value(const char *formula, int nparam, const char *const *pnames,
+                      const double *pvals, double *out, char *msg, size_t msglen) {
+  dal_expr_def d = dal_default_expr_def();
+  d.name = "param";
+  d.formulas = &formula;
+  d.nout = 1;
+  d.params = pnames;
+  d.values = pvals;
+  d.nparam = nparam;
+  dal_expr *e = NULL;
+  int rc = dal_expr_create(&d, &e, msg, msglen);
+  if (rc) return rc;
+  dal_jet in = dal_const(0.0), res;
+  rc = dal_expr_eval(e, &in, dal_const(0.0), NULL, &res);
+  dal_expr_destroy(e);
+  *out = res.v;
+  return rc;
+}
 
 /* an event g(t, q, qdot) from a formula; the expression is owned by the event set's list */
 typedef struct pyd_evx {

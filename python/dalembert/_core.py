@@ -216,6 +216,18 @@ def _text(h, show=0, fmt=0):
     return s
 
 
+def _formula_value(formula, vals):
+    keep = [ffi.new("char[]", k.encode()) for k in vals]
+    names = ffi.new("const char *[]", keep) if keep else ffi.NULL
+    values = ffi.new("double[]", list(vals.values())) if vals else ffi.NULL
+    out = ffi.new("double *")
+    msg = ffi.new("char[]", _MSG)
+    rc = lib.pyd_formula_value(formula.encode(), len(vals), names, values, out, msg, _MSG)
+    if rc:
+        raise _error(rc, _s(msg))
+    return out[0]
+
+
 class Params:
     """The scene's `param` lines as a mapping: ``scene.params["omega"] = 6.0`` rebuilds the
     system; an unknown name raises KeyError listing the known ones."""
@@ -224,11 +236,15 @@ class Params:
         self._scene = scene
 
     def _values(self):
+        # the lines written back: a number, or a formula of the parameters above it
         vals = {}
         for line in _text(self._scene._h).splitlines():
             if line.startswith("param "):
                 name, _, v = line[6:].partition(" = ")
-                vals[name] = float(v)
+                try:
+                    vals[name] = float(v)
+                except ValueError:
+                    vals[name] = _formula_value(v, vals)
         return vals
 
     def __getitem__(self, name):

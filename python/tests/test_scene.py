@@ -79,3 +79,10 @@ def test_equations_text_and_latex():
     assert "thetaddot = -g*sin(theta)/l" in eq.text
     latex = eq._repr_latex_()
     assert latex.startswith("$$") and "\\ddot{\\theta}" in latex and "\\sin" in latex
+
+
+def test_params_given_by_formulas():
+    sc = dal.Scene.parse(PENDULUM.replace("param g = 9.81", "param g = 9.81\nparam w = sqrt(g/l)"))
+    assert sc.params["w"] == np.sqrt(9.81 / 0.7)
+    sc.params["l"] = 2.0
+    assert sc.params["w"] == np.sqrt(9.81 / 2.0)
