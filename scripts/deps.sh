@@ -5,7 +5,10 @@
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev liblapacke-dev
       libopenblas-dev gnuplot-nox libopenmpi-dev openmpi-bin doxygen python3
-      chromium) # chromium: the viewer's browser tests (ctest view_*)
+      chromium # chromium: the viewer's browser tests (ctest view_*); Python: python/
+      python3-dev python3-numpy python3-cffi python3-setuptools python3-pip python3-pytest
+      python3-hypothesis python3-scipy python3-sympy jupyter-nbconvert python3-nbconvert
+      python3-ipykernel)
 [[ "${DAL_WITH_FUZZ:-0}" == 1 ]] && pkgs+=(clang libclang-rt-14-dev valgrind)
 [[ "${DAL_WITH_VALGRIND:-0}" == 1 ]] && pkgs+=(valgrind)
 [[ "${DAL_WITH_FORMAT:-0}" == 1 ]] && pkgs+=(clang-format)
