@@ -310,14 +310,14 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
                     "dal_default_lyapunov_opts");
-  const dal_method_row *row = dal__method_row(o->method);
-  if (!row || o->method == DAL_METHOD_VARIATIONAL || o->method == DAL_METHOD_VARIATIONAL4 ||
-      o->method == DAL_METHOD_VARIATIONAL6 || o->method == DAL_METHOD_RATTLE ||
-      o->method == DAL_METHOD_RATTLE4 || o->method == DAL_METHOD_RATTLE6)
+  if (o->method != DAL_METHOD_AUTO && !dal__method_can(o->method, DAL__CAP_FIRST_ORDER)) {
+    char can[128];
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "lyapunov: method '%s' is not available for the variational equations; use "
-                    "DOPRI5, Fehlberg 7(8), Bulirsch-Stoer, Adams, BDF, RK4 or AUTO",
-                    dal_method_name(o->method));
+                    "auto or one that runs a first-order problem (%s)",
+                    dal_method_name(o->method),
+                    dal__methods_that_can(DAL__CAP_FIRST_ORDER, can, sizeof can));
+  }
   if (o->nexp < 0 || o->nexp > ny)
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2(n - m) = %d", o->nexp,
                     ny);
@@ -404,12 +404,9 @@ static int lyap_alloc(lyap *L, const dal_system *sys, dal_state *st, const dal_l
   L->so.rtol = o->rtol;
   L->so.atol = o->atol;
   L->so.fixed_step = o->h;
-  // AUTO here keeps the rule it was validated with (tests/test_analysis_lyapunov.c), not the
-  // ODE rule of solve.h (measured on plain trajectories, not on the augmented tangent system)
-  dal_method am = o->rtol > 1e-6     ? DAL_METHOD_DOPRI5
-                  : o->rtol >= 1e-12 ? DAL_METHOD_ADAMS
-                                     : DAL_METHOD_BS;
-  L->meth = o->method == DAL_METHOD_AUTO ? am : o->method;
+  // AUTO: the rule of the first-order problems (methods.c), validated on this tangent system
+  L->meth =
+      o->method == DAL_METHOD_AUTO ? dal__auto_method_fo(o->rtol, DAL__CAP_FIRST_ORDER) : o->method;
   return DAL_OK;
 }
 

@@ -187,7 +187,7 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   if (rc) return rc;
   it->ops = &ode_ops;
   it->impl = ig;
-  it->traj_pieces = it->method == DAL_METHOD_BS ? 4 : 1;
+  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   // dense output straight into the state's (q, qdot) where y has its layout
@@ -210,7 +210,7 @@ static int create_ida(dal_integ *it) {
   int rc = dal__public_status(dal__ida_create(it->sys, st, o, &it->impl));
   if (rc) return rc;
   it->ops = &ida_ops;
-  it->traj_pieces = 1;
+  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   it->can_fall_back = 1;
   if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
     snprintf(it->note, sizeof it->note,

@@ -115,7 +115,9 @@ typedef struct dal_first_order {
   int (*rhs)(void *ctx, dal_state *st, double t, const double *y, double *f);
   /// project y onto the problem's invariant manifold at t, in place (0 or a status); NULL: none
   int (*project)(void *ctx, dal_state *st, double t, double *y);
-  void *ctx;            ///< passed to rhs and project
+  void *ctx; ///< passed to rhs and project
+  /// factor on the method's local tolerance for this problem (as dal_ode_problem's); 0: 1
+  double tol_factor;
   dal_ode_problem prob; ///< filled by dal__ode_create_fo (the problem the integrator runs)
 } dal_first_order;
 /// the problem that runs st->fo (first_order.c; its ny is set per run)
@@ -125,9 +127,10 @@ extern const dal_ode_problem dal__problem_first_order;
 /// pointer to fo, whose prob it fills and runs; fo must outlive the integrator). opts: tolerances
 /// (a global target, the method's calibrated factor applied as for dal_advance), h0, hmax,
 /// fixed_step, max_steps; the formulation, work and projection options are ignored (fo->project
-/// runs when set).
+/// runs when set). meth must have DAL__CAP_FIRST_ORDER (else DAL_E_UNSUPPORTED naming those
+/// that do). Destroying the integrator (dal__ode_destroy) lets go of the work state's st->fo.
 int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                       dal_method meth, const dal_first_order *fo, dal_ode_integ **out);
+                       dal_method meth, dal_first_order *fo, dal_ode_integ **out);
 
 /// the bit of formulation f in a method row's formulation sets
 #define DAL__FORM_BIT(f) (1u << (unsigned)(f))
@@ -147,7 +150,9 @@ int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opt
 /// the DAE method). `min_rtol`: the tightest request the method honours on an ODE problem (0:
 /// down to DAL_TOL_FLOOR / tol_factor); a tighter one runs as min_rtol, atol scaled alike, and
 /// the clamp shows in dal_stats.rtol_used. `fixed`: the method takes opts.fixed_step (1), or
-/// does with opts.fixed_erk (2), or not (0).
+/// does with opts.fixed_erk (2), or not (0). `caps`: what a caller may ask of it (DAL__CAP_*).
+/// `traj_pieces`: records per accepted step of a stored trajectory (dal_trajectory: degree 8
+/// each; Bulirsch-Stoer's long steps take 4).
 typedef struct dal_method_row {
   dal_method id;
   const char *name;
@@ -156,9 +161,34 @@ typedef struct dal_method_row {
   unsigned ode_forms, dae_forms;
   double min_rtol;
   int fixed;
+  unsigned caps;
+  int traj_pieces;
 } dal_method_row;
+/// The capabilities of a method row:
+enum {
+  /// runs a plain first-order problem y' = F(t, y) (dal__ode_create_fo): tangent vectors,
+  /// variational equations
+  DAL__CAP_FIRST_ORDER = 1u << 0,
+  /// explicit: no Newton or fixed-point iteration per step (the variational equations of
+  /// dal_state_transition ask for one: an implicit method would iterate on all of Phi and S)
+  DAL__CAP_EXPLICIT = 1u << 1,
+  /// structure-preserving fixed-step method (symplectic.c): no error control, no work
+  /// tracking, its own formulation (dal__symplectic_resolve)
+  DAL__CAP_SYMPLECTIC = 1u << 2,
+};
 /// the row of a method (AUTO has a row too, with no create function)
 const dal_method_row *dal__method_row(dal_method m);
+/// 1 when method m's row has every capability in caps (DAL__CAP_*); 0 for an unknown method
+int dal__method_can(dal_method m, unsigned caps);
+/// The methods whose rows have every capability in caps, as "DOPRI5, Fehlberg 7(8), ..." for a
+/// message (the rows' order; AUTO not listed) into buf; returns buf
+const char *dal__methods_that_can(unsigned caps, char *buf, size_t len);
+/// AUTO on a plain first-order problem (tangent vectors, variational equations) by relative
+/// tolerance, among the methods with the capabilities caps (DAL__CAP_FIRST_ORDER at least):
+/// DOPRI5 above rtol 1e-6, Adams down to 1e-12, Bulirsch-Stoer below; a method without caps
+/// gives way to the next one that has them (validated on the tangent system of
+/// tests/test_analysis_lyapunov.c, not on plain trajectories as dal__auto_method)
+dal_method dal__auto_method_fo(double rtol, unsigned caps);
 /// the method that runs formulation form as a DAE (the first row other than AUTO whose
 /// dae_forms holds it), or DAL_METHOD_AUTO when none does
 dal_method dal__dae_method(dal_formulation form);

@@ -252,6 +252,8 @@ int dal__ode_argmax(const double *w, int n) {
 void dal__ode_destroy(void *p) {
   dal_ode_integ *ig = p;
   if (!ig) return;
+  // a first-order problem's integrator lets go of the work state (dal__ode_create_fo)
+  if (ig->st && ig->st->fo && ig->prob == &ig->st->fo->prob) ig->st->fo = NULL;
   if (ig->free_impl) ig->free_impl(ig->impl);
   free(ig->y);
   free(ig->ydot);

@@ -54,11 +54,7 @@ typedef struct symp_mem {
   double *xi, *ci;
 } symp_mem;
 
-int dal__symplectic_method(dal_method m) {
-  return m == DAL_METHOD_VARIATIONAL || m == DAL_METHOD_VARIATIONAL4 ||
-         m == DAL_METHOD_VARIATIONAL6 || m == DAL_METHOD_RATTLE || m == DAL_METHOD_RATTLE4 ||
-         m == DAL_METHOD_RATTLE6;
-}
+int dal__symplectic_method(dal_method m) { return dal__method_can(m, DAL__CAP_SYMPLECTIC); }
 
 static int is_rattle(dal_method m) {
   return m == DAL_METHOD_RATTLE || m == DAL_METHOD_RATTLE4 || m == DAL_METHOD_RATTLE6;
