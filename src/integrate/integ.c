@@ -120,6 +120,18 @@ static const dal_integ_ops ida_ops = {ida_advance,   ida_window,     ida_place,
 // ---------------------------------------------------------------------------------------------
 // resolution and creation
 
+dal_solve_opts dal__fallback_opts(const dal_solve_opts *o) {
+  dal_solve_opts f = *o;
+  f.form = DAL_FORM_INDEX1;
+  f.project = 1;
+  f.method = DAL_METHOD_BS;
+  return f;
+}
+
+int dal__fallback_start(const dal_system *sys, dal_state *st, const dal_solve_opts *o) {
+  return dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+}
+
 // resolve formulation and method from the rows; *prob is NULL for a DAE form; *tight is set
 // when AUTO chose the index-1 form with projection because IDA cannot honour the tolerance
 // (solve.h)
@@ -143,10 +155,10 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
   }
   if (form == DAL_FORM_AUTO && sys->m && m == DAL_METHOD_AUTO &&
       dal__dae_tol_factor(DAL_FORM_GGL) * o->rtol < DAL_IDA_TOL_FLOOR) {
-    // IDA would be clamped at its floor: index-1 with projection and Bulirsch-Stoer honours
-    // such tolerances (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
+    // IDA would be clamped at its floor: the fallback formulation honours such tolerances
+    // (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
     *tight = 1;
-    *meth = DAL_METHOD_BS;
+    *meth = dal__fallback_opts(o).method;
     *prob = &dal__problem_index1;
     return DAL_OK;
   }
@@ -240,10 +252,9 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
              : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
                                           : o->form;
   if (tight) {
-    // the index-1 form starts from a consistent state too, and projects after every step
-    it->opts.form = DAL_FORM_INDEX1;
-    it->opts.project = 1;
-    rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+    // the fallback formulation starts from a consistent state too
+    it->opts = dal__fallback_opts(o);
+    rc = dal__fallback_start(sys, st, o);
   }
   if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
   if (rc) {

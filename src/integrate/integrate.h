@@ -195,6 +195,15 @@ dal_method dal__dae_method(dal_formulation form);
 /// local tolerance factor of a method (its row's tol_factor)
 double dal__tol_factor(dal_method m);
 
+/// The fallback formulation (solve.h), written once: index-1 with projection after every step
+/// and Bulirsch-Stoer. AUTO runs it where IDA cannot honour the tolerance (integ.c), and the
+/// driver goes on with it where IDA stopped (dal_stats.fallbacks). The options that run it,
+/// from the caller's o (integ.c).
+dal_solve_opts dal__fallback_opts(const dal_solve_opts *o);
+/// its consistent start at the state's (t, q, qdot) (within o->init_max_move): 0 or a public
+/// status with the state's message set (integ.c)
+int dal__fallback_start(const dal_system *sys, dal_state *st, const dal_solve_opts *o);
+
 /// the automatic method for an ODE formulation by relative tolerance and number of
 /// coordinates n, and whether a monitor reads dense outputs (rule in solve.h)
 dal_method dal__auto_method(double rtol, int n, int dense);
