@@ -115,7 +115,8 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
   int rc = 0;
   if (!(h = handle_create(sys, st, o, dense, &rc))) return rc;
   start_notes(sys, st, &h->it->opts, h, &before, before_valid);
-  handle_keep(sys, st, h, &h->it->opts);
+  // the caller's options are the key (the integrator may run others: AUTO's fallback form)
+  handle_keep(sys, st, h, o);
   return DAL_OK;
 }
 

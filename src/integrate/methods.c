@@ -56,7 +56,10 @@ const char *dal__methods_that_can(unsigned caps, char *buf, size_t len) {
   for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i) {
     if (rows[i].id == DAL_METHOD_AUTO || (rows[i].caps & caps) != caps) continue;
     int k = snprintf(buf + at, len - at, "%s%s", at ? ", " : "", rows[i].name);
-    if (k < 0 || (size_t)k >= len - at) break;
+    if (k < 0 || (size_t)k >= len - at) {
+      buf[at] = 0; // whole names only
+      break;
+    }
     at += (size_t)k;
   }
   return buf;
