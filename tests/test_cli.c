@@ -19,6 +19,8 @@
 //    1e-9, and 1 and 2 threads write the same bytes.
 // 7. exit codes: the library's status (a bad --param: 1; no section line: 1), and the progress
 //    line only on stderr.
+// 8. manners: --help and --version exit 0, an option of another command is refused naming its
+//    owners, unknown words and malformed values are named (exit 64).
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -356,6 +358,71 @@ static void progress(void) {
   CHECK(system(cmd) != 0);
 }
 
+// the CLI's stdout and stderr together in out (its exit status returned)
+static char said[8192];
+static int cli_said(const char *args) {
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "%s %s 2>&1", CLI, args);
+  FILE *p = popen(cmd, "r");
+  if (!p) return -1;
+  size_t n = fread(said, 1, sizeof said - 1, p);
+  said[n] = 0;
+  int st = pclose(p);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// status and the words the message must hold
+static void says(const char *args, int status, const char *w1, const char *w2) {
+  int st = cli_said(args);
+  CHECK_MSG(st == status && strstr(said, w1) && (!w2 || strstr(said, w2)),
+            "dalembert %s: exit %d (want %d), said: %s", args, st, status, said);
+}
+
+// the command line's manners: options parsed per command from its table (getopt_long), an
+// option of another command refused naming its owners, unknown words named, --help exit 0
+static void manners(void) {
+  const char *dp = SCENES "/driven_pendulum.scene";
+  char a[1024];
+  says("--version", 0, "dalembert 0.", NULL);
+  char v[64];
+  snprintf(v, sizeof v, "dalembert %d.%d.%d\n", DAL_VERSION_MAJOR, DAL_VERSION_MINOR,
+           DAL_VERSION_PATCH);
+  CHECK(!strcmp(said, v));
+  says("--help", 0, "commands:", "exit status:");
+  CHECK(strstr(said, "  lyapunov ") && strstr(said, "  130 "));
+  says("-h", 0, "commands:", NULL);
+  says("", 64, "no command", NULL);
+  says("frob x.scene", 64, "unknown command 'frob'", NULL);
+  snprintf(a, sizeof a, "run %s --help", dp);
+  says(a, 0, "usage: dalembert run SCENE", "--t1 T");
+  says("lyapunov -h", 0, "--transient T", "--renorm T");
+  snprintf(a, sizeof a, "run %s --bogus", dp);
+  says(a, 64, "dalembert run: unknown option '--bogus'", NULL);
+  snprintf(a, sizeof a, "modes %s --t1 5", dp);
+  says(a, 64, "--t1 is an option of run, lyapunov, section, not of modes", NULL);
+  snprintf(a, sizeof a, "modes %s -o x.csv", dp);
+  says(a, 64, "-o is an option of run, section, sweep, not of modes", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --t1 -5", dp);
+  says(a, 64, "--t1 -5: a number > 0", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --t1", dp);
+  says(a, 64, "--t1 needs a value T", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --t 5", dp);
+  says(a, 64, "'--t' is short for more than one", NULL);
+  snprintf(a, sizeof a, "run %s stray", dp);
+  says(a, 64, "unexpected word 'stray'", NULL);
+  snprintf(a, sizeof a, "run %s --wrap=1", dp);
+  says(a, 64, "--wrap takes no value", NULL);
+  says("run", 64, "dalembert run: needs SCENE", NULL);
+  snprintf(a, sizeof a, "sweep %s --param a=0:1:2 --threads 2.5", dp);
+  says(a, 64, "--threads 2.5: an integer from 0 to 1024", NULL);
+  snprintf(a, sizeof a, "show %s --latex --scheme", dp);
+  says(a, 64, "one of --text, --latex, --scheme", NULL);
+  snprintf(a, sizeof a, "run %s --set a", dp);
+  says(a, 64, "--set 'a' is not NAME=VALUE", NULL);
+  snprintf(a, sizeof a, "run %s --set nope=1", dp);
+  says(a, 1, "no parameter 'nope'", NULL);
+}
+
 static void exit_codes(void) {
   CHECK(cli("sweep " SCENES "/bead_ring_below.scene --param nope=0:1:2 2>/dev/null") == 1);
   CHECK(cli("section " SCENES "/bead_ring_below.scene 2>/dev/null") == 1);
@@ -373,5 +440,6 @@ int main(void) {
   sweep();
   progress();
   exit_codes();
+  manners();
   return check_summary("test_cli");
 }
