@@ -31,8 +31,7 @@ static void test_caps(void) {
     dal_method m = want[i].m;
     CHECK_MSG(dal__method_can(m, DAL__CAP_FIRST_ORDER) == want[i].first_order, "%s",
               dal_method_name(m));
-    CHECK_MSG(dal__method_can(m, DAL__CAP_EXPLICIT) == want[i].explicit_, "%s",
-              dal_method_name(m));
+    CHECK_MSG(dal__method_can(m, DAL__CAP_EXPLICIT) == want[i].explicit_, "%s", dal_method_name(m));
     CHECK_MSG(dal__method_can(m, DAL__CAP_SYMPLECTIC) == want[i].symplectic, "%s",
               dal_method_name(m));
     CHECK_MSG(dal__method_row(m)->traj_pieces == want[i].pieces, "%s", dal_method_name(m));
@@ -58,9 +57,9 @@ static void test_auto_fo(void) {
     double rtol;
     dal_method any, expl;
   } rule[] = {
-      {1e-3, DAL_METHOD_DOPRI5, DAL_METHOD_DOPRI5},  {2e-6, DAL_METHOD_DOPRI5, DAL_METHOD_DOPRI5},
-      {1e-6, DAL_METHOD_ADAMS, DAL_METHOD_DOPRI5},   {1e-10, DAL_METHOD_ADAMS, DAL_METHOD_DOPRI5},
-      {1e-12, DAL_METHOD_ADAMS, DAL_METHOD_DOPRI5},  {9e-13, DAL_METHOD_BS, DAL_METHOD_BS},
+      {1e-3, DAL_METHOD_DOPRI5, DAL_METHOD_DOPRI5}, {2e-6, DAL_METHOD_DOPRI5, DAL_METHOD_DOPRI5},
+      {1e-6, DAL_METHOD_ADAMS, DAL_METHOD_DOPRI5},  {1e-10, DAL_METHOD_ADAMS, DAL_METHOD_DOPRI5},
+      {1e-12, DAL_METHOD_ADAMS, DAL_METHOD_DOPRI5}, {9e-13, DAL_METHOD_BS, DAL_METHOD_BS},
       {1e-14, DAL_METHOD_BS, DAL_METHOD_BS},
   };
   for (size_t i = 0; i < sizeof rule / sizeof rule[0]; ++i) {

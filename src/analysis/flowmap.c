@@ -257,7 +257,7 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
   }
   var_from_state(sys, st, vp.y0);
   if ((rc = dal__ode_create_fo(sys, st, &o, o.method, &vp.fo, &ig)) != 0) goto done;
-  rc = ig->advance(ig, t1);
+  rc = dal__ode_advance(ig, t1);
   if (rc == 0) {
     if (Phi) memcpy(Phi, ig->y + n2, n2 * n2 * sizeof(double));
     if (S) memcpy(S, ig->y + n2 + n2 * n2, n2 * (size_t)nparam * sizeof(double));

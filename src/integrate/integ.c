@@ -16,14 +16,9 @@
 
 static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
   dal_ode_integ *ig = it->impl;
-  ig->tout = tout;
-  ig->ncall = 0;
-  ig->rhs_fatal = 0;
-  ig->ntiny = 0;
-  ig->nrecov = 0;
   ig->hook = hook;
   ig->hook_ctx = ctx;
-  int rc = ig->advance(ig, tout);
+  int rc = dal__ode_advance(ig, tout);
   ig->hook = NULL;
   if (rc) return rc;
   // the state at tout, evaluated there

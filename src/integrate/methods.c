@@ -45,6 +45,11 @@ const dal_method_row *dal__method_row(dal_method m) {
   return NULL;
 }
 
+int dal__method_fixed(dal_method m, const dal_solve_opts *o) {
+  const dal_method_row *r = dal__method_row(m);
+  return r && (r->fixed == 1 || (r->fixed == 2 && o->fixed_erk));
+}
+
 int dal__method_can(dal_method m, unsigned caps) {
   const dal_method_row *r = dal__method_row(m);
   return r && (r->caps & caps) == caps;

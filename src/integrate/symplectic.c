@@ -250,13 +250,13 @@ static void symp_free(void *p) {
   free(m);
 }
 
+static const dal_ode_ops symp_ops = {symp_advance, symp_free, symp_interp, NULL, NULL};
+
 int dal__symplectic_create(dal_ode_integ *ig) {
   symp_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the integrator");
   ig->impl = m;
-  ig->free_impl = symp_free;
-  ig->advance = symp_advance;
-  ig->interp = symp_interp;
+  ig->ops = &symp_ops;
   int order = order_of(ig->method);
   if (order == 2) {
     m->ns = 1;
