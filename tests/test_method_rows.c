@@ -83,6 +83,13 @@ static void test_refusals(void) {
   o.method = DAL_METHOD_ADAMS;
   CHECK(dal_state_transition(sys, st, &o, 1.0, Phi, 0, NULL, NULL) == DAL_E_UNSUPPORTED);
   CHECK(strstr(dal_state_errmsg(st), "(dopri5, fehlberg78, bs, rk4)") != NULL);
+  // through the handle, a first-order run honours opts.max_steps like dal_advance (the
+  // variational run went without its per-call target and never counted)
+  o = dal_default_solve_opts();
+  o.max_steps = 5;
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &v));
+  CHECK(dal_state_transition(sys, st, &o, 10.0, Phi, 0, NULL, NULL) == DAL_E_MAXSTEPS);
+  CHECK_OK(dal_state_set(sys, st, 0.0, &q, &v));
   dal_lyapunov_opts lo = dal_default_lyapunov_opts();
   lo.t_end = 10.0;
   lo.method = DAL_METHOD_RATTLE;
