@@ -35,6 +35,9 @@ static void json_coords(cli_json *j, const char *key, const dal_system *sys, con
   cli_json_end(j);
 }
 
+// a status that refuses the request itself (the same for every start), not a start that failed
+static int refused(int rc) { return rc == DAL_E_UNSUPPORTED || rc == DAL_E_ARG; }
+
 const cli_opt cli_modes_opts[] = {
     {"here", 0, CLI_FLAG, NULL, "at the initial q (no Newton search)", 0},
     CLI_OPT_FORMAT,
@@ -103,10 +106,10 @@ int cli_modes(cli *c) {
   if (!fp)
     rc = DAL_E_IO;
   else if (!cli_given(c, "here") && (rc = dal_equilibrium(sys, st, NULL, &rep)))
-    snprintf(c->msg, sizeof c->msg,
-             "%s: no equilibrium from the initial q (%s); start nearer one, or --here for the "
-             "modes at the initial q",
-             c->path, dal_state_errmsg(st));
+    // a refusal (a request the analysis cannot honour) is said as the library says it
+    snprintf(c->msg, sizeof c->msg, "%s: %s%s%s", c->path,
+             refused(rc) ? "" : "no equilibrium from the initial q: ", dal_state_errmsg(st),
+             refused(rc) ? "" : "; start nearer one, or --here for the modes at the initial q");
   else if (!(rc = print_modes(c, fp, sys, st)))
     cli_note(c, st);
   dal_state_destroy(st);
@@ -232,6 +235,7 @@ int cli_equilibria(cli *c) {
     memset(q + n, 0, (size_t)n * sizeof *q);
     int r = one_start(c, st, q, q + n, &f, &o);
     if (r == DAL_E_NOMEM) rc = r;
+    if (refused(r)) rc = cli_error(c, r, "%s: %s", c->path, dal_state_errmsg(st));
     if (r) failed++, last = r;
     cli_progress(c, "equilibria: starts", s + 2, npts + 1, NULL);
   }
@@ -243,9 +247,10 @@ int cli_equilibria(cli *c) {
     cli_json_finish(&j);
   }
   if (s < npts && !rc) cli_error(c, 0, "interrupted after %d of %d starts", s + 1, npts + 1);
-  if (failed) cli_error(c, 0, "%d of %d starts did not converge", failed, s + 1);
+  if (failed && !rc) cli_error(c, 0, "%d of %d starts did not converge", failed, s + 1);
   if (!rc && !f.count && !cli_interrupted())
-    rc = cli_error(c, last, "%s: no equilibrium found (%s)", c->path, dal_status_string(last));
+    rc = cli_error(c, last, "%s: no equilibrium found (the last start: %s)", c->path,
+                   dal_state_errmsg(st));
   free(q);
   free(f.r);
   dal_state_destroy(st);
@@ -402,13 +407,14 @@ static int row(const dal_system *sys, const dal_state *st, void *ctx) {
 static int evolve(cli *c, rows *r, dal_events *ev, double dt) {
   const dal_system *sys = dal_scene_system(c->sc);
   double t1;
-  const dal_solve_opts *so = dal_scene_opts(c->sc, NULL, &t1, NULL);
+  dal_solve_opts so = *dal_scene_opts(c->sc, NULL, &t1, NULL);
+  so.cancel = cli_cancel; // Ctrl-C: the run stops at its next step, outputs up to it served
   r->t1 = t1 = cli_num(c, "t1", t1);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   if (ev) rc = dal_state_set_events(st, ev);
-  if (!rc) rc = dal_evolve(sys, st, so, t1, dt, row, r);
+  if (!rc) rc = dal_evolve(sys, st, &so, t1, dt, row, r);
   FILE *fp = r->json ? r->json->fp : r->csv.fp;
   if (rc < 0 && fp && ferror(fp)) {
     rc = DAL_E_IO; // the output's failure, said by cli_commit

@@ -388,7 +388,7 @@ void cli_progress(const cli *c, const char *what, double done, double total, con
 }
 
 int cli_open(const cli *c, const char *path, cli_file *f) {
-  *f = (cli_file){path ? NULL : stdout, path, NULL};
+  *f = (cli_file){path ? NULL : stdout, path, NULL, 0};
   if (!path) return DAL_OK;
   // a plain file (or a new one) is written under a temporary name beside it
   struct stat sb;
@@ -398,11 +398,13 @@ int cli_open(const cli *c, const char *path, cli_file *f) {
     if (!f->tmp) return cli_error(c, DAL_E_NOMEM, "out of memory for the name of %s", path);
     snprintf(f->tmp, len, "%s.partXXXXXX", path);
     int fd = mkstemp(f->tmp);
-    if (fd < 0) {
-      int e = errno;
+    if (fd < 0) { // a folder we cannot write beside the file: the file itself, in place
       free(f->tmp);
       f->tmp = NULL;
-      return cli_error(c, DAL_E_IO, "cannot write %s (%s)", path, strerror(e));
+      f->fp = fopen(path, "w");
+      f->in_place = 1;
+      if (!f->fp) return cli_error(c, DAL_E_IO, "cannot write %s (%s)", path, strerror(errno));
+      return DAL_OK;
     }
     mode_t mask = umask(0);
     umask(mask);
@@ -434,6 +436,10 @@ int cli_commit(const cli *c, cli_file *f, int rc) {
     cli_error(c, DAL_E_IO, "writing %s failed (%s)%s", name, e ? strerror(e) : "write error",
               f->tmp ? "; nothing written there" : "");
   if (bad && !f->path) clearerr(stdout); // said once
+  if (f->in_place && (bad || rc < 0)) {
+    remove(f->path); // truncated and half-written: not left as if complete
+    if (!bad) cli_error(c, rc, "%s not written (the command failed)", f->path);
+  }
   if (f->tmp) {
     if (bad || rc < 0) {
       remove(f->tmp);

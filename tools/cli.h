@@ -70,6 +70,7 @@ typedef struct cli_file {
   FILE *fp;
   const char *path; // NULL: standard output
   char *tmp;        // the temporary file (NULL for stdout and for a path that is no plain file)
+  int in_place;     // a plain file written in place (no temporary beside it): removed on failure
 } cli_file;
 
 // the parsed command line and the scene it names

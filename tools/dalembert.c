@@ -125,7 +125,7 @@ int main(int argc, char **argv) {
     rc = rc == CLI_USAGE ? rc : cli_exit(rc);
   }
   // standard output too: a result that could not be written is a failure
-  cli_file out = {stdout, NULL, NULL};
+  cli_file out = {stdout, NULL, NULL, 0};
   if (cli_commit(&c, &out, DAL_OK) < 0 && rc == 0) rc = cli_exit(DAL_E_IO);
   if (cli_interrupted() && rc != CLI_USAGE) rc = CLI_INTERRUPTED;
   free(c.sets);

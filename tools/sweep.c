@@ -20,6 +20,8 @@
 
 typedef struct sweep_ctx {
   cli *c;
+  char **notes; // per trajectory: a note the library left after success (the sweep keeps
+                // messages of failures only), or NULL
   char name[256];
   double lo, hi;
   int npts;
@@ -62,8 +64,18 @@ static int reduce(const dal_system *sys, dal_state *st, const dal_traj *tr, void
   if (!rc) {
     double t1, dt;
     dal_solve_opts so = *dal_scene_opts(ws, NULL, &t1, &dt);
+    so.cancel = cli_cancel; // Ctrl-C: a trajectory under way stops at its next step
     rc = dal_evolve(dal_scene_system(ws), fin, &so, t1, dt, NULL, NULL);
+    if (rc == DAL_CANCELLED) rc = DAL_E_CALLBACK; // not finished: no result
     if (rc < 0) snprintf(tr->msg, DAL_SWEEP_MSG_LEN, "%s: %s", s->c->path, dal_state_errmsg(fin));
+    // a note the library left after success (a moved start, a clamp): kept for the row
+    if (rc >= 0 && dal_state_errmsg(fin)[0]) {
+      size_t len = strlen(s->c->path) + strlen(dal_state_errmsg(fin)) + 3;
+      char *note = malloc(len);
+      if (note) snprintf(note, len, "%s: %s", s->c->path, dal_state_errmsg(fin));
+      free(s->notes[tr->index]);
+      s->notes[tr->index] = note;
+    }
   }
   if (fin && rc >= 0) {
     int n = dal_system_ncoords(dal_scene_system(ws));
@@ -81,6 +93,12 @@ static int on_progress(long done, long total, long failed, void *ctx) {
   snprintf(extra, sizeof extra, "(%ld failed)", failed);
   cli_progress(ctx, "sweep: trajectories", (double)done, (double)total, extra);
   return cli_interrupted(); // cancel: the trajectories not started are recorded "not run"
+}
+
+// trajectory k's message: its failure, else a note, else ""
+static const char *message(const sweep_ctx *s, const dal_sweep_out *o, long k) {
+  const char *m = o->msgs + k * o->msg_len;
+  return *m || !s->notes[k] ? m : s->notes[k];
 }
 
 static int write_rows(const sweep_ctx *s, const dal_sweep_out *o, int n, FILE *fp) {
@@ -103,7 +121,7 @@ static int write_rows(const sweep_ctx *s, const dal_sweep_out *o, int n, FILE *f
           cli_json_num(&j, dal_system_coord_name(sys, i), r[part * n + i]);
         cli_json_end(&j);
       }
-      cli_json_str(&j, "message", o->msgs + k * o->msg_len);
+      cli_json_str(&j, "message", message(s, o, k));
       cli_json_end(&j);
     }
     cli_json_end(&j);
@@ -122,7 +140,7 @@ static int write_rows(const sweep_ctx *s, const dal_sweep_out *o, int n, FILE *f
     for (int i = 0; i < 2 * n; ++i)
       fprintf(fp, ",%.17g", o->results[k * 2 * n + i]);
     fprintf(fp, ",\"");
-    for (const char *m = o->msgs + k * o->msg_len; *m; ++m)
+    for (const char *m = message(s, o, k); *m; ++m)
       fputs(*m == '"' ? "\"\"" : (char[2]){*m, 0}, fp);
     fprintf(fp, "\"\n");
   }
@@ -184,7 +202,7 @@ const cli_opt cli_sweep_opts[] = {
 };
 
 int cli_sweep(cli *c) {
-  sweep_ctx s = {c, "", 0, 0, 0};
+  sweep_ctx s = {c, NULL, "", 0, 0, 0};
   const char *param = cli_text(c, "param");
   if (!param) return cli_error(c, CLI_USAGE, "needs --param NAME=LO:HI:N (a scene parameter)");
   int rc = cli_grid(c, "param", param, s.name, sizeof s.name, &s.lo, &s.hi, &s.npts), writer = 1;
@@ -198,7 +216,8 @@ int cli_sweep(cli *c) {
   o.results = malloc((size_t)s.npts * 2 * (size_t)n * sizeof *o.results);
   o.status = calloc((size_t)s.npts, sizeof *o.status);
   o.msgs = calloc((size_t)s.npts, (size_t)o.msg_len);
-  if (!o.results || !o.status || !o.msgs)
+  s.notes = calloc((size_t)s.npts, sizeof *s.notes);
+  if (!o.results || !o.status || !o.msgs || !s.notes)
     rc = cli_error(c, DAL_E_NOMEM, "out of memory for %d results of %d numbers and a message",
                    s.npts, 2 * n);
   if (!rc) {
@@ -226,18 +245,27 @@ int cli_sweep(cli *c) {
     long run = 0;
     for (long k = 0; k < s.npts; ++k)
       run += o.status[k] != DAL_E_CALLBACK;
-    cli_error(c, 0, "interrupted after %ld of %d trajectories: the others are marked not run", run,
-              s.npts);
+    cli_error(c, 0,
+              "interrupted: %ld of %d trajectories finished; the others are marked DAL_E_CALLBACK",
+              run, s.npts);
     rc = DAL_OK;
   }
   if (!rc && writer) {
     FILE *fp = cli_out(c);
     rc = fp ? write_rows(&s, &o, n, fp) : DAL_E_IO;
     rc = cli_close(c, rc);
+    long notes = 0;
+    for (long k = 0; k < s.npts; ++k)
+      notes += s.notes[k] != NULL;
+    if (!rc && notes)
+      cli_error(c, 0, "note: %ld of %d trajectories left a note (in their message)", notes, s.npts);
     if (!rc && o.nfailed && !stopped)
       cli_error(c, 0, "%ld of %d trajectories failed (their messages are in the %s)", o.nfailed,
                 s.npts, cli_json_asked(c) ? "JSON" : "CSV");
   }
+  for (long k = 0; s.notes && k < s.npts; ++k)
+    free(s.notes[k]);
+  free(s.notes);
   free(o.results);
   free(o.status);
   free(o.msgs);

@@ -75,7 +75,8 @@ extern "C" {
   X(DAL_E_STATE, -14, "state not initialized or belongs to another system")                        \
   X(DAL_E_UNSUPPORTED, -15, "method and formulation cannot be combined")                           \
   X(DAL_E_IO, -16, "file input/output failed")                                                     \
-  X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")
+  X(DAL_E_VERIFY, -17, "a verification check found a mismatch (see its report)")                   \
+  X(DAL_E_TOO_LARGE, -18, "too large to show (a size or work bound of the symbolic algebra)")
 
 #ifdef DAL_DOXYGEN
 /// Status codes returned by every fallible dalembert call: DAL_OK (0), the three positive
@@ -104,6 +105,7 @@ typedef enum dal_status {
   DAL_E_UNSUPPORTED = -15, ///< method and formulation cannot be combined
   DAL_E_IO = -16,          ///< file input/output failed
   DAL_E_VERIFY = -17,      ///< a verification check found a mismatch (see its report)
+  DAL_E_TOO_LARGE = -18,   ///< too large to show (a size or work bound of the symbolic algebra)
 } dal_status;
 #else
 typedef enum dal_status {

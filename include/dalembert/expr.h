@@ -165,12 +165,15 @@ typedef enum dal_expr_format {
 
 /// Print formula k of e, simplified, into buf (len bytes, truncated, NUL-terminated; buf may
 /// be NULL when len is 0). Returns the length of the whole text (as snprintf), or DAL_E_ARG
-/// (NULL e, k out of range, unknown format), DAL_E_NOMEM (also for a text over 16 MiB).
+/// (NULL e, k out of range, unknown format), DAL_E_NOMEM, DAL_E_TOO_LARGE (too large to show:
+/// the simplification went past 2^22 operations or 2^19 nodes, or the text past 256 KiB; each
+/// print is so bounded in time, about a second at most).
 DAL_API int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, size_t len);
 
 /// The derivative of formula k of e along input j (0 <= j < dal_expr_nin(e)), or along t for
 /// j = -1, simplified, as a new one-formula expression with e's inputs and parameters (*out;
-/// the caller destroys it). Returns DAL_OK, DAL_E_ARG, DAL_E_NOMEM.
+/// the caller destroys it). Returns DAL_OK, DAL_E_ARG, DAL_E_NOMEM, DAL_E_TOO_LARGE (past the
+/// bounds of dal_expr_print; msg says so).
 DAL_API int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *msg,
                                 size_t msglen);
 
@@ -199,7 +202,7 @@ DAL_API dal_expr_model_def dal_default_expr_model_def(void);
 /// the potential U = -sum_k m_k g . r_k + U(q, t) and L = T - U of a model, each a
 /// one-formula expression over the coordinates with velocities (inputs q, qdot), t and the
 /// parameters (T, U, L nullable: the ones wanted). Errors name the formula and column as
-/// dal_expr_create. Returns DAL_OK, DAL_E_ARG, DAL_E_NONFINITE, DAL_E_NOMEM.
+/// dal_expr_create. Returns DAL_OK, DAL_E_ARG, DAL_E_NONFINITE, DAL_E_NOMEM, DAL_E_TOO_LARGE.
 DAL_API int dal_expr_model_energies(const dal_expr_model_def *def, dal_expr **T, dal_expr **U,
                                     dal_expr **L, char *msg, size_t msglen);
 
@@ -217,8 +220,8 @@ typedef struct dal_expr_equations {
 } dal_expr_equations;
 
 /// Derive Lagrange's equations from L (one formula, velocities = 1) into *eq. Returns DAL_OK,
-/// DAL_E_ARG (L not a Lagrangian expression), DAL_E_NOMEM; on failure *eq holds no
-/// expression.
+/// DAL_E_ARG (L not a Lagrangian expression), DAL_E_NOMEM, DAL_E_TOO_LARGE (past the bounds of
+/// dal_expr_print); on failure *eq holds no expression.
 DAL_API int dal_expr_lagrange(const dal_expr *L, dal_expr_equations *eq, char *msg, size_t msglen);
 
 /// Free the expressions of eq (NULL members are skipped) and zero it.

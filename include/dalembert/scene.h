@@ -61,6 +61,10 @@ DAL_API int dal_scene_parse(const char *text, const char *name, dal_scene **out,
 /// Read a scene file (dal_scene_parse of its contents; DAL_E_IO when it cannot be read).
 DAL_API int dal_scene_read(const char *path, dal_scene **out, char *msg, size_t msglen);
 
+/// Print the scene-file grammar (one line per element, the table the reader uses) to fp.
+/// Returns DAL_OK, DAL_E_ARG (fp NULL), DAL_E_IO.
+DAL_API int dal_scene_help(FILE *fp);
+
 /// Free a scene and everything it built (NULL is a no-op). No state of its system may remain.
 DAL_API void dal_scene_destroy(dal_scene *sc);
 

@@ -27,8 +27,10 @@ typedef struct ivec {
   int n, cap;
 } ivec;
 
+static int spend(dal_alg *g, long n);
+
 static int push(dal_alg *g, ivec *a, int x) {
-  if (x < 0) {
+  if (x < 0 || spend(g, 1)) {
     g->fail = 1;
     return -1;
   }
@@ -48,14 +50,25 @@ static int push(dal_alg *g, ivec *a, int x) {
 
 static const dal_xnode *N(const dal_alg *g, int i) { return &g->tr->node[i]; }
 
+// count n units of work; past the session's bounds every later call fails (too large)
+static int spend(dal_alg *g, long n) {
+  g->work += n;
+  if (g->work > DAL_ALG_MAX_WORK || g->tr->n > DAL_ALG_MAX_NODES) {
+    g->fail = 1;
+    g->too_large = 1;
+  }
+  return g->fail;
+}
+
 static int num(dal_alg *g, double c) {
+  if (spend(g, 1)) return -1;
   int r = dal__xnum(g->tr, c);
   if (r < 0) g->fail = 1;
   return r;
 }
 
 static int node(dal_alg *g, int op, int a, int b) {
-  if (a < -1 || b < -1 || g->fail) {
+  if (a < -1 || b < -1 || spend(g, 1)) {
     g->fail = 1;
     return -1;
   }
@@ -177,6 +190,7 @@ int dal__alg_add(dal_alg *g, const int *t, int n) {
   for (int i = 0; i < all.n; ++i)
     coef[i] = split(g, all.v[i], &rest[i]);
   int m = all.n;
+  if (spend(g, (long)m * m)) goto done;
   // collect like terms (quadratic in the number of terms, sums are short); then the
   // sin^2 + cos^2 pairs, which may make new like terms
   for (int pass = 0; pass < 8; ++pass) {
@@ -210,6 +224,7 @@ done:
 
 // c X sin(u)^p + c X sin(u)^(p-2) cos(u)^2 -> c X sin(u)^(p-2); returns 1 if one was merged
 static int trig_merge(dal_alg *g, double *coef, int *rest, int m) {
+  if (spend(g, m)) return 0;
   for (int i = 0; i < m; ++i) {
     if (rest[i] < 0 || coef[i] == 0.0) continue;
     ivec f = {0};
@@ -292,6 +307,7 @@ int dal__alg_mul(dal_alg *g, const int *f, int n) {
     r = num(g, 0.0);
     goto done;
   }
+  if (spend(g, (long)fs.n * fs.n)) goto done;
   for (int i = 0; i < fs.n; ++i)
     base_exp(g, fs.v[i], &base[i], &ex[i]);
   int m = merge_bases(g, base, ex, fs.n);
@@ -829,6 +845,10 @@ int dal__alg_factor(dal_alg *g, int x) {
   }
   for (int i = 0; i < nt; ++i)
     ts[i] = dal__alg_factor(g, ts[i]);
+  if (g->fail) { // a term failed (memory, or past the session's bounds)
+    free(ts);
+    return -1;
+  }
   // common bases with positive numeric exponents (the smallest), and the coefficients' gcd
   ivec common = {0}, f0 = {0};
   int rest0;

@@ -13,8 +13,14 @@ typedef struct dal_alg {
   int *canon, ncanon;
   int *expand, nexpand;
   int *deriv, nderiv, deriv_var;
-  int fail; // set by any allocation failure; every later call returns -1
+  int fail;      // set by any allocation failure or bound; every later call returns -1
+  int too_large; // the bound was reached (the tree or the work of one session)
+  long work;     // operations so far (nodes made or looked up, pairs of terms compared)
 } dal_alg;
+
+/// bounds of one algebra session: beyond them it fails with too_large (DAL_E_TOO_LARGE)
+#define DAL_ALG_MAX_NODES (1 << 19)
+#define DAL_ALG_MAX_WORK (1L << 22)
 
 void dal__alg_init(dal_alg *g, dal_xtree *tr);
 void dal__alg_free(dal_alg *g);

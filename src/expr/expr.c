@@ -49,6 +49,10 @@ static int prim_eval(const dal_jet *in, dal_jet t, const double *param, dal_jet 
   return 0;
 }
 
+static int cmp_name(const void *a, const void *b) {
+  return strcmp(*(char *const *)a, *(char *const *)b);
+}
+
 // the symbol table: inputs, their velocities, parameters; every name an identifier, once
 static int names(dal_expr *e, const dal_expr_def *d, char *msg, size_t len) {
   int nin = d->nin * (d->velocities ? 2 : 1), nn = nin + d->nparam;
@@ -72,10 +76,19 @@ static int names(dal_expr *e, const dal_expr_def *d, char *msg, size_t len) {
     if (!e->tree.names[i]) return DAL_E_NOMEM;
     e->tree.nin = i < nin ? i + 1 : nin;
     e->tree.nparam = i < nin ? 0 : i - nin + 1;
-    for (int j = 0; j < i; ++j)
-      if (!strcmp(e->tree.names[j], buf))
-        return say(msg, len, DAL_E_ARG, "%s: symbol '%s' is given twice", e->name, buf);
   }
+  // a name given twice: neighbours in sorted order (n log n: scenes of 10^5 parameters)
+  char **by = malloc(((size_t)nn + 1) * sizeof *by);
+  if (!by) return DAL_E_NOMEM;
+  memcpy(by, e->tree.names, (size_t)nn * sizeof *by);
+  qsort(by, (size_t)nn, sizeof *by, cmp_name);
+  for (int i = 1; i < nn; ++i)
+    if (!strcmp(by[i - 1], by[i])) {
+      int rc = say(msg, len, DAL_E_ARG, "%s: symbol '%s' is given twice", e->name, by[i]);
+      free(by);
+      return rc;
+    }
+  free(by);
   return DAL_OK;
 }
 

@@ -19,14 +19,18 @@ enum { F_TEXT = DAL_EXPR_TEXT, F_LATEX = DAL_EXPR_LATEX, F_SCHEME = DAL_EXPR_SCH
 typedef struct sb {
   char *s;
   size_t n, cap;
-  int fail;
+  int fail; // 1: out of memory, 2: too large
 } sb;
 
-#define MAX_TEXT (1u << 24) // a longer text fails (DAL_E_NOMEM): trees shared many times over
+// bounds of one print (DAL_E_TOO_LARGE beyond): the text, and the bytes of every sort key made
+// or copied on the way (keys of keys of a deep tree shared many times over)
+#define MAX_TEXT (1u << 18)
+#define MAX_KEY_BYTES (1u << 22)
 
 static void put(sb *b, const char *fmt, ...) {
-  if (b->fail || b->n > MAX_TEXT) {
-    b->fail = 1;
+  if (b->fail) return;
+  if (b->n > MAX_TEXT) {
+    b->fail = 2;
     return;
   }
   va_list ap;
@@ -72,7 +76,8 @@ static void put(sb *b, const char *fmt, ...) {
 typedef struct pr {
   const dal_xtree *tr;
   int fmt;
-  char **cache; // text of each node once printed (sort keys), shared by nested printers
+  char **cache;  // text of each node once printed (sort keys), shared by nested printers
+  size_t *spent; // bytes of sort keys made or copied so far (MAX_KEY_BYTES)
 } pr;
 
 static const dal_xnode *N(const pr *p, int x) { return &p->tr->node[x]; }
@@ -164,16 +169,20 @@ typedef struct fact {
 // the text of node x (a sort key), computed once per node: without the cache, keys of keys
 // would make printing exponential in the nesting depth
 static char *text_of(const pr *p, int x) {
+  if (*p->spent > MAX_KEY_BYTES) return NULL;
   if (p->cache && p->cache[x]) {
     size_t n = strlen(p->cache[x]) + 1;
+    *p->spent += n;
     char *r = malloc(n);
     if (r) memcpy(r, p->cache[x], n);
     return r;
   }
   sb b = {0};
-  pr q = {p->tr, F_TEXT, p->cache};
+  pr q = {p->tr, F_TEXT, p->cache, p->spent};
   expr(&q, &b, x, 0);
+  *p->spent += b.n;
   if (b.fail) {
+    if (b.fail == 2) *p->spent = (size_t)MAX_KEY_BYTES + 1;
     free(b.s);
     return NULL;
   }
@@ -555,6 +564,10 @@ static void function(const pr *p, sb *b, const dal_xnode *n) {
 }
 
 static void expr(const pr *p, sb *b, int x, int prec) {
+  if (b->fail || *p->spent > MAX_KEY_BYTES) { // over a bound: no more walking
+    if (!b->fail) b->fail = 2;
+    return;
+  }
   const dal_xnode *n = N(p, x);
   switch (n->op) {
   case X_NUM:
@@ -595,17 +608,18 @@ static void expr(const pr *p, sb *b, int x, int prec) {
 
 int dal__xprint(const dal_xtree *tr, int x, int fmt, char *buf, size_t len) {
   sb b = {0};
-  pr p = {tr, fmt, calloc((size_t)tr->n + 1, sizeof(char *))};
+  size_t spent = 0;
+  pr p = {tr, fmt, calloc((size_t)tr->n + 1, sizeof(char *)), &spent};
   if (x >= 0 && p.cache) expr(&p, &b, x, 0);
   if (p.cache)
     for (int i = 0; i < tr->n; ++i)
       free(p.cache[i]);
   int nocache = !p.cache;
   free(p.cache);
-  if (b.fail || x < 0 || nocache) {
+  if (b.fail || x < 0 || nocache || spent > MAX_KEY_BYTES) {
     free(b.s);
     if (buf && len) buf[0] = 0;
-    return DAL_E_NOMEM;
+    return b.fail == 2 || spent > MAX_KEY_BYTES ? DAL_E_TOO_LARGE : DAL_E_NOMEM;
   }
   int n = (int)b.n;
   if (buf && len) {

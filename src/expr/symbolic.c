@@ -24,6 +24,15 @@ static void scratch_free(dal_xtree *s) {
   dal__xtree_free(s);
 }
 
+// the message of a session past its bounds
+static void too_large(char *msg, size_t msglen, const char *name, const dal_alg *g) {
+  if (msg && msglen)
+    snprintf(msg, msglen,
+             "%s: too large to show (the symbolic algebra stopped at %ld operations and %d nodes; "
+             "bounds %ld and %d): simplify the formulas or show fewer coordinates",
+             name, g->work, g->tr->n, (long)DAL_ALG_MAX_WORK, DAL_ALG_MAX_NODES);
+}
+
 int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, size_t len) {
   if (buf && len) buf[0] = 0;
   if (!e || k < 0 || k >= e->nout || (!buf && len) ||
@@ -35,7 +44,9 @@ int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, siz
   dal__alg_init(&g, &s);
   int r = dal__ximport(&s, &e->tree, e->roots[k]);
   r = dal__alg_factor(&g, dal__alg_simplify(&g, r));
-  int n = r < 0 ? DAL_E_NOMEM : dal__xprint(&s, r, (int)fmt, buf, len);
+  int n = r >= 0        ? dal__xprint(&s, r, (int)fmt, buf, len)
+          : g.too_large ? DAL_E_TOO_LARGE
+                        : DAL_E_NOMEM;
   dal__alg_free(&g);
   scratch_free(&s);
   return n;
@@ -57,7 +68,8 @@ int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *m
   int r = dal__alg_diff(&g, dal__ximport(&s, &e->tree, e->roots[k]), j);
   char name[160];
   snprintf(name, sizeof name, "d%s/d%s", e->name, j < 0 ? "t" : e->tree.names[j]);
-  int rc = r < 0 ? DAL_E_NOMEM
+  if (r < 0 && g.too_large) too_large(msg, msglen, e->name, &g);
+  int rc = r < 0 ? (g.too_large ? DAL_E_TOO_LARGE : DAL_E_NOMEM)
                  : dal__expr_from_tree(name, &s, &r, 1, e->nin_named, e->velocities, e->values, out,
                                        msg, msglen);
   dal__alg_free(&g);
@@ -220,6 +232,10 @@ int dal_expr_model_energies(const dal_expr_model_def *d, dal_expr **T, dal_expr 
   for (int k = 0; k < 3 && !rc; ++k)
     if (outs[k])
       rc = energy_expr(name, "TUL"[k], &s, roots[k], n, d -> values, outs[k], msg, msglen);
+  if (rc && g.too_large) {
+    rc = DAL_E_TOO_LARGE;
+    too_large(msg, msglen, name, &g);
+  }
   if (rc) {
     if (rc == DAL_E_NOMEM && msg && msglen) snprintf(msg, msglen, "%s: out of memory", name);
     if (T) dal_expr_destroy(*T), *T = NULL;
@@ -279,7 +295,10 @@ int dal_expr_lagrange(const dal_expr *Lx, dal_expr_equations *eq, char *msg, siz
     t[nt++] = dal__alg_mul(&g, f, 2);
     F[i] = dal__alg_expand(&g, dal__alg_add(&g, t, nt));
   }
-  if (g.fail) goto done;
+  if (g.fail) {
+    if (g.too_large) rc = DAL_E_TOO_LARGE, too_large(msg, msglen, Lx->name, &g);
+    goto done;
+  }
   char nm[160];
   snprintf(nm, sizeof nm, "%s.momentum", Lx->name);
   rc = dal__expr_from_tree(nm, &s, p, n, n, 1, Lx->values, &eq->momentum, msg, msglen);
@@ -293,7 +312,8 @@ int dal_expr_lagrange(const dal_expr *Lx, dal_expr_equations *eq, char *msg, siz
                 dal__alg_pow(&g, dal__alg_factor(&g, M[0]), dal__xnum(&s, -1.0))};
     int acc = dal__alg_mul(&g, a, 2);
     snprintf(nm, sizeof nm, "%s.accel", Lx->name);
-    rc = acc < 0 ? DAL_E_NOMEM
+    if (acc < 0 && g.too_large) too_large(msg, msglen, Lx->name, &g);
+    rc = acc < 0 ? (g.too_large ? DAL_E_TOO_LARGE : DAL_E_NOMEM)
                  : dal__expr_from_tree(nm, &s, &acc, 1, n, 1, Lx->values, &eq->accel, msg, msglen);
   }
   eq->n = n;

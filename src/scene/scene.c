@@ -6,41 +6,12 @@
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "scene.h"
-
-// a placement and a constraint from their parts, through the defs
-static int place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
-                    const int *coords, int np, const double *param, void *ctx) {
-  dal_place_def d = dal_default_place_def();
-  d.prim = prim;
-  d.parent = parent;
-  d.coords = coords;
-  d.ncoords = nc;
-  d.param_list = param;
-  d.nparam_list = np;
-  d.ctx = ctx;
-  return dal_builder_place_def(b, p, &d);
-}
-
-static int constrain_by(dal_builder *b, const char *name, const dal_primitive *prim, int np,
-                        const int *parts, int nc, const int *coords, int npar, const double *param,
-                        void *ctx) {
-  dal_constraint_def d = dal_default_constraint_def();
-  d.name = name;
-  d.prim = prim;
-  d.parts = parts;
-  d.nparts = np;
-  d.coords = coords;
-  d.ncoords = nc;
-  d.param_list = param;
-  d.nparam_list = npar;
-  d.ctx = ctx;
-  return dal_builder_add_constraint_def(b, &d, NULL);
-}
 
 static char *dup(const char *s) {
   size_t n = strlen(s) + 1;
@@ -56,6 +27,68 @@ static char *dupn(const char *s, size_t n) {
     r[n] = 0;
   }
   return r;
+}
+
+// a formatted string of any length (malloc'd; NULL when out of memory)
+static char *strf(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  int n = vsnprintf(NULL, 0, fmt, ap);
+  va_end(ap);
+  char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
+  if (s) {
+    va_start(ap, fmt);
+    vsnprintf(s, (size_t)n + 1, fmt, ap);
+    va_end(ap);
+  }
+  return s;
+}
+
+// ---- name tables (FNV-1a, open addressing, at most half full)
+
+static uint32_t hash(const char *s) {
+  uint32_t h = 2166136261u;
+  for (; *s; ++s)
+    h = (h ^ (unsigned char)*s) * 16777619u;
+  return h;
+}
+
+int dal__tab_get(const dal_tab *t, const char *key) {
+  if (!t->cap) return -1;
+  for (uint32_t i = hash(key) & (uint32_t)(t->cap - 1);; i = (i + 1) & (uint32_t)(t->cap - 1)) {
+    if (!t->key[i]) return -1;
+    if (!strcmp(t->key[i], key)) return t->val[i];
+  }
+}
+
+int dal__tab_put(dal_tab *t, const char *key, int v) {
+  if (2 * (t->n + 1) > t->cap) {
+    dal_tab g = {NULL, NULL, t->cap ? 2 * t->cap : 64, 0};
+    g.key = calloc((size_t)g.cap, sizeof *g.key);
+    g.val = calloc((size_t)g.cap, sizeof *g.val);
+    if (!g.key || !g.val) {
+      free(g.key);
+      free(g.val);
+      return DAL_E_NOMEM;
+    }
+    for (int i = 0; i < t->cap; ++i)
+      if (t->key[i]) dal__tab_put(&g, t->key[i], t->val[i]);
+    dal__tab_free(t);
+    *t = g;
+  }
+  uint32_t i = hash(key) & (uint32_t)(t->cap - 1);
+  while (t->key[i] && strcmp(t->key[i], key))
+    i = (i + 1) & (uint32_t)(t->cap - 1);
+  if (!t->key[i]) t->n++;
+  t->key[i] = key;
+  t->val[i] = v;
+  return DAL_OK;
+}
+
+void dal__tab_free(dal_tab *t) {
+  free(t->key);
+  free(t->val);
+  memset(t, 0, sizeof *t);
 }
 
 static int err(const dal_scene *sc, int line, char *msg, size_t len, int rc, const char *fmt, ...) {
@@ -75,11 +108,12 @@ static int err(const dal_scene *sc, int line, char *msg, size_t len, int rc, con
 static void free_line(sline *l) {
   for (int i = 0; i < l->ntok; ++i)
     free(l->tok[i]);
+  free(l->tok);
   for (int i = 0; i < l->nf; ++i)
     free(l->f[i]);
 }
 
-// what a build made; the lines and parameters stay
+// what a build made; the lines and the parameters' overrides stay
 static void unbuild(dal_scene *sc) {
   dal_system_destroy(sc->sys);
   dal_builder_destroy(sc->b);
@@ -106,7 +140,27 @@ static void unbuild(dal_scene *sc) {
   free(sc->ev);
   sc->ev = NULL;
   sc->nev = 0;
+  for (int i = 0; i < sc->ngf; ++i)
+    free(sc->gf[i]);
+  free(sc->gf);
+  sc->gf = NULL;
+  sc->ngf = 0;
   sc->strobe = 0;
+  free(sc->pname);
+  free(sc->pval);
+  sc->pname = NULL;
+  sc->pval = NULL;
+  sc->nparam = 0;
+  dal__tab_free(&sc->ptab);
+  dal__tab_free(&sc->syms);
+  dal__tab_free(&sc->parts);
+  dal__tab_free(&sc->coords);
+  dal__tab_free(&sc->elems);
+  for (int i = 0; i < sc->nsymkeys; ++i)
+    free(sc->symkeys[i]);
+  free(sc->symkeys);
+  sc->symkeys = NULL;
+  sc->nsymkeys = sc->capsymkeys = 0;
 }
 
 void dal_scene_destroy(dal_scene *sc) {
@@ -115,12 +169,46 @@ void dal_scene_destroy(dal_scene *sc) {
   for (int i = 0; i < sc->nlines; ++i)
     free_line(&sc->lines[i]);
   free(sc->lines);
-  for (int i = 0; i < sc->nparam; ++i)
-    free(sc->pname[i]);
-  free(sc->pname);
-  free(sc->pval);
+  free(sc->over);
+  free(sc->overval);
   free(sc->name);
   free(sc);
+}
+
+static int push_word(sline *out, char *w) {
+  if (!w) return DAL_E_NOMEM;
+  if (out->ntok == out->captok) {
+    int cap = out->captok ? 2 * out->captok : 8;
+    char **v = realloc(out->tok, (size_t)cap * sizeof *v);
+    if (!v) {
+      free(w);
+      return DAL_E_NOMEM;
+    }
+    out->tok = v;
+    out->captok = cap;
+  }
+  out->tok[out->ntok++] = w;
+  return DAL_OK;
+}
+
+// 1 when w is key=value with an identifier key
+static int keyed(const char *w) {
+  if (!(isalpha((unsigned char)w[0]) || w[0] == '_')) return 0;
+  size_t k = 1;
+  while (isalnum((unsigned char)w[k]) || w[k] == '_')
+    k++;
+  return w[k] == '=' && w[k + 1] != '=';
+}
+
+// a formula value goes on over the next word when it is not complete: open parentheses, an
+// operator at its end, or the next word starting with an operator ("q=2 * a", "v=sin( t )")
+static int goes_on(const char *v, size_t n, const char *next, size_t m) {
+  int depth = 0;
+  for (size_t i = 0; i < n; ++i)
+    depth += v[i] == '(' ? 1 : v[i] == ')' ? -1 : 0;
+  if (depth > 0) return 1;
+  if (n && strchr("+-*/^(,", v[n - 1])) return 1;
+  return m && strchr("+-*/^),", next[0]);
 }
 
 // split one line (comment removed) into words and formulas
@@ -129,6 +217,7 @@ static int split_line(dal_scene *sc, const char *s, size_t n, int lineno, sline 
   memset(out, 0, sizeof *out);
   out->line = lineno;
   size_t i = 0;
+  int joinable = 0; // the last word is key=value: a formula that may go on
   while (i < n) {
     while (i < n && isspace((unsigned char)s[i]))
       i++;
@@ -157,18 +246,36 @@ static int split_line(dal_scene *sc, const char *s, size_t n, int lineno, sline 
     size_t j = i;
     while (j < n && !isspace((unsigned char)s[j]))
       j++;
-    if (out->ntok == MAXTOK) return err(sc, lineno, msg, len, DAL_E_ARG, "too many words");
-    out->tok[out->ntok] = dupn(s + i, j - i);
-    if (!out->tok[out->ntok++]) return DAL_E_NOMEM;
+    char *last = out->ntok ? out->tok[out->ntok - 1] : NULL;
+    if (joinable && goes_on(last, strlen(last), s + i, j - i) && !keyed(s + i)) {
+      char *w = strf("%s %.*s", last, (int)(j - i), s + i);
+      if (!w) return DAL_E_NOMEM;
+      free(last);
+      out->tok[out->ntok - 1] = w;
+    } else {
+      int rc = push_word(out, dupn(s + i, j - i));
+      if (rc) return rc;
+      joinable = out->ntok > 1 && keyed(out->tok[out->ntok - 1]);
+    }
     i = j;
   }
   return DAL_OK;
 }
 
-int dal__scene_find(char *const *names, int n, const char *s) {
-  for (int i = 0; i < n; ++i)
-    if (!strcmp(names[i], s)) return i;
-  return -1;
+// key=value words: the value of `key` (NULL if absent)
+const char *dal__scene_kv(const sline *l, int from, const char *key) {
+  size_t n = strlen(key);
+  for (int i = from; i < l->ntok; ++i)
+    if (!strncmp(l->tok[i], key, n) && l->tok[i][n] == '=') return l->tok[i] + n + 1;
+  return NULL;
+}
+
+int dal__scene_part(const dal_scene *sc, const char *name) {
+  return dal__tab_get(&sc->parts, name);
+}
+
+static int coord_index(const dal_scene *sc, const char *name) {
+  return dal__tab_get(&sc->coords, name);
 }
 
 static int keep_expr(dal_scene *sc, dal_expr *e) {
@@ -186,28 +293,113 @@ static int keep_expr(dal_scene *sc, dal_expr *e) {
   return DAL_OK;
 }
 
-// compile formulas over the named inputs and every parameter; the scene keeps the expression
+static int cmp_int(const void *a, const void *b) {
+  int x = *(const int *)a, y = *(const int *)b;
+  return (x > y) - (x < y);
+}
+
+// the indices of the parameters the formulas name, in the order of the file (malloc'd)
+static int used_params(const dal_scene *sc, const char *const *f, int nf, int **idx, int *n) {
+  int cap = 16, m = 0;
+  int *v = malloc((size_t)cap * sizeof *v);
+  if (!v) return DAL_E_NOMEM;
+  for (int k = 0; k < nf; ++k)
+    for (const char *s = f[k]; s && *s;) {
+      if (!(isalnum((unsigned char)*s) || *s == '_')) {
+        s++;
+        continue;
+      }
+      size_t w = 0;
+      while (isalnum((unsigned char)s[w]) || s[w] == '_')
+        w++;
+      if (!isdigit((unsigned char)*s)) { // a number's exponent is no name
+        char *name = dupn(s, w);
+        int j = name ? dal__tab_get(&sc->ptab, name) : -1;
+        free(name);
+        if (j >= 0 && j < sc->nparam) {
+          if (m == cap) {
+            int *nv = realloc(v, (size_t)(cap *= 2) * sizeof *nv);
+            if (!nv) {
+              free(v);
+              return DAL_E_NOMEM;
+            }
+            v = nv;
+          }
+          v[m++] = j;
+        }
+      }
+      s += w;
+    }
+  qsort(v, (size_t)m, sizeof *v, cmp_int);
+  int u = 0;
+  for (int i = 0; i < m; ++i)
+    if (!u || v[u - 1] != v[i]) v[u++] = v[i];
+  *idx = v;
+  *n = u;
+  return DAL_OK;
+}
+
+int dal__scene_params(const dal_scene *sc, const char *const *f, int nf, const char ***names,
+                      double **values, int *n) {
+  int *idx = NULL, np = 0;
+  int rc = used_params(sc, f, nf, &idx, &np);
+  if (rc) return rc;
+  *names = malloc(((size_t)np + 1) * sizeof **names);
+  *values = malloc(((size_t)np + 1) * sizeof **values);
+  if (!*names || !*values) rc = DAL_E_NOMEM;
+  for (int i = 0; i < np && !rc; ++i) {
+    (*names)[i] = sc->pname[idx[i]];
+    (*values)[i] = sc->pval[idx[i]];
+  }
+  free(idx);
+  *n = np;
+  return rc;
+}
+
+int dal__scene_expr(const dal_scene *sc, const char *name, const char *const *f, int nf,
+                    const char *const *in, int nin, int vel, dal_expr **e, char *msg, size_t len) {
+  const char **pn = NULL;
+  double *pv = NULL;
+  int np = 0, rc = dal__scene_params(sc, f, nf, &pn, &pv, &np);
+  if (!rc) {
+    dal_expr_def d = dal_default_expr_def();
+    d.name = name;
+    d.formulas = f;
+    d.nout = nf;
+    d.inputs = in;
+    d.nin = nin;
+    d.velocities = vel;
+    d.params = pn;
+    d.values = pv;
+    d.nparam = np;
+    rc = dal_expr_create(&d, e, msg, len);
+  }
+  free(pn);
+  free(pv);
+  return rc;
+}
+
+// compile formulas over the named inputs and the parameters; the scene keeps the expression
 static int mkexpr(dal_scene *sc, const sline *l, const char *what, const char *const *f, int nf,
                   const char *const *in, int nin, int vel, dal_expr **out, char *msg, size_t len) {
-  dal_expr_def d = dal_default_expr_def();
-  d.name = what;
-  d.formulas = f;
-  d.nout = nf;
-  d.inputs = in;
-  d.nin = nin;
-  d.velocities = vel;
-  d.params = (const char *const *)sc->pname;
-  d.values = sc->pval;
-  d.nparam = sc->nparam;
-  char m[600];
-  int rc = dal_expr_create(&d, out, m, sizeof m);
-  if (rc) return err(sc, l->line, msg, len, rc, "%s", m);
+  int k = 0;
+  if (msg && len) {
+    k = snprintf(msg, len, "%s:%d: ", sc->name, l->line);
+    if (k < 0 || (size_t)k >= len) k = 0;
+  }
+  int rc = dal__scene_expr(sc, what, f, nf, in, nin, vel, out, msg ? msg + k : NULL,
+                           msg ? len - (size_t)k : 0);
+  if (rc) return rc;
   return keep_expr(sc, *out);
 }
 
-// the value of a constant formula of the parameters
+// the value of a constant formula of the parameters (a plain number read directly)
 static int constval(dal_scene *sc, const sline *l, const char *what, const char *text, double *v,
                     char *msg, size_t len) {
+  char *end = NULL;
+  errno = 0;
+  *v = strtod(text, &end);
+  if (end != text && !*end && isfinite(*v) && !isspace((unsigned char)text[0])) return DAL_OK;
   dal_expr *e;
   int rc = mkexpr(sc, l, what, &text, 1, NULL, 0, 0, &e, msg, len);
   if (rc) return rc;
@@ -218,14 +410,6 @@ static int constval(dal_scene *sc, const sline *l, const char *what, const char 
     return err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)", what, text,
                *v);
   return DAL_OK;
-}
-
-// key=value words: the value of `key` (NULL if absent)
-const char *dal__scene_kv(const sline *l, int from, const char *key) {
-  size_t n = strlen(key);
-  for (int i = from; i < l->ntok; ++i)
-    if (!strncmp(l->tok[i], key, n) && l->tok[i][n] == '=') return l->tok[i] + n + 1;
-  return NULL;
 }
 
 static int builder(dal_scene *sc, const sline *l, char *msg, size_t len) {
@@ -240,20 +424,92 @@ static int bcheck(dal_scene *sc, const sline *l, int rc, char *msg, size_t len) 
   return DAL_OK;
 }
 
-// a comma-separated list of particle names into indices
-static int part_list(dal_scene *sc, const sline *l, const char *list, int *idx, int max, int *n,
-                     char *msg, size_t len) {
-  *n = 0;
-  char buf[512];
-  snprintf(buf, sizeof buf, "%s", list);
-  for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s; s = strtok_r(NULL, ",", &sv)) {
-    int k = dal__scene_find(sc->partname, sc->npart, s);
-    if (k < 0)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "particle '%s' is not defined above", s);
-    if (*n == max) return err(sc, l->line, msg, len, DAL_E_ARG, "more than %d particles", max);
-    idx[(*n)++] = k;
+// a name into table t (the line that gives it); a name given before is refused on the later
+// of the two lines, naming the other
+static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, int made, char *msg,
+                 size_t len) {
+  int other = dal__tab_get(t, name);
+  if (other >= 0) {
+    int a = other < l->line ? other : l->line, z = other < l->line ? l->line : other;
+    return err(sc, z, msg, len, DAL_E_ARG, "%s %s: the name '%s' is given twice (line %d and %s)",
+               l->tok[0], l->ntok > 1 ? l->tok[1] : "", name, a,
+               z == l->line ? "here" : "this line");
   }
+  const char *key = name;
+  if (made) { // a made name (a rate, x_<p>): the scene keeps it
+    if (sc->nsymkeys == sc->capsymkeys) {
+      int cap = sc->capsymkeys ? 2 * sc->capsymkeys : 16;
+      char **v = realloc(sc->symkeys, (size_t)cap * sizeof *v);
+      if (!v) return DAL_E_NOMEM;
+      sc->symkeys = v;
+      sc->capsymkeys = cap;
+    }
+    char *k = dup(name);
+    if (!k) return DAL_E_NOMEM;
+    sc->symkeys[sc->nsymkeys++] = k;
+    key = k;
+  }
+  return dal__tab_put(t, key, l->line);
+}
+
+// a symbol a formula may use, and the made ones with it (prefix + name + suffix)
+static int claim_sym(dal_scene *sc, const sline *l, const char *pre, const char *name,
+                     const char *suf, char *msg, size_t len) {
+  if (!*pre && !*suf) return claim(sc, &sc->syms, l, name, 0, msg, len);
+  char *s = strf("%s%s%s", pre, name, suf);
+  if (!s) return DAL_E_NOMEM;
+  int rc = claim(sc, &sc->syms, l, s, 1, msg, len);
+  free(s);
+  return rc;
+}
+
+// a comma-separated list: its n items (malloc'd copies in *items, the caller frees them)
+static int split_list(const char *list, char ***items, int *n) {
+  int m = 1;
+  for (const char *s = list; *s; ++s)
+    m += *s == ',';
+  char **v = calloc((size_t)m, sizeof *v);
+  if (!v) return DAL_E_NOMEM;
+  int k = 0;
+  for (const char *s = list;; ++k) {
+    const char *e = strchr(s, ',');
+    size_t w = e ? (size_t)(e - s) : strlen(s);
+    v[k] = dupn(s, w);
+    if (!v[k]) {
+      for (int i = 0; i < k; ++i)
+        free(v[i]);
+      free(v);
+      return DAL_E_NOMEM;
+    }
+    if (!e) break;
+    s = e + 1;
+  }
+  *items = v;
+  *n = m;
   return DAL_OK;
+}
+
+static void free_list(char **items, int n) {
+  for (int i = 0; i < n; ++i)
+    free(items[i]);
+  free(items);
+}
+
+// a comma-separated list of particle names into indices (*idx malloc'd)
+static int part_list(dal_scene *sc, const sline *l, const char *list, int **idx, int *n, char *msg,
+                     size_t len) {
+  char **it;
+  int m, rc = split_list(list, &it, &m);
+  if (rc) return rc;
+  *idx = malloc((size_t)m * sizeof **idx);
+  if (!*idx) rc = DAL_E_NOMEM;
+  for (int i = 0; i < m && !rc; ++i)
+    if (((*idx)[i] = dal__scene_part(sc, it[i])) < 0)
+      rc = err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: particle '%s' is not defined above",
+               l->tok[0], l->tok[1], it[i]);
+  free_list(it, m);
+  *n = m;
+  return rc;
 }
 
 // inputs of a formula element: positions of particles `parts` (x_<p>, ...), then the
@@ -266,12 +522,8 @@ static int element_expr(dal_scene *sc, const sline *l, const char *what, const i
   if (!in) return DAL_E_NOMEM;
   int rc = DAL_OK;
   for (int k = 0; k < nparts && !rc; ++k)
-    for (int i = 0; i < d && !rc; ++i) {
-      char nm[80];
-      snprintf(nm, sizeof nm, "%c_%s", "xyz"[i], sc -> partname[parts[k]]);
-      in[k * d + i] = dup(nm);
-      if (!in[k * d + i]) rc = DAL_E_NOMEM;
-    }
+    for (int i = 0; i < d && !rc; ++i)
+      if (!(in[k * d + i] = strf("%c_%s", "xyz"[i], sc -> partname[parts[k]]))) rc = DAL_E_NOMEM;
   for (int j = 0; j < sc->ncoord && !rc; ++j)
     in[nparts * d + j] = sc->cname[j];
   dal_expr *all = NULL;
@@ -314,9 +566,11 @@ static int set_method(dal_scene *sc, const sline *l, const char *v, char *msg, s
 
 static int number(dal_scene *sc, const sline *l, const char *key, const char *v, double *out,
                   char *msg, size_t len) {
-  char what[64];
-  snprintf(what, sizeof what, "%s %s", l->tok[0], key);
-  return constval(sc, l, what, v, out, msg, len);
+  char *what = strf("%s %s", l->tok[0], key);
+  if (!what) return DAL_E_NOMEM;
+  int rc = constval(sc, l, what, v, out, msg, len);
+  free(what);
+  return rc;
 }
 
 static int add_name(char ***names, int n, const char *s) {
@@ -327,9 +581,19 @@ static int add_name(char ***names, int n, const char *s) {
   return v[n] ? DAL_OK : DAL_E_NOMEM;
 }
 
+// param NAME = FORMULA (of the parameters above it); a value set by dal_scene_set_param wins
 static int el_param(dal_scene *sc, const sline *l, char *msg, size_t len) {
-  (void)sc, (void)l, (void)msg, (void)len;
-  return DAL_OK; // taken before the build
+  if (l->ntok != 2 || l->nf != 1)
+    return err(sc, l->line, msg, len, DAL_E_ARG,
+               "param: 'param <name> = <formula of the parameters above>'");
+  int j = sc->nparam, rc;
+  if ((rc = claim_sym(sc, l, "", l->tok[1], "", msg, len))) return rc;
+  double v = sc->overval[j];
+  if (!sc->over[j] && (rc = number(sc, l, l->tok[1], l->f[0], &v, msg, len))) return rc;
+  sc->pname[j] = l->tok[1];
+  sc->pval[j] = v;
+  sc->nparam++;
+  return dal__tab_put(&sc->ptab, l->tok[1], j);
 }
 
 static int el_dim(dal_scene *sc, const sline *l, char *msg, size_t len) {
@@ -353,12 +617,16 @@ static int el_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
     if (strncmp(l->tok[i], "q=", 2) && strncmp(l->tok[i], "v=", 2))
       return err(sc, l->line, msg, len, DAL_E_ARG, "coord %s: unknown word '%s' (q=, v=)",
                  l->tok[1], l->tok[i]);
+  if ((rc = claim_sym(sc, l, "", l->tok[1], "", msg, len)) ||
+      (rc = claim_sym(sc, l, "", l->tok[1], "dot", msg, len)))
+    return rc;
   if ((rc = bcheck(sc, l, dal_builder_add_coord(sc->b, l->tok[1], NULL), msg, len))) return rc;
   double *nq = realloc(sc->q0, ((size_t)sc->ncoord + 1) * sizeof *nq);
   if (nq) sc->q0 = nq;
   double *nv = realloc(sc->v0, ((size_t)sc->ncoord + 1) * sizeof *nv);
   if (nv) sc->v0 = nv;
   if (!nq || !nv || add_name(&sc->cname, sc->ncoord, l->tok[1])) return DAL_E_NOMEM;
+  if (dal__tab_put(&sc->coords, sc->cname[sc->ncoord], sc->ncoord)) return DAL_E_NOMEM;
   sc->q0[sc->ncoord] = q;
   sc->v0[sc->ncoord++] = v;
   return DAL_OK;
@@ -372,35 +640,47 @@ static int el_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (rc) return rc;
   double mv;
   if ((rc = number(sc, l, "mass", m, &mv, msg, len))) return rc;
+  if (dal__scene_part(sc, l->tok[1]) >= 0) { // its first line is the one of x_<name>
+    char *xs = strf("x_%s", l->tok[1]);
+    int other = xs ? dal__tab_get(&sc->syms, xs) : -1;
+    free(xs);
+    return err(sc, l->line, msg, len, DAL_E_ARG,
+               "particle %s: the name '%s' is given twice (line %d and here)", l->tok[1], l->tok[1],
+               other);
+  }
+  for (int c = 0; c < 3 && !rc; ++c)
+    rc = claim_sym(sc, l, c == 0 ? "x_" : c == 1 ? "y_" : "z_", l->tok[1], "", msg, len);
+  if (rc) return rc;
   if ((rc = bcheck(sc, l, dal_builder_add_particle(sc->b, l->tok[1], mv, NULL), msg, len)))
     return rc;
   if (add_name(&sc->partname, sc->npart, l->tok[1])) return DAL_E_NOMEM;
+  if (dal__tab_put(&sc->parts, sc->partname[sc->npart], sc->npart)) return DAL_E_NOMEM;
   sc->npart++;
   return DAL_OK;
 }
 
 // the built-in primitive named by word 2 and its words from word 3 on: coordinates and
-// name=formula parameters
-// (parent= and parts= belong to the element); every parameter without a default given
+// name=formula parameters (parent= and parts= belong to the element); every parameter without
+// a default given. coords (ntok ints) and param (prim->nparam values) are the caller's.
 static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, int *coords, int *nc,
-                     double *param, char *msg, size_t len) {
+                     double **param, char *msg, size_t len) {
   const char *k = l->tok[0], *nm = l->tok[1];
+  *param = NULL;
   if (l->ntok < 3)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k, nm);
   const dal_primitive *prim = *pp = dal_primitive_find(l->tok[2]);
   if (!prim)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm, l->tok[2]);
-  if (prim->nparam > 64)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has more than 64 parameters", k, nm,
-               prim->name);
+  double *p = *param = malloc(((size_t)prim->nparam + 1) * sizeof *p);
+  if (!p) return DAL_E_NOMEM;
   for (int i = 0; i < prim->nparam; ++i)
-    param[i] = prim->param_defaults ? prim->param_defaults[i] : NAN;
+    p[i] = prim->param_defaults ? prim->param_defaults[i] : NAN;
   *nc = 0;
   for (int i = 3; i < l->ntok; ++i) {
     const char *w = l->tok[i], *eq = strchr(w, '=');
     if (!strncmp(w, "parent=", 7) || !strncmp(w, "parts=", 6)) continue;
     if (!eq) {
-      int c = dal__scene_find(sc->cname, sc->ncoord, w);
+      int c = coord_index(sc, w);
       if (c < 0)
         return err(sc, l->line, msg, len, DAL_E_ARG,
                    "%s %s: '%s' is not a coordinate defined above", k, nm, w);
@@ -415,62 +695,78 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
     if (j < 0)
       return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has no parameter '%.*s'", k, nm,
                  prim->name, (int)(eq - w), w);
-    int rc = number(sc, l, prim->param_names[j], eq + 1, &param[j], msg, len);
+    int rc = number(sc, l, prim->param_names[j], eq + 1, &p[j], msg, len);
     if (rc) return rc;
   }
   for (int i = 0; i < prim->nparam; ++i)
-    if (param[i] != param[i])
+    if (p[i] != p[i])
       return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: parameter '%s' of '%s' is required", k,
                  nm, prim->param_names ? prim->param_names[i] : "?", prim->name);
   return DAL_OK;
 }
 
-// a placement or a constraint by formulas (after '='): parts are the particles whose
-// positions the formulas may use (the parent, the constraint's parts)
-static int formula_element(dal_scene *sc, const sline *l, int p, const int *parts, int np,
-                           char *msg, size_t len) {
+// a placement (p >= 0) or a constraint (p < 0) by formulas (after '=') or by a built-in
+// primitive: parts are the particles whose positions the formulas may use (the parent, the
+// constraint's parts)
+static int element(dal_scene *sc, const sline *l, int p, const int *parts, int np, char *msg,
+                   size_t len) {
   dal_expr *e = NULL;
-  char what[80];
-  snprintf(what, sizeof what, "%s %s", l->tok[0], l->tok[1]);
-  int nc = 0, *cs = malloc(((size_t)sc->ncoord + 1) * sizeof *cs);
-  if (!cs) return DAL_E_NOMEM;
-  int rc = element_expr(sc, l, what, parts, np, &e, cs, &nc, msg, len);
+  const dal_primitive *prim = NULL;
+  double *param = NULL;
+  int nc = 0, nparam = 0, rc;
+  int *cs = malloc(((size_t)sc->ncoord + (size_t)l->ntok + 1) * sizeof *cs);
+  char *what = strf("%s %s", l->tok[0], l->tok[1]);
+  if (!cs || !what) {
+    rc = DAL_E_NOMEM;
+  } else if (l->nf) {
+    rc = element_expr(sc, l, what, parts, np, &e, cs, &nc, msg, len);
+    if (!rc) {
+      prim = dal_expr_primitive(e);
+      param = (double *)dal_expr_values(e);
+      nparam = dal_expr_nparam(e);
+    }
+  } else {
+    rc = prim_args(sc, l, &prim, cs, &nc, &param, msg, len);
+    nparam = prim ? prim->nparam : 0;
+  }
   if (!rc && p >= 0) {
     dal_place_def pd = dal_default_place_def();
-    pd.prim = dal_expr_primitive(e);
+    pd.prim = prim;
     pd.parent = np ? parts[0] : -1;
     pd.coords = cs;
     pd.ncoords = nc;
-    pd.param_list = dal_expr_values(e);
-    pd.nparam_list = dal_expr_nparam(e);
+    pd.param_list = param;
+    pd.nparam_list = nparam;
     pd.ctx = e;
     rc = bcheck(sc, l, dal_builder_place_def(sc->b, p, &pd), msg, len);
   } else if (!rc) {
     dal_constraint_def cd = dal_default_constraint_def();
     cd.name = l->tok[1];
-    cd.prim = dal_expr_primitive(e);
+    cd.prim = prim;
     cd.parts = parts;
     cd.nparts = np;
     cd.coords = cs;
     cd.ncoords = nc;
-    cd.param_list = dal_expr_values(e);
-    cd.nparam_list = dal_expr_nparam(e);
+    cd.param_list = param;
+    cd.nparam_list = nparam;
     cd.ctx = e;
     rc = bcheck(sc, l, dal_builder_add_constraint_def(sc->b, &cd, NULL), msg, len);
   }
+  if (!e) free(param);
   free(cs);
+  free(what);
   return rc;
 }
 
 static int el_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok < 2 || !sc->b)
     return err(sc, l->line, msg, len, DAL_E_ARG, "place: 'place <particle> ...' after it");
-  int p = dal__scene_find(sc->partname, sc->npart, l->tok[1]), parent = -1;
+  int p = dal__scene_part(sc, l->tok[1]), parent = -1;
   if (p < 0)
     return err(sc, l->line, msg, len, DAL_E_ARG, "place: particle '%s' is not defined above",
                l->tok[1]);
   const char *ps = dal__scene_kv(l, 2, "parent");
-  if (ps && (parent = dal__scene_find(sc->partname, sc->npart, ps)) < 0)
+  if (ps && (parent = dal__scene_part(sc, ps)) < 0)
     return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parent '%s' is not defined above",
                l->tok[1], ps);
   if (l->nf) {
@@ -482,31 +778,19 @@ static int el_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
       if (strncmp(l->tok[i], "parent=", 7))
         return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown word '%s' before '='",
                    l->tok[1], l->tok[i]);
-    return formula_element(sc, l, p, &parent, parent >= 0, msg, len);
   }
-  // by a built-in primitive: its name, coordinates, parameters
-  const dal_primitive *prim = NULL;
-  double param[64];
-  int coords[MAXTOK], nc = 0, rc = prim_args(sc, l, &prim, coords, &nc, param, msg, len);
-  if (rc) return rc;
-  return bcheck(sc, l, place_by(sc->b, p, prim, parent, nc, coords, prim->nparam, param, NULL), msg,
-                len);
+  return element(sc, l, p, &parent, parent >= 0, msg, len);
 }
 
 static int el_constraint(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok < 2 || !sc->b)
     return err(sc, l->line, msg, len, DAL_E_ARG, "constraint: 'constraint <name> ...'");
-  int parts[16], np = 0, rc;
+  int *parts = NULL, np = 0, rc = claim(sc, &sc->elems, l, l->tok[1], 0, msg, len);
   const char *pl = dal__scene_kv(l, 2, "parts");
-  if (pl && (rc = part_list(sc, l, pl, parts, 16, &np, msg, len))) return rc;
-  if (l->nf) return formula_element(sc, l, -1, parts, np, msg, len);
-  const dal_primitive *prim = NULL;
-  double param[64];
-  int coords[MAXTOK], nc = 0;
-  if ((rc = prim_args(sc, l, &prim, coords, &nc, param, msg, len))) return rc;
-  return bcheck(
-      sc, l, constrain_by(sc->b, l->tok[1], prim, np, parts, nc, coords, prim->nparam, param, NULL),
-      msg, len);
+  if (!rc && pl) rc = part_list(sc, l, pl, &parts, &np, msg, len);
+  if (!rc) rc = element(sc, l, -1, parts, np, msg, len);
+  free(parts);
+  return rc;
 }
 
 // spring a b ... / spring a anchor=x,y ...: the other end (-1: an anchor) and the anchor
@@ -516,35 +800,42 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
   if (l->ntok < 3 || !sc->b)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'",
                k, k, k);
-  *a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  *a = dal__scene_part(sc, l->tok[1]);
   if (*a < 0)
     return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
                l->tok[1]);
   *b = -1;
   *from = 2;
   if (!strchr(l->tok[2], '=')) {
-    *b = dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+    *b = dal__scene_part(sc, l->tok[2]);
     if (*b < 0)
       return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
                  l->tok[2]);
     *from = 3;
   }
   const char *an = dal__scene_kv(l, *from, "anchor");
-  if (an) {
-    char buf[512];
-    snprintf(buf, sizeof buf, "%s", an);
-    int i = 0, rc;
-    for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && i < 3;
-         s = strtok_r(NULL, ",", &sv), ++i)
-      if ((rc = number(sc, l, "anchor", s, &anchor[i], msg, len))) return rc;
-  }
-  return DAL_OK;
+  if (!an) return DAL_OK;
+  char **it;
+  int n, rc = split_list(an, &it, &n);
+  if (rc) return rc;
+  if (n > sc->dim)
+    rc = err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: anchor of %d components for dimension %d", k,
+             l->tok[1], n, sc->dim);
+  for (int i = 0; i < n && !rc; ++i)
+    rc = number(sc, l, "anchor", it[i], &anchor[i], msg, len);
+  free_list(it, n);
+  return rc;
 }
 
 static int el_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
   int spring = l->tok[0][0] == 's', a = -1, bb = -1, from = 2, rc;
   double anchor[3] = {0, 0, 0}, kk = 0, LL = 0;
   if ((rc = ends(sc, l, &a, &bb, &from, anchor, msg, len))) return rc;
+  for (int i = from; i < l->ntok; ++i)
+    if (strncmp(l->tok[i], "anchor=", 7) && strncmp(l->tok[i], spring ? "k=" : "c=", 2) &&
+        (!spring || strncmp(l->tok[i], "L=", 2)))
+      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown word '%s' (%s)", l->tok[0],
+                 l->tok[1], l->tok[i], spring ? "anchor= k= L=" : "anchor= c=");
   const char *s;
   if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) &&
       (rc = number(sc, l, spring ? "k" : "c", s, &kk, msg, len)))
@@ -595,20 +886,55 @@ static int el_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
                 msg, len);
 }
 
+// the generalized force of a force line, added to Q_i
+static int force_q(double t, const double *q, const double *qdot, double *Q, void *ctx) {
+  const scene_force *f = ctx;
+  double v = dal_expr_event(t, q, qdot, f->e);
+  if (!isfinite(v)) return -1;
+  Q[f->coord] += v;
+  return 0;
+}
+
+// force COORD = Q(t, q, qdot): a generalized force on one coordinate
+static int el_force(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (!sc->b || l->ntok != 2 || l->nf != 1)
+    return err(sc, l->line, msg, len, DAL_E_ARG,
+               "force: 'force <coordinate> = <formula of t, q, qdot>' after the coordinates");
+  int i = coord_index(sc, l->tok[1]);
+  if (i < 0)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "force %s: '%s' is not a coordinate defined above",
+               l->tok[1], l->tok[1]);
+  if (sc->ncoord > DAL_EXPR_EVENT_MAXN)
+    return err(sc, l->line, msg, len, DAL_E_ARG, "force %s: more than %d coordinates", l->tok[1],
+               DAL_EXPR_EVENT_MAXN);
+  scene_force **v = realloc(sc->gf, ((size_t)sc->ngf + 1) * sizeof *v);
+  if (!v) return DAL_E_NOMEM;
+  sc->gf = v;
+  scene_force *f = sc->gf[sc->ngf] = calloc(1, sizeof *f);
+  if (!f) return DAL_E_NOMEM;
+  sc->ngf++;
+  char *what = strf("force %s", l->tok[1]);
+  int rc = what ? mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname,
+                         sc->ncoord, 1, &f->e, msg, len)
+                : DAL_E_NOMEM;
+  free(what);
+  f->coord = i;
+  return rc ? rc : bcheck(sc, l, dal_builder_add_genforce(sc->b, force_q, f), msg, len);
+}
+
 // one key=value word of a run line
 static int run_key(dal_scene *sc, const sline *l, const char *w, char *msg, size_t len) {
   const char *eq = strchr(w, '=');
   if (!eq) return err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", w);
   size_t n = (size_t)(eq - w);
-  char key[32];
-  snprintf(key, sizeof key, "%.*s", (int)(n < 31 ? n : 31), w);
-  if (!strcmp(key, "method")) return set_method(sc, l, eq + 1, msg, len);
+  if (n == 6 && !strncmp(w, "method", 6)) return set_method(sc, l, eq + 1, msg, len);
   static const char *const keys[] = {"rtol", "atol", "step", "t0", "t1", "dt"};
   double *dst[] = {&sc->opts.rtol, &sc->opts.atol, &sc->opts.fixed_step, &sc->t0, &sc->t1, &sc->dt};
   for (int i = 0; i < 6; ++i)
-    if (!strcmp(key, keys[i])) return number(sc, l, key, eq + 1, dst[i], msg, len);
+    if (strlen(keys[i]) == n && !strncmp(w, keys[i], n))
+      return number(sc, l, keys[i], eq + 1, dst[i], msg, len);
   return err(sc, l->line, msg, len, DAL_E_ARG,
-             "run: unknown key '%s' (method rtol atol step t0 t1 dt)", key);
+             "run: unknown key '%.*s' (method rtol atol step t0 t1 dt)", (int)n, w);
 }
 
 static int el_run(dal_scene *sc, const sline *l, char *msg, size_t len) {
@@ -632,6 +958,7 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
                          "'section <name> period=<formula>', after the coordinates"
                        : "event: 'event <name> [rising|falling] [terminal] = <formula>', after "
                          "the coordinates");
+  if ((rc = claim(sc, &sc->elems, l, l->tok[1], 0, msg, len))) return rc;
   const char *per = dal__scene_kv(l, 2, "period");
   if (section && per) {
     if (l->ntok != 3 || l->nf)
@@ -668,11 +995,12 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   scene_event *v = realloc(sc->ev, ((size_t)sc->nev + 1) * sizeof *v);
   if (!v) return DAL_E_NOMEM;
   sc->ev = v;
-  char what[80];
-  snprintf(what, sizeof what, "%s %s", k, l->tok[1]);
+  char *what = strf("%s %s", k, l->tok[1]);
   scene_event *ev = &sc->ev[sc->nev];
-  rc = mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname, sc->ncoord,
-              1, &ev->e, msg, len);
+  rc = what ? mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname,
+                     sc->ncoord, 1, &ev->e, msg, len)
+            : DAL_E_NOMEM;
+  free(what);
   if (rc) return rc;
   ev->name = l->tok[1];
   ev->direction = dir;
@@ -684,27 +1012,56 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
 
 typedef int element_fn(dal_scene *sc, const sline *l, char *msg, size_t len);
 
-// the elements of a scene file, by their first word
+// the grammar: the elements of a scene file by their first word, the pass that reads them
+// (parameters first, so every formula may use every parameter) and their forms
 static const struct {
   const char *key;
   element_fn *fn;
+  int pass;
+  const char *form;
 } elements[] = {
-    {"param", el_param},          {"dim", el_dim},
-    {"coord", el_coord},          {"particle", el_particle},
-    {"place", el_place},          {"constraint", el_constraint},
-    {"spring", el_spring},        {"damper", el_spring},
-    {"gravity", el_gravity},      {"potential", el_potential},
-    {"lagrangian", el_potential}, {"run", el_run},
-    {"event", el_event},          {"section", el_event},
+    {"param", el_param, 0, "param NAME = FORMULA        (of the parameters above)"},
+    {"dim", el_dim, 1, "dim 2|3|0                   (0: a Lagrangian only; first)"},
+    {"coord", el_coord, 1, "coord NAME [q=F] [v=F]      (initial value and rate)"},
+    {"particle", el_particle, 1, "particle NAME mass=F"},
+    {"place", el_place, 1,
+     "place P [parent=Q] = F1; F2[; F3]  |  place P PRIMITIVE COORDS... [NAME=F]..."},
+    {"constraint", el_constraint, 1,
+     "constraint NAME [parts=A,B,...] = F1[; F2; F3]  |  constraint NAME PRIMITIVE "
+     "[parts=..] [COORDS...] [NAME=F]..."},
+    {"spring", el_spring, 1, "spring A B|anchor=F,F[,F] k=F [L=F]"},
+    {"damper", el_spring, 1, "damper A B|anchor=F,F[,F] c=F"},
+    {"force", el_force, 1, "force COORD = F(t, q, qdot)  (a generalized force on COORD)"},
+    {"gravity", el_gravity, 1, "gravity F F [F]"},
+    {"potential", el_potential, 1, "potential = U(q, t)"},
+    {"lagrangian", el_potential, 1, "lagrangian = L(t, q, qdot)"},
+    {"run", el_run, 1, "run [method=M] [rtol=F] [atol=F] [step=F] [t0=F] [t1=F] [dt=F]"},
+    {"event", el_event, 1, "event NAME [rising|falling|both] [terminal] = g(t, q, qdot)"},
+    {"section", el_event, 1,
+     "section NAME [rising|falling|both] = g(t, q, qdot)  |  section NAME period=F"},
 };
 
-static int one_line(dal_scene *sc, const sline *l, char *msg, size_t len) {
-  for (size_t i = 0; i < sizeof elements / sizeof *elements; ++i)
-    if (!strcmp(l->tok[0], elements[i].key)) return elements[i].fn(sc, l, msg, len);
-  return err(sc, l->line, msg, len, DAL_E_ARG,
-             "unknown element '%s' (dim param coord particle place constraint spring damper "
-             "gravity potential lagrangian run event section)",
-             l->tok[0]);
+enum { NELEMENTS = sizeof elements / sizeof *elements };
+
+int dal_scene_help(FILE *fp) {
+  if (!fp) return DAL_E_ARG;
+  fprintf(fp, "scene file: one element per line, '#' starts a comment, F a formula (a value after "
+              "key= may hold spaces):\n");
+  for (int i = 0; i < NELEMENTS; ++i)
+    fprintf(fp, "  %s\n", elements[i].form);
+  return ferror(fp) ? DAL_E_IO : DAL_OK;
+}
+
+static int one_line(dal_scene *sc, const sline *l, int pass, char *msg, size_t len) {
+  for (int i = 0; i < NELEMENTS; ++i)
+    if (!strcmp(l->tok[0], elements[i].key))
+      return elements[i].pass == pass ? elements[i].fn(sc, l, msg, len) : DAL_OK;
+  if (pass) return DAL_OK;
+  char known[256] = "";
+  for (int i = 0; i < NELEMENTS; ++i)
+    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", i ? " " : "",
+             elements[i].key);
+  return err(sc, l->line, msg, len, DAL_E_ARG, "unknown element '%s' (%s)", l->tok[0], known);
 }
 
 static int build(dal_scene *sc, char *msg, size_t len) {
@@ -715,9 +1072,12 @@ static int build(dal_scene *sc, char *msg, size_t len) {
   sc->t1 = 10;
   sc->dt = 0.01;
   sc->has_run = 0;
-  int rc = DAL_OK;
-  for (int i = 0; i < sc->nlines && !rc; ++i)
-    rc = one_line(sc, &sc->lines[i], msg, len);
+  sc->pname = calloc((size_t)sc->nparamlines + 1, sizeof *sc->pname);
+  sc->pval = calloc((size_t)sc->nparamlines + 1, sizeof *sc->pval);
+  int rc = sc->pname && sc->pval ? DAL_OK : DAL_E_NOMEM;
+  for (int pass = 0; pass < 2; ++pass)
+    for (int i = 0; i < sc->nlines && !rc; ++i)
+      rc = one_line(sc, &sc->lines[i], pass, msg, len);
   if (!rc && !sc->b)
     rc = err(sc, sc->nlines ? sc->lines[sc->nlines - 1].line : 0, msg, len, DAL_E_ARG,
              "no coordinates or particles");
@@ -746,52 +1106,28 @@ int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *m
     size_t m = hash ? (size_t)(hash - s) : n;
     sline l;
     rc = split_line(sc, s, m, lineno, &l, msg, msglen);
-    if (rc) {
-      free_line(&l);
-    } else if (l.ntok == 0 && l.nf == 0) {
-      free_line(&l);
-    } else if (!rc && l.ntok == 0) {
-      free_line(&l);
+    if (!rc && l.ntok == 0 && l.nf)
       rc = err(sc, lineno, msg, msglen, DAL_E_ARG, "a line starts with '='");
-    } else if (!rc && !strcmp(l.tok[0], "param")) {
-      // param <name> = <number>
-      double v = 0;
-      char *end = NULL;
-      if (l.ntok != 2 || l.nf != 1) {
-        rc = err(sc, lineno, msg, msglen, DAL_E_ARG, "param: 'param <name> = <number>'");
-      } else {
-        errno = 0;
-        v = strtod(l.f[0], &end);
-        if (end == l.f[0] || *end || !isfinite(v))
-          rc = err(sc, lineno, msg, msglen, DAL_E_ARG, "param %s: '%s' is not a finite number",
-                   l.tok[1], l.f[0]);
-        else if (dal__scene_find(sc->pname, sc->nparam, l.tok[1]) >= 0)
-          rc = err(sc, lineno, msg, msglen, DAL_E_ARG, "param %s is given twice", l.tok[1]);
-      }
-      if (!rc) {
-        double *pv = realloc(sc->pval, ((size_t)sc->nparam + 1) * sizeof *pv);
-        if (pv) sc->pval = pv;
-        if (!pv || add_name(&sc->pname, sc->nparam, l.tok[1]))
-          rc = DAL_E_NOMEM;
-        else
-          sc->pval[sc->nparam++] = v;
-      }
-      if (rc) free_line(&l);
+    if (!rc && l.ntok > 0 && sc->nlines == cap) {
+      cap = cap ? 2 * cap : 32;
+      sline *v = realloc(sc->lines, (size_t)cap * sizeof *v);
+      if (v)
+        sc->lines = v;
+      else
+        rc = DAL_E_NOMEM;
     }
     if (!rc && l.ntok > 0) {
-      if (sc->nlines == cap) {
-        cap = cap ? 2 * cap : 32;
-        sline *v = realloc(sc->lines, (size_t)cap * sizeof *v);
-        if (!v) {
-          free_line(&l);
-          rc = DAL_E_NOMEM;
-          break;
-        }
-        sc->lines = v;
-      }
+      sc->nparamlines += !strcmp(l.tok[0], "param");
       sc->lines[sc->nlines++] = l;
+    } else {
+      free_line(&l);
     }
     s = e ? e + 1 : s + n;
+  }
+  if (!rc) {
+    sc->over = calloc((size_t)sc->nparamlines + 1, 1);
+    sc->overval = calloc((size_t)sc->nparamlines + 1, sizeof *sc->overval);
+    if (!sc->over || !sc->overval) rc = DAL_E_NOMEM;
   }
   if (!rc) rc = build(sc, msg, msglen);
   if (rc) {
@@ -849,19 +1185,32 @@ int dal_scene_read(const char *path, dal_scene **out, char *msg, size_t msglen) 
   return rc;
 }
 
+// the shortest decimal that reads back to v
+static void shortest(double v, char *num, size_t len) {
+  for (int prec = 15; prec <= 17; ++prec) {
+    snprintf(num, len, "%.*g", prec, v);
+    if (strtod(num, NULL) == v) break;
+  }
+}
+
 int dal_scene_write(const dal_scene *sc, FILE *fp) {
   if (!sc || !fp) return DAL_E_ARG;
   fprintf(fp, "# %s, written by dalembert %s\n", sc->name, dal_version());
+  int j = 0;
   for (int i = 0; i < sc->nlines; ++i) {
     const sline *l = &sc->lines[i];
-    if (!strcmp(l->tok[0], "param")) {
-      int j = dal__scene_find(sc->pname, sc->nparam, l->tok[1]);
-      char num[40];
-      for (int prec = 15; prec <= 17; ++prec) {
-        snprintf(num, sizeof num, "%.*g", prec, sc->pval[j]);
-        if (strtod(num, NULL) == sc->pval[j]) break;
+    if (!strcmp(l->tok[0], "param") && j < sc->nparam) {
+      // a value set by dal_scene_set_param or a plain number: the number; else the formula
+      char num[40], *end = NULL;
+      double v = strtod(l->f[0], &end);
+      int plain = end != l->f[0] && !*end;
+      if (sc->over[j] || plain) {
+        shortest(sc->over[j] ? sc->overval[j] : v, num, sizeof num);
+        fprintf(fp, "param %s = %s\n", l->tok[1], num);
+      } else {
+        fprintf(fp, "param %s = %s\n", l->tok[1], l->f[0]);
       }
-      fprintf(fp, "param %s = %s\n", l->tok[1], num);
+      j++;
       continue;
     }
     for (int k = 0; k < l->ntok; ++k)
@@ -876,7 +1225,7 @@ int dal_scene_write(const dal_scene *sc, FILE *fp) {
 int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (!sc || !name) return DAL_E_ARG;
-  int j = dal__scene_find(sc->pname, sc->nparam, name);
+  int j = dal__tab_get(&sc->ptab, name);
   if (j < 0) {
     if (msg && msglen) snprintf(msg, msglen, "%s: no parameter '%s'", sc->name, name);
     return DAL_E_ARG;
@@ -886,11 +1235,14 @@ int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg
     return DAL_E_NONFINITE;
   }
   // a value the model refuses leaves the scene as it was
-  double old = sc->pval[j];
-  sc->pval[j] = value;
+  unsigned char old = sc->over[j];
+  double oldv = sc->overval[j];
+  sc->over[j] = 1;
+  sc->overval[j] = value;
   int rc = build(sc, msg, msglen);
   if (rc) {
-    sc->pval[j] = old;
+    sc->over[j] = old;
+    sc->overval[j] = oldv;
     build(sc, NULL, 0);
   }
   return rc;

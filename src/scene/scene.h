@@ -7,21 +7,43 @@
 #include "dalembert/dalembert.h"
 #include "dalembert/scene.h"
 
-#define MAXTOK 64
-
 /// one element line, normalized: its words before a standalone '=' and its formulas after it
+/// (a key=value word's value may hold spaces: "q=2 * a" is one word)
 typedef struct sline {
   int line;
-  int ntok;
-  char *tok[MAXTOK];
+  int ntok, captok;
+  char **tok;
   int nf;
   char *f[3]; // formulas (after '='), split at ';'
 } sline;
 
-/// index of s in names (n of them), -1 if absent
-int dal__scene_find(char *const *names, int n, const char *s);
+/// a name table: string keys (borrowed) to ints, open addressing; linear in the names it holds
+typedef struct dal_tab {
+  const char **key;
+  int *val;
+  int cap, n;
+} dal_tab;
+
+/// the value of key (-1 when absent)
+int dal__tab_get(const dal_tab *t, const char *key);
+/// add key (borrowed; must outlive the table) with value v; DAL_OK or DAL_E_NOMEM
+int dal__tab_put(dal_tab *t, const char *key, int v);
+void dal__tab_free(dal_tab *t);
+
 /// the value of word `key`=value from word `from` on (NULL if absent)
 const char *dal__scene_kv(const sline *l, int from, const char *key);
+/// index of particle `name` (-1 if absent)
+int dal__scene_part(const dal_scene *sc, const char *name);
+
+/// the scene's parameters the formulas f (nf) name, in the order of the file: names (borrowed
+/// from the lines) and values, both malloc'd (the caller frees them)
+int dal__scene_params(const dal_scene *sc, const char *const *f, int nf, const char ***names,
+                      double **values, int *n);
+/// an expression of formulas f (nf) over inputs `in` (nin, with velocities when vel) and the
+/// scene's parameters the formulas name (a formula costs its own length, not the scene's
+/// parameter count); *e is the caller's. msg as dal_expr_create.
+int dal__scene_expr(const dal_scene *sc, const char *name, const char *const *f, int nf,
+                    const char *const *in, int nin, int vel, dal_expr **e, char *msg, size_t len);
 
 /// an `event` or a surface `section` line, compiled: g(t, q, qdot)
 typedef struct scene_event {
@@ -32,15 +54,31 @@ typedef struct scene_event {
   int section;
 } scene_event;
 
+/// a `force` line: a generalized force Q_i(t, q, qdot) on coordinate i
+typedef struct scene_force {
+  dal_expr *e; // kept in the scene's expression list
+  int coord;
+} scene_force;
+
 struct dal_scene {
   char *name;
   sline *lines;
   int nlines;
-  // parameters (the values set_param changes)
+  // parameters: values set by dal_scene_set_param (over[j]) survive every rebuild
+  int nparamlines;
+  unsigned char *over;
+  double *overval;
+  // what the lines built: parameters (names borrowed from the lines), in the order of the file
   int nparam;
-  char **pname;
+  const char **pname;
   double *pval;
-  // what the lines built
+  dal_tab ptab;   // parameter name -> index
+  dal_tab syms;   // every name a formula may use (parameters, coordinates, rates, x_<p>) -> line
+  dal_tab parts;  // particle name -> index
+  dal_tab coords; // coordinate name -> index
+  dal_tab elems;  // constraint, event and section names -> line
+  char **symkeys; // the made names the tables borrow (rates, x_<p>, ...)
+  int nsymkeys, capsymkeys;
   int dim;
   int ncoord;
   char **cname;
@@ -56,6 +94,8 @@ struct dal_scene {
   int has_run;
   scene_event *ev; // the event and surface-section lines, in order
   int nev;
+  scene_force **gf; // the force lines (each allocated once: the builder keeps its address)
+  int ngf;
   double strobe; // period of the stroboscopic section (0: none)
 };
 

@@ -29,6 +29,32 @@ static const tmpl maps[] = {
     {"fixed3", {"$x", "$y", "$z"}},
 };
 
+// the rows of the built-in constraints as formulas: #ax #ay #az the position of the first part,
+// #bx ... of the second (the symbols x_<part>), $name a parameter, $0 the first coordinate
+static const struct {
+  const char *prim;
+  const char *f[2];
+} cons[] = {
+    {"distance2", {"sqrt((#bx - #ax)^2 + (#by - #ay)^2) - $L"}},
+    {"distance3", {"sqrt((#bx - #ax)^2 + (#by - #ay)^2 + (#bz - #az)^2) - $L"}},
+    {"anchor2", {"sqrt((#ax - $x0)^2 + (#ay - $y0)^2) - $L"}},
+    {"anchor3", {"sqrt((#ax - $x0)^2 + (#ay - $y0)^2 + (#az - $z0)^2) - $L"}},
+    {"on_circle2", {"sqrt((#ax - $cx)^2 + (#ay - $cy)^2) - $R"}},
+    {"on_circle3",
+     {"($nx*(#ax - $cx) + $ny*(#ay - $cy) + $nz*(#az - $cz))/sqrt($nx^2 + $ny^2 + $nz^2)",
+      "sqrt((#ax - $cx)^2 + (#ay - $cy)^2 + (#az - $cz)^2 - ($nx*(#ax - $cx) + $ny*(#ay - $cy) + "
+      "$nz*(#az - $cz))^2/($nx^2 + $ny^2 + $nz^2)) - $R"}},
+    {"turning_circle",
+     {"(#ay - $cy)*cos($w*t + $phi0) - (#ax - $cx)*sin($w*t + $phi0)",
+      "sqrt((#ax - $cx)^2 + (#ay - $cy)^2 + (#az - $cz)^2) - $R"}},
+    {"on_sphere", {"sqrt((#ax - $cx)^2 + (#ay - $cy)^2 + (#az - $cz)^2) - $R"}},
+    {"on_plane",
+     {"($nx*(#ax - $cx) + $ny*(#ay - $cy) + $nz*(#az - $cz))/sqrt($nx^2 + $ny^2 + $nz^2)"}},
+    {"on_line2", {"($ax*(#ay - $cy) - $ay*(#ax - $cx))/sqrt($ax^2 + $ay^2)"}},
+    {"turning_line2", {"(#ay - $cy)*cos($w*t + $phi0) - (#ax - $cx)*sin($w*t + $phi0)"}},
+    {"prescribed", {"$0 - $q0"}},
+};
+
 typedef struct str {
   char *s;
   size_t n, cap;
@@ -82,10 +108,17 @@ static char *subst(const char *text, char *const *from, char *const *to, int n) 
 
 // a built-in map's template filled in: parameters from the line (formulas) or defaults
 static char *fill(const char *t, const dal_primitive *prim, const sline *l, const char *const *cn,
-                  int nc, char *const *parent) {
+                  int nc, char *const *parent, char *const *parts, int np) {
   str b = {0};
   adds(&b, "");
   for (const char *s = t; *s;) {
+    if (*s == '#' && (s[1] == 'a' || s[1] == 'b') && s[2] && strchr("xyz", s[2])) {
+      int k = s[1] - 'a';
+      adds(&b, s[2] == 'x' ? "x_" : s[2] == 'y' ? "y_" : "z_");
+      adds(&b, k < np ? parts[k] : "?");
+      s += 3;
+      continue;
+    }
     if (*s != '$') {
       add(&b, s, 1);
       s++;
@@ -158,25 +191,18 @@ static char *text_of(const dal_expr *e, int k) {
 // a formula over the coordinates (and their rates when vel), t and the parameters
 static int compile(const dal_scene *sc, const char *name, const char *f, int vel, dal_expr **e,
                    char *msg, size_t msglen) {
-  dal_expr_def ed = dal_default_expr_def();
-  ed.name = name;
-  ed.formulas = &f;
-  ed.nout = 1;
-  ed.inputs = (const char *const *)sc->cname;
-  ed.nin = sc->ncoord;
-  ed.velocities = vel;
-  ed.params = (const char *const *)sc->pname;
-  ed.values = sc->pval;
-  ed.nparam = sc->nparam;
-  return dal_expr_create(&ed, e, msg, msglen);
+  return dal__scene_expr(sc, name, &f, 1, (const char *const *)sc->cname, sc->ncoord, vel, e, msg,
+                         msglen);
 }
 
 // what the lines give beyond T and U: the damping forces (Rayleigh's D) and the constraints
 typedef struct extras {
-  str D;       // D(q, qdot, t) = sum 1/2 c |v_a - v_b|^2 ("" when no damper)
-  str phi[16]; // the constraint rows as formulas of q and t
-  char name[16][64];
+  str D;    // D(q, qdot, t) = sum 1/2 c |v_a - v_b|^2 ("" when no damper)
+  str *phi; // the constraint rows as formulas of q and t
+  char **name;
   int nphi;
+  str *gq;    // the force lines' sum per coordinate (ncoord; "" when none)
+  int forced; // some force line
 } extras;
 
 // the generalized forces of the dampers, -dD/dqdot_i, into Q (n formulas as text)
@@ -353,10 +379,19 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
   if (!rc) rc = dal_expr_lagrange(L, &eq, msg, msglen);
   if (rc) return rc;
   int n = eq.n;
-  char *Q[64] = {0}, lhs[160];
-  rc = show_pmf(sc, fp, fmt, &eq);
-  if (!rc && damped && n > 64) rc = DAL_E_UNSUPPORTED;
+  char **Q = calloc((size_t)n + 1, sizeof *Q), lhs[160];
+  rc = Q ? show_pmf(sc, fp, fmt, &eq) : DAL_E_NOMEM;
   if (!rc && damped) rc = damping(sc, x, Q, msg, msglen);
+  // the force lines' generalized forces join the dampers' Q
+  for (int i = 0; i < n && x && x->forced && !rc; ++i) {
+    str q = {0};
+    if (adds(&q, Q[i] ? Q[i] : "0") || adds(&q, " + (") ||
+        adds(&q, x->gq[i].n ? x->gq[i].s : "0") || adds(&q, ")"))
+      rc = DAL_E_NOMEM;
+    free(Q[i]);
+    Q[i] = q.s;
+  }
+  damped = damped || (x && x->forced);
   for (int i = 0; i < n && damped && !rc; ++i) {
     snprintf(lhs, sizeof lhs, fmt == DAL_EXPR_LATEX ? "Q_{%s}" : "Q_%s", sc->cname[i]);
     rc = print_text(sc, fp, fmt, lhs, Q[i], 1, msg, msglen);
@@ -374,8 +409,9 @@ static int show_equations(const dal_scene *sc, FILE *fp, dal_expr_format fmt, da
     else if (n <= 3)
       rc = accel_cramer(sc, fp, fmt, &eq, damped ? Q : NULL, msg, msglen);
   }
-  for (int i = 0; i < 64; ++i)
+  for (int i = 0; Q && i < n; ++i)
     free(Q[i]);
+  free(Q);
   dal_expr_equations_destroy(&eq);
   return rc;
 }
@@ -391,9 +427,9 @@ typedef struct model {
 
 // a placement: by formulas (the parent's x_<p> replaced by its position) or a built-in map
 static int collect_place(const dal_scene *sc, const sline *l, model *m, char *msg, size_t len) {
-  int d = m->d, p = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  int d = m->d, p = dal__scene_part(sc, l->tok[1]);
   const char *ps = dal__scene_kv(l, 2, "parent");
-  int parent = ps ? dal__scene_find(sc->partname, sc->npart, ps) : -1;
+  int parent = ps ? dal__scene_part(sc, ps) : -1;
   char *par[3] = {NULL, NULL, NULL};
   if (parent >= 0)
     for (int c = 0; c < d; ++c)
@@ -423,34 +459,37 @@ static int collect_place(const dal_scene *sc, const sline *l, model *m, char *ms
   for (int j = 3; j < l->ntok && nc < 8; ++j)
     if (!strchr(l->tok[j], '=')) cn[nc++] = l->tok[j];
   for (int c = 0; c < d; ++c)
-    m->pos[p * d + c] = fill(t->f[c], dal_primitive_find(l->tok[2]), l, cn, nc, par);
+    m->pos[p * d + c] = fill(t->f[c], dal_primitive_find(l->tok[2]), l, cn, nc, par, NULL, 0);
   return DAL_OK;
 }
 
 // spring a b ... / spring a anchor=..: the other end's position (a particle's or the anchor)
-static void other_end(const sline *l, const model *m, const dal_scene *sc, int c, char anc[3][128],
+static void other_end(const sline *l, const model *m, const dal_scene *sc, int c, char **anc,
                       const char **end) {
-  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
-  *end = b >= 0 ? (m->pos[b * m->d + c] ? m->pos[b * m->d + c] : "0") : anc[c];
+  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_part(sc, l->tok[2]);
+  *end = b >= 0 ? (m->pos[b * m->d + c] ? m->pos[b * m->d + c] : "0") : anc[c] ? anc[c] : "0";
 }
 
-static void anchor_of(const sline *l, char anc[3][128]) {
+// the anchor's components as texts (malloc'd; NULL: 0)
+static void anchor_of(const sline *l, char **anc) {
   const char *an = dal__scene_kv(l, 2, "anchor");
   for (int c = 0; c < 3; ++c)
-    snprintf(anc[c], 128, "0");
-  if (!an) return;
-  char buf[512];
-  snprintf(buf, sizeof buf, "%s", an);
-  int c = 0;
-  for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && c < 3; s = strtok_r(NULL, ",", &sv), ++c)
-    snprintf(anc[c], 128, "%s", s);
+    anc[c] = NULL;
+  for (int c = 0; an && c < 3; ++c) {
+    const char *e = strchr(an, ',');
+    size_t w = e ? (size_t)(e - an) : strlen(an);
+    str t = {0};
+    add(&t, an, w);
+    anc[c] = t.s;
+    an = e ? e + 1 : NULL;
+  }
 }
 
 // a spring's potential 1/2 k (|r_a - r_b| - L)^2 added to U
 static void collect_spring(const dal_scene *sc, const sline *l, model *m) {
-  int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]);
+  int a = dal__scene_part(sc, l->tok[1]);
   const char *kk = dal__scene_kv(l, 2, "k"), *LL = dal__scene_kv(l, 2, "L"), *end;
-  char anc[3][128];
+  char *anc[3];
   anchor_of(l, anc);
   adds(&m->pot, m->pot.n ? " + 1/2*(" : "1/2*(");
   adds(&m->pot, kk ? kk : "0");
@@ -466,6 +505,8 @@ static void collect_spring(const dal_scene *sc, const sline *l, model *m) {
   adds(&m->pot, ") - (");
   adds(&m->pot, LL ? LL : "0");
   adds(&m->pot, "))^2");
+  for (int c = 0; c < 3; ++c)
+    free(anc[c]);
 }
 
 // the velocity of position formula r: sum_j dr/dq_j qdot_j + dr/dt, as text (into v)
@@ -495,10 +536,10 @@ static int velocity(const dal_scene *sc, const char *r, str *v, char *msg, size_
 // (the library's damper force -c ((v_a - v_b) . e) e), added to D
 static int collect_damper(const dal_scene *sc, const sline *l, const model *m, extras *x, char *msg,
                           size_t len) {
-  int a = dal__scene_find(sc->partname, sc->npart, l->tok[1]), rc = DAL_OK, d = m->d;
-  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_find(sc->partname, sc->npart, l->tok[2]);
+  int a = dal__scene_part(sc, l->tok[1]), rc = DAL_OK, d = m->d;
+  int b = strchr(l->tok[2], '=') ? -1 : dal__scene_part(sc, l->tok[2]);
   const char *c = dal__scene_kv(l, 2, "c"), *end;
-  char anc[3][128];
+  char *anc[3];
   anchor_of(l, anc);
   str dr = {0}, dist = {0};
   adds(&dist, "(0");
@@ -540,42 +581,97 @@ static int collect_damper(const dal_scene *sc, const sline *l, const model *m, e
   int bad = adds(&x->D, dist.s ? dist.s : "1");
   free(dr.s);
   free(dist.s);
+  for (int k = 0; k < 3; ++k)
+    free(anc[k]);
   return rc ? rc : bad || !dist.s ? DAL_E_NOMEM : DAL_OK;
 }
 
-// a constraint by formulas: the parts' positions x_<p>, y_<p>, z_<p> replaced by theirs
+// a constraint by formulas or a built-in constraint's rows: the parts' positions x_<p>, y_<p>,
+// z_<p> replaced by theirs
 static int collect_constraint(const dal_scene *sc, const sline *l, const model *m, extras *x,
                               char *msg, size_t len) {
+  int rows = l->nf, t = -1;
   if (!l->nf) {
-    if (msg && len)
-      snprintf(msg, len, "%s:%d: constraint %s: the primitive '%s' has no formulas to show",
-               sc->name, l->line, l->tok[1], l->ntok > 2 ? l->tok[2] : "?");
-    return DAL_E_UNSUPPORTED;
-  }
-  char *from[48], *to[48], nm[48][80], buf[512];
-  int n = 0;
-  const char *pl = dal__scene_kv(l, 2, "parts");
-  snprintf(buf, sizeof buf, "%s", pl ? pl : "");
-  for (char *sv = NULL, *s = strtok_r(buf, ",", &sv); s && n + m->d <= 48;
-       s = strtok_r(NULL, ",", &sv)) {
-    int p = dal__scene_find(sc->partname, sc->npart, s);
-    for (int c = 0; c < m->d; ++c, ++n) {
-      snprintf(nm[n], sizeof nm[n], "%c_%s", "xyz"[c], s);
-      from[n] = nm[n];
-      to[n] = m->pos[p * m->d + c] ? m->pos[p * m->d + c] : "0";
-    }
-  }
-  for (int r = 0; r < l->nf; ++r) {
-    if (x->nphi == 16) {
-      if (msg && len) snprintf(msg, len, "%s:%d: more than 16 constraint rows", sc->name, l->line);
+    for (size_t j = 0; l->ntok > 2 && j < sizeof cons / sizeof *cons; ++j)
+      if (!strcmp(cons[j].prim, l->tok[2])) t = (int)j;
+    if (t < 0) {
+      if (msg && len)
+        snprintf(msg, len, "%s:%d: constraint %s: the primitive '%s' has no formulas to show",
+                 sc->name, l->line, l->tok[1], l->ntok > 2 ? l->tok[2] : "?");
       return DAL_E_UNSUPPORTED;
     }
-    char *f = subst(l->f[r], from, to, n);
-    if (!f) return DAL_E_NOMEM;
-    adds(&x->phi[x->nphi], f);
-    free(f);
-    snprintf(x->name[x->nphi++], 64, l->nf > 1 ? "%s%d" : "%s", l->tok[1], r + 1);
+    rows = cons[t].f[1] ? 2 : 1;
   }
+  // the parts, each name once in the list
+  const char *pl = dal__scene_kv(l, 2, "parts");
+  int np = 0, d = m->d, rc = DAL_OK;
+  for (const char *s = pl; s && *s; ++s)
+    np += *s == ',';
+  np += pl ? 1 : 0;
+  char **pn = calloc((size_t)np + 1, sizeof *pn), **from = calloc((size_t)np * 3 + 1, sizeof *from);
+  char **to = calloc((size_t)np * 3 + 1, sizeof *to);
+  if (!pn || !from || !to) rc = DAL_E_NOMEM;
+  const char *s = pl;
+  for (int k = 0; k < np && !rc; ++k) {
+    const char *e = strchr(s, ',');
+    size_t w = e ? (size_t)(e - s) : strlen(s);
+    str nm = {0};
+    if (add(&nm, s, w)) rc = DAL_E_NOMEM;
+    pn[k] = nm.s;
+    int p = pn[k] ? dal__scene_part(sc, pn[k]) : -1;
+    for (int c = 0; c < d && !rc; ++c) {
+      str f = {0};
+      if (adds(&f, c == 0 ? "x_" : c == 1 ? "y_" : "z_") || adds(&f, pn[k])) rc = DAL_E_NOMEM;
+      from[k * d + c] = f.s;
+      to[k * d + c] = p >= 0 && m->pos[p * d + c] ? m->pos[p * d + c] : "0";
+    }
+    s = e ? e + 1 : s + w;
+  }
+  const char *cn[8];
+  int nc = 0;
+  for (int j = 3; t >= 0 && j < l->ntok && nc < 8; ++j)
+    if (!strchr(l->tok[j], '=')) cn[nc++] = l->tok[j];
+  str *phi = rc ? NULL : realloc(x->phi, ((size_t)x->nphi + (size_t)rows) * sizeof *phi);
+  char **names = phi ? realloc(x->name, ((size_t)x->nphi + (size_t)rows) * sizeof *names) : NULL;
+  if (phi) x->phi = phi;
+  if (names) x->name = names;
+  if (!rc && (!phi || !names)) rc = DAL_E_NOMEM;
+  for (int r = 0; r < rows && !rc; ++r) {
+    char *row =
+        t >= 0 ? fill(cons[t].f[r], dal_primitive_find(l->tok[2]), l, cn, nc, NULL, pn, np) : NULL;
+    char *f = subst(t >= 0 ? row : l->f[r], from, to, np * d);
+    str nm = {0};
+    x->phi[x->nphi] = (str){0};
+    if (!f || adds(&x->phi[x->nphi], f) || adds(&nm, l->tok[1])) rc = DAL_E_NOMEM;
+    if (!rc && rows > 1) {
+      char k[16];
+      snprintf(k, sizeof k, "%d", r + 1);
+      rc = adds(&nm, k) ? DAL_E_NOMEM : DAL_OK;
+    }
+    x->name[x->nphi++] = nm.s;
+    free(f);
+    free(row);
+  }
+  for (int k = 0; k < np && pn; ++k)
+    free(pn[k]);
+  for (int k = 0; k < np * d && from; ++k)
+    free(from[k]);
+  free(pn);
+  free(from);
+  free(to);
+  return rc;
+}
+
+// a force line: Q_i += its formula
+static int collect_force(const dal_scene *sc, const sline *l, extras *x) {
+  int i = -1;
+  for (int j = 0; j < sc->ncoord; ++j)
+    if (!strcmp(sc->cname[j], l->tok[1])) i = j;
+  if (i < 0) return DAL_E_ARG;
+  x->forced = 1;
+  if (adds(&x->gq[i], x->gq[i].n ? " + (" : "(") || adds(&x->gq[i], l->f[0]) ||
+      adds(&x->gq[i], ")"))
+    return DAL_E_NOMEM;
   return DAL_OK;
 }
 
@@ -586,6 +682,7 @@ static int collect(const dal_scene *sc, const sline *l, model *m, extras *x, int
   if (pass == 1) {
     if (!strcmp(kw, "damper")) return collect_damper(sc, l, m, x, msg, len);
     if (!strcmp(kw, "constraint")) return collect_constraint(sc, l, m, x, msg, len);
+    if (!strcmp(kw, "force")) return collect_force(sc, l, x);
     return DAL_OK;
   }
   if (!strcmp(kw, "particle")) m->mass[(*k)++] = (char *)dal__scene_kv(l, 2, "mass");
@@ -642,11 +739,28 @@ static int show_model(const dal_scene *sc, const model *m, const extras *x, FILE
   md.positions = (const char *const *)m->pos;
   md.gravity = m->grav[0] ? (const char *const *)m->grav : NULL;
   md.potential = m->pot.n ? m->pot.s : NULL;
-  md.params = (const char *const *)sc->pname;
-  md.values = sc->pval;
-  md.nparam = sc->nparam;
+  // the parameters the model's formulas name
+  int nt = 0, np = 0;
+  const char **texts = malloc(((size_t)m->np * (size_t)(m->d + 1) + 4) * sizeof *texts);
+  const char **pn = NULL;
+  double *pv = NULL;
+  if (!texts) return DAL_E_NOMEM;
+  for (int i = 0; i < m->np * m->d; ++i)
+    texts[nt++] = m->pos[i];
+  for (int i = 0; i < m->np; ++i)
+    texts[nt++] = m->mass[i];
+  for (int c = 0; c < 3; ++c)
+    if (m->grav[c]) texts[nt++] = m->grav[c];
+  if (m->pot.n) texts[nt++] = m->pot.s;
+  rc = dal__scene_params(sc, texts, nt, &pn, &pv, &np);
+  free(texts);
+  md.params = pn;
+  md.values = pv;
+  md.nparam = np;
   dal_expr *T = NULL, *U = NULL, *L = NULL;
-  rc = dal_expr_model_energies(&md, &T, &U, &L, msg, msglen);
+  if (!rc) rc = dal_expr_model_energies(&md, &T, &U, &L, msg, msglen);
+  free(pn);
+  free(pv);
   if (!rc) rc = show_equations(sc, fp, fmt, T, U, L, x, msg, msglen);
   dal_expr_destroy(T);
   dal_expr_destroy(U);
@@ -654,9 +768,8 @@ static int show_model(const dal_scene *sc, const model *m, const extras *x, FILE
   return rc;
 }
 
-int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg, size_t msglen) {
-  if (msg && msglen) msg[0] = 0;
-  if (!sc || !fp) return DAL_E_ARG;
+static int show_scene(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
+                      size_t msglen) {
   for (int i = 0; i < sc->nlines; ++i)
     if (!strcmp(sc->lines[i].tok[0], "lagrangian"))
       return show_lagrangian(sc, &sc->lines[i], fp, fmt, msg, msglen);
@@ -665,8 +778,9 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
   memset(&x, 0, sizeof x);
   m.pos = calloc((size_t)m.np * (size_t)m.d + 1, sizeof *m.pos);
   m.mass = calloc((size_t)m.np + 1, sizeof *m.mass);
+  x.gq = calloc((size_t)sc->ncoord + 1, sizeof *x.gq);
   adds(&m.pot, "");
-  int rc = m.pos && m.mass && m.pot.s ? DAL_OK : DAL_E_NOMEM, k = 0;
+  int rc = m.pos && m.mass && m.pot.s && x.gq ? DAL_OK : DAL_E_NOMEM, k = 0;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < sc->nlines && !rc; ++i)
       rc = collect(sc, &sc->lines[i], &m, &x, pass, &k, msg, msglen);
@@ -684,8 +798,32 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
   free(m.mass);
   free(m.pot.s);
   free(x.D.s);
-  for (int r = 0; r < 16; ++r)
+  for (int r = 0; r < x.nphi; ++r) {
     free(x.phi[r].s);
+    free(x.name[r]);
+  }
+  free(x.phi);
+  free(x.name);
+  for (int i = 0; x.gq && i < sc->ncoord; ++i)
+    free(x.gq[i].s);
+  free(x.gq);
   if (!rc && ferror(fp)) rc = DAL_E_IO;
+  return rc;
+}
+
+int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg, size_t msglen) {
+  if (msg && msglen) msg[0] = 0;
+  if (!sc || !fp) return DAL_E_ARG;
+  int rc = show_scene(sc, fp, fmt, msg, msglen);
+  if (rc == DAL_E_TOO_LARGE && msg && msglen) {
+    // the scene's name first, then what the algebra said (or the printer's bound)
+    char *inner = msg[0] ? strdup(msg) : NULL;
+    snprintf(msg, msglen, "%s: an equation is too large to show%s%s", sc->name,
+             inner ? ": "
+                   : " (more than 256 KiB of text or 2^22 operations of the algebra); "
+                     "simplify the formulas or show fewer coordinates",
+             inner ? inner : "");
+    free(inner);
+  }
   return rc;
 }
