@@ -11,6 +11,7 @@
 #include "dalembert/ensemble.h"
 #include "dalembert/events.h"
 #include "dalembert/expr.h"
+#include "dalembert/output.h"
 #include "dalembert/jet.h"
 #include "dalembert/params.h"
 #include "dalembert/primitives.h"

@@ -1314,7 +1314,7 @@ int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_sta
   }
   dal_events *use = ev ? ev : own;
   if (use) rc = dal_state_set_events(st, use);
-  dal_csv c = {csv, 0, 0};
+  dal_csv c = {csv, 0, 0, NULL};
   if (!rc)
     rc = dal_evolve(sc->sys, st, &sc->opts, sc->t1, sc->dt, csv ? dal_csv_monitor : NULL,
                     csv ? &c : NULL);
