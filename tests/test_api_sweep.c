@@ -2053,6 +2053,63 @@ static void sw_dal_scene_show(void) {
   CHECK(dal_scene_show(sc, NULL, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
   dal_scene_destroy(sc);
 }
+static void sw_dal_scene_native(void) {
+  dal_scene *sc = sweep_scene();
+  dal_codegen_opts o;
+  memset(&o, 0, sizeof o); // not from dal_codegen_default_opts
+  char msg[256];
+  CHECK(dal_scene_native(NULL, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_native(sc, &o, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attached(dal_scene_expr(sc, 0)) == 0);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_help(void) { CHECK(dal_scene_help(NULL) == DAL_E_ARG); }
+static void sw_dal_scene_nexprs(void) { CHECK(dal_scene_nexprs(NULL) == 0); }
+static void sw_dal_scene_expr(void) {
+  dal_scene *sc = sweep_scene();
+  int n = dal_scene_nexprs(sc);
+  CHECK(n > 0 && dal_scene_expr(sc, 0) != NULL);
+  CHECK(dal_scene_expr(NULL, 0) == NULL && dal_scene_expr(sc, -1) == NULL &&
+        dal_scene_expr(sc, n) == NULL);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_write_c(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_write_c(NULL, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, "m", NULL) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, NULL, stdout) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, "1m", stdout) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, "a-b", stdout) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_codegen_default_opts(void) {
+  dal_codegen_opts o = dal_codegen_default_opts();
+  CHECK(o.cc == NULL && o.cache_dir == NULL && o.cookie != 0);
+}
+static void sw_dal_codegen_write(void) {
+  dal_scene *sc = sweep_scene();
+  dal_expr *e = (dal_expr *)dal_scene_expr(sc, 0), *none[1] = {NULL};
+  CHECK(dal_codegen_write(NULL, 1, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_codegen_write(none, 1, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_codegen_write(&e, -1, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_codegen_write(&e, 1, "m", NULL) == DAL_E_ARG);
+  CHECK(dal_codegen_write(&e, 1, "", stdout) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_codegen_attach(void) {
+  dal_scene *sc = sweep_scene();
+  dal_expr *e = (dal_expr *)dal_scene_expr(sc, 0), *none[1] = {NULL};
+  dal_codegen_opts o;
+  memset(&o, 0, sizeof o);
+  char msg[256];
+  CHECK(dal_codegen_attach(NULL, 1, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach(&e, 0, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach(none, 1, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach(&e, 1, &o, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attached(e) == 0);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_codegen_attached(void) { CHECK(dal_codegen_attached(NULL) == 0); }
 
 typedef struct sweep_row {
   const char *name;
@@ -2181,6 +2238,15 @@ static const sweep_row rows[] = {
     ROW(dal_scene_state),
     ROW(dal_scene_run),
     ROW(dal_scene_show),
+    ROW(dal_scene_native),
+    ROW(dal_scene_help),
+    ROW(dal_scene_nexprs),
+    ROW(dal_scene_expr),
+    ROW(dal_scene_write_c),
+    ROW(dal_codegen_default_opts),
+    ROW(dal_codegen_write),
+    ROW(dal_codegen_attach),
+    ROW(dal_codegen_attached),
     ROW(dal_scene_events),
     ROW(dal_scene_event_is_section),
     ROW(dal_scene_strobe),

@@ -104,6 +104,7 @@ CLI_COMMAND(section);
 CLI_COMMAND(sweep);
 CLI_COMMAND(view);
 CLI_COMMAND(picture);
+CLI_COMMAND(compile);
 
 // the option rows shared by several commands
 #define CLI_OPT_OUTPUT(what)                                                                       \

@@ -110,6 +110,8 @@ static const cli_cmd commands[] = {
      "the motion as one self-contained HTML page (scene, trails, linked plots)"},
     {"picture", cli_picture, cli_picture_opts, "SCENE",
      "a multi-exposure SVG of the configurations at chosen times"},
+    {"compile", cli_compile, cli_compile_opts, "SCENE",
+     "the scene's formulas as a standalone C source (dalembert/codegen.h)"},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

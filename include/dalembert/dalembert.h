@@ -7,6 +7,7 @@
 
 #include "dalembert/analysis.h"
 #include "dalembert/base.h"
+#include "dalembert/codegen.h"
 #include "dalembert/dae.h"
 #include "dalembert/ensemble.h"
 #include "dalembert/events.h"
