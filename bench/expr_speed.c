@@ -8,7 +8,7 @@
 //
 // Run under `valgrind --tool=cachegrind` at two N and take the difference of the instruction
 // counts over the difference of N: instructions per right-hand side with the set-up removed
-// (scripts/expr_speed.sh does this and prints the table of docs/expressions.md).
+// (bench/expr_speed.sh does this and prints the table of docs/expressions.md).
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>

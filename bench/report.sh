@@ -15,7 +15,7 @@ meta() { awk -F'=' -v k="$1" '$1==k {sub(/^[^=]*=/, ""); print; exit}' "$dir/mac
 
 {
   echo "_Measured $(meta date) on $(meta machine), $(meta nproc) cores, $(meta cpu);"
-  echo "dalembert $(meta version) at commit $(meta commit), \`scripts/bench.sh $(meta mode)\`."
+  echo "dalembert $(meta version) at commit $(meta commit), \`bench/bench.sh $(meta mode)\`."
   echo "Every figure below is computed by \`bench/report.sh\` from the CSV files in"
   echo "\`bench/results/\`; wall times are medians of repeated runs._"
   echo

@@ -4,7 +4,7 @@
 //
 // Usage: dal_bench_symplectic [--quick | --full] [--out DIR] [--only SECTION]  (CSV files and
 // sym_summary.md; --only stiff|drive|separatrix|rounding runs one section, summary to stdout)
-// Charts: gnuplot -e "dir='DIR'" bench/symplectic.gp            (scripts/bench_symplectic.sh)
+// Charts: gnuplot -e "dir='DIR'" bench/symplectic.gp            (bench/symplectic.sh)
 //
 // Scenes: the pendulum released at 120 degrees (minimal coordinates, exact solution by Jacobi
 // elliptic functions), the bead on a ring turning at 0.7 turns/s (minimal coordinates:

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// White-box test of the Bulirsch-Stoer dense output (ig->interp): samples inside every step
-// against closed forms (elliptic pendulum, 2D oscillator and its exact local flow).
+// White-box test of the Bulirsch-Stoer dense output (its interp operation): samples inside every
+// step against closed forms (elliptic pendulum, 2D oscillator and its exact local flow).
 //
 // The integrator is created directly (dal__ode_create) with an after-step hook, so that it
 // runs the dense sequence n_j = 4j - 2. After each accepted step the harness samples interp
@@ -62,11 +62,11 @@ static void sample(probe *pr) {
   pr->worst_pt = fmax(pr->worst_pt, closed_form_err(pr, t1, ig->y));
   if (pr->dense) {
     // the interpolant ends on the accepted value
-    if (ig->interp(ig, t1, y) != 0 || memcmp(y, ig->y, (size_t)ig->ny * sizeof(double)) != 0)
+    if (ig->ops->interp(ig, t1, y) != 0 || memcmp(y, ig->y, (size_t)ig->ny * sizeof(double)) != 0)
       pr->bad = 1;
     for (int k = 1; k <= NSAMPLE; ++k) {
       double t = t0 + (t1 - t0) * k / (NSAMPLE + 1.0);
-      if (ig->interp(ig, t, y) != 0) {
+      if (ig->ops->interp(ig, t, y) != 0) {
         pr->bad = 1;
         continue;
       }
@@ -132,18 +132,16 @@ static run_out run(const dal_system *sys, dal_state *st, const double *q0, const
   long s0 = st->stats.steps, r0 = st->stats.rhs_evals, j0 = st->stats.rejected;
   out.rc = dal__ode_create(sys, st, &o, DAL_METHOD_BS, &prob, &ig);
   if (out.rc) return out;
-  CHECK(ig->interp != NULL);
+  CHECK(ig->ops->interp != NULL);
   ig->hook = hook;
   ig->hook_ctx = pr;
   ig->dense = hook != NULL; // the hook reads the steps (the driver says so the same way)
-  ig->tout = T;
-  ig->ncall = 0;
   if (pr) {
     pr->ig = ig;
     pr->last_t = ig->t;
     memcpy(pr->ylast, ig->y, (size_t)ig->ny * sizeof(double));
   }
-  out.rc = ig->advance(ig, T);
+  out.rc = dal__ode_advance(ig, T);
   if (pr && ig->t != pr->last_t) sample(pr); // the last step
   memcpy(out.y, ig->y, (size_t)ig->ny * sizeof(double));
   out.steps = st->stats.steps - s0;
@@ -152,8 +150,8 @@ static run_out run(const dal_system *sys, dal_state *st, const double *q0, const
   if (pr && pr->dense && out.rc == 0) {
     // outside the last step: refused, not extrapolated
     double y[4], t1 = ig->t, t0 = pr->last_t;
-    CHECK(ig->interp(ig, t1 + 0.5, y) == DAL_E_ARG);
-    CHECK(ig->interp(ig, -1.0, y) == DAL_E_ARG);
+    CHECK(ig->ops->interp(ig, t1 + 0.5, y) == DAL_E_ARG);
+    CHECK(ig->ops->interp(ig, -1.0, y) == DAL_E_ARG);
     (void)t0;
   }
   dal__ode_destroy(ig);

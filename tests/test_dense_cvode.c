@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// White-box test of the Adams and BDF dense output (ig->interp of src/integrate/cvode.c), which
-// calls CVodeGetDky for the first output of a step only and forms the same Nordsieck sum itself
-// for the others: against CVodeGetDky at the same times (the same polynomial: equal to rounding,
-// the order of the sums aside), the first output of a step again through the fast path (bit for
-// bit), and against the elliptic pendulum (within the tolerance).
+// White-box test of the Adams and BDF dense output (the interp operation of src/integrate/cvode.c),
+// which calls CVodeGetDky for the first output of a step only and forms the same Nordsieck sum
+// itself for the others: against CVodeGetDky at the same times (the same polynomial: equal to
+// rounding, the order of the sums aside), the first output of a step again through the fast path
+// (bit for bit), and against the elliptic pendulum (within the tolerance).
 //
 // The integrator is created directly (dal__ode_create) with an after-step hook that samples
 // interp at NS points inside every step (NS = 1: one CVodeGetDky call a step, the sample asked
@@ -53,7 +53,7 @@ static int probe_hook(void *ctx) {
     // irregular points (an irrational stride) so that no two steps sample alike
     double s = fmod(j * 0.6180339887498949 + 0.001 * pr->steps, 1.0), t = t0 + s * h;
     if (!(t > t0 && t < t1)) continue;
-    if (ig->interp(ig, t, y) != DAL_OK || dal__cvode_dky(ig, t, 0, yc) != 0 ||
+    if (ig->ops->interp(ig, t, y) != DAL_OK || dal__cvode_dky(ig, t, 0, yc) != 0 ||
         dal__cvode_dky(ig, t, 1, yd) != 0) {
       pr->bad++;
       continue;
@@ -71,7 +71,7 @@ static int probe_hook(void *ctx) {
     }
   }
   // the step's first sample (CVodeGetDky) again, now by the columns it read: the same bits
-  if (tfirst >= 0 && (ig->interp(ig, tfirst, y) != DAL_OK || memcmp(y, yfirst, sizeof y) != 0))
+  if (tfirst >= 0 && (ig->ops->interp(ig, tfirst, y) != DAL_OK || memcmp(y, yfirst, sizeof y) != 0))
     pr->again_diff++;
   return 0;
 }
@@ -89,12 +89,12 @@ static void run(const dal_system *sys, dal_state *st, dal_method m, probe *pr, l
   if (pr->slow) dal__cvode_slow_dense(ig);
   ig->hook = probe_hook;
   ig->hook_ctx = pr;
-  ig->tout = 10.0;
-  CHECK_MSG(ig->advance(ig, 10.0) == DAL_OK, "%s: %s", dal_method_name(m), dal_state_errmsg(st));
+  CHECK_MSG(dal__ode_advance(ig, 10.0) == DAL_OK, "%s: %s", dal_method_name(m),
+            dal_state_errmsg(st));
   // outside the last step: refused, not extrapolated
   double y[2];
-  CHECK(ig->interp(ig, ig->t + 0.5, y) == DAL_E_ARG);
-  CHECK(ig->interp(ig, ig->tprev - 0.5, y) == DAL_E_ARG);
+  CHECK(ig->ops->interp(ig, ig->t + 0.5, y) == DAL_E_ARG);
+  CHECK(ig->ops->interp(ig, ig->tprev - 0.5, y) == DAL_E_ARG);
   *fast = dal__cvode_fast_outputs(ig);
   dal__ode_destroy(ig);
 }

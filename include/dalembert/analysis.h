@@ -123,9 +123,9 @@ DAL_API int dal_vector_field_jacobian(const dal_system *sys, dal_state *st, doub
 /// Integrate from the state's (t0, q, qdot) to t1 > t0 with the variational equations
 /// Phi' = A Phi, Phi(t0) = I and S' = A S + df/dp, S(t0) = 0 (A = df/dy, the exact tangent of
 /// dal_vector_field_jacobian) carried along as one first-order problem through the library's
-/// integrator opts->method (DOPRI5 for AUTO; FEHLBERG78, BS and RK4 too; the implicit and
-/// structure-preserving ones are DAL_E_UNSUPPORTED), whose error control with opts->rtol and
-/// atol covers Phi and S as well as the trajectory. opts may be NULL (defaults).
+/// integrator opts->method (AUTO: DOPRI5 down to rtol 1e-12, BS below; FEHLBERG78, BS and RK4
+/// too; the implicit and structure-preserving ones are DAL_E_UNSUPPORTED), whose error control with
+/// opts->rtol and atol covers Phi and S as well as the trajectory. opts may be NULL (defaults).
 ///  Phi (2n x 2n, column-major, caller-owned, nullable): dy(t1)/dy(t0), y = (q, qdot).
 ///  params (nparam names in the syntax of params.h: "mass:bob", "gravity:1", "spring:0:k",
 ///    "spring:0:L", "damper:0:c"), S (2n x nparam, caller-owned): dy(t1)/dp, the derivative

@@ -14,12 +14,9 @@
 // the state's accelerations, and df/dp = (0, -M^-1 dR/dp) (or the KKT solve with constraint
 // rows). Parameters of primitives enter as plain doubles and have no exact derivative: refused.
 //
-// The variational problem reaches its workspace from the right-hand side through the
-// integrator that calls it: the options the integrator passes are its own copy inside
-// dal_ode_integ, whose `prob` points at the var_problem below (its first member).
+// The variational equations are a plain first-order problem (dal_first_order) whose context
+// is the var_problem below: any method whose row can run one explicitly runs them.
 #include <math.h>
-#include <stddef.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,7 +25,8 @@
 #include "integrate/integrate.h"
 
 typedef struct var_problem {
-  dal_ode_problem p;           // first: the integrator's prob points here
+  dal_first_order fo;          // y = (q, qdot, Phi, S), run by the library's integrators
+  dal_solve_opts opts;         // the options the base problem's rhs reads
   const dal_ode_problem *base; // minimal or index-1
   dal_tangent *tg;
   int n, m, np;
@@ -36,15 +34,8 @@ typedef struct var_problem {
   double *B;          // (n + m) x np: -dR/dp (and 0 for the constraint rows), then solved
   double *f;          // N d scratch
   dal_param_ref *ref; // np
+  double *y0;         // the start (fo.ny)
 } var_problem;
-
-static var_problem *problem_of(const dal_solve_opts *opts) {
-  const dal_ode_integ *ig =
-      (const dal_ode_integ *)(const void *)((const char *)opts - offsetof(dal_ode_integ, opts));
-  return (var_problem *)(uintptr_t)ig->prob; // ours, and not const: see dal_state_transition
-}
-
-static int var_size(const dal_system *sys) { return 2 * sys->n * (1 + 2 * sys->n); }
 
 // y = (q, qdot, Phi, S): the trajectory from the state, Phi = I, S = 0 (y comes zeroed)
 static void var_from_state(const dal_system *sys, const dal_state *st, double *y) {
@@ -53,13 +44,6 @@ static void var_from_state(const dal_system *sys, const dal_state *st, double *y
   memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
   for (size_t i = 0; i < n2; ++i)
     y[n2 + i * n2 + i] = 1.0;
-}
-
-static void var_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
-  st->t = t;
-  memcpy(st->q, y, (size_t)sys->n * sizeof(double));
-  memcpy(st->qdot, y + sys->n, (size_t)sys->n * sizeof(double));
-  dal__state_moved(st);
 }
 
 // dR/dp for one parameter at the evaluated tangent (n values into out)
@@ -116,12 +100,12 @@ static void residual_dp(const dal_system *sys, const dal_state *st, dal_tangent 
   }
 }
 
-static int var_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
-                   const double *y, double *ydot, unsigned need) {
-  var_problem *vp = problem_of(opts);
+static int var_rhs(void *ctx, dal_state *st, double t, const double *y, double *ydot) {
+  var_problem *vp = ctx;
+  const dal_system *sys = st->sys;
   int n = vp->n, m = vp->m, np = vp->np, rc;
   size_t n2 = 2 * (size_t)n, nk = (size_t)(n + m);
-  if ((rc = vp->base->rhs(sys, st, opts, t, y, ydot, need | DAL_P_ACC)) != 0) return rc;
+  if ((rc = vp->base->rhs(sys, st, &vp->opts, t, y, ydot, DAL_P_ACC)) != 0) return rc;
   // the exact tangent at (t, q, qdot) with the accelerations (and multipliers) just computed
   if ((rc = dal__tangent_eval(sys, st, vp->tg, 0)) != 0) return rc;
   if (m > 0) {
@@ -177,13 +161,15 @@ static int transition_opts(const dal_system *sys, dal_state *st, const dal_solve
     o = dal_default_solve_opts();
   if ((rc = dal__check_opts(st, &o)) != 0) return rc;
   o = dal__effective_opts(&o); // atol following rtol
-  dal_method meth = o.method == DAL_METHOD_AUTO ? DAL_METHOD_DOPRI5 : o.method;
-  if (meth != DAL_METHOD_DOPRI5 && meth != DAL_METHOD_FEHLBERG78 && meth != DAL_METHOD_BS &&
-      meth != DAL_METHOD_RK4)
+  const unsigned need = DAL__CAP_FIRST_ORDER | DAL__CAP_EXPLICIT;
+  dal_method meth = o.method == DAL_METHOD_AUTO ? dal__auto_method_fo(o.rtol, need) : o.method;
+  if (!dal__method_can(meth, need)) {
+    char can[128];
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "state_transition: method '%s' does not run the variational equations; use "
-                    "an explicit one (DOPRI5, FEHLBERG78, BS, RK4)",
-                    dal_method_name(meth));
+                    "an explicit one (%s)",
+                    dal_method_name(meth), dal__methods_that_can(need, can, sizeof can));
+  }
   if (sys->m > 0 && (o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0))
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "state_transition: Baumgarte terms change the flow off the manifold; leave "
@@ -198,28 +184,27 @@ static int transition_opts(const dal_system *sys, dal_state *st, const dal_solve
 
 // the variational problem of (sys, nparam named parameters) into vp (zeroed first; its
 // memory is freed by var_free); 0 or a status with the state's message set
-static int var_setup(const dal_system *sys, dal_state *st, int nparam, const char *const *params,
-                     var_problem *vp) {
+static int var_setup(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int nparam,
+                     const char *const *params, var_problem *vp) {
   memset(vp, 0, sizeof *vp);
   vp->base = sys->m > 0 ? &dal__problem_index1 : &dal__problem_minimal;
-  vp->p = *vp->base;
-  vp->p.name = "variational";
-  vp->p.size = var_size;
-  vp->p.rhs = var_rhs;
-  vp->p.project = NULL;
-  vp->p.from_state = var_from_state;
-  vp->p.to_state = var_to_state;
+  vp->opts = *o;
   vp->n = sys->n;
   vp->m = sys->m;
   vp->np = nparam;
   size_t n = (size_t)sys->n, n2 = 2 * n, nk = n + (size_t)sys->m;
-  vp->p.ny = (int)(n2 * (1 + n2 + (size_t)nparam));
+  vp->fo.ny = (int)(n2 * (1 + n2 + (size_t)nparam));
+  vp->fo.rhs = var_rhs;
+  vp->fo.ctx = vp;
+  vp->fo.tol_factor = vp->base->tol_factor; // the index-1 form's projection error as in advance
   char msg[256];
   vp->ref = calloc((size_t)nparam + 1, sizeof *vp->ref);
   vp->A = calloc(n2 * n2, sizeof(double));
   vp->B = calloc(nk * (size_t)nparam + 1, sizeof(double));
   vp->f = calloc((size_t)(sys->N * sys->dim) + 1, sizeof(double));
-  if (!vp->ref || !vp->A || !vp->B || !vp->f || dal__tangent_create(sys, &vp->tg))
+  vp->y0 = calloc((size_t)vp->fo.ny, sizeof(double));
+  vp->fo.y0 = vp->y0;
+  if (!vp->ref || !vp->A || !vp->B || !vp->f || !vp->y0 || dal__tangent_create(sys, &vp->tg))
     return DAL_FAIL(st, DAL_E_NOMEM, "state_transition: out of memory");
   for (int j = 0; j < nparam; ++j) {
     int rc = dal_param_find(sys, params[j], &vp->ref[j], msg, sizeof msg);
@@ -243,6 +228,7 @@ static void var_free(var_problem *vp) {
   free(vp->A);
   free(vp->B);
   free(vp->f);
+  free(vp->y0);
 }
 
 int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
@@ -262,15 +248,16 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
   var_problem vp;
   dal_ode_integ *ig = NULL;
   size_t n = (size_t)sys->n, n2 = 2 * n;
-  if ((rc = var_setup(sys, st, nparam, params, &vp)) != 0) goto done;
+  if ((rc = var_setup(sys, st, &o, nparam, params, &vp)) != 0) goto done;
   // a consistent start on the manifold (the tangent space is then invariant)
   if ((rc = dal__analysis_eval(sys, st, st->t, st->q, st->qdot)) != 0) goto done;
   if (sys->m > 0) {
     if ((rc = dal__tangent_eval(sys, st, vp.tg, 0)) != 0) goto done;
     if ((rc = dal__tangent_on_manifold(sys, st, vp.tg, "state_transition")) != 0) goto done;
   }
-  if ((rc = dal__ode_create(sys, st, &o, o.method, &vp.p, &ig)) != 0) goto done;
-  rc = ig->advance(ig, t1);
+  var_from_state(sys, st, vp.y0);
+  if ((rc = dal__ode_create_fo(sys, st, &o, o.method, &vp.fo, &ig)) != 0) goto done;
+  rc = dal__ode_advance(ig, t1);
   if (rc == 0) {
     if (Phi) memcpy(Phi, ig->y + n2, n2 * n2 * sizeof(double));
     if (S) memcpy(S, ig->y + n2 + n2 * n2, n2 * (size_t)nparam * sizeof(double));

@@ -240,32 +240,26 @@ static int segment(lyap *L, double *t, double t1) {
   if (ig) {
     int i0 = L->ymoved ? 0 : L->ny; // the vectors, and the trajectory when projected
     memcpy(ig->y + i0, L->Y + i0, (size_t)(L->m - i0) * sizeof(double));
-    ig->changed_y(ig, i0);
+    (void)dal__ode_changed_y(ig, i0); // kept only when it can (below)
     ig->opts.max_steps = left;
   } else {
     dal_solve_opts so = L->so;
     so.max_steps = left;
-    if (L->h > 0 && L->meth != DAL_METHOD_RK4) so.h0 = fmin(L->h, t1 - *t);
+    if (L->h > 0 && !dal__method_fixed(L->meth, &so)) so.h0 = fmin(L->h, t1 - *t);
     L->st->t = *t;
     L->fo.y0 = L->Y;
     int rc = dal__ode_create_fo(L->sys, L->st, &so, L->meth, &L->fo, &ig);
     if (rc) return rc;
   }
   L->ymoved = 0;
-  // per call, as the driver does: the target and the progress guard's counters
-  ig->tout = t1;
-  ig->ncall = 0;
-  ig->rhs_fatal = 0;
-  ig->ntiny = 0;
-  ig->nrecov = 0;
-  int rc = ig->advance(ig, t1);
+  int rc = dal__ode_advance(ig, t1);
   memcpy(L->Y, ig->y, (size_t)L->m * sizeof(double));
   *t = ig->t;
   L->steps += ig->ncall;
   // the step before a landing step shortened to t1 is the natural one
   double hl = ig->t - ig->tprev;
   if (ig->ncall > 1 || hl > L->h) L->h = hl;
-  if (!rc && ig->changed_y) {
+  if (!rc && dal__ode_can_change_y(ig)) {
     L->ig = ig;
   } else {
     dal__ode_destroy(ig);
@@ -310,14 +304,14 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
                     "dal_default_lyapunov_opts");
-  const dal_method_row *row = dal__method_row(o->method);
-  if (!row || o->method == DAL_METHOD_VARIATIONAL || o->method == DAL_METHOD_VARIATIONAL4 ||
-      o->method == DAL_METHOD_VARIATIONAL6 || o->method == DAL_METHOD_RATTLE ||
-      o->method == DAL_METHOD_RATTLE4 || o->method == DAL_METHOD_RATTLE6)
+  if (o->method != DAL_METHOD_AUTO && !dal__method_can(o->method, DAL__CAP_FIRST_ORDER)) {
+    char can[128];
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "lyapunov: method '%s' is not available for the variational equations; use "
-                    "DOPRI5, Fehlberg 7(8), Bulirsch-Stoer, Adams, BDF, RK4 or AUTO",
-                    dal_method_name(o->method));
+                    "auto or one that runs a first-order problem (%s)",
+                    dal_method_name(o->method),
+                    dal__methods_that_can(DAL__CAP_FIRST_ORDER, can, sizeof can));
+  }
   if (o->nexp < 0 || o->nexp > ny)
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2(n - m) = %d", o->nexp,
                     ny);
@@ -338,19 +332,20 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
                     "lyapunov: renorm = %g must be finite and > 0, nblocks = %d >= 2, max_steps "
                     "= %ld >= 1",
                     o->renorm, o->nblocks, o->max_steps);
-  if (o->method == DAL_METHOD_RK4 && (!(o->h > 0) || !isfinite(o->h)))
+  // a fixed-step method (its row: RK4) takes the step h and no tolerances
+  int fixed = dal__method_row(o->method)->fixed == 1;
+  if (fixed && (!(o->h > 0) || !isfinite(o->h)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: RK4 step h = %g must be finite and > 0", o->h);
   // the progress guard: a segment or step of a few ulps of t cannot advance t
   double tmax = fmax(fabs(st->t), fabs(o->t_end)), tiny = DAL_TINY_STEP(tmax);
-  if (o->renorm <= tiny || (o->method == DAL_METHOD_RK4 && o->h <= tiny))
+  if (o->renorm <= tiny || (fixed && o->h <= tiny))
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: %s = %g is below the floating-point resolution of t near %g (%g, "
                     "a few ulps): t would not advance; use a larger value or restart the clock "
                     "near 0",
                     o->renorm <= tiny ? "renorm" : "RK4 step h",
                     o->renorm <= tiny ? o->renorm : o->h, tmax, tiny);
-  if (o->method != DAL_METHOD_RK4 &&
-      (!(o->rtol > 0) || !(o->atol > 0) || !isfinite(o->rtol) || !isfinite(o->atol)))
+  if (!fixed && (!(o->rtol > 0) || !(o->atol > 0) || !isfinite(o->rtol) || !isfinite(o->atol)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: rtol = %g and atol = %g must be finite and > 0",
                     o->rtol, o->atol);
   if (o->y0)
@@ -404,12 +399,9 @@ static int lyap_alloc(lyap *L, const dal_system *sys, dal_state *st, const dal_l
   L->so.rtol = o->rtol;
   L->so.atol = o->atol;
   L->so.fixed_step = o->h;
-  // AUTO here keeps the rule it was validated with (tests/test_analysis_lyapunov.c), not the
-  // ODE rule of solve.h (measured on plain trajectories, not on the augmented tangent system)
-  dal_method am = o->rtol > 1e-6     ? DAL_METHOD_DOPRI5
-                  : o->rtol >= 1e-12 ? DAL_METHOD_ADAMS
-                                     : DAL_METHOD_BS;
-  L->meth = o->method == DAL_METHOD_AUTO ? am : o->method;
+  // AUTO: the rule of the first-order problems (methods.c), validated on this tangent system
+  L->meth =
+      o->method == DAL_METHOD_AUTO ? dal__auto_method_fo(o->rtol, DAL__CAP_FIRST_ORDER) : o->method;
   return DAL_OK;
 }
 

@@ -115,7 +115,8 @@ static int ensure_integ(const dal_system *sys, dal_state *st, const dal_solve_op
   int rc = 0;
   if (!(h = handle_create(sys, st, o, dense, &rc))) return rc;
   start_notes(sys, st, &h->it->opts, h, &before, before_valid);
-  handle_keep(sys, st, h, &h->it->opts);
+  // the caller's options are the key (the integrator may run others: AUTO's fallback form)
+  handle_keep(sys, st, h, o);
   return DAL_OK;
 }
 
@@ -134,11 +135,8 @@ static int fall_back(const dal_system *sys, dal_state *st, const dal_solve_opts 
   memcpy(why, st->err, sizeof why);
   double t = st->t;
   dal__integ_reset(st);
-  dal_solve_opts oc = *o;
-  oc.form = DAL_FORM_INDEX1;
-  oc.project = 1;
-  oc.method = DAL_METHOD_BS;
-  int rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+  dal_solve_opts oc = dal__fallback_opts(o);
+  int rc = dal__fallback_start(sys, st, o);
   if (rc) {
     // no consistent start there (a singular point): IDA's failure stands, with both reasons;
     // the state stays at IDA's last accepted step, evaluated

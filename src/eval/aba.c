@@ -19,7 +19,7 @@
 // no potential over q) they come instead from tau = 0 with pA_k starting at the particle load
 // m_k gamma_k - F_k, Featherstone's bias form: the same equations (Q - c = sum J_k' (F_k -
 // m_k gamma_k)) without forming Q and c, so an integrator's right-hand side skips them
-// (eval.c). The pivots of the D_k are those of an LDL' factorization of M
+// (pipeline.c). The pivots of the D_k are those of an LDL' factorization of M
 // that eliminates leaves first: the same relative test as the dense Cholesky names a
 // degenerate coordinate. Cost O(N (d^3 + d nc^2 + nc^3)) instead of O(n^3).
 //

@@ -33,7 +33,7 @@ enum {
 /// a consumer reads product bits `p`: they must be current (debug builds check)
 #define DAL_NEED(st, p) DAL_ASSERT(((st)->have & (p)) == (p))
 
-// evaluation pipeline (eval.c -> kinematics.c, dynamics.c, lagrangian.c, kkt.c)
+// evaluation pipeline (pipeline.c -> kinematics.c, dynamics.c, lagrangian.c, kkt.c)
 /// Evaluate at the state's (t, q, qdot) what `need` (DAL_P_* bits) asks for, and what that
 /// depends on; st->have becomes the set computed. Returns 0, DAL__RECOVERABLE or a negative
 /// status with the state's message naming the culprit.
@@ -81,7 +81,7 @@ int dal__dynamics(const dal_system *sys, dal_state *st, int want_M, double *pw);
 /// generalized terms from user callbacks over q: Q += Q_user - dU/dq, *U += U(q); pw as above
 int dal__genforces(const dal_system *sys, dal_state *st, double *U, double *pw);
 /// The applied forces F on the particles alone (no Q, c, energies): what the recursion's
-/// accelerations need when no force acts on the coordinates (eval.c). 0, or as dal__dynamics.
+/// accelerations need when no force acts on the coordinates (pipeline.c). 0, or as dal__dynamics.
 int dal__forces(const dal_system *sys, dal_state *st);
 /// After dal__dynamics failed with DAL_E_NONFINITE: when a built-in force (gravity, a spring, a
 /// damper) or the sum of finite ones overflowed rather than a force callback, rewrite the

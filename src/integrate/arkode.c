@@ -476,15 +476,18 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
 static const dal_sun_setters setters = {ERKStepSStolerances, ERKStepSetInitStep, ERKStepSetMinStep,
                                         ERKStepSetMaxStep};
 
+// DOPRI5 with the Hermite interpolant of its stored slopes; Fehlberg 7(8) with its own
+static const dal_ode_ops dopri5_ops = {erk_advance, erk_free, NULL, erk_end_slope, NULL};
+static const dal_ode_ops fehlberg_ops = {erk_advance, erk_free, fehlberg_interp, erk_end_slope,
+                                         NULL};
+
 int dal__erk_create(dal_ode_integ *ig) {
   dal_state *st = ig->st;
   const dal_solve_opts *o = &ig->opts;
   erk_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
   ig->impl = m;
-  ig->free_impl = erk_free;
-  ig->advance = erk_advance;
-  ig->end_slope = erk_end_slope;
+  ig->ops = ig->method == DAL_METHOD_FEHLBERG78 ? &fehlberg_ops : &dopri5_ops;
   int flag = dal__sun_vecs_create(ig, &m->v, "ERK");
   if (flag) return flag;
   m->ark = ERKStepCreate(erk_rhs, ig->t, m->v.y, m->v.ctx);
@@ -506,7 +509,6 @@ int dal__erk_create(dal_ode_integ *ig) {
     m->ct0 = m->ct1 = NAN;
     if (!m->K || !m->yk || !m->hy || !m->hf || !m->zy || !m->zf || !m->cf || !m->cf7)
       return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the ERK integrator");
-    ig->interp = fehlberg_interp;
   } else if (!flag)
     flag = ERKStepSetTableNum(m->ark, ARKODE_DORMAND_PRINCE_7_4_5);
   // ARKODE's interpolant serves only the end slope (Hermite of degree 3 keeps the stored f)

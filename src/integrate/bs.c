@@ -730,12 +730,13 @@ static void bs_changed_y(dal_ode_integ *ig, int i0) {
   m->cur = -1;
 }
 
+static const dal_ode_ops bs_ops = {bs_advance, bs_free, bs_interp, NULL, bs_changed_y};
+
 int dal__bs_create(dal_ode_integ *ig) {
   bs_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
   ig->impl = m;
-  ig->free_impl = bs_free;
-  ig->advance = bs_advance;
+  ig->ops = &bs_ops;
   size_t ny = (size_t)ig->ny + 1;
   m->f0 = calloc(ny, sizeof(double));
   m->za = calloc(ny, sizeof(double));
@@ -761,8 +762,6 @@ int dal__bs_create(dal_ode_integ *ig) {
     ok = ok && m->dd[b].y0 && m->dd[b].y1 && m->dd[b].a;
   }
   if (!ok) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the BS integrator");
-  ig->interp = bs_interp;
-  ig->changed_y = bs_changed_y;
   m->cur = -1;
   m->bulirsch = ig->rtol < BS_BULIRSCH_RTOL;
   bs_sequence(m, 0);

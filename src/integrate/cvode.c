@@ -472,6 +472,8 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
 static const dal_sun_setters setters = {CVodeSStolerances, CVodeSetInitStep, CVodeSetMinStep,
                                         CVodeSetMaxStep};
 
+static const dal_ode_ops cv_ops = {cv_advance, cv_free, cv_interp, NULL, NULL};
+
 int dal__cvode_create(dal_ode_integ *ig) {
   dal_state *st = ig->st;
   const dal_solve_opts *o = &ig->opts;
@@ -479,9 +481,7 @@ int dal__cvode_create(dal_ode_integ *ig) {
   cv_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the CVODE integrator");
   ig->impl = m;
-  ig->free_impl = cv_free;
-  ig->advance = cv_advance;
-  ig->interp = cv_interp;
+  ig->ops = &cv_ops;
   int flag = dal__sun_vecs_create(ig, &m->v, "CVODE");
   if (flag) return flag;
   // the dense output's probe: a serial vector on pout (the operations of y) whose linear

@@ -3,7 +3,6 @@
 // A first-order problem y' = F(t, y) of any size run by the library's ODE methods: the
 // tangent and variational integrations of the analysis layer use the same integrators, step
 // control, progress guards and failure naming as dal_advance.
-#include <stdint.h>
 #include <string.h>
 
 #include "integrate.h"
@@ -51,24 +50,25 @@ const dal_ode_problem dal__problem_first_order = {
 };
 
 int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                       dal_method meth, const dal_first_order *fo, dal_ode_integ **out) {
+                       dal_method meth, dal_first_order *fo, dal_ode_integ **out) {
   *out = NULL;
   if (fo->ny < 2 * sys->n)
     return DAL_FAIL(st, DAL_E_ARG, "first-order problem of size %d below 2n = %d", fo->ny,
                     2 * sys->n);
-  const dal_method_row *row = dal__method_row(meth);
-  if (!row || !row->ode_create || row->ode_create == dal__symplectic_create)
+  if (!dal__method_can(meth, DAL__CAP_FIRST_ORDER)) {
+    char can[128];
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "method '%s' does not run a first-order problem; use DOPRI5, Fehlberg 7(8), "
-                    "Bulirsch-Stoer, Adams, BDF or RK4",
-                    dal_method_name(meth));
+                    "method '%s' does not run a first-order problem; use one that does (%s)",
+                    dal_method_name(meth),
+                    dal__methods_that_can(DAL__CAP_FIRST_ORDER, can, sizeof can));
+  }
   dal_solve_opts o = *opts;
   o.form = DAL_FORM_ODE;
   o.work = 0;
   o.project = fo->project != NULL;
   st->fo = fo;
-  dal_first_order *f = (dal_first_order *)(uintptr_t)fo; // its prob is ours to fill
-  f->prob = dal__problem_first_order;
-  f->prob.ny = fo->ny;
-  return dal__ode_create(sys, st, &o, meth, &f->prob, out);
+  fo->prob = dal__problem_first_order;
+  fo->prob.ny = fo->ny;
+  if (fo->tol_factor > 0) fo->prob.tol_factor = fo->tol_factor;
+  return dal__ode_create(sys, st, &o, meth, &fo->prob, out);
 }

@@ -16,15 +16,10 @@
 
 static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
   dal_ode_integ *ig = it->impl;
-  ig->tout = tout;
-  ig->ncall = 0;
-  ig->rhs_fatal = 0;
-  ig->ntiny = 0;
-  ig->nrecov = 0;
   ig->hook = hook;
   ig->hook_ctx = ctx;
   ig->dense = hook && it->dense_steps;
-  int rc = ig->advance(ig, tout);
+  int rc = dal__ode_advance(ig, tout);
   ig->hook = NULL;
   if (rc) return rc;
   // the state at tout, evaluated there
@@ -121,6 +116,18 @@ static const dal_integ_ops ida_ops = {ida_advance,   ida_window,     ida_place,
 // ---------------------------------------------------------------------------------------------
 // resolution and creation
 
+dal_solve_opts dal__fallback_opts(const dal_solve_opts *o) {
+  dal_solve_opts f = *o;
+  f.form = DAL_FORM_INDEX1;
+  f.project = 1;
+  f.method = DAL_METHOD_BS;
+  return f;
+}
+
+int dal__fallback_start(const dal_system *sys, dal_state *st, const dal_solve_opts *o) {
+  return dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+}
+
 // resolve formulation and method from the rows; *prob is NULL for a DAE form; *tight is set
 // when AUTO chose the index-1 form with projection because IDA cannot honour the tolerance
 // (solve.h)
@@ -144,10 +151,10 @@ static int resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o
   }
   if (form == DAL_FORM_AUTO && sys->m && m == DAL_METHOD_AUTO &&
       dal__dae_tol_factor(DAL_FORM_GGL) * o->rtol < DAL_IDA_TOL_FLOOR) {
-    // IDA would be clamped at its floor: index-1 with projection and Bulirsch-Stoer honours
-    // such tolerances (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
+    // IDA would be clamped at its floor: the fallback formulation honours such tolerances
+    // (measured 5.7 x rtol at 1e-12 on the Cartesian pendulum)
     *tight = 1;
-    *meth = DAL_METHOD_BS;
+    *meth = dal__fallback_opts(o).method;
     *prob = &dal__problem_index1;
     return DAL_OK;
   }
@@ -188,7 +195,7 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   if (rc) return rc;
   it->ops = &ode_ops;
   it->impl = ig;
-  it->traj_pieces = it->method == DAL_METHOD_BS ? 4 : 1;
+  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   // dense output straight into the state's (q, qdot) where y has its layout
@@ -214,7 +221,7 @@ static int create_ida(dal_integ *it) {
   int rc = dal__public_status(dal__ida_create(it->sys, st, o, &it->impl));
   if (rc) return rc;
   it->ops = &ida_ops;
-  it->traj_pieces = 1;
+  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   it->can_fall_back = 1;
   if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
     snprintf(it->note, sizeof it->note,
@@ -244,10 +251,9 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
              : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
                                           : o->form;
   if (tight) {
-    // the index-1 form starts from a consistent state too, and projects after every step
-    it->opts.form = DAL_FORM_INDEX1;
-    it->opts.project = 1;
-    rc = dal__public_status(dal__dae_start(sys, st, o->init_max_move, NULL));
+    // the fallback formulation starts from a consistent state too
+    it->opts = dal__fallback_opts(o);
+    rc = dal__fallback_start(sys, st, o);
   }
   if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
   if (rc) {

@@ -26,6 +26,30 @@ int dal__ida_place(void *mem, double t);
 /// rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a
 /// step needs is allocated by the method's create function.
 typedef struct dal_ode_integ dal_ode_integ;
+/// The operations of an ODE method (GSL's gsl_odeiv2_step_type): one const table per method,
+/// which its create function sets into ig->ops with ig->impl.
+typedef struct dal_ode_ops {
+  /// integrate from t to tout (> t); on failure call dal__ode_fail. Returns 0 at tout, a
+  /// negative status, or DAL__HOOK_STOP when the after-step hook stopped the run (the state
+  /// then holds what the hook left in it; the integrator's own (t, y) is the accepted step).
+  /// Callers go through dal__ode_advance.
+  int (*advance)(dal_ode_integ *ig, double tout);
+  /// free ig->impl
+  void (*free_impl)(void *impl);
+  /// y at any t in [tprev, t] into yout (ny) from the method's own interpolant, accurate to
+  /// the method's tolerance; NULL: the cubic Hermite of ode_hermite (ode.c) is used.
+  /// Returns 0 or a negative status. Must not change the integration (no state of the method
+  /// is touched); may use ig->st as workspace.
+  int (*interp)(dal_ode_integ *ig, double t, double *yout);
+  /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
+  /// last stage of an FSAL method); NULL: evaluated
+  int (*end_slope)(dal_ode_integ *ig, double *f);
+  /// the caller changed ig->y[i0 .. ny) at ig->t between advance calls (a reorthonormalized
+  /// tangent): go on from there, the rest of the method's memory kept (the compensation of the
+  /// unchanged components, the step size); NULL: the caller makes a fresh integrator instead
+  /// (dal__ode_changed_y)
+  void (*changed_y)(dal_ode_integ *ig, int i0);
+} dal_ode_ops;
 struct dal_ode_integ {
   const dal_ode_problem *prob;
   const dal_system *sys;
@@ -50,20 +74,11 @@ struct dal_ode_integ {
   char rhs_err[DAL_ERRMSG_LEN]; ///< message of the last failing right-hand-side call
   char sun_err[DAL_ERRMSG_LEN]; ///< last message of the SUNDIALS error handler
   void *impl;                   ///< method memory
-  /// integrate from t to tout (> t); on failure call dal__ode_fail. Returns 0 at tout, a
-  /// negative status, or DAL__HOOK_STOP when the after-step hook stopped the run (the state
-  /// then holds what the hook left in it; the integrator's own (t, y) is the accepted step)
-  int (*advance)(dal_ode_integ *ig, double tout);
-  void (*free_impl)(void *impl);
+  const dal_ode_ops *ops;       ///< the method's operations (set by its create function)
   // dense output (driver.c): after every accepted step from tprev to t, dal__ode_accept calls
   // hook(hook_ctx); the hook reads the solution anywhere in [tprev, t] through interp
   double tprev;  ///< start of the last accepted step (= t before the first step)
   double *yprev; ///< y at tprev (ny): kept by dal__ode_accept for the Hermite fallback
-  /// y at any t in [tprev, t] into yout (ny) from the method's own interpolant, accurate to
-  /// the method's tolerance; NULL: the cubic Hermite of ode_hermite (ode.c) is used.
-  /// Returns 0 or a negative status. Must not change the integration (no state of the method
-  /// is touched); may use ig->st as workspace.
-  int (*interp)(dal_ode_integ *ig, double t, double *yout);
   /// after-step hook (NULL: none): 0 to go on, DAL__HOOK_STOP to stop, negative to fail
   int (*hook)(void *ctx);
   void *hook_ctx;
@@ -81,13 +96,6 @@ struct dal_ode_integ {
   /// bit 0: hf0 is current for this step, bit 1: hf1, bit 2: hc, bit 3: hc with place_direct
   /// (dal__ode_place's fast path)
   int hvalid;
-  /// the method's slope f(t, y) at the end of the last step, when it has it for free (the
-  /// last stage of an FSAL method); NULL: evaluated
-  int (*end_slope)(dal_ode_integ *ig, double *f);
-  /// the caller changed ig->y[i0 .. ny) at ig->t between advance calls (a reorthonormalized
-  /// tangent): go on from there, the rest of the method's memory kept (the compensation of the
-  /// unchanged components, the step size); NULL: the caller makes a fresh integrator instead
-  void (*changed_y)(dal_ode_integ *ig, int i0);
 };
 
 /// the after-step hook asked the integration to stop (a terminal event, a monitor's stop)
@@ -101,6 +109,15 @@ int dal__ode_place(dal_ode_integ *ig, double t);
 /// the slope f(tprev, yprev) at the start of the last step into ig->hf0, evaluated once per
 /// step (the Hermite fallback and Fehlberg's partial step share it); 0 or a public status
 int dal__ode_start_slope(dal_ode_integ *ig);
+/// integrate ig to tout (> ig->t) with its method, the per-call target and progress guard's
+/// counters (opts.max_steps, step size collapse, recoverable failures) reset: returns as
+/// dal_ode_ops.advance
+int dal__ode_advance(dal_ode_integ *ig, double tout);
+/// the caller changed ig->y[i0 .. ny) at ig->t: 1 when the method goes on from there with the
+/// rest of its memory kept, 0 when it cannot (make a fresh integrator; nothing was done)
+int dal__ode_changed_y(dal_ode_integ *ig, int i0);
+/// 1 when dal__ode_changed_y can go on (the method has the operation)
+int dal__ode_can_change_y(const dal_ode_integ *ig);
 /// the slope f(t, y) at the end of the last step into ig->hf1, once per step: the method's own
 /// (end_slope) unless a projection moved y, else evaluated; 0 or a public status
 int dal__ode_end_slope(dal_ode_integ *ig);
@@ -119,7 +136,9 @@ typedef struct dal_first_order {
   int (*rhs)(void *ctx, dal_state *st, double t, const double *y, double *f);
   /// project y onto the problem's invariant manifold at t, in place (0 or a status); NULL: none
   int (*project)(void *ctx, dal_state *st, double t, double *y);
-  void *ctx;            ///< passed to rhs and project
+  void *ctx; ///< passed to rhs and project
+  /// factor on the method's local tolerance for this problem (as dal_ode_problem's); 0: 1
+  double tol_factor;
   dal_ode_problem prob; ///< filled by dal__ode_create_fo (the problem the integrator runs)
 } dal_first_order;
 /// the problem that runs st->fo (first_order.c; its ny is set per run)
@@ -129,9 +148,10 @@ extern const dal_ode_problem dal__problem_first_order;
 /// pointer to fo, whose prob it fills and runs; fo must outlive the integrator). opts: tolerances
 /// (a global target, the method's calibrated factor applied as for dal_advance), h0, hmax,
 /// fixed_step, max_steps; the formulation, work and projection options are ignored (fo->project
-/// runs when set).
+/// runs when set). meth must have DAL__CAP_FIRST_ORDER (else DAL_E_UNSUPPORTED naming those
+/// that do). Destroying the integrator (dal__ode_destroy) lets go of the work state's st->fo.
 int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
-                       dal_method meth, const dal_first_order *fo, dal_ode_integ **out);
+                       dal_method meth, dal_first_order *fo, dal_ode_integ **out);
 
 /// the bit of formulation f in a method row's formulation sets
 #define DAL__FORM_BIT(f) (1u << (unsigned)(f))
@@ -151,7 +171,9 @@ int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opt
 /// the DAE method). `min_rtol`: the tightest request the method honours on an ODE problem (0:
 /// down to DAL_TOL_FLOOR / tol_factor); a tighter one runs as min_rtol, atol scaled alike, and
 /// the clamp shows in dal_stats.rtol_used. `fixed`: the method takes opts.fixed_step (1), or
-/// does with opts.fixed_erk (2), or not (0).
+/// does with opts.fixed_erk (2), or not (0). `caps`: what a caller may ask of it (DAL__CAP_*).
+/// `traj_pieces`: records per accepted step of a stored trajectory (dal_trajectory: degree 8
+/// each; Bulirsch-Stoer's long steps take 4).
 typedef struct dal_method_row {
   dal_method id;
   const char *name;
@@ -160,14 +182,51 @@ typedef struct dal_method_row {
   unsigned ode_forms, dae_forms;
   double min_rtol;
   int fixed;
+  unsigned caps;
+  int traj_pieces;
 } dal_method_row;
+/// The capabilities of a method row:
+enum {
+  /// runs a plain first-order problem y' = F(t, y) (dal__ode_create_fo): tangent vectors,
+  /// variational equations
+  DAL__CAP_FIRST_ORDER = 1u << 0,
+  /// explicit: no Newton or fixed-point iteration per step (the variational equations of
+  /// dal_state_transition ask for one: an implicit method would iterate on all of Phi and S)
+  DAL__CAP_EXPLICIT = 1u << 1,
+  /// structure-preserving fixed-step method (symplectic.c): no error control, no work
+  /// tracking, its own formulation (dal__symplectic_resolve)
+  DAL__CAP_SYMPLECTIC = 1u << 2,
+};
 /// the row of a method (AUTO has a row too, with no create function)
 const dal_method_row *dal__method_row(dal_method m);
+/// 1 when method m takes a fixed step with options o (its row's `fixed`: always, or with
+/// o->fixed_erk), else 0
+int dal__method_fixed(dal_method m, const dal_solve_opts *o);
+/// 1 when method m's row has every capability in caps (DAL__CAP_*); 0 for an unknown method
+int dal__method_can(dal_method m, unsigned caps);
+/// The methods whose rows have every capability in caps, as "DOPRI5, Fehlberg 7(8), ..." for a
+/// message (the rows' order; AUTO not listed) into buf; returns buf
+const char *dal__methods_that_can(unsigned caps, char *buf, size_t len);
+/// AUTO on a plain first-order problem (tangent vectors, variational equations) by relative
+/// tolerance, among the methods with the capabilities caps (DAL__CAP_FIRST_ORDER at least):
+/// DOPRI5 above rtol 1e-6, Adams down to 1e-12, Bulirsch-Stoer below; a method without caps
+/// gives way to the next one that has them (validated on the tangent system of
+/// tests/test_analysis_lyapunov.c, not on plain trajectories as dal__auto_method)
+dal_method dal__auto_method_fo(double rtol, unsigned caps);
 /// the method that runs formulation form as a DAE (the first row other than AUTO whose
 /// dae_forms holds it), or DAL_METHOD_AUTO when none does
 dal_method dal__dae_method(dal_formulation form);
 /// local tolerance factor of a method (its row's tol_factor)
 double dal__tol_factor(dal_method m);
+
+/// The fallback formulation (solve.h), written once: index-1 with projection after every step
+/// and Bulirsch-Stoer. AUTO runs it where IDA cannot honour the tolerance (integ.c), and the
+/// driver goes on with it where IDA stopped (dal_stats.fallbacks). The options that run it,
+/// from the caller's o (integ.c).
+dal_solve_opts dal__fallback_opts(const dal_solve_opts *o);
+/// its consistent start at the state's (t, q, qdot) (within o->init_max_move): 0 or a public
+/// status with the state's message set (integ.c)
+int dal__fallback_start(const dal_system *sys, dal_state *st, const dal_solve_opts *o);
 
 /// the automatic method for an ODE formulation by relative tolerance and number of
 /// coordinates n, and whether a monitor reads dense outputs (rule in solve.h)
@@ -230,17 +289,17 @@ int dal__ode_stall(dal_ode_integ *ig, double h, const char *what);
 /// dal__ode_recov_blocked): the status of that cause; h is the last step size tried
 int dal__ode_recov_fail(dal_ode_integ *ig, double h);
 
-/// method constructors: fill ig->impl, ig->advance, ig->free_impl from ig->y at ig->t
+/// method constructors: fill ig->impl and ig->ops from ig->y at ig->t
 int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (arkode.c)
 int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (cvode.c)
 int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (bs.c)
 int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (rk4.c)
 /// CVODE's own dense output for a CVODE integrator ig: CVodeGetDky(t, k) into out (ny), the
 /// k-th derivative of the last step's polynomial at t; returns CVODE's code (0: success).
-/// For tests: ig->interp reads the same polynomial without a call per output
+/// For tests: ig->ops->interp reads the same polynomial without a call per output
 int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out);
-/// the outputs of a CVODE integrator that ig->interp served without a CVodeGetDky call (with the
-/// Nordsieck columns read by the step's first output)
+/// the outputs of a CVODE integrator that ig->ops->interp served without a CVodeGetDky call (with
+/// the Nordsieck columns read by the step's first output)
 long dal__cvode_fast_outputs(const dal_ode_integ *ig);
 /// for tests: every further output of a CVODE integrator by a CVodeGetDky call (the path taken
 /// when CVODE hands over columns of another form than the fast path assumes)

@@ -249,10 +249,29 @@ int dal__ode_argmax(const double *w, int n) {
   return best;
 }
 
+int dal__ode_advance(dal_ode_integ *ig, double tout) {
+  ig->tout = tout;
+  ig->ncall = 0;
+  ig->rhs_fatal = 0;
+  ig->ntiny = 0;
+  ig->nrecov = 0;
+  return ig->ops->advance(ig, tout);
+}
+
+int dal__ode_changed_y(dal_ode_integ *ig, int i0) {
+  if (!ig->ops->changed_y) return 0;
+  ig->ops->changed_y(ig, i0);
+  return 1;
+}
+
+int dal__ode_can_change_y(const dal_ode_integ *ig) { return ig->ops->changed_y != NULL; }
+
 void dal__ode_destroy(void *p) {
   dal_ode_integ *ig = p;
   if (!ig) return;
-  if (ig->free_impl) ig->free_impl(ig->impl);
+  // a first-order problem's integrator lets go of the work state (dal__ode_create_fo)
+  if (ig->st && ig->st->fo && ig->prob == &ig->st->fo->prob) ig->st->fo = NULL;
+  if (ig->ops && ig->ops->free_impl) ig->ops->free_impl(ig->impl);
   free(ig->y);
   free(ig->ydot);
   free(ig->ewt);
@@ -339,8 +358,9 @@ int dal__ode_start_slope(dal_ode_integ *ig) {
 int dal__ode_end_slope(dal_ode_integ *ig) {
   if (ig->hvalid & 2) return DAL_OK;
   // the method's own slope at the step's end when it has one (no projection moved y)
-  int own = ig->end_slope && !(ig->prob->project && ig->opts.project);
-  int rc = own ? ig->end_slope(ig, ig->hf1) : dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
+  int own = ig->ops->end_slope && !(ig->prob->project && ig->opts.project);
+  int rc =
+      own ? ig->ops->end_slope(ig, ig->hf1) : dal__ode_eval(ig, ig->t, ig->y, ig->hf1, DAL_P_ACC);
   if (rc) return dal__public_status(rc);
   if (!own) ig->st->stats.rhs_evals++;
   ig->hvalid |= 2;
@@ -395,7 +415,7 @@ static int ode_interp(dal_ode_integ *ig, double t, double *yout) {
     memcpy(yout, ig->yprev, (size_t)ig->ny * sizeof(double));
     return DAL_OK;
   }
-  return ig->interp ? ig->interp(ig, t, yout) : ode_hermite(ig, t, yout);
+  return ig->ops->interp ? ig->ops->interp(ig, t, yout) : ode_hermite(ig, t, yout);
 }
 
 // dal__ode_place where the fast path does not apply: an end of the step, the method's own

@@ -121,12 +121,13 @@ static void rk4_changed_y(dal_ode_integ *ig, int i0) {
   memset(m->c + i0, 0, (size_t)(ig->ny - i0) * sizeof(double));
 }
 
+static const dal_ode_ops rk4_ops = {rk4_advance, rk4_free, NULL, NULL, rk4_changed_y};
+
 int dal__rk4_create(dal_ode_integ *ig) {
   rk4_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the RK4 integrator");
   ig->impl = m;
-  ig->free_impl = rk4_free;
-  ig->advance = rk4_advance;
+  ig->ops = &rk4_ops;
   size_t ny = (size_t)ig->ny + 1;
   m->k1 = calloc(ny, sizeof(double));
   m->k2 = calloc(ny, sizeof(double));
@@ -138,6 +139,5 @@ int dal__rk4_create(dal_ode_integ *ig) {
   m->c1 = calloc(ny, sizeof(double));
   if (!m->k1 || !m->k2 || !m->k3 || !m->k4 || !m->yt || !m->y1 || !m->c || !m->c1)
     return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the RK4 integrator");
-  ig->changed_y = rk4_changed_y;
   return DAL_OK;
 }

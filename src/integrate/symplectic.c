@@ -54,21 +54,29 @@ typedef struct symp_mem {
   double *xi, *ci;
 } symp_mem;
 
-int dal__symplectic_method(dal_method m) {
-  return m == DAL_METHOD_VARIATIONAL || m == DAL_METHOD_VARIATIONAL4 ||
-         m == DAL_METHOD_VARIATIONAL6 || m == DAL_METHOD_RATTLE || m == DAL_METHOD_RATTLE4 ||
-         m == DAL_METHOD_RATTLE6;
+int dal__symplectic_method(dal_method m) { return dal__method_can(m, DAL__CAP_SYMPLECTIC); }
+
+// each method: its base method (RATTLE on the constraints, else the variational integrator)
+// and the order of the symmetric composition around it
+static const struct {
+  dal_method m;
+  int rattle, order;
+} kinds[] = {
+    {DAL_METHOD_VARIATIONAL, 0, 2},  {DAL_METHOD_VARIATIONAL4, 0, 4},
+    {DAL_METHOD_VARIATIONAL6, 0, 6}, {DAL_METHOD_RATTLE, 1, 2},
+    {DAL_METHOD_RATTLE4, 1, 4},      {DAL_METHOD_RATTLE6, 1, 6},
+};
+
+static int kind_of(dal_method m) {
+  for (int i = 0; i < (int)(sizeof kinds / sizeof kinds[0]); ++i)
+    if (kinds[i].m == m) return i;
+  DAL_ASSERT(0); // dal__symplectic_method(m) holds for every caller
+  return 0;
 }
 
-static int is_rattle(dal_method m) {
-  return m == DAL_METHOD_RATTLE || m == DAL_METHOD_RATTLE4 || m == DAL_METHOD_RATTLE6;
-}
+static int is_rattle(dal_method m) { return kinds[kind_of(m)].rattle; }
 
-static int order_of(dal_method m) {
-  if (m == DAL_METHOD_VARIATIONAL4 || m == DAL_METHOD_RATTLE4) return 4;
-  if (m == DAL_METHOD_VARIATIONAL6 || m == DAL_METHOD_RATTLE6) return 6;
-  return 2;
-}
+static int order_of(dal_method m) { return kinds[kind_of(m)].order; }
 
 int dal__symplectic_resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
                             dal_method m, const dal_ode_problem **prob) {
@@ -254,13 +262,13 @@ static void symp_free(void *p) {
   free(m);
 }
 
+static const dal_ode_ops symp_ops = {symp_advance, symp_free, symp_interp, NULL, NULL};
+
 int dal__symplectic_create(dal_ode_integ *ig) {
   symp_mem *m = calloc(1, sizeof *m);
   if (!m) return DAL_FAIL(ig->st, DAL_E_NOMEM, "out of memory creating the integrator");
   ig->impl = m;
-  ig->free_impl = symp_free;
-  ig->advance = symp_advance;
-  ig->interp = symp_interp;
+  ig->ops = &symp_ops;
   int order = order_of(ig->method);
   if (order == 2) {
     m->ns = 1;

@@ -21,8 +21,8 @@ int dal__symplectic_method(dal_method m);
 int dal__symplectic_resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
                             dal_method m, const dal_ode_problem **prob);
 
-/// Constructor of the ODE integrator for a symplectic method: fills ig->impl, ig->advance,
-/// ig->free_impl. May move the state onto the constraints (RATTLE) and refreshes ig->y then.
+/// Constructor of the ODE integrator for a symplectic method: fills ig->impl and ig->ops.
+/// May move the state onto the constraints (RATTLE) and refreshes ig->y then.
 int dal__symplectic_create(dal_ode_integ *ig);
 
 /// A base (second-order, symmetric) one-step method on its own state x (nx values), e.g.

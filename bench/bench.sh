@@ -3,13 +3,13 @@
 # SPDX-FileCopyrightText: 2026 dalembert engineers
 # Regenerate every benchmark figure: Release build, dal_bench -> bench/results/*.csv, gnuplot
 # charts (PNG + SVG), and the tables of docs/performance.md (bench/report.sh).
-# Usage: scripts/bench.sh [--quick | --full]   (quick: a few minutes; full: much longer)
+# Usage: bench/bench.sh [--quick | --full]   (quick: a few minutes; full: much longer)
 set -euo pipefail
 mode=--quick
 case "${1:-}" in
   --quick | "") mode=--quick ;;
   --full) mode=--full ;;
-  *) echo "usage: scripts/bench.sh [--quick | --full]" >&2; exit 2 ;;
+  *) echo "usage: bench/bench.sh [--quick | --full]" >&2; exit 2 ;;
 esac
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$root/scripts/deps.sh"
@@ -34,7 +34,7 @@ mkdir -p "$out"
 } >"$out/machine.txt"
 "$bdir/bench/dal_bench" "$mode" --out "$out"
 "$root/bench/overhead_ir.sh" "$bdir/bench/dal_bench" "$out" "$mode"
-# the charts bench/plots.gp draws; the symplectic ones (sym_*) belong to bench_symplectic.sh,
+# the charts bench/plots.gp draws; the symplectic ones (sym_*) belong to symplectic.sh,
 # the cliff chart to bench/cliff.sh
 find "$out" -maxdepth 1 \( -name '*.png' -o -name '*.svg' \) ! -name 'sym_*' ! -name 'cliff.*' -delete
 # (gnuplot warns about curves without points, e.g. a formulation that failed at every rtol)

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: MIT
 # Instructions per right-hand side (dal_forward) of scenes placed by expressions and by the
 # C primitives: cachegrind's instruction count at N = 2000 minus N = 1000, over 1000.
-# Usage: scripts/expr_speed.sh [build-dir]   (needs valgrind; build type RelWithDebInfo)
+# Usage: bench/expr_speed.sh [build-dir]   (needs valgrind; build type RelWithDebInfo)
 set -e
 B=${1:-build}
 ir() {

@@ -3,14 +3,14 @@
 # SPDX-FileCopyrightText: 2026 dalembert engineers
 # Long runs of the symplectic methods against the adaptive ones: Release build,
 # dal_bench_symplectic -> bench/results/sym_*.csv and sym_summary.md, gnuplot charts.
-# Usage: scripts/bench_symplectic.sh [--quick | --full] [OUTDIR]
+# Usage: bench/symplectic.sh [--quick | --full] [OUTDIR]
 #   quick (default): 1e4 pendulum periods, a few minutes; full: 1e5 periods, ~15-20 minutes.
 set -euo pipefail
 mode=--quick
 case "${1:-}" in
   --quick | "") mode=--quick ;;
   --full) mode=--full ;;
-  *) echo "usage: scripts/bench_symplectic.sh [--quick | --full] [OUTDIR]" >&2; exit 2 ;;
+  *) echo "usage: bench/symplectic.sh [--quick | --full] [OUTDIR]" >&2; exit 2 ;;
 esac
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 out=${2:-$root/bench/results}
