@@ -100,8 +100,7 @@ int main(int argc, char **argv) {
     snprintf(path, sizeof path, "%s/examples/scenes/%s.scene", DAL_SOURCE_DIR,
              bead ? "bead_ring_below" : "driven_pendulum");
     if (dal_scene_read(path, &sc, msg, sizeof msg)) die(path, msg);
-    if (!strcmp(route, "native") && dal_scene_native(sc, NULL, msg, sizeof msg))
-      die("native", msg);
+    if (!strcmp(route, "native") && dal_scene_native(sc, NULL, msg, sizeof msg)) die("native", msg);
     sys = dal_scene_system(sc);
   }
   dal_state *st;

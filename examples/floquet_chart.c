@@ -11,10 +11,10 @@
 // Checks (--check: a 12 x 12 grid): against the Mathieu chart (y'' + (A - 2Q cos 2s) y = 0,
 // s = w t / 2): the bottom has A = 4 g / (l w^2), Q = 2 a / l and is unstable inside the first
 // tongue 1 - Q - Q^2/8 < A < 1 + Q - Q^2/8 and stable outside it by a margin of 0.05 (away
-// from the second tongue at A = 4) (the tongue's boundaries to second order, Abramowitz & Stegun 20.2.25); the
-// top (A = -4 g / (l w^2)) is stable only where A > -Q^2 / 2 (Kapitza: a^2 w^2 > 2 g l) and is
-// stable where A > -Q^2 / 2 + 7 Q^4 / 128 + 0.02 Q^2 with A < 0.5 (first tongue far). Every
-// point's det must be 1 (Liouville) to 1e-8.
+// from the second tongue at A = 4) (the tongue's boundaries to second order, Abramowitz &
+// Stegun 20.2.25); the top (A = -4 g / (l w^2)) is stable only where A > -Q^2 / 2 (Kapitza: a^2 w^2
+// > 2 g l) and is stable where A > -Q^2 / 2 + 7 Q^4 / 128 + 0.02 Q^2 with A < 0.5 (first tongue
+// far). Every point's det must be 1 (Liouville) to 1e-8.
 //
 // Full mode (no argument): a 60 x 48 grid into floquet_chart.csv and, when gnuplot is
 // installed, floquet_chart.png (docs/img/floquet_chart.png is this output).
@@ -153,16 +153,15 @@ int main(int argc, char **argv) {
     fclose(fp);
     FILE *gp = popen("gnuplot 2>/dev/null", "w");
     if (gp) {
-      fprintf(gp,
-              "set terminal pngcairo size 900,600\nset output 'floquet_chart.png'\n"
-              "set xrange [3:60]\nset yrange [0:0.31]\nset palette maxcolors 4\n"
-              "set datafile separator ','\nset logscale x\nset xlabel 'drive frequency w "
-              "(rad/s)'\nset ylabel 'drive amplitude a (m), l = 1'\n"
-              "set title 'driven pendulum: Floquet stability (dal\\_floquet)'\n"
-              "set palette defined (0 'white', 1 '#4477aa', 2 '#ee6677', 3 '#228833')\n"
-              "set cbrange [-0.5:3.5]\nset cbtics ('none' 0, 'bottom' 1, 'top' 2, 'both' 3)\n"
-              "plot 'floquet_chart.csv' every ::1 using 2:1:5 with points pt 5 ps 1.2 "
-              "palette notitle, sqrt(2*9.81)/x lc 'black' dt 2 title 'a w = sqrt(2 g l)'\n");
+      fprintf(gp, "set terminal pngcairo size 900,600\nset output 'floquet_chart.png'\n"
+                  "set xrange [3:60]\nset yrange [0:0.31]\nset palette maxcolors 4\n"
+                  "set datafile separator ','\nset logscale x\nset xlabel 'drive frequency w "
+                  "(rad/s)'\nset ylabel 'drive amplitude a (m), l = 1'\n"
+                  "set title 'driven pendulum: Floquet stability (dal\\_floquet)'\n"
+                  "set palette defined (0 'white', 1 '#4477aa', 2 '#ee6677', 3 '#228833')\n"
+                  "set cbrange [-0.5:3.5]\nset cbtics ('none' 0, 'bottom' 1, 'top' 2, 'both' 3)\n"
+                  "plot 'floquet_chart.csv' every ::1 using 2:1:5 with points pt 5 ps 1.2 "
+                  "palette notitle, sqrt(2*9.81)/x lc 'black' dt 2 title 'a w = sqrt(2 g l)'\n");
       if (pclose(gp)) fprintf(stderr, "gnuplot failed; no chart\n");
     }
   }

@@ -107,10 +107,10 @@ static void same_run(const char *what, dal_system *sys, double q0, dal_method m,
   CHECK_OK(dal_state_stats(a, &sa));
   CHECK_OK(dal_state_stats(b, &sb));
   if (tol == 0.0) {
-    CHECK_MSG(dal_state_q(a)[0] == dal_state_q(b)[0] && dal_state_qdot(a)[0] == dal_state_qdot(b)[0],
+    CHECK_MSG(dal_state_q(a)[0] == dal_state_q(b)[0] &&
+                  dal_state_qdot(a)[0] == dal_state_qdot(b)[0],
               "%s: %.17g vs %.17g with a hook", what, dal_state_q(a)[0], dal_state_q(b)[0]);
-    CHECK_MSG(sa.steps == sb.steps, "%s: %ld steps, %ld with a hook", what, sa.steps,
-              sb.steps);
+    CHECK_MSG(sa.steps == sb.steps, "%s: %ld steps, %ld with a hook", what, sa.steps, sb.steps);
   } else {
     CHECK_CLOSE(dal_state_q(b)[0], dal_state_q(a)[0], tol);
   }

@@ -61,8 +61,9 @@ static int compare(const dal_expr *e, const dal_expr *ref, int k, double lo, dou
       if (!same(a[o].v, b[o].v) || !same(a[o].d, b[o].d) || !same(a[o].dd, b[o].dd) ||
           !same(a[o].d3, b[o].d3)) {
         if (!bad)
-          fprintf(stderr, "%s output %d: native (%.17g %.17g %.17g %.17g) bytecode (%.17g %.17g "
-                          "%.17g %.17g)\n",
+          fprintf(stderr,
+                  "%s output %d: native (%.17g %.17g %.17g %.17g) bytecode (%.17g %.17g "
+                  "%.17g %.17g)\n",
                   e->name, o, a[o].v, a[o].d, a[o].dd, a[o].d3, b[o].v, b[o].d, b[o].dd, b[o].d3);
         ++bad;
       }
@@ -138,8 +139,8 @@ static void put(char *s, size_t len, const char *fmt, ...) {
 
 // a random formula over x0..x3, p0, p1, t, depth at most d
 static void formula(char *s, size_t len, int d) {
-  static const char *const fn[] = {"sin", "cos", "tan",  "asin", "acos", "atan", "sinh",
-                                   "cosh", "tanh", "exp", "log", "sqrt"};
+  static const char *const fn[] = {"sin",  "cos",  "tan",  "asin", "acos", "atan",
+                                   "sinh", "cosh", "tanh", "exp",  "log",  "sqrt"};
   static const char *const leaf[] = {"x0", "x1", "x2", "x3", "p0", "p1", "t", "2", "0.5", "pi"};
   int k = d <= 0 ? 0 : (int)rnd(0, 10);
   char a[4096], b[4096];

@@ -62,7 +62,7 @@ static void check_one(const dal_expr *e, const char *name, int nin, int nout, in
     for (int i = 0; i < prefix##_count; ++i)                                                       \
       check_one(dal_scene_expr(sc, i), prefix##_table[i].name, prefix##_table[i].nin,              \
                 prefix##_table[i].nout, prefix##_table[i].nparam, prefix##_table[i].eval);         \
-    printf("%-16s %d functions = the library's expressions bit for bit\n", file, prefix##_count); \
+    printf("%-16s %d functions = the library's expressions bit for bit\n", file, prefix##_count);  \
     dal_scene_destroy(sc);                                                                         \
   } while (0)
 

@@ -103,8 +103,8 @@ static void test_time_dependence(void) {
   double w2[1];
   int rc = dal_normal_modes(dp, s1, w2, NULL, NULL, NULL, &md);
   CHECK(rc == DAL_E_UNSUPPORTED);
-  CHECK_MSG(strstr(dal_state_errmsg(s1), "dal_floquet") &&
-                strstr(dal_state_errmsg(s1), "frozen") && strstr(dal_state_errmsg(s1), "'bob'"),
+  CHECK_MSG(strstr(dal_state_errmsg(s1), "dal_floquet") && strstr(dal_state_errmsg(s1), "frozen") &&
+                strstr(dal_state_errmsg(s1), "'bob'"),
             "%s", dal_state_errmsg(s1));
   // ... and give the frozen ones by name, saying so; the bead's modes are not frozen
   CHECK_OK(dal_normal_modes_frozen(dp, s1, w2, NULL, NULL, NULL, &md));
@@ -185,8 +185,9 @@ static void test_scene_regression(void) {
 // the bottom and the top of the driven pendulum over a grid of drives, minimal coordinates
 // against the Mathieu reference: trace, multipliers, det = 1, the verdict
 static void test_mathieu(void) {
-  const double g = SCN_G, drives[][2] = {{0.1, 6.0}, {0.1, 2 * sqrt(SCN_G)}, {0.05, 30.0},
-                                         {0.2, 20.0}, {0.02, 4.0}};
+  const double g = SCN_G,
+               drives[][2] = {
+                   {0.1, 6.0}, {0.1, 2 * sqrt(SCN_G)}, {0.05, 30.0}, {0.2, 20.0}, {0.02, 4.0}};
   for (int d = 0; d < 5; ++d) {
     double a = drives[d][0], w = drives[d][1], T = 2 * PI / w;
     dal_system *sys = driven(g, a, w);
@@ -291,8 +292,8 @@ static double top_trace(double a, double w, int *ok) {
 
 static void test_kapitza(void) {
   const double a = 0.05, Q = 2 * a;
-  double a0 = -Q * Q / 2 + 7 * pow(Q, 4) / 128 - 29 * pow(Q, 6) / 2304 +
-              68687 * pow(Q, 8) / 18874368;
+  double a0 =
+      -Q * Q / 2 + 7 * pow(Q, 4) / 128 - 29 * pow(Q, 6) / 2304 + 68687 * pow(Q, 8) / 18874368;
   double w_series = sqrt(-4 * SCN_G / a0);
   // the library's boundary by bisection on the sign of tr - 2 (unstable below, stable above)
   int ok = 1;
@@ -307,8 +308,7 @@ static void test_kapitza(void) {
       hi = mid;
   }
   double w_lib = 0.5 * (lo + hi);
-  CHECK_MSG(fabs(w_lib - w_series) < 1e-7 * w_series, "w_lib %.12g series %.12g", w_lib,
-            w_series);
+  CHECK_MSG(fabs(w_lib - w_series) < 1e-7 * w_series, "w_lib %.12g series %.12g", w_lib, w_series);
   // the verdicts on both sides: unstable 1% below, stable 1% above (Kapitza's criterion
   // a^2 w^2 > 2 g l to first order)
   dal_system *s1 = driven(SCN_G, a, 0.99 * w_lib), *s2 = driven(SCN_G, a, 1.01 * w_lib);

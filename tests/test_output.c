@@ -18,9 +18,9 @@ typedef struct probe {
   const dal_columns *cols;
   double row[32];
   int rows;
-  double worst;                              // largest error seen
-  double (*err)(const struct probe *p);      // the error of one row
-  double m, l, g, c, E0;                     // scene constants
+  double worst;                         // largest error seen
+  double (*err)(const struct probe *p); // the error of one row
+  double m, l, g, c, E0;                // scene constants
 } probe;
 
 static int probe_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
@@ -74,8 +74,8 @@ static void pendulum_tension(void) {
   CHECK_OK(dal_state_set(sys, st, 0.0, &q, &qd));
   char msg[512];
   dal_columns *cols = NULL;
-  CHECK_OK(dal_columns_create(sys, "t,q:theta,qdot:*,x:bob,y:bob,Rx:bob,Ry:bob,Jx:*,Jy:b*", &cols, msg,
-                              sizeof msg));
+  CHECK_OK(dal_columns_create(sys, "t,q:theta,qdot:*,x:bob,y:bob,Rx:bob,Ry:bob,Jx:*,Jy:b*", &cols,
+                              msg, sizeof msg));
   CHECK(dal_columns_count(cols) == 9);
   CHECK(!strcmp(dal_columns_name(cols, 1), "theta"));
   CHECK(!strcmp(dal_columns_name(cols, 2), "theta_dot"));
@@ -187,9 +187,12 @@ static void bad_selections(void) {
   static const struct {
     const char *spec, *says;
   } bad[] = {
-      {"t,E,bogus", "'bogus'"},          {"x:bobby", "particles: bob"},
-      {"z:bob", "2-D"},                  {"lambda:*", "the system has none"},
-      {"q:phi", "coordinates: theta"},   {"t,,E", "empty"},
+      {"t,E,bogus", "'bogus'"},
+      {"x:bobby", "particles: bob"},
+      {"z:bob", "2-D"},
+      {"lambda:*", "the system has none"},
+      {"q:phi", "coordinates: theta"},
+      {"t,,E", "empty"},
       {"Fx:bob", "unknown kind 'Fx:'"},
   };
   for (size_t i = 0; i < sizeof bad / sizeof *bad; ++i) {

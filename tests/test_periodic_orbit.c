@@ -196,7 +196,6 @@ static void test_errors(void) {
   dal_system_destroy(sys);
 }
 
-
 // ---------------------------------------------------------------------------------------------
 // continuation: the bottom of the vertically driven pendulum in the amplitude a at fixed w
 // (Mathieu A = 4 g / w^2 = 0.9) enters the first tongue, where a multiplier passes -1: the

@@ -52,10 +52,9 @@ static int print_modes(cli *c, FILE *fp, const dal_system *sys, dal_state *st) {
   double *w2 = calloc((size_t)k + 1, sizeof *w2), *lre = calloc(2 * (size_t)k + 1, sizeof *lre),
          *lim = calloc(2 * (size_t)k + 1, sizeof *lim);
   dal_modes m;
-  int rc = w2 && lre && lim ? (cli_given(c, "frozen") ? dal_normal_modes_frozen
-                                                      : dal_normal_modes)(sys, st, w2, NULL, lre,
-                                                                          lim, &m)
-                             : DAL_E_NOMEM;
+  int rc = w2 && lre && lim ? (cli_given(c, "frozen") ? dal_normal_modes_frozen : dal_normal_modes)(
+                                  sys, st, w2, NULL, lre, lim, &m)
+                            : DAL_E_NOMEM;
   if (rc) {
     snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
   } else if (cli_json_asked(c)) {
@@ -180,8 +179,8 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   int k = n - dal_system_nconstraints(sys);
   double *w2 = calloc((size_t)k + 1, sizeof *w2);
   if (!w2) return DAL_E_NOMEM;
-  int mr = (cli_given(c, "frozen") ? dal_normal_modes_frozen : dal_normal_modes)(
-      sys, st, w2, NULL, NULL, NULL, &m);
+  int mr = (cli_given(c, "frozen") ? dal_normal_modes_frozen : dal_normal_modes)(sys, st, w2, NULL,
+                                                                                 NULL, NULL, &m);
   const char *verdict = mr ? "unknown" : dal_stability_name(m.verdict);
   // a driven scene's equilibrium has no frozen verdict unless asked for: say which call fits
   char why[512];
@@ -548,9 +547,12 @@ int cli_section(cli *c) {
     cli_json_array(&j, "points");
   }
   int rc = strobo ? DAL_OK : dal_scene_events(c->sc, &ev);
-  rows r = {
-      c,           {strobo && !jp ? fp : NULL, 0, cli_given(c, "wrap"), NULL}, strobo ? jp : NULL, 0, NAN,
-      "section: t"};
+  rows r = {c,
+            {strobo && !jp ? fp : NULL, 0, cli_given(c, "wrap"), NULL},
+            strobo ? jp : NULL,
+            0,
+            NAN,
+            "section: t"};
   if (!rc) rc = evolve(c, &r, ev, strobo ? dal_scene_strobe(c->sc) : dt);
   if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp, jp);
   if (jp) {

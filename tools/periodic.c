@@ -84,8 +84,9 @@ int cli_floquet(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
   double T = period_of(c);
   if (T <= 0)
-    return cli_error(c, DAL_E_ARG, "%s declares no period (a 'section NAME period=T' line): "
-                                   "give --period T",
+    return cli_error(c, DAL_E_ARG,
+                     "%s declares no period (a 'section NAME period=T' line): "
+                     "give --period T",
                      c->path);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
@@ -160,7 +161,7 @@ static int branch_point(double p, const dal_system *sys, const dal_state *st,
   (void)im;
   int n = dal_system_ncoords(sys);
   const double *q = dal_state_q(st), *v = dal_state_qdot(st);
-  const char *k = kind == DAL_ORBIT_FOLD                ? "fold"
+  const char *k = kind == DAL_ORBIT_FOLD              ? "fold"
                   : kind == DAL_ORBIT_PERIOD_DOUBLING ? "period-doubling"
                                                       : "regular";
   const dal_floquet_report *f = &rep->floquet;
@@ -195,8 +196,8 @@ static int branch_point(double p, const dal_system *sys, const dal_state *st,
 static int orbit_branch(cli *c, FILE *fp, dal_state *st, double T) {
   branch b = {c, fp, NULL, "", NULL, 0, 0, 0};
   double lo, hi;
-  int npts, rc = cli_grid(c, "continue", cli_text(c, "continue"), b.name, sizeof b.name, &lo, &hi,
-                          &npts);
+  int npts,
+      rc = cli_grid(c, "continue", cli_text(c, "continue"), b.name, sizeof b.name, &lo, &hi, &npts);
   if (rc) return rc;
   if (npts < 2) return cli_error(c, CLI_USAGE, "--continue: N must be at least 2");
   int n = dal_system_ncoords(dal_scene_system(c->sc));
@@ -278,8 +279,9 @@ int cli_orbit(cli *c) {
     cli_json_end(&j);
     cli_json_finish(&j);
   } else {
-    fprintf(fp, "# periodic orbit of %s, period %.17g, from t = %.17g (%d Newton steps, return "
-                "gap %.3g):",
+    fprintf(fp,
+            "# periodic orbit of %s, period %.17g, from t = %.17g (%d Newton steps, return "
+            "gap %.3g):",
             c->path, r.period, t0, r.iterations, r.residual);
     for (int i = 0; i < n; ++i)
       fprintf(fp, " %s = %.17g, %s' = %.17g", dal_system_coord_name(sys, i), q[i],

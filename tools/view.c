@@ -51,7 +51,8 @@ int cli_view(cli *c) {
       cli_error(c, 0, "interrupted at t = %.17g: the page ends there", dal_state_time(st));
     rc = cli_commit(c, &f, rc);
   }
-  if (rc >= 0) fprintf(stderr, "dalembert view: wrote %s (%s#t=1.25 opens it at t = 1.25)\n", out, out);
+  if (rc >= 0)
+    fprintf(stderr, "dalembert view: wrote %s (%s#t=1.25 opens it at t = 1.25)\n", out, out);
   dal_events_destroy(ev);
   dal_state_destroy(st);
   return rc;
@@ -59,8 +60,8 @@ int cli_view(cli *c) {
 
 const cli_opt cli_picture_opts[] = {
     {"output", 'o', CLI_TEXT, "FILE.svg", "the picture (required)", 0},
-    {"times", 0, CLI_TEXT, "T1,T2,...", "the times drawn (default: 9 from t0 to --t1, or over the first 2 s)",
-     0},
+    {"times", 0, CLI_TEXT, "T1,T2,...",
+     "the times drawn (default: 9 from t0 to --t1, or over the first 2 s)", 0},
     CLI_OPT_T1,
     CLI_END,
 };
@@ -80,8 +81,7 @@ int cli_picture(cli *c) {
       char *end;
       times[n] = strtod(p, &end);
       if (end == p || (*end && *end != ','))
-        return cli_error(c, CLI_USAGE, "--times '%s': not a comma-separated list of numbers",
-                         list);
+        return cli_error(c, CLI_USAGE, "--times '%s': not a comma-separated list of numbers", list);
       p = *end ? end + 1 : end;
     }
   } else {

@@ -394,7 +394,6 @@ typedef int dal_lyapunov_fn(double t, const double *exponents, int nexp, void *c
 DAL_API int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
                          double *exponents, double *errors, dal_lyapunov_fn *monitor, void *ctx);
 
-
 // ---------------------------------------------------------------------------------------------
 // periodic motion: explicit time dependence, Floquet multipliers, periodic orbits
 

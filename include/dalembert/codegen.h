@@ -58,9 +58,9 @@ DAL_API int dal_codegen_write(dal_expr *const *e, int n, const char *prefix, FIL
 /// user, nobody else may write to them and the object's content hash equals the one written
 /// beside it when it was compiled; otherwise it is compiled again. Not thread-safe: attach
 /// before the expressions are shared (evaluation is then re-entrant), and destroy expressions
-/// attached by one call from one thread (they share the loaded object). On failure (no compiler, a refused cache, a compiler
-/// error) nothing is attached, the bytecode keeps running and msg says why: DAL_E_UNSUPPORTED
-/// (no compiler), DAL_E_IO (the cache), DAL_E_ARG, DAL_E_NOMEM.
+/// attached by one call from one thread (they share the loaded object). On failure (no compiler, a
+/// refused cache, a compiler error) nothing is attached, the bytecode keeps running and msg says
+/// why: DAL_E_UNSUPPORTED (no compiler), DAL_E_IO (the cache), DAL_E_ARG, DAL_E_NOMEM.
 DAL_API int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts *o, char *msg,
                                size_t msglen);
 

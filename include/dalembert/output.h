@@ -79,13 +79,13 @@ DAL_API int dal_columns_write_header(const dal_columns *cols, FILE *fp);
 
 /// Options of dal_view_write; start from dal_default_view_opts().
 typedef struct dal_view_opts {
-  double t1;              ///< end time of the motion (seconds; from the state's time)
-  double fps;             ///< frames per second of motion time (default 60)
-  const char *title;      ///< page title (nullable: "dalembert")
+  double t1;                   ///< end time of the motion (seconds; from the state's time)
+  double fps;                  ///< frames per second of motion time (default 60)
+  const char *title;           ///< page title (nullable: "dalembert")
   const dal_solve_opts *solve; ///< integration options (nullable: dal_default_solve_opts())
-  double trail;           ///< trail length in seconds (default 1; 0: none)
-  double strobe;          ///< period of a stroboscopic section (seconds; 0: none): the state
-                          ///< every strobe from the start is a section point of the phase plot
+  double trail;                ///< trail length in seconds (default 1; 0: none)
+  double strobe;               ///< period of a stroboscopic section (seconds; 0: none): the state
+                               ///< every strobe from the start is a section point of the phase plot
 } dal_view_opts;
 
 /// The default view options: t1 = 10, fps = 60, trail = 1.

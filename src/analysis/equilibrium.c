@@ -313,8 +313,8 @@ static int solve_point(dal_rebuild_fn *rebuild, double p, const double *guess, i
   if (!rc) rc = dal_equilibrium(pt->sys, pt->st, &o->newton, NULL);
   dal_modes md;
   if (!rc)
-    rc = (o->newton.frozen_time ? dal_normal_modes_frozen : dal_normal_modes)(
-        pt->sys, pt->st, NULL, NULL, NULL, NULL, &md);
+    rc = (o->newton.frozen_time ? dal_normal_modes_frozen
+                                : dal_normal_modes)(pt->sys, pt->st, NULL, NULL, NULL, NULL, &md);
   if (rc) {
     snprintf(r->msg, sizeof r->msg, "at p=%.17g: %s", p, dal_state_errmsg(pt->st));
     point_free(pt);

@@ -254,15 +254,13 @@ static int manifold_basis(const dal_system *sys, dal_state *st, double *Z, doubl
 }
 
 // eigenvalues of the k2 x k2 matrix Mr (copied into work), sorted
-static int mult_eig(dal_state *st, int k2, const double *Mr, double *work, double *re,
-                    double *im) {
+static int mult_eig(dal_state *st, int k2, const double *Mr, double *work, double *re, double *im) {
   memcpy(work, Mr, (size_t)k2 * (size_t)k2 * sizeof(double));
   lapack_int info =
       LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', k2, work, k2, re, im, NULL, 1, NULL, 1);
   if (info != 0)
     return DAL_FAIL(st, DAL_E_SINGULAR,
-                    "floquet: LAPACK dgeev did not converge on the monodromy (info %d)",
-                    (int)info);
+                    "floquet: LAPACK dgeev did not converge on the monodromy (info %d)", (int)info);
   sort_mult(k2, re, im);
   return DAL_OK;
 }
@@ -330,8 +328,8 @@ int dal_floquet(const dal_system *sys, dal_state *st, const dal_solve_opts *opts
   ob.rtol = fmin(10 * oa.rtol, 0.1);
   if (oa.atol > 0) ob.atol = 10 * oa.atol;
   size_t sn = (size_t)n, n2 = 2 * sn, k2 = 2 * (size_t)k;
-  double *buf = malloc((3 * n2 * n2 + 4 * n2 * k2 + 3 * k2 * k2 + 4 * k2 + 3 * n2 + 1) *
-                       sizeof(double));
+  double *buf =
+      malloc((3 * n2 * n2 + 4 * n2 * k2 + 3 * k2 * k2 + 4 * k2 + 3 * n2 + 1) * sizeof(double));
   int *used = malloc((k2 + 1) * sizeof(int));
   if (!buf || !used) {
     free(buf);

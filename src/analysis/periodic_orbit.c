@@ -31,8 +31,8 @@ dal_orbit_opts dal_default_orbit_opts(void) {
 
 // the tangent-space basis Z (2n x k2) at the evaluated state: identity without constraint
 // rows, [N 0; Y N] with them
-static int orbit_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N,
-                       double *Y, double *Z) {
+static int orbit_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N, double *Y,
+                       double *Z) {
   int n = sys->n, k = n - sys->m, rc;
   size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
   memset(Z, 0, n2 * k2 * sizeof(double));
@@ -64,8 +64,8 @@ static int nearest_one(int k2, const double *re, const double *im, int skip) {
   return best;
 }
 
-int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opts *o,
-                       double *mu_re, double *mu_im, dal_orbit_report *rep) {
+int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opts *o, double *mu_re,
+                       double *mu_im, dal_orbit_report *rep) {
   int rc = dal__check_pair(sys, st, "periodic_orbit");
   if (rc) return rc;
   if (!o || o->cookie != DAL_ORBIT_COOKIE)

@@ -28,8 +28,8 @@ static int generator(const dal_system *sys, dal_state *st, const double *e, doub
   int *seen = calloc((size_t)n + 1, sizeof(int));
   if (!seen) return DAL_FAIL(st, DAL_E_NOMEM, "relative_equilibrium: out of memory");
   // S x = rate e x x
-  double S[9] = {0, rate * e[2], -rate * e[1], -rate * e[2], 0, rate * e[0],
-                 rate * e[1], -rate * e[0], 0};
+  double S[9] = {
+      0, rate * e[2], -rate * e[1], -rate * e[2], 0, rate * e[0], rate * e[1], -rate * e[0], 0};
   for (int k = 0; k < sys->N; ++k) {
     const dal_place *pl = sys->place ? &sys->place[k] : NULL;
     if (!pl || pl->prim != &dal_map_cartesian3 || pl->parent >= 0 || pl->ncoord != 3) {
@@ -98,9 +98,8 @@ static int basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *
   return DAL_OK;
 }
 
-int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double *axis,
-                             double rate, double *lambda_re, double *lambda_im,
-                             dal_relative_report *rep) {
+int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double *axis, double rate,
+                             double *lambda_re, double *lambda_im, dal_relative_report *rep) {
   int rc = dal__check_pair(sys, st, "relative_equilibrium");
   if (rc) return rc;
   double an = axis ? sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]) : 0.0;
@@ -221,8 +220,8 @@ int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double 
           s += L[l * k2 + i] * tmp[j * n2 + l];
         Ar[j * k2 + i] = s;
       }
-    lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)k2, Ar,
-                                    (lapack_int)k2, wr, wi, NULL, 1, NULL, 1);
+    lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)k2, Ar, (lapack_int)k2,
+                                    wr, wi, NULL, 1, NULL, 1);
     if (info != 0)
       rc = DAL_FAIL(st, DAL_E_SINGULAR, "relative_equilibrium: LAPACK dgeev failed (info %d)",
                     (int)info);

@@ -68,8 +68,8 @@ void dal__cg_preamble(dal_cgbuf *b) {
 enum { M_JJ, M_JS, M_SJ, M_JK, M_KJ };
 enum { P_INT = 8, P_K, P_S, P_GEN, P_SBASE };
 
-static const char *const fname1[] = {"sin",  "cos",  "tan", "asin", "acos", "atan",
-                                     "sinh", "cosh", "tanh", "exp", "log",  "sqrt"};
+static const char *const fname1[] = {"sin",  "cos",  "tan",  "asin", "acos", "atan",
+                                     "sinh", "cosh", "tanh", "exp",  "log",  "sqrt"};
 
 // compile.c's scalar operations: the folding of constants computes what the bytecode would
 static double sfn(int op, double a, double b) {

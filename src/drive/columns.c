@@ -37,9 +37,9 @@ struct dal_columns {
   const dal_system *sys;
   int n, cap;
   col *c;
-  unsigned need;  // DAL_P_* products a row reads
-  int joint;      // a row reads joint forces
-  int work;       // a row reads W
+  unsigned need; // DAL_P_* products a row reads
+  int joint;     // a row reads joint forces
+  int work;      // a row reads W
 };
 
 // glob match: '*' any run, '?' one character
@@ -144,8 +144,8 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
         int any = 0;
         for (int c = 0; c < sys->ncon && w >= 0 && (size_t)w < msglen; ++c)
           if (sys->con[c].name)
-            w += snprintf(msg + w, msglen - (size_t)w, "%s%s", any++ ? ", " : "constraints: ",
-                          sys->con[c].name);
+            w += snprintf(msg + w, msglen - (size_t)w, "%s%s",
+                          any++ ? ", " : "constraints: ", sys->con[c].name);
         if (w >= 0 && (size_t)w < msglen)
           snprintf(msg + w, msglen - (size_t)w, "%s)", any ? "" : "the system has none");
       }
@@ -191,7 +191,8 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
     }
   if (before == cs->n && !rc) {
     if (msg) {
-      int w = snprintf(msg, msglen, "columns: '%s': no particle matches '%s' (particles: ", it, pat);
+      int w =
+          snprintf(msg, msglen, "columns: '%s': no particle matches '%s' (particles: ", it, pat);
       for (int k = 0; k < sys->N && w >= 0 && (size_t)w < msglen; ++k)
         w += snprintf(msg + w, msglen - (size_t)w, "%s%s", k ? ", " : "", sys->part_names[k]);
       if (w >= 0 && (size_t)w < msglen)
@@ -202,8 +203,8 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
   return rc;
 none_coord:
   if (msg) {
-    int w = snprintf(msg, msglen, "columns: '%s': no coordinate matches '%s' (coordinates: ", it,
-                     pat);
+    int w =
+        snprintf(msg, msglen, "columns: '%s': no coordinate matches '%s' (coordinates: ", it, pat);
     for (int i = 0; i < sys->n && w >= 0 && (size_t)w < msglen; ++i)
       w += snprintf(msg + w, msglen - (size_t)w, "%s%s", i ? ", " : "", sys->coord_names[i]);
     if (w >= 0 && (size_t)w < msglen) snprintf(msg + w, msglen - (size_t)w, ")");
@@ -313,21 +314,50 @@ int dal_columns_eval(const dal_system *sys, const dal_state *st, const dal_colum
     const col *c = &cols->c[i];
     double v = NAN;
     switch (c->kind) {
-    case COL_T: v = st->t; break;
-    case COL_Q: v = st->q[c->index]; break;
-    case COL_QDOT: v = st->qdot[c->index]; break;
-    case COL_X: v = st->r[c->index * d + c->sub]; break;
-    case COL_V: v = st->v[c->index * d + c->sub]; break;
-    case COL_R: v = st->N[c->index * d + c->sub]; break;
-    case COL_J: v = jf[c->index * d + c->sub]; break;
-    case COL_LAMBDA: v = st->lambda[c->index]; break;
-    case COL_TE: v = st->en.T; break;
-    case COL_U: v = st->en.U; break;
-    case COL_E: v = st->en.E; break;
-    case COL_H: v = st->en.h; break;
-    case COL_P: v = st->power; break;
-    case COL_W: v = st->W; break;
-    default: DAL_ASSERT(0);
+    case COL_T:
+      v = st->t;
+      break;
+    case COL_Q:
+      v = st->q[c->index];
+      break;
+    case COL_QDOT:
+      v = st->qdot[c->index];
+      break;
+    case COL_X:
+      v = st->r[c->index * d + c->sub];
+      break;
+    case COL_V:
+      v = st->v[c->index * d + c->sub];
+      break;
+    case COL_R:
+      v = st->N[c->index * d + c->sub];
+      break;
+    case COL_J:
+      v = jf[c->index * d + c->sub];
+      break;
+    case COL_LAMBDA:
+      v = st->lambda[c->index];
+      break;
+    case COL_TE:
+      v = st->en.T;
+      break;
+    case COL_U:
+      v = st->en.U;
+      break;
+    case COL_E:
+      v = st->en.E;
+      break;
+    case COL_H:
+      v = st->en.h;
+      break;
+    case COL_P:
+      v = st->power;
+      break;
+    case COL_W:
+      v = st->W;
+      break;
+    default:
+      DAL_ASSERT(0);
     }
     row[i] = v;
   }

@@ -7,9 +7,9 @@
 #include <stdlib.h>
 
 #include "base/base.h"
-#include "model/model.h"
 #include "dalembert/output.h"
 #include "drive/drive.h"
+#include "model/model.h"
 
 // a row of the selection c->columns: evaluated whole before a byte is written
 static int csv_columns(const dal_system *sys, const dal_state *st, dal_csv *c) {

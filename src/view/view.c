@@ -198,7 +198,9 @@ static void eval_point(viewer *v, const dal_state *st, int i, double *x) {
     link_anchor(st, l, v->d, x);
     return;
   }
-  default: memcpy(x, p->c, 3 * sizeof *x); return;
+  default:
+    memcpy(x, p->c, 3 * sizeof *x);
+    return;
   }
 }
 
@@ -436,9 +438,8 @@ static int write_page(viewer *v, const dal_view_opts *o, dal_events *ev, FILE *f
     put_str(fp, name);
   }
   fprintf(fp, "],\"links\":[%.*s],\"circles\":[%.*s],\"lines\":[%.*s],",
-          v->llen ? (int)v->llen - 1 : 0, v->links ? v->links : "",
-          v->clen ? (int)v->clen - 1 : 0, v->circles ? v->circles : "",
-          v->nlen ? (int)v->nlen - 1 : 0, v->lines ? v->lines : "");
+          v->llen ? (int)v->llen - 1 : 0, v->links ? v->links : "", v->clen ? (int)v->clen - 1 : 0,
+          v->circles ? v->circles : "", v->nlen ? (int)v->nlen - 1 : 0, v->lines ? v->lines : "");
   fputs("\"pos\":", fp);
   put_b64(fp, v->pos, v->nframes * (size_t)(v->N * v->d));
   fputs(",\"xs\":", fp);
@@ -527,8 +528,8 @@ static void viewer_free(viewer *v) {
   free(v->jout);
 }
 
-int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *opts,
-                   dal_events *ev, FILE *fp) {
+int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *opts, dal_events *ev,
+                   FILE *fp) {
   if (!st) return DAL_E_ARG;
   int pair = dal__check_pair(sys, st, "view_write");
   if (pair) return pair;
@@ -697,8 +698,9 @@ static int write_svg(viewer *v, FILE *fp) {
       double pa[2], pb[2];
       onscreen(v, &P, f, a, 0, pa);
       onscreen(v, &P, f, b, 0, pb);
-      fprintf(fp, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#444\" "
-                  "stroke-width=\"2\"%s/>\n",
+      fprintf(fp,
+              "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"#444\" "
+              "stroke-width=\"2\"%s/>\n",
               pa[0], pa[1], pb[0], pb[1],
               !strcmp(kind, "spring")   ? " stroke-dasharray=\"3 2\""
               : !strcmp(kind, "damper") ? " stroke-dasharray=\"8 3\""

@@ -158,8 +158,7 @@ int main(int argc, char **argv) {
   }
   // the browser: $CHROMIUM, else chromium on the PATH (scripts/deps.sh installs it)
   const char *env = getenv("CHROMIUM");
-  FILE *w = popen(env && *env ? "true" : "command -v chromium || command -v chromium-browser",
-                  "r");
+  FILE *w = popen(env && *env ? "true" : "command -v chromium || command -v chromium-browser", "r");
   if (env && *env) snprintf(chromium, sizeof chromium, "%s", env);
   if (w && !(env && *env) && fgets(chromium, sizeof chromium, w))
     chromium[strcspn(chromium, "\n")] = 0;
@@ -201,8 +200,8 @@ int main(int argc, char **argv) {
   size_t len = fp ? fread(text, 1, sizeof text - 1, fp) : 0;
   if (fp) fclose(fp);
   text[len] = 0;
-  static const char *const urls[] = {"http:", "https:", "url(", " src=", "href=", "@import",
-                                     "//cdn", "ftp:"};
+  static const char *const urls[] = {
+      "http:", "https:", "url(", " src=", "href=", "@import", "//cdn", "ftp:"};
   for (size_t i = 0; i < sizeof urls / sizeof *urls; ++i)
     CHECK_MSG(!strstr(text, urls[i]), "%s names '%s'", html, urls[i]);
   // two times: drawn centres where the library's positions put them
