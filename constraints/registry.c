@@ -6,8 +6,8 @@
 #include <stddef.h>
 #include <string.h>
 
-#include "base/base.h"
 #include "dalembert/primitives.h"
+#include "model/model.h"
 
 static const dal_primitive *const registry[] = {
     &dal_map_cartesian2, &dal_map_cartesian3,     &dal_map_fixed2,        &dal_map_fixed3,

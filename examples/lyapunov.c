@@ -202,7 +202,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
             "set key autotitle columnhead outside right\nset autoscale xfix\nset xlabel 't (s)'\n"
             "set ylabel 'exponent (1/s)'\nset grid\n"
             "set title 'SICM driven pendulum: finite-time Lyapunov estimates (exact tangent, QR "
-            "every 1 s); the band: final lambda_1 +- its standard error'\n"
+            "every 1 s); the band: final lambda_1 +- its 95%% half-width'\n"
             "plot %.6f with filledcurves y1=%.6f fs transparent solid 0.25 noborder "
             "lc rgb '#1f77b4' title 'lambda_1 +- error', "
             "'%s' using 1:2 with lines lw 2 lc rgb '#1f77b4' title 'lambda_1 running', "

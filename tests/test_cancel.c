@@ -77,8 +77,8 @@ static void one(const char *what, dal_system *sys, const double *q0, const doubl
   rc = dal_evolve(sys, st, &o, 10.0, 1e-3, count_outputs, &out);
   tc = dal_state_time(st);
   CHECK_MSG(rc == DAL_CANCELLED, "%s: evolve returned %d (%s)", what, rc, dal_state_errmsg(st));
-  CHECK_MSG(out.n == (int)floor(tc / 1e-3 + 1e-9) + 1, "%s: %d outputs up to t=%.17g", what,
-            out.n, tc);
+  CHECK_MSG(out.n == (int)floor(tc / 1e-3 + 1e-9) + 1, "%s: %d outputs up to t=%.17g", what, out.n,
+            tc);
   CHECK(out.last <= tc);
   dal_state_destroy(st);
   dal_state_destroy(ref);

@@ -19,12 +19,22 @@
 //    1e-9, and 1 and 2 threads write the same bytes.
 // 7. exit codes: the library's status (a bad --param: 1; no section line: 1), and the progress
 //    line only on stderr.
-#define _POSIX_C_SOURCE 200809L
+// 8. manners: --help and --version exit 0, an option of another command is refused naming its
+//    owners, unknown words and malformed values are named (exit 64).
+// 9. regressions of the last audit: a moved start said on stderr, run --t1, writes to a full
+//    device (exit 16), no file left by a failed run, sweep blaming the file's line, a grid too
+//    large, lyapunov's atol (against the C route with atol = rtol), Ctrl-C (exit 130, whole
+//    rows ending where stderr says).
+#define _DEFAULT_SOURCE // glob, nanosleep
+#include <glob.h>
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
 
 #include "check.h"
 #include "dalembert/dalembert.h"
@@ -356,6 +366,243 @@ static void progress(void) {
   CHECK(system(cmd) != 0);
 }
 
+static void write_file(const char *path, const char *text) {
+  FILE *f = fopen(path, "w");
+  CHECK(f && fputs(text, f) >= 0 && fclose(f) == 0);
+}
+
+// the CLI's stdout and stderr together in out (its exit status returned)
+static char said[8192];
+static int cli_said(const char *args) {
+  char cmd[2048];
+  snprintf(cmd, sizeof cmd, "{ %s %s; } 2>&1", CLI, args);
+  FILE *p = popen(cmd, "r");
+  if (!p) return -1;
+  size_t n = fread(said, 1, sizeof said - 1, p);
+  said[n] = 0;
+  int st = pclose(p);
+  return WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+}
+
+// status and the words the message must hold
+static void says(const char *args, int status, const char *w1, const char *w2) {
+  int st = cli_said(args);
+  CHECK_MSG(st == status && strstr(said, w1) && (!w2 || strstr(said, w2)),
+            "dalembert %s: exit %d (want %d), said: %s", args, st, status, said);
+}
+
+// the command line's manners: options parsed per command from its table (getopt_long), an
+// option of another command refused naming its owners, unknown words named, --help exit 0
+static void manners(void) {
+  const char *dp = SCENES "/driven_pendulum.scene";
+  char a[1024];
+  says("--version", 0, "dalembert 0.", NULL);
+  char v[64];
+  snprintf(v, sizeof v, "dalembert %d.%d.%d\n", DAL_VERSION_MAJOR, DAL_VERSION_MINOR,
+           DAL_VERSION_PATCH);
+  CHECK(!strcmp(said, v));
+  says("--help", 0, "commands:", "exit status:");
+  CHECK(strstr(said, "  lyapunov ") && strstr(said, "  130 "));
+  says("-h", 0, "commands:", NULL);
+  says("", 64, "no command", NULL);
+  says("frob x.scene", 64, "unknown command 'frob'", NULL);
+  snprintf(a, sizeof a, "run %s --help", dp);
+  says(a, 0, "usage: dalembert run SCENE", "--t1 T");
+  says("lyapunov -h", 0, "--transient T", "--renorm T");
+  snprintf(a, sizeof a, "run %s --bogus", dp);
+  says(a, 64, "dalembert run: unknown option '--bogus'", NULL);
+  snprintf(a, sizeof a, "modes %s --t1 5", dp);
+  says(a, 64, "--t1 is an option of run, lyapunov, section, not of modes", NULL);
+  snprintf(a, sizeof a, "modes %s -o x.csv", dp);
+  says(a, 64, "-o is an option of run, section, sweep, not of modes", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --t1 -5", dp);
+  says(a, 64, "--t1 -5: a number > 0", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --t1", dp);
+  says(a, 64, "--t1 needs a value T", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --t 5", dp);
+  says(a, 64, "'--t' is short for more than one", NULL);
+  snprintf(a, sizeof a, "run %s stray", dp);
+  says(a, 64, "unexpected word 'stray'", NULL);
+  snprintf(a, sizeof a, "run %s --wrap=1", dp);
+  says(a, 64, "--wrap takes no value", NULL);
+  says("run", 64, "dalembert run: needs SCENE", NULL);
+  snprintf(a, sizeof a, "sweep %s --param a=0:1:2 --threads 2.5", dp);
+  says(a, 64, "--threads 2.5: an integer from 0 to 1024", NULL);
+  snprintf(a, sizeof a, "show %s --latex --scheme", dp);
+  says(a, 64, "one of --text, --latex, --scheme", NULL);
+  snprintf(a, sizeof a, "run %s --set a", dp);
+  says(a, 64, "--set 'a' is not NAME=VALUE", NULL);
+  snprintf(a, sizeof a, "run %s --set nope=1", dp);
+  says(a, 1, "no parameter 'nope'", NULL);
+  // the culprit named: the scene file and its line, the option and its word
+  write_file("cli_bad2.scene", "dim 2\ncoord th\nparticle b mass=1\nplace b = l*sin(th); 0\n");
+  says("run cli_bad2.scene", 1, "cli_bad2.scene:4: place b:", "unknown symbol 'l'");
+  says("run cli_missing.scene", 16, "cli_missing.scene: cannot open (No such file or directory)",
+       NULL);
+  snprintf(a, sizeof a, "run %s --chart x.png", dp);
+  says(a, 64, "--chart needs -o FILE.csv", NULL);
+  snprintf(a, sizeof a, "lyapunov %s --method nope", dp);
+  says(a, 64, "--method: unknown method 'nope'", NULL);
+  says("equilibria " SCENES "/bead_ring_above.scene --scan phi=0:1:2", 1,
+       "bead_ring_above.scene has no coordinate 'phi'", NULL);
+  says("equilibria " SCENES "/bead_ring_above.scene --scan theta=0:x:2", 64,
+       "--scan 'theta=0:x:2' is not NAME=LO:HI:N", NULL);
+  says("section " SCENES "/bead_ring_below.scene", 1, "bead_ring_below.scene has no section line",
+       NULL);
+  says("sweep " SCENES "/bead_ring_below.scene --param nope=0:1:2", 1,
+       "bead_ring_below.scene has no parameter 'nope'", NULL);
+  says("modes " SCENES "/bead_ring_below.scene --format xml", 64, "--format xml: one of csv|json",
+       NULL);
+  says("help frob", 64, "unknown command 'frob'", NULL);
+  says("--frob", 64, "unknown option '--frob' before the command", NULL);
+}
+
+// the line of `file` that starts with `start` (0: none)
+static int line_of(const char *file, const char *start) {
+  FILE *f = fopen(file, "r");
+  char line[1024];
+  int k = 0, found = 0;
+  while (f && !found && fgets(line, sizeof line, f))
+    ++k, found = !strncmp(line, start, strlen(start));
+  if (f) fclose(f);
+  return found ? k : 0;
+}
+
+// defects of the command line found by the last audit, each with its reproducer
+static void regressions(void) {
+  char a[1024], w[512];
+  // a start off its constraint is moved onto it: said on stderr, with the move (1.3 - 1) and
+  // the residual (1.3^2 - 1), and the CSV starts on the circle
+  write_file("cli_rod.scene", "dim 2\ncoord x q=0 v=0\ncoord y q=-1.3 v=0\nparticle b mass=1\n"
+                              "place b = x; y\nconstraint rod parts=b = x_b^2 + y_b^2 - 1\n"
+                              "gravity 0 -9.8\nrun t1=1 dt=0.1\n");
+  says("run cli_rod.scene -o cli_rod.csv", 0, "moved coordinate 'y' by 0.3 ",
+       "residual 0.69 on 'rod'");
+  CHECK(cli("run cli_rod.scene --no-progress 2>/dev/null") == 0 && tab.nrow == 11);
+  CHECK_CLOSE(tab.v[0][2], -1.0, 1e-12);
+  // ... and in a sweep, in the trajectory's message (the start y0 = -1 needs no move)
+  write_file("cli_rod2.scene", "dim 2\nparam y0 = -1.3\ncoord x q=0 v=0\ncoord y q=y0 v=0\n"
+                               "particle b mass=1\nplace b = x; y\n"
+                               "constraint rod parts=b = x_b^2 + y_b^2 - 1\n"
+                               "gravity 0 -9.8\nrun t1=1 dt=0.1\n");
+  says("sweep cli_rod2.scene --param y0=-1.3:-1:2", 0, "\n0,-1.3,DAL_OK,",
+       "1 of 2 trajectories left a note");
+  const char *note = strstr(said, "\"cli_rod2.scene: note: the consistent start at t=0 moved "
+                                  "coordinate 'y' by 0.3 ");
+  const char *first = strstr(said, "note: the consistent");
+  CHECK(note && first && !strstr(first + 1, "note: the consistent") && strstr(said, ",\"\"\n"));
+  // --t1 of run is honoured (the scene's t1 is 100)
+  CHECK(cli("run " SCENES "/driven_pendulum.scene --t1 5") == 0 && tab.nrow == 501);
+  CHECK_CLOSE(tab.v[tab.nrow - 1][0], 5.0, 0);
+  // results that cannot be written: exit 16 and the reason, for stdout and for -o
+  const char *full[] = {"modes " SCENES "/bead_ring_below.scene",
+                        "run " SCENES "/bead_ring_below.scene",
+                        "section " SCENES "/driven_pendulum.scene --format json", "--help"};
+  for (int k = 0; k < 4; ++k) {
+    snprintf(a, sizeof a, "%s >/dev/full", full[k]);
+    says(a, 16, "writing standard output failed (No space left on device)", NULL);
+  }
+  says("run " SCENES "/bead_ring_below.scene -o /dev/full", 16,
+       "writing /dev/full failed (No space left on device)", NULL);
+  // a run that fails leaves no file under the name asked for (nothing half-written)
+  write_file("cli_fail.scene",
+             "dim 2\ncoord x q=0 v=0\nparticle b mass=1\nplace b = x; sqrt(1 - t)\nrun t1=2 "
+             "dt=0.1\n");
+  remove("cli_fail.csv");
+  says("run cli_fail.scene -o cli_fail.csv", 4, "cli_fail.scene: coordinate map 'place b'",
+       "cli_fail.csv not written");
+  CHECK(access("cli_fail.csv", F_OK) != 0);
+  // sweep names the scene file's line of the culprit, not a line of a rewritten text
+  int line = line_of(SCENES "/bead_ring_below.scene", "particle bead");
+  snprintf(w, sizeof w, "bead_ring_below.scene:%d: particle 'bead': mass -1 is not positive", line);
+  says("sweep " SCENES "/bead_ring_below.scene --param m=-1:1:3", 0, w, NULL);
+  // a grid too large for memory is refused with its count
+  says("sweep " SCENES "/bead_ring_below.scene --param omega=1:2:2147483647", 64,
+       "--param 'omega=1:2:2147483647': 2147483647 points are too many", NULL);
+  says("equilibria " SCENES "/bead_ring_below.scene --scan theta=1:2:99999999999", 64,
+       "99999999999 points are too many", NULL);
+}
+
+// the scene's atol rule: lyapunov on a scene stating no atol runs with atol = rtol, as a run of
+// the scene does (solve.h), not with dal_lyapunov's default 1e-10
+static void lyapunov_atol(void) {
+  write_file("cli_lyap.scene", "dim 2\nparam omega = 6.2609903369994111\ncoord theta q=1 v=0\n"
+                               "particle bob mass=1\n"
+                               "place bob = sin(theta); 0.1*cos(omega*t) - cos(theta)\n"
+                               "gravity 0 -9.8\nrun method=dopri5 rtol=1e-5 t1=20 dt=0.01\n");
+  CHECK(cli("lyapunov cli_lyap.scene") == 0 && tab.nrow == 2);
+  dal_system *sys = pendulum(0.1);
+  dal_state *st;
+  double q = 1, v = 0, ex[2][2], er[2];
+  dal_state_create(sys, &st);
+  const double atol[2] = {1e-5, 1e-10};
+  for (int k = 0; k < 2; ++k) {
+    dal_state_set(sys, st, 0, &q, &v);
+    dal_lyapunov_opts o = dal_default_lyapunov_opts();
+    o.t_end = 20;
+    o.method = DAL_METHOD_DOPRI5;
+    o.rtol = 1e-5;
+    o.atol = atol[k];
+    CHECK_OK(dal_lyapunov(sys, st, &o, ex[k], er, NULL, NULL));
+  }
+  printf("lyapunov at rtol 1e-5: CLI %.12f, C route with atol = rtol %.12f, with 1e-10 %.12f\n",
+         tab.v[0][1], ex[0][0], ex[1][0]);
+  CHECK(fabs(tab.v[0][1] - ex[0][0]) <= 1e-9 && fabs(ex[1][0] - ex[0][0]) > 1e-7);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
+// Ctrl-C: the run stops at a whole row, says where, exits 130, and its -o file holds whole
+// rows ending at the time it states
+static void interrupt(void) {
+  remove("cli_int.csv");
+  pid_t pid = fork();
+  if (pid == 0) {
+    signal(SIGINT, SIG_DFL); // a test started in the background inherits it ignored
+    if (!freopen("cli_int.err", "w", stderr)) _exit(127);
+    execl(CLI, CLI, "run", SCENES "/driven_pendulum.scene", "--t1", "1e6", "-o", "cli_int.csv",
+          "--no-progress", (char *)NULL);
+    _exit(127);
+  }
+  // wait for rows in the temporary file, then interrupt
+  glob_t gl = {0};
+  for (int k = 0; k < 2000; ++k) {
+    int found = glob("cli_int.csv.part*", 0, NULL, &gl) == 0;
+    FILE *f = found ? fopen(gl.gl_pathv[0], "r") : NULL;
+    long size = 0;
+    if (f) fseek(f, 0, SEEK_END), size = ftell(f), fclose(f);
+    globfree(&gl);
+    if (size > 8192) break;
+    nanosleep(&(struct timespec){0, 10000000}, NULL);
+  }
+  kill(pid, SIGINT);
+  int st = 0, k = 0;
+  while (waitpid(pid, &st, WNOHANG) == 0 && k++ < 3000) // 30 s at most
+    nanosleep(&(struct timespec){0, 10000000}, NULL);
+  if (k > 3000) kill(pid, SIGKILL), waitpid(pid, &st, 0);
+  CHECK_MSG(WIFEXITED(st) && WEXITSTATUS(st) == 130, "interrupted run: status %d", st);
+  FILE *f = fopen("cli_int.csv", "r");
+  char line[512];
+  int rows = 0, whole = 1;
+  double last = NAN;
+  while (f && fgets(line, sizeof line, f)) {
+    int commas = 0;
+    for (char *p = line; *p; ++p)
+      commas += *p == ',';
+    whole = whole && commas == 4 && line[strlen(line) - 1] == '\n';
+    if (rows++) last = strtod(line, NULL);
+  }
+  if (f) fclose(f);
+  char err[1024] = "";
+  f = fopen("cli_int.err", "r");
+  if (f) err[fread(err, 1, sizeof err - 1, f)] = 0, fclose(f);
+  const char *at = strstr(err, "the rows written end at t = ");
+  double stated = at ? strtod(at + strlen("the rows written end at t = "), NULL) : NAN;
+  printf("Ctrl-C: %d whole rows, the last at t = %.17g; stderr: %s", rows, last, err);
+  CHECK(rows > 100 && whole && strstr(err, "dalembert run: interrupted at t = "));
+  CHECK(stated == last);
+}
+
 static void exit_codes(void) {
   CHECK(cli("sweep " SCENES "/bead_ring_below.scene --param nope=0:1:2 2>/dev/null") == 1);
   CHECK(cli("section " SCENES "/bead_ring_below.scene 2>/dev/null") == 1);
@@ -373,5 +620,9 @@ int main(void) {
   sweep();
   progress();
   exit_codes();
+  manners();
+  regressions();
+  lyapunov_atol();
+  interrupt();
   return check_summary("test_cli");
 }

@@ -84,13 +84,14 @@ static void test_auto_rule(void) {
   expect_auto(one, 1e-4, 0, DAL_METHOD_BS);
   expect_auto(one, 1e-6, 0, DAL_METHOD_BS);
   expect_auto(two, 1e-10, 0, DAL_METHOD_BS);
-  // n >= 3: DOPRI5 from 1e-3 up, Fehlberg 7(8) down to 1e-8, BS below
+  // n >= 3: DOPRI5 down to 1e-5, BS below, with or without a monitor (never Fehlberg 7(8),
+  // whose error estimate misses tests/test_auto_set.c's trees: issue 31)
   expect_auto(three, 1e-2, 0, DAL_METHOD_DOPRI5);
   expect_auto(three, 1e-3, 0, DAL_METHOD_DOPRI5);
-  expect_auto(three, 1e-6, 0, DAL_METHOD_FEHLBERG78);
-  expect_auto(three, 1e-8, 0, DAL_METHOD_FEHLBERG78);
+  expect_auto(three, 1e-5, 0, DAL_METHOD_DOPRI5);
+  expect_auto(three, 1e-6, 0, DAL_METHOD_BS);
+  expect_auto(three, 1e-8, 0, DAL_METHOD_BS);
   expect_auto(three, 1e-10, 0, DAL_METHOD_BS);
-  // under a monitor (n >= 3): DOPRI5 down to rtol 1e-5, Bulirsch-Stoer below
   expect_auto(three, 1e-4, 1, DAL_METHOD_DOPRI5);
   expect_auto(three, 1e-6, 1, DAL_METHOD_BS);
   expect_auto(three, 1e-10, 1, DAL_METHOD_BS);

@@ -7,12 +7,18 @@
 // References: closed forms (free flight x = x0 + v t, rest tension m g, a^n by libm's pow),
 // a second formulation or method of the same scene (the index-1 ODE against IDA, DOPRI5
 // against RK4), and counts that bound the work (a zero-progress loop took 1e6 steps).
+#define _POSIX_C_SOURCE 200809L // alarm (a guard on the row that walked every output time)
 #include <float.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
+#if defined(__unix__)
+#include <signal.h>
+#include <unistd.h>
+#endif
 
 #include "check.h"
 #include "dalembert/dalembert.h"
@@ -1363,6 +1369,108 @@ static int row_bdf_floor_note(char *msg) {
   return rc;
 }
 
+// ---------------------------------------------------------------- issue 31: driver regressions
+// (both closed at 0.2, back in 0.3 after the output rework; kept here so they stay closed)
+
+typedef struct out_log {
+  int n;
+  double t[4];
+} out_log;
+
+static int log_times(const dal_system *sys, const dal_state *st, void *ctx) {
+  (void)sys;
+  out_log *l = ctx;
+  if (l->n < 4) l->t[l->n] = dal_state_time(st);
+  l->n++;
+  return 0;
+}
+
+// 31.1 dal_evolve with dt >= 1e9 (t1 - t0): the monitor saw t1 only (the output at t0 lost)
+static int row_evolve_huge_dt(char *msg) {
+  scene s;
+  CHECK_OK(pendulum(&s, 0.3));
+  dal_solve_opts o = opts_for(DAL_METHOD_AUTO);
+  out_log l = {0};
+  int rc = dal_evolve(s.sys, s.st, &o, 1.0, 1e10, log_times, &l);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  // reference: the grid's definition in solve.h (t0, then t1)
+  CHECK_MSG(l.n == 2 && l.t[0] == 0.0 && l.t[1] == 1.0,
+            "evolve dt = 1e10 over [0, 1]: %d outputs (%g, %g), expected 2 (t0 = 0 and t1 = 1)",
+            l.n, l.t[0], l.t[1]);
+  scene_free(&s);
+  return rc;
+}
+
+#if defined(__unix__)
+static void walk_alarm(int sig) {
+  (void)sig;
+  static const char m[] = "FAIL: evolve without a monitor still runs after 60 s (it walks every "
+                          "output time, issue 31)\n";
+  if (write(2, m, sizeof m - 1) < 0) _exit(1);
+  _exit(1);
+}
+#endif
+
+// 31.2 dal_evolve without a monitor walked every output time (t1 = 1000, dt = 1e-9: an hour);
+// solve.h: it is dal_advance's run bit for bit
+static int row_evolve_no_monitor_walk(char *msg) {
+  scene a, e;
+  CHECK_OK(pendulum(&a, 0.3));
+  CHECK_OK(pendulum(&e, 0.3));
+  dal_solve_opts o = opts_for(DAL_METHOD_AUTO);
+  o.rtol = 1e-6;
+  CHECK_OK(dal_advance(a.sys, a.st, &o, 1000.0));
+#if defined(__unix__)
+  signal(SIGALRM, walk_alarm);
+  alarm(60);
+#endif
+  clock_t c0 = clock();
+  int rc = dal_evolve(e.sys, e.st, &o, 1000.0, 1e-9, NULL, NULL);
+  double secs = (double)(clock() - c0) / CLOCKS_PER_SEC;
+#if defined(__unix__)
+  alarm(0);
+#endif
+  copy_msg(msg, dal_state_errmsg(e.st));
+  // reference: dal_advance's run with the same options (bit for bit) and its cost
+  CHECK_MSG(dal_state_time(e.st) == 1000.0 && dal_state_q(e.st)[0] == dal_state_q(a.st)[0] &&
+                dal_state_qdot(e.st)[0] == dal_state_qdot(a.st)[0] &&
+                steps_of(e.st) == steps_of(a.st),
+            "evolve without a monitor is not dal_advance's run: q %.17g vs %.17g, %ld vs %ld "
+            "steps",
+            dal_state_q(e.st)[0], dal_state_q(a.st)[0], steps_of(e.st), steps_of(a.st));
+  CHECK_MSG(secs < 10.0, "evolve without a monitor took %.3g s (dal_advance: milliseconds)",
+            secs);
+  scene_free(&a);
+  scene_free(&e);
+  return rc;
+}
+
+// 31.3 an explicit GGL run that fails by the steps' collapse names the fallback form as the
+// remedy (solve.h), not "loosen the tolerances": the Cartesian pendulum kicked by a force that
+// jumps to 1e5 N at t = 0.5, with opts.hmin = 1e-6 (IDA's error test fails at that floor)
+static int kick(double t, const double *r, const double *v, double *F, void *ctx) {
+  (void)r;
+  (void)v;
+  (void)ctx;
+  F[0] += t > 0.5 ? 1e5 : 0.0;
+  return 0;
+}
+
+static int row_ggl_collapse_remedy(char *msg) {
+  scene s;
+  CHECK_OK(cart_pendulum(&s, 0.5, kick, NULL));
+  dal_solve_opts o = dal_default_solve_opts();
+  o.form = DAL_FORM_GGL;
+  o.hmin = 1e-6;
+  int rc = dal_advance(s.sys, s.st, &o, 1.0);
+  copy_msg(msg, dal_state_errmsg(s.st));
+  // the state holds IDA's last accepted step, just before the jump
+  CHECK_MSG(dal_state_time(s.st) < 0.5 && dal_state_time(s.st) > 0.49,
+            "state at t = %.17g, expected just before 0.5", dal_state_time(s.st));
+  scene_free(&s);
+  return rc;
+}
+
 static const rel_row rows[] = {
     {"bdf: a request below its floor leaves a note", DAL_OK, "below what bdf can honour", "1e-11",
      NULL, row_bdf_floor_note},
@@ -1428,6 +1536,13 @@ static const rel_row rows[] = {
      row_print_foreign},
     {"22.8 monitor calls dal_state_set / dal_advance", DAL_E_STATE, "state_set", "monitor", NULL,
      row_monitor_reentrant},
+    {"31.1 evolve: dt = 1e10 (t1 - t0) serves t0 and t1", DAL_OK, NULL, NULL, NULL,
+     row_evolve_huge_dt},
+    {"31.2 evolve without a monitor: dal_advance's run", DAL_OK, NULL, NULL, NULL,
+     row_evolve_no_monitor_walk},
+    {"31.3 explicit GGL, steps collapse: the fallback form named", DAL_E_STEP,
+     "index-1 form with projection and Bulirsch-Stoer", "error-test failures", "loosen",
+     row_ggl_collapse_remedy},
 };
 
 int main(void) {

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// The command line's analyses of one scene: modes, equilibria, Lyapunov exponents, sections.
+// The command line's analyses of one scene: modes, equilibria, Lyapunov exponents, sections
+// (CSV, or JSON with --format json: docs/cli.md), and cli_evolve, the run under them.
 #define _POSIX_C_SOURCE 200809L
 #include <math.h>
 #include <stdio.h>
@@ -8,35 +9,85 @@
 #include <string.h>
 
 #include "cli.h"
+#include "json.h"
+
+#define PI 3.14159265358979323846
 
 static double grid_at(double lo, double hi, int n, int k) {
   return n == 1 ? lo : lo + (hi - lo) * k / (n - 1);
 }
 
 // the coordinates of a state as a comment: "theta = 0.5, x = 1"
-static void print_q(const dal_system *sys, const double *q) {
+static void print_q(FILE *fp, const dal_system *sys, const double *q) {
   for (int i = 0; i < dal_system_ncoords(sys); ++i)
-    printf("%s%s = %.17g", i ? ", " : "", dal_system_coord_name(sys, i), q[i]);
+    fprintf(fp, "%s%s = %.17g", i ? ", " : "", dal_system_coord_name(sys, i), q[i]);
 }
 
-// normal modes at the state: "mode,omega2,omega,period" rows and the verdict
-static int print_modes(const dal_system *sys, dal_state *st, char *msg, size_t len) {
-  int n = dal_system_ncoords(sys), k = n - dal_system_nconstraints(sys);
+// an angle wrapped into [-pi, pi)
+static double wrap_pi(double x) { return x - 2 * PI * floor(x / (2 * PI) + 0.5); }
+
+// a JSON member `key`: {"name": value, ...} over the coordinates (wrapped when wrap is set)
+static void json_coords(cli_json *j, const char *key, const dal_system *sys, const double *v,
+                        int wrap) {
+  cli_json_object(j, key);
+  for (int i = 0; i < dal_system_ncoords(sys); ++i)
+    cli_json_num(j, dal_system_coord_name(sys, i), wrap ? wrap_pi(v[i]) : v[i]);
+  cli_json_end(j);
+}
+
+// a status that refuses the request itself (the same for every start), not a start that failed
+static int refused(int rc) { return rc == DAL_E_UNSUPPORTED || rc == DAL_E_ARG; }
+
+const cli_opt cli_modes_opts[] = {
+    {"here", 0, CLI_FLAG, NULL, "at the initial q (no Newton search)", 0},
+    CLI_OPT_FORMAT,
+    CLI_END,
+};
+
+// normal modes at the state: "mode,omega2,omega,period" rows and the verdict (or JSON)
+static int print_modes(cli *c, FILE *fp, const dal_system *sys, dal_state *st) {
+  int n = dal_system_ncoords(sys), k = n - dal_system_nconstraints(sys),
+      here = cli_given(c, "here");
   double *w2 = calloc((size_t)k + 1, sizeof *w2), *lre = calloc(2 * (size_t)k + 1, sizeof *lre),
          *lim = calloc(2 * (size_t)k + 1, sizeof *lim);
   dal_modes m;
   int rc = w2 && lre && lim ? dal_normal_modes(sys, st, w2, NULL, lre, lim, &m) : DAL_E_NOMEM;
   if (rc) {
-    snprintf(msg, len, "modes: %s", dal_state_errmsg(st));
+    snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
+  } else if (cli_json_asked(c)) {
+    cli_json j = cli_json_start(fp);
+    cli_json_str(&j, "command", "modes");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_num(&j, "t", dal_state_time(st));
+    cli_json_str(&j, "at", here ? "initial" : "equilibrium");
+    json_coords(&j, "q", sys, dal_state_q(st), 0);
+    cli_json_str(&j, "verdict", dal_stability_name(m.verdict));
+    cli_json_num(&j, "max_real", m.max_real);
+    cli_json_num(&j, "tolerance", m.tau);
+    cli_json_num(&j, "acceleration", m.accel);
+    cli_json_array(&j, "modes");
+    for (int i = 0; i < k; ++i) {
+      double w = sqrt(fabs(w2[i]));
+      cli_json_object(&j, NULL);
+      cli_json_int(&j, "mode", i + 1);
+      cli_json_num(&j, "omega2", w2[i]);
+      cli_json_num(&j, "omega", w2[i] >= 0 ? w : -w);
+      cli_json_num(&j, "period", w2[i] > 0 ? 2 * PI / w : INFINITY);
+      cli_json_end(&j);
+    }
+    cli_json_finish(&j);
   } else {
-    printf("# verdict: %s (largest real part %.3g, tolerance %.3g, acceleration %.3g)\n",
-           dal_stability_name(m.verdict), m.max_real, m.tau, m.accel);
-    printf("mode,omega2,omega,period\n");
+    fprintf(fp, "# normal modes of %s at t = %.17g, ", c->path, dal_state_time(st));
+    print_q(fp, sys, dal_state_q(st));
+    fprintf(fp, "%s\n", here ? "" : " (the equilibrium found from the initial q)");
+    fprintf(fp, "# verdict: %s (largest real part %.3g, tolerance %.3g, acceleration %.3g)\n",
+            dal_stability_name(m.verdict), m.max_real, m.tau, m.accel);
+    fprintf(fp, "mode,omega2,omega,period\n");
     for (int i = 0; i < k; ++i) {
       double w = sqrt(fabs(w2[i]));
       // a negative omega^2 is a growth rate, not a frequency: no period
-      printf("%d,%.17g,%.17g,%.17g\n", i + 1, w2[i], w2[i] >= 0 ? w : -w,
-             w2[i] > 0 ? 2 * 3.14159265358979323846 / w : INFINITY);
+      fprintf(fp, "%d,%.17g,%.17g,%.17g\n", i + 1, w2[i], w2[i] >= 0 ? w : -w,
+              w2[i] > 0 ? 2 * PI / w : INFINITY);
     }
   }
   free(w2);
@@ -49,21 +100,21 @@ int cli_modes(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "modes: the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
+  FILE *fp = cli_out(c);
   dal_equilibrium_report rep;
-  if (!c->here && (rc = dal_equilibrium(sys, st, NULL, &rep))) {
-    snprintf(c->msg, sizeof c->msg,
-             "%s: no equilibrium from the initial q (%s); start nearer one, or --here for the "
-             "modes at the initial q",
-             c->path, dal_state_errmsg(st));
-  } else {
-    printf("# normal modes of %s at t = %.17g, ", c->path, dal_state_time(st));
-    print_q(sys, dal_state_q(st));
-    printf("%s\n", c->here ? "" : " (the equilibrium found from the initial q)");
-    rc = print_modes(sys, st, c->msg, sizeof c->msg);
-  }
+  if (!fp)
+    rc = DAL_E_IO;
+  else if (!cli_given(c, "here") && (rc = dal_equilibrium(sys, st, NULL, &rep)))
+    // a refusal (a request the analysis cannot honour) is said as the library says it
+    snprintf(c->msg, sizeof c->msg, "%s: %s%s%s", c->path,
+             refused(rc) ? "" : "no equilibrium from the initial q: ", dal_state_errmsg(st),
+             refused(rc) ? "" : "; start nearer one, or --here for the modes at the initial q");
+  else if (!(rc = print_modes(c, fp, sys, st)))
+    cli_note(c, st);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  if (rc != DAL_E_IO) cli_fail(c, rc, c->msg);
+  return cli_close(c, rc);
 }
 
 // the equilibria found so far, as the particles' positions (np each): two coordinate vectors
@@ -83,8 +134,14 @@ static int seen(const found *f, const double *r, int np) {
   return 0;
 }
 
-// Newton from q; a new equilibrium is printed as a CSV row
-static int one_start(cli *c, dal_state *st, const double *q, double *zero, found *f) {
+// where equilibria go: CSV rows to fp, or objects of the JSON array "equilibria"
+typedef struct eq_out {
+  FILE *fp;
+  cli_json *j; // NULL: CSV
+} eq_out;
+
+// Newton from q; a new equilibrium is written as a CSV row or a JSON object
+static int one_start(cli *c, dal_state *st, const double *q, double *zero, found *f, eq_out *o) {
   const dal_system *sys = dal_scene_system(c->sc);
   int n = dal_system_ncoords(sys);
   double t0;
@@ -110,76 +167,169 @@ static int one_start(cli *c, dal_state *st, const double *q, double *zero, found
   double *w2 = calloc((size_t)k + 1, sizeof *w2);
   if (!w2) return DAL_E_NOMEM;
   int mr = dal_normal_modes(sys, st, w2, NULL, NULL, NULL, &m);
-  for (int i = 0; i < n; ++i)
-    printf("%.17g,", qs[i]);
-  printf("%s,%.17g,%.3g,%.3g\n", mr ? "unknown" : dal_stability_name(m.verdict), mr ? NAN : w2[0],
-         rep.accel, rep.unsteady);
+  const char *verdict = mr ? "unknown" : dal_stability_name(m.verdict);
+  if (o->j) {
+    cli_json_object(o->j, NULL);
+    json_coords(o->j, "q", sys, qs, 0);
+    cli_json_str(o->j, "stability", verdict);
+    cli_json_num(o->j, "omega2_min", mr ? NAN : w2[0]);
+    cli_json_num(o->j, "accel", rep.accel);
+    cli_json_num(o->j, "unsteady", rep.unsteady);
+    cli_json_end(o->j);
+  } else {
+    for (int i = 0; i < n; ++i)
+      fprintf(o->fp, "%.17g,", qs[i]);
+    fprintf(o->fp, "%s,%.17g,%.3g,%.3g\n", verdict, mr ? NAN : w2[0], rep.accel, rep.unsteady);
+  }
   free(w2);
   return DAL_OK;
 }
 
+const cli_opt cli_equilibria_opts[] = {
+    {"scan", 0, CLI_TEXT, "COORD=LO:HI:N", "also Newton from N starts of coordinate COORD", 0},
+    CLI_OPT_FORMAT,
+    CLI_END,
+};
+
 int cli_equilibria(cli *c) {
   const dal_system *sys = dal_scene_system(c->sc);
-  int n = dal_system_ncoords(sys), npts = 0, coord = -1, failed = 0, last = DAL_OK;
+  int n = dal_system_ncoords(sys), npts = 0, coord = -1, failed = 0, last = DAL_OK, s;
   double lo = 0, hi = 0;
   char name[256];
-  if (c->scan) {
-    int rc = cli_grid(c->scan, name, sizeof name, &lo, &hi, &npts);
+  const char *scan = cli_text(c, "scan");
+  if (scan) {
+    int rc = cli_grid(c, "scan", scan, name, sizeof name, &lo, &hi, &npts);
     for (int i = 0; i < n && !rc; ++i)
       if (!strcmp(dal_system_coord_name(sys, i), name)) coord = i;
-    if (rc || coord < 0) {
-      if (!rc) fprintf(stderr, "dalembert: --scan: no coordinate '%s'\n", name);
-      return DAL_E_ARG;
-    }
+    if (rc) return rc;
+    if (coord < 0)
+      return cli_error(c, DAL_E_ARG, "--scan: %s has no coordinate '%s'", c->path, name);
   }
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "equilibria: the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
+  FILE *fp = cli_out(c);
   double *q = malloc(2 * (size_t)n * sizeof *q);
   found f = {0};
-  if (!q) rc = DAL_E_NOMEM;
-  printf("# equilibria of %s (Newton from the initial q%s)\n", c->path,
-         c->scan ? " and the scanned starts" : "");
-  for (int i = 0; i < n; ++i)
-    printf("%s,", dal_system_coord_name(sys, i));
-  printf("stability,omega2_min,accel,unsteady\n");
-  for (int s = -1; s < npts && !rc; ++s) {
+  cli_json j;
+  eq_out o = {fp, NULL};
+  if (!fp) rc = DAL_E_IO;
+  if (!q && !rc) rc = DAL_E_NOMEM;
+  if (!rc && cli_json_asked(c)) {
+    j = cli_json_start(fp);
+    o.j = &j;
+    cli_json_str(&j, "command", "equilibria");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_array(&j, "equilibria");
+  } else if (!rc) {
+    fprintf(fp, "# equilibria of %s (Newton from the initial q%s)\n", c->path,
+            scan ? " and the scanned starts" : "");
+    for (int i = 0; i < n; ++i)
+      fprintf(fp, "%s,", dal_system_coord_name(sys, i));
+    fprintf(fp, "stability,omega2_min,accel,unsteady\n");
+  }
+  for (s = -1; s < npts && !rc && !cli_interrupted(); ++s) {
     const double *q0 = dal_state_q(st);
     if (s == -1) memcpy(q, q0, (size_t)n * sizeof *q);
     if (s >= 0) q[coord] = grid_at(lo, hi, npts, s);
     memset(q + n, 0, (size_t)n * sizeof *q);
-    int r = one_start(c, st, q, q + n, &f);
+    int r = one_start(c, st, q, q + n, &f, &o);
     if (r == DAL_E_NOMEM) rc = r;
+    if (refused(r)) rc = cli_error(c, r, "%s: %s", c->path, dal_state_errmsg(st));
     if (r) failed++, last = r;
     cli_progress(c, "equilibria: starts", s + 2, npts + 1, NULL);
   }
-  if (failed) fprintf(stderr, "dalembert: %d of %d starts did not converge\n", failed, npts + 1);
-  if (!rc && !f.count) {
-    fprintf(stderr, "dalembert: %s: no equilibrium found (%s)\n", c->path, dal_status_string(last));
-    rc = last;
+  if (o.j) {
+    cli_json_end(&j);
+    cli_json_int(&j, "starts", s + 1);
+    cli_json_int(&j, "failed", failed);
+    cli_json_bool(&j, "complete", s == npts);
+    cli_json_finish(&j);
   }
+  if (s < npts && !rc) cli_error(c, 0, "interrupted after %d of %d starts", s + 1, npts + 1);
+  if (failed && !rc) cli_error(c, 0, "%d of %d starts did not converge", failed, s + 1);
+  if (!rc && !f.count && !cli_interrupted())
+    rc = cli_error(c, last, "%s: no equilibrium found (the last start: %s)", c->path,
+                   dal_state_errmsg(st));
   free(q);
   free(f.r);
   dal_state_destroy(st);
-  return rc;
+  return cli_close(c, rc);
 }
 
-static int method_named(const char *name, dal_method *m) {
+static int method_named(const cli *c, const char *name, dal_method *m) {
   for (int k = DAL_METHOD_AUTO; k <= DAL_METHOD_RATTLE6; ++k)
     if (!strcmp(dal_method_name((dal_method)k), name)) {
       *m = (dal_method)k;
       return DAL_OK;
     }
-  fprintf(stderr, "dalembert: --method: unknown method '%s'\n", name);
-  return DAL_E_ARG;
+  return cli_error(c, CLI_USAGE, "--method: unknown method '%s'", name);
 }
 
+typedef struct lyap_ctx {
+  const cli *c;
+  double t1, t; // the end, the last renormalization
+} lyap_ctx;
+
 static int lyap_progress(double t, const double *ex, int nexp, void *ctx) {
-  const cli *c = ctx;
+  lyap_ctx *l = ctx;
   char extra[64];
+  l->t = t;
   snprintf(extra, sizeof extra, "lambda_1 %.4f", nexp ? ex[0] : NAN);
-  cli_progress(c, "lyapunov: t", t, c->t1, extra);
-  return 0;
+  cli_progress(l->c, "lyapunov: t", t, l->t1, extra);
+  return cli_interrupted();
+}
+
+const cli_opt cli_lyapunov_opts[] = {
+    CLI_OPT_T1,
+    {"transient", 0, CLI_NONNEG, "T", "time discarded before the average", 0},
+    {"renorm", 0, CLI_POSITIVE, "T", "time between renormalizations", 0},
+    {"nexp", 0, CLI_COUNT, "K", "the K largest exponents (default 0: all)", 1 << 20},
+    {"method", 0, CLI_TEXT, "M", "the integration method (dal_method_name; default: the scene's)",
+     0},
+    {"h", 0, CLI_POSITIVE, "H", "the step of a fixed-step method", 0},
+    CLI_OPT_FORMAT,
+    CLI_END,
+};
+
+static void print_exponents(cli *c, FILE *fp, const dal_lyapunov_opts *o, double t0, double tend,
+                            const double *ex, const double *er, int k) {
+  double sum = 0;
+  for (int i = 0; i < k; ++i)
+    sum += ex[i];
+  if (cli_json_asked(c)) {
+    cli_json j = cli_json_start(fp);
+    cli_json_str(&j, "command", "lyapunov");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_num(&j, "t0", t0);
+    cli_json_num(&j, "t1", tend);
+    cli_json_num(&j, "transient", o->transient);
+    cli_json_num(&j, "renorm", o->renorm);
+    cli_json_str(&j, "method", dal_method_name(o->method));
+    cli_json_num(&j, "rtol", o->rtol);
+    cli_json_num(&j, "atol", o->atol);
+    cli_json_array(&j, "exponents");
+    for (int i = 0; i < k; ++i) {
+      cli_json_object(&j, NULL);
+      cli_json_int(&j, "index", i + 1);
+      cli_json_num(&j, "value", ex[i]);
+      cli_json_num(&j, "error95", er[i]);
+      cli_json_end(&j);
+    }
+    cli_json_end(&j);
+    cli_json_num(&j, "sum", sum);
+    cli_json_bool(&j, "complete", tend >= o->t_end);
+    cli_json_finish(&j);
+    return;
+  }
+  fprintf(fp,
+          "# Lyapunov exponents of %s from t = %g to %g (transient %g, renormalized every %g, "
+          "%s, rtol %g, atol %g), 1/time, with 95%% half-widths\n",
+          c->path, t0, tend, o->transient, o->renorm, dal_method_name(o->method), o->rtol, o->atol);
+  fprintf(fp, "exponent,value,error95\n");
+  for (int i = 0; i < k; ++i)
+    fprintf(fp, "%d,%.17g,%.17g\n", i + 1, ex[i], er[i]);
+  fprintf(fp, "# sum %.3g\n", sum);
 }
 
 int cli_lyapunov(cli *c) {
@@ -187,123 +337,189 @@ int cli_lyapunov(cli *c) {
   double t0, t1;
   const dal_solve_opts *so = dal_scene_opts(c->sc, &t0, &t1, NULL);
   dal_lyapunov_opts o = dal_default_lyapunov_opts();
-  o.t_end = c->t1 > 0 ? c->t1 : t1;
-  c->t1 = o.t_end;
-  if (c->transient >= 0) o.transient = c->transient;
-  if (c->renorm > 0) o.renorm = c->renorm;
-  if (c->h > 0) o.h = c->h;
-  o.nexp = (int)c->nexp;
+  o.t_end = cli_num(c, "t1", t1);
+  o.transient = cli_num(c, "transient", o.transient);
+  o.renorm = cli_num(c, "renorm", o.renorm);
+  o.h = cli_num(c, "h", o.h);
+  o.nexp = (int)cli_num(c, "nexp", 0);
   o.method = so->method;
   o.rtol = so->rtol;
-  if (so->atol > 0) o.atol = so->atol; // else dal_lyapunov's default (it needs one > 0)
-  if (c->method && method_named(c->method, &o.method)) return DAL_E_ARG;
+  // the scene's atol, or what a run of the scene takes when it states none (solve.h)
+  o.atol = so->atol > 0 ? so->atol : DAL_ATOL_PER_RTOL * so->rtol;
+  const char *method = cli_text(c, "method");
+  int rc = DAL_OK;
+  if (method && (rc = method_named(c, method, &o.method))) return rc;
   int k = 2 * (dal_system_ncoords(sys) - dal_system_nconstraints(sys));
   if (o.nexp > 0 && o.nexp < k) k = o.nexp;
   dal_state *st;
-  int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "lyapunov: the scene's initial state was refused");
+  rc = dal_scene_state(c->sc, &st);
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   double *ex = calloc((size_t)k + 1, sizeof *ex), *er = calloc((size_t)k + 1, sizeof *er);
-  rc = ex && er ? dal_lyapunov(sys, st, &o, ex, er, lyap_progress, c) : DAL_E_NOMEM;
+  lyap_ctx lc = {c, o.t_end, NAN};
+  FILE *fp = cli_out(c);
+  rc = !fp        ? DAL_E_IO
+       : ex && er ? dal_lyapunov(sys, st, &o, ex, er, lyap_progress, &lc)
+                  : DAL_E_NOMEM;
+  int stopped = !rc && cli_interrupted();
   if (rc) {
-    snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
+    if (rc != DAL_E_IO) cli_error(c, rc, "%s: %s", c->path, dal_state_errmsg(st));
   } else {
-    double sum = 0;
-    printf("# Lyapunov exponents of %s from t = %g to %g (transient %g, renormalized every %g, "
-           "%s), 1/time, with 95%% half-widths\n",
-           c->path, t0, o.t_end, o.transient, o.renorm, dal_method_name(o.method));
-    printf("exponent,value,error95\n");
-    for (int i = 0; i < k; ++i) {
-      printf("%d,%.17g,%.17g\n", i + 1, ex[i], er[i]);
-      sum += ex[i];
-    }
-    printf("# sum %.3g\n", sum);
+    print_exponents(c, fp, &o, t0, stopped ? lc.t : o.t_end, ex, er, k);
+    if (stopped)
+      cli_error(c, 0, "interrupted at t = %.17g: the estimates up to there", lc.t);
+    else
+      cli_note(c, st);
   }
   free(ex);
   free(er);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  return cli_close(c, rc);
 }
 
-// the monitor of cli_evolve: the progress line and the CSV row
+// the monitor of a run: the progress line, the interruption, and a row (CSV or JSON)
 typedef struct rows {
   cli *c;
-  dal_csv csv;
-  double t1;
+  dal_csv csv;     // csv.fp NULL: no CSV rows
+  cli_json *json;  // nullable: objects into its open array
+  double t1, last; // the end, the time of the last row written (NaN: none)
   const char *what;
 } rows;
 
 static int row(const dal_system *sys, const dal_state *st, void *ctx) {
   rows *r = ctx;
+  if (cli_interrupted()) return 1; // stop before this row: the rows written are whole
   cli_progress(r->c, r->what, dal_state_time(st), r->t1, NULL);
+  FILE *fp = r->json ? r->json->fp : r->csv.fp;
+  if (fp && ferror(fp)) return -1; // a row not written: cli_commit says why
+  r->last = dal_state_time(st);
+  if (r->json) {
+    cli_json_object(r->json, NULL);
+    cli_json_num(r->json, "t", dal_state_time(st));
+    json_coords(r->json, "q", sys, dal_state_q(st), r->csv.wrap_angles);
+    json_coords(r->json, "qdot", sys, dal_state_qdot(st), 0);
+    cli_json_end(r->json);
+    return ferror(r->json->fp) ? -1 : 0;
+  }
   return r->csv.fp ? dal_csv_monitor(sys, st, &r->csv) : DAL_OK;
 }
 
-int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
+// run the scene with the monitor's rows r
+static int evolve(cli *c, rows *r, dal_events *ev, double dt) {
   const dal_system *sys = dal_scene_system(c->sc);
   double t1;
-  const dal_solve_opts *so = dal_scene_opts(c->sc, NULL, &t1, NULL);
+  dal_solve_opts so = *dal_scene_opts(c->sc, NULL, &t1, NULL);
+  so.cancel = cli_cancel; // Ctrl-C: the run stops at its next step, outputs up to it served
+  r->t1 = t1 = cli_num(c, "t1", t1);
   dal_state *st;
   int rc = dal_scene_state(c->sc, &st);
-  if (rc) return cli_fail(rc, "the scene's initial state was refused");
+  if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   if (ev) rc = dal_state_set_events(st, ev);
-  rows r = {c, {fp, 0, c->wrap}, t1, what};
-  if (!rc) rc = dal_evolve(sys, st, so, t1, dt, row, &r);
-  if (rc < 0) snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
+  if (!rc) rc = dal_evolve(sys, st, &so, t1, dt, row, r);
+  FILE *fp = r->json ? r->json->fp : r->csv.fp;
+  if (rc < 0 && fp && ferror(fp)) {
+    rc = DAL_E_IO; // the output's failure, said by cli_commit
+  } else if (rc < 0) {
+    snprintf(c->msg, sizeof c->msg, "%s: %s", c->path, dal_state_errmsg(st));
+    cli_fail(c, rc, c->msg);
+  } else if (cli_interrupted()) {
+    cli_error(c, 0, "interrupted at t = %.17g: the rows written end at t = %.17g",
+              dal_state_time(st), r->last);
+  } else {
+    cli_note(c, st);
+  }
   dal_state_set_events(st, NULL);
   dal_state_destroy(st);
-  return cli_fail(rc, c->msg);
+  return rc;
 }
 
-// the crossings of the surface sections: "t,section,<q>,<qdot>"
-static int write_crossings(cli *c, const dal_events *ev, FILE *fp) {
+int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
+  rows r = {c, {fp, 0, cli_given(c, "wrap")}, NULL, 0, NAN, what};
+  return evolve(c, &r, ev, dt);
+}
+
+// the crossings of the surface sections: "t,section,<q>,<qdot>" or JSON objects
+static int write_crossings(cli *c, const dal_events *ev, FILE *fp, cli_json *j) {
   const dal_system *sys = dal_scene_system(c->sc);
-  int n = dal_system_ncoords(sys);
+  int n = dal_system_ncoords(sys), wrap = cli_given(c, "wrap");
   double *q = malloc(2 * (size_t)n * sizeof *q);
   if (!q) return DAL_E_NOMEM;
-  fprintf(fp, "t,section");
-  for (int i = 0; i < n; ++i)
-    fprintf(fp, ",%s", dal_system_coord_name(sys, i));
-  for (int i = 0; i < n; ++i)
-    fprintf(fp, ",%s_dot", dal_system_coord_name(sys, i));
-  fputc('\n', fp);
-  for (long j = 0; j < dal_events_count(ev); ++j) {
+  if (!j) {
+    fprintf(fp, "t,section");
+    for (int i = 0; i < n; ++i)
+      fprintf(fp, ",%s", dal_system_coord_name(sys, i));
+    for (int i = 0; i < n; ++i)
+      fprintf(fp, ",%s_dot", dal_system_coord_name(sys, i));
+    fputc('\n', fp);
+  }
+  for (long k = 0; k < dal_events_count(ev); ++k) {
     dal_event_record r;
-    dal_events_get(ev, j, &r, q, q + n);
+    dal_events_get(ev, k, &r, q, q + n);
     if (dal_scene_event_is_section(c->sc, r.event) != 1) continue;
-    fprintf(fp, "%.17g,%s", r.t, dal_events_name(ev, r.event));
-    for (int i = 0; i < 2 * n; ++i) {
-      double x = q[i];
-      if (c->wrap && i < n)
-        x -= 2 * 3.14159265358979323846 * floor(x / (2 * 3.14159265358979323846) + 0.5);
-      fprintf(fp, ",%.17g", x);
+    for (int i = 0; wrap && i < n; ++i)
+      q[i] = wrap_pi(q[i]);
+    if (j) {
+      cli_json_object(j, NULL);
+      cli_json_num(j, "t", r.t);
+      cli_json_str(j, "section", dal_events_name(ev, r.event));
+      json_coords(j, "q", sys, q, 0);
+      json_coords(j, "qdot", sys, q + n, 0);
+      cli_json_end(j);
+      continue;
     }
+    fprintf(fp, "%.17g,%s", r.t, dal_events_name(ev, r.event));
+    for (int i = 0; i < 2 * n; ++i)
+      fprintf(fp, ",%.17g", q[i]);
     fputc('\n', fp);
   }
   free(q);
-  return DAL_OK;
+  return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
+const cli_opt cli_section_opts[] = {
+    CLI_OPT_OUTPUT("the section's points"),
+    {"surface", 0, CLI_FLAG, NULL, "the surface section (a 'section ... rising =' line)", 0},
+    CLI_OPT_WRAP,
+    CLI_OPT_T1,
+    CLI_OPT_FORMAT,
+    CLI_END,
+};
+
 int cli_section(cli *c) {
-  int nsurf = 0;
+  int nsurf = 0, surface = cli_given(c, "surface");
   for (int i = 0; dal_scene_event_is_section(c->sc, i) >= 0; ++i)
     nsurf += dal_scene_event_is_section(c->sc, i);
-  int strobo = dal_scene_strobe(c->sc) > 0 && !c->surface;
-  if (!strobo && !nsurf) {
-    fprintf(stderr,
-            "dalembert: %s has no %ssection line ('section <name> period=<T>' or 'section "
-            "<name> rising = <formula>')\n",
-            c->path, c->surface ? "surface " : "");
-    return DAL_E_ARG;
-  }
+  int strobo = dal_scene_strobe(c->sc) > 0 && !surface;
+  if (!strobo && !nsurf)
+    return cli_error(c, DAL_E_ARG,
+                     "%s has no %ssection line ('section <name> period=<T>' or 'section <name> "
+                     "rising = <formula>')",
+                     c->path, surface ? "surface " : "");
   FILE *fp = cli_out(c);
   if (!fp) return DAL_E_IO;
   dal_events *ev = NULL;
   double dt;
   dal_scene_opts(c->sc, NULL, NULL, &dt);
+  cli_json j, *jp = NULL;
+  if (cli_json_asked(c)) {
+    j = cli_json_start(fp);
+    jp = &j;
+    cli_json_str(&j, "command", "section");
+    cli_json_str(&j, "scene", c->path);
+    cli_json_str(&j, "kind", strobo ? "stroboscopic" : "surface");
+    cli_json_num(&j, "period", strobo ? dal_scene_strobe(c->sc) : NAN);
+    cli_json_array(&j, "points");
+  }
   int rc = strobo ? DAL_OK : dal_scene_events(c->sc, &ev);
-  if (!rc)
-    rc = cli_evolve(c, strobo ? fp : NULL, ev, strobo ? dal_scene_strobe(c->sc) : dt, "section: t");
-  if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp);
+  rows r = {
+      c,           {strobo && !jp ? fp : NULL, 0, cli_given(c, "wrap")}, strobo ? jp : NULL, 0, NAN,
+      "section: t"};
+  if (!rc) rc = evolve(c, &r, ev, strobo ? dal_scene_strobe(c->sc) : dt);
+  if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp, jp);
+  if (jp) {
+    cli_json_end(&j);
+    cli_json_bool(&j, "complete", rc >= 0 && !cli_interrupted());
+    cli_json_finish(&j);
+  }
   dal_events_destroy(ev);
-  return cli_close(c, fp, rc);
+  return cli_close(c, rc);
 }

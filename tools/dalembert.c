@@ -3,10 +3,9 @@
 // The dalembert command line: run a scene file (CSV, a gnuplot chart), show its equations,
 // write it back normalized, and the analyses (cli.h lists the commands and options).
 //
-// Exit status: 0 on success (a run a terminal event stopped early included), else minus the
-// library's status (DAL_E_ARG -> 1, DAL_E_DOMAIN -> 4, DAL_E_CONV -> 11, DAL_E_UNSUPPORTED ->
-// 15, DAL_E_IO -> 16, ...: the list in dalembert/base.h), 64 for a command line it does not
-// understand. Messages name the scene file and line.
+// The command table below: one row per command (its function and options table live in its
+// own file and are declared in cli.h). Exit status: cli.h's table. Messages name the scene file
+// and line.
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,22 +13,6 @@
 #include <unistd.h>
 
 #include "cli.h"
-
-int cli_usage(void) {
-  fprintf(
-      stderr,
-      "usage: dalembert run SCENE [-o FILE.csv] [--chart FILE.png] [--events FILE.csv] [--wrap]\n"
-      "       dalembert show SCENE [--text | --latex | --scheme]\n"
-      "       dalembert write SCENE\n"
-      "       dalembert modes SCENE [--here]\n"
-      "       dalembert equilibria SCENE [--scan COORD=LO:HI:N]\n"
-      "       dalembert lyapunov SCENE [--t1 T] [--transient T] [--renorm T] [--nexp K]\n"
-      "                          [--method M] [--h H]\n"
-      "       dalembert section SCENE [-o FILE.csv] [--surface] [--wrap]\n"
-      "       dalembert sweep SCENE --param NAME=LO:HI:N [--threads K] [--mpi] [-o FILE.csv]\n"
-      "every command: [--set NAME=VALUE]... [--progress | --no-progress]\n");
-  return 64;
-}
 
 // a chart of the coordinates against t from the CSV, by gnuplot when it is installed
 static int chart(const dal_scene *sc, const char *csv, const char *png) {
@@ -52,11 +35,19 @@ static int chart(const dal_scene *sc, const char *csv, const char *png) {
   return rc ? DAL_E_IO : DAL_OK;
 }
 
-static int cmd_run(cli *c) {
-  if (c->png && !c->out) {
-    fprintf(stderr, "dalembert: --chart needs -o FILE.csv\n");
-    return DAL_E_ARG;
-  }
+const cli_opt cli_run_opts[] = {
+    CLI_OPT_OUTPUT("the CSV of the run"),
+    {"chart", 0, CLI_TEXT, "FILE.png", "a chart of the coordinates against t (gnuplot; needs -o)",
+     0},
+    {"events", 0, CLI_TEXT, "FILE.csv", "the log of the scene's events", 0},
+    CLI_OPT_WRAP,
+    CLI_OPT_T1,
+    CLI_END,
+};
+
+int cli_run(cli *c) {
+  const char *png = cli_text(c, "chart"), *evpath = cli_text(c, "events");
+  if (png && !cli_text(c, "output")) return cli_error(c, CLI_USAGE, "--chart needs -o FILE.csv");
   FILE *fp = cli_out(c);
   if (!fp) return DAL_E_IO;
   dal_events *ev = NULL;
@@ -64,155 +55,79 @@ static int cmd_run(cli *c) {
   double dt;
   dal_scene_opts(c->sc, NULL, NULL, &dt);
   if (!rc) rc = cli_evolve(c, fp, ev, dt, "run: t");
-  if (rc >= 0 && c->events) {
-    FILE *ef = fopen(c->events, "w");
-    if (!ef || dal_events_write_csv(ev, ef, -1, 0)) {
-      fprintf(stderr, "dalembert: cannot write %s\n", c->events);
-      rc = DAL_E_IO;
-    }
-    if (ef && fclose(ef)) rc = DAL_E_IO;
+  if (rc >= 0 && evpath) {
+    cli_file ef;
+    int er = cli_open(c, evpath, &ef);
+    if (!er && dal_events_write_csv(ev, ef.fp, -1, 0)) er = DAL_E_IO;
+    er = cli_commit(c, &ef, er);
+    if (er < 0) rc = er;
   }
   dal_events_destroy(ev);
-  rc = cli_close(c, fp, rc);
-  if (rc >= 0 && c->png) rc = chart(c->sc, c->out, c->png);
+  rc = cli_close(c, rc);
+  if (rc >= 0 && png) rc = chart(c->sc, cli_text(c, "output"), png);
   return rc;
 }
 
-// one NAME=VALUE of --set
-static int set_one(cli *c, char *arg) {
-  char *eq = strchr(arg, '='), *end;
-  if (!eq) return 64;
-  *eq = 0;
-  double v = strtod(eq + 1, &end);
-  if (end == eq + 1 || *end) {
-    fprintf(stderr, "dalembert: --set %s: '%s' is not a number\n", arg, eq + 1);
-    return DAL_E_ARG;
-  }
-  return cli_fail(dal_scene_set_param(c->sc, arg, v, c->msg, sizeof c->msg), c->msg);
+const cli_opt cli_show_opts[] = {
+    {"text", 0, CLI_FLAG, NULL, "as plain text (the default)", 0},
+    {"latex", 0, CLI_FLAG, NULL, "as LaTeX", 0},
+    {"scheme", 0, CLI_FLAG, NULL, "as Scheme (SICM's notation)", 0},
+    CLI_END,
+};
+
+int cli_show(cli *c) {
+  int n = cli_given(c, "text") + cli_given(c, "latex") + cli_given(c, "scheme");
+  if (n > 1) return cli_error(c, CLI_USAGE, "one of --text, --latex, --scheme");
+  dal_expr_format fmt = cli_given(c, "latex")    ? DAL_EXPR_LATEX
+                        : cli_given(c, "scheme") ? DAL_EXPR_SCHEME
+                                                 : DAL_EXPR_TEXT;
+  return cli_fail(c, dal_scene_show(c->sc, stdout, fmt, c->msg, sizeof c->msg), c->msg);
 }
 
-// the value after option argv[*i] as a number
-static int num_arg(int argc, char **argv, int *i, double *v) {
-  char *end;
-  if (*i + 1 >= argc) return 64;
-  *v = strtod(argv[++*i], &end);
-  if (end == argv[*i] || *end) {
-    fprintf(stderr, "dalembert: %s: '%s' is not a number\n", argv[*i - 1], argv[*i]);
-    return DAL_E_ARG;
-  }
-  return DAL_OK;
-}
+const cli_opt cli_write_opts[] = {CLI_END};
 
-// options that take a string
-static int str_opt(cli *c, const char *o, const char *v) {
-  static const char *const names[] = {"-o", "--chart", "--events", "--scan", "--param", "--method"};
-  const char **dst[] = {&c->out, &c->png, &c->events, &c->scan, &c->param, &c->method};
-  for (int k = 0; k < 6; ++k)
-    if (!strcmp(o, names[k])) {
-      *dst[k] = v;
-      return 1;
-    }
-  return 0;
-}
+int cli_write(cli *c) { return dal_scene_write(c->sc, stdout); }
 
-// options that take a number
-static double *num_opt(cli *c, const char *o) {
-  static const char *const names[] = {"--t1", "--transient", "--renorm",
-                                      "--h",  "--nexp",      "--threads"};
-  double *dst[] = {&c->t1, &c->transient, &c->renorm, &c->h, &c->nexp, &c->threads};
-  for (int k = 0; k < 6; ++k)
-    if (!strcmp(o, names[k])) return dst[k];
-  return NULL;
-}
-
-// flags
-static int flag_opt(cli *c, const char *o) {
-  static const char *const names[] = {"--here", "--surface", "--wrap", "--mpi"};
-  int *dst[] = {&c->here, &c->surface, &c->wrap, &c->mpi};
-  for (int k = 0; k < 4; ++k)
-    if (!strcmp(o, names[k])) {
-      *dst[k] = 1;
-      return 1;
-    }
-  if (!strcmp(o, "--progress"))
-    c->progress = 1;
-  else if (!strcmp(o, "--no-progress"))
-    c->progress = 0;
-  else if (!strcmp(o, "--text"))
-    c->fmt = DAL_EXPR_TEXT;
-  else if (!strcmp(o, "--latex"))
-    c->fmt = DAL_EXPR_LATEX;
-  else if (!strcmp(o, "--scheme"))
-    c->fmt = DAL_EXPR_SCHEME;
-  else
-    return 0;
-  return 1;
-}
-
-static int parse(cli *c, int argc, char **argv) {
-  for (int i = 3; i < argc; ++i) {
-    double *d;
-    int rc = DAL_OK;
-    if (flag_opt(c, argv[i])) continue;
-    if (!strcmp(argv[i], "--set") && i + 1 < argc)
-      rc = set_one(c, argv[++i]);
-    else if (i + 1 < argc && str_opt(c, argv[i], argv[i + 1]))
-      ++i;
-    else if ((d = num_opt(c, argv[i])))
-      rc = num_arg(argc, argv, &i, d);
-    else
-      rc = 64;
-    if (rc) return rc;
-  }
-  return DAL_OK;
-}
-
-typedef int command_fn(cli *c);
-
-static int cmd_show(cli *c) {
-  return cli_fail(dal_scene_show(c->sc, stdout, c->fmt, c->msg, sizeof c->msg), c->msg);
-}
-
-static int cmd_write(cli *c) { return dal_scene_write(c->sc, stdout); }
-
-static const struct {
-  const char *name;
-  command_fn *fn;
-} commands[] = {
-    {"run", cmd_run},
-    {"show", cmd_show},
-    {"write", cmd_write},
-    {"modes", cli_modes},
-    {"equilibria", cli_equilibria},
-    {"lyapunov", cli_lyapunov},
-    {"section", cli_section},
-    {"sweep", cli_sweep},
+// one row per command: the order of the help
+static const cli_cmd commands[] = {
+    {"run", cli_run, cli_run_opts, "SCENE", "run the scene: a CSV row every dt from t0 to t1"},
+    {"show", cli_show, cli_show_opts, "SCENE",
+     "the scene's equations: T, U, L, the mass matrix, forces, accelerations"},
+    {"write", cli_write, cli_write_opts, "SCENE", "the scene written back, normalized"},
+    {"modes", cli_modes, cli_modes_opts, "SCENE",
+     "normal modes at the equilibrium Newton finds from the initial q"},
+    {"equilibria", cli_equilibria, cli_equilibria_opts, "SCENE",
+     "equilibria from the initial q (and scanned starts), their stability"},
+    {"lyapunov", cli_lyapunov, cli_lyapunov_opts, "SCENE",
+     "Lyapunov exponents with 95% half-widths"},
+    {"section", cli_section, cli_section_opts, "SCENE",
+     "the scene's Poincare section (stroboscopic or a surface)"},
+    {"sweep", cli_sweep, cli_sweep_opts, "SCENE",
+     "final states over a grid of a scene parameter (threads or MPI)"},
+    {NULL, NULL, NULL, NULL, NULL},
 };
 
 int main(int argc, char **argv) {
-  if (argc < 3) return cli_usage();
-  command_fn *fn = NULL;
-  for (size_t k = 0; k < sizeof commands / sizeof *commands; ++k)
-    if (!strcmp(argv[1], commands[k].name)) fn = commands[k].fn;
-  if (!fn) return cli_usage();
   cli c;
   memset(&c, 0, sizeof c);
-  c.path = argv[2];
-  c.fmt = DAL_EXPR_TEXT;
-  c.nexp = 0;
-  c.threads = 1;
-  c.t1 = c.transient = c.renorm = c.h = -1;
   const char *ci = getenv("CI");
   c.progress = isatty(2) && !(ci && *ci);
-  c.argc = argc;
-  c.argv = argv;
-  int rc = dal_scene_read(c.path, &c.sc, c.msg, sizeof c.msg);
-  if (rc) {
-    fprintf(stderr, "dalembert: %s\n", c.msg);
-    return cli_status_exit(rc);
+  int done, rc = cli_parse(&c, commands, argc, argv, &done);
+  if (!done) {
+    cli_catch_interrupt();
+    c.text = cli_read_text(&c, c.path);
+    rc = c.text ? dal_scene_parse(c.text, c.path, &c.sc, c.msg, sizeof c.msg) : DAL_E_IO;
+    if (rc && c.text) cli_fail(&c, rc, c.msg);
+    if (!rc && (rc = cli_set_params(&c, c.sc, c.msg, sizeof c.msg)) < 0) cli_fail(&c, rc, c.msg);
+    if (!rc) rc = c.cmd->fn(&c);
+    dal_scene_destroy(c.sc);
+    free(c.text);
+    rc = rc == CLI_USAGE ? rc : cli_exit(rc);
   }
-  rc = parse(&c, argc, argv);
-  if (!rc) rc = fn(&c);
-  dal_scene_destroy(c.sc);
-  return rc == 64 ? cli_usage() : cli_status_exit(rc);
+  // standard output too: a result that could not be written is a failure
+  cli_file out = {stdout, NULL, NULL, 0};
+  if (cli_commit(&c, &out, DAL_OK) < 0 && rc == 0) rc = cli_exit(DAL_E_IO);
+  if (cli_interrupted() && rc != CLI_USAGE) rc = CLI_INTERRUPTED;
+  free(c.sets);
+  return rc;
 }

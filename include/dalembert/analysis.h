@@ -314,9 +314,11 @@ typedef struct dal_lyapunov_opts {
                      ///< with the leading directions meanwhile); 0
   double renorm;     ///< time between QR reorthonormalizations (> 0); 1
   dal_method method; ///< the library's ODE integrator that runs trajectory and tangent
-                     ///< vectors: DAL_METHOD_AUTO (default: dal_advance's rule by rtol, Adams at
-                     ///< the default rtol), DOPRI5, FEHLBERG78, BS, ADAMS, BDF, or RK4 (fixed
-                     ///< step `h`); the structure-preserving methods are DAL_E_UNSUPPORTED
+                     ///< vectors: DAL_METHOD_AUTO (default: its own rule, validated on the
+                     ///< tangent system, not dal_advance's: DOPRI5 above rtol 1e-6, Adams
+                     ///< down to 1e-12, Bulirsch-Stoer below; Adams at the default rtol),
+                     ///< DOPRI5, FEHLBERG78, BS, ADAMS, BDF, or RK4 (fixed step `h`); the
+                     ///< structure-preserving methods are DAL_E_UNSUPPORTED
   double rtol;       ///< relative tolerance, a global target as for dal_advance (the method's
                      ///< calibrated factor applies) on trajectory and tangent vectors; 1e-10
   double atol;       ///< absolute tolerance (> 0); 1e-10

@@ -122,7 +122,7 @@ DAL_API int dal_expr_check(const dal_expr *e, const dal_jet *in, dal_jet t, cons
 
 /// The expression as a primitive (nin, nout, nparam, named parameters with the expression's
 /// values as defaults; borrowed from e). Its eval needs ctx = e: use dal_expr_place_def or
-/// dal_expr_constraint_def, or pass e as the ctx of the positional builder calls.
+/// dal_expr_constraint_def, which fill a dal_place_def or dal_constraint_def with ctx = e.
 DAL_API const dal_primitive *dal_expr_primitive(const dal_expr *e);
 
 /// Set def->prim and def->ctx to place a particle by e (nout must be the dimension). Returns

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdio.h>
 
-#include "base/base.h"
+#include "model/model.h"
 
 int dal_csv_monitor(const dal_system *sys, const dal_state *st, void *ctx) {
   dal_csv *c = ctx;

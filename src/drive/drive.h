@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Private interface between the integration driver (driver.c) and the events (events.c).
-#ifndef DAL_EVENTS_INTERNAL_H
-#define DAL_EVENTS_INTERNAL_H
+// The face of drive/: the events (events.c) and the stored trajectory (trajectory.c) as the
+// integration driver (driver.c) runs them.
+#ifndef DAL_DRIVE_DRIVE_H
+#define DAL_DRIVE_DRIVE_H
 
 #include "dalembert/events.h"
 #include "integrate/integrate.h"

@@ -238,8 +238,9 @@ static inline double out_time(const run *r) {
   if (r->times) return r->k <= r->K ? r->times[r->k] : INFINITY;
   if (r->k == r->K) {
     double tk = r->t0 + (double)r->k * r->dt;
-    // a grid time within rounding of t1 is t1 itself (no near-duplicate output)
-    return r->t1 - tk <= 1e-9 * r->dt ? r->t1 : tk;
+    // a later grid time within rounding of t1 is t1 itself (no near-duplicate output); the
+    // first (t0) is always served, however large dt is against t1 - t0 (issue 31)
+    return r->k > 0 && r->t1 - tk <= 1e-9 * r->dt ? r->t1 : tk;
   }
   return r->last_out < r->t1 ? r->t1 : INFINITY;
 }
@@ -606,6 +607,13 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
            .ev = active_events(st)};
   int rc = os->list ? list_setup(&r, os->times, os->n) : grid_setup(&r, os->dt);
   if (rc) return rc;
+  if (!monitor) {
+    // no one looks at the output times: dal_advance's run to t1 (solve.h), never a walk over
+    // every output time (t1 = 1000, dt = 1e-9 took an hour; issue 31)
+    run a = {.sys = sys, .st = st, .o = &eff, .what = r.what, .t1 = t1, .tnext = INFINITY,
+             .ev = r.ev};
+    return run_to(&a, t1);
+  }
   r.tnext = out_time(&r);
   // the start (made consistent first in redundant coordinates), evaluated
   if ((rc = run_to(&r, t0)) != 0) return rc;

@@ -10,8 +10,8 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "base/base.h"
 #include "dalembert/ensemble.h"
+#include "model/model.h"
 
 #define DAL_SWEEP_COOKIE 0x5eed0a11
 

@@ -6,7 +6,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "eval.h"
 #include "linalg/linalg.h"
 
 // position and velocity of a link's anchor, x0 + x(t) (the moving-point convention)

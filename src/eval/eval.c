@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "eval.h"
 #include "linalg/linalg.h"
 
 static int first_nonfinite(const double *x, int n);

@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "eval.h"
 
 // position of coordinate j in a sorted list (or -1)
 static int find_sorted(const int *list, int n, int j) {

@@ -9,7 +9,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "eval.h"
 
 // evaluate L with the jets currently in st->jq, st->jv and time jet t; check finiteness
 static int lag_eval(const dal_system *sys, dal_state *st, dal_jet t, dal_jet *L) {

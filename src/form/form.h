@@ -1,11 +1,17 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The DAE formulations of redundant coordinates (GGL, index-3, index-1) behind one interface:
-// sizes, residual, error-test mask and Newton-matrix entries (private; form_dae.c).
-#ifndef DAL_FORM_DAE_H
-#define DAL_FORM_DAE_H
+// sizes, residual, error-test mask and Newton-matrix entries (private; dae.c), and the
+// other formulations of form/: minimal coordinates, index-1 with projection, the tangent
+// (linearized) problems and the consistent start.
+#ifndef DAL_FORM_FORM_H
+#define DAL_FORM_FORM_H
 
-#include "eval/eval.h"
+#include "model/model.h"
+
+/// max |x_i| over n entries (NaN counts as largest); *at (nullable) receives its index
+/// (init.c)
+double dal__max_abs(const double *x, int n, int *at);
 
 /// A DAE formulation on a system and a state (the state is its workspace).
 /// Unknowns y = (q, v, lambda[, mu][, W]).
@@ -102,7 +108,7 @@ typedef struct dal_ode_problem {
   /// straight into st->q
   int state_layout;
 } dal_ode_problem;
-/// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (form_minimal.c)
+/// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (minimal.c)
 extern const dal_ode_problem dal__problem_minimal;
 /// index-1 redundant coordinates: y = (q, v), f = (v, qddot from the KKT system with optional
 /// Baumgarte terms), projection onto phi = 0, G v + dphi/dt = 0 when opts->project (init.c)
@@ -178,7 +184,7 @@ int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *wha
 /// The tangent at the state's (t, q, qdot) with its current qddot (call dal_forward first):
 /// tg->M, Rq, Ru, and Rt when want_t. Returns DAL_OK, DAL_E_DOMAIN, DAL_E_CALLBACK.
 int dal__tangent_eval(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t);
-/// The same for a system given by a Lagrangian (analysis_lagrangian.c).
+/// The same for a system given by a Lagrangian (tangent_lagrangian.c).
 int dal__tangent_lagrangian(const dal_system *sys, dal_state *st, dal_tangent *tg, int want_t);
 /// Factor tg->M into tg->L (Cholesky). Returns DAL_OK or DAL_E_SINGULAR (message set).
 int dal__tangent_factor(const dal_system *sys, dal_state *st, dal_tangent *tg);

@@ -10,7 +10,7 @@
 // With v = x_j + w or x_j - w, 4 D^2 L(p)[x_j, w] = D^2 L(p)[v+]^2 - D^2 L(p)[v-]^2, and the
 // derivative along z of D^2 L(p + e z)[v + e v']^2 is g_ess of g(e, s) = L(p + e z + s (v + e v'));
 // on the curves e = l s, l = +-1, it is ((h_1''' - h_-1''')/2 - D^3 L[z]^3) / 3 with
-// h_l(s) = L(p + s (v + l z) + s^2 l v') (see analysis_tangent.c for the expansion). Second
+// h_l(s) = L(p + s (v + l z) + s^2 l v') (see tangent.c for the expansion). Second
 // partials of L (and of U) come from order-2 coefficients by polarization.
 #include <math.h>
 #include <stdio.h>

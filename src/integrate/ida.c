@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// SUNDIALS IDA glue for the DAE formulations of form_dae.c (GGL, index-3, index-1): setup,
+// SUNDIALS IDA glue for the DAE formulations of form/dae.c (GGL, index-3, index-1): setup,
 // tolerances, the residual and Newton-matrix callbacks, advance, and failures named.
 //
 // lambda and mu are algebraic and kept out of IDA's error test (IDASetId + IDASetSuppressAlg).
-// The Newton matrix comes from form_dae.c (exact pieces, no difference quotients) with KLU, and
+// The Newton matrix comes from form/dae.c (exact pieces, no difference quotients) with KLU, and
 // with the dense solver when it is the whole Jacobian (dal__dae_newton_exact); otherwise the
 // dense solver uses IDA's difference quotients.
 #include <float.h>
@@ -498,6 +498,11 @@ static int dominating(ida_mem *w) {
   return best;
 }
 
+// the fallback form named as the remedy of a failure at a regular point (solve.h)
+#define IDA_FALLBACK_REMEDY                                                                        \
+  "the index-1 form with projection and Bulirsch-Stoer goes on where IDA stops "                   \
+  "(DAL_FORM_INDEX1, opts.project = 1, DAL_METHOD_BS; the default options fall back to it)"
+
 // what IDA's failure flag means and its usual remedy; *ask: the constraints could be to blame
 static int failure_kind(const ida_mem *w, int flag, const char **what, const char **remedy,
                         int *ask) {
@@ -512,16 +517,17 @@ static int failure_kind(const ida_mem *w, int flag, const char **what, const cha
     *remedy = "loosen rtol/atol";
     return DAL_E_STEP;
   case IDA_ERR_FAIL:
+    // a collapse of the step size at a regular point: the fallback form is the remedy
+    // (solve.h), a discontinuous force the other suspect (issue 31: not "loosen")
     *ask = 1;
     *what = "repeated error-test failures (step size underflow)";
-    *remedy = "loosen the tolerances, or check the forces for discontinuities";
+    *remedy = IDA_FALLBACK_REMEDY ", or check the forces for discontinuities";
     return DAL_E_STEP;
   case IDA_CONV_FAIL:
   case IDA_NLS_FAIL:
     *ask = 1;
     *what = "Newton failed repeatedly";
-    *remedy = "the index-1 form with projection goes on where IDA stops (DAL_FORM_INDEX1, "
-              "opts.project, an ODE method; the default options fall back to it)";
+    *remedy = IDA_FALLBACK_REMEDY;
     return DAL_E_CONV;
   case IDA_LINIT_FAIL:
   case IDA_LSETUP_FAIL:

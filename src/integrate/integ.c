@@ -196,10 +196,13 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   const dal_method_row *mr = dal__method_row(it->method);
   if (mr && o->rtol < mr->min_rtol)
     snprintf(it->note, sizeof it->note,
-             "note: rtol %g is below what %s can honour: it ran as rtol %g, atol scaled alike "
-             "(dal_stats.rtol_used has the local tolerance), so expect errors above rtol; "
-             "DAL_METHOD_BS or DAL_METHOD_AUTO honour tighter requests",
-             o->rtol, mr->name, mr->min_rtol);
+             "note: rtol %g is below what %s can honour (its error stops falling there): it "
+             "ran as rtol %g, atol scaled alike (dal_stats.rtol_used has the local "
+             "tolerance), so expect errors above rtol%s",
+             o->rtol, mr->name, mr->min_rtol,
+             it->method != DAL_METHOD_BS && o->rtol >= dal__method_row(DAL_METHOD_BS)->min_rtol
+                 ? "; DAL_METHOD_BS (AUTO's choice there) honours it"
+                 : "");
   return DAL_OK;
 }
 

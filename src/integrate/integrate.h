@@ -2,13 +2,13 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The integration layer's face: one integrator interface (dal_integ, integ.c) over the ODE
 // methods and IDA, the method table, and the services the ODE methods share.
-#ifndef DAL_SOLVE_INTERNAL_H
-#define DAL_SOLVE_INTERNAL_H
+#ifndef DAL_INTEGRATE_INTEGRATE_H
+#define DAL_INTEGRATE_INTEGRATE_H
 
 #include "form/form.h"
 
 /// DAE integration through SUNDIALS IDA for the GGL, index-3 and BDF index-1 forms
-/// (dae_ida.c). create: allocate and initialize from the state's consistent (q, qdot);
+/// (ida.c). create: allocate and initialize from the state's consistent (q, qdot);
 /// advance: integrate to tout, leaving the state at tout (or at the last accepted step on
 /// failure, with its error message naming time and dominating variable).
 int dal__ida_create(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, void **mem);
@@ -22,8 +22,8 @@ void dal__ida_set_hook(void *mem, int (*hook)(void *ctx), void *ctx);
 void dal__ida_window(const void *mem, double *t0, double *t1);
 int dal__ida_place(void *mem, double t);
 
-/// An ODE integrator run on a dal_ode_problem (ode_arkode.c, ode_cvode.c, ode_bs.c,
-/// ode_rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a
+/// An ODE integrator run on a dal_ode_problem (arkode.c, cvode.c, bs.c,
+/// rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a
 /// step needs is allocated by the method's create function.
 typedef struct dal_ode_integ dal_ode_integ;
 struct dal_ode_integ {
@@ -227,10 +227,10 @@ int dal__ode_stall(dal_ode_integ *ig, double h, const char *what);
 int dal__ode_recov_fail(dal_ode_integ *ig, double h);
 
 /// method constructors: fill ig->impl, ig->advance, ig->free_impl from ig->y at ig->t
-int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (ode_arkode.c)
-int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (ode_cvode.c)
-int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (ode_bs.c)
-int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (ode_rk4.c)
+int dal__erk_create(dal_ode_integ *ig);   ///< DOPRI5, FEHLBERG78 (arkode.c)
+int dal__cvode_create(dal_ode_integ *ig); ///< ADAMS, BDF (cvode.c)
+int dal__bs_create(dal_ode_integ *ig);    ///< Gragg-Bulirsch-Stoer (bs.c)
+int dal__rk4_create(dal_ode_integ *ig);   ///< classical RK4, fixed step (rk4.c)
 /// CVODE's own dense output for a CVODE integrator ig: CVodeGetDky(t, k) into out (ny), the
 /// k-th derivative of the last step's polynomial at t; returns CVODE's code (0: success).
 /// For tests: ig->interp reads the same polynomial without a call per output

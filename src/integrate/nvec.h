@@ -2,8 +2,8 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The library's SUNDIALS side (private): its own kernels for serial vectors (nvec.c) and the
 // setup the ODE methods in ARKODE and CVODE share (sundials.c).
-#ifndef DAL_NVEC_H
-#define DAL_NVEC_H
+#ifndef DAL_INTEGRATE_NVEC_H
+#define DAL_INTEGRATE_NVEC_H
 
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_nvector.h>

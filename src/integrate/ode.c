@@ -280,10 +280,15 @@ int dal__ode_create(const dal_system *sys, dal_state *st, const dal_solve_opts *
   // the local tolerances: a request below the method's min_rtol runs as min_rtol (atol raised
   // in proportion, the requested ratio atol / rtol kept, as for IDA); rtol not below the floor
   const dal_method_row *mrow = dal__method_row(meth);
-  double c = dal__tol_factor(meth) * prob->tol_factor, up = 1.0;
-  if (mrow && o->rtol < mrow->min_rtol) up = mrow->min_rtol / o->rtol;
-  ig->rtol = fmax(c * o->rtol * up, DAL_TOL_FLOOR);
-  ig->atol = c * o->atol * up;
+  double c = dal__tol_factor(meth) * prob->tol_factor, rt = o->rtol, at = o->atol;
+  if (mrow && o->rtol < mrow->min_rtol) {
+    // the clamped run is the run at min_rtol itself (atol = rtol stays exactly so): a tighter
+    // request is never worse than the floor (tests/test_dense.c, test_tighter)
+    rt = mrow->min_rtol;
+    at = o->atol == o->rtol ? rt : o->atol * (rt / o->rtol);
+  }
+  ig->rtol = fmax(c * rt, DAL_TOL_FLOOR);
+  ig->atol = c * at;
   st->stats.rtol_used = ig->rtol; // the local tolerance, floor included (solve.h)
   ig->t = st->t;
   size_t ny = (size_t)ig->ny + 1;

@@ -2,12 +2,12 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Private interface of the structure-preserving fixed-step methods (variational, RATTLE).
 //
-// The driver (solve.c) sees three calls: dal__symplectic_method, dal__symplectic_resolve and
-// dal__symplectic_create (a dal_ode_integ constructor like dal__rk4_create). Inside, one
-// fixed-grid driver with symmetric compositions (ode_symplectic.c) runs a base method
-// (ode_variational.c, ode_rattle.c) on the method's own state x through dal_symp_base.
-#ifndef DAL_SYMPLECTIC_H
-#define DAL_SYMPLECTIC_H
+// The integrator handle (integ.c) sees three calls: dal__symplectic_method, dal__symplectic_resolve
+// and dal__symplectic_create (a dal_ode_integ constructor like dal__rk4_create). Inside, one
+// fixed-grid driver with symmetric compositions (symplectic.c) runs a base method
+// (variational.c, rattle.c) on the method's own state x through dal_symp_base.
+#ifndef DAL_INTEGRATE_SYMPLECTIC_H
+#define DAL_INTEGRATE_SYMPLECTIC_H
 
 #include "integrate.h"
 
@@ -42,8 +42,8 @@ typedef struct dal_symp_base {
   void (*free)(void *mem);
 } dal_symp_base;
 
-/// base methods: the midpoint variational integrator (ode_variational.c) and RATTLE
-/// (ode_rattle.c); fill *b, allocate everything a step needs
+/// base methods: the midpoint variational integrator (variational.c) and RATTLE
+/// (rattle.c); fill *b, allocate everything a step needs
 int dal__variational_base(dal_ode_integ *ig, dal_symp_base *b);
 int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b);
 

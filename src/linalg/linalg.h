@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Dense linear algebra through LAPACKE (private).
-#ifndef DAL_LINALG_H
-#define DAL_LINALG_H
+#ifndef DAL_LINALG_LINALG_H
+#define DAL_LINALG_LINALG_H
 
 /// Relative pivot threshold below which a Cholesky pivot counts as degenerate.
 #define DAL_CHOL_RTOL 2.2e-13

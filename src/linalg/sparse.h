@@ -2,8 +2,8 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Compressed-column sparsity patterns from (row, col) lists: the KKT matrix and the IDA
 // Newton matrix are built by the same helper (private).
-#ifndef DAL_SPARSE_H
-#define DAL_SPARSE_H
+#ifndef DAL_LINALG_SPARSE_H
+#define DAL_LINALG_SPARSE_H
 
 #include <stddef.h>
 

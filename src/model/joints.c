@@ -4,7 +4,7 @@
 // Newton's third law through the tree of placements (state.h: dal_joint_forces).
 #include <string.h>
 
-#include "base/base.h"
+#include "model.h"
 
 int dal_joint_forces(const dal_system *sys, const dal_state *st, double *F) {
   int pair = dal__check_pair(sys, st, "joint_forces");

@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "model.h"
 
 // "name=value" for each parameter of one primitive instance
 static void print_params(FILE *fp, const dal_primitive *prim, const double *param) {

@@ -7,8 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/base.h"
-#include "eval/eval.h"
+#include "model.h"
 
 int dal_state_create(const dal_system *sys, dal_state **out) {
   if (!out) return DAL_E_ARG;

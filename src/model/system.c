@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "model.h"
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
 

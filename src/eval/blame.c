@@ -7,7 +7,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "base/base.h"
+#include "eval.h"
 
 // the force magnitude of link l on particle k (the other end fixed or a particle); NAN when
 // the other end is a path anchor (only its callback knows where it is)
