@@ -74,7 +74,6 @@ const char *dal__xop_name(int op);
 /// 1 when op is a one-argument function (X_SIN .. X_SQRT)
 int dal__xop_unary_fn(int op);
 
-
 /// an algebra session on a tree: memo tables of canonical forms, expansions and derivatives
 typedef struct dal_alg {
   dal_xtree *tr;

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Scene files: one element per line, interpreted into a builder; written back; run; shown.
+// Scene files built: each element line into the builder through its def; the parameters, the
+// name tables and the expressions the lines compile.
 #define _POSIX_C_SOURCE 200809L
 #include <ctype.h>
 #include <errno.h>
@@ -12,263 +13,6 @@
 #include <string.h>
 
 #include "scene.h"
-
-static char *dup(const char *s) {
-  size_t n = strlen(s) + 1;
-  char *r = malloc(n);
-  if (r) memcpy(r, s, n);
-  return r;
-}
-
-static char *dupn(const char *s, size_t n) {
-  char *r = malloc(n + 1);
-  if (r) {
-    memcpy(r, s, n);
-    r[n] = 0;
-  }
-  return r;
-}
-
-// a formatted string of any length (malloc'd; NULL when out of memory)
-static char *strf(const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  int n = vsnprintf(NULL, 0, fmt, ap);
-  va_end(ap);
-  char *s = n >= 0 ? malloc((size_t)n + 1) : NULL;
-  if (s) {
-    va_start(ap, fmt);
-    vsnprintf(s, (size_t)n + 1, fmt, ap);
-    va_end(ap);
-  }
-  return s;
-}
-
-// ---- name tables (FNV-1a, open addressing, at most half full)
-
-static uint32_t hash(const char *s) {
-  uint32_t h = 2166136261u;
-  for (; *s; ++s)
-    h = (h ^ (unsigned char)*s) * 16777619u;
-  return h;
-}
-
-int dal__tab_get(const dal_tab *t, const char *key) {
-  if (!t->cap) return -1;
-  for (uint32_t i = hash(key) & (uint32_t)(t->cap - 1);; i = (i + 1) & (uint32_t)(t->cap - 1)) {
-    if (!t->key[i]) return -1;
-    if (!strcmp(t->key[i], key)) return t->val[i];
-  }
-}
-
-int dal__tab_put(dal_tab *t, const char *key, int v) {
-  if (2 * (t->n + 1) > t->cap) {
-    dal_tab g = {NULL, NULL, t->cap ? 2 * t->cap : 64, 0};
-    g.key = calloc((size_t)g.cap, sizeof *g.key);
-    g.val = calloc((size_t)g.cap, sizeof *g.val);
-    if (!g.key || !g.val) {
-      free(g.key);
-      free(g.val);
-      return DAL_E_NOMEM;
-    }
-    for (int i = 0; i < t->cap; ++i)
-      if (t->key[i]) dal__tab_put(&g, t->key[i], t->val[i]);
-    dal__tab_free(t);
-    *t = g;
-  }
-  uint32_t i = hash(key) & (uint32_t)(t->cap - 1);
-  while (t->key[i] && strcmp(t->key[i], key))
-    i = (i + 1) & (uint32_t)(t->cap - 1);
-  if (!t->key[i]) t->n++;
-  t->key[i] = key;
-  t->val[i] = v;
-  return DAL_OK;
-}
-
-void dal__tab_free(dal_tab *t) {
-  free(t->key);
-  free(t->val);
-  memset(t, 0, sizeof *t);
-}
-
-static int err(const dal_scene *sc, int line, char *msg, size_t len, int rc, const char *fmt, ...) {
-  if (msg && len) {
-    int k = snprintf(msg, len, "%s:%d: ", sc->name, line);
-    if (k < 0) k = 0;
-    if ((size_t)k < len) {
-      va_list ap;
-      va_start(ap, fmt);
-      vsnprintf(msg + k, len - (size_t)k, fmt, ap);
-      va_end(ap);
-    }
-  }
-  return rc;
-}
-
-static void free_line(sline *l) {
-  for (int i = 0; i < l->ntok; ++i)
-    free(l->tok[i]);
-  free(l->tok);
-  for (int i = 0; i < l->nf; ++i)
-    free(l->f[i]);
-}
-
-// what a build made; the lines and the parameters' overrides stay
-static void unbuild(dal_scene *sc) {
-  dal_system_destroy(sc->sys);
-  dal_builder_destroy(sc->b);
-  sc->sys = NULL;
-  sc->b = NULL;
-  for (int i = 0; i < sc->nex; ++i)
-    dal_expr_destroy(sc->ex[i]);
-  free(sc->ex);
-  sc->ex = NULL;
-  sc->nex = sc->capex = 0;
-  for (int i = 0; i < sc->ncoord; ++i)
-    free(sc->cname[i]);
-  free(sc->cname);
-  free(sc->q0);
-  free(sc->v0);
-  sc->cname = NULL;
-  sc->q0 = sc->v0 = NULL;
-  sc->ncoord = 0;
-  for (int i = 0; i < sc->npart; ++i)
-    free(sc->partname[i]);
-  free(sc->partname);
-  sc->partname = NULL;
-  sc->npart = 0;
-  free(sc->ev);
-  sc->ev = NULL;
-  sc->nev = 0;
-  for (int i = 0; i < sc->ngf; ++i)
-    free(sc->gf[i]);
-  free(sc->gf);
-  sc->gf = NULL;
-  sc->ngf = 0;
-  sc->strobe = 0;
-  free(sc->pname);
-  free(sc->pval);
-  sc->pname = NULL;
-  sc->pval = NULL;
-  sc->nparam = 0;
-  dal__tab_free(&sc->ptab);
-  dal__tab_free(&sc->syms);
-  dal__tab_free(&sc->parts);
-  dal__tab_free(&sc->coords);
-  dal__tab_free(&sc->elems);
-  for (int i = 0; i < sc->nsymkeys; ++i)
-    free(sc->symkeys[i]);
-  free(sc->symkeys);
-  sc->symkeys = NULL;
-  sc->nsymkeys = sc->capsymkeys = 0;
-}
-
-void dal_scene_destroy(dal_scene *sc) {
-  if (!sc) return;
-  unbuild(sc);
-  for (int i = 0; i < sc->nlines; ++i)
-    free_line(&sc->lines[i]);
-  free(sc->lines);
-  free(sc->over);
-  free(sc->overval);
-  free(sc->name);
-  free(sc);
-}
-
-static int push_word(sline *out, char *w) {
-  if (!w) return DAL_E_NOMEM;
-  if (out->ntok == out->captok) {
-    int cap = out->captok ? 2 * out->captok : 8;
-    char **v = realloc(out->tok, (size_t)cap * sizeof *v);
-    if (!v) {
-      free(w);
-      return DAL_E_NOMEM;
-    }
-    out->tok = v;
-    out->captok = cap;
-  }
-  out->tok[out->ntok++] = w;
-  return DAL_OK;
-}
-
-// 1 when w is key=value with an identifier key
-static int keyed(const char *w) {
-  if (!(isalpha((unsigned char)w[0]) || w[0] == '_')) return 0;
-  size_t k = 1;
-  while (isalnum((unsigned char)w[k]) || w[k] == '_')
-    k++;
-  return w[k] == '=' && w[k + 1] != '=';
-}
-
-// a formula value goes on over the next word when it is not complete: open parentheses, an
-// operator at its end, or the next word starting with an operator ("q=2 * a", "v=sin( t )")
-static int goes_on(const char *v, size_t n, const char *next, size_t m) {
-  int depth = 0;
-  for (size_t i = 0; i < n; ++i)
-    depth += v[i] == '(' ? 1 : v[i] == ')' ? -1 : 0;
-  if (depth > 0) return 1;
-  if (n && strchr("+-*/^(,", v[n - 1])) return 1;
-  return m && strchr("+-*/^),", next[0]);
-}
-
-// split one line (comment removed) into words and formulas
-static int split_line(dal_scene *sc, const char *s, size_t n, int lineno, sline *out, char *msg,
-                      size_t len) {
-  memset(out, 0, sizeof *out);
-  out->line = lineno;
-  size_t i = 0;
-  int joinable = 0; // the last word is key=value: a formula that may go on
-  while (i < n) {
-    while (i < n && isspace((unsigned char)s[i]))
-      i++;
-    if (i >= n) break;
-    if (s[i] == '=' && (i + 1 >= n || s[i + 1] != '=')) {
-      // formulas: the rest of the line, split at ';'
-      i++;
-      while (i <= n) {
-        size_t j = i;
-        while (j < n && s[j] != ';')
-          j++;
-        size_t a = i, z = j;
-        while (a < z && isspace((unsigned char)s[a]))
-          a++;
-        while (z > a && isspace((unsigned char)s[z - 1]))
-          z--;
-        if (out->nf == 3)
-          return err(sc, lineno, msg, len, DAL_E_ARG, "more than 3 formulas after '='");
-        out->f[out->nf] = dupn(s + a, z - a);
-        if (!out->f[out->nf++]) return DAL_E_NOMEM;
-        if (j >= n) break;
-        i = j + 1;
-      }
-      break;
-    }
-    size_t j = i;
-    while (j < n && !isspace((unsigned char)s[j]))
-      j++;
-    char *last = out->ntok ? out->tok[out->ntok - 1] : NULL;
-    if (joinable && goes_on(last, strlen(last), s + i, j - i) && !keyed(s + i)) {
-      char *w = strf("%s %.*s", last, (int)(j - i), s + i);
-      if (!w) return DAL_E_NOMEM;
-      free(last);
-      out->tok[out->ntok - 1] = w;
-    } else {
-      int rc = push_word(out, dupn(s + i, j - i));
-      if (rc) return rc;
-      joinable = out->ntok > 1 && keyed(out->tok[out->ntok - 1]);
-    }
-    i = j;
-  }
-  return DAL_OK;
-}
-
-// key=value words: the value of `key` (NULL if absent)
-const char *dal__scene_kv(const sline *l, int from, const char *key) {
-  size_t n = strlen(key);
-  for (int i = from; i < l->ntok; ++i)
-    if (!strncmp(l->tok[i], key, n) && l->tok[i][n] == '=') return l->tok[i] + n + 1;
-  return NULL;
-}
 
 int dal__scene_part(const dal_scene *sc, const char *name) {
   return dal__tab_get(&sc->parts, name);
@@ -313,7 +57,7 @@ static int used_params(const dal_scene *sc, const char *const *f, int nf, int **
       while (isalnum((unsigned char)s[w]) || s[w] == '_')
         w++;
       if (!isdigit((unsigned char)*s)) { // a number's exponent is no name
-        char *name = dupn(s, w);
+        char *name = dal__scene_dupn(s, w);
         int j = name ? dal__tab_get(&sc->ptab, name) : -1;
         free(name);
         if (j >= 0 && j < sc->nparam) {
@@ -407,7 +151,7 @@ static int constval(dal_scene *sc, const sline *l, const char *what, const char 
   dal_expr_eval(e, NULL, dal_const(0.0), NULL, &out);
   *v = out.v;
   if (!isfinite(*v))
-    return err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)", what, text,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)", what, text,
                *v);
   return DAL_OK;
 }
@@ -415,12 +159,12 @@ static int constval(dal_scene *sc, const sline *l, const char *what, const char 
 static int builder(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (sc->b) return DAL_OK;
   int rc = dal_builder_create(sc->dim, &sc->b);
-  if (rc) return err(sc, l->line, msg, len, rc, "dim %d: no builder", sc->dim);
+  if (rc) return dal__scene_err(sc, l->line, msg, len, rc, "dim %d: no builder", sc->dim);
   return DAL_OK;
 }
 
 static int bcheck(dal_scene *sc, const sline *l, int rc, char *msg, size_t len) {
-  if (rc) return err(sc, l->line, msg, len, rc, "%s", dal_builder_errmsg(sc->b));
+  if (rc) return dal__scene_err(sc, l->line, msg, len, rc, "%s", dal_builder_errmsg(sc->b));
   return DAL_OK;
 }
 
@@ -431,7 +175,7 @@ static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, in
   int other = dal__tab_get(t, name);
   if (other >= 0) {
     int a = other < l->line ? other : l->line, z = other < l->line ? l->line : other;
-    return err(sc, z, msg, len, DAL_E_ARG, "%s %s: the name '%s' is given twice (line %d and %s)",
+    return dal__scene_err(sc, z, msg, len, DAL_E_ARG, "%s %s: the name '%s' is given twice (line %d and %s)",
                l->tok[0], l->ntok > 1 ? l->tok[1] : "", name, a,
                z == l->line ? "here" : "this line");
   }
@@ -444,7 +188,7 @@ static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, in
       sc->symkeys = v;
       sc->capsymkeys = cap;
     }
-    char *k = dup(name);
+    char *k = dal__scene_dup(name);
     if (!k) return DAL_E_NOMEM;
     sc->symkeys[sc->nsymkeys++] = k;
     key = k;
@@ -456,7 +200,7 @@ static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, in
 static int claim_sym(dal_scene *sc, const sline *l, const char *pre, const char *name,
                      const char *suf, char *msg, size_t len) {
   if (!*pre && !*suf) return claim(sc, &sc->syms, l, name, 0, msg, len);
-  char *s = strf("%s%s%s", pre, name, suf);
+  char *s = dal__scene_strf("%s%s%s", pre, name, suf);
   if (!s) return DAL_E_NOMEM;
   int rc = claim(sc, &sc->syms, l, s, 1, msg, len);
   free(s);
@@ -474,7 +218,7 @@ static int split_list(const char *list, char ***items, int *n) {
   for (const char *s = list;; ++k) {
     const char *e = strchr(s, ',');
     size_t w = e ? (size_t)(e - s) : strlen(s);
-    v[k] = dupn(s, w);
+    v[k] = dal__scene_dupn(s, w);
     if (!v[k]) {
       for (int i = 0; i < k; ++i)
         free(v[i]);
@@ -505,7 +249,7 @@ static int part_list(dal_scene *sc, const sline *l, const char *list, int **idx,
   if (!*idx) rc = DAL_E_NOMEM;
   for (int i = 0; i < m && !rc; ++i)
     if (((*idx)[i] = dal__scene_part(sc, it[i])) < 0)
-      rc = err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: particle '%s' is not defined above",
+      rc = dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: particle '%s' is not defined above",
                l->tok[0], l->tok[1], it[i]);
   free_list(it, m);
   *n = m;
@@ -523,7 +267,7 @@ static int element_expr(dal_scene *sc, const sline *l, const char *what, const i
   int rc = DAL_OK;
   for (int k = 0; k < nparts && !rc; ++k)
     for (int i = 0; i < d && !rc; ++i)
-      if (!(in[k * d + i] = strf("%c_%s", "xyz"[i], sc -> partname[parts[k]]))) rc = DAL_E_NOMEM;
+      if (!(in[k * d + i] = dal__scene_strf("%c_%s", "xyz"[i], sc -> partname[parts[k]]))) rc = DAL_E_NOMEM;
   for (int j = 0; j < sc->ncoord && !rc; ++j)
     in[nparts * d + j] = sc->cname[j];
   dal_expr *all = NULL;
@@ -558,7 +302,7 @@ static int set_method(dal_scene *sc, const sline *l, const char *v, char *msg, s
       sc->opts.method = (dal_method)m;
       return DAL_OK;
     }
-  return err(sc, l->line, msg, len, DAL_E_ARG,
+  return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
              "run: unknown method '%s' (auto dopri5 fehlberg78 bs rk4 adams bdf variational "
              "variational4 variational6 rattle rattle4 rattle6)",
              v);
@@ -566,7 +310,7 @@ static int set_method(dal_scene *sc, const sline *l, const char *v, char *msg, s
 
 static int number(dal_scene *sc, const sline *l, const char *key, const char *v, double *out,
                   char *msg, size_t len) {
-  char *what = strf("%s %s", l->tok[0], key);
+  char *what = dal__scene_strf("%s %s", l->tok[0], key);
   if (!what) return DAL_E_NOMEM;
   int rc = constval(sc, l, what, v, out, msg, len);
   free(what);
@@ -577,14 +321,14 @@ static int add_name(char ***names, int n, const char *s) {
   char **v = realloc(*names, ((size_t)n + 1) * sizeof *v);
   if (!v) return DAL_E_NOMEM;
   *names = v;
-  v[n] = dup(s);
+  v[n] = dal__scene_dup(s);
   return v[n] ? DAL_OK : DAL_E_NOMEM;
 }
 
 // param NAME = FORMULA (of the parameters above it); a value set by dal_scene_set_param wins
-static int el_param(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_param(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok != 2 || l->nf != 1)
-    return err(sc, l->line, msg, len, DAL_E_ARG,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                "param: 'param <name> = <formula of the parameters above>'");
   int j = sc->nparam, rc;
   if ((rc = claim_sym(sc, l, "", l->tok[1], "", msg, len))) return rc;
@@ -596,17 +340,17 @@ static int el_param(dal_scene *sc, const sline *l, char *msg, size_t len) {
   return dal__tab_put(&sc->ptab, l->tok[1], j);
 }
 
-static int el_dim(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_dim(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok != 2 || sc->b ||
       (strcmp(l->tok[1], "0") && strcmp(l->tok[1], "2") && strcmp(l->tok[1], "3")))
-    return err(sc, l->line, msg, len, DAL_E_ARG,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                "dim: one of 0, 2, 3, before every coordinate and particle");
   sc->dim = atoi(l->tok[1]);
   return DAL_OK;
 }
 
-static int el_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
-  if (l->ntok < 2) return err(sc, l->line, msg, len, DAL_E_ARG, "coord: a name is missing");
+int dal__scene_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
+  if (l->ntok < 2) return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "coord: a name is missing");
   int rc = builder(sc, l, msg, len);
   if (rc) return rc;
   double q = 0, v = 0;
@@ -615,7 +359,7 @@ static int el_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if ((s = dal__scene_kv(l, 2, "v")) && (rc = number(sc, l, "v", s, &v, msg, len))) return rc;
   for (int i = 2; i < l->ntok; ++i)
     if (strncmp(l->tok[i], "q=", 2) && strncmp(l->tok[i], "v=", 2))
-      return err(sc, l->line, msg, len, DAL_E_ARG, "coord %s: unknown word '%s' (q=, v=)",
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "coord %s: unknown word '%s' (q=, v=)",
                  l->tok[1], l->tok[i]);
   if ((rc = claim_sym(sc, l, "", l->tok[1], "", msg, len)) ||
       (rc = claim_sym(sc, l, "", l->tok[1], "dot", msg, len)))
@@ -632,19 +376,19 @@ static int el_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
   return DAL_OK;
 }
 
-static int el_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *m = dal__scene_kv(l, 2, "mass");
   if (l->ntok != 3 || !m)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "particle: 'particle <name> mass=<formula>'");
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "particle: 'particle <name> mass=<formula>'");
   int rc = builder(sc, l, msg, len);
   if (rc) return rc;
   double mv;
   if ((rc = number(sc, l, "mass", m, &mv, msg, len))) return rc;
   if (dal__scene_part(sc, l->tok[1]) >= 0) { // its first line is the one of x_<name>
-    char *xs = strf("x_%s", l->tok[1]);
+    char *xs = dal__scene_strf("x_%s", l->tok[1]);
     int other = xs ? dal__tab_get(&sc->syms, xs) : -1;
     free(xs);
-    return err(sc, l->line, msg, len, DAL_E_ARG,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                "particle %s: the name '%s' is given twice (line %d and here)", l->tok[1], l->tok[1],
                other);
   }
@@ -667,10 +411,10 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
   const char *k = l->tok[0], *nm = l->tok[1];
   *param = NULL;
   if (l->ntok < 3)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k, nm);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k, nm);
   const dal_primitive *prim = *pp = dal_primitive_find(l->tok[2]);
   if (!prim)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm, l->tok[2]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm, l->tok[2]);
   double *p = *param = malloc(((size_t)prim->nparam + 1) * sizeof *p);
   if (!p) return DAL_E_NOMEM;
   for (int i = 0; i < prim->nparam; ++i)
@@ -682,7 +426,7 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
     if (!eq) {
       int c = coord_index(sc, w);
       if (c < 0)
-        return err(sc, l->line, msg, len, DAL_E_ARG,
+        return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                    "%s %s: '%s' is not a coordinate defined above", k, nm, w);
       coords[(*nc)++] = c;
       continue;
@@ -693,14 +437,14 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
           !strncmp(prim->param_names[q], w, (size_t)(eq - w)))
         j = q;
     if (j < 0)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has no parameter '%.*s'", k, nm,
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has no parameter '%.*s'", k, nm,
                  prim->name, (int)(eq - w), w);
     int rc = number(sc, l, prim->param_names[j], eq + 1, &p[j], msg, len);
     if (rc) return rc;
   }
   for (int i = 0; i < prim->nparam; ++i)
     if (p[i] != p[i])
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: parameter '%s' of '%s' is required", k,
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: parameter '%s' of '%s' is required", k,
                  nm, prim->param_names ? prim->param_names[i] : "?", prim->name);
   return DAL_OK;
 }
@@ -715,7 +459,7 @@ static int element(dal_scene *sc, const sline *l, int p, const int *parts, int n
   double *param = NULL;
   int nc = 0, nparam = 0, rc;
   int *cs = malloc(((size_t)sc->ncoord + (size_t)l->ntok + 1) * sizeof *cs);
-  char *what = strf("%s %s", l->tok[0], l->tok[1]);
+  char *what = dal__scene_strf("%s %s", l->tok[0], l->tok[1]);
   if (!cs || !what) {
     rc = DAL_E_NOMEM;
   } else if (l->nf) {
@@ -758,33 +502,33 @@ static int element(dal_scene *sc, const sline *l, int p, const int *parts, int n
   return rc;
 }
 
-static int el_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok < 2 || !sc->b)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "place: 'place <particle> ...' after it");
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place: 'place <particle> ...' after it");
   int p = dal__scene_part(sc, l->tok[1]), parent = -1;
   if (p < 0)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "place: particle '%s' is not defined above",
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place: particle '%s' is not defined above",
                l->tok[1]);
   const char *ps = dal__scene_kv(l, 2, "parent");
   if (ps && (parent = dal__scene_part(sc, ps)) < 0)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parent '%s' is not defined above",
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parent '%s' is not defined above",
                l->tok[1], ps);
   if (l->nf) {
     if (l->nf != sc->dim)
-      return err(sc, l->line, msg, len, DAL_E_ARG,
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                  "place %s: %d formulas for dimension %d (separate them with ';')", l->tok[1],
                  l->nf, sc->dim);
     for (int i = 2; i < l->ntok; ++i)
       if (strncmp(l->tok[i], "parent=", 7))
-        return err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown word '%s' before '='",
+        return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown word '%s' before '='",
                    l->tok[1], l->tok[i]);
   }
   return element(sc, l, p, &parent, parent >= 0, msg, len);
 }
 
-static int el_constraint(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_constraint(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok < 2 || !sc->b)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "constraint: 'constraint <name> ...'");
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "constraint: 'constraint <name> ...'");
   int *parts = NULL, np = 0, rc = claim(sc, &sc->elems, l, l->tok[1], 0, msg, len);
   const char *pl = dal__scene_kv(l, 2, "parts");
   if (!rc && pl) rc = part_list(sc, l, pl, &parts, &np, msg, len);
@@ -798,18 +542,18 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
                 size_t len) {
   const char *k = l->tok[0];
   if (l->ntok < 3 || !sc->b)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'",
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'",
                k, k, k);
   *a = dal__scene_part(sc, l->tok[1]);
   if (*a < 0)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
                l->tok[1]);
   *b = -1;
   *from = 2;
   if (!strchr(l->tok[2], '=')) {
     *b = dal__scene_part(sc, l->tok[2]);
     if (*b < 0)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
                  l->tok[2]);
     *from = 3;
   }
@@ -819,7 +563,7 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
   int n, rc = split_list(an, &it, &n);
   if (rc) return rc;
   if (n > sc->dim)
-    rc = err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: anchor of %d components for dimension %d", k,
+    rc = dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: anchor of %d components for dimension %d", k,
              l->tok[1], n, sc->dim);
   for (int i = 0; i < n && !rc; ++i)
     rc = number(sc, l, "anchor", it[i], &anchor[i], msg, len);
@@ -827,14 +571,14 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
   return rc;
 }
 
-static int el_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
   int spring = l->tok[0][0] == 's', a = -1, bb = -1, from = 2, rc;
   double anchor[3] = {0, 0, 0}, kk = 0, LL = 0;
   if ((rc = ends(sc, l, &a, &bb, &from, anchor, msg, len))) return rc;
   for (int i = from; i < l->ntok; ++i)
     if (strncmp(l->tok[i], "anchor=", 7) && strncmp(l->tok[i], spring ? "k=" : "c=", 2) &&
         (!spring || strncmp(l->tok[i], "L=", 2)))
-      return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown word '%s' (%s)", l->tok[0],
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown word '%s' (%s)", l->tok[0],
                  l->tok[1], l->tok[i], spring ? "anchor= k= L=" : "anchor= c=");
   const char *s;
   if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) &&
@@ -859,9 +603,9 @@ static int el_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
   return bcheck(sc, l, dal_builder_add_damper_def(sc->b, &d), msg, len);
 }
 
-static int el_gravity(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_gravity(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (!sc->b || l->ntok != 1 + sc->dim)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)", sc->dim);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)", sc->dim);
   double g[3];
   for (int i = 0; i < sc->dim; ++i) {
     int rc = number(sc, l, "component", l->tok[1 + i], &g[i], msg, len);
@@ -870,11 +614,11 @@ static int el_gravity(dal_scene *sc, const sline *l, char *msg, size_t len) {
   return bcheck(sc, l, dal_builder_set_gravity(sc->b, g), msg, len);
 }
 
-static int el_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *k = l->tok[0];
   int lag = k[0] == 'l';
   if (!sc->b || l->nf != 1 || l->ntok != 1)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates", k,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates", k,
                k);
   dal_expr *e;
   int rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
@@ -896,16 +640,16 @@ static int force_q(double t, const double *q, const double *qdot, double *Q, voi
 }
 
 // force COORD = Q(t, q, qdot): a generalized force on one coordinate
-static int el_force(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_force(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (!sc->b || l->ntok != 2 || l->nf != 1)
-    return err(sc, l->line, msg, len, DAL_E_ARG,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                "force: 'force <coordinate> = <formula of t, q, qdot>' after the coordinates");
   int i = coord_index(sc, l->tok[1]);
   if (i < 0)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "force %s: '%s' is not a coordinate defined above",
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "force %s: '%s' is not a coordinate defined above",
                l->tok[1], l->tok[1]);
   if (sc->ncoord > DAL_EXPR_EVENT_MAXN)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "force %s: more than %d coordinates", l->tok[1],
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "force %s: more than %d coordinates", l->tok[1],
                DAL_EXPR_EVENT_MAXN);
   scene_force **v = realloc(sc->gf, ((size_t)sc->ngf + 1) * sizeof *v);
   if (!v) return DAL_E_NOMEM;
@@ -913,7 +657,7 @@ static int el_force(dal_scene *sc, const sline *l, char *msg, size_t len) {
   scene_force *f = sc->gf[sc->ngf] = calloc(1, sizeof *f);
   if (!f) return DAL_E_NOMEM;
   sc->ngf++;
-  char *what = strf("force %s", l->tok[1]);
+  char *what = dal__scene_strf("force %s", l->tok[1]);
   int rc = what ? mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname,
                          sc->ncoord, 1, &f->e, msg, len)
                 : DAL_E_NOMEM;
@@ -925,7 +669,7 @@ static int el_force(dal_scene *sc, const sline *l, char *msg, size_t len) {
 // one key=value word of a run line
 static int run_key(dal_scene *sc, const sline *l, const char *w, char *msg, size_t len) {
   const char *eq = strchr(w, '=');
-  if (!eq) return err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", w);
+  if (!eq) return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "run: '%s' is not key=value", w);
   size_t n = (size_t)(eq - w);
   if (n == 6 && !strncmp(w, "method", 6)) return set_method(sc, l, eq + 1, msg, len);
   static const char *const keys[] = {"rtol", "atol", "step", "t0", "t1", "dt"};
@@ -933,11 +677,11 @@ static int run_key(dal_scene *sc, const sline *l, const char *w, char *msg, size
   for (int i = 0; i < 6; ++i)
     if (strlen(keys[i]) == n && !strncmp(w, keys[i], n))
       return number(sc, l, keys[i], eq + 1, dst[i], msg, len);
-  return err(sc, l->line, msg, len, DAL_E_ARG,
+  return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
              "run: unknown key '%.*s' (method rtol atol step t0 t1 dt)", (int)n, w);
 }
 
-static int el_run(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_run(dal_scene *sc, const sline *l, char *msg, size_t len) {
   sc->has_run = 1;
   for (int i = 1; i < l->ntok; ++i) {
     int rc = run_key(sc, l, l->tok[i], msg, len);
@@ -949,11 +693,11 @@ static int el_run(dal_scene *sc, const sline *l, char *msg, size_t len) {
 // event NAME [rising|falling|both] [terminal] = g(t, q, qdot)
 // section NAME [rising|falling|both] = g(t, q, qdot)    (a surface section: logged crossings)
 // section NAME period=T                                  (stroboscopic: the state every T)
-static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
+int dal__scene_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *k = l->tok[0];
   int section = k[0] == 's', dir = DAL_EVENT_BOTH, terminal = 0, rc;
   if (l->ntok < 2 || !sc->b || !sc->ncoord)
-    return err(sc, l->line, msg, len, DAL_E_ARG,
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                section ? "section: 'section <name> [rising|falling] = <formula>' or "
                          "'section <name> period=<formula>', after the coordinates"
                        : "event: 'event <name> [rising|falling] [terminal] = <formula>', after "
@@ -962,15 +706,15 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *per = dal__scene_kv(l, 2, "period");
   if (section && per) {
     if (l->ntok != 3 || l->nf)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "section %s: 'period=<formula>' alone",
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "section %s: 'period=<formula>' alone",
                  l->tok[1]);
     if (sc->strobe > 0)
-      return err(sc, l->line, msg, len, DAL_E_ARG, "section %s: a second stroboscopic section",
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "section %s: a second stroboscopic section",
                  l->tok[1]);
     double T;
     if ((rc = number(sc, l, "period", per, &T, msg, len))) return rc;
     if (!(T > 0))
-      return err(sc, l->line, msg, len, DAL_E_ARG, "section %s: period %g is not positive",
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "section %s: period %g is not positive",
                  l->tok[1], T);
     sc->strobe = T;
     return DAL_OK;
@@ -986,16 +730,16 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
     else if (!section && !strcmp(w, "terminal"))
       terminal = 1;
     else
-      return err(sc, l->line, msg, len, DAL_E_ARG,
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
                  "%s %s: unknown word '%s' (rising falling both%s)", k, l->tok[1], w,
                  section ? " period=" : " terminal");
   }
   if (l->nf != 1)
-    return err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: one formula after '='", k, l->tok[1]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: one formula after '='", k, l->tok[1]);
   scene_event *v = realloc(sc->ev, ((size_t)sc->nev + 1) * sizeof *v);
   if (!v) return DAL_E_NOMEM;
   sc->ev = v;
-  char *what = strf("%s %s", k, l->tok[1]);
+  char *what = dal__scene_strf("%s %s", k, l->tok[1]);
   scene_event *ev = &sc->ev[sc->nev];
   rc = what ? mkexpr(sc, l, what, (const char *const *)l->f, 1, (const char *const *)sc->cname,
                      sc->ncoord, 1, &ev->e, msg, len)
@@ -1010,62 +754,60 @@ static int el_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   return DAL_OK;
 }
 
-typedef int element_fn(dal_scene *sc, const sline *l, char *msg, size_t len);
 
-// the grammar: the elements of a scene file by their first word, the pass that reads them
-// (parameters first, so every formula may use every parameter) and their forms
-static const struct {
-  const char *key;
-  element_fn *fn;
-  int pass;
-  const char *form;
-} elements[] = {
-    {"param", el_param, 0, "param NAME = FORMULA        (of the parameters above)"},
-    {"dim", el_dim, 1, "dim 2|3|0                   (0: a Lagrangian only; first)"},
-    {"coord", el_coord, 1, "coord NAME [q=F] [v=F]      (initial value and rate)"},
-    {"particle", el_particle, 1, "particle NAME mass=F"},
-    {"place", el_place, 1,
-     "place P [parent=Q] = F1; F2[; F3]  |  place P PRIMITIVE COORDS... [NAME=F]..."},
-    {"constraint", el_constraint, 1,
-     "constraint NAME [parts=A,B,...] = F1[; F2; F3]  |  constraint NAME PRIMITIVE "
-     "[parts=..] [COORDS...] [NAME=F]..."},
-    {"spring", el_spring, 1, "spring A B|anchor=F,F[,F] k=F [L=F]"},
-    {"damper", el_spring, 1, "damper A B|anchor=F,F[,F] c=F"},
-    {"force", el_force, 1, "force COORD = F(t, q, qdot)  (a generalized force on COORD)"},
-    {"gravity", el_gravity, 1, "gravity F F [F]"},
-    {"potential", el_potential, 1, "potential = U(q, t)"},
-    {"lagrangian", el_potential, 1, "lagrangian = L(t, q, qdot)"},
-    {"run", el_run, 1, "run [method=M] [rtol=F] [atol=F] [step=F] [t0=F] [t1=F] [dt=F]"},
-    {"event", el_event, 1, "event NAME [rising|falling|both] [terminal] = g(t, q, qdot)"},
-    {"section", el_event, 1,
-     "section NAME [rising|falling|both] = g(t, q, qdot)  |  section NAME period=F"},
-};
-
-enum { NELEMENTS = sizeof elements / sizeof *elements };
-
-int dal_scene_help(FILE *fp) {
-  if (!fp) return DAL_E_ARG;
-  fprintf(fp, "scene file: one element per line, '#' starts a comment, F a formula (a value after "
-              "key= may hold spaces):\n");
-  for (int i = 0; i < NELEMENTS; ++i)
-    fprintf(fp, "  %s\n", elements[i].form);
-  return ferror(fp) ? DAL_E_IO : DAL_OK;
+// what a build made; the lines and the parameters' overrides stay
+void dal__scene_unbuild(dal_scene *sc) {
+  dal_system_destroy(sc->sys);
+  dal_builder_destroy(sc->b);
+  sc->sys = NULL;
+  sc->b = NULL;
+  for (int i = 0; i < sc->nex; ++i)
+    dal_expr_destroy(sc->ex[i]);
+  free(sc->ex);
+  sc->ex = NULL;
+  sc->nex = sc->capex = 0;
+  for (int i = 0; i < sc->ncoord; ++i)
+    free(sc->cname[i]);
+  free(sc->cname);
+  free(sc->q0);
+  free(sc->v0);
+  sc->cname = NULL;
+  sc->q0 = sc->v0 = NULL;
+  sc->ncoord = 0;
+  for (int i = 0; i < sc->npart; ++i)
+    free(sc->partname[i]);
+  free(sc->partname);
+  sc->partname = NULL;
+  sc->npart = 0;
+  free(sc->ev);
+  sc->ev = NULL;
+  sc->nev = 0;
+  for (int i = 0; i < sc->ngf; ++i)
+    free(sc->gf[i]);
+  free(sc->gf);
+  sc->gf = NULL;
+  sc->ngf = 0;
+  sc->strobe = 0;
+  free(sc->pname);
+  free(sc->pval);
+  sc->pname = NULL;
+  sc->pval = NULL;
+  sc->nparam = 0;
+  dal__tab_free(&sc->ptab);
+  dal__tab_free(&sc->syms);
+  dal__tab_free(&sc->parts);
+  dal__tab_free(&sc->coords);
+  dal__tab_free(&sc->elems);
+  for (int i = 0; i < sc->nsymkeys; ++i)
+    free(sc->symkeys[i]);
+  free(sc->symkeys);
+  sc->symkeys = NULL;
+  sc->nsymkeys = sc->capsymkeys = 0;
 }
 
-static int one_line(dal_scene *sc, const sline *l, int pass, char *msg, size_t len) {
-  for (int i = 0; i < NELEMENTS; ++i)
-    if (!strcmp(l->tok[0], elements[i].key))
-      return elements[i].pass == pass ? elements[i].fn(sc, l, msg, len) : DAL_OK;
-  if (pass) return DAL_OK;
-  char known[256] = "";
-  for (int i = 0; i < NELEMENTS; ++i)
-    snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", i ? " " : "",
-             elements[i].key);
-  return err(sc, l->line, msg, len, DAL_E_ARG, "unknown element '%s' (%s)", l->tok[0], known);
-}
 
-static int build(dal_scene *sc, char *msg, size_t len) {
-  unbuild(sc);
+int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
+  dal__scene_unbuild(sc);
   sc->dim = 2;
   sc->opts = dal_default_solve_opts();
   sc->t0 = 0;
@@ -1077,9 +819,9 @@ static int build(dal_scene *sc, char *msg, size_t len) {
   int rc = sc->pname && sc->pval ? DAL_OK : DAL_E_NOMEM;
   for (int pass = 0; pass < 2; ++pass)
     for (int i = 0; i < sc->nlines && !rc; ++i)
-      rc = one_line(sc, &sc->lines[i], pass, msg, len);
+      rc = dal__scene_line(sc, &sc->lines[i], pass, msg, len);
   if (!rc && !sc->b)
-    rc = err(sc, sc->nlines ? sc->lines[sc->nlines - 1].line : 0, msg, len, DAL_E_ARG,
+    rc = dal__scene_err(sc, sc->nlines ? sc->lines[sc->nlines - 1].line : 0, msg, len, DAL_E_ARG,
              "no coordinates or particles");
   if (!rc) {
     rc = dal_builder_compile(sc->b, &sc->sys);
@@ -1088,246 +830,3 @@ static int build(dal_scene *sc, char *msg, size_t len) {
   return rc;
 }
 
-int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *msg, size_t msglen) {
-  if (msg && msglen) msg[0] = 0;
-  if (!out) return DAL_E_ARG;
-  *out = NULL;
-  if (!text) return DAL_E_ARG;
-  dal_scene *sc = calloc(1, sizeof *sc);
-  if (!sc) return DAL_E_NOMEM;
-  sc->name = dup(name ? name : "scene");
-  int rc = sc->name ? DAL_OK : DAL_E_NOMEM, lineno = 0, cap = 0;
-  const char *s = text;
-  while (!rc && *s) {
-    lineno++;
-    const char *e = strchr(s, '\n');
-    size_t n = e ? (size_t)(e - s) : strlen(s);
-    const char *hash = memchr(s, '#', n);
-    size_t m = hash ? (size_t)(hash - s) : n;
-    sline l;
-    rc = split_line(sc, s, m, lineno, &l, msg, msglen);
-    if (!rc && l.ntok == 0 && l.nf)
-      rc = err(sc, lineno, msg, msglen, DAL_E_ARG, "a line starts with '='");
-    if (!rc && l.ntok > 0 && sc->nlines == cap) {
-      cap = cap ? 2 * cap : 32;
-      sline *v = realloc(sc->lines, (size_t)cap * sizeof *v);
-      if (v)
-        sc->lines = v;
-      else
-        rc = DAL_E_NOMEM;
-    }
-    if (!rc && l.ntok > 0) {
-      sc->nparamlines += !strcmp(l.tok[0], "param");
-      sc->lines[sc->nlines++] = l;
-    } else {
-      free_line(&l);
-    }
-    s = e ? e + 1 : s + n;
-  }
-  if (!rc) {
-    sc->over = calloc((size_t)sc->nparamlines + 1, 1);
-    sc->overval = calloc((size_t)sc->nparamlines + 1, sizeof *sc->overval);
-    if (!sc->over || !sc->overval) rc = DAL_E_NOMEM;
-  }
-  if (!rc) rc = build(sc, msg, msglen);
-  if (rc) {
-    if (rc == DAL_E_NOMEM && msg && msglen) snprintf(msg, msglen, "out of memory");
-    dal_scene_destroy(sc);
-    return rc;
-  }
-  *out = sc;
-  return DAL_OK;
-}
-
-int dal_scene_read(const char *path, dal_scene **out, char *msg, size_t msglen) {
-  if (out) *out = NULL;
-  if (!path || !out) return DAL_E_ARG;
-  FILE *fp = fopen(path, "rb");
-  if (!fp) {
-    if (msg && msglen) snprintf(msg, msglen, "%s: cannot open (%s)", path, strerror(errno));
-    return DAL_E_IO;
-  }
-  size_t cap = 4096, n = 0;
-  char *buf = malloc(cap);
-  while (buf) {
-    size_t k = fread(buf + n, 1, cap - n - 1, fp);
-    n += k;
-    if (n < cap - 1) break;
-    if (cap > ((size_t)1 << 26)) {
-      free(buf);
-      buf = NULL;
-      break;
-    }
-    char *nb = realloc(buf, cap * 2);
-    if (!nb) {
-      free(buf);
-      buf = NULL;
-      break;
-    }
-    buf = nb;
-    cap *= 2;
-  }
-  int bad = ferror(fp);
-  fclose(fp);
-  if (!buf || bad) {
-    free(buf);
-    if (msg && msglen) snprintf(msg, msglen, "%s: cannot read (or larger than 64 MiB)", path);
-    return buf ? DAL_E_IO : DAL_E_NOMEM;
-  }
-  buf[n] = 0;
-  if (strlen(buf) != n) {
-    free(buf);
-    if (msg && msglen) snprintf(msg, msglen, "%s: a NUL byte in the file", path);
-    return DAL_E_ARG;
-  }
-  int rc = dal_scene_parse(buf, path, out, msg, msglen);
-  free(buf);
-  return rc;
-}
-
-// the shortest decimal that reads back to v
-static void shortest(double v, char *num, size_t len) {
-  for (int prec = 15; prec <= 17; ++prec) {
-    snprintf(num, len, "%.*g", prec, v);
-    if (strtod(num, NULL) == v) break;
-  }
-}
-
-int dal_scene_write(const dal_scene *sc, FILE *fp) {
-  if (!sc || !fp) return DAL_E_ARG;
-  fprintf(fp, "# %s, written by dalembert %s\n", sc->name, dal_version());
-  int j = 0;
-  for (int i = 0; i < sc->nlines; ++i) {
-    const sline *l = &sc->lines[i];
-    if (!strcmp(l->tok[0], "param") && j < sc->nparam) {
-      // a value set by dal_scene_set_param or a plain number: the number; else the formula
-      char num[40], *end = NULL;
-      double v = strtod(l->f[0], &end);
-      int plain = end != l->f[0] && !*end;
-      if (sc->over[j] || plain) {
-        shortest(sc->over[j] ? sc->overval[j] : v, num, sizeof num);
-        fprintf(fp, "param %s = %s\n", l->tok[1], num);
-      } else {
-        fprintf(fp, "param %s = %s\n", l->tok[1], l->f[0]);
-      }
-      j++;
-      continue;
-    }
-    for (int k = 0; k < l->ntok; ++k)
-      fprintf(fp, "%s%s", k ? " " : "", l->tok[k]);
-    for (int k = 0; k < l->nf; ++k)
-      fprintf(fp, "%s%s", k ? "; " : " = ", l->f[k]);
-    fputc('\n', fp);
-  }
-  return ferror(fp) ? DAL_E_IO : DAL_OK;
-}
-
-int dal_scene_set_param(dal_scene *sc, const char *name, double value, char *msg, size_t msglen) {
-  if (msg && msglen) msg[0] = 0;
-  if (!sc || !name) return DAL_E_ARG;
-  int j = dal__tab_get(&sc->ptab, name);
-  if (j < 0) {
-    if (msg && msglen) snprintf(msg, msglen, "%s: no parameter '%s'", sc->name, name);
-    return DAL_E_ARG;
-  }
-  if (!isfinite(value)) {
-    if (msg && msglen) snprintf(msg, msglen, "%s: parameter '%s' is not finite", sc->name, name);
-    return DAL_E_NONFINITE;
-  }
-  // a value the model refuses leaves the scene as it was
-  unsigned char old = sc->over[j];
-  double oldv = sc->overval[j];
-  sc->over[j] = 1;
-  sc->overval[j] = value;
-  int rc = build(sc, msg, msglen);
-  if (rc) {
-    sc->over[j] = old;
-    sc->overval[j] = oldv;
-    build(sc, NULL, 0);
-  }
-  return rc;
-}
-
-const dal_system *dal_scene_system(const dal_scene *sc) { return sc ? sc->sys : NULL; }
-
-const dal_solve_opts *dal_scene_opts(const dal_scene *sc, double *t0, double *t1, double *dt) {
-  if (!sc) return NULL;
-  if (t0) *t0 = sc->t0;
-  if (t1) *t1 = sc->t1;
-  if (dt) *dt = sc->dt;
-  return &sc->opts;
-}
-
-int dal_scene_state(const dal_scene *sc, dal_state **out) {
-  if (!sc || !out) return DAL_E_ARG;
-  int rc = dal_state_create(sc->sys, out);
-  if (rc) return rc;
-  rc = dal_state_set(sc->sys, *out, sc->t0, sc->q0, sc->v0);
-  if (rc) {
-    dal_state_destroy(*out);
-    *out = NULL;
-  }
-  return rc;
-}
-
-int dal_scene_events(const dal_scene *sc, dal_events **out) {
-  if (out) *out = NULL;
-  if (!sc || !out) return DAL_E_ARG;
-  int rc = dal_events_create(sc->sys, out);
-  for (int i = 0; i < sc->nev && !rc; ++i) {
-    dal_event_def d = dal_default_event_def();
-    d.name = sc->ev[i].name;
-    d.g = dal_expr_event;
-    d.ctx = sc->ev[i].e;
-    d.direction = (dal_event_direction)sc->ev[i].direction;
-    d.terminal = sc->ev[i].terminal;
-    int k = dal_events_add(*out, &d);
-    if (k < 0) rc = k;
-  }
-  if (rc) {
-    dal_events_destroy(*out);
-    *out = NULL;
-  }
-  return rc;
-}
-
-int dal_scene_event_is_section(const dal_scene *sc, int i) {
-  return sc && i >= 0 && i < sc->nev ? sc->ev[i].section : -1;
-}
-
-double dal_scene_strobe(const dal_scene *sc) { return sc ? sc->strobe : 0.0; }
-
-int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_state **stp, char *msg,
-                         size_t msglen) {
-  if (msg && msglen) msg[0] = 0;
-  if (stp) *stp = NULL;
-  if (!sc) return DAL_E_ARG;
-  dal_events *own = NULL;
-  dal_state *st;
-  int rc = ev || !sc->nev ? DAL_OK : dal_scene_events(sc, &own);
-  if (!rc) rc = dal_scene_state(sc, &st);
-  if (rc) {
-    if (msg && msglen)
-      snprintf(msg, msglen, "%s: the initial state: %s", sc->name, dal_status_string(rc));
-    dal_events_destroy(own);
-    return rc;
-  }
-  dal_events *use = ev ? ev : own;
-  if (use) rc = dal_state_set_events(st, use);
-  dal_csv c = {csv, 0, 0};
-  if (!rc)
-    rc = dal_evolve(sc->sys, st, &sc->opts, sc->t1, sc->dt, csv ? dal_csv_monitor : NULL,
-                    csv ? &c : NULL);
-  if (rc && msg && msglen) snprintf(msg, msglen, "%s: %s", sc->name, dal_state_errmsg(st));
-  dal_state_set_events(st, NULL);
-  dal_events_destroy(own);
-  if (stp)
-    *stp = st;
-  else
-    dal_state_destroy(st);
-  return rc;
-}
-
-int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, size_t msglen) {
-  return dal_scene_run_events(sc, csv, NULL, stp, msg, msglen);
-}
