@@ -1438,7 +1438,8 @@ static int row_evolve_no_monitor_walk(char *msg) {
             "evolve without a monitor is not dal_advance's run: q %.17g vs %.17g, %ld vs %ld "
             "steps",
             dal_state_q(e.st)[0], dal_state_q(a.st)[0], steps_of(e.st), steps_of(a.st));
-  CHECK_MSG(secs < 10.0, "evolve without a monitor took %.3g s (dal_advance: milliseconds)", secs);
+  CHECK_MSG(secs < 10.0, "evolve without a monitor took %.3g s (dal_advance: milliseconds)",
+            secs);
   scene_free(&a);
   scene_free(&e);
   return rc;
