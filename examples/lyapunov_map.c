@@ -115,7 +115,8 @@ static double thread_cpu(void) {
   return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-// reducer: the largest exponent(s) and their convergence estimates (95% half-widths of the block means)
+// reducer: the largest exponent(s) and their convergence estimates (95% half-widths of the block
+// means)
 static int lyapunov(const dal_system *sys, dal_state *st, const dal_traj *tr, void *ctx) {
   const lyap_cfg *c = ctx;
   dal_lyapunov_opts o = dal_default_lyapunov_opts();

@@ -34,11 +34,11 @@
 
 typedef struct tree {
   int N;
-  int parent[MAXN];               // -1: on the pivot
+  int parent[MAXN]; // -1: on the pivot
   double L[MAXN], m[MAXN], th[MAXN], om[MAXN];
-  int sa, sb;                     // the spring's siblings
-  double k, Ls;                   // its stiffness and rest length
-  int near;                       // built for a near-singular pass
+  int sa, sb;   // the spring's siblings
+  double k, Ls; // its stiffness and rest length
+  int near;     // built for a near-singular pass
 } tree;
 
 static tree random_tree(unsigned long long seed) {
@@ -178,8 +178,8 @@ typedef struct tally {
 } tally;
 
 // run method m at rtol on sc: the ratio error / (rtol max(1, A)) into t
-static void measure(const scene *sc, unsigned long long seed, dal_method m, double rtol,
-                    tally *t, int must_hold) {
+static void measure(const scene *sc, unsigned long long seed, dal_method m, double rtol, tally *t,
+                    int must_hold) {
   dal_solve_opts o = opts(m, rtol);
   double y[2 * MAXN];
   dal_method used = m;
@@ -243,8 +243,8 @@ int main(int argc, char **argv) {
   printf("%-12s %-7s %-22s %-9s %-6s\n", "method", "rtol", "worst err/(rtol A)", "beyond 16",
          "failed");
   for (int r = 0; r < NRTOL; ++r)
-    printf("%-12s %-7.0e %-10.3g (tree %-4llu)  %-9ld %-6ld\n", "default", rtols[r],
-           dflt[r].worst, dflt[r].worst_seed, dflt[r].beyond, dflt[r].failed);
+    printf("%-12s %-7.0e %-10.3g (tree %-4llu)  %-9ld %-6ld\n", "default", rtols[r], dflt[r].worst,
+           dflt[r].worst_seed, dflt[r].beyond, dflt[r].failed);
   for (int j = 0; j < 4; ++j)
     for (int r = 0; r < NRTOL; ++r)
       if (meth[j][r].runs)
@@ -253,7 +253,6 @@ int main(int argc, char **argv) {
                meth[j][r].failed);
   // the defaults never fail on these smooth scenes
   for (int r = 0; r < NRTOL; ++r)
-    CHECK_MSG(dflt[r].failed == 0, "default at rtol %g: %ld runs failed", rtols[r],
-              dflt[r].failed);
+    CHECK_MSG(dflt[r].failed == 0, "default at rtol %g: %ld runs failed", rtols[r], dflt[r].failed);
   return check_summary("test_auto_set");
 }

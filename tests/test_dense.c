@@ -361,8 +361,7 @@ static void test_routes(void) {
       printf("  %5.1f|%5.1f|%5.1f", e[0] / o.rtol, e[1] / o.rtol, e[2] / o.rtol);
       CHECK_MSG(e[0] <= b * o.rtol && e[1] <= b * o.rtol && e[2] <= b * o.rtol,
                 "%s rtol %g: evolve_at %.1f x, trajectory %.1f x, evolve %.1f x rtol (bound %g)",
-                dal_method_name(o.method), o.rtol, e[0] / o.rtol, e[1] / o.rtol, e[2] / o.rtol,
-                b);
+                dal_method_name(o.method), o.rtol, e[0] / o.rtol, e[1] / o.rtol, e[2] / o.rtol, b);
     }
     printf("\n");
   }
@@ -401,8 +400,7 @@ static void test_tighter(void) {
         double q = th0s[sc], qd = 0;
         CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
         int rc = dal_advance(s, st, &o, Ts[sc]);
-        CHECK_MSG(rc == DAL_OK, "%s at %g: %s", dal_method_name(o.method), r,
-                  dal_state_errmsg(st));
+        CHECK_MSG(rc == DAL_OK, "%s at %g: %s", dal_method_name(o.method), r, dal_state_errmsg(st));
         double e = pend_err(th0s[sc], Ts[sc], dal_state_q(st), dal_state_qdot(st));
         printf(" %8.2e", e);
         // never worse than the looser request, unless within 16 x its own rtol (where an

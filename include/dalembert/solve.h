@@ -33,7 +33,7 @@ extern "C" {
 /// within a few cm, to t = 2, against Bulirsch-Stoer at 1e-13 or Adams at 1e-12, which agree
 /// to 2.3e-11): the default options stay within 16 x rtol times the scene's amplification of
 /// a start perturbation at every rtol 1e-4 ... 1e-10 (the test checks every run). Fehlberg
-/// 7(8), the cheapest on the seed scenes at 1e-5 ... 1e-8 and AUTO's choice there before 0.4,
+/// 7(8), the cheapest on the seed scenes at 1e-5 ... 1e-8 and AUTO's choice there before,
 /// reached 22.8 ... 117 x on that set (`test_auto_set --full` prints the table for every
 /// method); it is there by name only. Among the others the rule is read off the
 /// work-precision tables (bench/auto.sh and bench/dense_auto.sh, docs/performance.md "AUTO"):
@@ -493,11 +493,15 @@ DAL_API long dal_trajectory_span(const dal_trajectory *tr, double *t0, double *t
 /// Message of the last failing call on the trajectory ("" if none; "" for NULL).
 DAL_API const char *dal_trajectory_errmsg(const dal_trajectory *tr);
 
-/// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row.
+/// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row, or the
+/// columns of a selection (output.h). Zero it, then set fp (and columns).
 typedef struct dal_csv {
   FILE *fp;        ///< output stream (borrowed)
   int header_done; ///< set after the header row is written
   int wrap_angles; ///< if nonzero, write q wrapped to [-pi, pi) (principal value)
+  /// the columns to write (borrowed; output.h: dal_columns_create), NULL for the default
+  /// t, q..., qdot..., E, h; the header is then the columns' names
+  const struct dal_columns *columns;
 } dal_csv;
 
 /// Monitor that writes one CSV row (and the header first); ctx is a dal_csv *. Returns

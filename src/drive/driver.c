@@ -610,8 +610,8 @@ static int evolve(const dal_system *sys, dal_state *st, const dal_solve_opts *op
   if (!monitor) {
     // no one looks at the output times: dal_advance's run to t1 (solve.h), never a walk over
     // every output time (t1 = 1000, dt = 1e-9 took an hour; issue 31)
-    run a = {.sys = sys, .st = st, .o = &eff, .what = r.what, .t1 = t1, .tnext = INFINITY,
-             .ev = r.ev};
+    run a = {
+        .sys = sys, .st = st, .o = &eff, .what = r.what, .t1 = t1, .tnext = INFINITY, .ev = r.ev};
     return run_to(&a, t1);
   }
   r.tnext = out_time(&r);

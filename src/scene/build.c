@@ -827,6 +827,9 @@ int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
     rc = dal_builder_compile(sc->b, &sc->sys);
     if (rc && msg && len) snprintf(msg, len, "%s: %s", sc->name, dal_builder_errmsg(sc->b));
   }
+  // native code again for the new expressions (the cache has it)
+  if (!rc && sc->native && sc->nex)
+    rc = dal_codegen_attach(sc->ex, sc->nex, &sc->native_opts, msg, len);
   return rc;
 }
 

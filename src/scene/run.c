@@ -105,7 +105,7 @@ int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_sta
   }
   dal_events *use = ev ? ev : own;
   if (use) rc = dal_state_set_events(st, use);
-  dal_csv c = {csv, 0, 0};
+  dal_csv c = {csv, 0, 0, NULL};
   if (!rc)
     rc = dal_evolve(sc->sys, st, &sc->opts, sc->t1, sc->dt, csv ? dal_csv_monitor : NULL,
                     csv ? &c : NULL);
@@ -123,3 +123,20 @@ int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, si
   return dal_scene_run_events(sc, csv, NULL, stp, msg, msglen);
 }
 
+
+int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t msglen) {
+  if (msg && msglen) msg[0] = 0;
+  if (!sc) return DAL_E_ARG;
+  if (!sc->nex) return DAL_OK;
+  int rc = dal_codegen_attach(sc->ex, sc->nex, o, msg, msglen);
+  if (rc) return rc;
+  sc->native = 1;
+  sc->native_opts = o ? *o : dal_codegen_default_opts();
+  return DAL_OK;
+}
+
+int dal_scene_nexprs(const dal_scene *sc) { return sc ? sc->nex : 0; }
+
+const dal_expr *dal_scene_expr(const dal_scene *sc, int i) {
+  return sc && i >= 0 && i < sc->nex ? sc->ex[i] : NULL;
+}
