@@ -65,8 +65,8 @@ struct dal_expr {
   double *values;
   dal_xprog prog;
   dal_primitive prim;
-  dal_xnative_fn *native;           // NULL: the bytecode runs (src/codegen/ sets it)
-  void (*native_release)(void *);   // called on native_ctx by dal_expr_destroy (nullable)
+  dal_xnative_fn *native;         // NULL: the bytecode runs (src/codegen/ sets it)
+  void (*native_release)(void *); // called on native_ctx by dal_expr_destroy (nullable)
   void *native_ctx;
 };
 

@@ -151,8 +151,8 @@ static int constval(dal_scene *sc, const sline *l, const char *what, const char 
   dal_expr_eval(e, NULL, dal_const(0.0), NULL, &out);
   *v = out.v;
   if (!isfinite(*v))
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)", what, text,
-               *v);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_NONFINITE, "%s: '%s' is not finite (%g)",
+                          what, text, *v);
   return DAL_OK;
 }
 
@@ -175,9 +175,9 @@ static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, in
   int other = dal__tab_get(t, name);
   if (other >= 0) {
     int a = other < l->line ? other : l->line, z = other < l->line ? l->line : other;
-    return dal__scene_err(sc, z, msg, len, DAL_E_ARG, "%s %s: the name '%s' is given twice (line %d and %s)",
-               l->tok[0], l->ntok > 1 ? l->tok[1] : "", name, a,
-               z == l->line ? "here" : "this line");
+    return dal__scene_err(
+        sc, z, msg, len, DAL_E_ARG, "%s %s: the name '%s' is given twice (line %d and %s)",
+        l->tok[0], l->ntok > 1 ? l->tok[1] : "", name, a, z == l->line ? "here" : "this line");
   }
   const char *key = name;
   if (made) { // a made name (a rate, x_<p>): the scene keeps it
@@ -249,8 +249,8 @@ static int part_list(dal_scene *sc, const sline *l, const char *list, int **idx,
   if (!*idx) rc = DAL_E_NOMEM;
   for (int i = 0; i < m && !rc; ++i)
     if (((*idx)[i] = dal__scene_part(sc, it[i])) < 0)
-      rc = dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: particle '%s' is not defined above",
-               l->tok[0], l->tok[1], it[i]);
+      rc = dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "%s %s: particle '%s' is not defined above", l->tok[0], l->tok[1], it[i]);
   free_list(it, m);
   *n = m;
   return rc;
@@ -267,7 +267,8 @@ static int element_expr(dal_scene *sc, const sline *l, const char *what, const i
   int rc = DAL_OK;
   for (int k = 0; k < nparts && !rc; ++k)
     for (int i = 0; i < d && !rc; ++i)
-      if (!(in[k * d + i] = dal__scene_strf("%c_%s", "xyz"[i], sc -> partname[parts[k]]))) rc = DAL_E_NOMEM;
+      if (!(in[k * d + i] = dal__scene_strf("%c_%s", "xyz"[i], sc -> partname[parts[k]])))
+        rc = DAL_E_NOMEM;
   for (int j = 0; j < sc->ncoord && !rc; ++j)
     in[nparts * d + j] = sc->cname[j];
   dal_expr *all = NULL;
@@ -302,10 +303,11 @@ static int set_method(dal_scene *sc, const sline *l, const char *v, char *msg, s
       sc->opts.method = (dal_method)m;
       return DAL_OK;
     }
-  return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-             "run: unknown method '%s' (auto dopri5 fehlberg78 bs rk4 adams bdf variational "
-             "variational4 variational6 rattle rattle4 rattle6)",
-             v);
+  return dal__scene_err(
+      sc, l->line, msg, len, DAL_E_ARG,
+      "run: unknown method '%s' (auto dopri5 fehlberg78 bs rk4 adams bdf variational "
+      "variational4 variational6 rattle rattle4 rattle6)",
+      v);
 }
 
 static int number(dal_scene *sc, const sline *l, const char *key, const char *v, double *out,
@@ -329,7 +331,7 @@ static int add_name(char ***names, int n, const char *s) {
 int dal__scene_param(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok != 2 || l->nf != 1)
     return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-               "param: 'param <name> = <formula of the parameters above>'");
+                          "param: 'param <name> = <formula of the parameters above>'");
   int j = sc->nparam, rc;
   if ((rc = claim_sym(sc, l, "", l->tok[1], "", msg, len))) return rc;
   double v = sc->overval[j];
@@ -344,13 +346,14 @@ int dal__scene_dim(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok != 2 || sc->b ||
       (strcmp(l->tok[1], "0") && strcmp(l->tok[1], "2") && strcmp(l->tok[1], "3")))
     return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-               "dim: one of 0, 2, 3, before every coordinate and particle");
+                          "dim: one of 0, 2, 3, before every coordinate and particle");
   sc->dim = atoi(l->tok[1]);
   return DAL_OK;
 }
 
 int dal__scene_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
-  if (l->ntok < 2) return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "coord: a name is missing");
+  if (l->ntok < 2)
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "coord: a name is missing");
   int rc = builder(sc, l, msg, len);
   if (rc) return rc;
   double q = 0, v = 0;
@@ -359,8 +362,8 @@ int dal__scene_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if ((s = dal__scene_kv(l, 2, "v")) && (rc = number(sc, l, "v", s, &v, msg, len))) return rc;
   for (int i = 2; i < l->ntok; ++i)
     if (strncmp(l->tok[i], "q=", 2) && strncmp(l->tok[i], "v=", 2))
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "coord %s: unknown word '%s' (q=, v=)",
-                 l->tok[1], l->tok[i]);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                            "coord %s: unknown word '%s' (q=, v=)", l->tok[1], l->tok[i]);
   if ((rc = claim_sym(sc, l, "", l->tok[1], "", msg, len)) ||
       (rc = claim_sym(sc, l, "", l->tok[1], "dot", msg, len)))
     return rc;
@@ -379,7 +382,8 @@ int dal__scene_coord(dal_scene *sc, const sline *l, char *msg, size_t len) {
 int dal__scene_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *m = dal__scene_kv(l, 2, "mass");
   if (l->ntok != 3 || !m)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "particle: 'particle <name> mass=<formula>'");
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "particle: 'particle <name> mass=<formula>'");
   int rc = builder(sc, l, msg, len);
   if (rc) return rc;
   double mv;
@@ -389,8 +393,8 @@ int dal__scene_particle(dal_scene *sc, const sline *l, char *msg, size_t len) {
     int other = xs ? dal__tab_get(&sc->syms, xs) : -1;
     free(xs);
     return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-               "particle %s: the name '%s' is given twice (line %d and here)", l->tok[1], l->tok[1],
-               other);
+                          "particle %s: the name '%s' is given twice (line %d and here)", l->tok[1],
+                          l->tok[1], other);
   }
   for (int c = 0; c < 3 && !rc; ++c)
     rc = claim_sym(sc, l, c == 0 ? "x_" : c == 1 ? "y_" : "z_", l->tok[1], "", msg, len);
@@ -411,10 +415,12 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
   const char *k = l->tok[0], *nm = l->tok[1];
   *param = NULL;
   if (l->ntok < 3)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k, nm);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '= formulas' or a primitive", k,
+                          nm);
   const dal_primitive *prim = *pp = dal_primitive_find(l->tok[2]);
   if (!prim)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm, l->tok[2]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown primitive '%s'", k, nm,
+                          l->tok[2]);
   double *p = *param = malloc(((size_t)prim->nparam + 1) * sizeof *p);
   if (!p) return DAL_E_NOMEM;
   for (int i = 0; i < prim->nparam; ++i)
@@ -427,7 +433,7 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
       int c = coord_index(sc, w);
       if (c < 0)
         return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-                   "%s %s: '%s' is not a coordinate defined above", k, nm, w);
+                              "%s %s: '%s' is not a coordinate defined above", k, nm, w);
       coords[(*nc)++] = c;
       continue;
     }
@@ -437,15 +443,16 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
           !strncmp(prim->param_names[q], w, (size_t)(eq - w)))
         j = q;
     if (j < 0)
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has no parameter '%.*s'", k, nm,
-                 prim->name, (int)(eq - w), w);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: '%s' has no parameter '%.*s'",
+                            k, nm, prim->name, (int)(eq - w), w);
     int rc = number(sc, l, prim->param_names[j], eq + 1, &p[j], msg, len);
     if (rc) return rc;
   }
   for (int i = 0; i < prim->nparam; ++i)
     if (p[i] != p[i])
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: parameter '%s' of '%s' is required", k,
-                 nm, prim->param_names ? prim->param_names[i] : "?", prim->name);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                            "%s %s: parameter '%s' of '%s' is required", k, nm,
+                            prim->param_names ? prim->param_names[i] : "?", prim->name);
   return DAL_OK;
 }
 
@@ -504,24 +511,25 @@ static int element(dal_scene *sc, const sline *l, int p, const int *parts, int n
 
 int dal__scene_place(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (l->ntok < 2 || !sc->b)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place: 'place <particle> ...' after it");
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "place: 'place <particle> ...' after it");
   int p = dal__scene_part(sc, l->tok[1]), parent = -1;
   if (p < 0)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place: particle '%s' is not defined above",
-               l->tok[1]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "place: particle '%s' is not defined above", l->tok[1]);
   const char *ps = dal__scene_kv(l, 2, "parent");
   if (ps && (parent = dal__scene_part(sc, ps)) < 0)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place %s: parent '%s' is not defined above",
-               l->tok[1], ps);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "place %s: parent '%s' is not defined above", l->tok[1], ps);
   if (l->nf) {
     if (l->nf != sc->dim)
       return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-                 "place %s: %d formulas for dimension %d (separate them with ';')", l->tok[1],
-                 l->nf, sc->dim);
+                            "place %s: %d formulas for dimension %d (separate them with ';')",
+                            l->tok[1], l->nf, sc->dim);
     for (int i = 2; i < l->ntok; ++i)
       if (strncmp(l->tok[i], "parent=", 7))
-        return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "place %s: unknown word '%s' before '='",
-                   l->tok[1], l->tok[i]);
+        return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                              "place %s: unknown word '%s' before '='", l->tok[1], l->tok[i]);
   }
   return element(sc, l, p, &parent, parent >= 0, msg, len);
 }
@@ -542,19 +550,19 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
                 size_t len) {
   const char *k = l->tok[0];
   if (l->ntok < 3 || !sc->b)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'",
-               k, k, k);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "%s: '%s <a> <b> ...' or '%s <a> anchor=x,y ...'", k, k, k);
   *a = dal__scene_part(sc, l->tok[1]);
   if (*a < 0)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
-               l->tok[1]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "%s: particle '%s' is not defined above", k, l->tok[1]);
   *b = -1;
   *from = 2;
   if (!strchr(l->tok[2], '=')) {
     *b = dal__scene_part(sc, l->tok[2]);
     if (*b < 0)
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: particle '%s' is not defined above", k,
-                 l->tok[2]);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                            "%s: particle '%s' is not defined above", k, l->tok[2]);
     *from = 3;
   }
   const char *an = dal__scene_kv(l, *from, "anchor");
@@ -563,8 +571,9 @@ static int ends(dal_scene *sc, const sline *l, int *a, int *b, int *from, double
   int n, rc = split_list(an, &it, &n);
   if (rc) return rc;
   if (n > sc->dim)
-    rc = dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: anchor of %d components for dimension %d", k,
-             l->tok[1], n, sc->dim);
+    rc =
+        dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                       "%s %s: anchor of %d components for dimension %d", k, l->tok[1], n, sc->dim);
   for (int i = 0; i < n && !rc; ++i)
     rc = number(sc, l, "anchor", it[i], &anchor[i], msg, len);
   free_list(it, n);
@@ -578,8 +587,9 @@ int dal__scene_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
   for (int i = from; i < l->ntok; ++i)
     if (strncmp(l->tok[i], "anchor=", 7) && strncmp(l->tok[i], spring ? "k=" : "c=", 2) &&
         (!spring || strncmp(l->tok[i], "L=", 2)))
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown word '%s' (%s)", l->tok[0],
-                 l->tok[1], l->tok[i], spring ? "anchor= k= L=" : "anchor= c=");
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: unknown word '%s' (%s)",
+                            l->tok[0], l->tok[1], l->tok[i],
+                            spring ? "anchor= k= L=" : "anchor= c=");
   const char *s;
   if ((s = dal__scene_kv(l, from, spring ? "k" : "c")) &&
       (rc = number(sc, l, spring ? "k" : "c", s, &kk, msg, len)))
@@ -605,7 +615,8 @@ int dal__scene_spring(dal_scene *sc, const sline *l, char *msg, size_t len) {
 
 int dal__scene_gravity(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (!sc->b || l->ntok != 1 + sc->dim)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)", sc->dim);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "gravity: %d components (formulas)",
+                          sc->dim);
   double g[3];
   for (int i = 0; i < sc->dim; ++i) {
     int rc = number(sc, l, "component", l->tok[1 + i], &g[i], msg, len);
@@ -618,8 +629,8 @@ int dal__scene_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *k = l->tok[0];
   int lag = k[0] == 'l';
   if (!sc->b || l->nf != 1 || l->ntok != 1)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s: '%s = <formula>' after the coordinates", k,
-               k);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "%s: '%s = <formula>' after the coordinates", k, k);
   dal_expr *e;
   int rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
                   sc->ncoord, lag, &e, msg, len);
@@ -642,15 +653,16 @@ static int force_q(double t, const double *q, const double *qdot, double *Q, voi
 // force COORD = Q(t, q, qdot): a generalized force on one coordinate
 int dal__scene_force(dal_scene *sc, const sline *l, char *msg, size_t len) {
   if (!sc->b || l->ntok != 2 || l->nf != 1)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-               "force: 'force <coordinate> = <formula of t, q, qdot>' after the coordinates");
+    return dal__scene_err(
+        sc, l->line, msg, len, DAL_E_ARG,
+        "force: 'force <coordinate> = <formula of t, q, qdot>' after the coordinates");
   int i = coord_index(sc, l->tok[1]);
   if (i < 0)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "force %s: '%s' is not a coordinate defined above",
-               l->tok[1], l->tok[1]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                          "force %s: '%s' is not a coordinate defined above", l->tok[1], l->tok[1]);
   if (sc->ncoord > DAL_EXPR_EVENT_MAXN)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "force %s: more than %d coordinates", l->tok[1],
-               DAL_EXPR_EVENT_MAXN);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "force %s: more than %d coordinates",
+                          l->tok[1], DAL_EXPR_EVENT_MAXN);
   scene_force **v = realloc(sc->gf, ((size_t)sc->ngf + 1) * sizeof *v);
   if (!v) return DAL_E_NOMEM;
   sc->gf = v;
@@ -678,7 +690,7 @@ static int run_key(dal_scene *sc, const sline *l, const char *w, char *msg, size
     if (strlen(keys[i]) == n && !strncmp(w, keys[i], n))
       return number(sc, l, keys[i], eq + 1, dst[i], msg, len);
   return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-             "run: unknown key '%.*s' (method rtol atol step t0 t1 dt)", (int)n, w);
+                        "run: unknown key '%.*s' (method rtol atol step t0 t1 dt)", (int)n, w);
 }
 
 int dal__scene_run(dal_scene *sc, const sline *l, char *msg, size_t len) {
@@ -697,25 +709,26 @@ int dal__scene_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   const char *k = l->tok[0];
   int section = k[0] == 's', dir = DAL_EVENT_BOTH, terminal = 0, rc;
   if (l->ntok < 2 || !sc->b || !sc->ncoord)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-               section ? "section: 'section <name> [rising|falling] = <formula>' or "
-                         "'section <name> period=<formula>', after the coordinates"
-                       : "event: 'event <name> [rising|falling] [terminal] = <formula>', after "
-                         "the coordinates");
+    return dal__scene_err(
+        sc, l->line, msg, len, DAL_E_ARG,
+        section ? "section: 'section <name> [rising|falling] = <formula>' or "
+                  "'section <name> period=<formula>', after the coordinates"
+                : "event: 'event <name> [rising|falling] [terminal] = <formula>', after "
+                  "the coordinates");
   if ((rc = claim(sc, &sc->elems, l, l->tok[1], 0, msg, len))) return rc;
   const char *per = dal__scene_kv(l, 2, "period");
   if (section && per) {
     if (l->ntok != 3 || l->nf)
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "section %s: 'period=<formula>' alone",
-                 l->tok[1]);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                            "section %s: 'period=<formula>' alone", l->tok[1]);
     if (sc->strobe > 0)
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "section %s: a second stroboscopic section",
-                 l->tok[1]);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                            "section %s: a second stroboscopic section", l->tok[1]);
     double T;
     if ((rc = number(sc, l, "period", per, &T, msg, len))) return rc;
     if (!(T > 0))
-      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "section %s: period %g is not positive",
-                 l->tok[1], T);
+      return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
+                            "section %s: period %g is not positive", l->tok[1], T);
     sc->strobe = T;
     return DAL_OK;
   }
@@ -731,11 +744,12 @@ int dal__scene_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
       terminal = 1;
     else
       return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG,
-                 "%s %s: unknown word '%s' (rising falling both%s)", k, l->tok[1], w,
-                 section ? " period=" : " terminal");
+                            "%s %s: unknown word '%s' (rising falling both%s)", k, l->tok[1], w,
+                            section ? " period=" : " terminal");
   }
   if (l->nf != 1)
-    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: one formula after '='", k, l->tok[1]);
+    return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "%s %s: one formula after '='", k,
+                          l->tok[1]);
   scene_event *v = realloc(sc->ev, ((size_t)sc->nev + 1) * sizeof *v);
   if (!v) return DAL_E_NOMEM;
   sc->ev = v;
@@ -753,7 +767,6 @@ int dal__scene_event(dal_scene *sc, const sline *l, char *msg, size_t len) {
   sc->nev++;
   return DAL_OK;
 }
-
 
 // what a build made; the lines and the parameters' overrides stay
 void dal__scene_unbuild(dal_scene *sc) {
@@ -805,7 +818,6 @@ void dal__scene_unbuild(dal_scene *sc) {
   sc->nsymkeys = sc->capsymkeys = 0;
 }
 
-
 int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
   dal__scene_unbuild(sc);
   sc->dim = 2;
@@ -822,7 +834,7 @@ int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
       rc = dal__scene_line(sc, &sc->lines[i], pass, msg, len);
   if (!rc && !sc->b)
     rc = dal__scene_err(sc, sc->nlines ? sc->lines[sc->nlines - 1].line : 0, msg, len, DAL_E_ARG,
-             "no coordinates or particles");
+                        "no coordinates or particles");
   if (!rc) {
     rc = dal_builder_compile(sc->b, &sc->sys);
     if (rc && msg && len) snprintf(msg, len, "%s: %s", sc->name, dal_builder_errmsg(sc->b));
@@ -832,4 +844,3 @@ int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
     rc = dal_codegen_attach(sc->ex, sc->nex, &sc->native_opts, msg, len);
   return rc;
 }
-

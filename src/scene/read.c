@@ -93,7 +93,7 @@ void dal__tab_free(dal_tab *t) {
 }
 
 int dal__scene_err(const dal_scene *sc, int line, char *msg, size_t len, int rc, const char *fmt,
-                    ...) {
+                   ...) {
   if (msg && len) {
     int k = snprintf(msg, len, "%s:%d: ", sc->name, line);
     if (k < 0) k = 0;
@@ -115,7 +115,6 @@ void dal__scene_free_line(sline *l) {
     free(l->f[i]);
 }
 
-
 void dal_scene_destroy(dal_scene *sc) {
   if (!sc) return;
   dal__scene_unbuild(sc);
@@ -127,7 +126,6 @@ void dal_scene_destroy(dal_scene *sc) {
   free(sc->name);
   free(sc);
 }
-
 
 static int push_word(sline *out, char *w) {
   if (!w) return DAL_E_NOMEM;
@@ -224,7 +222,6 @@ const char *dal__scene_kv(const sline *l, int from, const char *key) {
   return NULL;
 }
 
-
 // the grammar: the elements of a scene file by their first word, the pass that reads them
 // (parameters first, so every formula may use every parameter) and their forms
 static const struct {
@@ -274,9 +271,9 @@ int dal__scene_line(dal_scene *sc, const sline *l, int pass, char *msg, size_t l
   for (int i = 0; i < NELEMENTS; ++i)
     snprintf(known + strlen(known), sizeof known - strlen(known), "%s%s", i ? " " : "",
              elements[i].key);
-  return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "unknown element '%s' (%s)", l->tok[0], known);
+  return dal__scene_err(sc, l->line, msg, len, DAL_E_ARG, "unknown element '%s' (%s)", l->tok[0],
+                        known);
 }
-
 
 int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
@@ -374,4 +371,3 @@ int dal_scene_read(const char *path, dal_scene **out, char *msg, size_t msglen) 
   free(buf);
   return rc;
 }
-

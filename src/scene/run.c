@@ -123,7 +123,6 @@ int dal_scene_run(const dal_scene *sc, FILE *csv, dal_state **stp, char *msg, si
   return dal_scene_run_events(sc, csv, NULL, stp, msg, msglen);
 }
 
-
 int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   if (!sc) return DAL_E_ARG;

@@ -50,7 +50,6 @@ int dal_scene_write(const dal_scene *sc, FILE *fp) {
   return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
-
 int dal_scene_write_c(const dal_scene *sc, const char *prefix, FILE *fp) {
   if (!sc) return DAL_E_ARG;
   return dal_codegen_write(sc->ex, sc->nex, prefix, fp);
