@@ -10,7 +10,7 @@
 # - a // comment in src/, include/ or constraints/ names only files that exist (x.c, x.h, x.md,
 #   x.sh: a bare name anywhere in the tree, a path from the root, src/ or include/).
 # Run: cmake -DSRC=<repo>/src -P check_layers.cmake
-set(layers base expr codegen linalg eval model form integrate drive analysis ensemble scene view)
+set(layers base symbolic expr codegen linalg eval model form integrate drive analysis ensemble scene view)
 # folders outside src/ whose functions a face may declare, as folder=layer
 set(outside constraints=model)
 get_filename_component(ROOT ${SRC} DIRECTORY)

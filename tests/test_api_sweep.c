@@ -2152,6 +2152,17 @@ static void sw_dal_scene_strobe(void) {
   CHECK(dal_scene_strobe(NULL) == 0 && dal_scene_strobe(sc) == 0);
   dal_scene_destroy(sc);
 }
+static void sw_dal_scene_help(void) {
+  CHECK(dal_scene_help(NULL) == DAL_E_ARG);
+  FILE *fp = tmpfile();
+  char out[4096] = "";
+  CHECK_OK(dal_scene_help(fp));
+  rewind(fp);
+  size_t n = fread(out, 1, sizeof out - 1, fp);
+  out[n] = 0;
+  fclose(fp);
+  CHECK(strstr(out, "  force COORD = ") && strstr(out, "  param NAME = FORMULA"));
+}
 static void sw_dal_scene_run_events(void) {
   dal_scene *sc = sweep_scene(), *other = sweep_scene();
   dal_state *st = (dal_state *)&F;
@@ -2182,7 +2193,6 @@ static void sw_dal_scene_native(void) {
   CHECK(dal_codegen_attached(dal_scene_expr(sc, 0)) == 0);
   dal_scene_destroy(sc);
 }
-static void sw_dal_scene_help(void) { CHECK(dal_scene_help(NULL) == DAL_E_ARG); }
 static void sw_dal_scene_nexprs(void) { CHECK(dal_scene_nexprs(NULL) == 0); }
 static void sw_dal_scene_expr(void) {
   dal_scene *sc = sweep_scene();

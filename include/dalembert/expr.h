@@ -166,7 +166,7 @@ typedef enum dal_expr_format {
 /// Print formula k of e, simplified, into buf (len bytes, truncated, NUL-terminated; buf may
 /// be NULL when len is 0). Returns the length of the whole text (as snprintf), or DAL_E_ARG
 /// (NULL e, k out of range, unknown format), DAL_E_NOMEM, DAL_E_TOO_LARGE (too large to show:
-/// the simplification went past 2^22 operations or 2^19 nodes, or the text past 256 KiB; each
+/// the simplification went past 2^21 operations or 2^19 nodes, or the text past 256 KiB; each
 /// print is so bounded in time, about a second at most).
 DAL_API int dal_expr_print(const dal_expr *e, int k, dal_expr_format fmt, char *buf, size_t len);
 

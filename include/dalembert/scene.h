@@ -8,6 +8,7 @@
 ///
 ///   dim 2                                   # spatial dimension (2 or 3; 0: a Lagrangian only)
 ///   param g = 9.8                           # named parameters, usable in every formula
+///   param omega = 2*sqrt(g)                 # a formula of the parameters above
 ///   coord theta q=1 v=0                     # a coordinate with its initial value and rate
 ///   particle bob mass=m                     # mass: a formula of the parameters
 ///   place bob = l*sin(theta); a*cos(omega*t) - l*cos(theta)     # r(q, t) by formulas
@@ -17,6 +18,7 @@
 ///   constraint rod distance2 parts=a,b L=1  # a built-in constraint
 ///   spring a b k=10 L=1                     # or: spring a anchor=0,1 k=10 L=0
 ///   damper a b c=0.1                        # or: damper a anchor=0,0 c=0.1
+///   force theta = -c*thetadot + F*cos(w*t)  # a generalized force Q(t, q, qdot) on a coordinate
 ///   gravity 0 -g
 ///   potential = 1/2*k*theta^2               # a further U(q, t)
 ///   lagrangian = 1/2*m*xdot^2 - 1/2*k*x^2   # instead of particles (dim 0)
@@ -28,8 +30,9 @@
 /// Event and section formulas may use t, the coordinates, their rates (theta -> thetadot) and
 /// the parameters. Formulas may use the coordinates, t, the parameters and (in `place ... parent=`,
 /// and in constraints) the positions x_<p>, y_<p>, z_<p> of the particles named. Built-in primitive
-/// parameters are given by their names (primitives.h) as formulas without spaces; values of
-/// masses, gravity, springs and dampers are formulas of the parameters.
+/// parameters are given by their names (primitives.h) as formulas; every value after key= is a
+/// formula of the parameters and may hold spaces (q=0.5 * a). Lists and names have no length
+/// limit; a name given twice is refused on the later line, naming the earlier.
 /// Messages name the file and line: "pend.scene:7: place bob: formula 1 'l*sin(thet)', column 7:
 /// unknown symbol 'thet' ...".
 #ifndef DAL_SCENE_H
@@ -121,9 +124,11 @@ DAL_API int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev,
 /// each damper's axis) and their forces Q = -dD/dqdot (M qddot = F + Q); constraints by formulas
 /// add their rows phi(q, t) and G = dphi/dq (M qddot = F + G' lambda, phi = 0; the
 /// accelerations are then not solved). Particles placed by the built-in maps with formulas
-/// (pendulum, hanging, ring, spherical, sphere, cartesian, fixed) are shown by those formulas.
-/// Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or built-in constraint without formulas: msg
-/// names its line), DAL_E_IO, DAL_E_NOMEM.
+/// (pendulum, hanging, ring, spherical, sphere, cartesian, fixed) are shown by those formulas,
+/// built-in constraints by the formulas of their rows (all but on_line3 and the curves), force
+/// lines join Q. Returns DAL_OK, DAL_E_UNSUPPORTED (a placement or built-in constraint without
+/// formulas: msg names its line), DAL_E_TOO_LARGE (an equation past dal_expr_print's bounds:
+/// msg says so), DAL_E_IO, DAL_E_NOMEM.
 DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
                            size_t msglen);
 

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "algebra.h"
+#include "expr.h"
 
 #define EXPR_COOKIE 0x0e7a2d25
 

@@ -1,76 +1,14 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// The expression layer's face: hash-consed expression trees, the parser, the compiler to jet
-// programs and the symbolic algebra (derivatives, simplification, printing).
+// The expression layer's face: the parser, the compiler to jet programs, the compiled
+// expression (the trees and their algebra are symbolic/symbolic.h's).
 #ifndef DAL_EXPR_EXPR_H
 #define DAL_EXPR_EXPR_H
 
 #include <stddef.h>
 
 #include "dalembert/expr.h"
-
-/// node operations; the order of X_SIN .. X_SQRT is the order of the function names
-enum dal_xop {
-  X_NUM,  // constant c
-  X_IN,   // input idx
-  X_PAR,  // parameter idx
-  X_TIME, // t
-  X_ADD,  // a + b
-  X_SUB,  // a - b
-  X_MUL,  // a * b
-  X_DIV,  // a / b
-  X_POW,  // a ^ b
-  X_NEG,  // -a
-  X_SIN,  // one-argument functions, in this order
-  X_COS,
-  X_TAN,
-  X_ASIN,
-  X_ACOS,
-  X_ATAN,
-  X_SINH,
-  X_COSH,
-  X_TANH,
-  X_EXP,
-  X_LOG,
-  X_SQRT,
-  X_ATAN2, // atan2(a, b)
-  X_HYPOT, // hypot(a, b)
-  X_NOPS
-};
-
-/// one node: children a, b (-1 when absent) precede it in the pool, so the pool's order is a
-/// topological order
-typedef struct dal_xnode {
-  int op;
-  int a, b;
-  int idx;  // input or parameter index
-  double c; // constant
-  int col;  // 1-based column in its formula (0: made by algebra), for messages
-  int src;  // formula it was first parsed in (-1: made by algebra)
-} dal_xnode;
-
-/// a pool of hash-consed nodes with its symbol table
-typedef struct dal_xtree {
-  dal_xnode *node;
-  int n, cap;
-  int *hash; // open addressing, hcap slots, -1 empty
-  int hcap;
-  int nin, nparam;
-  char **names; // nin + nparam names (inputs, then parameters)
-} dal_xtree;
-
-int dal__xtree_init(dal_xtree *tr);
-void dal__xtree_free(dal_xtree *tr);
-/// the node (op, a, b, idx, c), made once; -1 on allocation failure
-int dal__xnode(dal_xtree *tr, int op, int a, int b, int idx, double c);
-int dal__xnum(dal_xtree *tr, double c);
-/// copy the subtree `root` of `from` into `to` (same symbol numbering); -1 on failure
-int dal__ximport(dal_xtree *to, const dal_xtree *from, int root);
-
-/// name of an operation for messages and printing ("+", "sin", ...)
-const char *dal__xop_name(int op);
-/// 1 when op is a one-argument function (X_SIN .. X_SQRT)
-int dal__xop_unary_fn(int op);
+#include "symbolic/symbolic.h"
 
 /// parse `text` (formula number `which`, called `label` in messages, NULL: "formula <which+1>")
 /// into the tree; *root receives the node. Symbols: tr->names (inputs, then parameters), "t",

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "algebra.h"
+#include "expr.h"
 
 #define MODEL_COOKIE 0x0e7a3d19
 

@@ -820,7 +820,7 @@ int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg
     char *inner = msg[0] ? strdup(msg) : NULL;
     snprintf(msg, msglen, "%s: an equation is too large to show%s%s", sc->name,
              inner ? ": "
-                   : " (more than 256 KiB of text or 2^22 operations of the algebra); "
+                   : " (more than 256 KiB of text or 2^21 operations of the algebra); "
                      "simplify the formulas or show fewer coordinates",
              inner ? inner : "");
     free(inner);

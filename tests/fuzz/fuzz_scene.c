@@ -25,7 +25,7 @@
 
 #include "dalembert/dalembert.h"
 
-#define PRINT_SECONDS 10.0
+#define PRINT_SECONDS 30.0
 
 static double now(void) {
   struct timespec ts;

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "expr.h"
+#include "symbolic.h"
 
 static const char *const op_names[X_NOPS] = {
     "number", "input", "parameter", "t",   "+",   "-",    "*",     "/",

@@ -18,7 +18,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "algebra.h"
+#include "symbolic.h"
 
 #define MAX_TERMS 64 // expansion gives up beyond this many terms (the product stays)
 

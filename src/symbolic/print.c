@@ -12,7 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "algebra.h"
+#include "symbolic.h"
 
 enum { F_TEXT = DAL_EXPR_TEXT, F_LATEX = DAL_EXPR_LATEX, F_SCHEME = DAL_EXPR_SCHEME };
 
