@@ -3,7 +3,8 @@
 // Expressions against C jets: the same scene placed by built-in primitives and by formulas,
 // N right-hand sides (dal_forward at varying states) of each.
 //
-//   dal_bench_expr SCENE ROUTE N     SCENE: pendulum | bead | chain32; ROUTE: c | expr
+//   dal_bench_expr SCENE ROUTE N     SCENE: pendulum | bead | chain32; ROUTE: c | expr | native
+//                                    (native: the expressions with dal_codegen_attach)
 //
 // Run under `valgrind --tool=cachegrind` at two N and take the difference of the instruction
 // counts over the difference of N: instructions per right-hand side with the set-up removed
@@ -118,7 +119,13 @@ int main(int argc, char **argv) {
     fprintf(stderr, "usage: dal_bench_expr pendulum|bead|chain32 c|expr N\n");
     return 64;
   }
-  dal_system *sys = build(argv[1], !strcmp(argv[2], "expr"));
+  int native = !strcmp(argv[2], "native");
+  dal_system *sys = build(argv[1], !strcmp(argv[2], "expr") || native);
+  char msg[600];
+  if (native && dal_codegen_attach(keep, nkeep, NULL, msg, sizeof msg)) {
+    fprintf(stderr, "%s\n", msg);
+    return 1;
+  }
   long N = atol(argv[3]);
   int n = dal_system_ncoords(sys);
   dal_state *st;

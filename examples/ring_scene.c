@@ -101,7 +101,7 @@ static int scene(double omega, double theta0, double T, double dt, FILE *csvfp, 
   if (!bad) bad = dal_state_create(sys, &st) || dal_state_set(sys, st, 0.0, &theta0, &zero);
   dal_solve_opts o = dal_default_solve_opts();
   o.rtol = o.atol = 1e-10;
-  dal_csv csv = {csvfp, 0, 0};
+  dal_csv csv = {csvfp, 0, 0, NULL};
   watch w;
   memset(&w, 0, sizeof w);
   w.csv = csvfp ? &csv : NULL;

@@ -175,7 +175,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
     fprintf(stderr, "cannot write %s\n", dir);
     return 1;
   }
-  dal_csv c1 = {f1, 0, 1}, c2 = {f2, 0, 1};
+  dal_csv c1 = {f1, 0, 1, NULL}, c2 = {f2, 0, 1, NULL};
   o1.csv = &c1;
   o2.csv = &c2;
   int rc = run(sys, DAL_METHOD_BS, 1.0, 0.0, T, dt, &o1);

@@ -113,7 +113,7 @@ static int full_mode(const dal_system *sys, const char *dir) {
   dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_BS;
   o.rtol = o.atol = 1e-12;
-  dal_csv csv = {fp, 0, 0};
+  dal_csv csv = {fp, 0, 0, NULL};
   double period = 2 * 3.14159265358979323846 * sqrt(mass / k);
   if (!rc) rc = dal_evolve(sys, st, &o, 10 * period, period / 50, dal_csv_monitor, &csv);
   fclose(fp);

@@ -24,6 +24,18 @@ else
   echo "gnuplot not found: charts skipped (install gnuplot-nox; scripts are in $out)"
 fi
 
+# the viewers of the seed scenes: one self-contained HTML page each (open in any browser)
+cli="$bdir/dalembert"
+scenes="$root/examples/scenes"
+"$cli" view "$scenes/driven_pendulum.scene" -o "$out/view_driven_pendulum.html"
+"$cli" view "$scenes/driven_pendulum.scene" --set thetadot0=1e-10 \
+  -o "$out/view_driven_pendulum_1e-10.html"
+"$cli" view "$scenes/bead_ring_below.scene" -o "$out/view_bead_below.html"
+"$cli" view "$scenes/bead_ring_above.scene" -o "$out/view_bead_above.html"
+"$cli" view "$root/tests/view/cart_double_pendulum.scene" -o "$out/view_cart_double_pendulum.html"
+
 echo
 ls -1 "$out"
+echo "open a viewer: xdg-open $out/view_driven_pendulum.html (or file://$out/view_driven_pendulum.html#t=1.25"
+echo "in a browser: opens paused at t = 1.25)"
 echo "demo output: $out"

@@ -4,7 +4,8 @@
 # As root: installs with apt-get. Otherwise: prints the exact install line and exits 1.
 set -euo pipefail
 pkgs=(build-essential cmake pkg-config libsundials-dev libsuitesparse-dev liblapacke-dev
-      libopenblas-dev gnuplot-nox libopenmpi-dev openmpi-bin doxygen python3)
+      libopenblas-dev gnuplot-nox libopenmpi-dev openmpi-bin doxygen python3
+      chromium) # chromium: the viewer's browser tests (ctest view_*)
 [[ "${DAL_WITH_FUZZ:-0}" == 1 ]] && pkgs+=(clang libclang-rt-14-dev valgrind)
 [[ "${DAL_WITH_VALGRIND:-0}" == 1 ]] && pkgs+=(valgrind)
 [[ "${DAL_WITH_FORMAT:-0}" == 1 ]] && pkgs+=(clang-format)

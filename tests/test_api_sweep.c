@@ -342,9 +342,9 @@ static void sw_dal_evolve_at(void) {
   st_intact();
 }
 static void sw_dal_csv_monitor(void) {
-  dal_csv none = {NULL, 0, 0};
+  dal_csv none = {NULL, 0, 0, NULL};
   FILE *fp = tmpfile();
-  dal_csv ok = {fp, 0, 0};
+  dal_csv ok = {fp, 0, 0, NULL};
   ST(dal_csv_monitor(F.A, NULL, &ok), DAL_E_ARG, NULL);
   ST(dal_csv_monitor(NULL, F.stA, &ok), DAL_E_STATE, F.stA);
   ST(dal_csv_monitor(F.B, F.stA, &ok), DAL_E_STATE, F.stA);
@@ -2053,11 +2053,149 @@ static void sw_dal_scene_show(void) {
   CHECK(dal_scene_show(sc, NULL, DAL_EXPR_TEXT, NULL, 0) == DAL_E_ARG);
   dal_scene_destroy(sc);
 }
+static void sw_dal_scene_native(void) {
+  dal_scene *sc = sweep_scene();
+  dal_codegen_opts o;
+  memset(&o, 0, sizeof o); // not from dal_codegen_default_opts
+  char msg[256];
+  CHECK(dal_scene_native(NULL, NULL, msg, sizeof msg) == DAL_E_ARG);
+  CHECK(dal_scene_native(sc, &o, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attached(dal_scene_expr(sc, 0)) == 0);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_help(void) { CHECK(dal_scene_help(NULL) == DAL_E_ARG); }
+static void sw_dal_scene_nexprs(void) { CHECK(dal_scene_nexprs(NULL) == 0); }
+static void sw_dal_scene_expr(void) {
+  dal_scene *sc = sweep_scene();
+  int n = dal_scene_nexprs(sc);
+  CHECK(n > 0 && dal_scene_expr(sc, 0) != NULL);
+  CHECK(dal_scene_expr(NULL, 0) == NULL && dal_scene_expr(sc, -1) == NULL &&
+        dal_scene_expr(sc, n) == NULL);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_scene_write_c(void) {
+  dal_scene *sc = sweep_scene();
+  CHECK(dal_scene_write_c(NULL, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, "m", NULL) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, NULL, stdout) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, "1m", stdout) == DAL_E_ARG);
+  CHECK(dal_scene_write_c(sc, "a-b", stdout) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_codegen_default_opts(void) {
+  dal_codegen_opts o = dal_codegen_default_opts();
+  CHECK(o.cc == NULL && o.cache_dir == NULL && o.cookie != 0);
+}
+static void sw_dal_codegen_write(void) {
+  dal_scene *sc = sweep_scene();
+  dal_expr *e = (dal_expr *)dal_scene_expr(sc, 0), *none[1] = {NULL};
+  CHECK(dal_codegen_write(NULL, 1, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_codegen_write(none, 1, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_codegen_write(&e, -1, "m", stdout) == DAL_E_ARG);
+  CHECK(dal_codegen_write(&e, 1, "m", NULL) == DAL_E_ARG);
+  CHECK(dal_codegen_write(&e, 1, "", stdout) == DAL_E_ARG);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_codegen_attach(void) {
+  dal_scene *sc = sweep_scene();
+  dal_expr *e = (dal_expr *)dal_scene_expr(sc, 0), *none[1] = {NULL};
+  dal_codegen_opts o;
+  memset(&o, 0, sizeof o);
+  char msg[256];
+  CHECK(dal_codegen_attach(NULL, 1, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach(&e, 0, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach(none, 1, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach(&e, 1, &o, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attached(e) == 0);
+  dal_scene_destroy(sc);
+}
+static void sw_dal_codegen_attached(void) { CHECK(dal_codegen_attached(NULL) == 0); }
 
 typedef struct sweep_row {
   const char *name;
   void (*run)(void);
 } sweep_row;
+
+// ---------------------------------------------------------------- rows: output.h
+static void sw_dal_columns_create(void) {
+  char buf[256], *msg = buf;
+  dal_columns *c = (dal_columns *)&F; // reset to NULL on failure
+  MS(dal_columns_create(NULL, "t", &c, msg, sizeof buf), DAL_E_ARG, msg);
+  CHECK(c == NULL);
+  MS(dal_columns_create(F.A, "t", NULL, msg, sizeof buf), DAL_E_ARG, msg);
+  MS(dal_columns_create(F.A, "x:nobody", &c, msg, sizeof buf), DAL_E_ARG, msg);
+  MS(dal_columns_create(F.A, "t", &c, NULL, 0), DAL_OK, NULL);
+  CHECK(dal_columns_count(c) == 1);
+  dal_columns_destroy(c);
+}
+static void sw_dal_columns_destroy(void) { dal_columns_destroy(NULL); }
+static void sw_dal_columns_count(void) { CHECK(dal_columns_count(NULL) == 0); }
+static void sw_dal_columns_name(void) {
+  dal_columns *c = NULL;
+  CHECK_OK(dal_columns_create(F.A, NULL, &c, NULL, 0));
+  CHECK(dal_columns_name(NULL, 0) == NULL);
+  CHECK(dal_columns_name(c, -1) == NULL && dal_columns_name(c, 99) == NULL);
+  CHECK(strcmp(dal_columns_name(c, 0), "t") == 0);
+  dal_columns_destroy(c);
+}
+static void sw_dal_columns_need_work(void) { CHECK(dal_columns_need_work(NULL) == 0); }
+static void sw_dal_columns_eval(void) {
+  dal_columns *c = NULL;
+  double row[16];
+  CHECK_OK(dal_columns_create(F.A, "t,lambda:rod", &c, NULL, 0));
+  ST(dal_columns_eval(F.A, NULL, c, row), DAL_E_ARG, NULL);
+  ST(dal_columns_eval(NULL, F.stA, c, row), DAL_E_STATE, F.stA);
+  ST(dal_columns_eval(F.B, F.stA, c, row), DAL_E_STATE, F.stA);
+  ST(dal_columns_eval(F.A, F.stA, NULL, row), DAL_E_ARG, F.stA);
+  ST(dal_columns_eval(F.A, F.stA, c, NULL), DAL_E_ARG, F.stA);
+  ST(dal_columns_eval(F.B, F.stB, c, row), DAL_E_ARG, F.stB); // made for another system
+  ST(dal_columns_eval(F.A, F.stA, c, row), DAL_OK, F.stA);
+  dal_columns_destroy(c);
+  st_intact();
+}
+static void sw_dal_columns_write_header(void) {
+  dal_columns *c = NULL;
+  CHECK_OK(dal_columns_create(F.A, NULL, &c, NULL, 0));
+  CHECK(dal_columns_write_header(NULL, stdout) == DAL_E_ARG);
+  CHECK(dal_columns_write_header(c, NULL) == DAL_E_ARG);
+  dal_columns_destroy(c);
+}
+static void sw_dal_default_view_opts(void) {
+  dal_view_opts o = dal_default_view_opts();
+  CHECK(o.fps == 60 && o.t1 == 10 && o.solve == NULL);
+}
+static void sw_dal_view_write(void) {
+  dal_view_opts o = dal_default_view_opts();
+  FILE *fp = tmpfile();
+  ST(dal_view_write(F.A, NULL, &o, NULL, fp), DAL_E_ARG, NULL);
+  ST(dal_view_write(NULL, F.stA, &o, NULL, fp), DAL_E_STATE, F.stA);
+  ST(dal_view_write(F.B, F.stA, &o, NULL, fp), DAL_E_STATE, F.stA);
+  ST(dal_view_write(F.A, F.stA, &o, NULL, NULL), DAL_E_ARG, F.stA);
+  o.fps = -1;
+  ST(dal_view_write(F.A, F.stA, &o, NULL, fp), DAL_E_ARG, F.stA);
+  o.fps = NAN;
+  ST(dal_view_write(F.A, F.stA, &o, NULL, fp), DAL_E_NONFINITE, F.stA);
+  o.fps = 60, o.t1 = -1;
+  ST(dal_view_write(F.A, F.stA, &o, NULL, fp), DAL_E_ARG, F.stA);
+  o.t1 = 1e9;
+  ST(dal_view_write(F.A, F.stA, &o, NULL, fp), DAL_E_ARG, F.stA); // too many frames
+  CHECK(ftell(fp) == 0);
+  fclose(fp);
+  st_intact();
+}
+static void sw_dal_picture_write(void) {
+  double ts[2] = {0.1, 0.2};
+  FILE *fp = tmpfile();
+  ST(dal_picture_write(F.A, NULL, ts, 2, NULL, fp), DAL_E_ARG, NULL);
+  ST(dal_picture_write(NULL, F.stA, ts, 2, NULL, fp), DAL_E_STATE, F.stA);
+  ST(dal_picture_write(F.B, F.stA, ts, 2, NULL, fp), DAL_E_STATE, F.stA);
+  ST(dal_picture_write(F.A, F.stA, NULL, 2, NULL, fp), DAL_E_ARG, F.stA);
+  ST(dal_picture_write(F.A, F.stA, ts, 0, NULL, fp), DAL_E_ARG, F.stA);
+  ST(dal_picture_write(F.A, F.stA, ts, 2, NULL, NULL), DAL_E_ARG, F.stA);
+  CHECK(ftell(fp) == 0);
+  fclose(fp);
+  st_intact();
+}
 
 #define ROW(f)                                                                                     \
   { #f, sw_##f }
@@ -2100,6 +2238,15 @@ static const sweep_row rows[] = {
     ROW(dal_scene_state),
     ROW(dal_scene_run),
     ROW(dal_scene_show),
+    ROW(dal_scene_native),
+    ROW(dal_scene_help),
+    ROW(dal_scene_nexprs),
+    ROW(dal_scene_expr),
+    ROW(dal_scene_write_c),
+    ROW(dal_codegen_default_opts),
+    ROW(dal_codegen_write),
+    ROW(dal_codegen_attach),
+    ROW(dal_codegen_attached),
     ROW(dal_scene_events),
     ROW(dal_scene_event_is_section),
     ROW(dal_scene_strobe),
@@ -2122,6 +2269,16 @@ static const sweep_row rows[] = {
     ROW(dal_evolve),
     ROW(dal_evolve_at),
     ROW(dal_csv_monitor),
+    ROW(dal_columns_create),
+    ROW(dal_columns_destroy),
+    ROW(dal_columns_count),
+    ROW(dal_columns_name),
+    ROW(dal_columns_need_work),
+    ROW(dal_columns_eval),
+    ROW(dal_columns_write_header),
+    ROW(dal_default_view_opts),
+    ROW(dal_view_write),
+    ROW(dal_picture_write),
     ROW(dal_trajectory_create),
     ROW(dal_trajectory_destroy),
     ROW(dal_state_set_trajectory),

@@ -412,9 +412,9 @@ static void manners(void) {
   snprintf(a, sizeof a, "run %s --bogus", dp);
   says(a, 64, "dalembert run: unknown option '--bogus'", NULL);
   snprintf(a, sizeof a, "modes %s --t1 5", dp);
-  says(a, 64, "--t1 is an option of run, lyapunov, section, not of modes", NULL);
+  says(a, 64, "--t1 is an option of run, lyapunov, section, view, picture, not of modes", NULL);
   snprintf(a, sizeof a, "modes %s -o x.csv", dp);
-  says(a, 64, "-o is an option of run, section, sweep, not of modes", NULL);
+  says(a, 64, "-o is an option of run, section, sweep, view, picture, compile, not of modes", NULL);
   snprintf(a, sizeof a, "lyapunov %s --t1 -5", dp);
   says(a, 64, "--t1 -5: a number > 0", NULL);
   snprintf(a, sizeof a, "lyapunov %s --t1", dp);

@@ -677,7 +677,7 @@ static void test_csv(void) {
   FILE *fp = tmpfile();
   CHECK(fp != NULL);
   if (!fp) return;
-  dal_csv csv = {fp, 0, 1};
+  dal_csv csv = {fp, 0, 1, NULL};
   dal_solve_opts o = dal_default_solve_opts();
   CHECK_OK(dal_evolve(pend, st, &o, 2.0, 0.5, dal_csv_monitor, &csv));
   double last_q = dal_state_q(st)[0];

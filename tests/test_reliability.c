@@ -142,7 +142,7 @@ static int row_csv_foreign(char *msg) {
   CHECK_OK(dal_forward(small.sys, small.st));
   FILE *fp = tmpfile();
   CHECK(fp != NULL);
-  dal_csv csv = {fp, 0, 0};
+  dal_csv csv = {fp, 0, 0, NULL};
   int rc = dal_csv_monitor(big.sys, small.st, &csv);
   copy_msg(msg, dal_state_errmsg(small.st));
   CHECK(ftell(fp) == 0 && csv.header_done == 0);
@@ -166,7 +166,7 @@ static int row_csv_unevaluated(char *msg) {
   scene s;
   CHECK_OK(pendulum(&s, 0.3));
   FILE *fp = tmpfile();
-  dal_csv csv = {fp, 0, 0};
+  dal_csv csv = {fp, 0, 0, NULL};
   int rc = dal_csv_monitor(s.sys, s.st, &csv);
   copy_msg(msg, dal_state_errmsg(s.st));
   CHECK(ftell(fp) == 0);
@@ -719,7 +719,7 @@ static int row_foreign_state_everywhere(char *msg) {
   CHECK_OK(dal_forward(a.sys, a.st));
   double J[2], F[2], Q[2], res[1];
   dal_solve_opts o = opts_for(DAL_METHOD_AUTO);
-  dal_csv csv = {stdout, 1, 0};
+  dal_csv csv = {stdout, 1, 0, NULL};
   int rcs[9] = {
       dal_state_jacobian(b.sys, a.st, 0, J),
       dal_constraint_forces(b.sys, a.st, F),

@@ -414,6 +414,7 @@ static int evolve(cli *c, rows *r, dal_events *ev, double dt) {
   int rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   if (ev) rc = dal_state_set_events(st, ev);
+  if (dal_columns_need_work(r->csv.columns)) so.work = 1; // W is integrated only when asked for
   if (!rc) rc = dal_evolve(sys, st, &so, t1, dt, row, r);
   FILE *fp = r->json ? r->json->fp : r->csv.fp;
   if (rc < 0 && fp && ferror(fp)) {
@@ -433,8 +434,17 @@ static int evolve(cli *c, rows *r, dal_events *ev, double dt) {
 }
 
 int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
-  rows r = {c, {fp, 0, cli_given(c, "wrap")}, NULL, 0, NAN, what};
-  return evolve(c, &r, ev, dt);
+  // --columns: a selection checked before the first row (a bad name: the output is removed)
+  dal_columns *cols = NULL;
+  const char *spec = cli_text(c, "columns");
+  if (spec) {
+    int rc = dal_columns_create(dal_scene_system(c->sc), spec, &cols, c->msg, sizeof c->msg);
+    if (rc) return cli_fail(c, rc, c->msg);
+  }
+  rows r = {c, {fp, 0, cli_given(c, "wrap"), cols}, NULL, 0, NAN, what};
+  int rc = evolve(c, &r, ev, dt);
+  dal_columns_destroy(cols);
+  return rc;
 }
 
 // the crossings of the surface sections: "t,section,<q>,<qdot>" or JSON objects
@@ -511,7 +521,7 @@ int cli_section(cli *c) {
   }
   int rc = strobo ? DAL_OK : dal_scene_events(c->sc, &ev);
   rows r = {
-      c,           {strobo && !jp ? fp : NULL, 0, cli_given(c, "wrap")}, strobo ? jp : NULL, 0, NAN,
+      c,           {strobo && !jp ? fp : NULL, 0, cli_given(c, "wrap"), NULL}, strobo ? jp : NULL, 0, NAN,
       "section: t"};
   if (!rc) rc = evolve(c, &r, ev, strobo ? dal_scene_strobe(c->sc) : dt);
   if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp, jp);

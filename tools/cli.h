@@ -102,6 +102,9 @@ CLI_COMMAND(equilibria);
 CLI_COMMAND(lyapunov);
 CLI_COMMAND(section);
 CLI_COMMAND(sweep);
+CLI_COMMAND(view);
+CLI_COMMAND(picture);
+CLI_COMMAND(compile);
 
 // the option rows shared by several commands
 #define CLI_OPT_OUTPUT(what)                                                                       \

@@ -42,6 +42,8 @@ const cli_opt cli_run_opts[] = {
     {"events", 0, CLI_TEXT, "FILE.csv", "the log of the scene's events", 0},
     CLI_OPT_WRAP,
     CLI_OPT_T1,
+    {"columns", 0, CLI_TEXT, "LIST",
+     "named columns, e.g. 't,x:*,y:*,lambda:*' (docs/guide.md: Seeing the motion)", 0},
     CLI_END,
 };
 
@@ -104,6 +106,12 @@ static const cli_cmd commands[] = {
      "the scene's Poincare section (stroboscopic or a surface)"},
     {"sweep", cli_sweep, cli_sweep_opts, "SCENE",
      "final states over a grid of a scene parameter (threads or MPI)"},
+    {"view", cli_view, cli_view_opts, "SCENE",
+     "the motion as one self-contained HTML page (scene, trails, linked plots)"},
+    {"picture", cli_picture, cli_picture_opts, "SCENE",
+     "a multi-exposure SVG of the configurations at chosen times"},
+    {"compile", cli_compile, cli_compile_opts, "SCENE",
+     "the scene's formulas as a standalone C source (dalembert/codegen.h)"},
     {NULL, NULL, NULL, NULL, NULL},
 };
 

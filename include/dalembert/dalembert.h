@@ -7,10 +7,12 @@
 
 #include "dalembert/analysis.h"
 #include "dalembert/base.h"
+#include "dalembert/codegen.h"
 #include "dalembert/dae.h"
 #include "dalembert/ensemble.h"
 #include "dalembert/events.h"
 #include "dalembert/expr.h"
+#include "dalembert/output.h"
 #include "dalembert/jet.h"
 #include "dalembert/params.h"
 #include "dalembert/primitives.h"

@@ -39,6 +39,7 @@
 #include <stdio.h>
 
 #include "dalembert/base.h"
+#include "dalembert/codegen.h"
 #include "dalembert/events.h"
 #include "dalembert/expr.h"
 #include "dalembert/solve.h"
@@ -125,6 +126,25 @@ DAL_API int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev,
 /// names its line), DAL_E_IO, DAL_E_NOMEM.
 DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, char *msg,
                            size_t msglen);
+
+/// Native code for every formula of the scene (dal_codegen_attach over its expressions),
+/// attached again whenever the scene is rebuilt (dal_scene_set_param): results bit-identical to
+/// the bytecode, faster. o NULL: default options. On failure the bytecode keeps running and
+/// msg says why (DAL_E_UNSUPPORTED: no compiler; DAL_E_IO: the cache refused or unwritable).
+DAL_API int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t msglen);
+
+/// The number of expressions the scene made (its formulas, compiled; the order of its lines).
+DAL_API int dal_scene_nexprs(const dal_scene *sc);
+
+/// Expression i (0 <= i < dal_scene_nexprs) of the scene, borrowed (valid until the scene is
+/// destroyed or rebuilt by dal_scene_set_param); NULL when i is out of range. Entry i of the
+/// table dal_scene_write_c writes is this expression.
+DAL_API const dal_expr *dal_scene_expr(const dal_scene *sc, int i);
+
+/// The scene's formulas as a standalone C source (dal_codegen_write with `prefix`): one jet
+/// function per expression the scene made, in the order of its lines, each named in the
+/// source's table by the element that made it. Returns the codes of dal_codegen_write.
+DAL_API int dal_scene_write_c(const dal_scene *sc, const char *prefix, FILE *fp);
 
 #ifdef __cplusplus
 }

@@ -495,11 +495,15 @@ DAL_API long dal_trajectory_span(const dal_trajectory *tr, double *t0, double *t
 /// Message of the last failing call on the trajectory ("" if none; "" for NULL).
 DAL_API const char *dal_trajectory_errmsg(const dal_trajectory *tr);
 
-/// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row.
+/// CSV writer for monitors: a monitor context writing t, q..., qdot..., E, h per row, or the
+/// columns of a selection (output.h). Zero it, then set fp (and columns).
 typedef struct dal_csv {
   FILE *fp;        ///< output stream (borrowed)
   int header_done; ///< set after the header row is written
   int wrap_angles; ///< if nonzero, write q wrapped to [-pi, pi) (principal value)
+  /// the columns to write (borrowed; output.h: dal_columns_create), NULL for the default
+  /// t, q..., qdot..., E, h; the header is then the columns' names
+  const struct dal_columns *columns;
 } dal_csv;
 
 /// Monitor that writes one CSV row (and the header first); ctx is a dal_csv *. Returns

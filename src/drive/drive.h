@@ -54,4 +54,7 @@ int dal__traj_step(dal_trajectory *tr, dal_state *st, double a, double b, int pi
 /// up to t (a run stopped inside its last step by an event or a monitor); nothing otherwise
 void dal__traj_end(dal_trajectory *tr, double t);
 
+/// column i of a selection is a coordinate q (columns.c; the CSV writer wraps those angles)
+int dal__columns_is_q(const struct dal_columns *cols, int i);
+
 #endif

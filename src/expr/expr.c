@@ -13,6 +13,15 @@
 
 static void face(dal_expr *e);
 
+// the program of e: its native code when attached, else the bytecode
+static inline void xrun(const dal_expr *e, const dal_jet *in, const dal_jet *in2, int split,
+                        dal_jet t, const double *param, dal_jet *out) {
+  if (e->native)
+    e->native(in, in2, split, t, param, out);
+  else
+    dal__xrun(&e->prog, in, in2, split, t, param, out, NULL);
+}
+
 dal_expr_def dal_default_expr_def(void) {
   dal_expr_def d;
   memset(&d, 0, sizeof d);
@@ -45,7 +54,7 @@ static int ident(const char *s) {
 static int prim_eval(const dal_jet *in, dal_jet t, const double *param, dal_jet *out, void *ctx) {
   const dal_expr *e = ctx;
   if (!e) return -1; // placed without its ctx: dal_expr_place_def sets it
-  dal__xrun(&e->prog, in, NULL, e->tree.nin, t, param, out, NULL);
+  xrun(e, in, NULL, e->tree.nin, t, param, out);
   return 0;
 }
 
@@ -258,6 +267,7 @@ fail:
 
 void dal_expr_destroy(dal_expr *e) {
   if (!e) return;
+  if (e->native_release) e->native_release(e->native_ctx);
   dal__xtree_free(&e->tree);
   dal__xprog_free(&e->prog);
   if (e->formulas)
@@ -295,7 +305,7 @@ const char *dal_expr_symbol(const dal_expr *e, int i) {
 int dal_expr_eval(const dal_expr *e, const dal_jet *in, dal_jet t, const double *param,
                   dal_jet *out) {
   if (!e || !out || (!in && e->tree.nin)) return DAL_E_ARG;
-  dal__xrun(&e->prog, in, NULL, e->tree.nin, t, param ? param : e->values, out, NULL);
+  xrun(e, in, NULL, e->tree.nin, t, param ? param : e->values, out);
   return DAL_OK;
 }
 
@@ -337,7 +347,7 @@ int dal_expr_constraint_def(const dal_expr *e, dal_constraint_def *def) {
 int dal_expr_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
   const dal_expr *e = ctx;
   if (!e) return -1;
-  dal__xrun(&e->prog, q, NULL, e->tree.nin, t, e->values, r, NULL);
+  xrun(e, q, NULL, e->tree.nin, t, e->values, r);
   return 0;
 }
 
@@ -352,7 +362,7 @@ int dal_expr_potential_q(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
 int dal_expr_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *L, void *ctx) {
   const dal_expr *e = ctx;
   if (!e || !e->velocities) return -1;
-  dal__xrun(&e->prog, q, qdot, e->nin_named, t, e->values, L, NULL);
+  xrun(e, q, qdot, e->nin_named, t, e->values, L);
   return 0;
 }
 
@@ -370,6 +380,6 @@ double dal_expr_event(double t, const double *q, const double *qdot, void *ctx) 
     in[i] = dal_const(q[i]);
     in[n + i] = dal_const(qdot[i]);
   }
-  dal__xrun(&e->prog, in, NULL, 2 * n, dal_const(t), e->values, &g, NULL);
+  xrun(e, in, NULL, 2 * n, dal_const(t), e->values, &g);
   return g.v;
 }

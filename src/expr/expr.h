@@ -113,6 +113,10 @@ void dal__xprog_free(dal_xprog *p);
 void dal__xrun(const dal_xprog *p, const dal_jet *in, const dal_jet *in2, int split, dal_jet t,
                const double *param, dal_jet *out, int *bad);
 
+/// native code for a program (src/codegen/): the arguments and results of dal__xrun, `bad` aside
+typedef void dal_xnative_fn(const dal_jet *in, const dal_jet *in2, int split, dal_jet t,
+                            const double *param, dal_jet *out);
+
 /// the compiled expression (public dal_expr)
 struct dal_expr {
   char *name;
@@ -123,6 +127,9 @@ struct dal_expr {
   double *values;
   dal_xprog prog;
   dal_primitive prim;
+  dal_xnative_fn *native;           // NULL: the bytecode runs (src/codegen/ sets it)
+  void (*native_release)(void *);   // called on native_ctx by dal_expr_destroy (nullable)
+  void *native_ctx;
 };
 
 #endif

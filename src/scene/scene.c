@@ -1085,7 +1085,32 @@ static int build(dal_scene *sc, char *msg, size_t len) {
     rc = dal_builder_compile(sc->b, &sc->sys);
     if (rc && msg && len) snprintf(msg, len, "%s: %s", sc->name, dal_builder_errmsg(sc->b));
   }
+  // native code again for the new expressions (the cache has it)
+  if (!rc && sc->native && sc->nex)
+    rc = dal_codegen_attach(sc->ex, sc->nex, &sc->native_opts, msg, len);
   return rc;
+}
+
+int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t msglen) {
+  if (msg && msglen) msg[0] = 0;
+  if (!sc) return DAL_E_ARG;
+  if (!sc->nex) return DAL_OK;
+  int rc = dal_codegen_attach(sc->ex, sc->nex, o, msg, msglen);
+  if (rc) return rc;
+  sc->native = 1;
+  sc->native_opts = o ? *o : dal_codegen_default_opts();
+  return DAL_OK;
+}
+
+int dal_scene_nexprs(const dal_scene *sc) { return sc ? sc->nex : 0; }
+
+const dal_expr *dal_scene_expr(const dal_scene *sc, int i) {
+  return sc && i >= 0 && i < sc->nex ? sc->ex[i] : NULL;
+}
+
+int dal_scene_write_c(const dal_scene *sc, const char *prefix, FILE *fp) {
+  if (!sc) return DAL_E_ARG;
+  return dal_codegen_write(sc->ex, sc->nex, prefix, fp);
 }
 
 int dal_scene_parse(const char *text, const char *name, dal_scene **out, char *msg, size_t msglen) {
@@ -1314,7 +1339,7 @@ int dal_scene_run_events(const dal_scene *sc, FILE *csv, dal_events *ev, dal_sta
   }
   dal_events *use = ev ? ev : own;
   if (use) rc = dal_state_set_events(st, use);
-  dal_csv c = {csv, 0, 0};
+  dal_csv c = {csv, 0, 0, NULL};
   if (!rc)
     rc = dal_evolve(sc->sys, st, &sc->opts, sc->t1, sc->dt, csv ? dal_csv_monitor : NULL,
                     csv ? &c : NULL);

@@ -97,6 +97,8 @@ struct dal_scene {
   scene_force **gf; // the force lines (each allocated once: the builder keeps its address)
   int ngf;
   double strobe; // period of the stroboscopic section (0: none)
+  int native;    // 1: the expressions run native code (dal_scene_native), again after a rebuild
+  dal_codegen_opts native_opts;
 };
 
 #endif

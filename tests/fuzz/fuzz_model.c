@@ -1233,7 +1233,7 @@ static void fz_foreign(fz *f, fz_run_ctx *r, dal_state *st) {
   double t0 = dal_state_time(fs), q0 = dal_state_q(fs)[0];
   static double buf[3 * FZ_NQ];
   dal_solve_opts o = dal_default_solve_opts();
-  dal_csv csv = {r->devnull, 1, 0};
+  dal_csv csv = {r->devnull, 1, 0, NULL};
   switch (which) {
   case 0:
     rc = dal_state_jacobian(r->sys, fs, 0, buf);
@@ -1517,7 +1517,7 @@ static void fz_ops(fz *f, fz_run_ctx *r) {
     case 9: { // the CSV monitor called directly
       if (!r->devnull) r->devnull = fopen("/dev/null", "w");
       if (!r->devnull) break;
-      dal_csv csv = {r->devnull, 0, fz_pick(f, 2)};
+      dal_csv csv = {r->devnull, 0, fz_pick(f, 2), NULL};
       dal_energies e;
       int evaluated = dal_state_energies(st, &e) != DAL_E_STATE;
       rc = fz_s(f, st, "csv_monitor", dal_csv_monitor(r->sys, st, &csv));

@@ -1,0 +1,396 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// The viewer page's script: plays the frames the library computed (canvas 2D, no framework).
+// For tests it declares its view transform (world -> screen px, a 2 x 4 matrix) and the drawn
+// particle centres: window.dalView.transform / .drawn and the scene canvas's data-transform /
+// data-drawn / data-t attributes; console errors are counted in body's data-errors.
+(function () {
+  'use strict';
+  var V = (window.dalView = { errors: [], drawn: [], transform: null });
+  var body = document.body;
+  function note(msg) {
+    V.errors.push(String(msg));
+    body.setAttribute('data-errors', String(V.errors.length));
+    document.getElementById('errors').textContent = V.errors.join('\n');
+  }
+  body.setAttribute('data-errors', '0');
+  window.addEventListener('error', function (ev) { note(ev.message); });
+  var cerr = console.error;
+  console.error = function () {
+    note(Array.prototype.join.call(arguments, ' '));
+    cerr.apply(console, arguments);
+  };
+
+  // the data: base64 little-endian Float32 arrays
+  var D = JSON.parse(document.getElementById('dal-data').textContent);
+  function f32(b64) {
+    var s = atob(b64), n = s.length, u = new Uint8Array(n);
+    for (var i = 0; i < n; i++) u[i] = s.charCodeAt(i);
+    return new Float32Array(u.buffer, 0, n >> 2);
+  }
+  var pos = f32(D.pos), xs = f32(D.xs), pq = f32(D.pq), pqd = f32(D.pqd), pe = f32(D.pe);
+  var pf = f32(D.pf), N = D.N, d = D.dim, K = D.K, F = D.frames;
+  var sceneCv = document.getElementById('scene'), ctx = sceneCv.getContext('2d');
+  var W = 640, H = 480;
+  document.getElementById('title').textContent = D.title;
+  document.getElementById('hint').textContent = d === 3
+    ? 'drag to rotate, wheel to zoom; FILE.html#t=1.25 opens paused at t = 1.25'
+    : 'FILE.html#t=1.25 opens paused at t = 1.25';
+
+  // the world position of point i (a particle, or an extra point N + j) at frame f
+  function pt(f, i) {
+    if (i < N) {
+      var o = (f * N + i) * d;
+      return [pos[o], pos[o + 1], d === 3 ? pos[o + 2] : 0];
+    }
+    var x = (f * K + i - N) * 3;
+    return [xs[x], xs[x + 1], xs[x + 2]];
+  }
+  // extra points that are directions (a circle's plane, a line's direction), not places
+  var isDir = {};
+  D.circles.forEach(function (c) { if (c[1] >= 0) isDir[c[1]] = isDir[c[2]] = true; });
+  D.lines.forEach(function (l) { isDir[l[1]] = true; });
+
+  // the bounding box of everything drawn
+  var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  function grow(p, r) {
+    for (var b = 0; b < 3; b++) {
+      if (!isFinite(p[b])) return;
+    }
+    for (b = 0; b < 3; b++) {
+      lo[b] = Math.min(lo[b], p[b] - r);
+      hi[b] = Math.max(hi[b], p[b] + r);
+    }
+  }
+  for (var f = 0; f < F; f++) {
+    for (var i = 0; i < N; i++) grow(pt(f, i), 0);
+    for (i = 0; i < K; i++) if (!isDir[N + i]) grow(pt(f, N + i), 0);
+    D.circles.forEach(function (c) { grow(pt(f, c[0]), c[3]); });
+  }
+  if (d === 2) lo[2] = hi[2] = 0;
+  var centre = [0, 1, 2].map(function (b) { return (lo[b] + hi[b]) / 2; });
+  var ext = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1e-9);
+  var view = { yaw: d === 3 ? -0.6 : 0, pitch: d === 3 ? 0.35 : 0, zoom: 1 };
+
+  // the view transform: px = A0 . (x, y, z, 1), py = A1 . (x, y, z, 1)
+  function transform() {
+    var s, R0, R1;
+    if (d === 2) {
+      s = 0.9 * Math.min(W / Math.max(hi[0] - lo[0], 1e-9), H / Math.max(hi[1] - lo[1], 1e-9));
+      R0 = [1, 0, 0];
+      R1 = [0, 1, 0];
+    } else {
+      var cy = Math.cos(view.yaw), sy = Math.sin(view.yaw);
+      var cp = Math.cos(view.pitch), sp = Math.sin(view.pitch);
+      s = 0.5 * Math.min(W, H) / (0.5 * Math.sqrt(3) * ext);
+      R0 = [cy, -sy, 0];
+      R1 = [sp * sy, sp * cy, cp];
+    }
+    s *= view.zoom;
+    var c0 = R0[0] * centre[0] + R0[1] * centre[1] + R0[2] * centre[2];
+    var c1 = R1[0] * centre[0] + R1[1] * centre[1] + R1[2] * centre[2];
+    return [[s * R0[0], s * R0[1], s * R0[2], W / 2 - s * c0],
+      [-s * R1[0], -s * R1[1], -s * R1[2], H / 2 + s * c1]];
+  }
+  var A = transform();
+  function px(p) {
+    return [A[0][0] * p[0] + A[0][1] * p[1] + A[0][2] * p[2] + A[0][3],
+      A[1][0] * p[0] + A[1][1] * p[1] + A[1][2] * p[2] + A[1][3]];
+  }
+  function dir(p) { // a direction on screen (no translation)
+    return [A[0][0] * p[0] + A[0][1] * p[1] + A[0][2] * p[2],
+      A[1][0] * p[0] + A[1][1] * p[1] + A[1][2] * p[2]];
+  }
+
+  var mmax = 0;
+  D.particles.forEach(function (p) { mmax = Math.max(mmax, p.m); });
+  var palette = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#17becf'];
+
+  function line(a, b) {
+    ctx.beginPath();
+    ctx.moveTo(a[0], a[1]);
+    ctx.lineTo(b[0], b[1]);
+    ctx.stroke();
+  }
+  function coil(a, b) { // a spring: straight ends, a zigzag between
+    var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy) || 1;
+    var nx = -dy / L, ny = dx / L, turns = 12;
+    ctx.beginPath();
+    ctx.moveTo(a[0], a[1]);
+    for (var k = 0; k <= turns; k++) {
+      var u = 0.1 + 0.8 * k / turns, w = k === 0 || k === turns ? 0 : (k % 2 ? 6 : -6);
+      ctx.lineTo(a[0] + dx * u + nx * w, a[1] + dy * u + ny * w);
+    }
+    ctx.lineTo(b[0], b[1]);
+    ctx.stroke();
+  }
+  function dashpot(a, b) { // a damper: a cylinder on one side, a piston on the other
+    var dx = b[0] - a[0], dy = b[1] - a[1], L = Math.hypot(dx, dy) || 1;
+    var ux = dx / L, uy = dy / L, nx = -uy, ny = ux, m = [a[0] + dx / 2, a[1] + dy / 2];
+    line(a, [m[0] - ux * 8, m[1] - uy * 8]);
+    ctx.beginPath();
+    ctx.moveTo(m[0] - ux * 8 + nx * 6, m[1] - uy * 8 + ny * 6);
+    ctx.lineTo(m[0] + ux * 10 + nx * 6, m[1] + uy * 10 + ny * 6);
+    ctx.moveTo(m[0] - ux * 8 - nx * 6, m[1] - uy * 8 - ny * 6);
+    ctx.lineTo(m[0] + ux * 10 - nx * 6, m[1] + uy * 10 - ny * 6);
+    ctx.moveTo(m[0] - ux * 8 + nx * 6, m[1] - uy * 8 + ny * 6);
+    ctx.lineTo(m[0] - ux * 8 - nx * 6, m[1] - uy * 8 - ny * 6);
+    ctx.stroke();
+    line([m[0] + nx * 4, m[1] + ny * 4], [m[0] - nx * 4, m[1] - ny * 4]);
+    line(m, b);
+  }
+
+  var frame = 0, playing = false, speed = 1, last = null;
+  function drawScene() {
+    var dpr = window.devicePixelRatio || 1;
+    if (sceneCv.width !== W * dpr) {
+      sceneCv.width = W * dpr;
+      sceneCv.height = H * dpr;
+    }
+    ctx.setTransform(dpr, 0, 0, dpr, 0, 0);
+    ctx.clearRect(0, 0, W, H);
+    A = transform();
+    var f = frame;
+    // curves of the constraints and placements, in their frame at this time
+    ctx.strokeStyle = '#bbb';
+    ctx.lineWidth = 1;
+    D.circles.forEach(function (c) {
+      var C = pt(f, c[0]), R = c[3]; // a 2-D circle (c[1] < 0) lies in the page's own plane
+      var u = c[1] < 0 ? [1, 0, 0] : pt(f, c[1]), w = c[1] < 0 ? [0, 1, 0] : pt(f, c[2]);
+      ctx.beginPath();
+      for (var k = 0; k <= 96; k++) {
+        var a = 2 * Math.PI * k / 96, ca = Math.cos(a) * R, sa = Math.sin(a) * R;
+        var q = px([C[0] + ca * u[0] + sa * w[0], C[1] + ca * u[1] + sa * w[1],
+          C[2] + ca * u[2] + sa * w[2]]);
+        if (k) ctx.lineTo(q[0], q[1]); else ctx.moveTo(q[0], q[1]);
+      }
+      ctx.stroke();
+    });
+    D.lines.forEach(function (l) {
+      var c = px(pt(f, l[0])), a = dir(pt(f, l[1])), L = Math.hypot(a[0], a[1]) || 1;
+      var e = 2 * (W + H) / L;
+      line([c[0] - a[0] * e, c[1] - a[1] * e], [c[0] + a[0] * e, c[1] + a[1] * e]);
+    });
+    // trails
+    var nt = Math.round(D.trail / D.dt);
+    ctx.lineWidth = 1.5;
+    for (var i = 0; i < N && nt > 0; i++) {
+      ctx.strokeStyle = palette[i % palette.length] + '55';
+      ctx.beginPath();
+      for (var g = Math.max(0, f - nt); g <= f; g++) {
+        var q = px(pt(g, i));
+        if (g > Math.max(0, f - nt)) ctx.lineTo(q[0], q[1]); else ctx.moveTo(q[0], q[1]);
+      }
+      ctx.stroke();
+    }
+    // links: rods, springs, dampers; pivots and anchors as small squares
+    ctx.strokeStyle = '#444';
+    ctx.lineWidth = 2;
+    D.links.forEach(function (l) {
+      var a = px(pt(f, l[0])), b = px(pt(f, l[1]));
+      if (l[2] === 'spring') coil(a, b);
+      else if (l[2] === 'damper') dashpot(a, b);
+      else line(a, b);
+      if (l[0] >= N) {
+        ctx.fillStyle = '#444';
+        ctx.fillRect(a[0] - 4, a[1] - 4, 8, 8);
+      }
+    });
+    // particles, sized by mass (radius as the cube root)
+    V.drawn = [];
+    for (i = 0; i < N; i++) {
+      var c = px(pt(f, i)), r = Math.max(3, 10 * Math.cbrt(D.particles[i].m / mmax));
+      ctx.fillStyle = palette[i % palette.length];
+      ctx.beginPath();
+      ctx.arc(c[0], c[1], r, 0, 2 * Math.PI);
+      ctx.fill();
+      V.drawn.push([c[0], c[1]]);
+    }
+    var t = D.t0 + f * D.dt;
+    V.transform = A;
+    V.t = t;
+    sceneCv.setAttribute('data-transform', JSON.stringify(A));
+    sceneCv.setAttribute('data-drawn', JSON.stringify(V.drawn));
+    sceneCv.setAttribute('data-t', String(t));
+    sceneCv.setAttribute('data-frame', String(f));
+    document.getElementById('time').textContent = 't = ' + t.toFixed(3);
+    document.getElementById('slider').value = String(f);
+  }
+
+  // the plots: q(t), a phase portrait with the section points, E - E(0), constraint forces
+  var plotT = function (s) { return D.t0 + s * D.pstride * D.dt; };
+  function axes(cv, title) {
+    var c = cv.getContext('2d'), dpr = window.devicePixelRatio || 1, w = 380, h = 112;
+    if (cv.width !== w * dpr) {
+      cv.width = w * dpr;
+      cv.height = h * dpr;
+    }
+    c.setTransform(dpr, 0, 0, dpr, 0, 0);
+    c.clearRect(0, 0, w, h);
+    c.fillStyle = '#555';
+    c.font = '11px system-ui, sans-serif';
+    c.fillText(title, 6, 12);
+    return c;
+  }
+  function range(arr, stride, off, n) {
+    var a = Infinity, b = -Infinity;
+    for (var s = 0; s < n; s++) {
+      var v = arr[s * stride + off];
+      if (isFinite(v)) { a = Math.min(a, v); b = Math.max(b, v); }
+    }
+    if (!(b > a)) { a -= 1e-12 + Math.abs(a) * 1e-6; b += 1e-12 + Math.abs(b) * 1e-6; }
+    return [a, b];
+  }
+  function series(c, xOf, yArr, stride, off, n, col, yr) {
+    c.strokeStyle = col;
+    c.lineWidth = 1;
+    c.beginPath();
+    for (var s = 0; s < n; s++) {
+      var y = 104 - 88 * (yArr[s * stride + off] - yr[0]) / (yr[1] - yr[0]);
+      if (s) c.lineTo(xOf(s), y); else c.moveTo(xOf(s), y);
+    }
+    c.stroke();
+  }
+  function timePlot(id, title, arr, names, stride) {
+    var c = axes(document.getElementById(id), title), n = D.nplot, T = plotT(n - 1) - D.t0 || 1;
+    var xOf = function (s) { return 6 + 368 * (plotT(s) - D.t0) / T; };
+    var leg = 14 + c.measureText(title).width, yr = [Infinity, -Infinity];
+    for (var j = 0; j < stride; j++) { // one scale for the plot's series
+      var rj = range(arr, stride, j, n);
+      yr = [Math.min(yr[0], rj[0]), Math.max(yr[1], rj[1])];
+    }
+    for (j = 0; j < stride; j++) {
+      var col = palette[j % palette.length];
+      series(c, xOf, arr, stride, j, n, col, yr);
+      c.fillStyle = col;
+      c.fillText(names[j] || '', leg, 12);
+      leg += 8 + c.measureText(names[j] || '').width;
+    }
+    c.fillStyle = '#888'; // the scale: the largest and smallest value shown
+    c.textAlign = 'right';
+    c.fillText(yr[1].toPrecision(3), 374, 27);
+    c.fillText(yr[0].toPrecision(3), 374, 108);
+    c.fillText('t = ' + plotT(n - 1).toPrecision(3), 374, 12);
+    c.textAlign = 'left';
+    var x = 6 + 368 * (frame * D.dt) / T;
+    c.strokeStyle = '#000';
+    c.beginPath();
+    c.moveTo(x, 16);
+    c.lineTo(x, 108);
+    c.stroke();
+  }
+  function phasePlot() {
+    var c = axes(document.getElementById('plot-phase'),
+      'phase: ' + D.coords[0] + ' vs rate' + (D.sections.length ? ' (red: section points)' : ''));
+    var n = D.nplot, xr = range(pq, D.n, 0, n), yr = range(pqd, D.n, 0, n);
+    var X = function (v) { return 6 + 368 * (v - xr[0]) / (xr[1] - xr[0]); };
+    var Y = function (v) { return 104 - 88 * (v - yr[0]) / (yr[1] - yr[0]); };
+    var now = Math.floor(frame / D.pstride), t = D.t0 + frame * D.dt;
+    c.strokeStyle = '#ccc';
+    c.beginPath();
+    for (var s = 0; s < n; s++) {
+      if (s) c.lineTo(X(pq[s * D.n]), Y(pqd[s * D.n])); else c.moveTo(X(pq[0]), Y(pqd[0]));
+    }
+    c.stroke();
+    c.strokeStyle = palette[0];
+    c.beginPath();
+    for (s = 0; s <= now && s < n; s++) {
+      if (s) c.lineTo(X(pq[s * D.n]), Y(pqd[s * D.n])); else c.moveTo(X(pq[0]), Y(pqd[0]));
+    }
+    c.stroke();
+    c.fillStyle = '#d62728';
+    D.sections.forEach(function (p) {
+      if (p[0] <= t + 1e-12) c.fillRect(X(p[1]) - 1.5, Y(p[2]) - 1.5, 3, 3);
+    });
+    if (now < n) {
+      c.fillStyle = '#000';
+      c.beginPath();
+      c.arc(X(pq[now * D.n]), Y(pqd[now * D.n]), 3, 0, 2 * Math.PI);
+      c.fill();
+    }
+  }
+  function drawPlots() {
+    timePlot('plot-q', 'q(t)', pq, D.coords, D.n);
+    phasePlot();
+    timePlot('plot-energy', 'E - E(0)', pe, [''], 1);
+    timePlot('plot-force', D.forces.length && D.forces[0].charAt(0) === 'l'
+      ? 'constraint forces' : 'reaction magnitudes', pf, D.forces, D.forces.length);
+  }
+  function draw() {
+    drawScene();
+    drawPlots();
+  }
+
+  // controls
+  var slider = document.getElementById('slider'), playBtn = document.getElementById('play');
+  slider.max = String(F - 1);
+  function go(f) {
+    frame = Math.max(0, Math.min(F - 1, f));
+    draw();
+  }
+  function setPlaying(p) {
+    playing = p;
+    playBtn.textContent = p ? 'pause' : 'play';
+    last = null;
+    if (p) requestAnimationFrame(tick);
+  }
+  var clock = 0;
+  function tick(ms) {
+    if (!playing) return;
+    if (last !== null) clock += (ms - last) / 1000 * speed;
+    last = ms;
+    var f = Math.floor(clock / D.dt);
+    if (f >= F - 1) { go(F - 1); setPlaying(false); return; }
+    if (f !== frame) go(f);
+    requestAnimationFrame(tick);
+  }
+  playBtn.addEventListener('click', function () {
+    if (!playing && frame >= F - 1) frame = 0;
+    clock = frame * D.dt;
+    setPlaying(!playing);
+  });
+  document.getElementById('prev').addEventListener('click', function () { setPlaying(false); go(frame - 1); });
+  document.getElementById('next').addEventListener('click', function () { setPlaying(false); go(frame + 1); });
+  slider.addEventListener('input', function () { setPlaying(false); go(parseInt(slider.value, 10)); });
+  document.getElementById('speed').addEventListener('change', function (ev) {
+    speed = parseFloat(ev.target.value);
+  });
+  // 3-D: drag to rotate, wheel to zoom
+  var drag = null;
+  sceneCv.addEventListener('mousedown', function (ev) { drag = [ev.clientX, ev.clientY]; });
+  window.addEventListener('mouseup', function () { drag = null; });
+  window.addEventListener('mousemove', function (ev) {
+    if (!drag || d !== 3) return;
+    view.yaw += 0.01 * (ev.clientX - drag[0]);
+    view.pitch = Math.max(-1.5, Math.min(1.5, view.pitch + 0.01 * (ev.clientY - drag[1])));
+    drag = [ev.clientX, ev.clientY];
+    draw();
+  });
+  sceneCv.addEventListener('wheel', function (ev) {
+    ev.preventDefault();
+    view.zoom *= Math.exp(-0.001 * ev.deltaY);
+    draw();
+  }, { passive: false });
+
+  // FILE.html#t=1.25 opens paused at t = 1.25 (and drag=DX,DY replays a drag: the tests' hook)
+  function fromHash() {
+    var h = {}, parts = location.hash.replace(/^#/, '').split('&');
+    parts.forEach(function (p) { var kv = p.split('='); if (kv[0]) h[kv[0]] = kv[1]; });
+    if (h.drag) {
+      var dd = h.drag.split(',').map(parseFloat), r = sceneCv.getBoundingClientRect();
+      var x0 = r.left + 100, y0 = r.top + 100;
+      sceneCv.dispatchEvent(new MouseEvent('mousedown', { clientX: x0, clientY: y0, bubbles: true }));
+      window.dispatchEvent(new MouseEvent('mousemove', { clientX: x0 + dd[0], clientY: y0 + dd[1] }));
+      window.dispatchEvent(new MouseEvent('mouseup', { clientX: x0 + dd[0], clientY: y0 + dd[1] }));
+    }
+    if (h.t !== undefined) {
+      setPlaying(false);
+      go(Math.round((parseFloat(h.t) - D.t0) / D.dt));
+      return true;
+    }
+    return false;
+  }
+  window.addEventListener('hashchange', fromHash);
+  go(0);
+  if (!fromHash()) setPlaying(true);
+})();
