@@ -143,12 +143,13 @@ static void test_tolerance_table(void) {
       }
       printf(" %6.1f", worst);
       CHECK_MSG(!bad, "%s at rtol %g failed", rows[r].name, tol);
-      // IDA's clamp: below rtol 1e-11 it runs at its floor, reported in the statistics
-      if (dae && rows[r].m == DAL_METHOD_BDF && 0.001 * tol < 1e-12) {
+      // IDA's clamp: below rtol 1e-11 it runs at its smallest local tolerance 1e-14,
+      // reported in the statistics, and honours 16 x that (measured 3.2 x rtol at 1e-12)
+      if (dae && rows[r].m == DAL_METHOD_BDF && 0.001 * tol < 1e-14) {
         dal_stats ss;
         dal_state_stats(sc, &ss);
         CHECK_MSG(ss.rtol_used > 0.005 * tol, "clamp not reported: %g", ss.rtol_used);
-        CHECK_MSG(worst * tol < 100.0 * ss.rtol_used / 0.001, "%s at rtol %g: %g x rtol",
+        CHECK_MSG(worst * tol < 16.0 * ss.rtol_used / 0.001, "%s at rtol %g: %g x rtol",
                   rows[r].name, tol, worst);
       } else if (!dae && rows[r].m == DAL_METHOD_BDF && tol < 1e-11) {
         // CVODE's BDF honours 1e-11 at most: a tighter request runs as 1e-11 (solve.h), and

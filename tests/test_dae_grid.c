@@ -207,6 +207,26 @@ static void notes(void) {
   CHECK_OK(dal_state_stats(c, &s));
   CHECK(s.form_used == DAL_FORM_INDEX1 && s.method_used == DAL_METHOD_BS);
   CHECK(dal_state_errmsg(c)[0] == 0);
+  // the start of docs/dae.md (polar angle 2, azimuth -0.6, 2 rad/s about the vertical) in a
+  // forced GGL at rtol 1e-10 and 1e-11: IDA starts below its floor 1e-12 (at 1e-13, 1e-14);
+  // a failed step there goes on at the floor with a note, never a failure
+  double sa = sin(2.0), x2[3] = {sa * cos(-0.6), sa * sin(-0.6), -cos(2.0)};
+  double v2[3] = {-2.0 * x2[1], 2.0 * x2[0], 0.0};
+  for (int k = 0; k < 2; ++k) {
+    CHECK_OK(dal_state_set(sc, c, 0.0, x2, v2));
+    o = dal_default_solve_opts();
+    o.form = DAL_FORM_GGL;
+    o.rtol = o.atol = k ? 1e-11 : 1e-10;
+    CHECK_OK(dal_advance(sc, c, &o, T_END));
+    CHECK_OK(dal_state_stats(c, &s));
+    const char *msg = dal_state_errmsg(c);
+    printf("sphere start (2, -0.6), GGL rtol %g: rtol_used %g, %ld steps: '%s'\n", o.rtol,
+           s.rtol_used, s.steps, msg);
+    // raised to the floor exactly when the note says so
+    CHECK_MSG((s.rtol_used == 1e-12) == (strstr(msg, "continued from there at the floor") != NULL),
+              "%g: %s", s.rtol_used, msg);
+    CHECK(s.rtol_used == 1e-12 || s.rtol_used == 0.001 * o.rtol);
+  }
   dal_state_destroy(c);
   dal_system_destroy(sc);
 }

@@ -456,6 +456,11 @@ again:;
   }
   st->err[0] = 0;
   if (h->note[0]) memcpy(st->err, h->note, sizeof st->err);
+  if (h->it->run_note[0]) {
+    // a tolerance raised during the run (after the creation's notes)
+    size_t used = strlen(st->err);
+    snprintf(st->err + used, sizeof st->err - used, "%s%s", used ? "; " : "", h->it->run_note);
+  }
   handle_sync(sys, st, h);
   return DAL_OK;
 }

@@ -32,6 +32,11 @@ typedef struct ida_mem {
   int n, m, neq, off_l, off_mu; // copies of f's sizes
   int sparse, started;
   double rtol;      // the relative tolerance IDA runs at (calibrated and floored)
+  double fscale;    // the start's largest |lambda_r| (the multipliers' absolute tolerance)
+  // the retreat to DAL_IDA_TOL_FLOOR after a failure below it: the time, the tolerance run
+  // before, and the note for the state's message
+  double raised_t, raised_from;
+  char note[DAL_ERRMSG_LEN];
   double h0;        // the first step handed to IDA (0 until the first advance)
   double *sl, *smu; // (m each) how far a unit of lambda_r / mu_r moves v / q per unit step
   SUNContext ctx;
@@ -308,10 +313,11 @@ static int mem_create(const dal_system *sys, dal_state *st, const dal_solve_opts
   w->neq = w->f.neq;
   w->off_l = w->f.off_l;
   w->off_mu = w->f.off_mu;
-  // the calibrated tolerance (solve.h), floored where IDA's Newton iteration stalls on
-  // rounding; a clamp is reported in the statistics
+  // the calibrated tolerance (solve.h), no lower than IDA is tried at; below
+  // DAL_IDA_TOL_FLOOR a failed step retreats to it (raise_floor); a clamp is reported in the
+  // statistics
   double fac = dal__dae_tol_factor(form);
-  w->rtol = fmax(fac * opts->rtol, DAL_IDA_TOL_FLOOR);
+  w->rtol = fmax(fac * opts->rtol, DAL_IDA_TOL_TRY);
   st->stats.rtol_used = w->rtol;
   w->sparse =
       opts->linsol == DAL_LINSOL_KLU ||
@@ -348,21 +354,28 @@ static int vectors_create(ida_mem *w) {
 // Campbell and Petzold, sec. 5.4): with v in it the steps collapse at rtol <= 1e-6.
 // Absolute tolerances: opts.atol for q and v; multipliers and mu get loose ones, they only
 // weigh Newton corrections. Then the multipliers' reach for their error weights (ewt_fn).
-// 0 or DAL_E_NOMEM
-static int weights_set(ida_mem *w) {
+// the absolute tolerances for the current w->rtol (set again when it is raised)
+static void atol_fill(ida_mem *w) {
   const dal_solve_opts *opts = &w->opts;
-  double *id = N_VGetArrayPointer(w->id), *at = N_VGetArrayPointer(w->atol);
+  double *at = N_VGetArrayPointer(w->atol);
   // a clamped rtol raises atol in proportion: the requested ratio atol / rtol is kept
-  double fscale = 0.0, atol = opts->atol * (w->rtol / opts->rtol);
-  for (int r = 0; r < w->m; ++r)
-    fscale = fmax(fscale, fabs(w->st->lambda[r]));
-  dal__dae_mask(&w->f, id);
+  double atol = opts->atol * (w->rtol / opts->rtol);
   for (int i = 0; i < w->neq; ++i)
     at[i] = atol;
   for (int r = 0; r < w->m; ++r) {
-    at[w->off_l + r] = fmax(atol, w->rtol * fmax(fscale, 1.0));
+    at[w->off_l + r] = fmax(atol, w->rtol * fmax(w->fscale, 1.0));
     if (w->off_mu >= 0) at[w->off_mu + r] = fmax(atol, sqrt(opts->atol));
   }
+}
+
+// 0 or DAL_E_NOMEM
+static int weights_set(ida_mem *w) {
+  double *id = N_VGetArrayPointer(w->id);
+  w->fscale = 0.0;
+  for (int r = 0; r < w->m; ++r)
+    w->fscale = fmax(w->fscale, fabs(w->st->lambda[r]));
+  dal__dae_mask(&w->f, id);
+  atol_fill(w);
   // the multipliers' reach
   if (w->m > 0) {
     w->sl = malloc(2 * (size_t)w->m * sizeof(double));
@@ -642,6 +655,44 @@ static int map_failure(ida_mem *w, int flag, double hfail) {
                   verdict, verdict[0] && remedy[0] ? "; " : "", remedy, cause, flag, w->ida_msg);
 }
 
+// A step failed below DAL_IDA_TOL_FLOOR (the Newton iteration or the error test, where
+// rounding may dominate at such tolerances on some scenes): IDA restarts from its last
+// accepted step at the floor, and the note says so. 1 when it restarted, 0 when the failure
+// stands (at or above the floor already, a callback's failure, or IDA refused the restart)
+static int raise_floor(ida_mem *w, int flag) {
+  if (w->rtol >= DAL_IDA_TOL_FLOOR || w->cb_status ||
+      (flag != IDA_ERR_FAIL && flag != IDA_CONV_FAIL && flag != IDA_TOO_MUCH_ACC))
+    return 0;
+  double t = 0.0, h = 0.0;
+  if (IDAGetCurrentTime(w->ida, &t) != IDA_SUCCESS || IDAGetDky(w->ida, t, 0, w->y) != IDA_SUCCESS ||
+      IDAGetDky(w->ida, t, 1, w->yp) != IDA_SUCCESS)
+    return 0;
+  IDAGetLastStep(w->ida, &h);
+  w->raised_from = w->rtol;
+  w->raised_t = t;
+  w->rtol = DAL_IDA_TOL_FLOOR;
+  w->st->stats.rtol_used = w->rtol;
+  atol_fill(w);
+  if (IDAReInit(w->ida, t, w->y, w->yp) != IDA_SUCCESS) return 0;
+  // IDAReInit restarts IDA's counters (update_stats adds the differences)
+  w->nst = w->nre = w->nje = w->nni = w->netf = w->ncfn = 0;
+  if (h != 0.0) IDASetInitStep(w->ida, h);
+  w->cb_status = 0;
+  w->ida_msg[0] = 0;
+  w->ncor = NULL;
+  snprintf(w->note, sizeof w->note,
+           "note: IDA's step failed at t=%.17g at the local tolerance %g (below its floor %g, "
+           "where rounding can stall the Newton iteration): it continued from there at the "
+           "floor (dal_stats.rtol_used), so expect errors above rtol from there on",
+           t, w->raised_from, DAL_IDA_TOL_FLOOR);
+  return 1;
+}
+
+const char *dal__ida_note(const void *mem) {
+  const ida_mem *w = mem;
+  return w->note;
+}
+
 int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tout) {
   ida_mem *w = mem;
   (void)sys;
@@ -665,15 +716,17 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   // unsatisfiable, with a million steps that do not move t); opts.hmin when larger
   double hmin = fmax(w->opts.hmin, DAL_TINY_STEP(fmax(fabs(t0), fabs(tout))));
   IDASetMinStep(w->ida, w->opts.hmax > 0 ? fmin(hmin, w->opts.hmax) : hmin);
-  IDASetStopTime(w->ida, tout);
   double tret = t0;
   int flag;
+retry:
+  IDASetStopTime(w->ida, tout);
   if (w->hook) {
     // one step at a time, the driver's hook after each (dense output, events)
     w->tcur = t0;
     for (;;) {
       flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_ONE_STEP);
       update_stats(w, flag);
+      if (flag < 0 && raise_floor(w, flag)) goto retry;
       if (flag < 0) break;
       if (flag == IDA_TSTOP_RETURN) tret = tout;
       w->tprev = w->tcur;
@@ -685,6 +738,7 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   } else {
     flag = IDASolve(w->ida, tout, &tret, w->y, w->yp, IDA_NORMAL);
     update_stats(w, flag);
+    if (flag < 0 && raise_floor(w, flag)) goto retry;
   }
   if (flag >= 0) return finish_state(w, tret, N_VGetArrayPointer(w->y));
   // failure: the last accepted step, then the message naming time and variable (and, for
@@ -702,6 +756,12 @@ int dal__ida_advance(const dal_system *sys, dal_state *st, void *mem, double tou
   double hcur = 0.0;
   IDAGetCurrentStep(w->ida, &hcur);
   int rc = map_failure(w, flag, hcur);
+  if (w->note[0]) {
+    size_t used = strlen(st->err);
+    snprintf(st->err + used, sizeof st->err - used,
+             "; it had run at the local tolerance %g until t=%.17g, then at its floor %g",
+             w->raised_from, w->raised_t, DAL_IDA_TOL_FLOOR);
+  }
   if (recov[0]) {
     char msg[DAL_ERRMSG_LEN];
     snprintf(msg, sizeof msg, "%.200s; it kept asking while IDA shrank the step: %.260s", recov,

@@ -106,6 +106,7 @@ static int ida_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void 
   dal__ida_set_hook(it->impl, hook ? ida_after_step : NULL, it);
   int rc = dal__ida_advance(it->sys, it->st, it->impl, tout);
   if (rc != DAL__HOOK_STOP) rc = dal__public_status(rc);
+  snprintf(it->run_note, sizeof it->run_note, "%s", dal__ida_note(it->impl));
   dal__ida_set_hook(it->impl, NULL, NULL);
   return rc;
 }
@@ -226,7 +227,8 @@ static int create_ida(dal_integ *it) {
   if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
     snprintf(it->note, sizeof it->note,
              "note: rtol %g is below what IDA can honour: it ran at the local tolerance %g "
-             "(its floor, dal_stats.rtol_used), so expect errors above rtol; DAL_FORM_AUTO with "
+             "(the smallest it is tried at, dal_stats.rtol_used), so expect errors above rtol; "
+             "DAL_FORM_AUTO with "
              "DAL_METHOD_AUTO runs the index-1 form with projection and Bulirsch-Stoer there",
              o->rtol, st->stats.rtol_used);
   return DAL_OK;

@@ -21,6 +21,9 @@ void dal__ida_free(void *mem);
 void dal__ida_set_hook(void *mem, int (*hook)(void *ctx), void *ctx);
 void dal__ida_window(const void *mem, double *t0, double *t1);
 int dal__ida_place(void *mem, double t);
+/// after a run that retreated from below DAL_IDA_TOL_FLOOR to it: the note for the state's
+/// message ("note: ..."), else ""
+const char *dal__ida_note(const void *mem);
 
 /// An ODE integrator run on a dal_ode_problem (arkode.c, cvode.c, bs.c,
 /// rk4.c). The common part lives here; `impl` holds the method's own memory. Everything a
@@ -346,6 +349,9 @@ struct dal_integ {
   /// what creation did not honour as asked (a tolerance raised to a floor): "note: ..." for the
   /// state's message on success, or empty
   char note[DAL_ERRMSG_LEN];
+  /// what a run did not honour as asked after creation (IDA's local tolerance raised to its
+  /// floor after a failed step below it): "note: ..." for the state's message, or empty
+  char run_note[DAL_ERRMSG_LEN];
   void *impl; ///< the family's memory (dal_ode_integ, IDA's)
   // after-step hook of the current advance call and the steps since the last output (the
   // families that do not count opts.max_steps themselves)
