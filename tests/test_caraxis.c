@@ -224,8 +224,8 @@ int main(void) {
   o.atol = 1e-14;
   run r = {0};
   CHECK_OK(solve(sys, &o, ref, &r));
-  printf("GGL    rtol 1e-11, atol 1e-14: %ld steps, scd %.2f, rtol_used %g\n  %s\n", r.steps,
-         r.scd, r.rtol_used, r.msg);
+  printf("GGL    rtol 1e-11, atol 1e-14: %ld steps, scd %.2f, rtol_used %g\n  %s\n", r.steps, r.scd,
+         r.rtol_used, r.msg);
   CHECK_MSG(r.scd >= 8.2, "scd %.2f", r.scd);
   CHECK(r.rtol_used == 1e-12);
   const char *at = strstr(r.msg, "note: IDA's step failed at t=");

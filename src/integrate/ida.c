@@ -31,8 +31,8 @@ typedef struct ida_mem {
   dal_dae f;                    // the formulation (sizes, residual, Newton matrix)
   int n, m, neq, off_l, off_mu; // copies of f's sizes
   int sparse, started;
-  double rtol;      // the relative tolerance IDA runs at (calibrated and floored)
-  double fscale;    // the start's largest |lambda_r| (the multipliers' absolute tolerance)
+  double rtol;   // the relative tolerance IDA runs at (calibrated and floored)
+  double fscale; // the start's largest |lambda_r| (the multipliers' absolute tolerance)
   // the retreat to DAL_IDA_TOL_FLOOR after a failure below it: the time, the tolerance run
   // before, and the note for the state's message
   double raised_t, raised_from;
@@ -664,8 +664,8 @@ static int raise_floor(ida_mem *w, int flag) {
       (flag != IDA_ERR_FAIL && flag != IDA_CONV_FAIL && flag != IDA_TOO_MUCH_ACC))
     return 0;
   double t = 0.0, h = 0.0;
-  if (IDAGetCurrentTime(w->ida, &t) != IDA_SUCCESS || IDAGetDky(w->ida, t, 0, w->y) != IDA_SUCCESS ||
-      IDAGetDky(w->ida, t, 1, w->yp) != IDA_SUCCESS)
+  if (IDAGetCurrentTime(w->ida, &t) != IDA_SUCCESS ||
+      IDAGetDky(w->ida, t, 0, w->y) != IDA_SUCCESS || IDAGetDky(w->ida, t, 1, w->yp) != IDA_SUCCESS)
     return 0;
   IDAGetLastStep(w->ida, &h);
   w->raised_from = w->rtol;
