@@ -34,10 +34,11 @@ enum { ROW = 1000, COMMON = 2000 };
 static const char *const exit_help =
     "exit status:\n"
     "  0        success (a run stopped at a terminal event included)\n"
-    "  1 ... 17 the library's failure status, negated: 1 invalid argument (a scene parameter,\n"
+    "  1 ... 18 the library's failure status, negated: 1 invalid argument (a scene parameter,\n"
     "           a value the library refuses), 4 domain error, 8 no consistent start,\n"
     "           11 convergence failure, 15 unsupported combination, 16 a read or write failed\n"
-    "           (standard output included) ... (the list in dalembert/base.h)\n"
+    "           (standard output included), 18 a formula too large to show ... (the list\n"
+    "           in dalembert/base.h)\n"
     "  64       a command line it does not understand (an unknown command or option, an option\n"
     "           of another command, a missing or malformed value)\n"
     "  130      interrupted (Ctrl-C): the output ends with whole rows\n";
