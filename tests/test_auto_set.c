@@ -87,7 +87,7 @@ static dal_system *build(const tree *t) {
   dal_builder *b = NULL;
   int rc = scn_builder(&kn, 2, &b), p[MAXN];
   for (int k = 0; k < t->N && !rc; ++k) {
-    char name[8], coord[8];
+    char name[16], coord[16];
     snprintf(name, sizeof name, "p%d", k);
     snprintf(coord, sizeof coord, "th%d", k);
     rc = scn_add_swing(b, &kn, name, t->m[k], t->parent[k] < 0 ? -1 : p[t->parent[k]], t->L[k],

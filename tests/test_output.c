@@ -295,7 +295,41 @@ static void picture(void) {
   dal_system_destroy(sys);
 }
 
+// names of any length reach the header whole (a fixed 80-byte name was cut silently before)
+static void long_names(void) {
+  char part[301], coord[301], spec[400];
+  memset(part, 'p', 300);
+  part[300] = 0;
+  memset(coord, 'c', 300);
+  coord[300] = 0;
+  dal_builder *b = NULL;
+  int c = -1, k = -1;
+  CHECK_OK(dal_builder_create(2, &b));
+  CHECK_OK(dal_builder_add_coord(b, coord, &c));
+  CHECK_OK(dal_builder_add_particle(b, part, 1.0, &k));
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &c;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = 1.0;
+  CHECK_OK(dal_builder_place_def(b, k, &pd));
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_builder_destroy(b);
+  dal_columns *cols = NULL;
+  char msg[200];
+  snprintf(spec, sizeof spec, "x:p*,qdot:*");
+  CHECK_OK(dal_columns_create(sys, spec, &cols, msg, sizeof msg));
+  CHECK(dal_columns_count(cols) == 2);
+  const char *n0 = dal_columns_name(cols, 0), *n1 = dal_columns_name(cols, 1);
+  CHECK(n0 && strlen(n0) == 302 && !strncmp(n0, "x:", 2) && !strcmp(n0 + 2, part));
+  CHECK(n1 && strlen(n1) == 304 && !strncmp(n1, coord, 300) && !strcmp(n1 + 300, "_dot"));
+  dal_columns_destroy(cols);
+  dal_system_destroy(sys);
+}
+
 int main(void) {
+  long_names();
   pendulum_tension();
   cartesian_rod();
   damper_work();

@@ -30,7 +30,7 @@ enum {
 
 typedef struct col {
   int kind, index, sub;
-  char name[80];
+  char *name; // owned: names of any length (particles, coordinates, constraints)
 } col;
 
 struct dal_columns {
@@ -58,11 +58,22 @@ static int glob(const char *p, const char *s) {
   return !*s;
 }
 
-static int push(dal_columns *cs, int kind, int index, int sub, const char *name) {
+// a column named a b c (concatenated; b and c may be empty)
+static int push(dal_columns *cs, int kind, int index, int sub, const char *a, const char *b,
+                const char *c3) {
+  size_t la = strlen(a), lb = strlen(b), lc = strlen(c3);
+  char *name = malloc(la + lb + lc + 1);
+  if (!name) return DAL_E_NOMEM;
+  memcpy(name, a, la);
+  memcpy(name + la, b, lb);
+  memcpy(name + la + lb, c3, lc + 1);
   if (cs->n == cs->cap) {
     int cap = cs->cap ? 2 * cs->cap : 16;
     col *c = realloc(cs->c, (size_t)cap * sizeof *c);
-    if (!c) return DAL_E_NOMEM;
+    if (!c) {
+      free(name);
+      return DAL_E_NOMEM;
+    }
     cs->c = c;
     cs->cap = cap;
   }
@@ -70,7 +81,7 @@ static int push(dal_columns *cs, int kind, int index, int sub, const char *name)
   c->kind = kind;
   c->index = index;
   c->sub = sub;
-  snprintf(c->name, sizeof c->name, "%s", name);
+  c->name = name;
   return DAL_OK;
 }
 
@@ -94,7 +105,7 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
     if (!strcmp(it, scalars[k].name)) {
       cs->need |= scalars[k].need;
       if (scalars[k].kind == COL_W) cs->work = 1;
-      return push(cs, scalars[k].kind, 0, 0, it);
+      return push(cs, scalars[k].kind, 0, 0, it, "", "");
     }
   const char *colon = strchr(it, ':');
   if (!colon) {
@@ -113,13 +124,11 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
   kind[kl] = 0;
   const char *pat = colon + 1;
   int before = cs->n, d = sys->dim, rc = DAL_OK;
-  char name[80];
   if (!strcmp(kind, "q") || !strcmp(kind, "qdot")) {
     int dot = kind[1] != 0;
     for (int i = 0; i < sys->n && !rc; ++i)
       if (glob(pat, sys->coord_names[i])) {
-        snprintf(name, sizeof name, dot ? "%s_dot" : "%s", sys->coord_names[i]);
-        rc = push(cs, dot ? COL_QDOT : COL_Q, i, 0, name);
+        rc = push(cs, dot ? COL_QDOT : COL_Q, i, 0, sys->coord_names[i], dot ? "_dot" : "", "");
       }
     if (before == cs->n && !rc) goto none_coord;
     return rc;
@@ -130,11 +139,9 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
       if (!con->name || !glob(pat, con->name)) continue;
       int rows = con->prim->nout;
       for (int i = 0; i < rows && !rc; ++i) {
-        if (rows == 1)
-          snprintf(name, sizeof name, "lambda:%s", con->name);
-        else
-          snprintf(name, sizeof name, "lambda:%s.%d", con->name, i);
-        rc = push(cs, COL_LAMBDA, con->row + i, 0, name);
+        char row[16] = "";
+        if (rows > 1) snprintf(row, sizeof row, ".%d", i);
+        rc = push(cs, COL_LAMBDA, con->row + i, 0, "lambda:", con->name, row);
       }
     }
     cs->need |= DAL_P_ACC;
@@ -186,8 +193,9 @@ static int item(dal_columns *cs, const char *it, char *msg, size_t msglen) {
   if (ck == COL_J) cs->joint = 1;
   for (int k = 0; k < sys->N && !rc; ++k)
     if (glob(pat, sys->part_names[k])) {
-      snprintf(name, sizeof name, "%s:%s", kind, sys->part_names[k]);
-      rc = push(cs, ck, k, axis, name);
+      char pre[20];
+      snprintf(pre, sizeof pre, "%s:", kind);
+      rc = push(cs, ck, k, axis, pre, sys->part_names[k], "");
     }
   if (before == cs->n && !rc) {
     if (msg) {
@@ -258,6 +266,8 @@ int dal_columns_create(const dal_system *sys, const char *spec, dal_columns **ou
 
 void dal_columns_destroy(dal_columns *cols) {
   if (!cols) return;
+  for (int i = 0; i < cols->n; ++i)
+    free(cols->c[i].name);
   free(cols->c);
   free(cols);
 }

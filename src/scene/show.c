@@ -476,12 +476,11 @@ static void anchor_of(const sline *l, char **anc) {
   for (int c = 0; c < 3; ++c)
     anc[c] = NULL;
   for (int c = 0; an && c < 3; ++c) {
-    const char *e = strchr(an, ',');
-    size_t w = e ? (size_t)(e - an) : strlen(an);
+    size_t w = strcspn(an, ",");
     str t = {0};
     add(&t, an, w);
     anc[c] = t.s;
-    an = e ? e + 1 : NULL;
+    an = an[w] ? an + w + 1 : NULL;
   }
 }
 
