@@ -280,3 +280,48 @@ int dal_normal_modes_frozen(const dal_system *sys, dal_state *st, double *omega2
                             double *lambda_re, double *lambda_im, dal_modes *out) {
   return normal_modes(sys, st, omega2, shapes, lambda_re, lambda_im, out, 1);
 }
+
+int dal__steady_modes(const dal_system *sys, dal_state *st, double *worst_out) {
+  int k2 = 2 * (sys->n - sys->m), rc;
+  double *b = calloc(4 * (size_t)k2 + 1, sizeof(double));
+  int *used = calloc((size_t)k2 + 1, sizeof(int));
+  dal_state *s2 = NULL;
+  if (!b || !used || dal_state_create(sys, &s2) || dal_state_copy_params(sys, s2, st)) {
+    free(b);
+    free(used);
+    dal_state_destroy(s2);
+    return DAL_FAIL(st, DAL_E_NOMEM, "normal_modes: out of memory");
+  }
+  double *r0 = b, *i0 = r0 + k2, *r1 = i0 + k2, *i1 = r1 + k2, worst = 0.0, scale = 0.0;
+  dal_modes md;
+  rc = dal_normal_modes_frozen(sys, st, NULL, NULL, r0, i0, &md);
+  // the scale: the eigenvalues' size, at least the verdict's tolerance tau (near a bifurcation
+  // the eigenvalues vanish and the integration error decides)
+  for (int i = 0; i < k2 && !rc; ++i)
+    scale = fmax(scale, hypot(r0[i], i0[i]));
+  double tol = rc ? 0.0 : fmax(1e-6 * scale, md.tau);
+  // the motion through the state, followed to three later times by the integrator, on a
+  // copy (parameters included); the linearization's eigenvalues there against those here
+  dal_solve_opts o = dal_default_solve_opts();
+  o.rtol = 1e-10;
+  static const double when[3] = {0.37, 1.9, 4.3};
+  if (!rc) rc = dal_state_set(sys, s2, st->t, st->q, st->qdot);
+  for (int j = 0; j < 3 && !rc; ++j) {
+    int arc = dal_advance(sys, s2, &o, st->t + when[j]);
+    if (arc) { // the motion cannot be followed: not shown steady
+      worst = INFINITY;
+      break;
+    }
+    if (dal_normal_modes_frozen(sys, s2, NULL, NULL, r1, i1, NULL)) {
+      worst = INFINITY;
+      break;
+    }
+    worst = fmax(worst, dal__match_distance(k2, r0, i0, r1, i1, used));
+  }
+  dal_state_destroy(s2);
+  free(b);
+  free(used);
+  if (rc) return rc;
+  if (worst_out) *worst_out = scale > 0 ? worst / scale : worst;
+  return worst <= tol;
+}

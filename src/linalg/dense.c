@@ -87,3 +87,23 @@ int dal__chol_solve(int n, const double *A, double *L, double *b, int *bad) {
   }
   return 0;
 }
+
+// the largest distance between two sets of complex numbers (multipliers, eigenvalues), each
+// matched greedily to its nearest unused partner
+double dal__match_distance(int k2, const double *ar, const double *ai, const double *br,
+                           const double *bi, int *used) {
+  double worst = 0.0;
+  memset(used, 0, (size_t)k2 * sizeof(int));
+  for (int i = 0; i < k2; ++i) {
+    int best = -1;
+    double bd = INFINITY;
+    for (int j = 0; j < k2; ++j)
+      if (!used[j] && hypot(ar[i] - br[j], ai[i] - bi[j]) < bd) {
+        bd = hypot(ar[i] - br[j], ai[i] - bi[j]);
+        best = j;
+      }
+    if (best >= 0) used[best] = 1;
+    worst = fmax(worst, bd);
+  }
+  return worst;
+}

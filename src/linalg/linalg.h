@@ -21,6 +21,11 @@
 /// below DAL_CHOL_RTOL times the largest).
 int dal__chol_solve(int n, const double *A, double *L, double *b, int *bad);
 
+/// the largest distance |a_i - b_j| between two sets of k2 complex numbers (ar + i ai, br + i bi)
+/// matched greedily, each a_i to the nearest unused b_j; used: scratch (k2)
+double dal__match_distance(int k2, const double *ar, const double *ai, const double *br,
+                           const double *bi, int *used);
+
 #include "sparse.h"
 
 #endif
