@@ -79,8 +79,8 @@ DAL_API int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts
 /// placements' parameters read from the state, so per-trajectory parameters hold). Energies
 /// and every other output still come from the general path, and so does qddot where the
 /// compiled one declines (a pivot of M not positive, a value not finite), so its messages are
-/// unchanged. The results agree with the general path's to rounding: |qddot - qddot_general|
-/// <= 2^-40 (|qddot| + max_ij |(M^-1)_ij| (|Q_j| + |c_j|)), checked by tests/test_codegen.c
+/// unchanged. The results agree with the general path's to rounding: |qddot - qddot_general|_i
+/// <= 2^-45 (|qddot_i| + sum_j |(M^-1)_ij| (|Q_j| + |c_j|)), checked by tests/test_codegen_eom.c
 /// on every example scene and on 200 random models. Forces covered: gravity, potentials of q
 /// and of the positions by expressions (dal_expr_potential_q / _r). Not thread-safe: attach
 /// before the system is shared. Returns DAL_OK; DAL_E_UNSUPPORTED (msg names the element)

@@ -37,10 +37,14 @@ int dal__cg_load(const dal_cgbuf *src, const dal_codegen_opts *o, const char *sy
                  void **fn, char *msg, size_t msglen);
 
 /// the generated C of the compiled equations of motion of sys (eom.c): one function
-/// `int dal_eom_run(double t, const double *q, const double *qd, const double *P,
+/// `int <fname>(double t, const double *q, const double *qd, const double *P,
 /// const double *const *X, const double *m, const double *g, double *qdd)`; DAL_E_UNSUPPORTED
 /// (with msg) for a system outside their reach, DAL_E_TOO_LARGE past the algebra's bounds
-int dal__eom_source(const dal_system *sys, dal_cgbuf *b, char *msg, size_t msglen);
+int dal__eom_source(const dal_system *sys, dal_cgbuf *b, const char *fname, char *msg,
+                    size_t msglen);
+/// attach the loaded function fn of dal__eom_source's code to sys (which then owns the dlopen
+/// handle; a handle opened again by each caller); DAL_E_NOMEM
+int dal__eom_attach(dal_system *sys, void *handle, void *fn);
 /// qddot (n) at (t, q, qdot) with st's parameters by sys's compiled equations of motion (eom.c);
 /// nonzero when the general path must run instead (a pivot not positive, a value not finite)
 int dal__eom_qddot(const dal_system *sys, const dal_state *st, double t, const double *q,
