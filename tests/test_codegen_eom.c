@@ -335,9 +335,10 @@ static void fallback(void) {
            "constraint rod parts=a = sqrt(x_a^2 + y_a^2) - 1\ngravity 0 -9.8\n",
            "constraints");
   // expansion of nested powers of sums beyond the algebra's bounds
-  declined("dim 2\ncoord x q=0.1 v=0\nparticle a mass=1\nplace a = x + (0.3*(0.3*(0.3*(0.3*(sin(x) + "
-           "cos(x) + x + t))^8 + sin(2*x) + x^2 + t)^8 + sin(3*x) + t^3 + x)^8 + cos(x*t))^8; x\n",
-           "too large");
+  declined(
+      "dim 2\ncoord x q=0.1 v=0\nparticle a mass=1\nplace a = x + (0.3*(0.3*(0.3*(0.3*(sin(x) + "
+      "cos(x) + x + t))^8 + sin(2*x) + x^2 + t)^8 + sin(3*x) + t^3 + x)^8 + cos(x*t))^8; x\n",
+      "too large");
   // no compiler: the formulas stay on the bytecode, nothing is attached
   dal_scene *sc = NULL;
   char m[600];

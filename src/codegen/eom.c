@@ -361,54 +361,154 @@ static void emit_node(dal_cgbuf *o, const eb *b, int i) {
 
 static int zero(const eb *b, int i) { return dal__alg_isnum(&b->g, i, 0.0); }
 
-// M, Q - c and the unrolled LDL' solve
+// sums over sets of particles, each emitted once: a set's sum is its first member plus the sum
+// of the rest (a suffix shared, as the sets of a chain are: the masses beyond a link)
+typedef struct sums {
+  int n, cap;
+  char **key; // "kind c k1 k2 ..."
+} sums;
+
+// the local holding sum_{k in set} m[k] (c < 0) or a<k>_<c>; its name into out
+static void setsum(dal_cgbuf *o, sums *S, const int *set, int ns, int c, char *out, size_t len) {
+  if (ns == 1) {
+    if (c < 0)
+      snprintf(out, len, "m[%d]", set[0]);
+    else
+      snprintf(out, len, "a%d_%d", set[0], c);
+    return;
+  }
+  char key[2048];
+  int k = snprintf(key, sizeof key, "%d", c);
+  for (int i = 0; i < ns && k < (int)sizeof key - 16; ++i)
+    k += snprintf(key + k, sizeof key - (size_t)k, " %d", set[i]);
+  for (int i = 0; i < S->n; ++i)
+    if (!strcmp(S->key[i], key)) {
+      snprintf(out, len, "S%d", i);
+      return;
+    }
+  char rest[32];
+  setsum(o, S, set + 1, ns - 1, c, rest, sizeof rest);
+  if (S->n == S->cap) {
+    int cap = S->cap ? 2 * S->cap : 64;
+    char **v = realloc(S->key, (size_t)cap * sizeof *v);
+    if (!v) {
+      o->oom = 1;
+      snprintf(out, len, "0");
+      return;
+    }
+    S->key = v;
+    S->cap = cap;
+  }
+  char *dup = malloc(strlen(key) + 1);
+  if (!dup) {
+    o->oom = 1;
+    snprintf(out, len, "0");
+    return;
+  }
+  strcpy(dup, key);
+  S->key[S->n] = dup;
+  if (c < 0)
+    dal__cg_printf(o, "  const double S%d = m[%d] + %s;\n", S->n, set[0], rest);
+  else
+    dal__cg_printf(o, "  const double S%d = a%d_%d + %s;\n", S->n, set[0], c, rest);
+  snprintf(out, len, "S%d", S->n++);
+}
+
+// 1 when particles k and l have the same Jacobian entries in columns i and j (nodes)
+static int same_cols(const eb *b, int k, int l, int i, int j) {
+  int n = b->n, d = b->d;
+  for (int c = 0; c < d; ++c) {
+    int r = k * d + c, s = l * d + c;
+    if (b->J[r * n + i] != b->J[s * n + i] || b->J[r * n + j] != b->J[s * n + j]) return 0;
+  }
+  return 1;
+}
+
+// M, Q - c and the unrolled LDL' solve. M_ij = sum_k m_k J_k,i . J_k,j and b_i = sum_k J_k,i .
+// a_k, a_k = m_k (g - gamma_k), with the particles whose columns are the same nodes taken
+// together (a chain's links beyond i: their masses and a's summed first)
 static void emit_solve(dal_cgbuf *o, const eb *b) {
   int n = b->n, N = b->N, d = b->d;
-  // the generalized forces minus curvature terms per particle component: a = m (g - gamma)
   for (int k = 0; k < N; ++k)
     for (int c = 0; c < d; ++c)
       dal__cg_printf(o, "  const double a%d_%d = m[%d] * (g[%d] - %s);\n", k, c, k, c,
                      R(b, b->gam[k * d + c]).s);
-  // M (lower triangle) and b; nz: the entries not known zero
+  // nz: the entries of M (then L) not known zero
   char *nz = calloc((size_t)n * (size_t)n + 1, 1);
-  if (!nz) {
+  int *grp = malloc(((size_t)N + 1) * sizeof *grp), *set = malloc(((size_t)N + 1) * sizeof *set);
+  sums S = {0};
+  if (!nz || !grp || !set) {
     o->oom = 1;
-    return;
+    goto done;
   }
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
+      // the particles that contribute, grouped by equal columns (group: first member)
+      for (int k = 0; k < N; ++k) {
+        grp[k] = -1;
+        for (int c = 0; c < d; ++c) {
+          int r = k * d + c;
+          if (!zero(b, b->J[r * n + i]) && !zero(b, b->J[r * n + j])) grp[k] = k;
+        }
+        for (int l = 0; l < k && grp[k] >= 0; ++l)
+          if (grp[l] == l && same_cols(b, k, l, i, j)) grp[k] = l;
+      }
+      // the line apart: the set sums it names are emitted before it
+      dal_cgbuf ln = {0};
       int terms = 0;
       for (int k = 0; k < N; ++k) {
-        int any = 0;
-        for (int c = 0; c < d; ++c) {
+        if (grp[k] != k) continue;
+        int ns = 0;
+        for (int l = k; l < N; ++l)
+          if (grp[l] == k) set[ns++] = l;
+        char mass[32];
+        setsum(o, &S, set, ns, -1, mass, sizeof mass);
+        dal__cg_printf(&ln, "%s%s * (", terms ? " + " : "", mass);
+        for (int c = 0, any = 0; c < d; ++c) {
           int r = k * d + c, ji = b->J[r * n + i], jj = b->J[r * n + j];
           if (zero(b, ji) || zero(b, jj)) continue;
-          if (!any && terms)
-            dal__cg_printf(o, " + m[%d] * (", k);
-          else if (!any)
-            dal__cg_printf(o, "  const double M%d_%d = m[%d] * (", i, j, k);
-          dal__cg_printf(o, "%s%s * %s", any ? " + " : "", R(b, ji).s, R(b, jj).s);
+          dal__cg_printf(&ln, "%s%s * %s", any ? " + " : "", R(b, ji).s, R(b, jj).s);
           any = 1;
         }
-        if (any) dal__cg_printf(o, ")");
-        terms += any;
+        dal__cg_printf(&ln, ")");
+        terms++;
       }
-      if (terms) {
-        dal__cg_printf(o, ";\n");
-        nz[i * n + j] = 1;
-      } else if (i == j) {
-        dal__cg_printf(o, "  const double M%d_%d = 0.0;\n", i, j);
+      if (terms || i == j) {
+        dal__cg_printf(o, "  const double M%d_%d = %s;\n", i, j, terms ? ln.s : "0.0");
         nz[i * n + j] = 1;
       }
+      if (ln.oom) o->oom = 1;
+      dal__cg_free(&ln);
     }
   for (int i = 0; i < n; ++i) {
-    dal__cg_printf(o, "  const double b%d = -%s", i, R(b, b->dU[i]).s);
-    for (int k = 0; k < N; ++k)
+    // the particles grouped by equal column i
+    for (int k = 0; k < N; ++k) {
+      grp[k] = -1;
+      for (int c = 0; c < d; ++c)
+        if (!zero(b, b->J[(k * d + c) * n + i])) grp[k] = k;
+      for (int l = 0; l < k && grp[k] >= 0; ++l)
+        if (grp[l] == l && same_cols(b, k, l, i, i)) grp[k] = l;
+    }
+    dal_cgbuf ln = {0};
+    int terms = 0;
+    for (int k = 0; k < N; ++k) {
+      if (grp[k] != k) continue;
+      int ns = 0;
+      for (int l = k; l < N; ++l)
+        if (grp[l] == k) set[ns++] = l;
       for (int c = 0; c < d; ++c) {
         int ji = b->J[(k * d + c) * n + i];
-        if (!zero(b, ji)) dal__cg_printf(o, " + %s * a%d_%d", R(b, ji).s, k, c);
+        if (zero(b, ji)) continue;
+        char a[32];
+        setsum(o, &S, set, ns, c, a, sizeof a);
+        dal__cg_printf(&ln, "%s%s * %s", terms ? " + " : "", R(b, ji).s, a);
+        terms++;
       }
-    dal__cg_printf(o, ";\n");
+    }
+    if (!zero(b, b->dU[i])) dal__cg_printf(&ln, "%s%s", terms ? " - " : "-", R(b, b->dU[i]).s);
+    dal__cg_printf(o, "  const double b%d = %s;\n", i, ln.n ? ln.s : "0.0");
+    if (ln.oom) o->oom = 1;
+    dal__cg_free(&ln);
   }
   // LDL': W_ip = M_ip - sum_r<p W_ir L_pr, L_ip = W_ip / D_p, D_i = M_ii - sum_p<i W_ip L_ip
   for (int i = 0; i < n; ++i) {
@@ -447,7 +547,13 @@ static void emit_solve(dal_cgbuf *o, const eb *b) {
   for (int i = 0; i < n; ++i)
     dal__cg_printf(o, "  qdd[%d] = y%d;\n  s += y%d;\n", i, i, i);
   dal__cg_printf(o, "  return !isfinite(s);\n}\n");
+done:
+  for (int i = 0; i < S.n; ++i)
+    free(S.key[i]);
+  free(S.key);
   free(nz);
+  free(grp);
+  free(set);
 }
 
 static void emit(dal_cgbuf *o, eb *b, const char *fname) {
