@@ -28,21 +28,10 @@
 #include "codegen/codegen.h"
 #include "dalembert/dalembert.h"
 #include "scene/scene.h"
-
-#ifndef DAL_SOURCE_DIR
-#define DAL_SOURCE_DIR "."
-#endif
+#include "test_codegen.h"
 
 static unsigned long long seed = 0x51ed2701f00dULL;
 static double rnd(double lo, double hi) { return check_rand(&seed, lo, hi); }
-
-static char cache[256];
-
-static dal_codegen_opts opts(void) {
-  dal_codegen_opts o = dal_codegen_default_opts();
-  o.cache_dir = cache;
-  return o;
-}
 
 #define MAXN 8
 
@@ -155,14 +144,6 @@ static void example_scenes(void) {
     dal_scene_destroy(a);
     dal_scene_destroy(b);
   }
-}
-
-// snprintf through a va_list
-static void put(char *s, size_t len, const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  vsnprintf(s, len, fmt, ap);
-  va_end(ap);
 }
 
 // a smooth random term of the coordinates q0..q(n-1), t and the parameters p0, p1
@@ -354,7 +335,7 @@ static void fallback(void) {
 }
 
 int main(void) {
-  snprintf(cache, sizeof cache, "/tmp/dal_test_codegen_eom_%ld", (long)getpid());
+  cache_make();
   struct timespec t0, t1, t2, t3;
   clock_gettime(CLOCK_MONOTONIC, &t0);
   example_scenes();
@@ -367,8 +348,6 @@ int main(void) {
          (double)(t1.tv_sec - t0.tv_sec) + 1e-9 * (double)(t1.tv_nsec - t0.tv_nsec),
          (double)(t2.tv_sec - t1.tv_sec) + 1e-9 * (double)(t2.tv_nsec - t1.tv_nsec),
          (double)(t3.tv_sec - t2.tv_sec) + 1e-9 * (double)(t3.tv_nsec - t2.tv_nsec));
-  char cmd[400];
-  snprintf(cmd, sizeof cmd, "rm -rf %s", cache);
-  if (system(cmd)) fprintf(stderr, "could not remove %s\n", cache);
+  cache_remove();
   return check_summary("test_codegen_eom");
 }

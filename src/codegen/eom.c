@@ -424,6 +424,21 @@ static int same_cols(const eb *b, int k, int l, int i, int j) {
   return 1;
 }
 
+// the particles with a component nonzero in both columns i and j, grouped by equal columns:
+// grp[k] the group's first member (-1: k does not contribute)
+static void group(const eb *b, int i, int j, int *grp) {
+  int n = b->n, d = b->d;
+  for (int k = 0; k < b->N; ++k) {
+    grp[k] = -1;
+    for (int c = 0; c < d; ++c) {
+      int r = k * d + c;
+      if (!zero(b, b->J[r * n + i]) && !zero(b, b->J[r * n + j])) grp[k] = k;
+    }
+    for (int l = 0; l < k && grp[k] >= 0; ++l)
+      if (grp[l] == l && same_cols(b, k, l, i, j)) grp[k] = l;
+  }
+}
+
 // M, Q - c and the unrolled LDL' solve. M_ij = sum_k m_k J_k,i . J_k,j and b_i = sum_k J_k,i .
 // a_k, a_k = m_k (g - gamma_k), with the particles whose columns are the same nodes taken
 // together (a chain's links beyond i: their masses and a's summed first)
@@ -443,16 +458,7 @@ static void emit_solve(dal_cgbuf *o, const eb *b) {
   }
   for (int i = 0; i < n; ++i)
     for (int j = 0; j <= i; ++j) {
-      // the particles that contribute, grouped by equal columns (group: first member)
-      for (int k = 0; k < N; ++k) {
-        grp[k] = -1;
-        for (int c = 0; c < d; ++c) {
-          int r = k * d + c;
-          if (!zero(b, b->J[r * n + i]) && !zero(b, b->J[r * n + j])) grp[k] = k;
-        }
-        for (int l = 0; l < k && grp[k] >= 0; ++l)
-          if (grp[l] == l && same_cols(b, k, l, i, j)) grp[k] = l;
-      }
+      group(b, i, j, grp);
       // the line apart: the set sums it names are emitted before it
       dal_cgbuf ln = {0};
       int terms = 0;
@@ -481,14 +487,7 @@ static void emit_solve(dal_cgbuf *o, const eb *b) {
       dal__cg_free(&ln);
     }
   for (int i = 0; i < n; ++i) {
-    // the particles grouped by equal column i
-    for (int k = 0; k < N; ++k) {
-      grp[k] = -1;
-      for (int c = 0; c < d; ++c)
-        if (!zero(b, b->J[(k * d + c) * n + i])) grp[k] = k;
-      for (int l = 0; l < k && grp[k] >= 0; ++l)
-        if (grp[l] == l && same_cols(b, k, l, i, i)) grp[k] = l;
-    }
+    group(b, i, i, grp);
     dal_cgbuf ln = {0};
     int terms = 0;
     for (int k = 0; k < N; ++k) {
