@@ -13,7 +13,7 @@
 //    and a random potential U(q): at 20 random states each.
 // 3. The fallback, with its note: a spring, a constraint (not in reach), a formula too large
 //    for the algebra (DAL_E_TOO_LARGE), no compiler (DAL_E_UNSUPPORTED): nothing attached, the
-//    general path runs.
+//    general path runs; at a state where M is singular the compiled function declines.
 #define _POSIX_C_SOURCE 200809L
 #include <dlfcn.h>
 #include <math.h>
@@ -320,6 +320,33 @@ static void fallback(void) {
       "dim 2\ncoord x q=0.1 v=0\nparticle a mass=1\nplace a = x + (0.3*(0.3*(0.3*(0.3*(sin(x) + "
       "cos(x) + x + t))^8 + sin(2*x) + x^2 + t)^8 + sin(3*x) + t^3 + x)^8 + cos(x*t))^8; x\n",
       "too large");
+  // at a state where M is singular (the spherical pendulum at its pole) the compiled function
+  // declines, and the general path names the cause
+  {
+    dal_scene *sp = NULL;
+    char msg[600];
+    CHECK_OK(dal_scene_parse("dim 3\ncoord th\ncoord ph\nparticle b mass=1\n"
+                             "place b = sin(th)*cos(ph); sin(th)*sin(ph); -cos(th)\n"
+                             "gravity 0 0 -9.81\n",
+                             "pole", &sp, msg, sizeof msg));
+    dal_codegen_opts o = opts();
+    CHECK_OK(sp ? dal_scene_native(sp, &o, msg, sizeof msg) : -1);
+    const dal_system *sys = sp ? dal_scene_system(sp) : NULL;
+    CHECK(dal_codegen_eom_attached(sys) == 1);
+    dal_state *st = NULL;
+    double q[2] = {0, 0}, qd[2] = {0.1, 0.2}, a[2];
+    if (sys) CHECK_OK(dal_state_create(sys, &st));
+    if (st) {
+      CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
+      CHECK(dal__eom_qddot(sys, st, 0.0, q, qd, a) != 0);
+      int rc = dal_forward(sys, st);
+      CHECK_MSG(rc == DAL_E_SINGULAR, "the general path at the pole: %d %s", rc,
+                dal_state_errmsg(st));
+      printf("declined at the pole; the general path: %s\n", dal_state_errmsg(st));
+    }
+    dal_state_destroy(st);
+    dal_scene_destroy(sp);
+  }
   // no compiler: the formulas stay on the bytecode, nothing is attached
   dal_scene *sc = NULL;
   char m[600];
