@@ -224,11 +224,7 @@ static int var_setup(const dal_system *sys, dal_state *st, const dal_solve_opts 
 
 static void var_free(var_problem *vp) {
   dal__tangent_free(vp->tg);
-  free(vp->ref);
-  free(vp->A);
-  free(vp->B);
-  free(vp->f);
-  free(vp->y0);
+  DAL_FREE(vp->ref, vp->A, vp->B, vp->f, vp->y0);
 }
 
 int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
@@ -374,27 +370,14 @@ int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
     // reduced: B_r = N' b, and the first-order Bf = (0, M_r^-1 B_r) = (0, N' da) with da from
     // the KKT system [M G'; G 0] (da; -dlambda) = (b; 0)
     if ((rc = dal__tangent_reduced(sys, st, tg, N, Ar, Mr, NULL, NULL)) != 0) goto done;
-    for (size_t j = 0; j < ni; ++j)
-      for (size_t i = 0; i < sk; ++i) {
-        double x = 0.0;
-        for (size_t l = 0; l < sn; ++l)
-          x += N[i * sn + l] * R[j * nk + l];
-        Br[j * sk + i] = x;
-      }
+    dal__gemm('T', 'N', (int)sk, (int)ni, n, N, n, R, (int)nk, Br, (int)sk);
     if (B) memcpy(B, Br, sk * ni * sizeof(double));
     if (Af) memcpy(Af, Ar, k2 * k2 * sizeof(double));
     if (Bf) {
       dal__tangent_kkt_solve(tg, ninput, R); // tg's LU factors are the reduction's
-      for (size_t j = 0; j < ni; ++j) {
-        double *c = Bf + j * k2;
-        for (size_t i = 0; i < sk; ++i) {
-          double x = 0.0;
-          for (size_t l = 0; l < sn; ++l)
-            x += N[i * sn + l] * R[j * nk + l];
-          c[i] = 0.0;
-          c[sk + i] = x;
-        }
-      }
+      for (size_t j = 0; j < ni; ++j)
+        memset(Bf + j * k2, 0, sk * sizeof(double));
+      dal__gemm('T', 'N', (int)sk, (int)ni, n, N, n, R, (int)nk, Bf + sk, (int)k2);
     }
   }
 done:
