@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // One integrator interface: the formulation and method resolved from the method rows, and the
-// two families behind one handle (dal_integ): the ODE methods on a formulation's problem and
-// IDA on the DAE forms.
+// three families behind one handle (dal_integ): the ODE methods on a formulation's problem, IDA
+// on the DAE forms, and the ODE methods on a plain first-order problem (the analyses').
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,15 +14,22 @@
 // ---------------------------------------------------------------------------------------------
 // the ODE family: an ODE method on a dal_ode_problem
 
-static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+// the ODE method to tout, the hook called after every accepted step
+static int ode_run(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
   dal_ode_integ *ig = it->impl;
   ig->hook = hook;
   ig->hook_ctx = ctx;
   ig->dense = hook && it->dense_steps;
   int rc = dal__ode_advance(ig, tout);
   ig->hook = NULL;
+  return rc;
+}
+
+static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+  int rc = ode_run(it, tout, hook, ctx);
   if (rc) return rc;
   // the state at tout, evaluated there
+  dal_ode_integ *ig = it->impl;
   dal__ode_to_state(ig, ig->t, ig->y);
   return dal__public_status(dal__eval(it->sys, it->st, DAL_P_ALL));
 }
@@ -52,8 +59,46 @@ static void ode_destroy(dal_integ *it) {
   free(it->yi);
 }
 
-static const dal_integ_ops ode_ops = {ode_advance,   ode_window,     ode_place,
-                                      ode_place_end, ode_new_output, ode_destroy};
+static const dal_integ_ops ode_ops = {
+    .advance = ode_advance,
+    .window = ode_window,
+    .place = ode_place,
+    .place_end = ode_place_end,
+    .new_output = ode_new_output,
+    .destroy = ode_destroy,
+};
+
+// ---------------------------------------------------------------------------------------------
+// the first-order family: an ODE method on a plain first-order problem (dal_first_order)
+
+// to tout within the caller's budget it->opts.max_steps; the work state follows the trajectory
+// part of y there (not evaluated: F evaluates what it needs)
+static int fo_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+  dal_ode_integ *ig = it->impl;
+  ig->opts.max_steps = it->opts.max_steps;
+  int rc = ode_run(it, tout, hook, ctx);
+  if (rc == DAL__HOOK_STOP) return rc;
+  if (rc) return dal__public_status(rc);
+  dal__ode_to_state(ig, ig->t, ig->y);
+  return DAL_OK;
+}
+
+static int fo_change_y(dal_integ *it, int i0, const double *y) {
+  dal_ode_integ *ig = it->impl;
+  if (!dal__ode_can_change_y(ig)) return 0;
+  memcpy(ig->y + i0, y + i0, (size_t)(ig->ny - i0) * sizeof(double));
+  return dal__ode_changed_y(ig, i0);
+}
+
+static const dal_integ_ops fo_ops = {
+    .advance = fo_advance,
+    .window = ode_window,
+    .place = ode_place,
+    .place_end = ode_place_end,
+    .new_output = ode_new_output,
+    .destroy = ode_destroy,
+    .change_y = fo_change_y,
+};
 
 // ---------------------------------------------------------------------------------------------
 // the DAE family: IDA on the GGL, index-3 and index-1 forms
@@ -111,8 +156,14 @@ static int ida_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void 
   return rc;
 }
 
-static const dal_integ_ops ida_ops = {ida_advance,   ida_window,     ida_place,
-                                      ida_place_end, ida_new_output, ida_destroy};
+static const dal_integ_ops ida_ops = {
+    .advance = ida_advance,
+    .window = ida_window,
+    .place = ida_place,
+    .place_end = ida_place_end,
+    .new_output = ida_new_output,
+    .destroy = ida_destroy,
+};
 
 // ---------------------------------------------------------------------------------------------
 // resolution and creation
@@ -258,6 +309,40 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
     rc = dal__fallback_start(sys, st, o);
   }
   if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
+  if (rc) {
+    dal__integ_destroy(it);
+    return rc;
+  }
+  *out = it;
+  return DAL_OK;
+}
+
+int dal__integ_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                         dal_first_order *fo, dal_integ **out) {
+  *out = NULL;
+  dal_method meth = DAL_METHOD_AUTO;
+  int rc = dal__fo_method(st, o->method, o->rtol, DAL__CAP_FIRST_ORDER, NULL, &meth);
+  if (rc) return rc;
+  dal_integ *it = calloc(1, sizeof *it);
+  if (!it) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  it->sys = sys;
+  it->st = st;
+  it->opts = *o;
+  it->opts.method = meth;
+  it->method = meth;
+  it->form = DAL_FORM_ODE;
+  it->traj_pieces = dal__method_row(meth)->traj_pieces;
+  dal_ode_integ *ig = NULL;
+  if ((rc = dal__ode_create_fo(sys, st, &it->opts, meth, fo, &ig)) == 0) {
+    it->ops = &fo_ops;
+    it->impl = ig;
+    it->y = ig->y;
+    it->ny = ig->ny;
+    // dense output of y into a scratch, the trajectory part copied into the state
+    if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
+      rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+    ig->yplace = it->yi;
+  }
   if (rc) {
     dal__integ_destroy(it);
     return rc;
