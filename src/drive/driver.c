@@ -478,8 +478,7 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
     return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
   // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
   // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
-  const dal_method_row *mrow = dal__method_row(o->method);
-  int fixed = mrow && (mrow->fixed == 1 || (mrow->fixed == 2 && o->fixed_erk));
+  int fixed = dal__method_fixed(o->method, o);
   const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
   const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
   for (int i = 0; i < 4; ++i)

@@ -59,14 +59,8 @@ static void ode_destroy(dal_integ *it) {
   free(it->yi);
 }
 
-static const dal_integ_ops ode_ops = {
-    .advance = ode_advance,
-    .window = ode_window,
-    .place = ode_place,
-    .place_end = ode_place_end,
-    .new_output = ode_new_output,
-    .destroy = ode_destroy,
-};
+static const dal_integ_ops ode_ops = {ode_advance,    ode_window,  ode_place, ode_place_end,
+                                      ode_new_output, ode_destroy, NULL};
 
 // ---------------------------------------------------------------------------------------------
 // the first-order family: an ODE method on a plain first-order problem (dal_first_order)
@@ -90,15 +84,8 @@ static int fo_change_y(dal_integ *it, int i0, const double *y) {
   return dal__ode_changed_y(ig, i0);
 }
 
-static const dal_integ_ops fo_ops = {
-    .advance = fo_advance,
-    .window = ode_window,
-    .place = ode_place,
-    .place_end = ode_place_end,
-    .new_output = ode_new_output,
-    .destroy = ode_destroy,
-    .change_y = fo_change_y,
-};
+static const dal_integ_ops fo_ops = {fo_advance,     ode_window,  ode_place,  ode_place_end,
+                                     ode_new_output, ode_destroy, fo_change_y};
 
 // ---------------------------------------------------------------------------------------------
 // the DAE family: IDA on the GGL, index-3 and index-1 forms
@@ -156,14 +143,8 @@ static int ida_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void 
   return rc;
 }
 
-static const dal_integ_ops ida_ops = {
-    .advance = ida_advance,
-    .window = ida_window,
-    .place = ida_place,
-    .place_end = ida_place_end,
-    .new_output = ida_new_output,
-    .destroy = ida_destroy,
-};
+static const dal_integ_ops ida_ops = {ida_advance,    ida_window,  ida_place, ida_place_end,
+                                      ida_new_output, ida_destroy, NULL};
 
 // ---------------------------------------------------------------------------------------------
 // resolution and creation
@@ -247,7 +228,6 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   if (rc) return rc;
   it->ops = &ode_ops;
   it->impl = ig;
-  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   // dense output straight into the state's (q, qdot) where y has its layout
@@ -273,7 +253,6 @@ static int create_ida(dal_integ *it) {
   int rc = dal__public_status(dal__ida_create(it->sys, st, o, &it->impl));
   if (rc) return rc;
   it->ops = &ida_ops;
-  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   it->can_fall_back = 1;
   if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
     snprintf(it->note, sizeof it->note,
@@ -285,30 +264,26 @@ static int create_ida(dal_integ *it) {
   return DAL_OK;
 }
 
-int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
-                      dal_integ **out) {
-  *out = NULL;
-  dal_method meth = DAL_METHOD_AUTO;
-  const dal_ode_problem *prob = NULL;
-  int tight = 0;
-  int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
-  if (rc) return rc;
+// a handle of method meth in formulation form for options o, its family's memory not made yet;
+// NULL with the state's message set when out of memory
+static dal_integ *integ_alloc(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                              dal_method meth, dal_formulation form) {
   dal_integ *it = calloc(1, sizeof *it);
-  if (!it) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+  if (!it) {
+    DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+    return NULL;
+  }
   it->sys = sys;
   it->st = st;
   it->opts = *o;
   it->method = meth;
-  it->form = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
-             : prob                       ? DAL_FORM_ODE
-             : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
-                                          : o->form;
-  if (tight) {
-    // the fallback formulation starts from a consistent state too
-    it->opts = dal__fallback_opts(o);
-    rc = dal__fallback_start(sys, st, o);
-  }
-  if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
+  it->form = form;
+  it->traj_pieces = dal__method_row(meth)->traj_pieces;
+  return it;
+}
+
+// the end of a creation with status rc: the handle into *out, or destroyed
+static int integ_done(dal_integ *it, int rc, dal_integ **out) {
   if (rc) {
     dal__integ_destroy(it);
     return rc;
@@ -317,21 +292,38 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
   return DAL_OK;
 }
 
+int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
+                      dal_integ **out) {
+  *out = NULL;
+  dal_method meth = DAL_METHOD_AUTO;
+  const dal_ode_problem *prob = NULL;
+  int tight = 0;
+  int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
+  if (rc) return rc;
+  dal_formulation form = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
+                         : prob                       ? DAL_FORM_ODE
+                         : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
+                                                      : o->form;
+  dal_integ *it = integ_alloc(sys, st, o, meth, form);
+  if (!it) return DAL_E_NOMEM;
+  if (tight) {
+    // the fallback formulation starts from a consistent state too
+    it->opts = dal__fallback_opts(o);
+    rc = dal__fallback_start(sys, st, o);
+  }
+  if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
+  return integ_done(it, rc, out);
+}
+
 int dal__integ_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
                          dal_first_order *fo, dal_integ **out) {
   *out = NULL;
   dal_method meth = DAL_METHOD_AUTO;
   int rc = dal__fo_method(st, o->method, o->rtol, DAL__CAP_FIRST_ORDER, NULL, &meth);
   if (rc) return rc;
-  dal_integ *it = calloc(1, sizeof *it);
-  if (!it) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
-  it->sys = sys;
-  it->st = st;
-  it->opts = *o;
+  dal_integ *it = integ_alloc(sys, st, o, meth, DAL_FORM_ODE);
+  if (!it) return DAL_E_NOMEM;
   it->opts.method = meth;
-  it->method = meth;
-  it->form = DAL_FORM_ODE;
-  it->traj_pieces = dal__method_row(meth)->traj_pieces;
   dal_ode_integ *ig = NULL;
   if ((rc = dal__ode_create_fo(sys, st, &it->opts, meth, fo, &ig)) == 0) {
     it->ops = &fo_ops;
@@ -343,12 +335,7 @@ int dal__integ_create_fo(const dal_system *sys, dal_state *st, const dal_solve_o
       rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
     ig->yplace = it->yi;
   }
-  if (rc) {
-    dal__integ_destroy(it);
-    return rc;
-  }
-  *out = it;
-  return DAL_OK;
+  return integ_done(it, rc, out);
 }
 
 void dal__integ_destroy(dal_integ *it) {
