@@ -22,22 +22,8 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "rows.h"
 #include "scenes.h"
-
-#define MSG_LEN 512
-
-typedef struct rel_row {
-  const char *name;
-  int expect;          // the exact status
-  const char *culprit; // substrings the message must contain (NULL: none)
-  const char *culprit2;
-  const char *never;     // a substring the message must not contain (a wrong culprit; NULL: none)
-  int (*run)(char *msg); // a row of its own, or
-  int (*run_case)(char *msg, const void *data); // a row shared by cases, with its data
-  const void *data;
-} rel_row;
-
-static void copy_msg(char *msg, const char *s) { snprintf(msg, MSG_LEN, "%s", s ? s : ""); }
 
 // ---------------------------------------------------------------- scenes
 static const double g2[2] = {0.0, -9.81};
@@ -785,18 +771,10 @@ static int row_rod_length_zero(char *msg) {
   int a, b;
   CHECK_OK(two_free(&s, &a, &b));
   CHECK(dal_builder_add_particle(s.b, "bad", -1.0, NULL) == DAL_E_ARG);
-  int parts[2] = {a, b};
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_distance2;
-  cd.parts = parts;
-  cd.nparts = 2;
-  cd.param[DAL_DISTANCE_L] = 0.0;
-  int rc = dal_builder_add_constraint_def(s.b, &cd, NULL);
+  int rc = scn_add_rod(s.b, "rod", a, b, 0.0, NULL); // dal_con_distance2
   copy_msg(msg, dal_builder_errmsg(s.b));
   CHECK(strstr(msg, "'bad'") == NULL); // not the earlier failure's message
-  cd.param[DAL_DISTANCE_L] = 1.0;
-  CHECK_OK(dal_builder_add_constraint_def(s.b, &cd, NULL));
+  CHECK_OK(scn_add_rod(s.b, "rod", a, b, 1.0, NULL));
   CHECK(dal_builder_errmsg(s.b)[0] == 0); // a successful call leaves no message
   scene_free(&s);
   return rc;
@@ -914,15 +892,8 @@ static int row_param_override_checks(char *msg) {
     copy_msg(got, dal_state_errmsg(c.st));
     scene_free(&c);
     // the builder's message for the same rod
-    int rod = 0;
     CHECK_OK(free2(&c, 2.0, 1));
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &rod;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = L;
-    int brc = dal_builder_add_constraint_def(c.b, &cd, NULL);
+    int brc = scn_add_rod(c.b, "rod", 0, -1, L, NULL);
     CHECK_MSG(prc == DAL_E_ARG && brc == prc && strcmp(got, dal_builder_errmsg(c.b)) == 0,
               "rod length %g: %s '%s', the builder %s '%s'", L, dal_status_name(prc), got,
               dal_status_name(brc), dal_builder_errmsg(c.b));
@@ -1415,7 +1386,7 @@ static int row_ggl_collapse_remedy(char *msg) {
   return rc;
 }
 
-static const rel_row rows[] = {
+static const bad_row rows[] = {
     {"bdf: a request below its floor leaves a note", DAL_OK, "below what bdf can honour", "1e-11",
      NULL, row_bdf_floor_note, NULL, NULL},
     {"csv monitor: state of a smaller system", DAL_E_STATE, "csv_monitor", "another system", NULL,
@@ -1493,26 +1464,4 @@ static const rel_row rows[] = {
      row_ggl_collapse_remedy, NULL, NULL},
 };
 
-int main(void) {
-  int nrows = (int)(sizeof rows / sizeof rows[0]);
-  for (int i = 0; i < nrows; ++i) {
-    const rel_row *r = &rows[i];
-    char msg[MSG_LEN] = "";
-    int before = check_failures;
-    int rc = r->run ? r->run(msg) : r->run_case(msg, r->data);
-    CHECK_MSG(rc == r->expect, "row '%s': status %s, expected %s (message: %s)", r->name,
-              dal_status_name(rc), dal_status_name(r->expect), msg);
-    if (r->culprit)
-      CHECK_MSG(strstr(msg, r->culprit) != NULL, "row '%s': message does not name '%s': %s",
-                r->name, r->culprit, msg);
-    if (r->culprit2)
-      CHECK_MSG(strstr(msg, r->culprit2) != NULL, "row '%s': message does not name '%s': %s",
-                r->name, r->culprit2, msg);
-    if (r->never)
-      CHECK_MSG(strstr(msg, r->never) == NULL, "row '%s': message names '%s' (wrong culprit): %s",
-                r->name, r->never, msg);
-    printf("%-55s %-16s %s | %.300s\n", r->name, dal_status_name(rc),
-           check_failures == before ? "ok  " : "FAIL", msg);
-  }
-  return check_summary("test_reliability");
-}
+int main(void) { return rows_run(rows, (int)(sizeof rows / sizeof rows[0]), "test_reliability"); }
