@@ -28,9 +28,7 @@ typedef struct bad_row {
 } bad_row;
 
 /// Copy s (NULL: nothing) into a row's message buffer of MSG_LEN bytes.
-static inline void copy_msg(char *msg, const char *s) {
-  snprintf(msg, MSG_LEN, "%s", s ? s : "");
-}
+static inline void copy_msg(char *msg, const char *s) { snprintf(msg, MSG_LEN, "%s", s ? s : ""); }
 
 /// Run the n rows and print one line each; the suite's summary (0 when every check held).
 static inline int rows_run(const bad_row *rows, int n, const char *suite) {
@@ -44,8 +42,8 @@ static inline int rows_run(const bad_row *rows, int n, const char *suite) {
     const char *want[2] = {r->culprit, r->culprit2};
     for (int k = 0; k < 2; ++k)
       if (want[k])
-        CHECK_MSG(strstr(msg, want[k]) != NULL, "row '%s': message does not name '%s': %s",
-                  r->name, want[k], msg);
+        CHECK_MSG(strstr(msg, want[k]) != NULL, "row '%s': message does not name '%s': %s", r->name,
+                  want[k], msg);
     if (r->never)
       CHECK_MSG(strstr(msg, r->never) == NULL, "row '%s': message names '%s' (wrong culprit): %s",
                 r->name, r->never, msg);
