@@ -25,13 +25,14 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 // ---------------------------------------------------------------- fixtures
 // A: Cartesian pendulum 'bob' on rod 'rod' (2 coordinates, 1 constraint row), evaluated;
 // B: a planar pendulum in minimal coordinates (1 coordinate), evaluated. stA, stB their
 // states; bld a builder that stays valid throughout.
 typedef struct fix {
-  dal_builder *bld, *ba, *bb;
+  dal_builder *bld;
   dal_system *A, *B;
   dal_state *stA, *stB;
   dal_solve_opts o;
@@ -95,41 +96,30 @@ static int lag_fn(dal_jet t, const dal_jet *q, const dal_jet *qd, dal_jet *L, vo
 }
 
 static void fix_make(void) {
-  static const double g2[2] = {0.0, -9.81};
-  int c[2], bob, th;
-  double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0}, th0 = 0.3, thd = 0.0;
-  CHECK_OK(dal_builder_create(2, &F.ba));
-  CHECK_OK(dal_builder_add_coord(F.ba, "x", &c[0]));
-  CHECK_OK(dal_builder_add_coord(F.ba, "y", &c[1]));
-  CHECK_OK(dal_builder_add_particle(F.ba, "bob", 1.0, &bob));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  CHECK_OK(dal_builder_place_def(F.ba, bob, &pd));
-  CHECK_OK(dal_builder_set_gravity(F.ba, g2));
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &bob;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  CHECK_OK(dal_builder_add_constraint_def(F.ba, &cd, NULL));
-  CHECK_OK(dal_builder_compile(F.ba, &F.A));
+  double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0}, th0 = 0.3, thd = 0.0, v = 0.0;
+  F.A = scn_cart_pendulum(NULL); // the standard scenes (tests/support/scenes.h)
+  F.B = scn_pendulum(NULL);
+  CHECK(F.A != NULL && F.B != NULL);
+  if (!F.A || !F.B) return;
+  // the names, sizes and values the rows rely on
+  CHECK(dal_system_ncoords(F.A) == 2 && dal_system_nconstraints(F.A) == 1);
+  CHECK(dal_system_ncoords(F.B) == 1 && dal_system_nconstraints(F.B) == 0);
+  CHECK(strcmp(dal_system_coord_name(F.A, 0), "x") == 0);
+  CHECK(strcmp(dal_system_coord_name(F.A, 1), "y") == 0);
+  CHECK(strcmp(dal_system_coord_name(F.B, 0), "theta") == 0);
+  CHECK(strcmp(dal_system_particle_name(F.A, 0), "bob") == 0);
+  CHECK(strcmp(dal_system_particle_name(F.B, 0), "bob") == 0);
+  CHECK(strcmp(dal_system_constraint_name(F.A, 0), "rod") == 0);
+  CHECK(dal_system_mass(F.A, 0) == 1.0 && dal_system_mass(F.B, 0) == 1.0);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, 0}, &v) == 0 && v == 1.0);
+  CHECK(dal_system_param(F.B, &(dal_param_ref){DAL_PARAM_PLACE, 0, DAL_PENDULUM_L}, &v) == 0 &&
+        v == 1.0);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 1}, &v) == 0 && v == -9.81);
+  CHECK(dal_system_param(F.B, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 1}, &v) == 0 && v == -9.81);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 0}, &v) == 0 && v == 0.0);
   CHECK_OK(dal_state_create(F.A, &F.stA));
   CHECK_OK(dal_state_set(F.A, F.stA, 0.0, q, qd));
   CHECK_OK(dal_forward(F.A, F.stA));
-  CHECK_OK(dal_builder_create(2, &F.bb));
-  CHECK_OK(dal_builder_add_coord(F.bb, "theta", &th));
-  CHECK_OK(dal_builder_add_particle(F.bb, "bob", 1.0, &bob));
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  CHECK_OK(dal_builder_place_def(F.bb, bob, &pd));
-  CHECK_OK(dal_builder_set_gravity(F.bb, g2));
-  CHECK_OK(dal_builder_compile(F.bb, &F.B));
   CHECK_OK(dal_state_create(F.B, &F.stB));
   CHECK_OK(dal_state_set(F.B, F.stB, 0.0, &th0, &thd));
   CHECK_OK(dal_forward(F.B, F.stB));
@@ -145,8 +135,6 @@ static void fix_free(void) {
   dal_state_destroy(F.stB);
   dal_system_destroy(F.A);
   dal_system_destroy(F.B);
-  dal_builder_destroy(F.ba);
-  dal_builder_destroy(F.bb);
   dal_builder_destroy(F.bld);
 }
 
@@ -1296,21 +1284,10 @@ typedef struct branch_rec {
 } branch_rec;
 static int rebuild_pend(double p, dal_system **out, void *ctx) {
   if (((branch_rec *)ctx)->fail) return 1;
-  double g[2] = {0.0, -9.81 - p};
-  dal_builder *b = NULL;
-  int th = 0, bob = 0, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, out);
-  dal_builder_destroy(b);
-  return rc;
+  scn_knobs k = scn_default();
+  k.g = 9.81 + p;
+  *out = scn_pendulum(&k);
+  return *out ? DAL_OK : DAL_E_ARG;
 }
 static int branch_point(double p, const dal_system *sys, const dal_state *st, dal_stability v,
                         dal_branch_kind kind, void *ctx) {
