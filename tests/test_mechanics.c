@@ -22,6 +22,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define NSTATE 200
 #define TOL 1e-12
@@ -61,8 +62,10 @@ typedef struct scene {
   dal_state *st;
 } scene;
 
+// a state for sys (NULL: the scene could not be built, a failure)
 static scene scene_make(dal_system *sys) {
   scene s = {sys, NULL};
+  CHECK_MSG(sys != NULL, "the scene could not be built");
   if (sys) CHECK_OK(dal_state_create(sys, &s.st));
   return s;
 }
@@ -194,23 +197,12 @@ static void test_harmonic_oscillator(void) {
   int f0 = check_failures;
   ho_par par = {2.0, 1.0};
   // (a) Cartesian particle + anchor spring of rest length 0 at the origin
-  dal_builder *b = builder(2);
-  int q[2], p;
-  BUILD(dal_builder_add_coord(b, "x", &q[0]));
-  BUILD(dal_builder_add_coord(b, "y", &q[1]));
-  BUILD(dal_builder_add_particle(b, "m", par.m, &p));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = q;
-  pd.ncoords = 2;
-  BUILD(dal_builder_place_def(b, p, &pd));
-  dal_spring_def sd = dal_default_spring_def();
-  sd.a = p;
-  sd.k = par.k;
-  BUILD(dal_builder_add_spring_def(b, &sd));
-  scene sa = scene_make(compile(b));
+  scn_knobs kn = scn_weightless(); // the oscillator of the scene library
+  kn.m = par.m;
+  kn.k = par.k;
+  scene sa = scene_make(scn_oscillator(&kn));
   // (b) whole-system identity map + U(q)
-  b = builder(2);
+  dal_builder *b = builder(2);
   BUILD(dal_builder_add_coord(b, "x", NULL));
   BUILD(dal_builder_add_coord(b, "y", NULL));
   BUILD(dal_builder_add_particle(b, "m", par.m, NULL));
@@ -332,22 +324,14 @@ static void test_ring(void) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
     ring_par P = {rnd(0.5, 2), rnd(0.3, 2), rnd(0, 8), rnd(-1, 1), 9.81};
+    scn_knobs k = scn_default(); // the bead of the scene library (dal_map_ring)
+    k.m = P.m;
+    k.R = P.R;
+    k.spin = P.w;
+    k.phi0 = P.phi0;
+    k.g = P.g;
+    scene s = scene_make(scn_bead(&k));
     dal_builder *b = builder(3);
-    int th, p;
-    double g[3] = {0, 0, -P.g};
-    BUILD(dal_builder_add_coord(b, "theta", &th));
-    BUILD(dal_builder_add_particle(b, "bead", P.m, &p));
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_ring;
-    pd.coords = &th;
-    pd.ncoords = 1;
-    pd.param[DAL_RING_R] = P.R;
-    pd.param[DAL_RING_W] = P.w;
-    pd.param[DAL_RING_PHI0] = P.phi0;
-    BUILD(dal_builder_place_def(b, p, &pd));
-    BUILD(dal_builder_set_gravity(b, g));
-    scene s = scene_make(compile(b));
-    b = builder(3);
     BUILD(dal_builder_add_coord(b, "theta", NULL));
     BUILD(dal_builder_set_lagrangian(b, ring_lagrangian, &P));
     scene sl = scene_make(compile(b));
@@ -391,6 +375,8 @@ static void test_ring(void) {
           tg[a] = cs * er[a] + sn * ez[a]; // tangent along increasing theta
         }
         near_vec("ring dr/dt", dal_state_drdt(s.st), drdt, 3, TOL, w * R + 1);
+        double rh[3] = {R * n[0], R * n[1], R * n[2]}; // on the ring: R times its normal
+        near_vec("ring r", dal_state_positions(s.st), rh, 3, TOL, R);
         near_vec("ring gamma", dal_state_gamma(s.st), gam, 3, TOL, R * (thd * thd + w * w) + 1);
         // reaction force: N.n = -m R (thd^2 + w^2 sin^2) - m g cos, N.e_phi = 2 m w R cos thd,
         // N.t = 0 (frictionless ring)
@@ -464,26 +450,18 @@ static void test_pendulum(int driven) {
       P.ay = rnd(-0.5, 0.5);
       P.ax = rep % 2 ? rnd(-0.5, 0.5) : 0.0; // SICM's vertical drive, and a general one
     }
+    scn_knobs k = scn_default(); // the pendulum of the scene library (dal_map_pendulum)
+    k.m = P.m;
+    k.l = P.l;
+    k.x0 = P.x0;
+    k.y0 = P.y0;
+    k.ax = P.ax;
+    k.ay = P.ay;
+    k.w = P.w;
+    k.ph = P.ph;
+    k.g = P.g;
+    scene s = scene_make(scn_pendulum(&k));
     dal_builder *b = builder(2);
-    int th, p;
-    double g[2] = {0, -P.g};
-    BUILD(dal_builder_add_coord(b, "theta", &th));
-    BUILD(dal_builder_add_particle(b, "bob", P.m, &p));
-    dal_place_def pdef = dal_default_place_def();
-    pdef.prim = &dal_map_pendulum;
-    pdef.coords = &th;
-    pdef.ncoords = 1;
-    pdef.param[DAL_PENDULUM_L] = P.l;
-    pdef.param[DAL_PENDULUM_X0] = P.x0;
-    pdef.param[DAL_PENDULUM_Y0] = P.y0;
-    pdef.param[DAL_PENDULUM_AX] = P.ax;
-    pdef.param[DAL_PENDULUM_AY] = P.ay;
-    pdef.param[DAL_PENDULUM_W] = P.w;
-    pdef.param[DAL_PENDULUM_PH] = P.ph;
-    BUILD(dal_builder_place_def(b, p, &pdef));
-    BUILD(dal_builder_set_gravity(b, g));
-    scene s = scene_make(compile(b));
-    b = builder(2);
     BUILD(dal_builder_add_coord(b, "theta", NULL));
     BUILD(dal_builder_set_lagrangian(b, pend_lagrangian, &P));
     scene sl = scene_make(compile(b));
@@ -531,6 +509,11 @@ static void test_pendulum(int driven) {
         double Nh[2] = {Nm * sn, -Nm * cs};
         near_vec("pendulum reaction", dal_state_reactions(s.st), Nh, 2, TOL,
                  m * (l * thd * thd + P.g + fabs(pdd[0]) + fabs(pdd[1])));
+        // the bob at p + l (sin, -cos), moving at p' + l thd (cos, sin)
+        double rh[2] = {pp[0] + l * sn, pp[1] - l * cs}, vh[2] = {vx, vy};
+        near_vec("pendulum r", dal_state_positions(s.st), rh, 2, TOL,
+                 l + fabs(pp[0]) + fabs(pp[1]));
+        near_vec("pendulum v", dal_state_velocities(s.st), vh, 2, TOL, l * fabs(thd) + P.w + 1);
         // sizes: the Jacobian is written as exactly 2 x 1
         double J[4] = {-777, -777, -777, -777};
         CHECK_OK(dal_state_jacobian(s.sys, s.st, 0, J));
@@ -604,31 +587,17 @@ static void test_double_pendulum(void) {
     dbl_par P = {rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(-1, 1), rnd(-1, 1), 9.81};
     double g[2] = {0, -P.g};
     // (a) primitives: pendulum + hanging from bob 1
-    dal_builder *b = builder(2);
-    int q[2], p1, p2;
-    BUILD(dal_builder_add_coord(b, "theta1", &q[0]));
-    BUILD(dal_builder_add_coord(b, "theta2", &q[1]));
-    BUILD(dal_builder_add_particle(b, "bob1", P.m1, &p1));
-    BUILD(dal_builder_add_particle(b, "bob2", P.m2, &p2));
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &q[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = P.l1;
-    pd.param[DAL_PENDULUM_X0] = P.x0;
-    pd.param[DAL_PENDULUM_Y0] = P.y0;
-    BUILD(dal_builder_place_def(b, p1, &pd));
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_hanging;
-    pd.parent = p1;
-    pd.coords = &q[1];
-    pd.ncoords = 1;
-    pd.param[DAL_HANGING_L] = P.l2;
-    BUILD(dal_builder_place_def(b, p2, &pd));
-    BUILD(dal_builder_set_gravity(b, g));
-    scene sa = scene_make(compile(b));
+    scn_knobs k = scn_default(); // the double pendulum of the scene library
+    k.m = P.m1;
+    k.m2 = P.m2;
+    k.l = P.l1;
+    k.l2 = P.l2;
+    k.x0 = P.x0;
+    k.y0 = P.y0;
+    k.g = P.g;
+    scene sa = scene_make(scn_double_pendulum(&k));
     // (b) whole-system map
-    b = builder(2);
+    dal_builder *b = builder(2);
     BUILD(dal_builder_add_coord(b, "theta1", NULL));
     BUILD(dal_builder_add_coord(b, "theta2", NULL));
     BUILD(dal_builder_add_particle(b, "bob1", P.m1, NULL));
@@ -714,24 +683,16 @@ static int sph_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet
 static void test_spherical(void) {
   int f0 = check_failures;
   sph_par P = {1.3, 0.8, 9.81};
-  double piv[3] = {0.2, -0.3, 0.5}, g[3] = {0, 0, -P.g};
+  double piv[3] = {0.2, -0.3, 0.5};
+  scn_knobs kn = scn_default(); // the spherical pendulum of the scene library
+  kn.m = P.m;
+  kn.l = P.l;
+  kn.x0 = piv[0];
+  kn.y0 = piv[1];
+  kn.z0 = piv[2];
+  kn.g = P.g;
+  scene s = scene_make(scn_spherical(&kn));
   dal_builder *b = builder(3);
-  int q[2], p;
-  BUILD(dal_builder_add_coord(b, "theta", &q[0]));
-  BUILD(dal_builder_add_coord(b, "phi", &q[1]));
-  BUILD(dal_builder_add_particle(b, "bob", P.m, &p));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_spherical;
-  pd.coords = q;
-  pd.ncoords = 2;
-  pd.param[DAL_SPHERICAL_L] = P.l;
-  pd.param[DAL_SPHERICAL_X0] = piv[0];
-  pd.param[DAL_SPHERICAL_Y0] = piv[1];
-  pd.param[DAL_SPHERICAL_Z0] = piv[2];
-  BUILD(dal_builder_place_def(b, p, &pd));
-  BUILD(dal_builder_set_gravity(b, g));
-  scene s = scene_make(compile(b));
-  b = builder(3);
   BUILD(dal_builder_add_coord(b, "theta", NULL));
   BUILD(dal_builder_add_coord(b, "phi", NULL));
   BUILD(dal_builder_set_lagrangian(b, sph_lagrangian, &P));
