@@ -11,6 +11,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define G 9.81
 
@@ -305,16 +306,11 @@ static dal_system *list_scene(int listed) {
     pd.ncoords = 1;
     pd.param[DAL_HANGING_L] = 0.7;
     CHECK_OK(dal_builder_place_def(b, c, &pd));
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &a;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.2;
-    cd.param[DAL_ANCHOR_X0] = 0.3;
-    cd.param[DAL_ANCHOR_Y0] = 0.1;
-    cd.ctx = (void *)&wobble_point;
-    CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
+    scn_knobs k = scn_default(); // the rod to (0.3, 0.1) moving by wobble_point
+    k.x0 = 0.3;
+    k.y0 = 0.1;
+    k.pivot = &wobble_point;
+    CHECK_OK(scn_add_rod(b, "rod", a, -1, 1.2, &k));
   }
   dal_spring_def sd = dal_default_spring_def();
   sd.a = a;
@@ -537,29 +533,24 @@ static void test_anchor_convention(void) {
 
 // Cartesian pendulum (x, y) with a rod to the origin: a DAE system
 static dal_system *cart_pendulum(double l) {
-  dal_builder *b = NULL;
-  int c[2], p;
-  CHECK_OK(dal_builder_create(2, &b));
-  CHECK_OK(dal_builder_add_coord(b, "x", &c[0]));
-  CHECK_OK(dal_builder_add_coord(b, "y", &c[1]));
-  CHECK_OK(dal_builder_add_particle(b, "bob", 1.5, &p));
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_cartesian2;
-  d.coords = c;
-  d.ncoords = 2;
-  CHECK_OK(dal_builder_place_def(b, p, &d));
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = l; // anchored at the origin by default
-  CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
-  double g[2] = {0, -G};
-  CHECK_OK(dal_builder_set_gravity(b, g));
-  dal_system *sys = NULL;
-  CHECK_OK(dal_builder_compile(b, &sys));
-  dal_builder_destroy(b);
+  scn_knobs k = scn_default(); // the scene library's: 'bob' (1.5 kg) on the rod 'rod'
+  k.m = 1.5;
+  k.l = l;
+  k.g = G;
+  dal_system *sys = scn_cart_pendulum(&k);
+  CHECK(sys != NULL);
+  if (!sys) return NULL;
+  // the names, sizes and values the callers rely on
+  double v = 0.0;
+  CHECK(dal_system_ncoords(sys) == 2 && dal_system_nconstraints(sys) == 1);
+  CHECK(strcmp(dal_system_coord_name(sys, 0), "x") == 0);
+  CHECK(strcmp(dal_system_coord_name(sys, 1), "y") == 0);
+  CHECK(strcmp(dal_system_particle_name(sys, 0), "bob") == 0);
+  CHECK(strcmp(dal_system_constraint_name(sys, 0), "rod") == 0);
+  CHECK(dal_system_mass(sys, 0) == 1.5);
+  CHECK(dal_system_param(sys, &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, DAL_ANCHOR_L}, &v) == 0 &&
+        v == l);
+  CHECK(dal_system_param(sys, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 1}, &v) == 0 && v == -G);
   return sys;
 }
 

@@ -325,14 +325,9 @@ static int row_subnormal_inputs(char *msg) {
   double gs[2] = {0.0, -1e-310};
   CHECK(dal_builder_set_gravity(s.b, gs) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "gravity component 1") != NULL);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &bob;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  cd.param[DAL_ANCHOR_X0] = 2e-320;
-  CHECK(dal_builder_add_constraint_def(s.b, &cd, NULL) == DAL_E_ARG);
+  scn_knobs sub = scn_default(); // a rod (anchor2) to the subnormal anchor (2e-320, 0)
+  sub.x0 = 2e-320;
+  CHECK(scn_add_rod(s.b, "rod", bob, -1, 1.0, &sub) == DAL_E_ARG);
   CHECK(strstr(dal_builder_errmsg(s.b), "index 1") != NULL);
   dal_damper_def dd = dal_default_damper_def();
   dd.a = bob;
