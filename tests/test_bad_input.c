@@ -145,34 +145,16 @@ static int place_row(char *msg, const void *data) {
 static int row_place_parent_order(char *msg) {
   dal_builder *b = NULL;
   int th[2], p[2];
-  double l = 1.0;
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "th1", &th[0]));
   CHECK_OK(dal_builder_add_coord(b, "th2", &th[1]));
   CHECK_OK(dal_builder_add_particle(b, "upper", 1.0, &p[0]));
   CHECK_OK(dal_builder_add_particle(b, "lower", 1.0, &p[1]));
   // the lower bob hangs from the upper one, which is not placed yet
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &th[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = l;
-  int rc = dal_builder_place_def(b, p[1], &pd);
+  int rc = scn_place_swing(b, NULL, p[1], p[0], 1.0, th[1]);
   copy_msg(msg, dal_builder_errmsg(b));
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th[0];
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  CHECK_OK(dal_builder_place_def(b, p[0], &pd));
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_hanging;
-  pd.parent = p[0];
-  pd.coords = &th[1];
-  pd.ncoords = 1;
-  pd.param[DAL_HANGING_L] = l;
-  CHECK_OK(dal_builder_place_def(b, p[1], &pd));
+  CHECK_OK(scn_place_swing(b, NULL, p[0], -1, 1.0, th[0]));
+  CHECK_OK(scn_place_swing(b, NULL, p[1], p[0], 1.0, th[1]));
   CHECK_OK(compiles_and_runs(b));
   dal_builder_destroy(b);
   return rc;

@@ -1207,13 +1207,8 @@ static void test_non_translating_parent(void) {
     if (general) {
       BUILD(dal_builder_set_map(b, scaled_map, NULL));
     } else {
+      BUILD(scn_place_swing(b, NULL, p[0], -1, 1.0, c[0]));
       dal_place_def pd = dal_default_place_def();
-      pd.prim = &dal_map_pendulum;
-      pd.coords = &c[0];
-      pd.ncoords = 1;
-      pd.param[DAL_PENDULUM_L] = 1.0;
-      BUILD(dal_builder_place_def(b, p[0], &pd));
-      pd = dal_default_place_def();
       pd.prim = &scaled_prim;
       pd.parent = p[0];
       pd.coords = &c[1];
