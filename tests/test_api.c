@@ -3,7 +3,6 @@
 // The user-facing API: element defs and their defaults, named parameters, table versions, the
 // moving-point convention, and each papercut of issue 11 against an independent reference.
 #include <ctype.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +10,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "headers.h"
 #include "scenes.h"
 
 #define G 9.81
@@ -786,22 +786,6 @@ static const char *const ctx_exceptions[][2] = {
 };
 #define NEXC ((int)(sizeof ctx_exceptions / sizeof ctx_exceptions[0]))
 
-static char *read_text(const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long len = ftell(fp);
-  rewind(fp);
-  char *s = len >= 0 ? malloc((size_t)len + 1) : NULL;
-  if (s && fread(s, 1, (size_t)len, fp) != (size_t)len) {
-    free(s);
-    s = NULL;
-  }
-  if (s) s[len] = 0;
-  fclose(fp);
-  return s;
-}
-
 // blank out comments and preprocessor lines (with their continuations) in place
 static void strip_noise(char *s) {
   for (char *p = s; *p;) {
@@ -865,23 +849,20 @@ static void check_ctx_last(char *text, const char *file, int *nctx, int *met) {
   }
 }
 
+// the context-last check of one header; ctx: its tallies
+typedef struct ctx_tally {
+  int nctx, met[NEXC];
+} ctx_tally;
+static void ctx_last_of(char *text, const char *name, void *ctx) {
+  ctx_tally *t = ctx;
+  check_ctx_last(text, name, &t->nctx, t->met);
+}
+
 static void test_context_last(void) {
-  DIR *d = opendir(DAL_HEADER_DIR);
-  CHECK_MSG(d != NULL, "cannot read %s", DAL_HEADER_DIR);
-  if (!d) return;
-  int nctx = 0, files = 0, met[NEXC] = {0};
-  for (struct dirent *e; (e = readdir(d)) != NULL;) {
-    size_t len = strlen(e->d_name);
-    if (len < 3 || strcmp(e->d_name + len - 2, ".h") != 0) continue;
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", DAL_HEADER_DIR, e->d_name);
-    char *text = read_text(path);
-    if (!text) continue;
-    check_ctx_last(text, e->d_name, &nctx, met);
-    free(text);
-    ++files;
-  }
-  closedir(d);
+  ctx_tally t = {0, {0}};
+  int files = for_each_header(DAL_HEADER_DIR, ctx_last_of, &t), nctx = t.nctx, *met = t.met;
+  CHECK_MSG(files >= 0, "cannot read %s", DAL_HEADER_DIR);
+  if (files < 0) return;
   // the scan saw the headers' callback types and functions (more than 20 take a ctx)
   CHECK_MSG(files >= 10 && nctx > 20, "%d headers, %d declarations with ctx", files, nctx);
   for (int k = 0; k < NEXC; ++k)

@@ -16,7 +16,6 @@
 // non-finite real is DAL_E_NONFINITE; destroy(NULL) does nothing;
 // accessors answer NULL (pointers), NaN (reals) or 0 (counts) to a NULL object.
 #include <ctype.h>
-#include <dirent.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +24,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "headers.h"
 #include "scenes.h"
 
 // ---------------------------------------------------------------- fixtures
@@ -2497,43 +2497,20 @@ static int scan_header(const char *text, char names[][64], int n) {
   return n;
 }
 
-static char *read_all(const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long len = ftell(fp);
-  rewind(fp);
-  char *s = len >= 0 ? malloc((size_t)len + 1) : NULL;
-  if (s && fread(s, 1, (size_t)len, fp) != (size_t)len) {
-    free(s);
-    s = NULL;
-  }
-  if (s) s[len] = 0;
-  fclose(fp);
-  return s;
-}
-
 // the public functions of every header in dir; -1 when the directory cannot be read
+typedef struct api_names {
+  char (*names)[64];
+  int n;
+} api_names;
+static void scan_one(char *text, const char *name, void *ctx) {
+  api_names *a = ctx;
+  // mpi.h declares dal_sweep_run_mpi of the separate library dalembert_mpi, which this test
+  // does not link (and <mpi.h> is not on its include path): tests/test_ensemble_mpi.c covers it
+  if (strcmp(name, "mpi.h") != 0) a->n = scan_header(text, a->names, a->n);
+}
 static int scan_headers(const char *dir, char names[][64]) {
-  DIR *d = opendir(dir);
-  if (!d) return -1;
-  int n = 0, files = 0;
-  for (struct dirent *e; (e = readdir(d)) != NULL;) {
-    size_t len = strlen(e->d_name);
-    if (len < 3 || strcmp(e->d_name + len - 2, ".h") != 0) continue;
-    // mpi.h declares dal_sweep_run_mpi of the separate library dalembert_mpi, which this test
-    // does not link (and <mpi.h> is not on its include path): tests/test_ensemble_mpi.c covers it
-    if (strcmp(e->d_name, "mpi.h") == 0) continue;
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-    char *text = read_all(path);
-    if (!text) continue;
-    n = scan_header(text, names, n);
-    ++files;
-    free(text);
-  }
-  closedir(d);
-  return files ? n : -1;
+  api_names a = {names, 0};
+  return for_each_header(dir, scan_one, &a) > 0 ? a.n : -1;
 }
 
 int main(int argc, char **argv) {
