@@ -29,8 +29,7 @@ static inline char *read_text(const char *path) {
 /// Call fn(text, name, ctx) with the text of every header (*.h) in dir (fn may change the text);
 /// the number of headers read, or -1 when dir cannot be read.
 static inline int for_each_header(const char *dir,
-                                  void (*fn)(char *text, const char *name, void *ctx),
-                                  void *ctx) {
+                                  void (*fn)(char *text, const char *name, void *ctx), void *ctx) {
   DIR *d = opendir(dir);
   if (!d) return -1;
   int files = 0;
