@@ -305,16 +305,14 @@ done:
 
 // ---------------------------------------------------------------------------------------------
 // 2. bead on a ring of radius R turning about the vertical at rate w
-typedef struct ring_par {
-  double m, R, w, phi0, g;
-} ring_par;
+typedef scn_knobs ring_par; // m, R, spin (the rate w), phi0, g: the scene library's bead
 
 static int ring_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
   (void)t;
   const ring_par *p = ctx;
   dal_jet s = dal_sin(q[0]);
-  dal_jet T =
-      dal_scale(dal_add(dal_sq(v[0]), dal_scale(dal_sq(s), p->w * p->w)), 0.5 * p->m * p->R * p->R);
+  dal_jet T = dal_scale(dal_add(dal_sq(v[0]), dal_scale(dal_sq(s), p->spin * p->spin)),
+                        0.5 * p->m * p->R * p->R);
   dal_jet U = dal_scale(dal_cos(q[0]), -p->m * p->g * p->R);
   *L = dal_sub(T, U);
   return 0;
@@ -323,14 +321,9 @@ static int ring_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_je
 static void test_ring(void) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
-    ring_par P = {rnd(0.5, 2), rnd(0.3, 2), rnd(0, 8), rnd(-1, 1), 9.81};
-    scn_knobs k = scn_default(); // the bead of the scene library (dal_map_ring)
-    k.m = P.m;
-    k.R = P.R;
-    k.spin = P.w;
-    k.phi0 = P.phi0;
-    k.g = P.g;
-    scene s = scene_make(scn_bead(&k));
+    ring_par P = {
+        .m = rnd(0.5, 2), .R = rnd(0.3, 2), .spin = rnd(0, 8), .phi0 = rnd(-1, 1), .g = 9.81};
+    scene s = scene_make(scn_bead(&P));
     dal_builder *b = builder(3);
     BUILD(dal_builder_add_coord(b, "theta", NULL));
     BUILD(dal_builder_set_lagrangian(b, ring_lagrangian, &P));
@@ -340,7 +333,7 @@ static void test_ring(void) {
       for (int it = 0; it < NSTATE / 4; ++it) {
         double th0 = rnd(-3.1, 3.1), thd = rnd(-4, 4), t = rnd(-5, 5);
         if (at(&s, t, &th0, &thd) || at(&sl, t, &th0, &thd)) continue;
-        double sn = sin(th0), cs = cos(th0), w = P.w, R = P.R, m = P.m;
+        double sn = sin(th0), cs = cos(th0), w = P.spin, R = P.R, m = P.m;
         double hand = sn * (w * w * cs - P.g / R);
         double sc = w * w + P.g / R;
         near("ring theta'' (particle)", 0, dal_state_qddot(s.st)[0], hand, TOL, sc);
@@ -398,9 +391,7 @@ static void test_ring(void) {
 
 // ---------------------------------------------------------------------------------------------
 // 3./4. pendulum with a support moving as p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph))
-typedef struct pend_par {
-  double m, l, x0, y0, ax, ay, w, ph, g;
-} pend_par;
+typedef scn_knobs pend_par; // m, l, x0, y0, ax, ay, w, ph, g: the scene library's pendulum
 
 // support position, velocity and acceleration
 static void support(const pend_par *P, double t, double *p, double *pd, double *pdd) {
@@ -444,23 +435,18 @@ static int pend_path(dal_jet t, dal_jet *q, void *ctx) {
 static void test_pendulum(int driven) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
-    pend_par P = {rnd(0.5, 2), rnd(0.3, 2),  rnd(-1, 1), rnd(-1, 1), 0,
-                  0,           rnd(0.5, 10), rnd(-1, 1), 9.81};
+    pend_par P = {.m = rnd(0.5, 2),
+                  .l = rnd(0.3, 2),
+                  .x0 = rnd(-1, 1),
+                  .y0 = rnd(-1, 1),
+                  .w = rnd(0.5, 10),
+                  .ph = rnd(-1, 1),
+                  .g = 9.81};
     if (driven) {
       P.ay = rnd(-0.5, 0.5);
       P.ax = rep % 2 ? rnd(-0.5, 0.5) : 0.0; // SICM's vertical drive, and a general one
     }
-    scn_knobs k = scn_default(); // the pendulum of the scene library (dal_map_pendulum)
-    k.m = P.m;
-    k.l = P.l;
-    k.x0 = P.x0;
-    k.y0 = P.y0;
-    k.ax = P.ax;
-    k.ay = P.ay;
-    k.w = P.w;
-    k.ph = P.ph;
-    k.g = P.g;
-    scene s = scene_make(scn_pendulum(&k));
+    scene s = scene_make(scn_pendulum(&P));
     dal_builder *b = builder(2);
     BUILD(dal_builder_add_coord(b, "theta", NULL));
     BUILD(dal_builder_set_lagrangian(b, pend_lagrangian, &P));
@@ -1033,7 +1019,7 @@ static int lag_genforce(double t, const double *q, const double *qd, double *Q, 
 
 static void test_lagrangian_genforce(void) {
   int f0 = check_failures;
-  pend_par P = {1.1, 0.7, 0, 0, 0, 0, 1, 0, 9.81};
+  pend_par P = {.m = 1.1, .l = 0.7, .w = 1, .g = 9.81};
   double c[2] = {0.4, 1.5};
   dal_builder *b = builder(2);
   BUILD(dal_builder_add_coord(b, "theta", NULL));
