@@ -653,9 +653,7 @@ static void test_double_pendulum(void) {
 
 // ---------------------------------------------------------------------------------------------
 // 6. spherical pendulum
-typedef struct sph_par {
-  double m, l, g;
-} sph_par;
+typedef scn_knobs sph_par; // m, l, g and the pivot (x0, y0, z0): the scene library's
 
 static int sph_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
   (void)t;
@@ -668,16 +666,8 @@ static int sph_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet
 
 static void test_spherical(void) {
   int f0 = check_failures;
-  sph_par P = {1.3, 0.8, 9.81};
-  double piv[3] = {0.2, -0.3, 0.5};
-  scn_knobs kn = scn_default(); // the spherical pendulum of the scene library
-  kn.m = P.m;
-  kn.l = P.l;
-  kn.x0 = piv[0];
-  kn.y0 = piv[1];
-  kn.z0 = piv[2];
-  kn.g = P.g;
-  scene s = scene_make(scn_spherical(&kn));
+  sph_par P = {.m = 1.3, .l = 0.8, .g = 9.81, .x0 = 0.2, .y0 = -0.3, .z0 = 0.5};
+  scene s = scene_make(scn_spherical(&P));
   dal_builder *b = builder(3);
   BUILD(dal_builder_add_coord(b, "theta", NULL));
   BUILD(dal_builder_add_coord(b, "phi", NULL));
@@ -698,11 +688,11 @@ static void test_spherical(void) {
       double Qh[2] = {-m * P.g * l * sn, 0.0};
       near_vec("spherical Q", dal_state_genforces(s.st), Qh, 2, TOL, m * P.g * l);
       double T = 0.5 * m * l * l * (v[0] * v[0] + sn * sn * v[1] * v[1]);
-      double U = m * P.g * (piv[2] - l * cs), esc = m * (l * l * 9 + P.g * (l + 1));
+      double U = m * P.g * (P.z0 - l * cs), esc = m * (l * l * 9 + P.g * (l + 1));
       dal_energies e = energies(&s), el = energies(&sl);
       near("spherical E", 0, e.E, T + U, TOL, esc);
       near("spherical h", 0, e.h, T + U, TOL, esc);
-      near("spherical h (Lagrangian)", 0, el.h, T + U - m * P.g * piv[2], TOL, esc);
+      near("spherical h (Lagrangian)", 0, el.h, T + U - m * P.g * P.z0, TOL, esc);
       // reaction along the rod: N = -(m l (thd^2 + sin^2 phd^2) + m g cos) e_r
       double er[3] = {sn * cos(x[1]), sn * sin(x[1]), -cs};
       double Nm = -(m * l * (v[0] * v[0] + sn * sn * v[1] * v[1]) + m * P.g * cs), Nh[3];
