@@ -531,20 +531,18 @@ static void test_pendulum(int driven) {
 
 // ---------------------------------------------------------------------------------------------
 // 5. double pendulum
-typedef struct dbl_par {
-  double m1, m2, l1, l2, x0, y0, g;
-} dbl_par;
+typedef scn_knobs dbl_par; // m (m1), m2, l (l1), l2, x0, y0, g: the scene library's
 
 static int dbl_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
   (void)t;
   const dbl_par *P = ctx;
   // T = (m1+m2)/2 l1^2 w1^2 + m2/2 l2^2 w2^2 + m2 l1 l2 w1 w2 cos(th1 - th2)
-  dal_jet T = dal_scale(dal_sq(v[0]), 0.5 * (P->m1 + P->m2) * P->l1 * P->l1);
+  dal_jet T = dal_scale(dal_sq(v[0]), 0.5 * (P->m + P->m2) * P->l * P->l);
   T = dal_add(T, dal_scale(dal_sq(v[1]), 0.5 * P->m2 * P->l2 * P->l2));
   T = dal_add(T, dal_scale(dal_mul(dal_mul(v[0], v[1]), dal_cos(dal_sub(q[0], q[1]))),
-                           P->m2 * P->l1 * P->l2));
+                           P->m2 * P->l * P->l2));
   // U = -(m1+m2) g l1 cos th1 - m2 g l2 cos th2 (+ constant)
-  dal_jet U = dal_add(dal_scale(dal_cos(q[0]), -(P->m1 + P->m2) * P->g * P->l1),
+  dal_jet U = dal_add(dal_scale(dal_cos(q[0]), -(P->m + P->m2) * P->g * P->l),
                       dal_scale(dal_cos(q[1]), -P->m2 * P->g * P->l2));
   *L = dal_sub(T, U);
   return 0;
@@ -553,8 +551,8 @@ static int dbl_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet
 static int dbl_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
   (void)t;
   const dbl_par *P = ctx;
-  r[0] = dal_addc(dal_scale(dal_sin(q[0]), P->l1), P->x0);
-  r[1] = dal_addc(dal_scale(dal_cos(q[0]), -P->l1), P->y0);
+  r[0] = dal_addc(dal_scale(dal_sin(q[0]), P->l), P->x0);
+  r[1] = dal_addc(dal_scale(dal_cos(q[0]), -P->l), P->y0);
   r[2] = dal_add(r[0], dal_scale(dal_sin(q[1]), P->l2));
   r[3] = dal_sub(r[1], dal_scale(dal_cos(q[1]), P->l2));
   return 0;
@@ -563,30 +561,28 @@ static int dbl_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
 static double dbl_U(const double *q, double t, const void *ctx) {
   (void)t;
   const dbl_par *P = ctx;
-  double y1 = P->y0 - P->l1 * cos(q[0]), y2 = y1 - P->l2 * cos(q[1]);
-  return P->g * (P->m1 * y1 + P->m2 * y2);
+  double y1 = P->y0 - P->l * cos(q[0]), y2 = y1 - P->l2 * cos(q[1]);
+  return P->g * (P->m * y1 + P->m2 * y2);
 }
 
 static void test_double_pendulum(void) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
-    dbl_par P = {rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(-1, 1), rnd(-1, 1), 9.81};
+    dbl_par P = {.m = rnd(0.5, 2),
+                 .m2 = rnd(0.5, 2),
+                 .l = rnd(0.5, 2),
+                 .l2 = rnd(0.5, 2),
+                 .x0 = rnd(-1, 1),
+                 .y0 = rnd(-1, 1),
+                 .g = 9.81};
     double g[2] = {0, -P.g};
     // (a) primitives: pendulum + hanging from bob 1
-    scn_knobs k = scn_default(); // the double pendulum of the scene library
-    k.m = P.m1;
-    k.m2 = P.m2;
-    k.l = P.l1;
-    k.l2 = P.l2;
-    k.x0 = P.x0;
-    k.y0 = P.y0;
-    k.g = P.g;
-    scene sa = scene_make(scn_double_pendulum(&k));
+    scene sa = scene_make(scn_double_pendulum(&P));
     // (b) whole-system map
     dal_builder *b = builder(2);
     BUILD(dal_builder_add_coord(b, "theta1", NULL));
     BUILD(dal_builder_add_coord(b, "theta2", NULL));
-    BUILD(dal_builder_add_particle(b, "bob1", P.m1, NULL));
+    BUILD(dal_builder_add_particle(b, "bob1", P.m, NULL));
     BUILD(dal_builder_add_particle(b, "bob2", P.m2, NULL));
     BUILD(dal_builder_set_map(b, dbl_map, &P));
     BUILD(dal_builder_set_gravity(b, g));
@@ -602,7 +598,7 @@ static void test_double_pendulum(void) {
         double th[2] = {rnd(-3.1, 3.1), rnd(-3.1, 3.1)}, w[2] = {rnd(-4, 4), rnd(-4, 4)};
         double t = rnd(-5, 5);
         if (at(&sa, t, th, w) || at(&sb, t, th, w) || at(&sc, t, th, w)) continue;
-        double m1 = P.m1, m2 = P.m2, l1 = P.l1, l2 = P.l2, G = P.g;
+        double m1 = P.m, m2 = P.m2, l1 = P.l, l2 = P.l2, G = P.g;
         double c12 = cos(th[0] - th[1]), s12 = sin(th[0] - th[1]);
         // hand: M qdd = Q - c
         double Mh[4] = {(m1 + m2) * l1 * l1, m2 * l1 * l2 * c12, m2 * l1 * l2 * c12, m2 * l2 * l2};
