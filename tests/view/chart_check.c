@@ -118,8 +118,8 @@ static void section(void) {
 // the exponents at the end: dots at t1 with bars of +-error95
 static void lyapunov(void) {
   char args[2048];
-  snprintf(args, sizeof args,
-           "lyapunov '%s/driven_pendulum.scene' --t1 40 --chart ly.svg > ly.csv", scenes);
+  snprintf(args, sizeof args, "lyapunov '%s/driven_pendulum.scene' --t1 40 --chart ly.svg > ly.csv",
+           scenes);
   CHECK(run(args) == 0);
   char *svg = slurp("ly.svg"), *csv = slurp("ly.csv");
   CHECK(svg && csv);
@@ -132,7 +132,8 @@ static void lyapunov(void) {
   const char *bar = p;
   for (int i = 0; i < n; ++i) {
     CHECK(csv_row(csv, i + 2, r, 4) == 3); // # comment, header, then exponent,value,error95
-    worst = fmax(worst, hypot(xy[2 * i] - (A[0] + A[1] * 40), xy[2 * i + 1] - (A[2] + A[3] * r[1])));
+    worst =
+        fmax(worst, hypot(xy[2 * i] - (A[0] + A[1] * 40), xy[2 * i + 1] - (A[2] + A[3] * r[1])));
     double x1, y1, x2, y2;
     bar = strstr(bar + 1, "<line class=\"err\"");
     CHECK(bar && sscanf(bar, "<line class=\"err\" x1=\"%lf\" y1=\"%lf\" x2=\"%lf\" y2=\"%lf\"", &x1,
@@ -172,7 +173,8 @@ static void sweep(void) {
   CHECK_MSG(n == 11, "%d dots for 11 runs", n);
   for (int i = 0; i < n; ++i) {
     CHECK(csv_row(csv, i + 1, r, 8) >= 5); // index, a, status, theta, theta_dot, message
-    worst = fmax(worst, hypot(xy[2 * i] - (A[0] + A[1] * r[1]), xy[2 * i + 1] - (A[2] + A[3] * r[3])));
+    worst =
+        fmax(worst, hypot(xy[2 * i] - (A[0] + A[1] * r[1]), xy[2 * i + 1] - (A[2] + A[3] * r[3])));
   }
   CHECK_MSG(worst <= 1e-3, "a sweep dot is %.3g px from its CSV row", worst);
   printf("sweep: 11 dots within %.1e px of the CSV's rows\n", worst);
