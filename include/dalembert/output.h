@@ -86,6 +86,9 @@ typedef struct dal_view_opts {
   double trail;                ///< trail length in seconds (default 1; 0: none)
   double strobe;               ///< period of a stroboscopic section (seconds; 0: none): the state
                                ///< every strobe from the start is a section point of the phase plot
+  const int *sections;         ///< nullable: per event of the page's event set (dal_events_size
+                               ///< flags), nonzero when its crossings are section points; NULL:
+                               ///< every event's are (a scene's: dal_scene_event_is_section)
 } dal_view_opts;
 
 /// The default view options: t1 = 10, fps = 60, trail = 1.

@@ -47,7 +47,12 @@
   }
   var N = D.N, d = D.dim, K = D.K, F = D.frames;
   var pos = decode(D.pos, F), xs = decode(D.xs, F), pq = decode(D.pq, D.nplot);
-  var pqd = decode(D.pqd, D.nplot), pe = decode(D.pe, D.nplot), pf = decode(D.pf, D.nplot);
+  var pqd = decode(D.pqd, D.nplot), pe2 = decode(D.pe, D.nplot), pf = decode(D.pf, D.nplot);
+  var pe = new Float64Array(D.nplot), ph = new Float64Array(D.nplot); // E - E(0), h - h(0)
+  for (var s0 = 0; s0 < D.nplot; s0++) {
+    pe[s0] = pe2[2 * s0];
+    ph[s0] = pe2[2 * s0 + 1];
+  }
   var sceneCv = document.getElementById('scene'), ctx = sceneCv.getContext('2d');
   var W = 640, H = 480;
   document.getElementById('title').textContent = D.title;
@@ -350,8 +355,10 @@
     c.stroke();
   }
   function phasePlot() {
-    var c = axes(document.getElementById('plot-phase'),
-      'phase: ' + D.coords[0] + ' vs rate' + (D.sections.length ? ' (red: section points)' : ''));
+    var cv = document.getElementById('plot-phase'), kinds = [0, 0];
+    D.sections.forEach(function (p) { kinds[p[3]] = 1; });
+    var c = axes(cv, 'phase: ' + D.coords[0] + ' vs rate' + (kinds[0] ? '; red: strobe' : '') +
+      (kinds[1] ? '; orange: section crossings' : ''));
     var n = D.nplot, xr = range(pq, D.n, 0, n), yr = range(pqd, D.n, 0, n);
     var X = function (v) { return 6 + 368 * (v - xr[0]) / (xr[1] - xr[0]); };
     var Y = function (v) { return 104 - 88 * (v - yr[0]) / (yr[1] - yr[0]); };
@@ -368,10 +375,14 @@
       if (s) c.lineTo(X(pq[s * D.n]), Y(pqd[s * D.n])); else c.moveTo(X(pq[0]), Y(pqd[0]));
     }
     c.stroke();
-    c.fillStyle = '#d62728';
+    var shown = 0; // the section points filling in: those up to the time shown
     D.sections.forEach(function (p) {
-      if (p[0] <= t + 1e-12) c.fillRect(X(p[1]) - 1.5, Y(p[2]) - 1.5, 3, 3);
+      if (p[0] > t + 1e-9) return;
+      c.fillStyle = p[3] ? '#ff7f0e' : '#d62728';
+      c.fillRect(X(p[1]) - 1.5, Y(p[2]) - 1.5, 3, 3);
+      shown++;
     });
+    cv.setAttribute('data-sections-shown', String(shown));
     if (now < n) {
       c.fillStyle = '#000';
       c.beginPath();
@@ -383,6 +394,7 @@
     timePlot('plot-q', 'q(t)', pq, D.coords, D.n);
     phasePlot();
     timePlot('plot-energy', 'E - E(0)', pe, [''], 1);
+    if (D.jacobi) timePlot('plot-jacobi', 'h - h(0) (Jacobi integral)', ph, [''], 1);
     timePlot('plot-force', D.forces.length && D.forces[0].charAt(0) === 'l'
       ? 'constraint forces' : 'reaction magnitudes', pf, D.forces, D.forces.length);
   }
@@ -442,7 +454,8 @@
     draw();
   }, { passive: false });
 
-  // FILE.html#t=1.25 opens paused at t = 1.25 (and drag=DX,DY replays a drag: the tests' hook)
+  // FILE.html#t=1.25 opens paused at t = 1.25 (drag=DX,DY and wheel=DY replay a drag and a wheel
+  // turn: the tests' hooks)
   function fromHash() {
     var h = {}, parts = location.hash.replace(/^#/, '').split('&');
     parts.forEach(function (p) { var kv = p.split('='); if (kv[0]) h[kv[0]] = kv[1]; });
@@ -453,6 +466,10 @@
       window.dispatchEvent(new MouseEvent('mousemove', { clientX: x0 + dd[0], clientY: y0 + dd[1] }));
       window.dispatchEvent(new MouseEvent('mouseup', { clientX: x0 + dd[0], clientY: y0 + dd[1] }));
     }
+    if (h.wheel) { // wheel=DY replays a wheel turn (the tests' hook)
+      sceneCv.dispatchEvent(new WheelEvent('wheel', { deltaY: parseFloat(h.wheel), bubbles: true,
+        cancelable: true }));
+    }
     if (h.t !== undefined) {
       setPlaying(false);
       go(Math.round((parseFloat(h.t) - D.t0) / D.dt));
@@ -460,6 +477,7 @@
     }
     return false;
   }
+  if (D.jacobi) document.getElementById('plot-jacobi').hidden = false;
   window.addEventListener('hashchange', fromHash);
   go(0);
   if (!fromHash()) setPlaying(true);

@@ -44,7 +44,8 @@ typedef struct viewer {
   size_t pstride, nplot;
   double *pq, *pqd, *pe, *pf;
   int nf; // force series: the multipliers (m) or |R| per particle (N)
-  double E0;
+  double E0, h0;
+  int jacobi; // h differs from E (a moving constraint or placement): its own plot
   // section points
   double *sec;
   size_t nsec, seccap;
@@ -358,12 +359,14 @@ static int record(const dal_system *sys, const dal_state *st, void *ctx) {
     size_t s = f / v->pstride;
     dal_energies en;
     if (dal_state_energies(st, &en)) return -1;
-    if (f == 0) v->E0 = en.E;
+    if (f == 0) v->E0 = en.E, v->h0 = en.h;
+    if (en.T1 != 0 || en.T0 != 0) v->jacobi = 1;
     for (int j = 0; j < v->n; ++j) {
       v->pq[s * (size_t)v->n + (size_t)j] = q[j];
       v->pqd[s * (size_t)v->n + (size_t)j] = qd[j];
     }
-    v->pe[s] = en.E - v->E0;
+    v->pe[2 * s] = en.E - v->E0;
+    v->pe[2 * s + 1] = en.h - v->h0;
     const double *lam = v->m ? dal_state_lambda(st) : dal_state_reactions(st);
     if (!lam) return -1;
     for (int j = 0; j < v->nf; ++j) {
@@ -543,21 +546,24 @@ static int write_page(viewer *v, const dal_view_opts *o, dal_events *ev, FILE *f
   fputs(",\"pqd\":", fp);
   if (!rc) rc = put_series(fp, v->pqd, v->nplot, v->n, NULL);
   fputs(",\"pe\":", fp);
-  if (!rc) rc = put_series(fp, v->pe, v->nplot, 1, NULL);
+  if (!rc) rc = put_series(fp, v->pe, v->nplot, 2, NULL);
+  fprintf(fp, ",\"jacobi\":%d", v->jacobi);
   fputs(",\"pf\":", fp);
   if (!rc) rc = put_series(fp, v->pf, v->nplot, v->nf, NULL);
   if (rc) return rc;
-  // section points: the strobe's, then the surface sections' crossings of ev
+  // section points [t, q0, qdot0, kind]: the strobe's (kind 0), then the crossings of ev's
+  // sections (kind 1)
   fputs(",\"sections\":[", fp);
   int any = 0;
   for (size_t i = 0; i < v->nsec; ++i)
-    fprintf(fp, "%s[%.9g,%.9g,%.9g]", any++ ? "," : "", v->sec[3 * i], v->sec[3 * i + 1],
+    fprintf(fp, "%s[%.17g,%.9g,%.9g,0]", any++ ? "," : "", v->sec[3 * i], v->sec[3 * i + 1],
             v->sec[3 * i + 2]);
   double *q = ev ? malloc(2 * (size_t)v->n * sizeof *q) : NULL;
   for (long i = 0; q && i < dal_events_count(ev); ++i) {
     dal_event_record rec;
     if (dal_events_get(ev, i, &rec, q, q + v->n)) break;
-    fprintf(fp, "%s[%.9g,%.9g,%.9g]", any++ ? "," : "", rec.t, q[0], q[v->n]);
+    if (o->sections && !o->sections[rec.event]) continue;
+    fprintf(fp, "%s[%.17g,%.9g,%.9g,1]", any++ ? "," : "", rec.t, q[0], q[v->n]);
   }
   free(q);
   fprintf(fp, "]}</script>\n<script>\n%s</script>\n</body></html>\n", dal__view_js);
@@ -577,7 +583,7 @@ static int frames_run(viewer *v, dal_state *st, const dal_solve_opts *solve, dal
     v->xs = malloc((nf * (size_t)v->nxp * 3 + 1) * sizeof *v->xs);
     v->pq = malloc((v->nplot * (size_t)v->n + 1) * sizeof *v->pq);
     v->pqd = malloc((v->nplot * (size_t)v->n + 1) * sizeof *v->pqd);
-    v->pe = malloc((v->nplot + 1) * sizeof *v->pe);
+    v->pe = malloc((2 * v->nplot + 2) * sizeof *v->pe);
     v->pf = malloc((v->nplot * (size_t)v->nf + 1) * sizeof *v->pf);
     if (!v->pos || !v->xs || !v->pq || !v->pqd || !v->pe || !v->pf) rc = DAL_E_NOMEM;
   }

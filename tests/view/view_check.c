@@ -87,6 +87,7 @@ typedef struct seen {
   int ndrawn, errors;
   double shape[16][32]; // the declared shapes: kind letter (c, s, p, l), then its numbers
   int nshape, len[16];
+  int sections; // the section points the phase plot shows
 } seen;
 
 // the declared shapes [["circle", n...], ...] into s (the kind's first letter, its numbers)
@@ -124,6 +125,10 @@ static int look(const char *html, const char *frag, seen *s) {
     ok = 0;
   if (ok && !attr(dom, "data-shapes", v, sizeof v))
     shapes(v, s);
+  else
+    ok = 0;
+  if (ok && !attr(dom, "data-sections-shown", v, sizeof v))
+    s->sections = atoi(v);
   else
     ok = 0;
   if (!ok) {
@@ -337,19 +342,27 @@ int main(int argc, char **argv) {
   char html[1024];
   snprintf(html, sizeof html, "%s/%.*s.html", argv[2], (int)strcspn(base, "."), base);
   snprintf(profile, sizeof profile, "%s/chromium-%.*s", argv[2], (int)strcspn(base, "."), base);
-  // the page of the first second at 60 frames per second
+  // the page of the first 3 seconds at 60 frames per second, with the scene's sections (as
+  // dalembert view writes it)
   const dal_system *sys = dal_scene_system(sc);
   double t0;
   dal_view_opts o = dal_default_view_opts();
   o.solve = dal_scene_opts(sc, &t0, NULL, NULL);
-  o.t1 = t0 + 1.0;
+  o.t1 = t0 + 3.0;
   o.title = base;
+  o.strobe = dal_scene_strobe(sc);
   dal_state *st = NULL;
+  dal_events *ev = NULL;
   CHECK_OK(dal_scene_state(sc, &st));
+  CHECK_OK(dal_scene_events(sc, &ev));
+  int flags[64] = {0};
+  for (int i = 0; ev && i < dal_events_size(ev) && i < 64; ++i)
+    flags[i] = dal_scene_event_is_section(sc, i) == 1;
+  o.sections = flags;
   FILE *fp = fopen(html, "w");
   CHECK(fp != NULL);
   if (!fp) return check_summary("view_check");
-  CHECK_OK(dal_view_write(sys, st, &o, NULL, fp));
+  CHECK_OK(dal_view_write(sys, st, &o, ev, fp));
   fclose(fp);
   dal_state_destroy(st);
   // the file names no URL outside itself
@@ -371,6 +384,27 @@ int main(int argc, char **argv) {
   double e1 = check_positions(sc, &a, "t=0.5"), e2 = check_positions(sc, &b, "t=0.85");
   printf("%s: %zu bytes, drawn centres within %.3f px (t=0.5) and %.3f px (t=0.85)\n", base, len,
          e1, e2);
+  // the section points fill in: those up to the time shown (the strobe's at t0 + k T, the
+  // crossings of the scene's section lines the run recorded)
+  for (int i = 0; i < 3; ++i) {
+    seen at;
+    const double tt[3] = {0.5, 0.85, 2.5};
+    char frag[32];
+    snprintf(frag, sizeof frag, "t=%g", tt[i]);
+    if (i == 2) CHECK_OK(look(html, frag, &at));
+    int want = o.strobe > 0 ? (int)floor(tt[i] / o.strobe + 1e-9) + 1 : 0;
+    for (long k = 0; ev && k < dal_events_count(ev); ++k) {
+      dal_event_record rec;
+      CHECK_OK(dal_events_get(ev, k, &rec, NULL, NULL));
+      want += flags[rec.event] && rec.t <= t0 + tt[i] + 1e-9;
+    }
+    int got = i == 0 ? a.sections : i == 1 ? b.sections : at.sections;
+    CHECK_MSG(got == want, "t=%g: %d section points shown, %d up to then", tt[i], got, want);
+    if (i == 2 && want)
+      printf("%s: section points shown at t = 0.5, 0.85, 2.5: %d, %d, %d\n", base, a.sections,
+             b.sections, got);
+  }
+  dal_events_destroy(ev);
   shape none[8];
   if (expect(base, 0, none)) {
     e1 = check_shapes(sc, base, &a, "t=0.5"), e2 = check_shapes(sc, base, &b, "t=0.85");
@@ -388,6 +422,14 @@ int main(int argc, char **argv) {
     double e3 = check_positions(sc, &c, "t=0.5 after a drag");
     if (expect(base, 0, none)) e3 = fmax(e3, check_shapes(sc, base, &c, "t=0.5 after a drag"));
     printf("%s: a drag moved the drawing by %.1f px; after it within %.3f px\n", base, moved, e3);
+    // a wheel turn zooms by exp(0.001 * 300) (the page's rate), centres still in place
+    seen z;
+    CHECK_OK(look(html, "t=0.5&wheel=-300", &z));
+    double s0 = sqrt(a.A[0] * a.A[0] + a.A[1] * a.A[1] + a.A[2] * a.A[2]);
+    double s1 = sqrt(z.A[0] * z.A[0] + z.A[1] * z.A[1] + z.A[2] * z.A[2]);
+    CHECK_CLOSE(s1 / s0, exp(0.3), 1e-9);
+    double e4 = check_positions(sc, &z, "t=0.5 after a wheel turn");
+    printf("%s: a wheel turn zoomed by %.4f; after it within %.3f px\n", base, s1 / s0, e4);
   }
   if (argc > 3) { // the guide's screenshot
     char cmd[3000];
