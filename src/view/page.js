@@ -394,7 +394,7 @@
     timePlot('plot-q', 'q(t)', pq, D.coords, D.n);
     phasePlot();
     timePlot('plot-energy', 'E - E(0)', pe, [''], 1);
-    if (D.jacobi) timePlot('plot-jacobi', 'h - h(0) (Jacobi integral)', ph, [''], 1);
+    if (D.jacobi) timePlot('plot-jacobi', 'h - h(0): the Jacobi integral\'s drift', ph, [''], 1);
     timePlot('plot-force', D.forces.length && D.forces[0].charAt(0) === 'l'
       ? 'constraint forces' : 'reaction magnitudes', pf, D.forces, D.forces.length);
   }

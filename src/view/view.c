@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "base/base.h"
+#include "dalembert/analysis.h"
 #include "dalembert/output.h"
 #include "view/view.h"
 
@@ -45,7 +46,8 @@ typedef struct viewer {
   double *pq, *pqd, *pe, *pf;
   int nf; // force series: the multipliers (m) or |R| per particle (N)
   double E0, h0;
-  int jacobi; // h differs from E (a moving constraint or placement): its own plot
+  int jacobi; // h differs from E (a moving constraint or placement) and is conserved (the
+              // equations do not depend on t explicitly): its own plot
   // section points
   double *sec;
   size_t nsec, seccap;
@@ -683,7 +685,11 @@ int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *op
   v.nframes = nf;
   v.pstride = (nf + MAX_PLOT - 1) / MAX_PLOT;
   v.nplot = (nf + v.pstride - 1) / v.pstride;
+  // h is an invariant where the equations do not depend on t explicitly (a steadily turning
+  // ring); a drive pumps E and h alike
+  int steady = rc ? 0 : dal_time_dependence(sys, st, NULL, 0) == 0;
   if (!rc) rc = frames_run(&v, st, o.solve, ev, "view_write");
+  v.jacobi = v.jacobi && steady;
   if (!rc) rc = write_page(&v, &o, ev, fp);
   if (rc == DAL_E_IO) DAL_FAIL(st, rc, "view_write: writing the page failed (disk full?)");
   viewer_free(&v);
