@@ -87,19 +87,31 @@ static int csv_row(const char *csv, int line, double *x, int max) {
   return n;
 }
 
+// run `dalembert ARGS` and read the chart and the CSV it wrote (NULL when either is missing);
+// the first panel's map into A and its text [return, *end)
+static const char *charted(const char *args, const char *svg_name, const char *csv_name, char **svg,
+                           char **csv, double *A, const char **end) {
+  CHECK(run(args) == 0);
+  *svg = slurp(svg_name), *csv = slurp(csv_name);
+  CHECK(*svg && *csv);
+  const char *p = *svg && *csv ? panel(*svg, 0, A, end) : NULL;
+  CHECK(p != NULL);
+  return p;
+}
+
 // the section of the driven pendulum: each dot one CSV point (theta, theta_dot), in order
 static void section(void) {
   char args[2048];
   snprintf(args, sizeof args,
            "section '%s/driven_pendulum.scene' --wrap --t1 60 -o sec.csv --chart sec.svg", scenes);
-  CHECK(run(args) == 0);
-  char *svg = slurp("sec.svg"), *csv = slurp("sec.csv");
-  CHECK(svg && csv);
-  if (!svg || !csv) return;
+  char *svg, *csv;
   double A[4], xy[2 * 200], r[8], worst = 0;
-  const char *end, *p = panel(svg, 0, A, &end);
-  CHECK(p != NULL);
-  int n = p ? dots(p, end, xy, 200) : 0, rows = 0;
+  const char *end, *p = charted(args, "sec.svg", "sec.csv", &svg, &csv, A, &end);
+  if (!p) {
+    free(svg), free(csv);
+    return;
+  }
+  int n = dots(p, end, xy, 200), rows = 0;
   while (csv_row(csv, rows + 1, r, 8) >= 3)
     ++rows;
   CHECK_MSG(n == rows && n > 50, "the chart has %d dots, the CSV %d points", n, rows);
@@ -120,14 +132,14 @@ static void lyapunov(void) {
   char args[2048];
   snprintf(args, sizeof args, "lyapunov '%s/driven_pendulum.scene' --t1 40 --chart ly.svg > ly.csv",
            scenes);
-  CHECK(run(args) == 0);
-  char *svg = slurp("ly.svg"), *csv = slurp("ly.csv");
-  CHECK(svg && csv);
-  if (!svg || !csv) return;
+  char *svg, *csv;
   double A[4], xy[8], r[4], worst = 0;
-  const char *end, *p = panel(svg, 0, A, &end);
-  CHECK(p != NULL);
-  int n = p ? dots(p, end, xy, 4) : 0;
+  const char *end, *p = charted(args, "ly.svg", "ly.csv", &svg, &csv, A, &end);
+  if (!p) {
+    free(svg), free(csv);
+    return;
+  }
+  int n = dots(p, end, xy, 4);
   CHECK_MSG(n == 2, "%d end dots for the pendulum's 2 exponents", n);
   const char *bar = p;
   for (int i = 0; i < n; ++i) {
@@ -162,14 +174,14 @@ static void sweep(void) {
   snprintf(cmd, sizeof cmd, "cd '%s' && %s", work, args);
   CHECK(system(cmd) == 0);
   snprintf(args, sizeof args, "sweep short.scene --param a=0:0.1:11 -o sw.csv --chart sw.svg");
-  CHECK(run(args) == 0);
-  char *svg = slurp("sw.svg"), *csv = slurp("sw.csv");
-  CHECK(svg && csv);
-  if (!svg || !csv) return;
+  char *svg, *csv;
   double A[4], xy[2 * 16], r[8], worst = 0;
-  const char *end, *p = panel(svg, 0, A, &end);
-  CHECK(p != NULL);
-  int n = p ? dots(p, end, xy, 16) : 0;
+  const char *end, *p = charted(args, "sw.svg", "sw.csv", &svg, &csv, A, &end);
+  if (!p) {
+    free(svg), free(csv);
+    return;
+  }
+  int n = dots(p, end, xy, 16);
   CHECK_MSG(n == 11, "%d dots for 11 runs", n);
   for (int i = 0; i < n; ++i) {
     CHECK(csv_row(csv, i + 1, r, 8) >= 5); // index, a, status, theta, theta_dot, message

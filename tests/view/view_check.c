@@ -88,6 +88,7 @@ typedef struct seen {
   double shape[16][32]; // the declared shapes: kind letter (c, s, p, l), then its numbers
   int nshape, len[16];
   int sections; // the section points the phase plot shows
+  int jacobi;   // the plot of h - h(0) is shown
 } seen;
 
 // the declared shapes [["circle", n...], ...] into s (the kind's first letter, its numbers)
@@ -106,31 +107,24 @@ static void shapes(const char *v, seen *s) {
 static int look(const char *html, const char *frag, seen *s) {
   char *dom = dom_at(html, frag);
   static char v[1 << 16];
+  // the page's declarations, each read into its field
+  static const char *const names[] = {"data-errors", "data-transform",      "data-drawn",
+                                      "data-t",      "data-sections-shown", "data-shapes"};
   int ok = dom != NULL;
-  if (ok && !attr(dom, "data-errors", v, sizeof v))
-    s->errors = atoi(v);
-  else
-    ok = 0;
-  if (ok && !attr(dom, "data-transform", v, sizeof v))
-    ok = numbers(v, s->A, 8) == 8;
-  else
-    ok = 0;
-  if (ok && !attr(dom, "data-drawn", v, sizeof v))
-    s->ndrawn = numbers(v, s->drawn, 64);
-  else
-    ok = 0;
-  if (ok && !attr(dom, "data-t", v, sizeof v))
-    s->t = atof(v);
-  else
-    ok = 0;
-  if (ok && !attr(dom, "data-shapes", v, sizeof v))
-    shapes(v, s);
-  else
-    ok = 0;
-  if (ok && !attr(dom, "data-sections-shown", v, sizeof v))
-    s->sections = atoi(v);
-  else
-    ok = 0;
+  for (int i = 0; ok && i < 6; ++i) {
+    ok = !attr(dom, names[i], v, sizeof v);
+    if (!ok) break;
+    if (i == 0) s->errors = atoi(v);
+    if (i == 1) ok = numbers(v, s->A, 8) == 8;
+    if (i == 2) s->ndrawn = numbers(v, s->drawn, 64);
+    if (i == 3) s->t = atof(v);
+    if (i == 4) s->sections = atoi(v);
+    if (i == 5) shapes(v, s);
+  }
+  // the Jacobi plot's canvas: shown unless its tag has the attribute hidden
+  const char *jp = dom ? strstr(dom, "id=\"plot-jacobi\"") : NULL;
+  const char *je = jp ? strchr(jp, '>') : NULL, *jh = jp ? strstr(jp, "hidden") : NULL;
+  s->jacobi = je && !(jh && jh < je);
   if (!ok) {
     fprintf(stderr, "view_check: no rendered page at #%s (chromium's DOM: %.300s)\n", frag,
             dom ? dom : "(none)");
@@ -384,6 +378,10 @@ int main(int argc, char **argv) {
   double e1 = check_positions(sc, &a, "t=0.5"), e2 = check_positions(sc, &b, "t=0.85");
   printf("%s: %zu bytes, drawn centres within %.3f px (t=0.5) and %.3f px (t=0.85)\n", base, len,
          e1, e2);
+  // the Jacobi integral's plot where h is an invariant and differs from E: the steadily turning
+  // ring in its own coordinate (Likharev's bead); not for a drive or a still scene
+  int turning = !strncmp(base, "bead_ring_", 10);
+  CHECK_MSG(a.jacobi == turning, "the plot of h - h(0) is %s", a.jacobi ? "shown" : "hidden");
   // the section points fill in: those up to the time shown (the strobe's at t0 + k T, the
   // crossings of the scene's section lines the run recorded)
   for (int i = 0; i < 3; ++i) {
