@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The viewer page's script: plays the frames the library computed (canvas 2D, no framework).
-// For tests it declares its view transform (world -> screen px, a 2 x 4 matrix) and the drawn
-// particle centres: window.dalView.transform / .drawn and the scene canvas's data-transform /
-// data-drawn / data-t attributes; console errors are counted in body's data-errors.
+// For tests it declares its view transform (world -> screen px, a 2 x 4 matrix), the drawn
+// particle centres and the drawn curves and surfaces (screen px): window.dalView.transform /
+// .drawn / .shapes and the scene canvas's data-transform / data-drawn / data-shapes / data-t
+// attributes, the phase plot's data-sections-shown; console errors are counted in body's
+// data-errors.
 (function () {
   'use strict';
   var V = (window.dalView = { errors: [], drawn: [], transform: null });
