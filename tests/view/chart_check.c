@@ -87,7 +87,8 @@ static int csv_row(const char *csv, int line, double *x, int max) {
   return n;
 }
 
-// run `dalembert ARGS` and read the chart and the CSV it wrote (NULL when either is missing);
+// run `dalembert ARGS` and read the chart and the CSV it wrote (NULL, both freed, when either
+// is missing or the chart has no panel);
 // the first panel's map into A and its text [return, *end)
 static const char *charted(const char *args, const char *svg_name, const char *csv_name, char **svg,
                            char **csv, double *A, const char **end) {
@@ -96,6 +97,7 @@ static const char *charted(const char *args, const char *svg_name, const char *c
   CHECK(*svg && *csv);
   const char *p = *svg && *csv ? panel(*svg, 0, A, end) : NULL;
   CHECK(p != NULL);
+  if (!p) free(*svg), free(*csv); // nothing to read
   return p;
 }
 
@@ -107,10 +109,7 @@ static void section(void) {
   char *svg, *csv;
   double A[4], xy[2 * 200], r[8], worst = 0;
   const char *end, *p = charted(args, "sec.svg", "sec.csv", &svg, &csv, A, &end);
-  if (!p) {
-    free(svg), free(csv);
-    return;
-  }
+  if (!p) return;
   int n = dots(p, end, xy, 200), rows = 0;
   while (csv_row(csv, rows + 1, r, 8) >= 3)
     ++rows;
@@ -135,10 +134,7 @@ static void lyapunov(void) {
   char *svg, *csv;
   double A[4], xy[8], r[4], worst = 0;
   const char *end, *p = charted(args, "ly.svg", "ly.csv", &svg, &csv, A, &end);
-  if (!p) {
-    free(svg), free(csv);
-    return;
-  }
+  if (!p) return;
   int n = dots(p, end, xy, 4);
   CHECK_MSG(n == 2, "%d end dots for the pendulum's 2 exponents", n);
   const char *bar = p;
@@ -177,10 +173,7 @@ static void sweep(void) {
   char *svg, *csv;
   double A[4], xy[2 * 16], r[8], worst = 0;
   const char *end, *p = charted(args, "sw.svg", "sw.csv", &svg, &csv, A, &end);
-  if (!p) {
-    free(svg), free(csv);
-    return;
-  }
+  if (!p) return;
   int n = dots(p, end, xy, 16);
   CHECK_MSG(n == 11, "%d dots for 11 runs", n);
   for (int i = 0; i < n; ++i) {
