@@ -23,6 +23,10 @@ int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots,
                         int nin_named, int velocities, const double *values, dal_expr **out,
                         char *msg, size_t msglen);
 
+/// 1 when e places a particle hanging from its parent in the plane exactly as dal_map_hanging
+/// does: outputs (x + P sin(q), y - P cos(q)) over inputs (x, y, q), P its only parameter, no t
+int dal__expr_hanging(const dal_expr *e);
+
 /// a compiled program: a scalar part (parameters and constants, doubles) and a jet part
 typedef struct dal_xins {
   unsigned char op, mode; // mode: operand kinds for binary jet ops (see compile.c)
