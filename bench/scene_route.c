@@ -130,7 +130,8 @@ static dal_system *c_system(const char *scene, int lagrangian) {
 #if defined(__GNUC__)
 __attribute__((format(printf, 3, 4)))
 #endif
-static void cat(char **s, size_t *len, const char *fmt, ...) {
+static void
+cat(char **s, size_t *len, const char *fmt, ...) {
   va_list ap;
   va_start(ap, fmt);
   int k = vsnprintf(NULL, 0, fmt, ap);
@@ -172,7 +173,8 @@ static char *scene_text(const char *scene, const char *route) {
     }
     cat(&s, &n, "gravity 0 -g\n");
   } else if (!strcmp(scene, "oscillator")) {
-    cat(&s, &n, "dim %d\nparam m = 2\nparam k = 1\ncoord x q=1 v=3\ncoord y q=2 v=4\n", lag ? 0 : 2);
+    cat(&s, &n, "dim %d\nparam m = 2\nparam k = 1\ncoord x q=1 v=3\ncoord y q=2 v=4\n",
+        lag ? 0 : 2);
     if (lag)
       cat(&s, &n, "lagrangian = 1/2*m*(xdot^2 + ydot^2) - 1/2*k*(x^2 + y^2)\n");
     else

@@ -4,7 +4,8 @@
 # Instructions per integrated second of each route of bench/scene_route.c (callgrind at T and
 # 2T, the difference over T: set-up, compiler run and cache load removed), side by side in one
 # run, with the ratios to the C route (docs/performance.md, "Scene files against C").
-#   bench/scene_route.sh [BUILD_DIR] [T]     (configure with -DDAL_BUILD_BENCH=ON)
+#   bench/scene_route.sh [BUILD_DIR] [T] [SCENE:ROUTE,ROUTE...]...   (-DDAL_BUILD_BENCH=ON)
+# Without rows: every row of docs/performance.md; the first route of a row is its reference.
 set -euo pipefail
 B=${1:-build}/bench/dal_bench_scene_route
 T=${2:-5}
@@ -29,8 +30,10 @@ rows() { # SCENE ROUTE...: one table row per route, the first route the referenc
   done
 }
 printf '| scene | route | dynamics | Ir / integrated s | / first row |\n|---|---|---|---|---|\n'
-rows pendulum c scene native
-rows bead c scene native
-rows chain16 c scene native flat
-rows pendulum c lag lagn lagc
-rows oscillator c scene lag lagn lagc
+shift $(($# < 2 ? $# : 2))
+[ $# -gt 0 ] || set -- pendulum:c,scene,native bead:c,scene,native chain16:c,scene,native \
+  pendulum:c,lag,lagn,lagc oscillator:c,scene,lag,lagn,lagc
+for spec in "$@"; do
+  IFS=, read -r -a routes <<<"${spec#*:}"
+  rows "${spec%%:*}" "${routes[@]}"
+done

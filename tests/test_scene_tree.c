@@ -33,14 +33,15 @@ static char *chain_text(int n, int flat, int odd, const char *lname) {
       k += (size_t)snprintf(s + k, cap - k, "place p0 = %s*sin(q0); -%s*cos(q0)\n", lname, lname);
     } else if (!flat) {
       int o = i == odd;
-      k += (size_t)snprintf(s + k, cap - k, "place p%d parent=p%d = x_p%d + %s*%s(q%d); y_p%d %s %s*%s(q%d)\n",
-                            i, i - 1, i - 1, lname, o ? "cos" : "sin", i, i - 1, o ? "+" : "-",
-                            lname, o ? "sin" : "cos", i);
+      k += (size_t)snprintf(s + k, cap - k,
+                            "place p%d parent=p%d = x_p%d + %s*%s(q%d); y_p%d %s %s*%s(q%d)\n", i,
+                            i - 1, i - 1, lname, o ? "cos" : "sin", i, i - 1, o ? "+" : "-", lname,
+                            o ? "sin" : "cos", i);
     } else {
       k += (size_t)snprintf(s + k, cap - k, "place p%d = 0", i);
       for (int j = 0; j <= i; ++j)
-        k += (size_t)snprintf(s + k, cap - k, " + %s*%s(q%d)", lname, odd && j == odd ? "cos" : "sin",
-                              j);
+        k += (size_t)snprintf(s + k, cap - k, " + %s*%s(q%d)", lname,
+                              odd && j == odd ? "cos" : "sin", j);
       k += (size_t)snprintf(s + k, cap - k, "; 0");
       for (int j = 0; j <= i; ++j)
         k += (size_t)snprintf(s + k, cap - k, " %s %s*%s(q%d)", odd && j == odd ? "+" : "-", lname,

@@ -394,6 +394,13 @@ int dal_expr_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_je
   return 0;
 }
 
+int dal__expr_lagrange_parts_eval(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *out,
+                                  void *ctx) {
+  const dal_expr *e = ctx;
+  xrun(e, q, qdot, e->nin_named, t, e->values, out);
+  return 0;
+}
+
 int dal_expr_path(dal_jet t, dal_jet *x, void *ctx) { return dal_expr_map(NULL, t, x, ctx); }
 
 int dal_expr_time(dal_jet t, dal_jet *f, void *ctx) { return dal_expr_map(NULL, t, f, ctx); }

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "expr/expr.h"
+#include "model/model.h"
 #include "scene.h"
 
 int dal__scene_part(const dal_scene *sc, const char *name) {
@@ -646,10 +647,19 @@ int dal__scene_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
   int rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
                   sc->ncoord, lag, &e, msg, len);
   if (rc) return rc;
+  if (!lag)
+    return bcheck(sc, l, dal_builder_add_potential_q(sc->b, dal_expr_potential_q, e), msg, len);
+  if ((rc = bcheck(sc, l, dal_builder_set_lagrangian(sc->b, dal_expr_lagrangian, e), msg, len)))
+    return rc;
+  // its parts dL/dqdot and dL/dq, derived once: the accelerations in n + 1 evaluations of them
+  // instead of n (n + 3) / 2 + 1 of L (eval/lagrangian.c); past the algebra's bounds L alone
+  dal_expr *parts = NULL;
+  rc = dal__expr_lagrange_parts(e, &parts, NULL, 0);
+  if (rc == DAL_E_NOMEM || (!rc && (rc = keep_expr(sc, parts)))) return DAL_E_NOMEM;
+  if (rc) return DAL_OK;
   return bcheck(sc, l,
-                lag ? dal_builder_set_lagrangian(sc->b, dal_expr_lagrangian, e)
-                    : dal_builder_add_potential_q(sc->b, dal_expr_potential_q, e),
-                msg, len);
+                dal__builder_set_lagrangian_parts(sc->b, dal__expr_lagrange_parts_eval, parts), msg,
+                len);
 }
 
 // the generalized force of a force line, added to Q_i
