@@ -260,8 +260,21 @@ int dal__check_pair(const dal_system *sys, const dal_state *st, const char *what
 /// with "<what>: ..."; 0 when the state is idle.
 int dal__check_idle(dal_state *st, const char *what);
 
+/// free each pointer listed (any may be NULL): the buffers a structure owns, then the
+/// structure, in one statement, DAL_FREE(w->K, w->x, w)
+#define DAL_FREE(...)                                                                              \
+  dal__free_all((void *[]){__VA_ARGS__}, sizeof((void *[]){__VA_ARGS__}) / sizeof(void *))
+void dal__free_all(void *const *p, size_t n);
+
 /// format "(q0=..., q1=...)" of the state's coordinates into buf
 void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len);
+/// coordinates q as dal__fmt_q's text, returned by value so that a message names them in place:
+/// DAL_FAIL(st, code, "... at %s", dal__qtext(sys, st->q).s) (the text lives to the end of the
+/// statement)
+typedef struct dal_qtext {
+  char s[256];
+} dal_qtext;
+dal_qtext dal__qtext(const dal_system *sys, const double *q);
 
 /// check a user callback's return: 0 ok, >0 recoverable, <0 stop; name the culprit
 int dal__cb_status(dal_state *st, int rc, const char *what);

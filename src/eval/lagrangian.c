@@ -17,17 +17,16 @@
 
 // a non-finite value or derivative of L or its parts at the state's jets
 static int lag_nonfinite(const dal_system *sys, dal_state *st) {
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   // huge inputs: an overflow (a trial step too long), not a domain error of L
   double big = fmax(dal__jets_max(st->jq, sys->n), dal__jets_max(st->jv, sys->n));
   if (big > DAL_JET_OVERFLOW)
     return DAL_FAIL(st, DAL__RETRY_NONFINITE,
                     "Lagrangian overflows at t=%.17g, %s: its inputs reach %g (coordinates "
                     "or velocities whose products exceed double range)",
-                    st->t, qs, big);
+                    st->t, dal__qtext(sys, st->q).s, big);
   return DAL_FAIL(st, DAL_E_DOMAIN,
-                  "Lagrangian produced a non-finite value or derivative at t=%.17g, %s", st->t, qs);
+                  "Lagrangian produced a non-finite value or derivative at t=%.17g, %s", st->t,
+                  dal__qtext(sys, st->q).s);
 }
 
 // evaluate L with the jets currently in st->jq, st->jv and time jet t; check finiteness

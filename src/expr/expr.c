@@ -101,6 +101,24 @@ static int names(dal_expr *e, const dal_expr_def *d, char *msg, size_t len) {
   return DAL_OK;
 }
 
+// the end of both constructors: with rc = DAL_OK compile the roots and hand e out; on a
+// failure (rc, or the compiler's) name it and destroy e
+static int finish(dal_expr *e, int rc, const char *name, char *msg, size_t len, dal_expr **out) {
+  if (!rc) {
+    char m[300];
+    rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
+    if (rc) say(msg, len, rc, "%s: %s", name, m);
+  }
+  if (!rc) {
+    face(e);
+    *out = e;
+    return DAL_OK;
+  }
+  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
+  dal_expr_destroy(e);
+  return rc;
+}
+
 int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len) {
   if (msg && len) msg[0] = 0;
   if (!out) return say(msg, len, DAL_E_ARG, "dal_expr_create: out is NULL%s%s", "", "");
@@ -160,21 +178,9 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
       goto fail;
     }
   }
-  {
-    char m[300];
-    rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
-    if (rc) {
-      say(msg, len, rc, "%s: %s", name, m);
-      goto fail;
-    }
-  }
-  face(e);
-  *out = e;
-  return DAL_OK;
+  return finish(e, DAL_OK, name, msg, len, out);
 fail:
-  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
-  dal_expr_destroy(e);
-  return rc;
+  return finish(e, rc, name, msg, len, out);
 }
 
 // DAL_PRIM_TRANSLATES when output k = input k + f(the other inputs) for every output: the
@@ -278,19 +284,9 @@ int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots,
     e->formulas[k] = dup("(derived)");
     if (!e->formulas[k]) goto fail;
   }
-  char m[300];
-  rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
-  if (rc) {
-    say(msg, len, rc, "%s: %s", name, m);
-    goto fail;
-  }
-  face(e);
-  *out = e;
-  return DAL_OK;
+  return finish(e, DAL_OK, name, msg, len, out);
 fail:
-  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
-  dal_expr_destroy(e);
-  return rc;
+  return finish(e, rc, name, msg, len, out);
 }
 
 void dal_expr_destroy(dal_expr *e) {

@@ -8,6 +8,12 @@
 
 #include "expr.h"
 
+// the public formats are the printer's (dal__xprint takes them as they are)
+_Static_assert((int)DAL_EXPR_TEXT == (int)DAL_XFMT_TEXT &&
+                   (int)DAL_EXPR_LATEX == (int)DAL_XFMT_LATEX &&
+                   (int)DAL_EXPR_SCHEME == (int)DAL_XFMT_SCHEME,
+               "dal_expr_format and the printer's formats differ");
+
 #define MODEL_COOKIE 0x0e7a3d19
 
 // a scratch tree with the symbols of `from` (names borrowed) for algebra on a const expression

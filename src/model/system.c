@@ -383,28 +383,9 @@ void dal_system_destroy(dal_system *s) {
   if (s->con)
     for (int i = 0; i < s->ncon; ++i)
       free(s->con[i].name);
-  free(s->coord_names);
-  free(s->part_names);
-  free(s->mass);
-  free(s->place);
-  free(s->ipool);
-  free(s->ppool);
-  free(s->pdep_off);
-  free(s->pdep);
-  free(s->pj_off);
-  free(s->con_loff);
-  free(s->mu);
-  free(s->ploc_off);
-  free(s->con);
-  free(s->cdep);
-  free(s->row_con);
-  free(s->springs);
-  free(s->dampers);
-  free(s->potr);
-  free(s->potq);
-  free(s->forces);
-  free(s->genforces);
-  free(s);
+  DAL_FREE(s->coord_names, s->part_names, s->mass, s->place, s->ipool, s->ppool, s->pdep_off,
+           s->pdep, s->pj_off, s->con_loff, s->mu, s->ploc_off, s->con, s->cdep, s->row_con,
+           s->springs, s->dampers, s->potr, s->potq, s->forces, s->genforces, s);
 }
 
 int dal_system_dim(const dal_system *s) { return s ? s->dim : 0; }

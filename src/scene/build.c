@@ -25,16 +25,12 @@ static int coord_index(const dal_scene *sc, const char *name) {
 }
 
 static int keep_expr(dal_scene *sc, dal_expr *e) {
-  if (sc->nex == sc->capex) {
-    int cap = sc->capex ? 2 * sc->capex : 16;
-    dal_expr **v = realloc(sc->ex, (size_t)cap * sizeof *v);
-    if (!v) {
-      dal_expr_destroy(e);
-      return DAL_E_NOMEM;
-    }
-    sc->ex = v;
-    sc->capex = cap;
+  dal_expr **v = dal__scene_grow(sc->ex, sc->nex, &sc->capex, sizeof *v, 16);
+  if (!v) {
+    dal_expr_destroy(e);
+    return DAL_E_NOMEM;
   }
+  sc->ex = v;
   sc->ex[sc->nex++] = e;
   return DAL_OK;
 }
@@ -183,13 +179,9 @@ static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, in
   }
   const char *key = name;
   if (made) { // a made name (a rate, x_<p>): the scene keeps it
-    if (sc->nsymkeys == sc->capsymkeys) {
-      int cap = sc->capsymkeys ? 2 * sc->capsymkeys : 16;
-      char **v = realloc(sc->symkeys, (size_t)cap * sizeof *v);
-      if (!v) return DAL_E_NOMEM;
-      sc->symkeys = v;
-      sc->capsymkeys = cap;
-    }
+    char **v = dal__scene_grow(sc->symkeys, sc->nsymkeys, &sc->capsymkeys, sizeof *v, 16);
+    if (!v) return DAL_E_NOMEM;
+    sc->symkeys = v;
     char *k = dal__scene_dup(name);
     if (!k) return DAL_E_NOMEM;
     sc->symkeys[sc->nsymkeys++] = k;
@@ -837,31 +829,4 @@ void dal__scene_unbuild(dal_scene *sc) {
   free(sc->symkeys);
   sc->symkeys = NULL;
   sc->nsymkeys = sc->capsymkeys = 0;
-}
-
-int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
-  dal__scene_unbuild(sc);
-  sc->dim = 2;
-  sc->opts = dal_default_solve_opts();
-  sc->t0 = 0;
-  sc->t1 = 10;
-  sc->dt = 0.01;
-  sc->has_run = 0;
-  sc->pname = calloc((size_t)sc->nparamlines + 1, sizeof *sc->pname);
-  sc->pval = calloc((size_t)sc->nparamlines + 1, sizeof *sc->pval);
-  int rc = sc->pname && sc->pval ? DAL_OK : DAL_E_NOMEM;
-  for (int pass = 0; pass < 2; ++pass)
-    for (int i = 0; i < sc->nlines && !rc; ++i)
-      rc = dal__scene_line(sc, &sc->lines[i], pass, msg, len);
-  if (!rc && !sc->b)
-    rc = dal__scene_err(sc, sc->nlines ? sc->lines[sc->nlines - 1].line : 0, msg, len, DAL_E_ARG,
-                        "no coordinates or particles");
-  if (!rc) {
-    rc = dal_builder_compile(sc->b, &sc->sys);
-    if (rc && msg && len) snprintf(msg, len, "%s: %s", sc->name, dal_builder_errmsg(sc->b));
-  }
-  // native code again for the new expressions (the cache has it)
-  if (!rc && sc->native && sc->nex)
-    rc = dal_codegen_attach(sc->ex, sc->nex, &sc->native_opts, msg, len);
-  return rc;
 }
