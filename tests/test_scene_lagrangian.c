@@ -144,8 +144,7 @@ static void check_scene(const char *name, const char *text, int n) {
     d1 = fmax(d1, fabs(a[i] - b[i]));
     d2 = fmax(d2, fabs(a[i] - c[i]));
   }
-  printf("%s: q(5) against the particle route %.3g, against the polarization %.3g\n", name, d1,
-         d2);
+  printf("%s: q(5) against the particle route %.3g, against the polarization %.3g\n", name, d1, d2);
   CHECK(d1 < 1e-9);
   CHECK(d2 < 1e-9);
   // the energy function still comes from L: constant for the double pendulum (no t in L)
