@@ -13,6 +13,7 @@
 #include "base/base.h"
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define G 9.8
 #define A_DR 0.1
@@ -28,35 +29,16 @@ static const char *double_text =
     "dim 0\nparam g = 9.8\ncoord a q=0.7 v=0\ncoord b q=-0.4 v=0.3\n"
     "lagrangian = adot^2 + 1/2*bdot^2 + adot*bdot*cos(a - b) + 2*g*cos(a) + g*cos(b)\n";
 
-// the particle route: a pendulum (driven for n = 1) and, for n = 2, a link hanging from it
+// the particle route (the scene library): the driven pendulum (n = 1) or the double pendulum
 static dal_system *particles(int n) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int q[2], p[2];
-  CHECK_OK(dal_builder_create(2, &b));
-  for (int i = 0; i < n; ++i) {
-    char nm[8];
-    snprintf(nm, sizeof nm, "q%d", i);
-    CHECK_OK(dal_builder_add_coord(b, nm, &q[i]));
-    snprintf(nm, sizeof nm, "p%d", i);
-    CHECK_OK(dal_builder_add_particle(b, nm, 1.0, &p[i]));
-    dal_place_def d = dal_default_place_def();
-    d.coords = q + i;
-    d.ncoords = 1;
-    d.prim = i ? &dal_map_hanging : &dal_map_pendulum;
-    d.parent = i ? p[0] : -1;
-    d.param[0] = 1.0;
-    if (n == 1) {
-      d.param[DAL_PENDULUM_AY] = A_DR;
-      d.param[DAL_PENDULUM_W] = W_DR;
-    }
-    CHECK_OK(dal_builder_place_def(b, p[i], &d));
+  scn_knobs k = scn_default();
+  k.g = G;
+  if (n == 1) {
+    k.ay = A_DR;
+    k.w = W_DR;
+    return scn_pendulum(&k);
   }
-  double g[2] = {0, -G};
-  CHECK_OK(dal_builder_set_gravity(b, g));
-  CHECK_OK(dal_builder_compile(b, &sys));
-  dal_builder_destroy(b);
-  return sys;
+  return scn_double_pendulum(&k);
 }
 
 // the scene's own Lagrangian expression by polarization alone (no parts)

@@ -12,6 +12,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "support/scenes.h"
 
 #define NL 16
 #define LINK 0.1
@@ -62,31 +63,14 @@ static dal_scene *scene(int n, int flat, int odd, const char *lname) {
   return sc;
 }
 
-// the C route: dal_map_pendulum about the origin, then dal_map_hanging links
+// the C route: dal_map_pendulum about the origin, then dal_map_hanging links (the scene
+// library's chain)
 static dal_system *c_chain(int n) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int q[NL], p[NL];
-  CHECK_OK(dal_builder_create(2, &b));
-  for (int i = 0; i < n; ++i) {
-    char nm[16];
-    snprintf(nm, sizeof nm, "q%d", i);
-    CHECK_OK(dal_builder_add_coord(b, nm, &q[i]));
-    snprintf(nm, sizeof nm, "p%d", i);
-    CHECK_OK(dal_builder_add_particle(b, nm, 1.0, &p[i]));
-    dal_place_def d = dal_default_place_def();
-    d.coords = q + i;
-    d.ncoords = 1;
-    d.prim = i ? &dal_map_hanging : &dal_map_pendulum;
-    d.parent = i ? p[i - 1] : -1;
-    d.param[0] = LINK; // DAL_HANGING_L, DAL_PENDULUM_L
-    CHECK_OK(dal_builder_place_def(b, p[i], &d));
-  }
-  double g[2] = {0, -9.81};
-  CHECK_OK(dal_builder_set_gravity(b, g));
-  CHECK_OK(dal_builder_compile(b, &sys));
-  dal_builder_destroy(b);
-  return sys;
+  scn_knobs k = scn_default();
+  k.N = n;
+  k.l = LINK;
+  k.g = 9.81;
+  return scn_chain(&k);
 }
 
 // largest |qddot_a - qddot_b| / max(1, |qddot_b|) over random states
