@@ -1,18 +1,21 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// Scene files whose particles hang from their parents: a planar chain written with `parent=`
-// takes the C route's recursion and closed-form links (scene/build.c recognises dal_map_hanging's
-// formulas). Checked against the C route (built-in pendulum + hanging links: the same
-// accelerations, the same run), against the non-recursive route (the same chain by absolute
-// formulas, dense M) and, for links not of that form, that they still run right.
+// White box: scene files take the C route's fast paths (issue 36). (1) Particles hanging from
+// their parents: a planar chain written with `parent=` takes the recursion and the closed-form
+// links of dal_map_hanging (scene/build.c recognises its formulas), checked against the C route
+// (the same accelerations and run, bit for bit), the non-recursive route (the same chain by
+// absolute formulas, dense M) and links not of that form. (2) A scene file's Lagrangian runs by
+// its parts dL/dqdot and dL/dq, derived symbolically (eval/lagrangian.c), checked against the
+// particle route of the same mechanics (independent of L) and L's polarization.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "base/base.h"
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "support/scenes.h"
+#include "scenes.h"
 
 #define NL 16
 #define LINK 0.1
@@ -73,7 +76,8 @@ static dal_system *c_chain(int n) {
   return scn_chain(&k);
 }
 
-// largest |qddot_a - qddot_b| / max(1, |qddot_b|) over random states
+// largest |qddot_a - qddot_b| / max(1, |qddot_b|) over random states and times; *bits: all
+// equal bit for bit
 static double qddot_gap(const dal_system *a, const dal_system *b, int n, int *bits) {
   dal_state *sa = NULL, *sb = NULL;
   CHECK_OK(dal_state_create(a, &sa));
@@ -82,12 +86,13 @@ static double qddot_gap(const dal_system *a, const dal_system *b, int n, int *bi
   double q[NL], v[NL], gap = 0.0;
   *bits = 1;
   for (int trial = 0; trial < 20 && sa && sb; ++trial) {
+    double t = check_rand(&seed, 0.0, 10.0);
     for (int i = 0; i < n; ++i) {
       q[i] = check_rand(&seed, -3.0, 3.0);
       v[i] = check_rand(&seed, -5.0, 5.0);
     }
-    CHECK_OK(dal_state_set(a, sa, 0.0, q, v));
-    CHECK_OK(dal_state_set(b, sb, 0.0, q, v));
+    CHECK_OK(dal_state_set(a, sa, t, q, v));
+    CHECK_OK(dal_state_set(b, sb, t, q, v));
     CHECK_OK(dal_forward(a, sa));
     CHECK_OK(dal_forward(b, sb));
     const double *x = dal_state_qddot(sa), *y = dal_state_qddot(sb);
@@ -101,14 +106,15 @@ static double qddot_gap(const dal_system *a, const dal_system *b, int n, int *bi
   return gap;
 }
 
-// q at t1 by DOPRI5 at rtol 1e-10 from the chain's start
-static void run(const dal_system *sys, int n, double t1, double *q) {
+// q at t1 by DOPRI5 at rtol 1e-10 from (q0, v0); NULL q0: the chain's start, at rest
+static void run(const dal_system *sys, int n, const double *q0, const double *v0, double t1,
+                double *q) {
   dal_state *st = NULL;
-  double q0[NL], v0[NL] = {0};
+  double c0[NL], z[NL] = {0};
   for (int i = 0; i < n; ++i)
-    q0[i] = q0_of(i);
+    c0[i] = q0_of(i);
   CHECK_OK(dal_state_create(sys, &st));
-  CHECK_OK(dal_state_set(sys, st, 0.0, q0, v0));
+  CHECK_OK(dal_state_set(sys, st, 0.0, q0 ? q0 : c0, v0 ? v0 : z));
   dal_solve_opts o = dal_default_solve_opts();
   o.method = DAL_METHOD_DOPRI5;
   o.rtol = 1e-10;
@@ -148,9 +154,9 @@ static void test_chain(void) {
   CHECK(gf < 1e-11);
   // the same runs: bit for bit with C, within the tolerance of the dense route
   double qt[NL], qc[NL], qf[NL];
-  run(ts, NL, 1.0, qt);
-  run(c, NL, 1.0, qc);
-  run(fs, NL, 1.0, qf);
+  run(ts, NL, NULL, NULL, 1.0, qt);
+  run(c, NL, NULL, NULL, 1.0, qc);
+  run(fs, NL, NULL, NULL, 1.0, qf);
   printf("q(1): scene - C %.3g, scene - dense %.3g\n", max_diff(qt, qc, NL), max_diff(qt, qf, NL));
   CHECK(max_diff(qt, qc, NL) == 0.0);
   CHECK(max_diff(qt, qf, NL) < 1e-8);
@@ -192,15 +198,111 @@ static void test_other_forms(void) {
   printf("6 links, link 3 in another form: qddot against the dense route %.3g\n", g);
   CHECK(g < 1e-11);
   double qt[6], qf[6];
-  run(ts, 6, 1.0, qt);
-  run(fs, 6, 1.0, qf);
+  run(ts, 6, NULL, NULL, 1.0, qt);
+  run(fs, 6, NULL, NULL, 1.0, qf);
   CHECK(max_diff(qt, qf, 6) < 1e-8);
   dal_scene_destroy(tree);
   dal_scene_destroy(flat);
 }
 
+#define G 9.8
+#define A_DR 0.1
+#define W_DR 6.2609903369994111
+
+static const char *driven_text =
+    "dim 0\nparam l = 1\nparam g = 9.8\nparam a = 0.1\nparam w = 6.2609903369994111\n"
+    "coord th q=1 v=0\n"
+    "lagrangian = 1/2*((l*cos(th)*thdot)^2 + (-a*w*sin(w*t) + l*sin(th)*thdot)^2) - "
+    "g*(a*cos(w*t) - l*cos(th))\n";
+
+static const char *double_text =
+    "dim 0\nparam g = 9.8\ncoord a q=0.7 v=0\ncoord b q=-0.4 v=0.3\n"
+    "lagrangian = adot^2 + 1/2*bdot^2 + adot*bdot*cos(a - b) + 2*g*cos(a) + g*cos(b)\n";
+
+// the particle route (the scene library): the driven pendulum (n = 1) or the double pendulum
+static dal_system *particles(int n) {
+  scn_knobs k = scn_default();
+  k.g = G;
+  if (n == 1) {
+    k.ay = A_DR;
+    k.w = W_DR;
+    return scn_pendulum(&k);
+  }
+  return scn_double_pendulum(&k);
+}
+
+// the scene's own Lagrangian expression by polarization alone (no parts)
+static dal_system *polarized(const dal_scene *sc, int n) {
+  dal_builder *b = NULL;
+  dal_system *sys = NULL;
+  CHECK_OK(dal_builder_create(2, &b));
+  for (int i = 0; i < n; ++i) {
+    char nm[8];
+    snprintf(nm, sizeof nm, "q%d", i);
+    CHECK_OK(dal_builder_add_coord(b, nm, NULL));
+  }
+  const dal_expr *L = NULL;
+  for (int i = 0; i < dal_scene_nexprs(sc) && !L; ++i) // the first expression over velocities
+    if (dal_expr_nin(dal_scene_expr(sc, i)) == 2 * n && dal_expr_nout(dal_scene_expr(sc, i)) == 1)
+      L = dal_scene_expr(sc, i);
+  CHECK(L != NULL);
+  CHECK_OK(dal_builder_set_lagrangian(b, dal_expr_lagrangian, (void *)L));
+  CHECK_OK(dal_builder_compile(b, &sys));
+  dal_builder_destroy(b);
+  return sys;
+}
+
+static void check_lagrangian(const char *name, const char *text, int n) {
+  dal_scene *sc = NULL;
+  char msg[512];
+  CHECK_MSG(dal_scene_parse(text, name, &sc, msg, sizeof msg) == DAL_OK, "%s", msg);
+  if (!sc) return;
+  const dal_system *s = dal_scene_system(sc);
+  CHECK(s->lag_parts != NULL); // the parts were derived and given to the system
+  dal_system *pr = particles(n), *pol = polarized(sc, n);
+  CHECK(pol && pol->lag_parts == NULL);
+  int bits;
+  double gp = qddot_gap(s, pr, n, &bits), gl = qddot_gap(s, pol, n, &bits);
+  printf("%s: qddot against the particle route %.3g, against L's polarization %.3g\n", name, gp,
+         gl);
+  CHECK(gp < 1e-13);
+  CHECK(gl < 1e-13);
+  double q0[2] = {1.0, -0.4}, v0[2] = {0.2, 0.3}, a[2], b[2], c[2];
+  run(s, n, q0, v0, 5.0, a);
+  run(pr, n, q0, v0, 5.0, b);
+  run(pol, n, q0, v0, 5.0, c);
+  double d1 = 0, d2 = 0;
+  for (int i = 0; i < n; ++i) {
+    d1 = fmax(d1, fabs(a[i] - b[i]));
+    d2 = fmax(d2, fabs(a[i] - c[i]));
+  }
+  printf("%s: q(5) against the particle route %.3g, against the polarization %.3g\n", name, d1, d2);
+  CHECK(d1 < 1e-9);
+  CHECK(d2 < 1e-9);
+  // the energy function still comes from L: constant for the double pendulum (no t in L)
+  if (n == 2) {
+    dal_state *st = NULL;
+    CHECK_OK(dal_state_create(s, &st));
+    CHECK_OK(dal_state_set(s, st, 0.0, q0, v0));
+    dal_energies e0, e1;
+    CHECK_OK(dal_forward(s, st));
+    CHECK_OK(dal_state_energies(st, &e0));
+    dal_solve_opts o = dal_default_solve_opts();
+    o.rtol = 1e-10;
+    CHECK_OK(dal_advance(s, st, &o, 5.0));
+    CHECK_OK(dal_state_energies(st, &e1));
+    CHECK_CLOSE(e1.h, e0.h, 1e-8);
+    dal_state_destroy(st);
+  }
+  dal_system_destroy(pr);
+  dal_system_destroy(pol);
+  dal_scene_destroy(sc);
+}
+
 int main(void) {
   test_chain();
   test_other_forms();
-  return check_summary("test_scene_tree");
+  check_lagrangian("driven pendulum", driven_text, 1);
+  check_lagrangian("double pendulum", double_text, 2);
+  return check_summary("test_scene_routes");
 }
