@@ -142,7 +142,8 @@ DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, c
 /// refused or unwritable).
 DAL_API int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t msglen);
 
-/// The number of expressions the scene made (its formulas, compiled; the order of its lines).
+/// The number of expressions the scene made (its formulas, compiled; the order of its lines;
+/// a `lagrangian` line makes two: L, then its parts dL/dqdot and dL/dq the accelerations read).
 DAL_API int dal_scene_nexprs(const dal_scene *sc);
 
 /// Expression i (0 <= i < dal_scene_nexprs) of the scene, borrowed (valid until the scene is

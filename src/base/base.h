@@ -83,6 +83,13 @@ typedef struct dal_vec {
   int len, cap;
 } dal_vec;
 
+/// The parts of a Lagrangian its equations read, over jets: out[i] = dL/dqdot_i and
+/// out[n + i] = dL/dq_i (i < n) at (t, q, qdot); 0 ok, as dal_lagrangian_fn otherwise. Given
+/// beside L (model/builder.c), the accelerations take n + 1 evaluations of it instead of the
+/// polarization's n (n + 3) / 2 + 1 of L (eval/lagrangian.c).
+typedef int dal__lagrangian_parts_fn(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *out,
+                                     void *ctx);
+
 struct dal_builder {
   int dim;
   dal_vec coords;    // char *
@@ -102,6 +109,8 @@ struct dal_builder {
   void *map_ctx;
   dal_lagrangian_fn *lag;
   void *lag_ctx;
+  dal__lagrangian_parts_fn *lag_parts; // nullable (model/builder.c)
+  void *lag_parts_ctx;
   int has_gravity;
   double g[3];
   dal_dynamics dynamics; // dal_builder_set_dynamics
@@ -117,6 +126,8 @@ struct dal_system {
   void *map_ctx;
   dal_lagrangian_fn *lag;
   void *lag_ctx;
+  dal__lagrangian_parts_fn *lag_parts; // dL/dqdot and dL/dq as one program (NULL: by L alone)
+  void *lag_parts_ctx;
   int *ipool;
   double *ppool;
   // per-particle dependency coordinates (sorted): pdep[pdep_off[k] .. pdep_off[k+1])
