@@ -6,6 +6,7 @@
 // dal_advance.
 #include <string.h>
 
+#include "families.h"
 #include "integrate.h"
 
 // (the size is the problem's ny, set per run by dal__ode_create_fo)
