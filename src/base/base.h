@@ -148,6 +148,9 @@ struct dal_system {
   // M couples few coordinates (sum over particles of (coordinates it depends on)^2 at most
   // DAL_KKT_LOCAL_COUPLING n: Cartesian particles): its KKT matrix goes to KLU at any order
   int kkt_local;
+  // compiled equations of motion (src/codegen/eom.c; NULL: none): the minimal-coordinate
+  // right-hand side's qddot in one call
+  struct dal_eom *eom;
 };
 
 /// compensated summation x += d with compensation c (Kahan 1965): c holds the negated

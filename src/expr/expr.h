@@ -46,6 +46,10 @@ typedef struct dal_xprog {
 int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p, char *msg,
                   size_t msglen);
 void dal__xprog_free(dal_xprog *p);
+/// a scalar instruction of a program: op (X_ADD .. X_HYPOT) of a and b (b unused by one-argument
+/// operations) in doubles, as the program's scalar part and the generated code's folding
+/// compute it
+double dal__xscalar(int op, double a, double b);
 /// run p: input i is in[i] for i < split, else in2[i - split]; `bad` (nullable) receives the
 /// index of the first instruction whose result is not finite (-1 none)
 void dal__xrun(const dal_xprog *p, const dal_jet *in, const dal_jet *in2, int split, dal_jet t,

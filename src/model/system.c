@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "codegen/codegen.h"
 #include "model.h"
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
@@ -371,6 +372,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
 
 void dal_system_destroy(dal_system *s) {
   if (!s) return;
+  dal__eom_free(s->eom);
   if (s->coord_names)
     for (int i = 0; i < s->n; ++i)
       free(s->coord_names[i]);
