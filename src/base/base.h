@@ -227,7 +227,7 @@ struct dal_state {
   struct dal_events *events;        // attached event set (borrowed; events.h)
   struct dal_trajectory *traj;      // attached dense trajectory record (borrowed; solve.h)
   const struct dal_first_order *fo; // a first-order problem run on this work state by the
-                                    // integrators (integrate.h: dal__ode_create_fo), or NULL
+                                    // integrators (families.h: dal__ode_create_fo), or NULL
   int lazy;    // a callback holds the state at an output time, not yet evaluated: the public
                // accessors evaluate it on first use (dal__lazy_eval)
   int lazy_rc; // status of that evaluation when it failed (the driver then stops the run)
