@@ -108,12 +108,33 @@ done:
 
 static int qnode(eb *b, int j) { return dal__xnode(&b->tr, X_IN, -1, -1, j, 0.0); }
 
+// a link by dal_map_hanging (a scene file's chain link, recognised by the scene's builder):
+// x_P + l*sin(q), y_P - l*cos(q), l the placement's parameter
+static int is_hanging(const dal_place *pl, int d) {
+  return pl->prim == &dal_map_hanging && pl->parent >= 0 && pl->ncoord == 1 && d == 2;
+}
+
+static int place_hanging(eb *b, int k, const dal_place *pl) {
+  int q = qnode(b, b->sys->ipool[pl->coord_off]);
+  int l = dal__xnode(&b->tr, X_PAR, -1, -1, pl->param_off + DAL_HANGING_L, 0.0);
+  int s = dal__xnode(&b->tr, X_MUL, l, dal__xnode(&b->tr, X_SIN, q, -1, 0, 0.0), 0, 0.0);
+  int c = dal__xnode(&b->tr, X_MUL, l, dal__xnode(&b->tr, X_COS, q, -1, 0, 0.0), 0, 0.0);
+  int x = dal__xnode(&b->tr, X_ADD, b->pos[pl->parent * 2], s, 0, 0.0);
+  int y = dal__xnode(&b->tr, X_SUB, b->pos[pl->parent * 2 + 1], c, 0, 0.0);
+  b->pos[k * 2] = dal__alg_canon(&b->g, x);
+  b->pos[k * 2 + 1] = dal__alg_canon(&b->g, y);
+  if (b->pos[k * 2] < 0 || b->pos[k * 2 + 1] < 0) b->g.fail = 1;
+  b->have[k] = 1;
+  return b->g.fail ? -1 : 0;
+}
+
 // the position of particle k (its parent's first)
 static int place(eb *b, int k, int depth) {
   if (b->have[k]) return b->g.fail ? -1 : 0;
   const dal_place *pl = &b->sys->place[k];
   const dal_expr *e = expr_of(pl->prim, pl->ctx);
-  if (!e || depth > b->N) return -1;
+  if ((!e && !is_hanging(pl, b->d)) || depth > b->N) return -1;
+  if (!e) return place(b, pl->parent, depth + 1) ? -1 : place_hanging(b, k, pl);
   int in[64], d = b->d, k0 = 0;
   if (pl->parent >= 0) {
     if (place(b, pl->parent, depth + 1)) return -1;
@@ -162,7 +183,8 @@ static const char *unsupported(const dal_system *sys, char *why, size_t len) {
   for (int i = 0; i < sys->npotr; ++i)
     if (sys->potr[i].fn.potr != dal_expr_potential_r) return "a potential is a C callback";
   for (int k = 0; k < sys->N; ++k)
-    if (!sys->place || !expr_of(sys->place[k].prim, sys->place[k].ctx)) {
+    if (!sys->place || (!expr_of(sys->place[k].prim, sys->place[k].ctx) &&
+                        !is_hanging(&sys->place[k], sys->dim))) {
       snprintf(why, len, "particle '%s' is not placed by formulas", sys->part_names[k]);
       return why;
     }
