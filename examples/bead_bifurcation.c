@@ -20,14 +20,12 @@
 // --check (ctest): every point against the closed form (theta to 1e-12, frequency to 1e-10,
 // verdict neutral/unstable as above) and the located fork against sqrt(g/R) to 1e-9.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, R = 0.5, mass = 0.1;
 
@@ -46,10 +44,8 @@ static int build_ring(double w, dal_system **out, void *ctx) {
   ring.param[DAL_RING_W] = w;
   if (!rc) rc = dal_builder_place_def(b, bead, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, grav);
-  if (!rc) rc = dal_builder_compile(b, out);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *out = ex_compile(b, rc);
+  return !*out;
 }
 
 // what each reported point is checked against and written as
@@ -139,12 +135,6 @@ static int run_branches(FILE *csv, int npoints, int *bad) {
   return 0;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 static void chart(const char *dir, const char *csvpath) {
   char gp[1024], png[1024];
   snprintf(gp, sizeof gp, "%s/bead_bifurcation.gp", dir);
@@ -173,27 +163,12 @@ static void chart(const char *dir, const char *csvpath) {
       "-acos(%g/(%g*x*x)) * (x > %g ? 1 : 1/0) with lines lc rgb 'black' notitle\n",
       png, wc, wc, wc, csvpath, g, R, wc, g, R, wc);
   fclose(f);
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-    return;
-  }
-  char cmd[1200];
-  snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-  if (system(cmd) == 0)
-    printf("chart: %s\n", png);
-  else
-    printf("gnuplot failed: chart skipped (script in %s)\n", gp);
+  ex_gnuplot(gp, png);
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   printf("bead on a turning ring: m=%g R=%g g=%g, w_c = sqrt(g/R) = %.6f\n", mass, R, g,
          sqrt(g / R));
   int bad = 0;
@@ -202,7 +177,7 @@ int main(int argc, char **argv) {
     printf("%s\n", bad ? "FAILED" : "ok");
     return bad != 0;
   }
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   char csvpath[1024];
   snprintf(csvpath, sizeof csvpath, "%s/bead_bifurcation.csv", dir);
   FILE *csv = fopen(csvpath, "w");

@@ -15,6 +15,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 static const double MC = 1.7, MB = 0.4, L = 0.8, G = 9.81;
 
 static dal_system *build(void) {
@@ -48,10 +50,7 @@ static dal_system *build(void) {
   rod.nparts = 2;
   rod.param[DAL_DISTANCE_L] = L;
   dal_builder_add_constraint_def(b, &rod, NULL);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 static void markov(const double *A, const double *b, const double *c, double *out) {

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, l1 = 1.0, l2 = 0.7, m1 = 1.0, m2 = 0.5;
 
@@ -74,10 +75,8 @@ static int build(int cartesian, dal_system **sys) {
     pd.param[DAL_HANGING_L] = l2;
     if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   }
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 int main(int argc, char **argv) {

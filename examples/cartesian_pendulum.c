@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, l = 1.0, mass = 1.0, PI = 3.14159265358979323846;
 
@@ -85,10 +86,8 @@ static int build(dal_system **sys) {
   cd.nparts = 1;
   cd.param[DAL_ANCHOR_L] = l;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 // run one formulation to T with output every second; returns the number of failed checks

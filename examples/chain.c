@@ -25,6 +25,7 @@
 #include <time.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, PI = 3.14159265358979323846;
 
@@ -86,10 +87,8 @@ static int build(int N, int cartesian, dal_system **sys) {
     }
     prev = p;
   }
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 // the Cartesian start: 45 degrees, aligned, at rest

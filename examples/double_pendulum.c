@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double m1 = 1.0, m2 = 1.0, l1 = 1.0, l2 = 1.0, grav = 9.81, rtol = 1e-11;
 #define PI 3.14159265358979323846
@@ -41,7 +42,6 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 
 static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   int q[2], p1, p2, rc = dal_builder_create(2, &b);
   double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta1", &q[0]);
@@ -66,10 +66,7 @@ static dal_system *build(int lagrange) {
     if (!rc) rc = dal_builder_place_def(b, p2, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, rc);
 }
 
 // hand equations of motion: M, c, Q and qdd

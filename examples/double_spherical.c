@@ -14,6 +14,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 static dal_system *build(void) {
   dal_builder *b = NULL;
   int c[6], p[2];
@@ -46,10 +48,7 @@ static dal_system *build(void) {
   dal_builder_add_constraint_def(b, &cd, NULL);
   double g[3] = {0, 0, -9.81};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // L_z = sum m (x vy - y vx)

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 1.0, len = 1.0, grav = 9.81;
 #define PI 3.14159265358979323846
@@ -46,7 +47,6 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 
 static dal_system *build(drive *D, int lagrange) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   int th, p, rc = dal_builder_create(2, &b);
   double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
@@ -65,10 +65,7 @@ static dal_system *build(drive *D, int lagrange) {
     if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, rc);
 }
 
 // integrate from near upright; report the largest distance from upright and the times at which

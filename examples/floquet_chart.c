@@ -27,6 +27,8 @@
 
 #include <dalembert/dalembert.h>
 
+#include "example_util.h"
+
 #define G 9.81
 #define PI 3.14159265358979323846
 
@@ -44,7 +46,6 @@ typedef struct job {
 
 static dal_system *pendulum(double a, double w) {
   dal_builder *b;
-  dal_system *sys = NULL;
   int c, bob;
   if (dal_builder_create(2, &b)) return NULL;
   dal_builder_add_coord(b, "theta", &c);
@@ -59,9 +60,7 @@ static dal_system *pendulum(double a, double w) {
   dal_builder_place_def(b, bob, &pd);
   double g[2] = {0, -G};
   dal_builder_set_gravity(b, g);
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // the verdicts of the bottom and the top of one cell

@@ -45,6 +45,7 @@
 #include <time.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double drag = 0.5, rho = 1.0, m_rack = 1e-3, T_TRANS = 100.0;
 // moment of inertia about the axle: bob m l^2 = 1 plus the rack's m_r rho^2
@@ -65,7 +66,6 @@ typedef struct scene {
 
 static dal_system *build(scene *sc, double a, double w) {
   dal_builder *b = NULL;
-  dal_system *s = NULL;
   int th, bob, rack, rc = dal_builder_create(2, &b);
   double g[2] = {0, -1.0};
   sc->rho = rho;
@@ -96,10 +96,7 @@ static dal_system *build(scene *sc, double a, double w) {
   dd.anchor[1] = -2.0;
   dd.c = drag / (rho * rho);
   if (!rc) rc = dal_builder_add_damper_def(b, &dd);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  return ex_compile(b, rc);
 }
 
 typedef struct lyap_cfg {

@@ -21,6 +21,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 #define G 9.81
 static const double LA = 1.0, LB = 1.2, LC = 0.9, DX = 1.5, MB = 1.0, MC = 2.0, R = 0.6;
 
@@ -60,10 +62,7 @@ static dal_system *fourbar(void) {
   dal_builder_add_constraint_def(b, &k1, NULL);
   dal_builder_add_constraint_def(b, &k2, NULL);
   dal_builder_add_constraint_def(b, &k3, NULL);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // the crank-angle model: U'(th), U''(th) and M(th) by jets of the closed-form joint C
@@ -105,10 +104,7 @@ static dal_system *bead(double w) {
   k.param[DAL_TURNING_CIRCLE_R] = R;
   k.param[DAL_TURNING_CIRCLE_W] = w;
   dal_builder_add_constraint_def(b, &k, NULL);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 static int rebuild(double w, dal_system **out, void *ctx) {

@@ -18,14 +18,12 @@
 // about 0 below omega_c, and about theta* lies strictly inside the range above it.
 // Full mode (--out DIR, default ./demo-output) writes both runs to CSV and draws theta(t).
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.8, R = 1.0, mass = 1.0;
 
@@ -152,21 +150,9 @@ done:
   return bad;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   double wc = sqrt(g / R), T = check ? 10.0 : 20.0, dt = 1e-3, hd, ev;
   double w_lo = 0.7 * wc, w_hi = 1.5 * wc, th0 = 0.3;
   printf("bead on a rotating ring: R=%g g=%g, omega_c = sqrt(g/R) = %.4f, theta0 = %g\n", R, g, wc,
@@ -178,7 +164,7 @@ int main(int argc, char **argv) {
     printf("%s\n", bad ? "FAILED" : "ok");
     return bad;
   }
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   char p1[1024], p2[1024], gp[1024], png[1024];
   snprintf(p1, sizeof p1, "%s/ring_below.csv", dir);
   snprintf(p2, sizeof p2, "%s/ring_above.csv", dir);
@@ -225,15 +211,6 @@ int main(int argc, char **argv) {
         png, R, g, th0, p1, p2, acos(g / (R * w_hi * w_hi)), p2, p2, p2, p2);
     fclose(gf);
   }
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-  } else {
-    char cmd[1100];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot failed: chart skipped (script in %s)\n", gp);
-  }
+  ex_gnuplot(gp, png);
   return bad;
 }

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.8, R = 1.0, mass = 1.0, omega = 5.0;
 
@@ -60,10 +61,8 @@ static int build(int cartesian, dal_system **sys) {
     pd.param[DAL_RING_W] = omega;
     if (!rc) rc = dal_builder_place_def(b, bead, &pd);
   }
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 // h = E - omega L_z from the Cartesian state

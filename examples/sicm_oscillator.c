@@ -12,14 +12,12 @@
 // conserved to the same. Full mode (--out DIR, default ./demo-output) also writes the orbit
 // over one period to CSV and draws it (gnuplot) against the closed-form ellipse.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 2.0, k = 1.0;
 static const double q0[2] = {1, 2}, v0[2] = {3, 4};
@@ -94,10 +92,7 @@ static int advance_and_compare(const dal_system *sys, dal_method m) {
 
 // ten periods of the orbit to CSV and a chart of the error against the closed form over time
 static int full_mode(const dal_system *sys, const char *dir) {
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-    return 1;
-  }
+  if (ex_make_dir(dir)) return 1;
   char path[1024], gp[1024], png[1024];
   snprintf(path, sizeof path, "%s/oscillator.csv", dir);
   snprintf(gp, sizeof gp, "%s/oscillator.gp", dir);
@@ -139,28 +134,13 @@ static int full_mode(const dal_system *sys, const char *dir) {
             png, 10 * period, mass, k, 10 * period, w, q0[0], v0[0], q0[1], v0[1], path);
     fclose(gf);
   }
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-  } else {
-    char cmd[1100];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot failed: chart skipped (script in %s)\n", gp);
-  }
+  ex_gnuplot(gp, png);
   return 0;
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   dal_builder *b = NULL;
   dal_system *sys = NULL;
   int bad = build(&b, &sys) != 0;

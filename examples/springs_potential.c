@@ -16,6 +16,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 #define MU 0.8
 #define CDAMP 0.35
 
@@ -71,10 +73,7 @@ static dal_system *build(int damped) {
   if (damped) dal_builder_add_force(b, viscous, (void *)&nd);
   double g[2] = {0, -9.81};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // dissipated work by Simpson's rule over pairs of monitor intervals

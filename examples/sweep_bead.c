@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double R = 1.0, grav = 9.81, PI = 3.14159265358979323846;
 
@@ -46,7 +47,6 @@ enum {
 
 static dal_system *build(void) {
   dal_builder *b = NULL;
-  dal_system *s = NULL;
   int th, p, rc = dal_builder_create(3, &b);
   double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
@@ -58,10 +58,7 @@ static dal_system *build(void) {
   ring.param[DAL_RING_R] = R;
   if (!rc) rc = dal_builder_place_def(b, p, &ring);
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  return ex_compile(b, rc);
 }
 
 // theta wrapped into (-pi, pi]

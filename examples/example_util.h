@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: MIT
+// SPDX-FileCopyrightText: 2026 dalembert engineers
+// What several examples share besides the library: the command line (--check, --out DIR), the
+// output folder, the chart drawn by gnuplot and the builder's last step. Header only, so an
+// example still builds alone: cc example.c -ldalembert -lm (the compiler finds this header
+// beside the example).
+#ifndef DAL_EXAMPLES_EXAMPLE_UTIL_H
+#define DAL_EXAMPLES_EXAMPLE_UTIL_H
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "dalembert/dalembert.h"
+
+// --check (the short mode ctest runs) and --out DIR (where the full mode writes; *dir keeps its
+// default without it): returns 1 for --check
+static inline int ex_args(int argc, char **argv, const char **dir) {
+  int check = 0;
+  for (int i = 1; i < argc; ++i) {
+    if (strcmp(argv[i], "--check") == 0)
+      check = 1;
+    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
+      *dir = argv[++i];
+  }
+  return check;
+}
+
+// creates the output folder (an existing one is fine): 0, or 1 with the reason on stderr
+static inline int ex_make_dir(const char *dir) {
+  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
+  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
+  return 1;
+}
+
+// runs gnuplot on the script gp, which draws png; says where the chart is, or why it is not
+static inline void ex_gnuplot(const char *gp, const char *png) {
+  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
+    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
+    return;
+  }
+  char cmd[1100];
+  snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
+  if (system(cmd) == 0)
+    printf("chart: %s\n", png);
+  else
+    printf("gnuplot failed: chart skipped (script in %s)\n", gp);
+}
+
+// the builder's last step: rc is the first failure of the calls before (0: none); returns the
+// compiled system, or NULL with the builder's message on stderr; the builder is destroyed
+static inline dal_system *ex_compile(dal_builder *b, int rc) {
+  dal_system *sys = NULL;
+  if (!rc) rc = dal_builder_compile(b, &sys);
+  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
+  dal_builder_destroy(b);
+  return rc ? NULL : sys;
+}
+
+#endif
