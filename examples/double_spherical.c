@@ -20,18 +20,9 @@ static dal_system *build(void) {
   dal_builder *b = NULL;
   int c[6], p[2];
   dal_builder_create(3, &b);
-  const char *names[6] = {"x1", "y1", "z1", "x2", "y2", "z2"};
-  for (int i = 0; i < 6; ++i)
-    dal_builder_add_coord(b, names[i], &c[i]);
-  dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
-  dal_builder_add_particle(b, "bob2", 0.5, &p[1]);
-  for (int k = 0; k < 2; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian3;
-    d.coords = c + 3 * k;
-    d.ncoords = 3;
-    dal_builder_place_def(b, p[k], &d);
-  }
+  const char *names[6] = {"x1", "y1", "z1", "x2", "y2", "z2"}, *pn[2] = {"bob1", "bob2"};
+  const double m[2] = {1.0, 0.5};
+  ex_cartesian_particles(b, 3, 2, pn, m, names, c, p);
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "rod1";
   cd.prim = &dal_con_anchor3; // to the origin by default

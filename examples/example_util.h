@@ -59,4 +59,25 @@ static inline dal_system *ex_compile(dal_builder *b, int rc) {
   return rc ? NULL : sys;
 }
 
+// n free particles in dim = 2 or 3 dimensions, each placed by its Cartesian coordinates
+// (dal_map_cartesian2 or 3): particle k is named pname[k], has mass m[k] and the coordinates
+// cname[dim k ...]; their ids are written to p[k] and c[dim k ...]. Returns the first failure
+static inline int ex_cartesian_particles(dal_builder *b, int dim, int n, const char *const *pname,
+                                         const double *m, const char *const *cname, int *c,
+                                         int *p) {
+  int rc = 0;
+  for (int i = 0; i < dim * n; ++i)
+    if (!rc) rc = dal_builder_add_coord(b, cname[i], &c[i]);
+  for (int k = 0; k < n; ++k)
+    if (!rc) rc = dal_builder_add_particle(b, pname[k], m[k], &p[k]);
+  for (int k = 0; k < n; ++k) {
+    dal_place_def d = dal_default_place_def();
+    d.prim = dim == 2 ? &dal_map_cartesian2 : &dal_map_cartesian3;
+    d.coords = c + dim * k;
+    d.ncoords = dim;
+    if (!rc) rc = dal_builder_place_def(b, p[k], &d);
+  }
+  return rc;
+}
+
 #endif
