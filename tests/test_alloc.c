@@ -23,6 +23,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 void *__libc_malloc(size_t size);
 void *__libc_calloc(size_t n, size_t size);
@@ -158,18 +159,7 @@ static int build(run *r, int N, int minimal, dal_builder **b, dal_system **sys) 
     if (r->rc) break;
     if (minimal) {
       // unit links: a pendulum about the origin, then each hanging from the previous
-      dal_place_def pd = dal_default_place_def();
-      pd.coords = c;
-      pd.ncoords = 1;
-      if (k == 0) {
-        pd.prim = &dal_map_pendulum;
-        pd.param[DAL_PENDULUM_L] = 1.0;
-      } else {
-        pd.prim = &dal_map_hanging;
-        pd.parent = p - 1;
-        pd.param[DAL_HANGING_L] = 1.0;
-      }
-      note(r, dal_builder_place_def(*b, p, &pd), dal_builder_errmsg(*b));
+      note(r, scn_place_swing(*b, NULL, p, k == 0 ? -1 : p - 1, 1.0, c[0]), dal_builder_errmsg(*b));
       continue;
     }
     dal_place_def pd = dal_default_place_def();
