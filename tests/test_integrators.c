@@ -71,16 +71,9 @@ static int osc_force(double t, const double *q, const double *qd, double *Q, voi
 static dal_system *make_oscillator(osc_cb *cb) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
-  int c[2], p;
+  int p;
   int rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 2.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  if (!rc) rc = scn_add_xy(b, "m", 2.0, "x", "y", &p);
   if (!rc) rc = dal_builder_add_potential_q(b, spring_pot, NULL);
   if (!rc && cb) rc = dal_builder_add_genforce(b, osc_force, cb);
   if (!rc) rc = dal_builder_compile(b, &sys);
@@ -113,16 +106,9 @@ static int chirp_force(double t, const double *q, const double *qd, double *Q, v
 static dal_system *make_chirp(void) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
-  int c[2], p;
+  int p;
   int rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  if (!rc) rc = scn_add_xy(b, "m", 1.0, "x", "y", &p);
   if (!rc) rc = dal_builder_add_genforce(b, chirp_force, NULL);
   if (!rc) rc = dal_builder_compile(b, &sys);
   CHECK_OK(rc);
