@@ -110,6 +110,17 @@ static int set_from_particles(const dal_system *sys, dal_state *st, const dal_st
   return dal_state_set(sys, st, dal_state_time(ms), q, qd);
 }
 
+/// the twin runs' start: the minimal system ms at (q, qd) at t = 0, evaluated, and the Cartesian
+/// one ds set from its nvals particle coordinates; the two new states in *a and *b
+static void twin_start(const dal_system *ms, const dal_system *ds, const double *q,
+                       const double *qd, int nvals, dal_state **a, dal_state **b) {
+  CHECK_OK(dal_state_create(ms, a));
+  CHECK_OK(dal_state_create(ds, b));
+  CHECK_OK(dal_state_set(ms, *a, 0.0, q, qd));
+  CHECK_OK(dal_forward(ms, *a));
+  CHECK_OK(set_from_particles(ds, *b, *a, nvals));
+}
+
 static double max_abs(const double *x, int n) {
   double m = 0.0;
   for (int i = 0; i < n; ++i)
@@ -160,11 +171,7 @@ static void test_pendulum_vs_minimal(void) {
   double l = 1.3, m = 0.7, th0 = 2.0, w0 = 0.4, tol = 1e-9;
   dal_system *ms = min_pendulum(l, m, NULL), *ds = cart_pendulum(l, m, 0.0, 0.0, NULL);
   dal_state *a = NULL, *b = NULL;
-  CHECK_OK(dal_state_create(ms, &a));
-  CHECK_OK(dal_state_create(ds, &b));
-  CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &w0));
-  CHECK_OK(dal_forward(ms, a));
-  CHECK_OK(set_from_particles(ds, b, a, 2));
+  twin_start(ms, ds, &th0, &w0, 2, &a, &b);
   dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
   dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, lmax = 0.0;
@@ -196,12 +203,8 @@ static void test_double_and_driven(void) {
     dal_system *ms = double_pendulum(0, 1.0, 0.7, 1.0, 0.5);
     dal_system *ds = double_pendulum(1, 1.0, 0.7, 1.0, 0.5);
     dal_state *a = NULL, *b = NULL;
-    CHECK_OK(dal_state_create(ms, &a));
-    CHECK_OK(dal_state_create(ds, &b));
     double th[2] = {1.0, 0.5}, thd[2] = {0.0, 0.3};
-    CHECK_OK(dal_state_set(ms, a, 0.0, th, thd));
-    CHECK_OK(dal_forward(ms, a));
-    CHECK_OK(set_from_particles(ds, b, a, 4));
+    twin_start(ms, ds, th, thd, 4, &a, &b);
     dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
     dal_solve_opts od = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
     double emax = 0.0, fmaxd = 0.0;
@@ -233,12 +236,8 @@ static void test_double_and_driven(void) {
     dal_moving_point mp = {drive_path, &dr};
     dal_system *ms = min_pendulum(1.0, 1.0, &dr), *ds = cart_pendulum(1.0, 1.0, 0, 0, &mp);
     dal_state *a = NULL, *b = NULL;
-    CHECK_OK(dal_state_create(ms, &a));
-    CHECK_OK(dal_state_create(ds, &b));
     double th0 = 1.0, w0 = 0.0;
-    CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &w0));
-    CHECK_OK(dal_forward(ms, a));
-    CHECK_OK(set_from_particles(ds, b, a, 2));
+    twin_start(ms, ds, &th0, &w0, 2, &a, &b);
     dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
     dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
     double emax = 0.0;
@@ -269,12 +268,8 @@ static void test_rotating_ring(void) {
   CHECK(ms != NULL && ds != NULL);
   if (!ms || !ds) return;
   dal_state *a = NULL, *b = NULL;
-  CHECK_OK(dal_state_create(ms, &a));
-  CHECK_OK(dal_state_create(ds, &b));
   double th0 = 0.3, thd0 = 0.0;
-  CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &thd0));
-  CHECK_OK(dal_forward(ms, a));
-  CHECK_OK(set_from_particles(ds, b, a, 3));
+  twin_start(ms, ds, &th0, &thd0, 3, &a, &b);
   dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
   dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, phimax = 0.0;
