@@ -80,4 +80,27 @@ static inline int ex_cartesian_particles(dal_builder *b, int dim, int n, const c
   return rc;
 }
 
+// a pendulum in 2D: "bob" (mass m) on a rod l about the origin, in the angle "theta" from the
+// downward vertical, the pivot driven along (ax, ay) cos(w t) (dal_map_pendulum), gravity g
+// along -y; the compiled system, or NULL as ex_compile
+static inline dal_system *ex_pendulum(double m, double l, double g, double ax, double ay,
+                                      double w) {
+  dal_builder *b = NULL;
+  int th, bob, rc = dal_builder_create(2, &b);
+  double grav[2] = {0, -g};
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_add_particle(b, "bob", m, &bob);
+  dal_place_def pd = dal_default_place_def();
+  pd.prim = &dal_map_pendulum;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_PENDULUM_L] = l;
+  pd.param[DAL_PENDULUM_AX] = ax;
+  pd.param[DAL_PENDULUM_AY] = ay;
+  pd.param[DAL_PENDULUM_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
+  if (!rc) rc = dal_builder_set_gravity(b, grav);
+  return ex_compile(b, rc);
+}
+
 #endif

@@ -32,21 +32,7 @@
 static const double g = 9.8, a = 0.1, l = 1.0, mass = 1.0;
 
 static dal_system *build(void) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double grav[2] = {0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &bob);
-  dal_place_def pend = dal_default_place_def(); /* the pivot driven vertically */
-  pend.prim = &dal_map_pendulum;
-  pend.coords = &th;
-  pend.ncoords = 1;
-  pend.param[DAL_PENDULUM_L] = l;
-  pend.param[DAL_PENDULUM_AY] = a;
-  pend.param[DAL_PENDULUM_W] = 2 * sqrt(g);
-  if (!rc) rc = dal_builder_place_def(b, bob, &pend);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  return ex_compile(b, rc);
+  return ex_pendulum(mass, l, g, 0.0, a, 2 * sqrt(g)); // the pivot driven vertically
 }
 
 // the classic two-orbit estimate: a reference orbit and a companion d0 away, advanced by the

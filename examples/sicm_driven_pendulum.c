@@ -34,26 +34,6 @@ static double wrap(double x) {
   return r >= PI ? r - 2 * PI : r;
 }
 
-static int build(dal_builder **b, dal_system **sys) {
-  int th, bob, rc = dal_builder_create(2, b);
-  double omega = 2 * sqrt(g);
-  double grav[2] = {0, -g};
-  if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(*b, "bob", mass, &bob);
-  dal_place_def pd = dal_default_place_def(); // pivot y = a cos(omega t)
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = l;
-  pd.param[DAL_PENDULUM_AY] = a;
-  pd.param[DAL_PENDULUM_W] = omega;
-  if (!rc) rc = dal_builder_place_def(*b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(*b, grav);
-  if (!rc) rc = dal_builder_compile(*b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));
-  return rc;
-}
-
 // monitor: record theta (unwrapped) and the power N . v, optionally write a CSV row
 typedef struct orbit {
   long n, cap;
@@ -260,13 +240,11 @@ static int full_mode(const dal_system *sys, const char *dir) {
 int main(int argc, char **argv) {
   const char *dir = "demo-output";
   int check = ex_args(argc, argv, &dir);
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int bad = build(&b, &sys) != 0;
+  dal_system *sys = ex_pendulum(mass, l, g, 0.0, a, 2 * sqrt(g)); // pivot y = a cos(omega t)
+  int bad = sys == NULL;
   printf("SICM driven pendulum: m=%g l=%g g=%g a=%g omega=2 sqrt(g), theta0=1\n", mass, l, g, a);
   if (!bad) bad = check ? check_mode(sys) : full_mode(sys, dir);
   dal_system_destroy(sys);
-  dal_builder_destroy(b);
   if (check) printf("%s\n", bad ? "FAILED" : "ok");
   return bad;
 }

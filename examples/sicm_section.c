@@ -38,21 +38,7 @@
 static const double g = 9.8, l = 1.0;
 
 static dal_system *build(double a) {
-  dal_builder *b = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double grav[2] = {0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_pendulum;
-  d.coords = &th;
-  d.ncoords = 1;
-  d.param[DAL_PENDULUM_L] = l;
-  d.param[DAL_PENDULUM_AY] = a; // pivot y = a cos(omega t)
-  d.param[DAL_PENDULUM_W] = 2.0 * sqrt(g);
-  if (!rc) rc = dal_builder_place_def(b, bob, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  return ex_compile(b, rc);
+  return ex_pendulum(1.0, l, g, 0.0, a, 2.0 * sqrt(g)); // pivot y = a cos(omega t)
 }
 
 // the stroboscopic points of one orbit (monitor context)
