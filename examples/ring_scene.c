@@ -27,22 +27,21 @@
 
 static const double g = 9.8, R = 1.0, mass = 1.0;
 
-static int build(double omega, dal_builder **b, dal_system **sys) {
-  int th, bead, rc = dal_builder_create(3, b);
+static dal_system *build(double omega) {
+  dal_builder *b = NULL;
+  int th, bead, rc = dal_builder_create(3, &b);
   double grav[3] = {0, 0, -g};
-  if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(*b, "bead", mass, &bead);
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
   dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
   pd.prim = &dal_map_ring;
   pd.coords = &th;
   pd.ncoords = 1;
   pd.param[DAL_RING_R] = R;
   pd.param[DAL_RING_W] = omega;
-  if (!rc) rc = dal_builder_place_def(*b, bead, &pd);
-  if (!rc) rc = dal_builder_set_gravity(*b, grav);
-  if (!rc) rc = dal_builder_compile(*b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));
-  return rc;
+  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
+  if (!rc) rc = dal_builder_set_gravity(b, grav);
+  return ex_compile(b, rc);
 }
 
 // effective potential (per the Jacobi integral)
@@ -91,10 +90,9 @@ static int monitor(const dal_system *sys, const dal_state *st, void *ctx) {
 // one run; returns nonzero when a check fails
 static int scene(double omega, double theta0, double T, double dt, FILE *csvfp, double *hdrift,
                  double *Evar) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
+  dal_system *sys = build(omega);
   dal_state *st = NULL;
-  int bad = build(omega, &b, &sys) != 0;
+  int bad = sys == NULL;
   double zero = 0.0;
   if (!bad) bad = dal_state_create(sys, &st) || dal_state_set(sys, st, 0.0, &theta0, &zero);
   dal_solve_opts o = dal_default_solve_opts();
@@ -146,7 +144,6 @@ static int scene(double omega, double theta0, double T, double dt, FILE *csvfp, 
 done:
   dal_state_destroy(st);
   dal_system_destroy(sys);
-  dal_builder_destroy(b);
   return bad;
 }
 

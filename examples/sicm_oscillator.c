@@ -29,20 +29,13 @@ static int spring(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
   return 0;
 }
 
-static int build(dal_builder **b, dal_system **sys) {
-  int c[2], p, rc = dal_builder_create(2, b);
-  if (!rc) rc = dal_builder_add_coord(*b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(*b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(*b, "particle", mass, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(*b, p, &pd);
-  if (!rc) rc = dal_builder_add_potential_q(*b, spring, NULL);
-  if (!rc) rc = dal_builder_compile(*b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));
-  return rc;
+static dal_system *build(void) {
+  dal_builder *b = NULL;
+  const char *xy[2] = {"x", "y"}, *name = "particle";
+  int c[2], p, rc = dal_builder_create(2, &b);
+  if (!rc) rc = ex_cartesian_particles(b, 2, 1, &name, &mass, xy, c, &p);
+  if (!rc) rc = dal_builder_add_potential_q(b, spring, NULL);
+  return ex_compile(b, rc);
 }
 
 static void exact(double t, double *q, double *v) {
@@ -141,16 +134,14 @@ static int full_mode(const dal_system *sys, const char *dir) {
 int main(int argc, char **argv) {
   const char *dir = "demo-output";
   int check = ex_args(argc, argv, &dir);
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int bad = build(&b, &sys) != 0;
+  dal_system *sys = build();
+  int bad = sys == NULL;
   printf("SICM harmonic oscillator: m=%g k=%g, q(0)=(1,2), qdot(0)=(3,4), to t=10 at 1e-12\n", mass,
          k);
   if (!bad) bad |= advance_and_compare(sys, DAL_METHOD_BS);
   if (!bad) bad |= advance_and_compare(sys, DAL_METHOD_AUTO);
   if (!bad && !check) bad |= full_mode(sys, dir);
   dal_system_destroy(sys);
-  dal_builder_destroy(b);
   if (check) printf("%s\n", bad ? "FAILED" : "ok");
   return bad;
 }
