@@ -31,20 +31,7 @@ static const double g = 9.81, R = 0.5, mass = 0.1;
 
 static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
-  dal_builder *b = NULL;
-  int th, bead, rc = dal_builder_create(3, &b);
-  double grav[3] = {0, 0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  dal_place_def ring = dal_default_place_def();
-  ring.prim = &dal_map_ring;
-  ring.coords = &th;
-  ring.ncoords = 1;
-  ring.param[DAL_RING_R] = R;
-  ring.param[DAL_RING_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, bead, &ring);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  *out = ex_compile(b, rc);
+  *out = ex_ring_bead(mass, R, w, g);
   return !*out;
 }
 
@@ -179,12 +166,8 @@ int main(int argc, char **argv) {
   }
   if (ex_make_dir(dir)) return 1;
   char csvpath[1024];
-  snprintf(csvpath, sizeof csvpath, "%s/bead_bifurcation.csv", dir);
-  FILE *csv = fopen(csvpath, "w");
-  if (!csv) {
-    fprintf(stderr, "cannot write %s\n", csvpath);
-    return 1;
-  }
+  FILE *csv = ex_open(dir, "bead_bifurcation.csv", csvpath, sizeof csvpath);
+  if (!csv) return 1;
   fprintf(csv, "branch,w,theta,verdict,frequency\n");
   int rc = run_branches(csv, 121, &bad);
   fclose(csv);

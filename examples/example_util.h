@@ -103,4 +103,32 @@ static inline dal_system *ex_pendulum(double m, double l, double g, double ax, d
   return ex_compile(b, rc);
 }
 
+// Likharev's bead: "bead" (mass m) on a ring of radius R turning at w about the vertical, in the
+// polar angle "theta" from the ring's bottom (dal_map_ring, 3D), gravity g along -z; the
+// compiled system, or NULL as ex_compile
+static inline dal_system *ex_ring_bead(double m, double R, double w, double g) {
+  dal_builder *b = NULL;
+  int th, bead, rc = dal_builder_create(3, &b);
+  double grav[3] = {0, 0, -g};
+  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
+  if (!rc) rc = dal_builder_add_particle(b, "bead", m, &bead);
+  dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
+  pd.prim = &dal_map_ring;
+  pd.coords = &th;
+  pd.ncoords = 1;
+  pd.param[DAL_RING_R] = R;
+  pd.param[DAL_RING_W] = w;
+  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
+  if (!rc) rc = dal_builder_set_gravity(b, grav);
+  return ex_compile(b, rc);
+}
+
+// opens dir/name for writing (its path in path[size]): the file, or NULL with a message
+static inline FILE *ex_open(const char *dir, const char *name, char *path, size_t size) {
+  snprintf(path, size, "%s/%s", dir, name);
+  FILE *f = fopen(path, "w");
+  if (!f) fprintf(stderr, "cannot write %s\n", path);
+  return f;
+}
+
 #endif

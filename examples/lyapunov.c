@@ -129,14 +129,10 @@ static int on_renorm(double t, const double *ex, int nexp, void *ctx) {
 static int full_mode(const dal_system *sys, const char *dir) {
   if (ex_make_dir(dir)) return 1;
   char path[1024], gp[1024], png[1024];
-  snprintf(path, sizeof path, "%s/lyapunov.csv", dir);
   snprintf(gp, sizeof gp, "%s/lyapunov.gp", dir);
   snprintf(png, sizeof png, "%s/lyapunov.png", dir);
-  FILE *csv = fopen(path, "w");
-  if (!csv) {
-    fprintf(stderr, "cannot write %s\n", path);
-    return 1;
-  }
+  FILE *csv = ex_open(dir, "lyapunov.csv", path, sizeof path);
+  if (!csv) return 1;
   fprintf(csv, "t,lambda1,lambda2,window100\n");
   dal_state *st = NULL;
   double q = 1.0, v = 0.0, ex[2], er[2], y0[2] = {0.0, 1.0};

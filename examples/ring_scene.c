@@ -27,22 +27,7 @@
 
 static const double g = 9.8, R = 1.0, mass = 1.0;
 
-static dal_system *build(double omega) {
-  dal_builder *b = NULL;
-  int th, bead, rc = dal_builder_create(3, &b);
-  double grav[3] = {0, 0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
-  pd.prim = &dal_map_ring;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = R;
-  pd.param[DAL_RING_W] = omega;
-  if (!rc) rc = dal_builder_place_def(b, bead, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  return ex_compile(b, rc);
-}
+static dal_system *build(double omega) { return ex_ring_bead(mass, R, omega, g); }
 
 // effective potential (per the Jacobi integral)
 static double V(double omega, double th) {

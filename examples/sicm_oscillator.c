@@ -87,14 +87,10 @@ static int advance_and_compare(const dal_system *sys, dal_method m) {
 static int full_mode(const dal_system *sys, const char *dir) {
   if (ex_make_dir(dir)) return 1;
   char path[1024], gp[1024], png[1024];
-  snprintf(path, sizeof path, "%s/oscillator.csv", dir);
   snprintf(gp, sizeof gp, "%s/oscillator.gp", dir);
   snprintf(png, sizeof png, "%s/oscillator.png", dir);
-  FILE *fp = fopen(path, "w");
-  if (!fp) {
-    fprintf(stderr, "cannot write %s\n", path);
-    return 1;
-  }
+  FILE *fp = ex_open(dir, "oscillator.csv", path, sizeof path);
+  if (!fp) return 1;
   dal_state *st = NULL;
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, q0, v0);

@@ -45,21 +45,7 @@ enum {
   NRES = 1 + 3 * MAXEQ
 };
 
-static dal_system *build(void) {
-  dal_builder *b = NULL;
-  int th, p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def ring = dal_default_place_def();
-  ring.prim = &dal_map_ring;
-  ring.coords = &th;
-  ring.ncoords = 1;
-  ring.param[DAL_RING_R] = R;
-  if (!rc) rc = dal_builder_place_def(b, p, &ring);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  return ex_compile(b, rc);
-}
+static dal_system *build(void) { return ex_ring_bead(1.0, R, 0.0, grav); }
 
 // theta wrapped into (-pi, pi]
 static double wrap(double th) {
