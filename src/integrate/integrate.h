@@ -329,7 +329,8 @@ typedef struct dal_integ_ops {
   /// A first-order problem's: the work state's (t, q, qdot) at tout, not evaluated (F evaluates
   /// what it needs); its budget is it->opts.max_steps steps per call, read at every call
   int (*advance)(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx);
-  /// the step just taken, [*t0, *t1] (both the start before the first step)
+  /// the step just taken, [*t0, *t1] (both the start before the first step); after an advance
+  /// without hook a method that steps past tout and interpolates back (CVODE) gives [tout, tout]
   void (*window)(const dal_integ *it, double *t0, double *t1);
   /// the state's (t, q, qdot, W) at t in the step just taken from the method's dense output
   /// (not evaluated); 0 or a negative status

@@ -109,6 +109,13 @@ static int own(const dal_system *sys, dal_state *st, dal_param_kind kind) {
   return DAL_E_ARG;
 }
 
+// DAL_E_ARG with "parameter: <what> index i out of range [0, n)" unless 0 <= i < n
+static int index_in(int i, int n, const char *what, char *msg, size_t len) {
+  if (i >= 0 && i < n) return DAL_OK;
+  if (msg && len) snprintf(msg, len, "parameter: %s index %d out of range [0, %d)", what, i, n);
+  return DAL_E_ARG;
+}
+
 int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, size_t len) {
   if (msg && len) msg[0] = 0;
   if (!sys || !ref) {
@@ -119,11 +126,7 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
   switch (ref->kind) {
   case DAL_PARAM_MASS:
   case DAL_PARAM_PLACE:
-    if (t < 0 || t >= sys->N) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: particle index %d out of range [0, %d)", t, sys->N);
-      return DAL_E_ARG;
-    }
+    if (index_in(t, sys->N, "particle", msg, len)) return DAL_E_ARG;
     if (ref->kind == DAL_PARAM_MASS) return DAL_OK;
     if (!sys->place) {
       if (msg && len)
@@ -143,11 +146,7 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     }
     return DAL_OK;
   case DAL_PARAM_CONSTRAINT:
-    if (t < 0 || t >= sys->ncon) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: constraint index %d out of range [0, %d)", t, sys->ncon);
-      return DAL_E_ARG;
-    }
+    if (index_in(t, sys->ncon, "constraint", msg, len)) return DAL_E_ARG;
     if (i < 0 || i >= sys->con[t].prim->nparam) {
       if (msg && len)
         snprintf(msg, len,
@@ -165,19 +164,9 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     return DAL_OK;
   case DAL_PARAM_SPRING_K:
   case DAL_PARAM_SPRING_L:
-    if (t < 0 || t >= sys->nspring) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: spring index %d out of range [0, %d)", t, sys->nspring);
-      return DAL_E_ARG;
-    }
-    return DAL_OK;
+    return index_in(t, sys->nspring, "spring", msg, len);
   case DAL_PARAM_DAMPER_C:
-    if (t < 0 || t >= sys->ndamper) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: damper index %d out of range [0, %d)", t, sys->ndamper);
-      return DAL_E_ARG;
-    }
-    return DAL_OK;
+    return index_in(t, sys->ndamper, "damper", msg, len);
   case DAL_PARAM_NONE:
     break;
   }
