@@ -28,6 +28,13 @@ static inline int ex_args(int argc, char **argv, const char **dir) {
   return check;
 }
 
+// the whole number after the option `name` (e.g. --threads 4), or def without it
+static inline int ex_int_opt(int argc, char **argv, const char *name, int def) {
+  for (int i = 1; i + 1 < argc; ++i)
+    if (strcmp(argv[i], name) == 0) return atoi(argv[i + 1]);
+  return def;
+}
+
 // creates the output folder (an existing one is fine): 0, or 1 with the reason on stderr
 static inline int ex_make_dir(const char *dir) {
   if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;

@@ -280,16 +280,8 @@ static void cost_report(const double *cost, const double *res, const int *status
 }
 
 int main(int argc, char **argv) {
-  int check = 0, threads = 2;
   const char *dir = ".";
-  for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check"))
-      check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
-      dir = argv[++i];
-    else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
-      threads = atoi(argv[++i]);
-  }
+  int check = ex_args(argc, argv, &dir), threads = ex_int_opt(argc, argv, "--threads", 2);
   scene sc;
   dal_system *sys = build(&sc, 0.0, 1.0);
   if (!sys) return 1;

@@ -158,14 +158,8 @@ static int chart(const char *dir, const char *csv) {
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = ".";
-  for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check"))
-      check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   dal_system *sys = build();
   if (!sys) return 1;
   // w_c = 2.5 w_c j / (ngrid - 1) has no integer j: w_c is not on the grid; --check adds four
