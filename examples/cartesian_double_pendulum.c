@@ -141,15 +141,14 @@ int main(int argc, char **argv) {
          "%.2e, tensions %.2e, energy %.1e; residuals to t=%g %.1e\n",
          pmax, pmax / tol, fmaxd, tmax, Emax, T, rmax);
   int fails = 0;
-  if (!(pmax <= 1e3 * tol)) ++fails, printf("FAILED: positions differ by %g\n", pmax);
-  if (!(fmaxd <= 1e4 * tol)) ++fails, printf("FAILED: forces differ by %g m1 g\n", fmaxd);
-  if (!(tmax <= 1e4 * tol)) ++fails, printf("FAILED: tensions differ by %g m1 g\n", tmax);
-  if (!(Emax <= 1e3 * tol)) ++fails, printf("FAILED: energy drift %g\n", Emax);
-  if (!(rmax <= tol)) ++fails, printf("FAILED: residual %g\n", rmax);
+  fails += ex_expect(pmax <= 1e3 * tol, "positions differ by %g", pmax);
+  fails += ex_expect(fmaxd <= 1e4 * tol, "forces differ by %g m1 g", fmaxd);
+  fails += ex_expect(tmax <= 1e4 * tol, "tensions differ by %g m1 g", tmax);
+  fails += ex_expect(Emax <= 1e3 * tol, "energy drift %g", Emax);
+  fails += ex_expect(rmax <= tol, "residual %g", rmax);
   dal_state_destroy(a);
   dal_state_destroy(b);
   dal_system_destroy(ms);
   dal_system_destroy(cs);
-  printf(fails ? "FAILED\n" : "OK\n");
-  return fails ? 1 : 0;
+  return ex_verdict(fails);
 }

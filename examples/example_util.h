@@ -8,6 +8,7 @@
 #define DAL_EXAMPLES_EXAMPLE_UTIL_H
 
 #include <errno.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -136,6 +137,24 @@ static inline FILE *ex_open(const char *dir, const char *name, char *path, size_
   FILE *f = fopen(path, "w");
   if (!f) fprintf(stderr, "cannot write %s\n", path);
   return f;
+}
+
+// one check of an example: 0 when ok holds, else 1 with "FAILED: " and the message printed
+static inline int ex_expect(int ok, const char *fmt, ...) {
+  if (ok) return 0;
+  va_list ap;
+  va_start(ap, fmt);
+  printf("FAILED: ");
+  vprintf(fmt, ap);
+  printf("\n");
+  va_end(ap);
+  return 1;
+}
+
+// an example's verdict after fails failed checks: prints FAILED or OK, returns the exit status
+static inline int ex_verdict(int fails) {
+  printf(fails ? "FAILED\n" : "OK\n");
+  return fails ? 1 : 0;
 }
 
 #endif
