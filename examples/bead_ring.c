@@ -164,6 +164,5 @@ int main(int argc, char **argv) {
   int n = check ? 2 : 6;
   for (int i = 0; i < n; ++i)
     bad |= study(ws[i] * wc, !check);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

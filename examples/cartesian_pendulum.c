@@ -164,5 +164,5 @@ int main(int argc, char **argv) {
   fails += run(sys, st, &o, "index-1 + projection (Bulirsch-Stoer)", T, 10.0, !check);
   dal_state_destroy(st);
   dal_system_destroy(sys);
-  return ex_verdict(fails);
+  return ex_verdict(fails, "OK");
 }

@@ -239,5 +239,5 @@ int main(int argc, char **argv) {
     free(q);
     dal_system_destroy(sys);
   }
-  return ex_verdict(fails);
+  return ex_verdict(fails, "OK");
 }

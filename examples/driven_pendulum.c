@@ -166,6 +166,5 @@ int main(int argc, char **argv) {
          slow.a, slow.w, slow.a * slow.a * slow.w * slow.w, dev_slow);
   bad |= !(dev_fast < 0.5) || !(dev_slow > 1.0);
   bad |= !(fabs(per_fast - 2 * PI / Om) <= 0.1 * 2 * PI / Om);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

@@ -179,6 +179,5 @@ out:
     dal_state_destroy(st[r]);
     dal_system_destroy(sys[r]);
   }
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

@@ -226,6 +226,5 @@ int main(int argc, char **argv) {
   trap stab = {1.0, 0.5, 0.2}, unst = {1.0, 3.0, 0.5};
   bad |= trap_scene(&stab, DAL_NEUTRAL);
   bad |= trap_scene(&unst, DAL_UNSTABLE);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

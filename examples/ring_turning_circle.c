@@ -140,5 +140,5 @@ int main(int argc, char **argv) {
   dal_state_destroy(b);
   dal_system_destroy(ms);
   dal_system_destroy(cs);
-  return ex_verdict(fails);
+  return ex_verdict(fails, "OK");
 }

@@ -152,6 +152,5 @@ int main(int argc, char **argv) {
   dal_state_destroy(stl);
   dal_system_destroy(sys);
   dal_system_destroy(lag);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

@@ -307,6 +307,5 @@ int main(int argc, char **argv) {
   free(status);
   free(msgs);
   dal_system_destroy(sys);
-  printf("%s\n", bad ? "FAILED" : "OK");
-  return bad;
+  return ex_verdict(bad, "OK");
 }
