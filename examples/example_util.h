@@ -139,6 +139,17 @@ static inline FILE *ex_open(const char *dir, const char *name, char *path, size_
   return f;
 }
 
+// a state for each of the two routes to one scene (sys from particles, lag from its Lagrangian):
+// 0, or 1 with FAILED printed and everything destroyed
+static inline int ex_two_states(dal_system *sys, dal_system *lag, dal_state **st, dal_state **stl) {
+  if (sys && lag && !dal_state_create(sys, st) && !dal_state_create(lag, stl)) return 0;
+  printf("FAILED\n");
+  dal_state_destroy(*st);
+  dal_system_destroy(sys);
+  dal_system_destroy(lag);
+  return 1;
+}
+
 // one check of an example: 0 when ok holds, else 1 with "FAILED: " and the message printed
 static inline int ex_expect(int ok, const char *fmt, ...) {
   if (ok) return 0;

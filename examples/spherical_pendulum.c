@@ -65,12 +65,7 @@ int main(int argc, char **argv) {
   int check = argc > 1 && strcmp(argv[1], "--check") == 0, bad = 0;
   dal_system *sys = build(0), *lag = build(1);
   dal_state *st = NULL, *stl = NULL;
-  if (!sys || !lag || dal_state_create(sys, &st) || dal_state_create(lag, &stl)) {
-    printf("FAILED\n");
-    dal_system_destroy(sys);
-    dal_system_destroy(lag);
-    return 1;
-  }
+  if (ex_two_states(sys, lag, &st, &stl)) return 1;
   printf("spherical pendulum: m = %g, l = %g, g = %g (3D, n = %d)\n", mass, len, grav,
          dal_system_ncoords(sys));
 
