@@ -122,6 +122,14 @@ static void twin_start(const dal_system *ms, const dal_system *ds, const double 
 }
 
 /// both runs advanced to t (the minimal one with om, the Cartesian one with od): the largest
+/// the twin runs' end: both states and both systems destroyed
+static void twin_free(dal_system *ms, dal_system *ds, dal_state *a, dal_state *b) {
+  dal_state_destroy(a);
+  dal_state_destroy(b);
+  dal_system_destroy(ms);
+  dal_system_destroy(ds);
+}
+
 /// difference of their first n particle coordinates
 static double twin_advance(const dal_system *ms, dal_state *a, const dal_solve_opts *om,
                            const dal_system *ds, dal_state *b, const dal_solve_opts *od, double t,
@@ -204,10 +212,7 @@ static void test_pendulum_vs_minimal(void) {
   // IDA's achieved error is 100-1000x its tolerance (see dae.h): bound it there
   CHECK_MSG(emax < 16 * tol, "position error %g", emax);
   CHECK_MSG(lmax < 16 * tol, "tension error %g", lmax);
-  dal_state_destroy(a);
-  dal_state_destroy(b);
-  dal_system_destroy(ms);
-  dal_system_destroy(ds);
+  twin_free(ms, ds, a, b);
 }
 
 // double pendulum in Cartesian coordinates vs minimal; driven pendulum with a moving anchor
@@ -236,10 +241,7 @@ static void test_double_and_driven(void) {
            fmaxd);
     CHECK_MSG(emax < 16 * tol, "double pendulum error %g", emax);
     CHECK_MSG(fmaxd < 16 * tol, "constraint forces differ by %g", fmaxd);
-    dal_state_destroy(a);
-    dal_state_destroy(b);
-    dal_system_destroy(ms);
-    dal_system_destroy(ds);
+    twin_free(ms, ds, a, b);
   }
   {
     drive dr = {0.0, 0.1, 2.0 * sqrt(9.8), 0.0};
@@ -260,10 +262,7 @@ static void test_double_and_driven(void) {
     }
     printf("  driven pendulum GGL vs minimal: %.2e (%.0fx rtol)\n", emax, emax / tol);
     CHECK_MSG(emax < 16 * tol, "driven pendulum error %g", emax);
-    dal_state_destroy(a);
-    dal_state_destroy(b);
-    dal_system_destroy(ms);
-    dal_system_destroy(ds);
+    twin_free(ms, ds, a, b);
   }
 }
 
@@ -292,10 +291,7 @@ static void test_rotating_ring(void) {
          phimax);
   CHECK_MSG(emax < 16 * tol, "rotating ring error %g", emax);
   CHECK(phimax < 1e2 * tol);
-  dal_state_destroy(a);
-  dal_state_destroy(b);
-  dal_system_destroy(ms);
-  dal_system_destroy(ds);
+  twin_free(ms, ds, a, b);
 }
 
 // bead on a line turning at rate w in a horizontal plane: s(t) = s0 cosh(w t)
