@@ -2176,6 +2176,20 @@ static void sw_dal_codegen_attach(void) {
   dal_scene_destroy(sc);
 }
 static void sw_dal_codegen_attached(void) { CHECK(dal_codegen_attached(NULL) == 0); }
+static void sw_dal_codegen_attach_eom(void) {
+  dal_codegen_opts o;
+  memset(&o, 0, sizeof o);
+  char msg[256];
+  CHECK(dal_codegen_attach_eom(NULL, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach_eom(F.B, &o, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  // out of reach: a constraint (A), a placement by a C primitive (B); nothing attached
+  CHECK(dal_codegen_attach_eom(F.A, NULL, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
+        strstr(msg, "constraints"));
+  CHECK(dal_codegen_attach_eom(F.B, NULL, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
+        strstr(msg, "not placed by formulas"));
+  CHECK(dal_codegen_eom_attached(F.A) == 0 && dal_codegen_eom_attached(F.B) == 0);
+}
+static void sw_dal_codegen_eom_attached(void) { CHECK(dal_codegen_eom_attached(NULL) == 0); }
 
 typedef struct sweep_row {
   const char *name;
@@ -2307,6 +2321,8 @@ static const sweep_row rows[] = {
     ROW(dal_codegen_write),
     ROW(dal_codegen_attach),
     ROW(dal_codegen_attached),
+    ROW(dal_codegen_attach_eom),
+    ROW(dal_codegen_eom_attached),
     ROW(dal_scene_events),
     ROW(dal_scene_event_is_section),
     ROW(dal_scene_strobe),

@@ -18,7 +18,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
-#include "integrate/integrate.h"
+#include "integrate/families.h"
 #include "ref_elliptic.h"
 #include "scenes.h"
 

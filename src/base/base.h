@@ -83,6 +83,13 @@ typedef struct dal_vec {
   int len, cap;
 } dal_vec;
 
+/// The parts of a Lagrangian its equations read, over jets: out[i] = dL/dqdot_i and
+/// out[n + i] = dL/dq_i (i < n) at (t, q, qdot); 0 ok, as dal_lagrangian_fn otherwise. Given
+/// beside L (model/builder.c), the accelerations take n + 1 evaluations of it instead of the
+/// polarization's n (n + 3) / 2 + 1 of L (eval/lagrangian.c).
+typedef int dal__lagrangian_parts_fn(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *out,
+                                     void *ctx);
+
 struct dal_builder {
   int dim;
   dal_vec coords;    // char *
@@ -102,6 +109,8 @@ struct dal_builder {
   void *map_ctx;
   dal_lagrangian_fn *lag;
   void *lag_ctx;
+  dal__lagrangian_parts_fn *lag_parts; // nullable (model/builder.c)
+  void *lag_parts_ctx;
   int has_gravity;
   double g[3];
   dal_dynamics dynamics; // dal_builder_set_dynamics
@@ -117,6 +126,8 @@ struct dal_system {
   void *map_ctx;
   dal_lagrangian_fn *lag;
   void *lag_ctx;
+  dal__lagrangian_parts_fn *lag_parts; // dL/dqdot and dL/dq as one program (NULL: by L alone)
+  void *lag_parts_ctx;
   int *ipool;
   double *ppool;
   // per-particle dependency coordinates (sorted): pdep[pdep_off[k] .. pdep_off[k+1])
@@ -148,6 +159,9 @@ struct dal_system {
   // M couples few coordinates (sum over particles of (coordinates it depends on)^2 at most
   // DAL_KKT_LOCAL_COUPLING n: Cartesian particles): its KKT matrix goes to KLU at any order
   int kkt_local;
+  // compiled equations of motion (src/codegen/eom.c; NULL: none): the minimal-coordinate
+  // right-hand side's qddot in one call
+  struct dal_eom *eom;
 };
 
 /// compensated summation x += d with compensation c (Kahan 1965): c holds the negated
@@ -213,7 +227,7 @@ struct dal_state {
   struct dal_events *events;        // attached event set (borrowed; events.h)
   struct dal_trajectory *traj;      // attached dense trajectory record (borrowed; solve.h)
   const struct dal_first_order *fo; // a first-order problem run on this work state by the
-                                    // integrators (integrate.h: dal__ode_create_fo), or NULL
+                                    // integrators (families.h: dal__ode_create_fo), or NULL
   int lazy;    // a callback holds the state at an output time, not yet evaluated: the public
                // accessors evaluate it on first use (dal__lazy_eval)
   int lazy_rc; // status of that evaluation when it failed (the driver then stops the run)

@@ -170,6 +170,10 @@ void dal__dense_G(const dal_system *sys, const dal_state *st, double *G, int ld)
 
 /// y (n) = G' lambda for the state's current G (compact blocks).
 void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lambda, double *y);
+/// The same products for compact blocks G of the system's layout (st->G or a copy of it):
+/// y (n) = G' lambda, and y (m) = G x.
+void dal__gt_mul(const dal_system *sys, const double *G, const double *lambda, double *y);
+void dal__g_mul(const dal_system *sys, const double *G, const double *x, double *y);
 
 /// Rank check (rank.c): writes the named message into the state when G is rank
 /// deficient. Returns DAL_OK, DAL_E_CONSTRAINT or DAL_E_NOMEM; rep is nullable.

@@ -179,16 +179,34 @@ double *dal__kkt_scratch(dal_state *st, int i) {
   return st->kkt->scratch + (size_t)i * st->kkt->nk;
 }
 
-void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lambda, double *y) {
+void dal__gt_mul(const dal_system *sys, const double *G, const double *lambda, double *y) {
   memset(y, 0, (size_t)sys->n * sizeof(double));
   for (int ci = 0; ci < sys->ncon; ++ci) {
     const dal_con *c = &sys->con[ci];
     const int *dc = sys->cdep + c->dep_off;
-    const double *Gc = st->G + c->g_off;
+    const double *Gc = G + c->g_off;
     for (int r = 0; r < c->prim->nout; ++r) {
       double l = lambda[c->row + r];
       for (int k = 0; k < c->ndep; ++k)
         y[dc[k]] += Gc[r * c->ndep + k] * l;
+    }
+  }
+}
+
+void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lambda, double *y) {
+  dal__gt_mul(sys, st->G, lambda, y);
+}
+
+void dal__g_mul(const dal_system *sys, const double *G, const double *x, double *y) {
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const int *dc = sys->cdep + c->dep_off;
+    const double *Gc = G + c->g_off;
+    for (int r = 0; r < c->prim->nout; ++r) {
+      double s = 0.0;
+      for (int k = 0; k < c->ndep; ++k)
+        s += Gc[r * c->ndep + k] * x[dc[k]];
+      y[c->row + r] = s;
     }
   }
 }

@@ -83,6 +83,33 @@ int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *m
   return rc;
 }
 
+int dal__expr_lagrange_parts(const dal_expr *e, dal_expr **out, char *msg, size_t msglen) {
+  *out = NULL;
+  if (!e || e->nout != 1 || !e->velocities) return DAL_E_ARG;
+  int n = e->nin_named, *r = malloc(2 * (size_t)n * sizeof *r);
+  dal_xtree s;
+  if (!r || scratch(&s, &e->tree)) {
+    free(r);
+    return DAL_E_NOMEM;
+  }
+  dal_alg g;
+  dal__alg_init(&g, &s);
+  int L = dal__ximport(&s, &e->tree, e->roots[0]), ok = L >= 0;
+  for (int i = 0; i < n && ok; ++i) {
+    r[i] = dal__alg_diff(&g, L, n + i); // dL/dqdot_i: input n + i is qdot_i
+    r[n + i] = dal__alg_diff(&g, L, i);
+    ok = r[i] >= 0 && r[n + i] >= 0;
+  }
+  char name[160];
+  snprintf(name, sizeof name, "%s: dL/dqdot, dL/dq", e->name);
+  int rc = !ok ? (g.too_large ? DAL_E_TOO_LARGE : DAL_E_NOMEM)
+               : dal__expr_from_tree(name, &s, r, 2 * n, n, 1, e->values, out, msg, msglen);
+  dal__alg_free(&g);
+  scratch_free(&s);
+  free(r);
+  return rc;
+}
+
 dal_expr_model_def dal_default_expr_model_def(void) {
   dal_expr_model_def d;
   memset(&d, 0, sizeof d);

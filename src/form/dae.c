@@ -103,15 +103,7 @@ int dal__dae_residual(dal_dae *f, double t, const double *y, const double *yp, d
   } else if (f->form == DAL_FORM_INDEX3) {
     if (m) memcpy(Fl, st->phi, (size_t)m * sizeof(double));
   } else {
-    memset(Fl, 0, (size_t)m * sizeof(double));
-    for (int ci = 0; ci < sys->ncon; ++ci) {
-      const dal_con *c = &sys->con[ci];
-      const int *dc = sys->cdep + c->dep_off;
-      const double *Gc = st->G + c->g_off;
-      for (int r = 0; r < c->prim->nout; ++r)
-        for (int k = 0; k < c->ndep; ++k)
-          Fl[c->row + r] += Gc[r * c->ndep + k] * vd[dc[k]];
-    }
+    dal__g_mul(sys, st->G, vd, Fl);
     for (int r = 0; r < m; ++r)
       Fl[r] += st->gphi[r] + 2.0 * f->alpha * st->phidot[r] + f->beta * f->beta * st->phi[r];
   }

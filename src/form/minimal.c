@@ -3,6 +3,7 @@
 // The minimal-coordinate ODE: y = (q, qdot), f = (qdot, qddot) from M qddot = Q - c.
 #include <string.h>
 
+#include "codegen/codegen.h"
 #include "form.h"
 
 int dal__qv_size(const dal_system *sys) { return 2 * sys->n; }
@@ -26,6 +27,12 @@ static int minimal_rhs(const dal_system *sys, dal_state *st, const dal_solve_opt
   (void)opts;
   int n = sys->n;
   dal__qv_to_state(sys, st, t, y);
+  // compiled equations of motion (src/codegen/eom.c) when qddot alone is asked for; where they
+  // decline, the general path runs and names the cause
+  if (sys->eom && need == DAL_P_ACC && !dal__eom_qddot(sys, st, t, y, y + n, ydot + n)) {
+    memcpy(ydot, y + n, (size_t)n * sizeof(double));
+    return DAL_OK;
+  }
   int rc = dal__eval(sys, st, need | DAL_P_ACC);
   if (rc) return rc;
   // (the accelerations are finite: dal__eval gives a retry otherwise)

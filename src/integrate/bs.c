@@ -51,6 +51,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "families.h"
 #include "integrate.h"
 
 /// number of columns (the largest T_{j,1}); the target order column k stays below it

@@ -6,19 +6,8 @@
 // dal_advance.
 #include <string.h>
 
+#include "families.h"
 #include "integrate.h"
-
-// (the size is the problem's ny, set per run by dal__ode_create_fo)
-static int fo_size(const dal_system *sys) { return 2 * sys->n; }
-
-// the state follows the trajectory part of y (messages, the last accepted step on failure)
-static void fo_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
-  size_t n = (size_t)sys->n;
-  st->t = t;
-  memcpy(st->q, y, n * sizeof(double));
-  memcpy(st->qdot, y + n, n * sizeof(double));
-  dal__state_moved(st);
-}
 
 static void fo_from_state(const dal_system *sys, const dal_state *st, double *y) {
   (void)sys;
@@ -42,11 +31,13 @@ static int fo_project(const dal_system *sys, dal_state *st, const dal_solve_opts
 
 const dal_ode_problem dal__problem_first_order = {
     .name = "first-order",
-    .size = fo_size,
+    .size = dal__qv_size, // the trajectory part (the problem's ny is set per run)
     .rhs = fo_rhs,
     .project = fo_project,
     .from_state = fo_from_state,
-    .to_state = fo_to_state,
+    // the state follows the trajectory part (q, qdot) of y (messages, the last accepted step
+    // on failure)
+    .to_state = dal__qv_to_state,
     .tol_factor = 1.0,
 };
 

@@ -8,8 +8,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "families.h"
 #include "form/form.h"
 #include "integrate.h"
+#include "symplectic.h"
 
 // ---------------------------------------------------------------------------------------------
 // the ODE family: an ODE method on a dal_ode_problem

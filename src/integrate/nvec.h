@@ -8,7 +8,7 @@
 #include <sundials/sundials_context.h>
 #include <sundials/sundials_nvector.h>
 
-#include "integrate.h"
+#include "families.h"
 
 /// Replace the element-wise operations of the serial vector v (N_VNew_Serial) by the library's
 /// kernels, with the fused and vector-array operations SUNDIALS leaves unset by default.

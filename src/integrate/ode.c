@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "families.h"
 #include "integrate.h"
 
 int dal__ode_eval(dal_ode_integ *ig, double t, const double *y, double *ydot, unsigned need) {

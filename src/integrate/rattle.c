@@ -95,34 +95,6 @@ int dal__rattle_check(const dal_system *sys, dal_state *st, const char *name) {
   return DAL_OK;
 }
 
-// out (m) = G x for a compact G
-static void g_apply(const dal_system *sys, const double *G, const double *x, double *out) {
-  for (int ci = 0; ci < sys->ncon; ++ci) {
-    const dal_con *c = &sys->con[ci];
-    const int *dc = sys->cdep + c->dep_off;
-    const double *Gc = G + c->g_off;
-    for (int r = 0; r < c->prim->nout; ++r) {
-      double s = 0.0;
-      for (int k = 0; k < c->ndep; ++k)
-        s += Gc[r * c->ndep + k] * x[dc[k]];
-      out[c->row + r] = s;
-    }
-  }
-}
-
-// out (n) = G' y for a compact G
-static void gt_apply(const dal_system *sys, const double *G, const double *y, double *out) {
-  memset(out, 0, (size_t)sys->n * sizeof(double));
-  for (int ci = 0; ci < sys->ncon; ++ci) {
-    const dal_con *c = &sys->con[ci];
-    const int *dc = sys->cdep + c->dep_off;
-    const double *Gc = G + c->g_off;
-    for (int r = 0; r < c->prim->nout; ++r)
-      for (int k = 0; k < c->ndep; ++k)
-        out[dc[k]] += Gc[r * c->ndep + k] * y[c->row + r];
-  }
-}
-
 // kinematics and constraint rows (and forces) at (t, q, v)
 static int rat_eval(const dal_system *sys, rat_mem *m, double t, const double *q, const double *v,
                     int dyn) {
@@ -188,14 +160,13 @@ static int rat_positions(const dal_system *sys, rat_mem *m, double t, double h, 
     if (*res <= tol || (it >= 2 && *res >= 0.5 * rprev && *res <= 1e3 * tol)) return DAL_OK;
     grow = *res > rprev ? grow + 1 : 0;
     if (!isfinite(*res) || grow >= RAT_MAXGROW || it >= RAT_MAXIT) {
-      char qs[256];
-      dal__fmt_q(sys, q0, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_CONV,
                       "RATTLE step from t=%.17g, %s (h=%.3g): the position constraints do not "
                       "converge (constraint '%s', row %d, residual %.3g after %d iterations, %s); "
                       "the step is too long for the motion or the constraints become dependent: "
                       "reduce opts.fixed_step",
-                      t, qs, h, sys->con[sys->row_con[worst]].name, worst, *res, it,
+                      t, dal__qtext(sys, q0).s, h, sys->con[sys->row_con[worst]].name, worst, *res,
+                      it,
                       isfinite(*res) ? (grow >= RAT_MAXGROW ? "growing" : "converging too slowly")
                                      : "not finite");
     }
@@ -222,7 +193,7 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
   m->cache_ok = 0;
   // kick with the forces and the multipliers' guess: E = h^2/2 M^-1 (F0 + G0' lambda)
   if (nc)
-    gt_apply(sys, m->G0, lam, m->u);
+    dal__gt_mul(sys, m->G0, lam, m->u);
   else
     memset(m->u, 0, (size_t)n * sizeof(double));
   for (int i = 0; i < n; ++i)
@@ -239,14 +210,14 @@ static int rat_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
     // G1 v_h + dphi/dt
     if ((rc = dal__kkt_factor(sys, st, DAL_KKT_MASS, "RATTLE step")) != 0) return rc;
     st->stats.jac_evals++;
-    g_apply(sys, st->G, m->u, m->gu);
+    dal__g_mul(sys, st->G, m->u, m->gu);
     for (int r = 0; r < nc; ++r)
       m->b[r] = -(st->phidot[r] + m->gu[r]);
     dal__kkt_solve(sys, st, m->zero, m->b, m->xk, m->yk);
     for (int i = 0; i < n; ++i)
       m->u[i] += m->xk[i];
     // the velocity residual G1 v1 + dphi/dt = phidot + G1 (u + dv)
-    g_apply(sys, st->G, m->u, m->gu);
+    dal__g_mul(sys, st->G, m->u, m->gu);
     for (int r = 0; r < nc; ++r)
       resv = fmax(resv, fabs(st->phidot[r] + m->gu[r]));
     memcpy(m->G0, st->G, (size_t)sys->g_total * sizeof(double));
@@ -287,11 +258,8 @@ static void rat_invalidate(void *mem) { ((rat_mem *)mem)->cache_ok = 0; }
 static void rat_free(void *mem) {
   rat_mem *m = mem;
   if (!m) return;
-  double *bufs[] = {m->minv, m->F0, m->G0,   m->lam0, m->E,  m->qt, m->ct,
-                    m->vh,   m->u,  m->zero, m->xk,   m->yk, m->b,  m->gu};
-  for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
-    free(bufs[i]);
-  free(m);
+  DAL_FREE(m->minv, m->F0, m->G0, m->lam0, m->E, m->qt, m->ct, m->vh, m->u, m->zero, m->xk, m->yk,
+           m->b, m->gu, m);
 }
 
 int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
@@ -302,13 +270,9 @@ int dal__rattle_base(dal_ode_integ *ig, dal_symp_base *b) {
   m->st = st;
   m->n = sys->n;
   m->m = sys->m;
-  b->nx = 2 * m->n + m->m;
-  b->mem = m;
-  b->from_y = rat_from_y;
-  b->to_y = rat_to_y;
-  b->step = rat_step;
-  b->invalidate = rat_invalidate;
-  b->free = rat_free;
+  // (nx, mem, from_y, to_y, step, invalidate, free)
+  *b =
+      (dal_symp_base){2 * m->n + m->m, m, rat_from_y, rat_to_y, rat_step, rat_invalidate, rat_free};
   size_t n = (size_t)m->n + 1, mm = (size_t)m->m + 1;
   double **vn[] = {&m->minv, &m->F0, &m->E, &m->qt, &m->ct, &m->vh, &m->u, &m->zero, &m->xk};
   double **vm[] = {&m->lam0, &m->yk, &m->b, &m->gu};

@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "families.h"
 #include "integrate.h"
 
 /// halvings of one step tolerated for recoverable right-hand-side failures

@@ -81,27 +81,23 @@ static int order_of(dal_method m) { return kinds[kind_of(m)].order; }
 int dal__symplectic_resolve(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
                             dal_method m, const dal_ode_problem **prob) {
   const char *name = dal_method_name(m);
-  if (is_rattle(m)) {
-    // RATTLE is its own treatment of the constraints: no DAE formulation applies
-    if (o->form != DAL_FORM_AUTO && o->form != DAL_FORM_INDEX1 &&
-        !(o->form == DAL_FORM_ODE && sys->m == 0))
-      return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                      "method '%s' enforces the constraints itself (positions and velocities at "
-                      "every step) and runs with DAL_FORM_AUTO, not with formulation '%s'",
-                      name, dal_formulation_name(o->form));
-    int rc = dal__rattle_check(sys, st, name);
-    if (rc) return rc;
-    *prob = sys->m ? &dal__problem_index1 : &dal__problem_minimal;
-    return DAL_OK;
-  }
-  if (o->form != DAL_FORM_AUTO && o->form != DAL_FORM_ODE)
+  int rattle = is_rattle(m);
+  // RATTLE is its own treatment of the constraints: no DAE formulation applies
+  int form_ok = rattle ? o->form == DAL_FORM_AUTO || o->form == DAL_FORM_INDEX1 ||
+                             (o->form == DAL_FORM_ODE && sys->m == 0)
+                       : o->form == DAL_FORM_AUTO || o->form == DAL_FORM_ODE;
+  if (!form_ok)
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "method '%s' integrates minimal coordinates (DAL_FORM_ODE or AUTO), not "
-                    "formulation '%s'; for constrained Cartesian scenes use DAL_METHOD_RATTLE",
+                    rattle ? "method '%s' enforces the constraints itself (positions and "
+                             "velocities at every step) and runs with DAL_FORM_AUTO, not with "
+                             "formulation '%s'"
+                           : "method '%s' integrates minimal coordinates (DAL_FORM_ODE or AUTO), "
+                             "not formulation '%s'; for constrained Cartesian scenes use "
+                             "DAL_METHOD_RATTLE",
                     name, dal_formulation_name(o->form));
-  int rc = dal__variational_check(sys, st, name);
+  int rc = rattle ? dal__rattle_check(sys, st, name) : dal__variational_check(sys, st, name);
   if (rc) return rc;
-  *prob = &dal__problem_minimal;
+  *prob = rattle && sys->m ? &dal__problem_index1 : &dal__problem_minimal;
   return DAL_OK;
 }
 

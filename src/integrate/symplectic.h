@@ -9,7 +9,7 @@
 #ifndef DAL_INTEGRATE_SYMPLECTIC_H
 #define DAL_INTEGRATE_SYMPLECTIC_H
 
-#include "integrate.h"
+#include "families.h"
 
 /// 1 for DAL_METHOD_VARIATIONAL*, DAL_METHOD_RATTLE*, else 0.
 int dal__symplectic_method(dal_method m);

@@ -107,12 +107,10 @@ static int lag_eval(const dal_system *sys, dal_state *st, double t, dal_jet *out
     L = dal_sub(L, U);
   }
   if (!dal_jet_isfinite(L)) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_DOMAIN,
                     "Lagrangian (with the potentials U(q,t)) produced a non-finite value or "
                     "derivative at t=%.17g, %s",
-                    t, qs);
+                    t, dal__qtext(sys, st->q).s);
   }
   *out = L;
   return DAL_OK;
@@ -333,15 +331,13 @@ static int newton_solve(dal_ode_integ *ig, var_mem *m, double t, double *b) {
   lapack_int info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n, n, m->B, n, m->ipiv);
   if (info == 0) info = LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', n, 1, m->B, n, m->ipiv, b, n);
   if (info != 0) {
-    char qs[256];
-    dal__fmt_q(ig->sys, m->qm, qs, sizeof qs);
     int bad = info > 0 ? (int)info - 1 : 0;
     return DAL_FAIL(m->st, DAL_E_SINGULAR,
                     "variational step: the Newton matrix of the discrete Euler-Lagrange "
                     "equations is singular at t=%.17g, %s: coordinate '%s' is degenerate "
                     "(d2L/dqdot2 singular there, e.g. a chart singularity); use another chart "
                     "or redundant coordinates with DAL_METHOD_RATTLE",
-                    t, qs, ig->sys->coord_names[bad]);
+                    t, dal__qtext(ig->sys, m->qm).s, ig->sys->coord_names[bad]);
   }
   return DAL_OK;
 }
@@ -389,15 +385,13 @@ static int var_step(dal_ode_integ *ig, void *mem, double t, double h, double *x,
     // a growing correction: the carried secant estimate does not fit here, start it afresh
     if (grow && !m->lag) memset(C, 0, (size_t)n * n * sizeof(double));
     if (!isfinite(nrm) || grow >= VAR_MAXGROW || it >= VAR_MAXIT) {
-      char qs[256];
-      dal__fmt_q(ig->sys, q0, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_CONV,
                       "variational step from t=%.17g, %s (h=%.3g): the discrete "
                       "Euler-Lagrange equations do not converge (Newton correction of '%s' "
                       "%.3g after %d iterations, %s); the step is too long for the fastest "
                       "motion (h omega > ~1) or nears a degenerate configuration: reduce "
                       "opts.fixed_step",
-                      t, qs, h, ig->sys->coord_names[worst], nrm, it,
+                      t, dal__qtext(ig->sys, q0).s, h, ig->sys->coord_names[worst], nrm, it,
                       isfinite(nrm) ? (grow >= VAR_MAXGROW ? "growing" : "not yet converged")
                                     : "not finite");
     }
@@ -501,12 +495,11 @@ static int var_to_y(dal_ode_integ *ig, void *mem, double t, const double *x, dou
   memcpy(m->qdot, qd, (size_t)n * sizeof(double));
   return DAL_OK;
 singular : {
-  char qs[256];
-  dal__fmt_q(sys, q, qs, sizeof qs);
   return DAL_FAIL(st, DAL_E_SINGULAR,
                   "variational method: %s singular or not positive definite at t=%.17g, %s: "
                   "coordinate '%s' is degenerate (e.g. a chart singularity); use another chart",
-                  m->lag ? "d2L/dqdot2" : "mass matrix", t, qs, sys->coord_names[bad]);
+                  m->lag ? "d2L/dqdot2" : "mass matrix", t, dal__qtext(sys, q).s,
+                  sys->coord_names[bad]);
 }
 }
 
@@ -515,12 +508,8 @@ static void var_invalidate(void *mem) { (void)mem; }
 static void var_free(void *mem) {
   var_mem *m = mem;
   if (!m) return;
-  double *bufs[] = {m->D, m->dlt, m->qm, m->v,  m->Lv, m->F,  m->R,  m->Qg, m->qdot,
-                    m->B, m->S,   m->L,  m->Hz, m->vk, m->gp, m->sk, m->Rk, m->yk};
-  for (size_t i = 0; i < sizeof bufs / sizeof bufs[0]; ++i)
-    free(bufs[i]);
-  free(m->ipiv);
-  free(m);
+  DAL_FREE(m->D, m->dlt, m->qm, m->v, m->Lv, m->F, m->R, m->Qg, m->qdot, m->B, m->S, m->L, m->Hz,
+           m->vk, m->gp, m->sk, m->Rk, m->yk, m->ipiv, m);
 }
 
 int dal__variational_base(dal_ode_integ *ig, dal_symp_base *b) {
@@ -534,13 +523,8 @@ int dal__variational_base(dal_ode_integ *ig, dal_symp_base *b) {
   m->lag = sys->lag != NULL;
   // the particle route reads the particle Jacobians: form them on every evaluation
   m->nx = X_HIST * m->n + 3 + (m->lag ? 0 : m->n * m->n);
-  b->nx = m->nx;
-  b->mem = m;
-  b->from_y = var_from_y;
-  b->to_y = var_to_y;
-  b->step = var_step;
-  b->invalidate = var_invalidate;
-  b->free = var_free;
+  // (nx, mem, from_y, to_y, step, invalidate, free)
+  *b = (dal_symp_base){m->nx, m, var_from_y, var_to_y, var_step, var_invalidate, var_free};
   size_t n = (size_t)m->n + 1, nn = n * n, nd = (size_t)m->Nd + 1;
   double **vecs[] = {&m->D, &m->dlt, &m->qm,   &m->v,  &m->Lv, &m->F,
                      &m->R, &m->Qg,  &m->qdot, &m->sk, &m->Rk, &m->yk};

@@ -314,6 +314,14 @@ int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx)
   return DAL_OK;
 }
 
+int dal__builder_set_lagrangian_parts(dal_builder *b, dal__lagrangian_parts_fn *fn, void *ctx) {
+  BUILDER_CALL(b);
+  if (!b->lag) return BFAIL(DAL_E_ARG, "set_lagrangian_parts: set the Lagrangian first");
+  b->lag_parts = fn;
+  b->lag_parts_ctx = ctx;
+  return DAL_OK;
+}
+
 static int add_constraint(dal_builder *b, const char *name, const dal_primitive *prim, int nparts,
                           const int *parts, int ncoords, const int *coords, int nparam,
                           const double *param, void *ctx, int *index) {

@@ -86,5 +86,6 @@ int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
   // native code again for the new expressions (the cache has it)
   if (!rc && sc->native && sc->nex)
     rc = dal_codegen_attach(sc->ex, sc->nex, &sc->native_opts, msg, len);
+  if (!rc && sc->native) rc = dal__scene_native_eom(sc, msg, len);
   return rc;
 }

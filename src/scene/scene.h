@@ -129,4 +129,8 @@ struct dal_scene {
   dal_codegen_opts native_opts;
 };
 
+/// the compiled equations of motion of the scene's system when its native options ask for them
+/// (dal_codegen_attach_eom); out of their reach DAL_OK with a note in msg (run.c)
+int dal__scene_native_eom(dal_scene *sc, char *msg, size_t msglen);
+
 #endif
