@@ -5,20 +5,14 @@
 # charts (PNG + SVG), and the tables of docs/performance.md (bench/report.sh).
 # Usage: bench/bench.sh [--quick | --full]   (quick: a few minutes; full: much longer)
 set -euo pipefail
-mode=--quick
-case "${1:-}" in
-  --quick | "") mode=--quick ;;
-  --full) mode=--full ;;
-  *) echo "usage: bench/bench.sh [--quick | --full]" >&2; exit 2 ;;
-esac
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+source "$root/bench/lib.sh"
+mode=$(bench_mode "bench/bench.sh [--quick | --full]" "${1:-}")
 "$root/scripts/deps.sh"
 bdir=${DAL_BENCH_BUILD_DIR:-$root/build-release}
 out=$root/bench/results
 start=$(date +%s)
-cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=Release -DDAL_BUILD_TESTS=OFF \
-  -DDAL_BUILD_EXAMPLES=OFF -DDAL_BUILD_BENCH=ON >/dev/null
-cmake --build "$bdir" -j "$(nproc)" --target dal_bench
+bench_build "$root" "$bdir" dal_bench "$(nproc)"
 mkdir -p "$out"
 # where and when: read by bench/report.sh
 {

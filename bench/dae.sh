@@ -14,6 +14,7 @@
 # Usage: bench/dae.sh [--before COMMIT] [--full]
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+source "$root/bench/lib.sh"
 before=
 mode=--quick
 while (($#)); do
@@ -28,9 +29,7 @@ out=$root/bench/results
 mkdir -p "$out"
 # Release with symbols: callgrind names the callbacks (residual, jacobian)
 build() { # source dir, build dir
-  cmake -S "$1" -B "$2" -DCMAKE_BUILD_TYPE=Release -DCMAKE_C_FLAGS=-g -DDAL_BUILD_TESTS=OFF \
-    -DDAL_BUILD_EXAMPLES=OFF -DDAL_BUILD_BENCH=ON >/dev/null
-  cmake --build "$2" -j 2 --target dal_bench_dae >/dev/null
+  bench_build "$1" "$2" dal_bench_dae 2 -DCMAKE_C_FLAGS=-g >/dev/null
 }
 rm -f "$out/dae_ir.csv" "$out/dae_ratio.csv" "$out/min_ir.csv"
 if [[ -n $before ]]; then

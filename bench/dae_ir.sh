@@ -21,13 +21,8 @@ label=$3
 shift 3
 sizes=${*:-256 1024}
 target=1e-8
-if ! command -v valgrind >/dev/null || ! command -v callgrind_annotate >/dev/null; then
-  echo "dae_ir: valgrind not installed; skipped" >&2
-  exit 0
-fi
-mkdir -p "$dir"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+ir_start dae_ir "$dir"
 horizon() { if (($1 <= 256)); then echo 0.2; else echo 0.1; fi; }
 # inclusive instructions of a function in a profile (0 when absent)
 incl() {

@@ -15,20 +15,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
-
-// a placement and a constraint from their parts, through the defs
-static int place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
-                    const int *coords, int np, const double *param, void *ctx) {
-  dal_place_def d = dal_default_place_def();
-  d.prim = prim;
-  d.parent = parent;
-  d.coords = coords;
-  d.ncoords = nc;
-  d.param_list = param;
-  d.nparam_list = np;
-  d.ctx = ctx;
-  return dal_builder_place_def(b, p, &d);
-}
+#include "support/scenes.h"
 
 static dal_expr *keep[64];
 static int nkeep;
@@ -73,9 +60,9 @@ static dal_system *build(const char *scene, int expr) {
                  *pn[] = {"l", "a", "w"};
       double pv[] = {1, 0.1, 6.26};
       dal_expr *e = mk(f, 2, in, 1, pn, pv, 3);
-      place_by(b, p[0], dal_expr_primitive(e), -1, 1, q, 3, pv, e);
+      scn_place_by(b, p[0], dal_expr_primitive(e), -1, 1, q, 3, pv, e);
     } else {
-      place_by(b, p[0], &dal_map_pendulum, -1, 1, q, 7, par, NULL);
+      scn_place_by(b, p[0], &dal_map_pendulum, -1, 1, q, 7, par, NULL);
     }
   } else if (!strcmp(scene, "bead")) {
     double par[3] = {1, 5, 0};
@@ -83,9 +70,9 @@ static dal_system *build(const char *scene, int expr) {
       const char *f[] = {"R*sin(theta)*cos(w*t)", "R*sin(theta)*sin(w*t)", "-R*cos(theta)"},
                  *in[] = {"theta"}, *pn[] = {"R", "w"};
       dal_expr *e = mk(f, 3, in, 1, pn, par, 2);
-      place_by(b, p[0], dal_expr_primitive(e), -1, 1, q, 2, par, e);
+      scn_place_by(b, p[0], dal_expr_primitive(e), -1, 1, q, 2, par, e);
     } else {
-      place_by(b, p[0], &dal_map_ring, -1, 1, q, 3, par, NULL);
+      scn_place_by(b, p[0], &dal_map_ring, -1, 1, q, 3, par, NULL);
     }
   } else {
     // a chain of 32 links of length 0.1: the first about the origin, each next from its parent
@@ -97,11 +84,11 @@ static dal_system *build(const char *scene, int expr) {
     double par[7] = {l, 0, 0, 0, 0, 0, 0};
     for (int i = 0; i < n; ++i) {
       if (i == 0)
-        place_by(b, p[0], expr ? dal_expr_primitive(e0) : &dal_map_pendulum, -1, 1, q, expr ? 1 : 7,
-                 par, e0);
+        scn_place_by(b, p[0], expr ? dal_expr_primitive(e0) : &dal_map_pendulum, -1, 1, q,
+                     expr ? 1 : 7, par, e0);
       else
-        place_by(b, p[i], expr ? dal_expr_primitive(e1) : &dal_map_hanging, p[i - 1], 1, &q[i], 1,
-                 &l, e1);
+        scn_place_by(b, p[i], expr ? dal_expr_primitive(e1) : &dal_map_hanging, p[i - 1], 1, &q[i],
+                     1, &l, e1);
     }
   }
   double g3[3] = {0, 0, -9.81}, g2[2] = {0, -9.81};

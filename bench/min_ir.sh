@@ -17,13 +17,8 @@ dir=$2
 label=$3
 shift 3
 sizes=${*:-128 256 512 1024 2048 4096}
-if ! command -v valgrind >/dev/null || ! command -v callgrind_annotate >/dev/null; then
-  echo "min_ir: valgrind not installed; skipped" >&2
-  exit 0
-fi
-mkdir -p "$dir"
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh"
+ir_start min_ir "$dir"
 csv=$dir/min_ir.csv
 [[ -f $csv ]] || echo "label,N,t1,rhs_lib,rhs_hand,ir_lib,ir_hand,ratio,rhs_ir_lib,rhs_ir_hand,kin,forces,aba,cvode_lib,cvode_hand" >"$csv"
 # inclusive instructions of a function in an annotated profile (0 when absent)

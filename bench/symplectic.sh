@@ -6,19 +6,13 @@
 # Usage: bench/symplectic.sh [--quick | --full] [OUTDIR]
 #   quick (default): 1e4 pendulum periods, a few minutes; full: 1e5 periods, ~15-20 minutes.
 set -euo pipefail
-mode=--quick
-case "${1:-}" in
-  --quick | "") mode=--quick ;;
-  --full) mode=--full ;;
-  *) echo "usage: bench/symplectic.sh [--quick | --full] [OUTDIR]" >&2; exit 2 ;;
-esac
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+source "$root/bench/lib.sh"
+mode=$(bench_mode "bench/symplectic.sh [--quick | --full] [OUTDIR]" "${1:-}")
 out=${2:-$root/bench/results}
 bdir=${DAL_BENCH_BUILD_DIR:-$root/build-release}
 "$root/scripts/deps.sh"
-cmake -S "$root" -B "$bdir" -DCMAKE_BUILD_TYPE=Release -DDAL_BUILD_TESTS=OFF \
-  -DDAL_BUILD_EXAMPLES=OFF -DDAL_BUILD_BENCH=ON >/dev/null
-cmake --build "$bdir" -j 2 --target dal_bench_symplectic
+bench_build "$root" "$bdir" dal_bench_symplectic
 mkdir -p "$out"
 "$bdir/bench/dal_bench_symplectic" "$mode" --out "$out"
 rm -f "$out"/sym_*.png "$out"/sym_*.svg

@@ -20,36 +20,19 @@
 // --check (ctest): every point against the closed form (theta to 1e-12, frequency to 1e-10,
 // verdict neutral/unstable as above) and the located fork against sqrt(g/R) to 1e-9.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, R = 0.5, mass = 0.1;
 
 static int build_ring(double w, dal_system **out, void *ctx) {
   (void)ctx;
-  dal_builder *b = NULL;
-  int th, bead, rc = dal_builder_create(3, &b);
-  double grav[3] = {0, 0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &bead);
-  dal_place_def ring = dal_default_place_def();
-  ring.prim = &dal_map_ring;
-  ring.coords = &th;
-  ring.ncoords = 1;
-  ring.param[DAL_RING_R] = R;
-  ring.param[DAL_RING_W] = w;
-  if (!rc) rc = dal_builder_place_def(b, bead, &ring);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  if (!rc) rc = dal_builder_compile(b, out);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *out = ex_ring_bead(mass, R, w, g);
+  return !*out;
 }
 
 // what each reported point is checked against and written as
@@ -139,12 +122,6 @@ static int run_branches(FILE *csv, int npoints, int *bad) {
   return 0;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 static void chart(const char *dir, const char *csvpath) {
   char gp[1024], png[1024];
   snprintf(gp, sizeof gp, "%s/bead_bifurcation.gp", dir);
@@ -173,27 +150,12 @@ static void chart(const char *dir, const char *csvpath) {
       "-acos(%g/(%g*x*x)) * (x > %g ? 1 : 1/0) with lines lc rgb 'black' notitle\n",
       png, wc, wc, wc, csvpath, g, R, wc, g, R, wc);
   fclose(f);
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-    return;
-  }
-  char cmd[1200];
-  snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-  if (system(cmd) == 0)
-    printf("chart: %s\n", png);
-  else
-    printf("gnuplot failed: chart skipped (script in %s)\n", gp);
+  ex_gnuplot(gp, png);
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   printf("bead on a turning ring: m=%g R=%g g=%g, w_c = sqrt(g/R) = %.6f\n", mass, R, g,
          sqrt(g / R));
   int bad = 0;
@@ -202,14 +164,10 @@ int main(int argc, char **argv) {
     printf("%s\n", bad ? "FAILED" : "ok");
     return bad != 0;
   }
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   char csvpath[1024];
-  snprintf(csvpath, sizeof csvpath, "%s/bead_bifurcation.csv", dir);
-  FILE *csv = fopen(csvpath, "w");
-  if (!csv) {
-    fprintf(stderr, "cannot write %s\n", csvpath);
-    return 1;
-  }
+  FILE *csv = ex_open(dir, "bead_bifurcation.csv", csvpath, sizeof csvpath);
+  if (!csv) return 1;
   fprintf(csv, "branch,w,theta,verdict,frequency\n");
   int rc = run_branches(csv, 121, &bad);
   fclose(csv);

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 1.0, R = 1.0, grav = 9.81, rtol = 1e-11;
 #define PI 3.14159265358979323846
@@ -44,29 +45,14 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 }
 
 static int build(ring *r) {
-  dal_builder *b = NULL;
-  int th, p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", mass, &p);
-  dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
-  pd.prim = &dal_map_ring;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = R;
-  pd.param[DAL_RING_W] = r->w;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &r->sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  b = NULL;
-  if (!rc) rc = dal_builder_create(3, &b);
+  r->sys = ex_ring_bead(mass, R, r->w, grav); // the built-in map
+  dal_builder *b = NULL;                      // the same bead from its Lagrangian
+  int rc = dal_builder_create(3, &b);
   if (!rc) rc = dal_builder_add_coord(b, "theta", NULL);
   if (!rc) rc = dal_builder_set_lagrangian(b, lagrangian, &r->w);
-  if (!rc) rc = dal_builder_compile(b, &r->lag);
-  dal_builder_destroy(b);
-  if (!rc) rc = dal_state_create(r->sys, &r->st);
+  r->lag = ex_compile(b, rc);
+  if (!r->sys || !r->lag) return 1;
+  rc = dal_state_create(r->sys, &r->st);
   if (!rc) rc = dal_state_create(r->lag, &r->stl);
   return rc;
 }
@@ -178,6 +164,5 @@ int main(int argc, char **argv) {
   int n = check ? 2 : 6;
   for (int i = 0; i < n; ++i)
     bad |= study(ws[i] * wc, !check);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

@@ -15,25 +15,18 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 static const double MC = 1.7, MB = 0.4, L = 0.8, G = 9.81;
 
 static dal_system *build(void) {
   dal_builder *b = NULL;
   int c[4], p[2];
   double g[2] = {0.0, -G};
-  const char *nm[4] = {"xc", "yc", "xb", "yb"};
+  const char *nm[4] = {"xc", "yc", "xb", "yb"}, *pn[2] = {"cart", "bob"};
+  const double m[2] = {MC, MB};
   dal_builder_create(2, &b);
-  for (int i = 0; i < 4; ++i)
-    dal_builder_add_coord(b, nm[i], &c[i]);
-  dal_builder_add_particle(b, "cart", MC, &p[0]);
-  dal_builder_add_particle(b, "bob", MB, &p[1]);
-  for (int k = 0; k < 2; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    dal_builder_place_def(b, p[k], &d);
-  }
+  ex_cartesian_particles(b, 2, 2, pn, m, nm, c, p);
   dal_builder_set_gravity(b, g);
   dal_constraint_def rail = dal_default_constraint_def();
   rail.name = "rail";
@@ -48,10 +41,7 @@ static dal_system *build(void) {
   rod.nparts = 2;
   rod.param[DAL_DISTANCE_L] = L;
   dal_builder_add_constraint_def(b, &rod, NULL);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 static void markov(const double *A, const double *b, const double *c, double *out) {

@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, l1 = 1.0, l2 = 0.7, m1 = 1.0, m2 = 0.5;
 
@@ -74,10 +75,8 @@ static int build(int cartesian, dal_system **sys) {
     pd.param[DAL_HANGING_L] = l2;
     if (!rc) rc = dal_builder_place_def(b, p[1], &pd);
   }
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 int main(int argc, char **argv) {
@@ -142,15 +141,14 @@ int main(int argc, char **argv) {
          "%.2e, tensions %.2e, energy %.1e; residuals to t=%g %.1e\n",
          pmax, pmax / tol, fmaxd, tmax, Emax, T, rmax);
   int fails = 0;
-  if (!(pmax <= 1e3 * tol)) ++fails, printf("FAILED: positions differ by %g\n", pmax);
-  if (!(fmaxd <= 1e4 * tol)) ++fails, printf("FAILED: forces differ by %g m1 g\n", fmaxd);
-  if (!(tmax <= 1e4 * tol)) ++fails, printf("FAILED: tensions differ by %g m1 g\n", tmax);
-  if (!(Emax <= 1e3 * tol)) ++fails, printf("FAILED: energy drift %g\n", Emax);
-  if (!(rmax <= tol)) ++fails, printf("FAILED: residual %g\n", rmax);
+  fails += ex_expect(pmax <= 1e3 * tol, "positions differ by %g", pmax);
+  fails += ex_expect(fmaxd <= 1e4 * tol, "forces differ by %g m1 g", fmaxd);
+  fails += ex_expect(tmax <= 1e4 * tol, "tensions differ by %g m1 g", tmax);
+  fails += ex_expect(Emax <= 1e3 * tol, "energy drift %g", Emax);
+  fails += ex_expect(rmax <= tol, "residual %g", rmax);
   dal_state_destroy(a);
   dal_state_destroy(b);
   dal_system_destroy(ms);
   dal_system_destroy(cs);
-  printf(fails ? "FAILED\n" : "OK\n");
-  return fails ? 1 : 0;
+  return ex_verdict(fails, "OK");
 }

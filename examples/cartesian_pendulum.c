@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, l = 1.0, mass = 1.0, PI = 3.14159265358979323846;
 
@@ -85,10 +86,8 @@ static int build(dal_system **sys) {
   cd.nparts = 1;
   cd.param[DAL_ANCHOR_L] = l;
   if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 // run one formulation to T with output every second; returns the number of failed checks
@@ -134,18 +133,11 @@ static int run(const dal_system *sys, dal_state *st, const dal_solve_opts *o, co
   printf("%-38s on [0, 5]: max error %.2e (%.0f x rtol), tension %.2e, residual %.1e, energy "
          "%.1e; %ld steps to t=%g\n",
          name, emax, emax / o->rtol, lmax, rmax, Emax, s.steps, T);
-  if (!(emax <= bound * o->rtol)) {
-    printf("FAILED: %s position error %.3g exceeds %g x rtol\n", name, emax, bound);
-    ++fails;
-  }
-  if (!(lmax <= 10.0 * bound * o->rtol)) {
-    printf("FAILED: %s multiplier differs from the tension by %.3g m g\n", name, lmax);
-    ++fails;
-  }
-  if (!(Emax <= bound * o->rtol)) {
-    printf("FAILED: %s energy drift %.3g\n", name, Emax);
-    ++fails;
-  }
+  fails += ex_expect(emax <= bound * o->rtol, "%s position error %.3g exceeds %g x rtol", name,
+                     emax, bound);
+  fails += ex_expect(lmax <= 10.0 * bound * o->rtol,
+                     "%s multiplier differs from the tension by %.3g m g", name, lmax);
+  fails += ex_expect(Emax <= bound * o->rtol, "%s energy drift %.3g", name, Emax);
   return fails;
 }
 
@@ -172,6 +164,5 @@ int main(int argc, char **argv) {
   fails += run(sys, st, &o, "index-1 + projection (Bulirsch-Stoer)", T, 10.0, !check);
   dal_state_destroy(st);
   dal_system_destroy(sys);
-  printf(fails ? "FAILED\n" : "OK\n");
-  return fails ? 1 : 0;
+  return ex_verdict(fails, "OK");
 }

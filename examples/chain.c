@@ -25,6 +25,7 @@
 #include <time.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.81, PI = 3.14159265358979323846;
 
@@ -86,10 +87,8 @@ static int build(int N, int cartesian, dal_system **sys) {
     }
     prev = p;
   }
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 // the Cartesian start: 45 degrees, aligned, at rest
@@ -188,8 +187,8 @@ static int check(void) {
   }
   printf("N %d: Cartesian DAE vs minimal coordinates %.2e (%.0f x rtol); dense vs KLU %.2e\n", NS,
          dmin, dmin / rtol, dlin);
-  if (!(dmin <= 1e3 * rtol)) ++fails, printf("FAILED: differs from the minimal chain\n");
-  if (!(dlin <= 1e3 * rtol)) ++fails, printf("FAILED: dense and KLU differ\n");
+  fails += ex_expect(dmin <= 1e3 * rtol, "differs from the minimal chain");
+  fails += ex_expect(dlin <= 1e3 * rtol, "dense and KLU differ");
   // a large chain: no dense mass matrix (sparse KKT), KLU chosen automatically
   double *q = malloc(2 * NL * sizeof(double));
   if (!q || build(NL, 1, &ls)) return 1;
@@ -240,6 +239,5 @@ int main(int argc, char **argv) {
     free(q);
     dal_system_destroy(sys);
   }
-  printf(fails ? "FAILED\n" : "OK\n");
-  return fails ? 1 : 0;
+  return ex_verdict(fails, "OK");
 }

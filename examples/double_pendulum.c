@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double m1 = 1.0, m2 = 1.0, l1 = 1.0, l2 = 1.0, grav = 9.81, rtol = 1e-11;
 #define PI 3.14159265358979323846
@@ -41,7 +42,6 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 
 static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   int q[2], p1, p2, rc = dal_builder_create(2, &b);
   double g[2] = {0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta1", &q[0]);
@@ -66,10 +66,7 @@ static dal_system *build(int lagrange) {
     if (!rc) rc = dal_builder_place_def(b, p2, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, rc);
 }
 
 // hand equations of motion: M, c, Q and qdd
@@ -91,12 +88,7 @@ int main(int argc, char **argv) {
   int check = argc > 1 && strcmp(argv[1], "--check") == 0, bad = 0;
   dal_system *sys = build(0), *lag = build(1);
   dal_state *st = NULL, *stl = NULL;
-  if (!sys || !lag || dal_state_create(sys, &st) || dal_state_create(lag, &stl)) {
-    printf("FAILED\n");
-    dal_system_destroy(sys);
-    dal_system_destroy(lag);
-    return 1;
-  }
+  if (ex_two_states(sys, lag, &st, &stl)) return 1;
   printf("double pendulum: m1 = %g, m2 = %g, l1 = %g, l2 = %g, g = %g\n", m1, m2, l1, l2, grav);
 
   // 1. equations of motion at sample states
@@ -175,6 +167,5 @@ int main(int argc, char **argv) {
   dal_state_destroy(stl);
   dal_system_destroy(sys);
   dal_system_destroy(lag);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

@@ -14,22 +14,15 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 static dal_system *build(void) {
   dal_builder *b = NULL;
   int c[6], p[2];
   dal_builder_create(3, &b);
-  const char *names[6] = {"x1", "y1", "z1", "x2", "y2", "z2"};
-  for (int i = 0; i < 6; ++i)
-    dal_builder_add_coord(b, names[i], &c[i]);
-  dal_builder_add_particle(b, "bob1", 1.0, &p[0]);
-  dal_builder_add_particle(b, "bob2", 0.5, &p[1]);
-  for (int k = 0; k < 2; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian3;
-    d.coords = c + 3 * k;
-    d.ncoords = 3;
-    dal_builder_place_def(b, p[k], &d);
-  }
+  const char *names[6] = {"x1", "y1", "z1", "x2", "y2", "z2"}, *pn[2] = {"bob1", "bob2"};
+  const double m[2] = {1.0, 0.5};
+  ex_cartesian_particles(b, 3, 2, pn, m, names, c, p);
   dal_constraint_def cd = dal_default_constraint_def();
   cd.name = "rod1";
   cd.prim = &dal_con_anchor3; // to the origin by default
@@ -46,10 +39,7 @@ static dal_system *build(void) {
   dal_builder_add_constraint_def(b, &cd, NULL);
   double g[3] = {0, 0, -9.81};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // L_z = sum m (x vy - y vx)

@@ -23,6 +23,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 #define G 9.81
 #define W 2.0 // crank rate (rad/s)
 
@@ -81,10 +83,7 @@ static dal_system *build(int *motor_row) {
   dal_builder_add_constraint_def(b, &cd, motor_row);
   double g[2] = {0, -G};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 typedef struct power {

@@ -24,6 +24,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 1.0, len = 1.0, grav = 9.81;
 #define PI 3.14159265358979323846
@@ -45,30 +46,13 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 }
 
 static dal_system *build(drive *D, int lagrange) {
+  // support p(t) = (0, a cos(w t)): the pivot at the origin driven along y
+  if (!lagrange) return ex_pendulum(mass, len, grav, 0.0, D->a, D->w);
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int th, p, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -grav};
+  int th, rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (lagrange) {
-    if (!rc) rc = dal_builder_set_lagrangian(b, lagrangian, D);
-  } else {
-    if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &p);
-    // support p(t) = (0, a cos(w t)): the pivot at the origin driven along y
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &th;
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = len;
-    pd.param[DAL_PENDULUM_AY] = D->a;
-    pd.param[DAL_PENDULUM_W] = D->w;
-    if (!rc) rc = dal_builder_place_def(b, p, &pd);
-    if (!rc) rc = dal_builder_set_gravity(b, g);
-  }
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  if (!rc) rc = dal_builder_set_lagrangian(b, lagrangian, D);
+  return ex_compile(b, rc);
 }
 
 // integrate from near upright; report the largest distance from upright and the times at which
@@ -169,6 +153,5 @@ int main(int argc, char **argv) {
          slow.a, slow.w, slow.a * slow.a * slow.w * slow.w, dev_slow);
   bad |= !(dev_fast < 0.5) || !(dev_slow > 1.0);
   bad |= !(fabs(per_fast - 2 * PI / Om) <= 0.1 * 2 * PI / Om);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

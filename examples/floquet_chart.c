@@ -27,6 +27,8 @@
 
 #include <dalembert/dalembert.h>
 
+#include "example_util.h"
+
 #define G 9.81
 #define PI 3.14159265358979323846
 
@@ -42,27 +44,7 @@ typedef struct job {
   int count, stride, first;
 } job;
 
-static dal_system *pendulum(double a, double w) {
-  dal_builder *b;
-  dal_system *sys = NULL;
-  int c, bob;
-  if (dal_builder_create(2, &b)) return NULL;
-  dal_builder_add_coord(b, "theta", &c);
-  dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AY] = a;
-  pd.param[DAL_PENDULUM_W] = w;
-  dal_builder_place_def(b, bob, &pd);
-  double g[2] = {0, -G};
-  dal_builder_set_gravity(b, g);
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
-}
+static dal_system *pendulum(double a, double w) { return ex_pendulum(1.0, 1.0, G, 0.0, a, w); }
 
 // the verdicts of the bottom and the top of one cell
 static void analyse(cell *c) {

@@ -14,6 +14,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 static dal_system *build(void) {
   dal_builder *b = NULL;
   int c[2], p[2];
@@ -37,10 +39,7 @@ static dal_system *build(void) {
   d2.param[0] = 0.6; // rod length
   dal_builder_place_def(b, p[1], &d2);
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 static double det(int n, const double *A) { // Gaussian elimination with partial pivoting

@@ -16,6 +16,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 #define G 9.81
 
 static const double A[2] = {0, 0}, D[2] = {2, 0}, LAB = 1.0, LBC = 2.0, LCD = 1.5;
@@ -72,10 +74,7 @@ static dal_system *build(int hold, double xB) {
   }
   double g[2] = {0, -G};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // a consistent configuration for crank angle phi: B on the crank circle, C where the coupler

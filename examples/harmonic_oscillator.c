@@ -19,6 +19,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 2.0, k = 1.0, rtol = 1e-10;
 static const double q0[2] = {1, 2}, v0[2] = {3, 4};
@@ -52,7 +53,6 @@ static void exact(double t, double *q, double *v) {
 
 static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   int c[2], p, rc = dal_builder_create(2, &b);
   if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
   if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
@@ -70,10 +70,7 @@ static dal_system *build(int lagrange) {
     sd.k = k;
     if (!rc) rc = dal_builder_add_spring_def(b, &sd);
   }
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, rc);
 }
 
 // monitor: error against the closed form and energy drift
@@ -182,6 +179,5 @@ out:
     dal_state_destroy(st[r]);
     dal_system_destroy(sys[r]);
   }
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

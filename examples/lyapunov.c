@@ -22,37 +22,17 @@
 //  2. lambda_1 + lambda_2 = 0 to 1e-9 (area preservation);
 //  3. lambda_1 > 0.1 (the orbit is chaotic: sicm_driven_pendulum shows the separation).
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.8, a = 0.1, l = 1.0, mass = 1.0;
 
 static dal_system *build(void) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double grav[2] = {0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", mass, &bob);
-  dal_place_def pend = dal_default_place_def(); /* the pivot driven vertically */
-  pend.prim = &dal_map_pendulum;
-  pend.coords = &th;
-  pend.ncoords = 1;
-  pend.param[DAL_PENDULUM_L] = l;
-  pend.param[DAL_PENDULUM_AY] = a;
-  pend.param[DAL_PENDULUM_W] = 2 * sqrt(g);
-  if (!rc) rc = dal_builder_place_def(b, bob, &pend);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_pendulum(mass, l, g, 0.0, a, 2 * sqrt(g)); // the pivot driven vertically
 }
 
 // the classic two-orbit estimate: a reference orbit and a companion d0 away, advanced by the
@@ -146,23 +126,13 @@ static int on_renorm(double t, const double *ex, int nexp, void *ctx) {
   return 0;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 static int full_mode(const dal_system *sys, const char *dir) {
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   char path[1024], gp[1024], png[1024];
-  snprintf(path, sizeof path, "%s/lyapunov.csv", dir);
   snprintf(gp, sizeof gp, "%s/lyapunov.gp", dir);
   snprintf(png, sizeof png, "%s/lyapunov.png", dir);
-  FILE *csv = fopen(path, "w");
-  if (!csv) {
-    fprintf(stderr, "cannot write %s\n", path);
-    return 1;
-  }
+  FILE *csv = ex_open(dir, "lyapunov.csv", path, sizeof path);
+  if (!csv) return 1;
   fprintf(csv, "t,lambda1,lambda2,window100\n");
   dal_state *st = NULL;
   double q = 1.0, v = 0.0, ex[2], er[2], y0[2] = {0.0, 1.0};
@@ -212,28 +182,13 @@ static int full_mode(const dal_system *sys, const char *dir) {
             png, ex[0] + er[0], ex[0] - er[0], path, ex[0]);
     fclose(f);
   }
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-  } else {
-    char cmd[1200];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot failed: chart skipped (script in %s)\n", gp);
-  }
+  ex_gnuplot(gp, png);
   return 0;
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   dal_system *sys = build();
   if (!sys) return 1;
   printf("SICM driven pendulum: m=%g l=%g g=%g a=%g omega=2 sqrt(g), theta0=1\n", mass, l, g, a);

@@ -45,6 +45,7 @@
 #include <time.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double drag = 0.5, rho = 1.0, m_rack = 1e-3, T_TRANS = 100.0;
 // moment of inertia about the axle: bob m l^2 = 1 plus the rack's m_r rho^2
@@ -65,7 +66,6 @@ typedef struct scene {
 
 static dal_system *build(scene *sc, double a, double w) {
   dal_builder *b = NULL;
-  dal_system *s = NULL;
   int th, bob, rack, rc = dal_builder_create(2, &b);
   double g[2] = {0, -1.0};
   sc->rho = rho;
@@ -96,10 +96,7 @@ static dal_system *build(scene *sc, double a, double w) {
   dd.anchor[1] = -2.0;
   dd.c = drag / (rho * rho);
   if (!rc) rc = dal_builder_add_damper_def(b, &dd);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
+  return ex_compile(b, rc);
 }
 
 typedef struct lyap_cfg {
@@ -283,16 +280,8 @@ static void cost_report(const double *cost, const double *res, const int *status
 }
 
 int main(int argc, char **argv) {
-  int check = 0, threads = 2;
   const char *dir = ".";
-  for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check"))
-      check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
-      dir = argv[++i];
-    else if (!strcmp(argv[i], "--threads") && i + 1 < argc)
-      threads = atoi(argv[++i]);
-  }
+  int check = ex_args(argc, argv, &dir), threads = ex_int_opt(argc, argv, "--threads", 2);
   scene sc;
   dal_system *sys = build(&sc, 0.0, 1.0);
   if (!sys) return 1;
@@ -392,6 +381,5 @@ int main(int argc, char **argv) {
   free(status);
   free(msgs);
   dal_system_destroy(sys);
-  printf("%s\n", bad ? "FAILED" : "OK");
-  return bad;
+  return ex_verdict(bad, "OK");
 }

@@ -21,6 +21,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 #define G 9.81
 static const double LA = 1.0, LB = 1.2, LC = 0.9, DX = 1.5, MB = 1.0, MC = 2.0, R = 0.6;
 
@@ -40,19 +42,10 @@ static dal_system *fourbar(void) {
   dal_builder *b = NULL;
   int c[4], p[2];
   double g[2] = {0.0, -G};
-  const char *names[4] = {"xB", "yB", "xC", "yC"};
+  const char *names[4] = {"xB", "yB", "xC", "yC"}, *pn[2] = {"B", "C"};
+  const double m[2] = {MB, MC};
   dal_builder_create(2, &b);
-  for (int i = 0; i < 4; ++i)
-    dal_builder_add_coord(b, names[i], &c[i]);
-  dal_builder_add_particle(b, "B", MB, &p[0]);
-  dal_builder_add_particle(b, "C", MC, &p[1]);
-  for (int k = 0; k < 2; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    dal_builder_place_def(b, p[k], &d);
-  }
+  ex_cartesian_particles(b, 2, 2, pn, m, names, c, p);
   dal_builder_set_gravity(b, g);
   dal_constraint_def k1 = rod("crank", &dal_con_anchor2, &p[0], 1, LA, 0.0);
   dal_constraint_def k2 = rod("coupler", &dal_con_distance2, p, 2, LB, 0.0);
@@ -60,10 +53,7 @@ static dal_system *fourbar(void) {
   dal_builder_add_constraint_def(b, &k1, NULL);
   dal_builder_add_constraint_def(b, &k2, NULL);
   dal_builder_add_constraint_def(b, &k3, NULL);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // the crank-angle model: U'(th), U''(th) and M(th) by jets of the closed-form joint C
@@ -105,10 +95,7 @@ static dal_system *bead(double w) {
   k.param[DAL_TURNING_CIRCLE_R] = R;
   k.param[DAL_TURNING_CIRCLE_W] = w;
   dal_builder_add_constraint_def(b, &k, NULL);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 static int rebuild(double w, dal_system **out, void *ctx) {

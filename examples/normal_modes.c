@@ -28,6 +28,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 #define PI 3.14159265358979323846
 static const double grav = 9.81;
@@ -35,7 +36,6 @@ static const double grav = 9.81;
 // a chain of n pendulums (masses 1) with the given lengths; n = 2 with l = 1, 1 is scene 1
 static dal_system *chain(int n, const double *len) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   double g[2] = {0, -grav};
   int rc = dal_builder_create(2, &b), prev = -1;
   for (int k = 0; k < n && !rc; ++k) {
@@ -61,10 +61,7 @@ static dal_system *chain(int n, const double *len) {
     prev = p;
   }
   if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, rc);
 }
 
 // the modes of a chain at rest, each confirmed by integrating one period
@@ -229,6 +226,5 @@ int main(int argc, char **argv) {
   trap stab = {1.0, 0.5, 0.2}, unst = {1.0, 3.0, 0.5};
   bad |= trap_scene(&stab, DAL_NEUTRAL);
   bad |= trap_scene(&unst, DAL_UNSTABLE);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

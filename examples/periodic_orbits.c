@@ -20,33 +20,16 @@
 
 #include <dalembert/dalembert.h>
 
+#include "example_util.h"
+
 #define G 9.81
 #define PI 3.14159265358979323846
 
 static int forced(void) {
   const double a = 0.05, w = 2.0;
-  dal_builder *b;
-  dal_system *sys;
   dal_state *st;
-  int c, bob;
-  dal_builder_create(2, &b);
-  dal_builder_add_coord(b, "theta", &c);
-  dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &c;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  pd.param[DAL_PENDULUM_AX] = a;
-  pd.param[DAL_PENDULUM_W] = w;
-  dal_builder_place_def(b, bob, &pd);
-  double g[2] = {0, -G};
-  dal_builder_set_gravity(b, g);
-  if (dal_builder_compile(b, &sys)) {
-    puts(dal_builder_errmsg(b));
-    return 1;
-  }
-  dal_builder_destroy(b);
+  dal_system *sys = ex_pendulum(1.0, 1.0, G, a, 0.0, w);
+  if (!sys) return 1;
   dal_state_create(sys, &st);
   double lin = a * w * w / (G - w * w), v = 0.0, re[2], im[2];
   dal_state_set(sys, st, 0.0, &lin, &v);

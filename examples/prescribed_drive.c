@@ -15,6 +15,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 static int motion(dal_jet t, dal_jet *f, void *ctx) {
   (void)ctx;
   *f = dal_scale(dal_sin(dal_scale(t, 2.0)), 0.6);
@@ -54,10 +56,7 @@ static dal_system *build(void) {
   dal_builder_add_spring_def(b, &s);
   double g[2] = {0, -9.81};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 typedef struct work {

@@ -18,34 +18,16 @@
 // about 0 below omega_c, and about theta* lies strictly inside the range above it.
 // Full mode (--out DIR, default ./demo-output) writes both runs to CSV and draws theta(t).
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.8, R = 1.0, mass = 1.0;
 
-static int build(double omega, dal_builder **b, dal_system **sys) {
-  int th, bead, rc = dal_builder_create(3, b);
-  double grav[3] = {0, 0, -g};
-  if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(*b, "bead", mass, &bead);
-  dal_place_def pd = dal_default_place_def(); // the ring's plane starts at angle 0
-  pd.prim = &dal_map_ring;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_RING_R] = R;
-  pd.param[DAL_RING_W] = omega;
-  if (!rc) rc = dal_builder_place_def(*b, bead, &pd);
-  if (!rc) rc = dal_builder_set_gravity(*b, grav);
-  if (!rc) rc = dal_builder_compile(*b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));
-  return rc;
-}
+static dal_system *build(double omega) { return ex_ring_bead(mass, R, omega, g); }
 
 // effective potential (per the Jacobi integral)
 static double V(double omega, double th) {
@@ -93,10 +75,9 @@ static int monitor(const dal_system *sys, const dal_state *st, void *ctx) {
 // one run; returns nonzero when a check fails
 static int scene(double omega, double theta0, double T, double dt, FILE *csvfp, double *hdrift,
                  double *Evar) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
+  dal_system *sys = build(omega);
   dal_state *st = NULL;
-  int bad = build(omega, &b, &sys) != 0;
+  int bad = sys == NULL;
   double zero = 0.0;
   if (!bad) bad = dal_state_create(sys, &st) || dal_state_set(sys, st, 0.0, &theta0, &zero);
   dal_solve_opts o = dal_default_solve_opts();
@@ -148,25 +129,12 @@ static int scene(double omega, double theta0, double T, double dt, FILE *csvfp, 
 done:
   dal_state_destroy(st);
   dal_system_destroy(sys);
-  dal_builder_destroy(b);
   return bad;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   double wc = sqrt(g / R), T = check ? 10.0 : 20.0, dt = 1e-3, hd, ev;
   double w_lo = 0.7 * wc, w_hi = 1.5 * wc, th0 = 0.3;
   printf("bead on a rotating ring: R=%g g=%g, omega_c = sqrt(g/R) = %.4f, theta0 = %g\n", R, g, wc,
@@ -178,7 +146,7 @@ int main(int argc, char **argv) {
     printf("%s\n", bad ? "FAILED" : "ok");
     return bad;
   }
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   char p1[1024], p2[1024], gp[1024], png[1024];
   snprintf(p1, sizeof p1, "%s/ring_below.csv", dir);
   snprintf(p2, sizeof p2, "%s/ring_above.csv", dir);
@@ -225,15 +193,6 @@ int main(int argc, char **argv) {
         png, R, g, th0, p1, p2, acos(g / (R * w_hi * w_hi)), p2, p2, p2, p2);
     fclose(gf);
   }
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-  } else {
-    char cmd[1100];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot failed: chart skipped (script in %s)\n", gp);
-  }
+  ex_gnuplot(gp, png);
   return bad;
 }

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double g = 9.8, R = 1.0, mass = 1.0, omega = 5.0;
 
@@ -60,10 +61,8 @@ static int build(int cartesian, dal_system **sys) {
     pd.param[DAL_RING_W] = omega;
     if (!rc) rc = dal_builder_place_def(b, bead, &pd);
   }
-  if (!rc) rc = dal_builder_compile(b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return rc;
+  *sys = ex_compile(b, rc);
+  return !*sys;
 }
 
 // h = E - omega L_z from the Cartesian state
@@ -131,16 +130,15 @@ int main(int argc, char **argv) {
          "%.3g; theta in [%.4f, %.4f] about theta* = %.4f; residuals %.1e\n",
          pmax, pmax / tol, hmax, Emax, thmin, thmax, thstar, rmax);
   int fails = 0;
-  if (!(pmax <= 1e3 * tol)) ++fails, printf("FAILED: positions differ by %g\n", pmax);
-  if (!(hmax <= 1e3 * tol)) ++fails, printf("FAILED: h drifts by %g\n", hmax);
-  if (!(Emax > 1e6 * hmax)) ++fails, printf("FAILED: E should vary, by %g only\n", Emax);
-  if (!(thmin > 0 && thmin < thstar && thmax > thstar))
-    ++fails, printf("FAILED: theta range [%g, %g] does not straddle %g\n", thmin, thmax, thstar);
-  if (!(rmax <= tol)) ++fails, printf("FAILED: residual %g\n", rmax);
+  fails += ex_expect(pmax <= 1e3 * tol, "positions differ by %g", pmax);
+  fails += ex_expect(hmax <= 1e3 * tol, "h drifts by %g", hmax);
+  fails += ex_expect(Emax > 1e6 * hmax, "E should vary, by %g only", Emax);
+  fails += ex_expect(thmin > 0 && thmin < thstar && thmax > thstar,
+                     "theta range [%g, %g] does not straddle %g", thmin, thmax, thstar);
+  fails += ex_expect(rmax <= tol, "residual %g", rmax);
   dal_state_destroy(a);
   dal_state_destroy(b);
   dal_system_destroy(ms);
   dal_system_destroy(cs);
-  printf(fails ? "FAILED\n" : "OK\n");
-  return fails ? 1 : 0;
+  return ex_verdict(fails, "OK");
 }

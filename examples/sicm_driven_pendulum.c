@@ -17,14 +17,13 @@
 // rod's force on the bob, the integral of N . v (N = m a - F, from dal_state_reactions),
 // integrated independently by Simpson's rule.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 #define PI 3.14159265358979323846
 
@@ -33,26 +32,6 @@ static const double g = 9.8, a = 0.1, l = 1.0, mass = 1.0;
 static double wrap(double x) {
   double r = x - 2 * PI * floor((x + PI) / (2 * PI));
   return r >= PI ? r - 2 * PI : r;
-}
-
-static int build(dal_builder **b, dal_system **sys) {
-  int th, bob, rc = dal_builder_create(2, b);
-  double omega = 2 * sqrt(g);
-  double grav[2] = {0, -g};
-  if (!rc) rc = dal_builder_add_coord(*b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(*b, "bob", mass, &bob);
-  dal_place_def pd = dal_default_place_def(); // pivot y = a cos(omega t)
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = l;
-  pd.param[DAL_PENDULUM_AY] = a;
-  pd.param[DAL_PENDULUM_W] = omega;
-  if (!rc) rc = dal_builder_place_def(*b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(*b, grav);
-  if (!rc) rc = dal_builder_compile(*b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));
-  return rc;
 }
 
 // monitor: record theta (unwrapped) and the power N . v, optionally write a CSV row
@@ -154,16 +133,10 @@ static int check_mode(const dal_system *sys) {
   return bad;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 static int full_mode(const dal_system *sys, const char *dir) {
   double T = 100.0, dt = 0.01;
   long cap = (long)(T / dt) + 3;
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   char p1[1024], p2[1024], gp[1024], png[1024];
   snprintf(p1, sizeof p1, "%s/driven_pendulum_a.csv", dir);
   snprintf(p2, sizeof p2, "%s/driven_pendulum_b.csv", dir);
@@ -258,37 +231,20 @@ static int full_mode(const dal_system *sys, const char *dir) {
     fprintf(gf, "\nunset multiplot\n");
     fclose(gf);
   }
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-  } else {
-    char cmd[2200];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot failed: chart skipped (script in %s)\n", gp);
-  }
+  ex_gnuplot(gp, png);
   free_orbit(&o1);
   free_orbit(&o2);
   return 0;
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int bad = build(&b, &sys) != 0;
+  int check = ex_args(argc, argv, &dir);
+  dal_system *sys = ex_pendulum(mass, l, g, 0.0, a, 2 * sqrt(g)); // pivot y = a cos(omega t)
+  int bad = sys == NULL;
   printf("SICM driven pendulum: m=%g l=%g g=%g a=%g omega=2 sqrt(g), theta0=1\n", mass, l, g, a);
   if (!bad) bad = check ? check_mode(sys) : full_mode(sys, dir);
   dal_system_destroy(sys);
-  dal_builder_destroy(b);
   if (check) printf("%s\n", bad ? "FAILED" : "ok");
   return bad;
 }

@@ -12,14 +12,12 @@
 // conserved to the same. Full mode (--out DIR, default ./demo-output) also writes the orbit
 // over one period to CSV and draws it (gnuplot) against the closed-form ellipse.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 2.0, k = 1.0;
 static const double q0[2] = {1, 2}, v0[2] = {3, 4};
@@ -31,20 +29,13 @@ static int spring(const dal_jet *q, dal_jet t, dal_jet *U, void *ctx) {
   return 0;
 }
 
-static int build(dal_builder **b, dal_system **sys) {
-  int c[2], p, rc = dal_builder_create(2, b);
-  if (!rc) rc = dal_builder_add_coord(*b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(*b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(*b, "particle", mass, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(*b, p, &pd);
-  if (!rc) rc = dal_builder_add_potential_q(*b, spring, NULL);
-  if (!rc) rc = dal_builder_compile(*b, sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(*b));
-  return rc;
+static dal_system *build(void) {
+  dal_builder *b = NULL;
+  const char *xy[2] = {"x", "y"}, *name = "particle";
+  int c[2], p, rc = dal_builder_create(2, &b);
+  if (!rc) rc = ex_cartesian_particles(b, 2, 1, &name, &mass, xy, c, &p);
+  if (!rc) rc = dal_builder_add_potential_q(b, spring, NULL);
+  return ex_compile(b, rc);
 }
 
 static void exact(double t, double *q, double *v) {
@@ -94,19 +85,12 @@ static int advance_and_compare(const dal_system *sys, dal_method m) {
 
 // ten periods of the orbit to CSV and a chart of the error against the closed form over time
 static int full_mode(const dal_system *sys, const char *dir) {
-  if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-    fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-    return 1;
-  }
+  if (ex_make_dir(dir)) return 1;
   char path[1024], gp[1024], png[1024];
-  snprintf(path, sizeof path, "%s/oscillator.csv", dir);
   snprintf(gp, sizeof gp, "%s/oscillator.gp", dir);
   snprintf(png, sizeof png, "%s/oscillator.png", dir);
-  FILE *fp = fopen(path, "w");
-  if (!fp) {
-    fprintf(stderr, "cannot write %s\n", path);
-    return 1;
-  }
+  FILE *fp = ex_open(dir, "oscillator.csv", path, sizeof path);
+  if (!fp) return 1;
   dal_state *st = NULL;
   int rc = dal_state_create(sys, &st);
   if (!rc) rc = dal_state_set(sys, st, 0.0, q0, v0);
@@ -139,38 +123,21 @@ static int full_mode(const dal_system *sys, const char *dir) {
             png, 10 * period, mass, k, 10 * period, w, q0[0], v0[0], q0[1], v0[1], path);
     fclose(gf);
   }
-  if (system("command -v gnuplot >/dev/null 2>&1") != 0) {
-    printf("gnuplot not found: chart skipped (script left in %s)\n", gp);
-  } else {
-    char cmd[1100];
-    snprintf(cmd, sizeof cmd, "gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot failed: chart skipped (script in %s)\n", gp);
-  }
+  ex_gnuplot(gp, png);
   return 0;
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = "demo-output";
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0)
-      check = 1;
-    else if (strcmp(argv[i], "--out") == 0 && i + 1 < argc)
-      dir = argv[++i];
-  }
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int bad = build(&b, &sys) != 0;
+  int check = ex_args(argc, argv, &dir);
+  dal_system *sys = build();
+  int bad = sys == NULL;
   printf("SICM harmonic oscillator: m=%g k=%g, q(0)=(1,2), qdot(0)=(3,4), to t=10 at 1e-12\n", mass,
          k);
   if (!bad) bad |= advance_and_compare(sys, DAL_METHOD_BS);
   if (!bad) bad |= advance_and_compare(sys, DAL_METHOD_AUTO);
   if (!bad && !check) bad |= full_mode(sys, dir);
   dal_system_destroy(sys);
-  dal_builder_destroy(b);
   if (check) printf("%s\n", bad ? "FAILED" : "ok");
   return bad;
 }

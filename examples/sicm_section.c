@@ -25,39 +25,20 @@
 // driven_section.csv and a chart driven_section.png (theta wrapped to [-pi, pi), thetadot);
 // 8 orbits' surface section (sin theta = 0, rising) to driven_surface.csv.
 #define _POSIX_C_SOURCE 200809L
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 #define PI 3.14159265358979323846
 
 static const double g = 9.8, l = 1.0;
 
 static dal_system *build(double a) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int th, bob, rc = dal_builder_create(2, &b);
-  double grav[2] = {0, -g};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_pendulum;
-  d.coords = &th;
-  d.ncoords = 1;
-  d.param[DAL_PENDULUM_L] = l;
-  d.param[DAL_PENDULUM_AY] = a; // pivot y = a cos(omega t)
-  d.param[DAL_PENDULUM_W] = 2.0 * sqrt(g);
-  if (!rc) rc = dal_builder_place_def(b, bob, &d);
-  if (!rc) rc = dal_builder_set_gravity(b, grav);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) fprintf(stderr, "build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_pendulum(1.0, l, g, 0.0, a, 2.0 * sqrt(g)); // pivot y = a cos(omega t)
 }
 
 // the stroboscopic points of one orbit (monitor context)
@@ -189,14 +170,8 @@ static int check_mode(void) {
   return bad;
 }
 
-static int make_dir(const char *dir) {
-  if (mkdir(dir, 0777) == 0 || errno == EEXIST) return 0;
-  fprintf(stderr, "cannot create %s: %s\n", dir, strerror(errno));
-  return 1;
-}
-
 static int full_mode(const char *dir) {
-  if (make_dir(dir)) return 1;
+  if (ex_make_dir(dir)) return 1;
   const double T = 2 * PI / (2.0 * sqrt(g));
   char p1[1024], p2[1024], gp[1024], png[1024];
   snprintf(p1, sizeof p1, "%s/driven_section.csv", dir);
@@ -251,12 +226,7 @@ static int full_mode(const char *dir) {
             "plot '%s' every ::1 using 3:4:1 with points pt 7 ps 0.15 lc variable\n",
             png, p1);
     fclose(g1);
-    char cmd[2200];
-    snprintf(cmd, sizeof cmd, "command -v gnuplot >/dev/null 2>&1 && gnuplot '%s'", gp);
-    if (system(cmd) == 0)
-      printf("chart: %s\n", png);
-    else
-      printf("gnuplot not found or failed: chart skipped (script in %s)\n", gp);
+    ex_gnuplot(gp, png);
   }
   dal_events_destroy(ev);
   dal_state_destroy(st);
@@ -266,10 +236,5 @@ static int full_mode(const char *dir) {
 
 int main(int argc, char **argv) {
   const char *dir = "demo-output";
-  int check = 0;
-  for (int i = 1; i < argc; ++i) {
-    if (strcmp(argv[i], "--check") == 0) check = 1;
-    if (strcmp(argv[i], "--out") == 0 && i + 1 < argc) dir = argv[++i];
-  }
-  return check ? check_mode() : full_mode(dir);
+  return ex_args(argc, argv, &dir) ? check_mode() : full_mode(dir);
 }

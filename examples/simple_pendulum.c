@@ -20,6 +20,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 1.0, len = 1.0, grav = 9.81, rtol = 1e-11;
 #define PI 3.14159265358979323846
@@ -126,6 +127,5 @@ int main(int argc, char **argv) {
   dal_state_destroy(st);
   dal_system_destroy(sys);
   dal_builder_destroy(b);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

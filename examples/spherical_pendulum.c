@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double mass = 1.0, len = 1.0, grav = 9.81, rtol = 1e-11;
 #define PI 3.14159265358979323846
@@ -36,7 +37,6 @@ static int lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L,
 
 static dal_system *build(int lagrange) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   int q[2], p, rc = dal_builder_create(3, &b);
   double g[3] = {0, 0, -grav};
   if (!rc) rc = dal_builder_add_coord(b, "theta", &q[0]);
@@ -53,10 +53,7 @@ static dal_system *build(int lagrange) {
     if (!rc) rc = dal_builder_place_def(b, p, &pd);
     if (!rc) rc = dal_builder_set_gravity(b, g);
   }
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  if (rc) printf("build failed: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, rc);
 }
 
 static double Lz(const dal_state *st) {
@@ -68,12 +65,7 @@ int main(int argc, char **argv) {
   int check = argc > 1 && strcmp(argv[1], "--check") == 0, bad = 0;
   dal_system *sys = build(0), *lag = build(1);
   dal_state *st = NULL, *stl = NULL;
-  if (!sys || !lag || dal_state_create(sys, &st) || dal_state_create(lag, &stl)) {
-    printf("FAILED\n");
-    dal_system_destroy(sys);
-    dal_system_destroy(lag);
-    return 1;
-  }
+  if (ex_two_states(sys, lag, &st, &stl)) return 1;
   printf("spherical pendulum: m = %g, l = %g, g = %g (3D, n = %d)\n", mass, len, grav,
          dal_system_ncoords(sys));
 
@@ -155,6 +147,5 @@ int main(int argc, char **argv) {
   dal_state_destroy(stl);
   dal_system_destroy(sys);
   dal_system_destroy(lag);
-  printf("%s\n", bad ? "FAILED" : "ok");
-  return bad;
+  return ex_verdict(bad, "ok");
 }

@@ -16,6 +16,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 #define MU 0.8
 #define CDAMP 0.35
 
@@ -43,18 +45,9 @@ static dal_system *build(int damped) {
   dal_builder *b = NULL;
   int c[4], p[2];
   dal_builder_create(2, &b);
-  const char *names[4] = {"x1", "y1", "x2", "y2"};
-  for (int i = 0; i < 4; ++i)
-    dal_builder_add_coord(b, names[i], &c[i]);
-  dal_builder_add_particle(b, "p1", 0.5, &p[0]);
-  dal_builder_add_particle(b, "p2", 0.3, &p[1]);
-  for (int k = 0; k < 2; ++k) {
-    dal_place_def d = dal_default_place_def();
-    d.prim = &dal_map_cartesian2;
-    d.coords = c + 2 * k;
-    d.ncoords = 2;
-    dal_builder_place_def(b, p[k], &d);
-  }
+  const char *names[4] = {"x1", "y1", "x2", "y2"}, *pn[2] = {"p1", "p2"};
+  const double m[2] = {0.5, 0.3};
+  ex_cartesian_particles(b, 2, 2, pn, m, names, c, p);
   dal_spring_def s = dal_default_spring_def();
   s.a = p[0];
   s.b = p[1];
@@ -71,10 +64,7 @@ static dal_system *build(int damped) {
   if (damped) dal_builder_add_force(b, viscous, (void *)&nd);
   double g[2] = {0, -9.81};
   dal_builder_set_gravity(b, g);
-  dal_system *sys = NULL;
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 // dissipated work by Simpson's rule over pairs of monitor intervals

@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "dalembert/dalembert.h"
+#include "example_util.h"
 
 static const double R = 1.0, grav = 9.81, PI = 3.14159265358979323846;
 
@@ -44,25 +45,7 @@ enum {
   NRES = 1 + 3 * MAXEQ
 };
 
-static dal_system *build(void) {
-  dal_builder *b = NULL;
-  dal_system *s = NULL;
-  int th, p, rc = dal_builder_create(3, &b);
-  double g[3] = {0, 0, -grav};
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bead", 1.0, &p);
-  dal_place_def ring = dal_default_place_def();
-  ring.prim = &dal_map_ring;
-  ring.coords = &th;
-  ring.ncoords = 1;
-  ring.param[DAL_RING_R] = R;
-  if (!rc) rc = dal_builder_place_def(b, p, &ring);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, &s);
-  if (rc) fprintf(stderr, "build: %s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return s;
-}
+static dal_system *build(void) { return ex_ring_bead(1.0, R, 0.0, grav); }
 
 // theta wrapped into (-pi, pi]
 static double wrap(double th) {
@@ -175,14 +158,8 @@ static int chart(const char *dir, const char *csv) {
 }
 
 int main(int argc, char **argv) {
-  int check = 0;
   const char *dir = ".";
-  for (int i = 1; i < argc; ++i) {
-    if (!strcmp(argv[i], "--check"))
-      check = 1;
-    else if (!strcmp(argv[i], "--out") && i + 1 < argc)
-      dir = argv[++i];
-  }
+  int check = ex_args(argc, argv, &dir);
   dal_system *sys = build();
   if (!sys) return 1;
   // w_c = 2.5 w_c j / (ngrid - 1) has no integer j: w_c is not on the grid; --check adds four
@@ -330,6 +307,5 @@ int main(int argc, char **argv) {
   free(status);
   free(msgs);
   dal_system_destroy(sys);
-  printf("%s\n", bad ? "FAILED" : "OK");
-  return bad;
+  return ex_verdict(bad, "OK");
 }

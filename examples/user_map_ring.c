@@ -15,6 +15,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "example_util.h"
+
 typedef struct ring {
   double R, w;
 } ring;
@@ -31,7 +33,6 @@ static int ring_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
 
 static dal_system *build(const ring *p, int builtin) {
   dal_builder *b = NULL;
-  dal_system *sys = NULL;
   int th, bead;
   double g[3] = {0, 0, -9.81};
   dal_builder_create(3, &b);
@@ -49,9 +50,7 @@ static dal_system *build(const ring *p, int builtin) {
     dal_builder_set_map(b, ring_map, (void *)p);
   }
   dal_builder_set_gravity(b, g);
-  if (dal_builder_compile(b, &sys)) fprintf(stderr, "%s\n", dal_builder_errmsg(b));
-  dal_builder_destroy(b);
-  return sys;
+  return ex_compile(b, 0);
 }
 
 int main(int argc, char **argv) {

@@ -724,18 +724,7 @@ static void test_large_chain(void) {
       CHECK_OK(dal_builder_add_coord(b, NULL, &c));
       CHECK_OK(dal_builder_add_particle(b, NULL, 1.0 + 0.001 * k, &p));
       // unit links: a pendulum about the origin, then each hanging from the previous
-      dal_place_def pd = dal_default_place_def();
-      pd.coords = &c;
-      pd.ncoords = 1;
-      if (k == 0) {
-        pd.prim = &dal_map_pendulum;
-        pd.param[DAL_PENDULUM_L] = 1.0;
-      } else {
-        pd.prim = &dal_map_hanging;
-        pd.parent = p - 1;
-        pd.param[DAL_HANGING_L] = 1.0;
-      }
-      CHECK_OK(dal_builder_place_def(b, p, &pd));
+      CHECK_OK(scn_place_swing(b, NULL, p, k == 0 ? -1 : p - 1, 1.0, c));
     }
     CHECK_OK(dal_builder_set_gravity(b, g));
     CHECK_OK(dal_builder_set_dynamics(b, r ? DAL_DYNAMICS_DENSE : DAL_DYNAMICS_AUTO));

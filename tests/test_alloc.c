@@ -23,6 +23,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 void *__libc_malloc(size_t size);
 void *__libc_calloc(size_t n, size_t size);
@@ -158,18 +159,7 @@ static int build(run *r, int N, int minimal, dal_builder **b, dal_system **sys) 
     if (r->rc) break;
     if (minimal) {
       // unit links: a pendulum about the origin, then each hanging from the previous
-      dal_place_def pd = dal_default_place_def();
-      pd.coords = c;
-      pd.ncoords = 1;
-      if (k == 0) {
-        pd.prim = &dal_map_pendulum;
-        pd.param[DAL_PENDULUM_L] = 1.0;
-      } else {
-        pd.prim = &dal_map_hanging;
-        pd.parent = p - 1;
-        pd.param[DAL_HANGING_L] = 1.0;
-      }
-      note(r, dal_builder_place_def(*b, p, &pd), dal_builder_errmsg(*b));
+      note(r, scn_place_swing(*b, NULL, p, k == 0 ? -1 : p - 1, 1.0, c[0]), dal_builder_errmsg(*b));
       continue;
     }
     dal_place_def pd = dal_default_place_def();
@@ -177,22 +167,9 @@ static int build(run *r, int N, int minimal, dal_builder **b, dal_system **sys) 
     pd.coords = c;
     pd.ncoords = 2;
     note(r, dal_builder_place_def(*b, p, &pd), dal_builder_errmsg(*b));
-    if (k == 0) {
-      dal_constraint_def cd = dal_default_constraint_def();
-      cd.prim = &dal_con_anchor2;
-      cd.parts = &p;
-      cd.nparts = 1;
-      cd.param[DAL_ANCHOR_L] = 1.0;
-      rc = dal_builder_add_constraint_def(*b, &cd, NULL);
-    } else {
-      int parts[2] = {p - 1, p};
-      dal_constraint_def cd = dal_default_constraint_def();
-      cd.prim = &dal_con_distance2;
-      cd.parts = parts;
-      cd.nparts = 2;
-      cd.param[DAL_DISTANCE_L] = 1.0;
-      rc = dal_builder_add_constraint_def(*b, &cd, NULL);
-    }
+    // unit rods: to the origin, then each to the previous particle
+    rc = k == 0 ? scn_add_rod(*b, NULL, p, -1, 1.0, NULL)
+                : scn_add_rod(*b, NULL, p - 1, p, 1.0, NULL);
     note(r, rc, dal_builder_errmsg(*b));
   }
   if (!r->rc) note(r, dal_builder_set_gravity(*b, g2), dal_builder_errmsg(*b));

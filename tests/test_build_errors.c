@@ -14,6 +14,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 // rc must equal code and msg must contain every name (NULL-terminated list)
 static void expect_err(const char *what, int rc, int code, const char *msg, const char *n1,
@@ -44,12 +45,7 @@ static void test_dimension(void) {
   int th, p;
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &p));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  EXPECT_B(dal_builder_place_def(b, p, &pd), DAL_E_ARG, "bob", "'pendulum'", "3D");
+  EXPECT_B(scn_place_swing(b, NULL, p, -1, 1.0, th), DAL_E_ARG, "bob", "'pendulum'", "3D");
   // a 3D gravity vector with NaN in z is caught in 3D only
   double g[3] = {0, 0, NAN};
   EXPECT_B(dal_builder_set_gravity(b, g), DAL_E_NONFINITE, "gravity", "2", NULL);
@@ -332,13 +328,8 @@ static void test_state_errors(void) {
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 2.0, &p));
   CHECK_OK(dal_builder_add_particle(b, "twin", 1.0, &s2));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.2;
-  CHECK_OK(dal_builder_place_def(b, p, &pd));
-  CHECK_OK(dal_builder_place_def(b, s2, &pd));
+  CHECK_OK(scn_place_swing(b, NULL, p, -1, 1.2, th));
+  CHECK_OK(scn_place_swing(b, NULL, s2, -1, 1.2, th));
   CHECK_OK(dal_builder_set_gravity(b, g));
   dal_spring_def sd = dal_default_spring_def(); // bob and twin coincide: zero length
   sd.a = p;
@@ -380,7 +371,7 @@ static void test_state_errors(void) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 2.0, &p));
-  CHECK_OK(dal_builder_place_def(b, p, &pd));
+  CHECK_OK(scn_place_swing(b, NULL, p, -1, 1.2, th));
   CHECK_OK(dal_builder_set_gravity(b, g));
   CHECK_OK(dal_builder_add_force(b, force_fail, &mode));
   CHECK_OK(dal_builder_add_genforce(b, gen_nan, &mode));

@@ -110,6 +110,39 @@ static int set_from_particles(const dal_system *sys, dal_state *st, const dal_st
   return dal_state_set(sys, st, dal_state_time(ms), q, qd);
 }
 
+/// the twin runs' start: the minimal system ms at (q, qd) at t = 0, evaluated, and the Cartesian
+/// one ds set from its nvals particle coordinates; the two new states in *a and *b
+static void twin_start(const dal_system *ms, const dal_system *ds, const double *q,
+                       const double *qd, int nvals, dal_state **a, dal_state **b) {
+  CHECK_OK(dal_state_create(ms, a));
+  CHECK_OK(dal_state_create(ds, b));
+  CHECK_OK(dal_state_set(ms, *a, 0.0, q, qd));
+  CHECK_OK(dal_forward(ms, *a));
+  CHECK_OK(set_from_particles(ds, *b, *a, nvals));
+}
+
+/// both runs advanced to t (the minimal one with om, the Cartesian one with od): the largest
+/// the twin runs' end: both states and both systems destroyed
+static void twin_free(dal_system *ms, dal_system *ds, dal_state *a, dal_state *b) {
+  dal_state_destroy(a);
+  dal_state_destroy(b);
+  dal_system_destroy(ms);
+  dal_system_destroy(ds);
+}
+
+/// difference of their first n particle coordinates
+static double twin_advance(const dal_system *ms, dal_state *a, const dal_solve_opts *om,
+                           const dal_system *ds, dal_state *b, const dal_solve_opts *od, double t,
+                           int n) {
+  CHECK_OK(dal_advance(ms, a, om, t));
+  CHECK_OK(dal_advance(ds, b, od, t));
+  const double *r = dal_state_positions(a), *q = dal_state_q(b);
+  double e = 0.0;
+  for (int i = 0; i < n; ++i)
+    e = fmax(e, fabs(q[i] - r[i]));
+  return e;
+}
+
 static double max_abs(const double *x, int n) {
   double m = 0.0;
   for (int i = 0; i < n; ++i)
@@ -160,11 +193,7 @@ static void test_pendulum_vs_minimal(void) {
   double l = 1.3, m = 0.7, th0 = 2.0, w0 = 0.4, tol = 1e-9;
   dal_system *ms = min_pendulum(l, m, NULL), *ds = cart_pendulum(l, m, 0.0, 0.0, NULL);
   dal_state *a = NULL, *b = NULL;
-  CHECK_OK(dal_state_create(ms, &a));
-  CHECK_OK(dal_state_create(ds, &b));
-  CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &w0));
-  CHECK_OK(dal_forward(ms, a));
-  CHECK_OK(set_from_particles(ds, b, a, 2));
+  twin_start(ms, ds, &th0, &w0, 2, &a, &b);
   dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
   dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, lmax = 0.0;
@@ -183,10 +212,7 @@ static void test_pendulum_vs_minimal(void) {
   // IDA's achieved error is 100-1000x its tolerance (see dae.h): bound it there
   CHECK_MSG(emax < 16 * tol, "position error %g", emax);
   CHECK_MSG(lmax < 16 * tol, "tension error %g", lmax);
-  dal_state_destroy(a);
-  dal_state_destroy(b);
-  dal_system_destroy(ms);
-  dal_system_destroy(ds);
+  twin_free(ms, ds, a, b);
 }
 
 // double pendulum in Cartesian coordinates vs minimal; driven pendulum with a moving anchor
@@ -196,22 +222,14 @@ static void test_double_and_driven(void) {
     dal_system *ms = double_pendulum(0, 1.0, 0.7, 1.0, 0.5);
     dal_system *ds = double_pendulum(1, 1.0, 0.7, 1.0, 0.5);
     dal_state *a = NULL, *b = NULL;
-    CHECK_OK(dal_state_create(ms, &a));
-    CHECK_OK(dal_state_create(ds, &b));
     double th[2] = {1.0, 0.5}, thd[2] = {0.0, 0.3};
-    CHECK_OK(dal_state_set(ms, a, 0.0, th, thd));
-    CHECK_OK(dal_forward(ms, a));
-    CHECK_OK(set_from_particles(ds, b, a, 4));
+    twin_start(ms, ds, th, thd, 4, &a, &b);
     dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
     dal_solve_opts od = scn_opts(DAL_FORM_GGL, DAL_METHOD_BDF, tol);
     double emax = 0.0, fmaxd = 0.0;
     for (int k = 1; k <= 8; ++k) {
       double t = 0.25 * k;
-      CHECK_OK(dal_advance(ms, a, &om, t));
-      CHECK_OK(dal_advance(ds, b, &od, t));
-      const double *r = dal_state_positions(a), *q = dal_state_q(b);
-      for (int i = 0; i < 4; ++i)
-        emax = fmax(emax, fabs(q[i] - r[i]));
+      emax = fmax(emax, twin_advance(ms, a, &om, ds, b, &od, t, 4));
       // the reactions of the minimal run are the constraint forces of the redundant one
       double F[4];
       CHECK_OK(dal_constraint_forces(ds, b, F));
@@ -223,22 +241,15 @@ static void test_double_and_driven(void) {
            fmaxd);
     CHECK_MSG(emax < 16 * tol, "double pendulum error %g", emax);
     CHECK_MSG(fmaxd < 16 * tol, "constraint forces differ by %g", fmaxd);
-    dal_state_destroy(a);
-    dal_state_destroy(b);
-    dal_system_destroy(ms);
-    dal_system_destroy(ds);
+    twin_free(ms, ds, a, b);
   }
   {
     drive dr = {0.0, 0.1, 2.0 * sqrt(9.8), 0.0};
     dal_moving_point mp = {drive_path, &dr};
     dal_system *ms = min_pendulum(1.0, 1.0, &dr), *ds = cart_pendulum(1.0, 1.0, 0, 0, &mp);
     dal_state *a = NULL, *b = NULL;
-    CHECK_OK(dal_state_create(ms, &a));
-    CHECK_OK(dal_state_create(ds, &b));
     double th0 = 1.0, w0 = 0.0;
-    CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &w0));
-    CHECK_OK(dal_forward(ms, a));
-    CHECK_OK(set_from_particles(ds, b, a, 2));
+    twin_start(ms, ds, &th0, &w0, 2, &a, &b);
     dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
     dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
     double emax = 0.0;
@@ -251,10 +262,7 @@ static void test_double_and_driven(void) {
     }
     printf("  driven pendulum GGL vs minimal: %.2e (%.0fx rtol)\n", emax, emax / tol);
     CHECK_MSG(emax < 16 * tol, "driven pendulum error %g", emax);
-    dal_state_destroy(a);
-    dal_state_destroy(b);
-    dal_system_destroy(ms);
-    dal_system_destroy(ds);
+    twin_free(ms, ds, a, b);
   }
 }
 
@@ -269,32 +277,21 @@ static void test_rotating_ring(void) {
   CHECK(ms != NULL && ds != NULL);
   if (!ms || !ds) return;
   dal_state *a = NULL, *b = NULL;
-  CHECK_OK(dal_state_create(ms, &a));
-  CHECK_OK(dal_state_create(ds, &b));
   double th0 = 0.3, thd0 = 0.0;
-  CHECK_OK(dal_state_set(ms, a, 0.0, &th0, &thd0));
-  CHECK_OK(dal_forward(ms, a));
-  CHECK_OK(set_from_particles(ds, b, a, 3));
+  twin_start(ms, ds, &th0, &thd0, 3, &a, &b);
   dal_solve_opts om = scn_opts(DAL_FORM_AUTO, DAL_METHOD_BS, 1e-13);
   dal_solve_opts od = scn_opts(DAL_FORM_AUTO, DAL_METHOD_AUTO, tol);
   double emax = 0.0, phimax = 0.0;
   for (int k = 1; k <= 8; ++k) {
     double t = 0.25 * k;
-    CHECK_OK(dal_advance(ms, a, &om, t));
-    CHECK_OK(dal_advance(ds, b, &od, t));
-    const double *r = dal_state_positions(a), *q = dal_state_q(b);
-    for (int i = 0; i < 3; ++i)
-      emax = fmax(emax, fabs(q[i] - r[i]));
+    emax = fmax(emax, twin_advance(ms, a, &om, ds, b, &od, t, 3));
     phimax = fmax(phimax, max_abs(dal_state_phi(b), 2));
   }
   printf("  rotating ring GGL vs minimal: %.2e (%.0fx rtol), residual %.1e\n", emax, emax / tol,
          phimax);
   CHECK_MSG(emax < 16 * tol, "rotating ring error %g", emax);
   CHECK(phimax < 1e2 * tol);
-  dal_state_destroy(a);
-  dal_state_destroy(b);
-  dal_system_destroy(ms);
-  dal_system_destroy(ds);
+  twin_free(ms, ds, a, b);
 }
 
 // bead on a line turning at rate w in a horizontal plane: s(t) = s0 cosh(w t)

@@ -63,13 +63,30 @@ static double run(const dal_system *s, dal_state *st, const dal_solve_opts *o, i
   return c.err;
 }
 
+// the pendulum (0) and its Cartesian twin (1), the standard scenes, each with a state
+typedef struct twins {
+  dal_system *s[2];
+  dal_state *st[2];
+} twins;
+
+static twins twins_make(void) {
+  twins t = {{scn_pendulum(NULL), scn_cart_pendulum(NULL)}, {NULL, NULL}};
+  for (int i = 0; i < 2; ++i)
+    CHECK_OK(dal_state_create(t.s[i], &t.st[i]));
+  return t;
+}
+
+static void twins_free(twins *t) {
+  for (int i = 0; i < 2; ++i) {
+    dal_state_destroy(t->st[i]);
+    dal_system_destroy(t->s[i]);
+  }
+}
+
 // adaptive methods: outputs between the steps within 16 x rtol (the library's promise for
 // the step points, solve.h), and the step count independent of the outputs
 static void test_adaptive(void) {
-  dal_system *s = scn_pendulum(NULL), *cs = scn_cart_pendulum(NULL);
-  dal_state *st = NULL, *cst = NULL;
-  CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_state_create(cs, &cst));
+  twins P = twins_make();
   const struct {
     dal_method m;
     dal_formulation f;
@@ -94,14 +111,14 @@ static void test_adaptive(void) {
       if (cases[k].f == DAL_FORM_GGL && o.rtol < 1e-9) o.rtol = 1e-9; // IDA's floor (solve.h)
       double end_dense = 0, end_coarse = 0;
       long st_dense = 0, st_coarse = 0;
-      double e = run(cart ? cs : s, cart ? cst : st, &o, cart, 0.0137, &end_dense, &st_dense);
-      run(cart ? cs : s, cart ? cst : st, &o, cart, 10.0, &end_coarse, &st_coarse);
+      double e = run(P.s[cart], P.st[cart], &o, cart, 0.0137, &end_dense, &st_dense);
+      run(P.s[cart], P.st[cart], &o, cart, 10.0, &end_coarse, &st_coarse);
       printf("  %6.2f (%5.2f)", e / o.rtol, end_dense / o.rtol);
       CHECK_MSG(e <= 16.0 * o.rtol, "%s %s rtol %g: dense error %g = %.1f x rtol",
                 dal_formulation_name(cases[k].f), dal_method_name(o.method), o.rtol, e, e / o.rtol);
       // the local tolerance the method runs at is reported (solve.h: factor x rtol, floored)
       dal_stats ss;
-      CHECK_OK(dal_state_stats(cart ? cst : st, &ss));
+      CHECK_OK(dal_state_stats(P.st[cart], &ss));
       CHECK_MSG(ss.rtol_used > 0 && ss.rtol_used <= o.rtol, "%s: rtol_used %g",
                 dal_method_name(o.method), ss.rtol_used);
       // the outputs do not steer the steps: the same steps with and without them
@@ -111,20 +128,14 @@ static void test_adaptive(void) {
     }
     printf("\n");
   }
-  dal_state_destroy(st);
-  dal_state_destroy(cst);
-  dal_system_destroy(s);
-  dal_system_destroy(cs);
+  twins_free(&P);
 }
 
 // fixed-step methods: outputs between grid points as accurate as the grid points themselves
 // (RK4's cubic Hermite and the symplectic methods' partial composed step are of the method's
 // order), and the grid trajectory untouched by the outputs
 static void test_fixed(void) {
-  dal_system *s = scn_pendulum(NULL), *cs = scn_cart_pendulum(NULL);
-  dal_state *st = NULL, *cst = NULL;
-  CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_state_create(cs, &cst));
+  twins P = twins_make();
   const struct {
     dal_method m;
     double h;
@@ -142,8 +153,8 @@ static void test_fixed(void) {
     int cart = cases[k].cart;
     double end_a = 0, end_b = 0;
     long sa = 0, sb = 0;
-    double off = run(cart ? cs : s, cart ? cst : st, &o, cart, 0.0137, &end_a, &sa);
-    double on = run(cart ? cs : s, cart ? cst : st, &o, cart, 0.1, &end_b, &sb);
+    double off = run(P.s[cart], P.st[cart], &o, cart, 0.0137, &end_a, &sa);
+    double on = run(P.s[cart], P.st[cart], &o, cart, 0.1, &end_b, &sb);
     printf("  %-12s h = %g: off the grid %.2e, on the grid %.2e\n", dal_method_name(o.method),
            o.fixed_step, off, on);
     CHECK_MSG(off <= 1.5 * on + 1e-12, "%s: off-grid outputs %g, grid %g",
@@ -151,10 +162,7 @@ static void test_fixed(void) {
     CHECK_MSG(end_a == end_b && sa == sb, "%s: the outputs changed the trajectory",
               dal_method_name(o.method));
   }
-  dal_state_destroy(st);
-  dal_state_destroy(cst);
-  dal_system_destroy(s);
-  dal_system_destroy(cs);
+  twins_free(&P);
 }
 
 // Tight tolerances over [0, 20]: the pendulum at 2.5 rad against the elliptic solution at 986

@@ -25,6 +25,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define MAXN 4
 #define T_END 2.0
@@ -82,9 +83,18 @@ static int add_spring(dal_builder *b, const tree *t) {
   return dal_builder_add_spring_def(b, &sd);
 }
 
+// the scene library's knobs with the tree's pivot (the anchor of its roots)
+static scn_knobs pivot_knobs(const tree *t) {
+  scn_knobs k = scn_default();
+  k.x0 = t->pivot[0];
+  k.y0 = t->pivot[1];
+  return k;
+}
+
 // the tree in its angles
 static int build_minimal(const tree *t, dal_system **sys, dal_state **st) {
   dal_builder *b;
+  scn_knobs kp = pivot_knobs(t);
   int rc = dal_builder_create(2, &b), c[MAXN], p[MAXN];
   char nm[16];
   for (int k = 0; k < t->N && !rc; ++k) {
@@ -92,20 +102,8 @@ static int build_minimal(const tree *t, dal_system **sys, dal_state **st) {
     rc = dal_builder_add_coord(b, nm, &c[k]);
     snprintf(nm, sizeof nm, "p%d", k);
     if (!rc) rc = dal_builder_add_particle(b, nm, t->m[k], &p[k]);
-    dal_place_def pd = dal_default_place_def();
-    pd.coords = &c[k];
-    pd.ncoords = 1;
-    if (t->parent[k] < 0) {
-      pd.prim = &dal_map_pendulum;
-      pd.param[DAL_PENDULUM_L] = t->L[k];
-      pd.param[DAL_PENDULUM_X0] = t->pivot[0];
-      pd.param[DAL_PENDULUM_Y0] = t->pivot[1];
-    } else {
-      pd.prim = &dal_map_hanging;
-      pd.parent = p[t->parent[k]];
-      pd.param[0] = t->L[k];
-    }
-    if (!rc) rc = dal_builder_place_def(b, p[k], &pd);
+    int parent = t->parent[k] < 0 ? -1 : p[t->parent[k]];
+    if (!rc) rc = scn_place_swing(b, &kp, p[k], parent, t->L[k], c[k]);
   }
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (!rc) rc = add_spring(b, t);
@@ -120,38 +118,18 @@ static int build_minimal(const tree *t, dal_system **sys, dal_state **st) {
 // the tree in Cartesian coordinates with rods
 static int build_cartesian(const tree *t, dal_system **sys, dal_state **st) {
   dal_builder *b;
+  scn_knobs kp = pivot_knobs(t);
   int rc = dal_builder_create(2, &b), p[MAXN];
   char nm[16];
   for (int k = 0; k < t->N && !rc; ++k) {
-    int c[2];
-    snprintf(nm, sizeof nm, "x%d", k);
-    rc = dal_builder_add_coord(b, nm, &c[0]);
-    snprintf(nm, sizeof nm, "y%d", k);
-    if (!rc) rc = dal_builder_add_coord(b, nm, &c[1]);
+    char x[16], y[16];
+    snprintf(x, sizeof x, "x%d", k);
+    snprintf(y, sizeof y, "y%d", k);
     snprintf(nm, sizeof nm, "p%d", k);
-    if (!rc) rc = dal_builder_add_particle(b, nm, t->m[k], &p[k]);
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_cartesian2;
-    pd.coords = c;
-    pd.ncoords = 2;
-    if (!rc) rc = dal_builder_place_def(b, p[k], &pd);
-    dal_constraint_def cd = dal_default_constraint_def();
-    int pair[2] = {p[k], t->parent[k] < 0 ? -1 : p[t->parent[k]]};
+    rc = scn_add_xy(b, nm, t->m[k], x, y, &p[k]);
     snprintf(nm, sizeof nm, "rod%d", k);
-    cd.name = nm;
-    cd.parts = pair;
-    if (t->parent[k] < 0) {
-      cd.prim = &dal_con_anchor2;
-      cd.nparts = 1;
-      cd.param[DAL_ANCHOR_L] = t->L[k];
-      cd.param[DAL_ANCHOR_X0] = t->pivot[0];
-      cd.param[DAL_ANCHOR_Y0] = t->pivot[1];
-    } else {
-      cd.prim = &dal_con_distance2;
-      cd.nparts = 2;
-      cd.param[DAL_DISTANCE_L] = t->L[k];
-    }
-    if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
+    int parent = t->parent[k] < 0 ? -1 : p[t->parent[k]];
+    if (!rc) rc = scn_add_rod(b, nm, p[k], parent, t->L[k], &kp);
   }
   if (!rc) rc = dal_builder_set_gravity(b, grav);
   if (!rc) rc = add_spring(b, t);

@@ -46,6 +46,15 @@ static double g_qd0(double t, const double *q, const double *qd, void *ctx) {
   return qd[0];
 }
 
+// the events of s with the one event d (its index 0), watched by the state st
+static dal_events *one_event(const dal_system *s, dal_state *st, const dal_event_def *d) {
+  dal_events *ev = NULL;
+  CHECK_OK(dal_events_create(s, &ev));
+  CHECK(dal_events_add(ev, d) == 0);
+  CHECK_OK(dal_state_set_events(st, ev));
+  return ev;
+}
+
 // 1. the period from successive upward zero crossings against 4 K(m) / w0, m = sin^2(th0/2)
 static void test_period(void) {
   const double l = 1.0, th0 = 2.0, w0 = sqrt(G0 / l);
@@ -54,13 +63,11 @@ static void test_period(void) {
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_events_create(s, &ev));
   dal_event_def d = dal_default_event_def();
   d.name = "theta=0 upwards";
   d.g = g_q0;
   d.direction = DAL_EVENT_RISING;
-  CHECK(dal_events_add(ev, &d) == 0);
-  CHECK_OK(dal_state_set_events(st, ev));
+  ev = one_event(s, st, &d);
   const struct {
     dal_method m;
     double rtol, bound; // bound on |T_measured - T| / T
@@ -114,12 +121,10 @@ static void test_bead_turning(void) {
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_events_create(s, &ev));
   dal_event_def d = dal_default_event_def();
   d.name = "turn";
   d.g = g_qd0;
-  CHECK(dal_events_add(ev, &d) == 0);
-  CHECK_OK(dal_state_set_events(st, ev));
+  ev = one_event(s, st, &d);
   double q = 0.2, qd = 0.0; // released at 0.2 rad: it swings through the off-axis minimum
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
   // Jacobi integral per unit mass: h = R^2 th'^2 / 2 - R^2 w^2 sin^2 th / 2 - g R cos th, so
@@ -173,14 +178,12 @@ static void test_leaving_circle(void) {
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_events_create(s, &ev));
   dal_event_def d = dal_default_event_def();
   d.name = "leaves the circle";
   d.g_state = g_reaction;
   d.direction = DAL_EVENT_FALLING;
   d.terminal = 1;
-  CHECK(dal_events_add(ev, &d) == 0);
-  CHECK_OK(dal_state_set_events(st, ev));
+  ev = one_event(s, st, &d);
   double q = PI, qd = v0 / R;
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
   dal_solve_opts o = dal_default_solve_opts();
@@ -208,13 +211,11 @@ static void test_leaving_circle(void) {
   // Cartesian coordinates in GGL (IDA): the rod's multiplier changes sign there
   s = cart_pendulum(R);
   CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_events_create(s, &ev));
   d = dal_default_event_def();
   d.name = "rod slack";
   d.constraint = "rod";
   d.terminal = 1;
-  CHECK(dal_events_add(ev, &d) == 0);
-  CHECK_OK(dal_state_set_events(st, ev));
+  ev = one_event(s, st, &d);
   const dal_formulation forms[2] = {DAL_FORM_GGL, DAL_FORM_INDEX1};
   for (int f = 0; f < 2; ++f) {
     double x[2] = {0.0, R}, v[2] = {v0, 0.0};
@@ -304,12 +305,10 @@ static void test_every_method(void) {
     CHECK_MSG(worst < bound, "%s: crossing times off by %g", dal_method_name(ms[k]), worst);
     // a terminal event inside evolve: stops there; the monitor saw only earlier times
     dal_events_destroy(ev);
-    CHECK_OK(dal_events_create(s, &ev));
     d.name = "stop";
     d.direction = DAL_EVENT_RISING;
     d.terminal = 1;
-    CHECK(dal_events_add(ev, &d) == 0);
-    CHECK_OK(dal_state_set_events(st, ev));
+    ev = one_event(s, st, &d);
     CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
     cc.calls = 0;
     rc = dal_evolve(s, st, &o, 3.0 * T, 0.1, mon_count, &cc);
@@ -347,12 +346,10 @@ static void test_failures_and_csv(void) {
   dal_state *st = NULL;
   dal_events *ev = NULL;
   CHECK_OK(dal_state_create(s, &st));
-  CHECK_OK(dal_events_create(s, &ev));
   dal_event_def d = dal_default_event_def();
   d.name = "broken";
   d.g = g_nan;
-  CHECK(dal_events_add(ev, &d) == 0);
-  CHECK_OK(dal_state_set_events(st, ev));
+  ev = one_event(s, st, &d);
   double q = 1.0, qd = 0.0;
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
   dal_solve_opts o = dal_default_solve_opts();
@@ -361,13 +358,11 @@ static void test_failures_and_csv(void) {
   CHECK(dal_state_time(st) > 0.5 && dal_state_time(st) < 2.0 && dal_state_qddot(st) != NULL);
   dal_events_destroy(ev);
   // a surface section written to CSV: one header, one row per crossing
-  CHECK_OK(dal_events_create(s, &ev));
   d = dal_default_event_def();
   d.name = "section";
   d.g = g_q0;
   d.direction = DAL_EVENT_RISING;
-  CHECK(dal_events_add(ev, &d) == 0);
-  CHECK_OK(dal_state_set_events(st, ev));
+  ev = one_event(s, st, &d);
   CHECK_OK(dal_state_set(s, st, 0.0, &q, &qd));
   CHECK_OK(dal_advance(s, st, &o, 20.0));
   FILE *fp = tmpfile();

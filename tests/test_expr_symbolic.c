@@ -25,6 +25,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 static unsigned long long seed = 0x9e3779b97f4a7c15ULL;
 static double rnd(double lo, double hi) { return check_rand(&seed, lo, hi); }
@@ -160,23 +161,14 @@ static void driven_pendulum(void) {
     double r = fabs(A.v - B.v) / scale;
     if (r > worst) worst = r;
     if (s < 20) {
-      dal_builder *b;
-      dal_system *sys;
-      int th_i, bob;
-      dal_builder_create(2, &b);
-      dal_builder_add_coord(b, "theta", &th_i);
-      dal_builder_add_particle(b, "bob", p[0], &bob);
-      dal_place_def pd = dal_default_place_def();
-      pd.prim = &dal_map_pendulum;
-      pd.coords = &th_i;
-      pd.ncoords = 1;
-      pd.param[DAL_PENDULUM_L] = p[1];
-      pd.param[DAL_PENDULUM_AY] = p[2];
-      pd.param[DAL_PENDULUM_W] = p[3];
-      dal_builder_place_def(b, bob, &pd);
-      double g2[2] = {0, -p[4]};
-      dal_builder_set_gravity(b, g2);
-      CHECK_OK(dal_builder_compile(b, &sys));
+      scn_knobs kn = scn_default(); // the scene library's pendulum, its pivot driven along y
+      kn.m = p[0];
+      kn.l = p[1];
+      kn.ay = p[2];
+      kn.w = p[3];
+      kn.g = p[4];
+      dal_system *sys = scn_pendulum(&kn);
+      CHECK(sys != NULL);
       dal_state *st;
       dal_state_create(sys, &st);
       dal_state_set(sys, st, t, &th, &thd);
@@ -185,7 +177,6 @@ static void driven_pendulum(void) {
       if (rn > worst_num) worst_num = rn;
       dal_state_destroy(st);
       dal_system_destroy(sys);
-      dal_builder_destroy(b);
     }
   }
   printf("driven pendulum: |library - SICM| / scale <= %.3g over 200 points, |symbolic - "

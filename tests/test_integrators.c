@@ -67,26 +67,25 @@ static int osc_force(double t, const double *q, const double *qd, double *Q, voi
   return 0;
 }
 
-// SICM's oscillator: particle of mass 2 in the plane, k = 1
-static dal_system *make_oscillator(osc_cb *cb) {
+// a particle of mass m in the plane (x, y) with the potential pot and the generalized force f
+// (ctx), each when not NULL
+static dal_system *make_particle(double m, dal_potential_q_fn *pot, dal_genforce_fn *f, void *ctx) {
   dal_builder *b = NULL;
   dal_system *sys = NULL;
-  int c[2], p;
+  int p;
   int rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 2.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_add_potential_q(b, spring_pot, NULL);
-  if (!rc && cb) rc = dal_builder_add_genforce(b, osc_force, cb);
+  if (!rc) rc = scn_add_xy(b, "m", m, "x", "y", &p);
+  if (!rc && pot) rc = dal_builder_add_potential_q(b, pot, NULL);
+  if (!rc && f) rc = dal_builder_add_genforce(b, f, ctx);
   if (!rc) rc = dal_builder_compile(b, &sys);
   CHECK_OK(rc);
   dal_builder_destroy(b);
   return sys;
+}
+
+// SICM's oscillator: particle of mass 2 in the plane, k = 1
+static dal_system *make_oscillator(osc_cb *cb) {
+  return make_particle(2.0, spring_pot, cb ? osc_force : NULL, cb);
 }
 
 static const double osc_q0[2] = {1, 2}, osc_v0[2] = {3, 4};
@@ -110,25 +109,7 @@ static int chirp_force(double t, const double *q, const double *qd, double *Q, v
   return 0;
 }
 
-static dal_system *make_chirp(void) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int c[2], p;
-  int rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "m", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_add_genforce(b, chirp_force, NULL);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  CHECK_OK(rc);
-  dal_builder_destroy(b);
-  return sys;
-}
+static dal_system *make_chirp(void) { return make_particle(1.0, NULL, chirp_force, NULL); }
 
 // a run to t1 from the problem's initial state; returns rc, fills y (2n) and stats
 typedef struct run_out {

@@ -42,15 +42,8 @@ static dal_system *finish(dal_builder *b, int rc) {
 
 static dal_system *oscillator(void) {
   dal_builder *b;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "p", 2.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
+  int p, rc = dal_builder_create(2, &b);
+  if (!rc) rc = scn_add_xy(b, "p", 2.0, "x", "y", &p);
   if (!rc) rc = dal_builder_add_potential_q(b, spring, NULL);
   return finish(b, rc);
 }

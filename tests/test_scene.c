@@ -24,20 +24,7 @@
 #include "check.h"
 #include "dalembert/dalembert.h"
 #include "dalembert/scene.h"
-
-// a placement and a constraint from their parts, through the defs
-static int place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
-                    const int *coords, int np, const double *param, void *ctx) {
-  dal_place_def d = dal_default_place_def();
-  d.prim = prim;
-  d.parent = parent;
-  d.coords = coords;
-  d.ncoords = nc;
-  d.param_list = param;
-  d.nparam_list = np;
-  d.ctx = ctx;
-  return dal_builder_place_def(b, p, &d);
-}
+#include "scenes.h"
 
 #define PI 3.14159265358979323846
 
@@ -88,7 +75,7 @@ static void c_route(const dal_primitive *prim, int dim, const double *param, int
   dal_builder_create(dim, &b);
   dal_builder_add_coord(b, "theta", &th);
   dal_builder_add_particle(b, "p", 1.0, &p);
-  CHECK_OK(place_by(b, p, prim, -1, 1, &th, np, param, NULL));
+  CHECK_OK(scn_place_by(b, p, prim, -1, 1, &th, np, param, NULL));
   dal_builder_set_gravity(b, g);
   CHECK_OK(dal_builder_compile(b, &sys));
   dal_builder_destroy(b);

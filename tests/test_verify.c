@@ -7,6 +7,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 static int has(const char *msg, const char *what) { return msg && strstr(msg, what) != NULL; }
 
@@ -167,12 +168,7 @@ static int model_pendulum(dal_potential_q_fn *pot) {
   CHECK_OK(dal_builder_create(2, &b));
   CHECK_OK(dal_builder_add_coord(b, "theta", &th));
   CHECK_OK(dal_builder_add_particle(b, "bob", 1.0, &bob));
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_pendulum;
-  d.coords = &th;
-  d.ncoords = 1;
-  d.param[DAL_PENDULUM_L] = 1.0;
-  CHECK_OK(dal_builder_place_def(b, bob, &d));
+  CHECK_OK(scn_place_swing(b, NULL, bob, -1, 1.0, th));
   double g[2] = {0, -9.81};
   CHECK_OK(dal_builder_set_gravity(b, g));
   CHECK_OK(dal_builder_add_potential_q(b, pot, NULL));

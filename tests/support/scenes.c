@@ -49,6 +49,19 @@ int scn_builder(const scn_knobs *k, int d, dal_builder **b) {
   return rc;
 }
 
+int scn_place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                 const int *coords, int np, const double *param, void *ctx) {
+  dal_place_def d = dal_default_place_def();
+  d.prim = prim;
+  d.parent = parent;
+  d.coords = coords;
+  d.ncoords = nc;
+  d.param_list = param;
+  d.nparam_list = np;
+  d.ctx = ctx;
+  return dal_builder_place_def(b, p, &d);
+}
+
 int scn_place_swing(dal_builder *b, const scn_knobs *k, int p, int parent, double l, int coord) {
   KNOBS(k);
   dal_place_def pd = dal_default_place_def();

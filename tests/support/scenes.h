@@ -52,6 +52,10 @@ dal_system *scn_finish(dal_builder *b, int rc);
 /// A builder of dimension d (2 or 3) with gravity -k->g along the last axis (none when k->g is
 /// 0) and the dynamics route k->dynamics.
 int scn_builder(const scn_knobs *k, int d, dal_builder **b);
+/// Place particle p by prim from its parts (parent particle or -1, nc coordinates, np values of
+/// the parameter list, ctx), through a dal_place_def.
+int scn_place_by(dal_builder *b, int p, const dal_primitive *prim, int parent, int nc,
+                 const int *coords, int np, const double *param, void *ctx);
 /// Particle `name` (mass m) in its own Cartesian coordinates named x and y
 /// (dal_map_cartesian2); its index in *p.
 int scn_add_xy(dal_builder *b, const char *name, double m, const char *x, const char *y, int *p);
