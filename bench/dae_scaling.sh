@@ -31,15 +31,15 @@ table() {
           printf "| %d | %.0f -> %.0f | %.0f -> %.0f | %.0f -> %.0f | %.2f -> %.2f | %.3g -> %.3g | %s -> %s |\n", k,
                  it[1, k] / t1, it[2, k] / t1, jac[1, k] / t1, jac[2, k] / t1, st[1, k] / t1,
                  st[2, k] / t1, it[1, k] / st[1, k], it[2, k] / st[2, k], ir[1, k] / t1,
-                 ir[2, k] / t1, i > 1 ? sprintf("%.2f", r[1]) : "-", i > 1 ? sprintf("%.2f", r[2]) : "-"
+                 ir[2, k] / t1, (i > 1 ? sprintf("%.2f", r[1]) : "-"), (i > 1 ? sprintf("%.2f", r[2]) : "-")
         else
           printf "| %d | %.0f | %.0f | %.0f | %.2f | %.3g | %s |\n", k, it[1, k] / t1, jac[1, k] / t1,
-                 st[1, k] / t1, it[1, k] / st[1, k], ir[1, k] / t1, i > 1 ? sprintf("%.2f", r[1]) : "-"
+                 st[1, k] / t1, it[1, k] / st[1, k], ir[1, k] / t1, (i > 1 ? sprintf("%.2f", r[1]) : "-")
       }
       printf "\n"
       for (f = 1; f <= 1 + two; ++f)
         printf "%sinstructions per simulated second N^%.2f over N = %s ... %s; largest neighbour ratio %.2f (%s)\n",
-               two ? (f == 1 ? "before: " : "after: ") : "", (n * sxy[f] - sx[f] * sy[f]) / (n * sxx[f] - sx[f] * sx[f]),
+               (two ? (f == 1 ? "before: " : "after: ") : ""), (n * sxy[f] - sx[f] * sy[f]) / (n * sxx[f] - sx[f] * sx[f]),
                order[1], order[n], worst[f], wat[f]
     }' "$@"
 }
