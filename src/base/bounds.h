@@ -123,8 +123,8 @@
 /// at 1e-8, each failure quartering h). A matrix is rebuilt at a 5% change of cj
 /// (DAL_IDA_DCJ) and after DAL_IDA_STALE_SOLVES solves in a row that each needed two or more
 /// iterations on the same matrix. Measured (bench/dae_bench.c scaling, GGL + KLU, N = 256 ...
-/// 4096 links, rtol 1e-6 and 1e-8): Newton iterations 40-55% fewer, 1.1 per step at every
-/// size, errors within 2x either way (docs/performance.md, DAE scaling). Kept off below 24
+/// 4096 links, rtol 1e-6 and 1e-8): Newton iterations 30-60% fewer, 1.11-1.21 per step at
+/// every size, errors within 2x either way (docs/performance.md, DAE scaling). Kept off below 24
 /// unknowns: on the car axis (12, tests/test_caraxis.c) the failures had been shortening the
 /// steps, and without them GGL gives 0.1-0.3 fewer digits at rtol 1e-7 ... 1e-10 (in 20-25%
 /// fewer steps).
