@@ -50,3 +50,142 @@ print(eom("sympy_driven", pos, (m, l, g, A, w), m * g * pos[1]))
 R = sp.symbols("R")
 pos = [R * sp.sin(th) * sp.cos(w * t), R * sp.sin(th) * sp.sin(w * t), -R * sp.cos(th)]
 print(eom("sympy_bead", pos, (m, R, g, w), m * g * pos[2]))
+
+
+# ---------------------------------------------------------------------------------------------
+# scenes of n >= 2 coordinates: SymPy differentiates the positions (J = dr/dq, the curvature
+# gamma = d(J qd + dr/dt)/dq qd + d/dt(...)), forms M = J' m J and F = J' m (g - gamma), and
+# prints the lower triangle of M and F after sympy.cse; the C solves M qddot = F by a Cholesky
+# loop (the closed-form inverse of a 16 x 16 M is not a program anyone would write).
+# Each scene is capped at CAP seconds of SymPy; past it the function returns -1 and says so.
+import signal
+
+CAP = 600
+
+
+class Capped(Exception):
+    pass
+
+
+def _alarm(signum, frame):
+    raise Capped()
+
+
+def eom_n(name, n, pos, mass, grav, params):
+    """C function name(t, y, ydot, p), y = (q, qd); pos a list of particle positions (lists),
+    mass the particles' masses, grav the gravity vector, params the symbols read from p."""
+    q = sp.symbols(f"q0:{n}")
+    qd = sp.symbols(f"qd0:{n}")
+    r = sp.Matrix([c for p_ in pos for c in p_])
+    d = len(pos[0])
+    m = sp.diag(*[mass[k] for k in range(len(pos)) for _ in range(d)])
+    g = sp.Matrix([grav[c] for _ in range(len(pos)) for c in range(d)])
+    J = r.jacobian(q)
+    v = J * sp.Matrix(qd) + r.diff(t)
+    gamma = v.jacobian(q) * sp.Matrix(qd) + v.diff(t)
+    M = J.T * m * J
+    F = J.T * (m * (g - gamma))
+    exprs = [M[i, j] for i in range(n) for j in range(i + 1)] + [F[i] for i in range(n)]
+    sub, red = sp.cse(exprs)
+    out = [f"int {name}(double t, const double *y, double *ydot, void *ctx) {{",
+           "  const double *p = ctx;"]
+    for i in range(n):
+        out.append(f"  const double q{i} = y[{i}], qd{i} = y[{n + i}];")
+    for i, s in enumerate(params):
+        out.append(f"  const double {s} = p[{i}];")
+    out.append("  " + " ".join(f"(void){s};" for s in params) + " (void)t;")
+    for s, e in sub:
+        out.append(f"  const double {s} = {sp.ccode(e)};")
+    out.append(f"  double M[{n * n}], b[{n}];")
+    k = 0
+    for i in range(n):
+        for j in range(i + 1):
+            out.append(f"  M[{i * n + j}] = {sp.ccode(red[k])};")
+            k += 1
+    for i in range(n):
+        out.append(f"  b[{i}] = {sp.ccode(red[k])};")
+        k += 1
+    out.append(f"  if (sympy_solve({n}, M, b)) return 1;")
+    out.append(f"  for (int i = 0; i < {n}; ++i) {{")
+    out.append(f"    ydot[i] = y[{n} + i];")
+    out.append(f"    ydot[{n} + i] = b[i];")
+    out.append("  }")
+    out.append("  return 0;\n}")
+    return "\n".join(out)
+
+
+def capped(name, n, make):
+    """the scene's function, or a stub returning -1 when SymPy passes CAP seconds"""
+    import time
+    t0 = time.time()
+    signal.signal(signal.SIGALRM, _alarm)
+    signal.alarm(CAP)
+    try:
+        src = make()
+        signal.alarm(0)
+        print(f"// {name}: SymPy took {time.time() - t0:.1f} s")
+        return src
+    except Capped:
+        print(f"// {name}: SymPy passed the cap of {CAP} s; not measured")
+        return (f"int {name}(double t, const double *y, double *ydot, void *ctx) {{\n"
+                "  (void)t; (void)y; (void)ydot; (void)ctx;\n  return -1;\n}")
+
+
+print("""
+// M b = F in place (M's lower triangle, row-major n x n): Cholesky, then two substitutions
+static int sympy_solve(int n, double *M, double *b) {
+  for (int j = 0; j < n; ++j) {
+    double s = M[j * n + j];
+    for (int k = 0; k < j; ++k)
+      s -= M[j * n + k] * M[j * n + k];
+    if (!(s > 0.0)) return 1;
+    M[j * n + j] = sqrt(s);
+    for (int i = j + 1; i < n; ++i) {
+      double u = M[i * n + j];
+      for (int k = 0; k < j; ++k)
+        u -= M[i * n + k] * M[j * n + k];
+      M[i * n + j] = u / M[j * n + j];
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    double s = b[i];
+    for (int k = 0; k < i; ++k)
+      s -= M[i * n + k] * b[k];
+    b[i] = s / M[i * n + i];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    double s = b[i];
+    for (int k = i + 1; k < n; ++k)
+      s -= M[k * n + i] * b[k];
+    b[i] = s / M[i * n + i];
+  }
+  return 0;
+}""")
+
+
+def chain(N):
+    """planar chain of N links of length l and bobs of mass m from a fixed pivot; p = (m, l, g)"""
+    q = sp.symbols(f"q0:{N}")
+    mm, ll, gg = sp.symbols("m l g")
+    pos, x, y = [], 0, 0
+    for k in range(N):
+        x = x + ll * sp.sin(q[k])
+        y = y - ll * sp.cos(q[k])
+        pos.append([x, y])
+    return eom_n(f"sympy_chain{N}", N, pos, [mm] * N, [0, -gg], (mm, ll, gg))
+
+
+def spherical():
+    """spherical pendulum of length l; q = (theta, phi); p = (m, l, g)"""
+    q = sp.symbols("q0:2")
+    mm, ll, gg = sp.symbols("m l g")
+    pos = [[ll * sp.sin(q[0]) * sp.cos(q[1]), ll * sp.sin(q[0]) * sp.sin(q[1]),
+            -ll * sp.cos(q[0])]]
+    return eom_n("sympy_spherical", 2, pos, [mm], [0, 0, -gg], (mm, ll, gg))
+
+
+for N in (2, 8, 16):
+    print(f"int sympy_chain{N}(double t, const double *y, double *ydot, void *ctx);")
+    print(capped(f"sympy_chain{N}", N, lambda N=N: chain(N)))
+print("int sympy_spherical(double t, const double *y, double *ydot, void *ctx);")
+print(capped("sympy_spherical", 2, spherical))

@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: MIT
 # SPDX-FileCopyrightText: 2026 dalembert engineers
 # The viewer's cost (a benchmark, not a timed test): `dalembert view` of the driven pendulum over
-# 100 s at 60 frames per second, and of chains of N particles (parent placements by formulas)
-# over 100 s at 60 fps: wall time, page size, bytes per frame and particle.
+# 100 s at 60 frames per second, of chains of N particles (parent placements by formulas) over
+# 100 s at 60 fps, and 10^4 frames of 10 particles (the 2-D chain and ten 3-D spherical
+# pendulums, 166.65 s at 60 fps): wall time, page size, bytes per frame and particle.
 # Usage: bench/view.sh DALEMBERT OUT.csv
 set -euo pipefail
 cli=$1
@@ -25,6 +26,21 @@ row() { # name particles dim t1 fps scene
 }
 row driven_pendulum 1 2 100 60 "$here/../examples/scenes/driven_pendulum.scene"
 row bead_ring_above 1 3 100 60 "$here/../examples/scenes/bead_ring_above.scene"
+# 10^4 frames of 10 particles in 3-D: ten spherical pendulums in formulas, each on a circle whose
+# plane turns (the most the page stores per particle: its place, its circle's centre and tangent)
+s="$work/spherical10.scene"
+{
+  echo "dim 3"
+  for ((i = 0; i < 10; ++i)); do
+    echo "coord th$i q=1 v=0"
+    echo "coord ph$i q=0 v=$((2 + i % 3))"
+    echo "particle p$i mass=1"
+    echo "place p$i = $i*1.5 + sin(th$i)*cos(ph$i); sin(th$i)*sin(ph$i); -cos(th$i)"
+  done
+  echo "gravity 0 0 -9.81"
+  echo "run method=dopri5 rtol=1e-8 t1=100 dt=0.01"
+} > "$s"
+row spherical10 10 3 166.65 60 "$s"
 for n in 2 5 10 20; do # a chain of n pendulums in formulas, released from 1 rad
   s="$work/chain$n.scene"
   {
@@ -39,5 +55,6 @@ for n in 2 5 10 20; do # a chain of n pendulums in formulas, released from 1 rad
     echo "run method=dopri5 rtol=1e-8 t1=100 dt=0.01"
   } > "$s"
   row "chain$n" "$n" 2 100 60 "$s"
+  [ "$n" = 10 ] && row chain10 10 2 166.65 60 "$s" # 10^4 frames
 done
 column -s, -t < "$out"

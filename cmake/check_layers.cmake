@@ -2,7 +2,8 @@
 # SPDX-FileCopyrightText: 2026 dalembert engineers
 # The layer check (ctest `layers`): every folder of src/ is a layer, listed here from the bottom
 # up; a file may include its own folder's headers and the face header X/X.h of a folder X at
-# or below its own, nothing else of src/. Three more rules keep the faces true:
+# or below its own, nothing else of src/ (written "X/X.h" or <X/X.h> alike). Three more rules
+# keep the faces true:
 # - a header of src/F/ declares only functions (and extern data) that F's own .c files define
 #   (the built-in primitives of constraints/ are compiled with model/ and count as model's);
 # - a header's include guard spells its path: src/eval/eval.h -> DAL_EVAL_EVAL_H,
@@ -31,11 +32,19 @@ foreach(file ${files})
   math(EXPR nfiles "${nfiles} + 1")
   string(REGEX MATCH "^[^/]+" own ${file})
   list(FIND layers ${own} own_rank)
-  file(STRINGS ${SRC}/${file} incs REGEX "^#include \"")
+  file(STRINGS ${SRC}/${file} incs REGEX "^#include [\"<]")
   foreach(inc ${incs})
-    string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" path "${inc}")
+    string(REGEX REPLACE "^#include [\"<]([^\">]+)[\">].*" "\\1" path "${inc}")
     if(path MATCHES "^dalembert/")
       continue()
+    endif()
+    # <X/...> of a folder X of src/ is the same include as "X/..." (the build has -I src):
+    # checked alike; any other <...> is a system header
+    if(inc MATCHES "^#include <")
+      string(REGEX MATCH "^[^/]+/" top "${path}")
+      if(NOT top OR NOT IS_DIRECTORY ${SRC}/${top})
+        continue()
+      endif()
     endif()
     # a byte list the build writes from a source file of the same folder (cmake/embed.cmake:
     # view_page_js.inc from src/view/page.js)

@@ -33,9 +33,23 @@ scenes="$root/examples/scenes"
 "$cli" view "$scenes/bead_ring_below.scene" -o "$out/view_bead_below.html"
 "$cli" view "$scenes/bead_ring_above.scene" -o "$out/view_bead_above.html"
 "$cli" view "$root/tests/view/cart_double_pendulum.scene" -o "$out/view_cart_double_pendulum.html"
+# SICM's two driven orbits side by side (each page plays on its own)
+cat > "$out/view_driven_pendulum_both.html" << 'EOF'
+<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8"><title>SICM's two driven orbits</title></head>
+<body style="margin:0;display:flex">
+<iframe src="view_driven_pendulum.html" style="width:50%;height:100vh;border:0"></iframe>
+<iframe src="view_driven_pendulum_1e-10.html" style="width:50%;height:100vh;border:0"></iframe>
+</body></html>
+EOF
+# the driven pendulum's section and the Lyapunov exponents' convergence, as SVG charts
+"$cli" section "$scenes/driven_pendulum.scene" --wrap -o "$out/section_driven_pendulum.csv" \
+  --chart "$out/section_driven_pendulum.svg"
+"$cli" lyapunov "$scenes/driven_pendulum.scene" --chart "$out/lyapunov_driven_pendulum.svg" \
+  > "$out/lyapunov_driven_pendulum.csv"
 
 echo
 ls -1 "$out"
-echo "open a viewer: xdg-open $out/view_driven_pendulum.html (or file://$out/view_driven_pendulum.html#t=1.25"
-echo "in a browser: opens paused at t = 1.25)"
+echo "open a viewer: xdg-open $out/view_driven_pendulum_both.html (SICM's two orbits side by side;"
+echo "file://$out/view_driven_pendulum.html#t=1.25 in a browser opens one paused at t = 1.25)"
 echo "demo output: $out"

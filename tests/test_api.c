@@ -3,7 +3,6 @@
 // The user-facing API: element defs and their defaults, named parameters, table versions, the
 // moving-point convention, and each papercut of issue 11 against an independent reference.
 #include <ctype.h>
-#include <dirent.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -11,6 +10,8 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "headers.h"
+#include "scenes.h"
 
 #define G 9.81
 
@@ -305,16 +306,11 @@ static dal_system *list_scene(int listed) {
     pd.ncoords = 1;
     pd.param[DAL_HANGING_L] = 0.7;
     CHECK_OK(dal_builder_place_def(b, c, &pd));
-    dal_constraint_def cd = dal_default_constraint_def();
-    cd.name = "rod";
-    cd.prim = &dal_con_anchor2;
-    cd.parts = &a;
-    cd.nparts = 1;
-    cd.param[DAL_ANCHOR_L] = 1.2;
-    cd.param[DAL_ANCHOR_X0] = 0.3;
-    cd.param[DAL_ANCHOR_Y0] = 0.1;
-    cd.ctx = (void *)&wobble_point;
-    CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
+    scn_knobs k = scn_default(); // the rod to (0.3, 0.1) moving by wobble_point
+    k.x0 = 0.3;
+    k.y0 = 0.1;
+    k.pivot = &wobble_point;
+    CHECK_OK(scn_add_rod(b, "rod", a, -1, 1.2, &k));
   }
   dal_spring_def sd = dal_default_spring_def();
   sd.a = a;
@@ -537,29 +533,24 @@ static void test_anchor_convention(void) {
 
 // Cartesian pendulum (x, y) with a rod to the origin: a DAE system
 static dal_system *cart_pendulum(double l) {
-  dal_builder *b = NULL;
-  int c[2], p;
-  CHECK_OK(dal_builder_create(2, &b));
-  CHECK_OK(dal_builder_add_coord(b, "x", &c[0]));
-  CHECK_OK(dal_builder_add_coord(b, "y", &c[1]));
-  CHECK_OK(dal_builder_add_particle(b, "bob", 1.5, &p));
-  dal_place_def d = dal_default_place_def();
-  d.prim = &dal_map_cartesian2;
-  d.coords = c;
-  d.ncoords = 2;
-  CHECK_OK(dal_builder_place_def(b, p, &d));
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = l; // anchored at the origin by default
-  CHECK_OK(dal_builder_add_constraint_def(b, &cd, NULL));
-  double g[2] = {0, -G};
-  CHECK_OK(dal_builder_set_gravity(b, g));
-  dal_system *sys = NULL;
-  CHECK_OK(dal_builder_compile(b, &sys));
-  dal_builder_destroy(b);
+  scn_knobs k = scn_default(); // the scene library's: 'bob' (1.5 kg) on the rod 'rod'
+  k.m = 1.5;
+  k.l = l;
+  k.g = G;
+  dal_system *sys = scn_cart_pendulum(&k);
+  CHECK(sys != NULL);
+  if (!sys) return NULL;
+  // the names, sizes and values the callers rely on
+  double v = 0.0;
+  CHECK(dal_system_ncoords(sys) == 2 && dal_system_nconstraints(sys) == 1);
+  CHECK(strcmp(dal_system_coord_name(sys, 0), "x") == 0);
+  CHECK(strcmp(dal_system_coord_name(sys, 1), "y") == 0);
+  CHECK(strcmp(dal_system_particle_name(sys, 0), "bob") == 0);
+  CHECK(strcmp(dal_system_constraint_name(sys, 0), "rod") == 0);
+  CHECK(dal_system_mass(sys, 0) == 1.5);
+  CHECK(dal_system_param(sys, &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, DAL_ANCHOR_L}, &v) == 0 &&
+        v == l);
+  CHECK(dal_system_param(sys, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 1}, &v) == 0 && v == -G);
   return sys;
 }
 
@@ -795,22 +786,6 @@ static const char *const ctx_exceptions[][2] = {
 };
 #define NEXC ((int)(sizeof ctx_exceptions / sizeof ctx_exceptions[0]))
 
-static char *read_text(const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long len = ftell(fp);
-  rewind(fp);
-  char *s = len >= 0 ? malloc((size_t)len + 1) : NULL;
-  if (s && fread(s, 1, (size_t)len, fp) != (size_t)len) {
-    free(s);
-    s = NULL;
-  }
-  if (s) s[len] = 0;
-  fclose(fp);
-  return s;
-}
-
 // blank out comments and preprocessor lines (with their continuations) in place
 static void strip_noise(char *s) {
   for (char *p = s; *p;) {
@@ -874,23 +849,20 @@ static void check_ctx_last(char *text, const char *file, int *nctx, int *met) {
   }
 }
 
+// the context-last check of one header; ctx: its tallies
+typedef struct ctx_tally {
+  int nctx, met[NEXC];
+} ctx_tally;
+static void ctx_last_of(char *text, const char *name, void *ctx) {
+  ctx_tally *t = ctx;
+  check_ctx_last(text, name, &t->nctx, t->met);
+}
+
 static void test_context_last(void) {
-  DIR *d = opendir(DAL_HEADER_DIR);
-  CHECK_MSG(d != NULL, "cannot read %s", DAL_HEADER_DIR);
-  if (!d) return;
-  int nctx = 0, files = 0, met[NEXC] = {0};
-  for (struct dirent *e; (e = readdir(d)) != NULL;) {
-    size_t len = strlen(e->d_name);
-    if (len < 3 || strcmp(e->d_name + len - 2, ".h") != 0) continue;
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", DAL_HEADER_DIR, e->d_name);
-    char *text = read_text(path);
-    if (!text) continue;
-    check_ctx_last(text, e->d_name, &nctx, met);
-    free(text);
-    ++files;
-  }
-  closedir(d);
+  ctx_tally t = {0, {0}};
+  int files = for_each_header(DAL_HEADER_DIR, ctx_last_of, &t), nctx = t.nctx, *met = t.met;
+  CHECK_MSG(files >= 0, "cannot read %s", DAL_HEADER_DIR);
+  if (files < 0) return;
   // the scan saw the headers' callback types and functions (more than 20 take a ctx)
   CHECK_MSG(files >= 10 && nctx > 20, "%d headers, %d declarations with ctx", files, nctx);
   for (int k = 0; k < NEXC; ++k)

@@ -16,7 +16,6 @@
 // non-finite real is DAL_E_NONFINITE; destroy(NULL) does nothing;
 // accessors answer NULL (pointers), NaN (reals) or 0 (counts) to a NULL object.
 #include <ctype.h>
-#include <dirent.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -25,13 +24,15 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "headers.h"
+#include "scenes.h"
 
 // ---------------------------------------------------------------- fixtures
 // A: Cartesian pendulum 'bob' on rod 'rod' (2 coordinates, 1 constraint row), evaluated;
 // B: a planar pendulum in minimal coordinates (1 coordinate), evaluated. stA, stB their
 // states; bld a builder that stays valid throughout.
 typedef struct fix {
-  dal_builder *bld, *ba, *bb;
+  dal_builder *bld;
   dal_system *A, *B;
   dal_state *stA, *stB;
   dal_solve_opts o;
@@ -95,41 +96,30 @@ static int lag_fn(dal_jet t, const dal_jet *q, const dal_jet *qd, dal_jet *L, vo
 }
 
 static void fix_make(void) {
-  static const double g2[2] = {0.0, -9.81};
-  int c[2], bob, th;
-  double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0}, th0 = 0.3, thd = 0.0;
-  CHECK_OK(dal_builder_create(2, &F.ba));
-  CHECK_OK(dal_builder_add_coord(F.ba, "x", &c[0]));
-  CHECK_OK(dal_builder_add_coord(F.ba, "y", &c[1]));
-  CHECK_OK(dal_builder_add_particle(F.ba, "bob", 1.0, &bob));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  CHECK_OK(dal_builder_place_def(F.ba, bob, &pd));
-  CHECK_OK(dal_builder_set_gravity(F.ba, g2));
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &bob;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  CHECK_OK(dal_builder_add_constraint_def(F.ba, &cd, NULL));
-  CHECK_OK(dal_builder_compile(F.ba, &F.A));
+  double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0}, th0 = 0.3, thd = 0.0, v = 0.0;
+  F.A = scn_cart_pendulum(NULL); // the standard scenes (tests/support/scenes.h)
+  F.B = scn_pendulum(NULL);
+  CHECK(F.A != NULL && F.B != NULL);
+  if (!F.A || !F.B) return;
+  // the names, sizes and values the rows rely on
+  CHECK(dal_system_ncoords(F.A) == 2 && dal_system_nconstraints(F.A) == 1);
+  CHECK(dal_system_ncoords(F.B) == 1 && dal_system_nconstraints(F.B) == 0);
+  CHECK(strcmp(dal_system_coord_name(F.A, 0), "x") == 0);
+  CHECK(strcmp(dal_system_coord_name(F.A, 1), "y") == 0);
+  CHECK(strcmp(dal_system_coord_name(F.B, 0), "theta") == 0);
+  CHECK(strcmp(dal_system_particle_name(F.A, 0), "bob") == 0);
+  CHECK(strcmp(dal_system_particle_name(F.B, 0), "bob") == 0);
+  CHECK(strcmp(dal_system_constraint_name(F.A, 0), "rod") == 0);
+  CHECK(dal_system_mass(F.A, 0) == 1.0 && dal_system_mass(F.B, 0) == 1.0);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_CONSTRAINT, 0, 0}, &v) == 0 && v == 1.0);
+  CHECK(dal_system_param(F.B, &(dal_param_ref){DAL_PARAM_PLACE, 0, DAL_PENDULUM_L}, &v) == 0 &&
+        v == 1.0);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 1}, &v) == 0 && v == -9.81);
+  CHECK(dal_system_param(F.B, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 1}, &v) == 0 && v == -9.81);
+  CHECK(dal_system_param(F.A, &(dal_param_ref){DAL_PARAM_GRAVITY, 0, 0}, &v) == 0 && v == 0.0);
   CHECK_OK(dal_state_create(F.A, &F.stA));
   CHECK_OK(dal_state_set(F.A, F.stA, 0.0, q, qd));
   CHECK_OK(dal_forward(F.A, F.stA));
-  CHECK_OK(dal_builder_create(2, &F.bb));
-  CHECK_OK(dal_builder_add_coord(F.bb, "theta", &th));
-  CHECK_OK(dal_builder_add_particle(F.bb, "bob", 1.0, &bob));
-  pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  CHECK_OK(dal_builder_place_def(F.bb, bob, &pd));
-  CHECK_OK(dal_builder_set_gravity(F.bb, g2));
-  CHECK_OK(dal_builder_compile(F.bb, &F.B));
   CHECK_OK(dal_state_create(F.B, &F.stB));
   CHECK_OK(dal_state_set(F.B, F.stB, 0.0, &th0, &thd));
   CHECK_OK(dal_forward(F.B, F.stB));
@@ -145,8 +135,6 @@ static void fix_free(void) {
   dal_state_destroy(F.stB);
   dal_system_destroy(F.A);
   dal_system_destroy(F.B);
-  dal_builder_destroy(F.ba);
-  dal_builder_destroy(F.bb);
   dal_builder_destroy(F.bld);
 }
 
@@ -180,6 +168,20 @@ static void st_expect(const char *call, int rc, int want, const dal_state *st) {
   do {                                                                                             \
     st_mark(st);                                                                                   \
     st_expect(#call, (call), (want), (st));                                                        \
+  } while (0)
+// the three rows every (system, state, ...) call shares: no state (DAL_E_ARG, no message), no
+// system, and a system `other` the state does not belong to (DAL_E_STATE, a message in st)
+#define ST_OWNER(fn, own, other, st, ...)                                                          \
+  do {                                                                                             \
+    ST(fn(own, NULL, __VA_ARGS__), DAL_E_ARG, NULL);                                               \
+    ST(fn(NULL, st, __VA_ARGS__), DAL_E_STATE, st);                                                \
+    ST(fn(other, st, __VA_ARGS__), DAL_E_STATE, st);                                               \
+  } while (0)
+#define ST_OWNER2(fn, own, other, st)                                                              \
+  do {                                                                                             \
+    ST(fn(own, NULL), DAL_E_ARG, NULL);                                                            \
+    ST(fn(NULL, st), DAL_E_STATE, st);                                                             \
+    ST(fn(other, st), DAL_E_STATE, st);                                                            \
   } while (0)
 
 static void b_expect(const char *call, int rc, int want, const dal_builder *b) {
@@ -221,9 +223,7 @@ static void sw_dal_version(void) { CHECK(dal_version() != NULL && dal_version()[
 // ---------------------------------------------------------------- rows: dae.h
 static void sw_dal_make_consistent(void) {
   dal_init_report rep;
-  ST(dal_make_consistent(F.A, NULL, 0.0, &rep), DAL_E_ARG, NULL);
-  ST(dal_make_consistent(NULL, F.stA, 0.0, &rep), DAL_E_STATE, F.stA);
-  ST(dal_make_consistent(F.B, F.stA, 0.0, &rep), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_make_consistent, F.A, F.B, F.stA, 0.0, &rep);
   ST(dal_make_consistent(F.A, F.stA, NAN, &rep), DAL_E_NONFINITE, F.stA);
   ST(dal_make_consistent(F.A, F.stA, INFINITY, NULL), DAL_E_NONFINITE, F.stA);
   st_intact();
@@ -231,9 +231,7 @@ static void sw_dal_make_consistent(void) {
 }
 static void sw_dal_check_constraints(void) {
   dal_constraint_report rep;
-  ST(dal_check_constraints(F.A, NULL, &rep), DAL_E_ARG, NULL);
-  ST(dal_check_constraints(NULL, F.stA, &rep), DAL_E_STATE, F.stA);
-  ST(dal_check_constraints(F.B, F.stA, &rep), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_check_constraints, F.A, F.B, F.stA, &rep);
   ST(dal_check_constraints(F.A, F.stA, NULL), DAL_OK, F.stA);
 }
 // a (system, const state, out) reader: NULL state, NULL or foreign system, NULL out, then ok
@@ -305,9 +303,7 @@ static void sw_dal_state_stats(void) {
 static void sw_dal_advance(void) {
   dal_solve_opts bad;
   memset(&bad, 0, sizeof bad);
-  ST(dal_advance(F.A, NULL, &F.o, 1.0), DAL_E_ARG, NULL);
-  ST(dal_advance(NULL, F.stA, &F.o, 1.0), DAL_E_STATE, F.stA);
-  ST(dal_advance(F.B, F.stA, &F.o, 1.0), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_advance, F.A, F.B, F.stA, &F.o, 1.0);
   ST(dal_advance(F.A, F.stA, NULL, 1.0), DAL_E_ARG, F.stA);
   ST(dal_advance(F.A, F.stA, &bad, 1.0), DAL_E_ARG, F.stA);
   ST(dal_advance(F.A, F.stA, &F.o, NAN), DAL_E_NONFINITE, F.stA);
@@ -316,9 +312,7 @@ static void sw_dal_advance(void) {
   st_intact();
 }
 static void sw_dal_evolve(void) {
-  ST(dal_evolve(F.A, NULL, &F.o, 1.0, 0.1, NULL, NULL), DAL_E_ARG, NULL);
-  ST(dal_evolve(NULL, F.stA, &F.o, 1.0, 0.1, NULL, NULL), DAL_E_STATE, F.stA);
-  ST(dal_evolve(F.B, F.stA, &F.o, 1.0, 0.1, NULL, NULL), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_evolve, F.A, F.B, F.stA, &F.o, 1.0, 0.1, NULL, NULL);
   ST(dal_evolve(F.A, F.stA, NULL, 1.0, 0.1, NULL, NULL), DAL_E_ARG, F.stA);
   ST(dal_evolve(F.A, F.stA, &F.o, NAN, 0.1, NULL, NULL), DAL_E_NONFINITE, F.stA);
   ST(dal_evolve(F.A, F.stA, &F.o, 1.0, NAN, NULL, NULL), DAL_E_NONFINITE, F.stA);
@@ -330,9 +324,7 @@ static void sw_dal_evolve(void) {
 static void sw_dal_evolve_at(void) {
   const double ts[2] = {0.5, 1.0}, dec[3] = {0.5, 1.0, 0.7}, nan2[2] = {0.5, NAN};
   const double back[2] = {-1.0, 1.0};
-  ST(dal_evolve_at(F.A, NULL, &F.o, ts, 2, NULL, NULL), DAL_E_ARG, NULL);
-  ST(dal_evolve_at(NULL, F.stA, &F.o, ts, 2, NULL, NULL), DAL_E_STATE, F.stA);
-  ST(dal_evolve_at(F.B, F.stA, &F.o, ts, 2, NULL, NULL), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_evolve_at, F.A, F.B, F.stA, &F.o, ts, 2, NULL, NULL);
   ST(dal_evolve_at(F.A, F.stA, NULL, ts, 2, NULL, NULL), DAL_E_ARG, F.stA);
   ST(dal_evolve_at(F.A, F.stA, &F.o, NULL, 2, NULL, NULL), DAL_E_ARG, F.stA);
   ST(dal_evolve_at(F.A, F.stA, &F.o, ts, 0, NULL, NULL), DAL_E_ARG, F.stA);
@@ -345,9 +337,7 @@ static void sw_dal_csv_monitor(void) {
   dal_csv none = {NULL, 0, 0, NULL};
   FILE *fp = tmpfile();
   dal_csv ok = {fp, 0, 0, NULL};
-  ST(dal_csv_monitor(F.A, NULL, &ok), DAL_E_ARG, NULL);
-  ST(dal_csv_monitor(NULL, F.stA, &ok), DAL_E_STATE, F.stA);
-  ST(dal_csv_monitor(F.B, F.stA, &ok), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_csv_monitor, F.A, F.B, F.stA, &ok);
   ST(dal_csv_monitor(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
   ST(dal_csv_monitor(F.A, F.stA, &none), DAL_E_ARG, F.stA);
   CHECK(ftell(fp) == 0);
@@ -369,9 +359,7 @@ static void sw_dal_state_errmsg(void) {
 }
 static void sw_dal_state_set(void) {
   double q[2] = {0.6, -0.8}, qd[2] = {0.0, 0.0}, qn[2] = {NAN, 0.0};
-  ST(dal_state_set(F.A, NULL, 0.0, q, qd), DAL_E_ARG, NULL);
-  ST(dal_state_set(NULL, F.stA, 0.0, q, qd), DAL_E_STATE, F.stA);
-  ST(dal_state_set(F.B, F.stA, 0.0, q, qd), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_state_set, F.A, F.B, F.stA, 0.0, q, qd);
   ST(dal_state_set(F.A, F.stA, 0.0, NULL, qd), DAL_E_ARG, F.stA);
   ST(dal_state_set(F.A, F.stA, 0.0, q, NULL), DAL_E_ARG, F.stA);
   ST(dal_state_set(F.A, F.stA, NAN, q, qd), DAL_E_NONFINITE, F.stA);
@@ -380,9 +368,7 @@ static void sw_dal_state_set(void) {
   st_intact();
 }
 static void sw_dal_forward(void) {
-  ST(dal_forward(F.A, NULL), DAL_E_ARG, NULL);
-  ST(dal_forward(NULL, F.stA), DAL_E_STATE, F.stA);
-  ST(dal_forward(F.B, F.stA), DAL_E_STATE, F.stA);
+  ST_OWNER2(dal_forward, F.A, F.B, F.stA);
   st_intact();
   ST(dal_forward(F.A, F.stA), DAL_OK, F.stA);
 }
@@ -415,9 +401,7 @@ static void sw_dal_state_phidot(void) { accessor(dal_state_phidot, 1); }
 
 static void sw_dal_state_jacobian(void) {
   double J[4];
-  ST(dal_state_jacobian(F.A, NULL, 0, J), DAL_E_ARG, NULL);
-  ST(dal_state_jacobian(NULL, F.stA, 0, J), DAL_E_STATE, F.stA);
-  ST(dal_state_jacobian(F.B, F.stA, 0, J), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_state_jacobian, F.A, F.B, F.stA, 0, J);
   ST(dal_state_jacobian(F.A, F.stA, 0, NULL), DAL_E_ARG, F.stA);
   ST(dal_state_jacobian(F.A, F.stA, -1, J), DAL_E_ARG, F.stA);
   ST(dal_state_jacobian(F.A, F.stA, 1, J), DAL_E_ARG, F.stA);
@@ -432,9 +416,7 @@ static void sw_dal_state_energies(void) {
 }
 static void sw_dal_lagrange_residual(void) {
   double res[2];
-  ST(dal_lagrange_residual(F.A, NULL, path_q, 0.0, res, NULL), DAL_E_ARG, NULL);
-  ST(dal_lagrange_residual(NULL, F.stA, path_q, 0.0, res, NULL), DAL_E_STATE, F.stA);
-  ST(dal_lagrange_residual(F.B, F.stA, path_q, 0.0, res, NULL), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_lagrange_residual, F.A, F.B, F.stA, path_q, 0.0, res, NULL);
   ST(dal_lagrange_residual(F.A, F.stA, NULL, 0.0, res, NULL), DAL_E_ARG, F.stA);
   ST(dal_lagrange_residual(F.A, F.stA, path_q, 0.0, NULL, NULL), DAL_E_ARG, F.stA);
   ST(dal_lagrange_residual(F.A, F.stA, path_q, NAN, res, NULL), DAL_E_NONFINITE, F.stA);
@@ -818,9 +800,7 @@ static void sw_dal_state_param(void) {
 static void sw_dal_state_set_param(void) {
   dal_param_ref mass = {DAL_PARAM_MASS, 0, 0}, g0 = {DAL_PARAM_GRAVITY, 0, 0};
   dal_param_ref sp = {DAL_PARAM_SPRING_K, 0, 0};
-  ST(dal_state_set_param(F.A, NULL, &mass, 2.0), DAL_E_ARG, NULL);
-  ST(dal_state_set_param(NULL, F.stA, &mass, 2.0), DAL_E_STATE, F.stA);
-  ST(dal_state_set_param(F.B, F.stA, &mass, 2.0), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_state_set_param, F.A, F.B, F.stA, &mass, 2.0);
   ST(dal_state_set_param(F.A, F.stA, NULL, 2.0), DAL_E_ARG, F.stA);
   ST(dal_state_set_param(F.A, F.stA, &sp, 2.0), DAL_E_ARG, F.stA);
   ST(dal_state_set_param(F.A, F.stA, &mass, NAN), DAL_E_NONFINITE, F.stA);
@@ -837,9 +817,7 @@ static void sw_dal_state_set_param(void) {
 }
 static void sw_dal_state_set_param_named(void) {
   dal_param_ref rod = {DAL_PARAM_CONSTRAINT, 0, 0};
-  ST(dal_state_set_param_named(F.A, NULL, "con:rod:0", 1.5), DAL_E_ARG, NULL);
-  ST(dal_state_set_param_named(NULL, F.stA, "con:rod:0", 1.5), DAL_E_STATE, F.stA);
-  ST(dal_state_set_param_named(F.B, F.stA, "con:rod:0", 1.5), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_state_set_param_named, F.A, F.B, F.stA, "con:rod:0", 1.5);
   ST(dal_state_set_param_named(F.A, F.stA, NULL, 1.5), DAL_E_ARG, F.stA);
   ST(dal_state_set_param_named(F.A, F.stA, "con:nothing:0", 1.5), DAL_E_ARG, F.stA);
   ST(dal_state_set_param_named(F.A, F.stA, "con:rod:9", 1.5), DAL_E_ARG, F.stA);
@@ -852,9 +830,7 @@ static void sw_dal_state_set_param_named(void) {
 }
 static void sw_dal_state_set_mass(void) {
   dal_param_ref mass = {DAL_PARAM_MASS, 0, 0};
-  ST(dal_state_set_mass(F.A, NULL, 0, 2.0), DAL_E_ARG, NULL);
-  ST(dal_state_set_mass(NULL, F.stA, 0, 2.0), DAL_E_STATE, F.stA);
-  ST(dal_state_set_mass(F.B, F.stA, 0, 2.0), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_state_set_mass, F.A, F.B, F.stA, 0, 2.0);
   ST(dal_state_set_mass(F.A, F.stA, -1, 2.0), DAL_E_ARG, F.stA);
   ST(dal_state_set_mass(F.A, F.stA, 1, 2.0), DAL_E_ARG, F.stA);
   ST(dal_state_set_mass(F.A, F.stA, INT_MAX, 2.0), DAL_E_ARG, F.stA);
@@ -870,9 +846,7 @@ static void sw_dal_state_set_mass(void) {
 static void sw_dal_state_set_gravity(void) {
   double g[2] = {0.0, -1.62}, gn[2] = {NAN, 0.0}, gi[2] = {0.0, INFINITY}, v = 0.0;
   dal_param_ref g1 = {DAL_PARAM_GRAVITY, 0, 1};
-  ST(dal_state_set_gravity(F.A, NULL, g), DAL_E_ARG, NULL);
-  ST(dal_state_set_gravity(NULL, F.stA, g), DAL_E_STATE, F.stA);
-  ST(dal_state_set_gravity(F.B, F.stA, g), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_state_set_gravity, F.A, F.B, F.stA, g);
   ST(dal_state_set_gravity(F.A, F.stA, NULL), DAL_E_ARG, F.stA);
   ST(dal_state_set_gravity(F.A, F.stA, gn), DAL_E_NONFINITE, F.stA);
   ST(dal_state_set_gravity(F.A, F.stA, gi), DAL_E_NONFINITE, F.stA);
@@ -885,9 +859,7 @@ static void sw_dal_state_set_gravity(void) {
 static void sw_dal_state_reset_params(void) {
   dal_param_ref mass = {DAL_PARAM_MASS, 0, 0};
   double v = 0.0;
-  ST(dal_state_reset_params(F.A, NULL), DAL_E_ARG, NULL);
-  ST(dal_state_reset_params(NULL, F.stA), DAL_E_STATE, F.stA);
-  ST(dal_state_reset_params(F.B, F.stA), DAL_E_STATE, F.stA);
+  ST_OWNER2(dal_state_reset_params, F.A, F.B, F.stA);
   st_intact();
   CHECK_OK(dal_state_set_mass(F.A, F.stA, 0, 4.0));
   ST(dal_state_reset_params(F.A, F.stA), DAL_OK, F.stA);
@@ -1047,9 +1019,7 @@ static void sw_dal_verify_model(void) {
 // K = d2U/dtheta2 = 9.81 cos(0.3) (U = -9.81 cos theta; M is constant, so no M' qddot term).
 static void sw_dal_linearize(void) {
   double M[1] = {0}, C[1] = {1}, K[1] = {0};
-  ST(dal_linearize(F.B, NULL, M, C, K), DAL_E_ARG, NULL);
-  ST(dal_linearize(NULL, F.stB, M, C, K), DAL_E_STATE, F.stB);
-  ST(dal_linearize(F.A, F.stB, M, C, K), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_linearize, F.B, F.A, F.stB, M, C, K);
   // A on its manifold (one independent coordinate along the circle at sin theta = 0.6, at rest):
   // the reduced K is the minimal pendulum's g cos theta = 9.81 x 0.8
   ST(dal_linearize(F.A, F.stA, NULL, NULL, NULL), DAL_OK, F.stA);
@@ -1068,9 +1038,7 @@ static void sw_dal_linearize(void) {
 // tangent (0.8, 0.6) up to sign; B has N = 1 and leaves G alone.
 static void sw_dal_linearize_full(void) {
   double M[4], C[4], K[4], G[2], N[2];
-  ST(dal_linearize_full(F.A, NULL, M, C, K, G, N), DAL_E_ARG, NULL);
-  ST(dal_linearize_full(NULL, F.stA, M, C, K, G, N), DAL_E_STATE, F.stA);
-  ST(dal_linearize_full(F.B, F.stA, M, C, K, G, N), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_linearize_full, F.A, F.B, F.stA, M, C, K, G, N);
   ST(dal_linearize_full(F.A, F.stA, NULL, NULL, NULL, NULL, NULL), DAL_OK, F.stA);
   ST(dal_linearize_full(F.A, F.stA, M, C, K, G, N), DAL_OK, F.stA);
   CHECK(M[0] == 1.0 && M[1] == 0.0 && M[2] == 0.0 && M[3] == 1.0);
@@ -1086,9 +1054,7 @@ static void sw_dal_linearize_full(void) {
 }
 static void sw_dal_vector_field_jacobian(void) {
   double A[4] = {0}, ft[2] = {1, 1};
-  ST(dal_vector_field_jacobian(F.B, NULL, A, ft), DAL_E_ARG, NULL);
-  ST(dal_vector_field_jacobian(NULL, F.stB, A, ft), DAL_E_STATE, F.stB);
-  ST(dal_vector_field_jacobian(F.A, F.stB, A, ft), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_vector_field_jacobian, F.B, F.A, F.stB, A, ft);
   ST(dal_vector_field_jacobian(F.B, F.stB, NULL, ft), DAL_E_ARG, F.stB);
   double A4[16];
   ST(dal_vector_field_jacobian(F.A, F.stA, A4, NULL), DAL_OK, F.stA); // full space, 4 x 4
@@ -1105,9 +1071,7 @@ static void sw_dal_vector_field_jacobian(void) {
 static void sw_dal_linearize_inputs(void) {
   const char *in[1] = {"force:theta"}, *bad[1] = {"place:bob:0"}, *none[1] = {"force:zz"};
   double B[1] = {0}, Af[4], Bf[2];
-  ST(dal_linearize_inputs(F.B, NULL, 1, in, B, Af, Bf), DAL_E_ARG, NULL);
-  ST(dal_linearize_inputs(NULL, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
-  ST(dal_linearize_inputs(F.A, F.stB, 1, in, B, Af, Bf), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_linearize_inputs, F.B, F.A, F.stB, 1, in, B, Af, Bf);
   ST(dal_linearize_inputs(F.B, F.stB, 1, NULL, B, Af, Bf), DAL_E_ARG, F.stB);
   ST(dal_linearize_inputs(F.B, F.stB, -1, in, B, Af, Bf), DAL_E_ARG, F.stB);
   ST(dal_linearize_inputs(F.B, F.stB, 1, none, B, Af, Bf), DAL_E_ARG, F.stB);
@@ -1124,9 +1088,7 @@ static void sw_dal_state_transition(void) {
   double Phi[4], S[2];
   const char *in[1] = {"gravity:1"}, *bad[1] = {"place:bob:0"};
   dal_solve_opts o = dal_default_solve_opts();
-  ST(dal_state_transition(F.B, NULL, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_ARG, NULL);
-  ST(dal_state_transition(NULL, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
-  ST(dal_state_transition(F.A, F.stB, NULL, 0.5, Phi, 0, NULL, NULL), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_state_transition, F.B, F.A, F.stB, NULL, 0.5, Phi, 0, NULL, NULL);
   ST(dal_state_transition(F.B, F.stB, NULL, 0.5, NULL, 0, NULL, NULL), DAL_E_ARG, F.stB);
   ST(dal_state_transition(F.B, F.stB, NULL, 0.0, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
   ST(dal_state_transition(F.B, F.stB, NULL, NAN, Phi, 0, NULL, NULL), DAL_E_ARG, F.stB);
@@ -1144,9 +1106,7 @@ static void sw_dal_state_transition(void) {
 // bottom it is T-periodic for any T, at 0.3 it does not return after 0.5
 static void sw_dal_time_dependence(void) {
   char what[256];
-  ST(dal_time_dependence(F.B, NULL, what, sizeof what), DAL_E_ARG, NULL);
-  ST(dal_time_dependence(NULL, F.stB, what, sizeof what), DAL_E_STATE, F.stB);
-  ST(dal_time_dependence(F.A, F.stB, what, sizeof what), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_time_dependence, F.B, F.A, F.stB, what, sizeof what);
   CHECK(dal_time_dependence(F.B, F.stB, NULL, 0) == 0);
   CHECK(dal_time_dependence(F.B, F.stB, what, 1) == 0 && what[0] == 0);
   st_intact();
@@ -1163,9 +1123,7 @@ static void sw_dal_normal_modes_frozen(void) {
 static void sw_dal_floquet(void) {
   double re[2], im[2], mono[4];
   dal_floquet_report r;
-  ST(dal_floquet(F.B, NULL, NULL, 1.0, re, im, mono, &r), DAL_E_ARG, NULL);
-  ST(dal_floquet(NULL, F.stB, NULL, 1.0, re, im, mono, &r), DAL_E_STATE, F.stB);
-  ST(dal_floquet(F.A, F.stB, NULL, 1.0, re, im, mono, &r), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_floquet, F.B, F.A, F.stB, NULL, 1.0, re, im, mono, &r);
   ST(dal_floquet(F.B, F.stB, NULL, 0.0, re, im, mono, &r), DAL_E_ARG, F.stB);
   ST(dal_floquet(F.B, F.stB, NULL, NAN, re, im, mono, &r), DAL_E_ARG, F.stB);
   ST(dal_floquet(F.B, F.stB, NULL, INFINITY, re, im, mono, &r), DAL_E_ARG, F.stB);
@@ -1201,9 +1159,7 @@ static void sw_dal_periodic_orbit(void) {
   double re[2], im[2];
   dal_orbit_report r;
   o.period = 0.5;
-  ST(dal_periodic_orbit(F.B, NULL, &o, re, im, &r), DAL_E_ARG, NULL);
-  ST(dal_periodic_orbit(NULL, F.stB, &o, re, im, &r), DAL_E_STATE, F.stB);
-  ST(dal_periodic_orbit(F.A, F.stB, &o, re, im, &r), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_periodic_orbit, F.B, F.A, F.stB, &o, re, im, &r);
   ST(dal_periodic_orbit(F.B, F.stB, NULL, re, im, &r), DAL_E_ARG, F.stB);
   ST(dal_periodic_orbit(F.B, F.stB, &raw, re, im, &r), DAL_E_ARG, F.stB);
   o.period = NAN;
@@ -1222,9 +1178,7 @@ static void sw_dal_periodic_orbit(void) {
 static void sw_dal_relative_equilibrium(void) {
   double axis[3] = {0, 0, 1}, zero[3] = {0, 0, 0}, re[2], im[2];
   dal_relative_report r;
-  ST(dal_relative_equilibrium(F.B, NULL, axis, 1.0, re, im, &r), DAL_E_ARG, NULL);
-  ST(dal_relative_equilibrium(NULL, F.stB, axis, 1.0, re, im, &r), DAL_E_STATE, F.stB);
-  ST(dal_relative_equilibrium(F.A, F.stB, axis, 1.0, re, im, &r), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_relative_equilibrium, F.B, F.A, F.stB, axis, 1.0, re, im, &r);
   ST(dal_relative_equilibrium(F.B, F.stB, axis, 1.0, re, im, &r), DAL_E_ARG, F.stB); // 2D
   ST(dal_relative_equilibrium(F.B, F.stB, NULL, 1.0, re, im, &r), DAL_E_ARG, F.stB);
   ST(dal_relative_equilibrium(F.B, F.stB, zero, 1.0, re, im, &r), DAL_E_ARG, F.stB);
@@ -1268,9 +1222,7 @@ static void sw_dal_stability_name(void) {
 static void sw_dal_normal_modes(void) {
   double w2[1] = {0}, x[1] = {0}, re[2], im[2];
   dal_modes md;
-  ST(dal_normal_modes(F.B, NULL, w2, x, re, im, &md), DAL_E_ARG, NULL);
-  ST(dal_normal_modes(NULL, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
-  ST(dal_normal_modes(F.A, F.stB, w2, x, re, im, &md), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_normal_modes, F.B, F.A, F.stB, w2, x, re, im, &md);
   double xa[2];
   ST(dal_normal_modes(F.A, F.stA, w2, xa, re, im, &md), DAL_OK, F.stA); // on the manifold
   CHECK_CLOSE(w2[0], 9.81 * 0.8, 1e-13);
@@ -1297,9 +1249,7 @@ static void sw_dal_equilibrium(void) {
   nan_tol = no_iter = o;
   nan_tol.xtol = NAN;
   no_iter.max_iter = 0;
-  ST(dal_equilibrium(F.B, NULL, &o, &rep), DAL_E_ARG, NULL);
-  ST(dal_equilibrium(NULL, F.stB, &o, &rep), DAL_E_STATE, F.stB);
-  ST(dal_equilibrium(F.A, F.stB, &o, &rep), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_equilibrium, F.B, F.A, F.stB, &o, &rep);
   ST(dal_equilibrium(F.B, F.stB, &raw, &rep), DAL_E_ARG, F.stB);
   ST(dal_equilibrium(F.B, F.stB, &nan_tol, &rep), DAL_E_ARG, F.stB);
   ST(dal_equilibrium(F.B, F.stB, &no_iter, &rep), DAL_E_ARG, F.stB);
@@ -1334,21 +1284,10 @@ typedef struct branch_rec {
 } branch_rec;
 static int rebuild_pend(double p, dal_system **out, void *ctx) {
   if (((branch_rec *)ctx)->fail) return 1;
-  double g[2] = {0.0, -9.81 - p};
-  dal_builder *b = NULL;
-  int th = 0, bob = 0, rc = dal_builder_create(2, &b);
-  if (!rc) rc = dal_builder_add_coord(b, "theta", &th);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &bob);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_pendulum;
-  pd.coords = &th;
-  pd.ncoords = 1;
-  pd.param[DAL_PENDULUM_L] = 1.0;
-  if (!rc) rc = dal_builder_place_def(b, bob, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  if (!rc) rc = dal_builder_compile(b, out);
-  dal_builder_destroy(b);
-  return rc;
+  scn_knobs k = scn_default();
+  k.g = 9.81 + p;
+  *out = scn_pendulum(&k);
+  return *out ? DAL_OK : DAL_E_ARG;
 }
 static int branch_point(double p, const dal_system *sys, const dal_state *st, dal_stability v,
                         dal_branch_kind kind, void *ctx) {
@@ -1413,9 +1352,7 @@ static void sw_dal_lyapunov(void) {
   many.nexp = 3;                      // 2n = 2
   no_renorm.renorm = 0.0;
   nan_y0.y0 = y0n;
-  ST(dal_lyapunov(F.B, NULL, &o, ex, err, NULL, NULL), DAL_E_ARG, NULL);
-  ST(dal_lyapunov(NULL, F.stB, &o, ex, err, NULL, NULL), DAL_E_STATE, F.stB);
-  ST(dal_lyapunov(F.A, F.stB, &o, ex, err, NULL, NULL), DAL_E_STATE, F.stB);
+  ST_OWNER(dal_lyapunov, F.B, F.A, F.stB, &o, ex, err, NULL, NULL);
   ST(dal_lyapunov(F.B, F.stB, &o, NULL, err, NULL, NULL), DAL_E_ARG, F.stB);
   ST(dal_lyapunov(F.B, F.stB, NULL, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
   ST(dal_lyapunov(F.B, F.stB, &raw, ex, err, NULL, NULL), DAL_E_ARG, F.stB);
@@ -2239,6 +2176,20 @@ static void sw_dal_codegen_attach(void) {
   dal_scene_destroy(sc);
 }
 static void sw_dal_codegen_attached(void) { CHECK(dal_codegen_attached(NULL) == 0); }
+static void sw_dal_codegen_attach_eom(void) {
+  dal_codegen_opts o;
+  memset(&o, 0, sizeof o);
+  char msg[256];
+  CHECK(dal_codegen_attach_eom(NULL, NULL, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  CHECK(dal_codegen_attach_eom(F.B, &o, msg, sizeof msg) == DAL_E_ARG && msg[0]);
+  // out of reach: a constraint (A), a placement by a C primitive (B); nothing attached
+  CHECK(dal_codegen_attach_eom(F.A, NULL, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
+        strstr(msg, "constraints"));
+  CHECK(dal_codegen_attach_eom(F.B, NULL, msg, sizeof msg) == DAL_E_UNSUPPORTED &&
+        strstr(msg, "not placed by formulas"));
+  CHECK(dal_codegen_eom_attached(F.A) == 0 && dal_codegen_eom_attached(F.B) == 0);
+}
+static void sw_dal_codegen_eom_attached(void) { CHECK(dal_codegen_eom_attached(NULL) == 0); }
 
 typedef struct sweep_row {
   const char *name;
@@ -2272,9 +2223,7 @@ static void sw_dal_columns_eval(void) {
   dal_columns *c = NULL;
   double row[16];
   CHECK_OK(dal_columns_create(F.A, "t,lambda:rod", &c, NULL, 0));
-  ST(dal_columns_eval(F.A, NULL, c, row), DAL_E_ARG, NULL);
-  ST(dal_columns_eval(NULL, F.stA, c, row), DAL_E_STATE, F.stA);
-  ST(dal_columns_eval(F.B, F.stA, c, row), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_columns_eval, F.A, F.B, F.stA, c, row);
   ST(dal_columns_eval(F.A, F.stA, NULL, row), DAL_E_ARG, F.stA);
   ST(dal_columns_eval(F.A, F.stA, c, NULL), DAL_E_ARG, F.stA);
   ST(dal_columns_eval(F.B, F.stB, c, row), DAL_E_ARG, F.stB); // made for another system
@@ -2296,9 +2245,7 @@ static void sw_dal_default_view_opts(void) {
 static void sw_dal_view_write(void) {
   dal_view_opts o = dal_default_view_opts();
   FILE *fp = tmpfile();
-  ST(dal_view_write(F.A, NULL, &o, NULL, fp), DAL_E_ARG, NULL);
-  ST(dal_view_write(NULL, F.stA, &o, NULL, fp), DAL_E_STATE, F.stA);
-  ST(dal_view_write(F.B, F.stA, &o, NULL, fp), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_view_write, F.A, F.B, F.stA, &o, NULL, fp);
   ST(dal_view_write(F.A, F.stA, &o, NULL, NULL), DAL_E_ARG, F.stA);
   o.fps = -1;
   ST(dal_view_write(F.A, F.stA, &o, NULL, fp), DAL_E_ARG, F.stA);
@@ -2315,9 +2262,7 @@ static void sw_dal_view_write(void) {
 static void sw_dal_picture_write(void) {
   double ts[2] = {0.1, 0.2};
   FILE *fp = tmpfile();
-  ST(dal_picture_write(F.A, NULL, ts, 2, NULL, fp), DAL_E_ARG, NULL);
-  ST(dal_picture_write(NULL, F.stA, ts, 2, NULL, fp), DAL_E_STATE, F.stA);
-  ST(dal_picture_write(F.B, F.stA, ts, 2, NULL, fp), DAL_E_STATE, F.stA);
+  ST_OWNER(dal_picture_write, F.A, F.B, F.stA, ts, 2, NULL, fp);
   ST(dal_picture_write(F.A, F.stA, NULL, 2, NULL, fp), DAL_E_ARG, F.stA);
   ST(dal_picture_write(F.A, F.stA, ts, 0, NULL, fp), DAL_E_ARG, F.stA);
   ST(dal_picture_write(F.A, F.stA, ts, 2, NULL, NULL), DAL_E_ARG, F.stA);
@@ -2376,6 +2321,8 @@ static const sweep_row rows[] = {
     ROW(dal_codegen_write),
     ROW(dal_codegen_attach),
     ROW(dal_codegen_attached),
+    ROW(dal_codegen_attach_eom),
+    ROW(dal_codegen_eom_attached),
     ROW(dal_scene_events),
     ROW(dal_scene_event_is_section),
     ROW(dal_scene_strobe),
@@ -2566,43 +2513,20 @@ static int scan_header(const char *text, char names[][64], int n) {
   return n;
 }
 
-static char *read_all(const char *path) {
-  FILE *fp = fopen(path, "rb");
-  if (!fp) return NULL;
-  fseek(fp, 0, SEEK_END);
-  long len = ftell(fp);
-  rewind(fp);
-  char *s = len >= 0 ? malloc((size_t)len + 1) : NULL;
-  if (s && fread(s, 1, (size_t)len, fp) != (size_t)len) {
-    free(s);
-    s = NULL;
-  }
-  if (s) s[len] = 0;
-  fclose(fp);
-  return s;
-}
-
 // the public functions of every header in dir; -1 when the directory cannot be read
+typedef struct api_names {
+  char (*names)[64];
+  int n;
+} api_names;
+static void scan_one(char *text, const char *name, void *ctx) {
+  api_names *a = ctx;
+  // mpi.h declares dal_sweep_run_mpi of the separate library dalembert_mpi, which this test
+  // does not link (and <mpi.h> is not on its include path): tests/test_ensemble_mpi.c covers it
+  if (strcmp(name, "mpi.h") != 0) a->n = scan_header(text, a->names, a->n);
+}
 static int scan_headers(const char *dir, char names[][64]) {
-  DIR *d = opendir(dir);
-  if (!d) return -1;
-  int n = 0, files = 0;
-  for (struct dirent *e; (e = readdir(d)) != NULL;) {
-    size_t len = strlen(e->d_name);
-    if (len < 3 || strcmp(e->d_name + len - 2, ".h") != 0) continue;
-    // mpi.h declares dal_sweep_run_mpi of the separate library dalembert_mpi, which this test
-    // does not link (and <mpi.h> is not on its include path): tests/test_ensemble_mpi.c covers it
-    if (strcmp(e->d_name, "mpi.h") == 0) continue;
-    char path[4096];
-    snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
-    char *text = read_all(path);
-    if (!text) continue;
-    n = scan_header(text, names, n);
-    ++files;
-    free(text);
-  }
-  closedir(d);
-  return files ? n : -1;
+  api_names a = {names, 0};
+  return for_each_header(dir, scan_one, &a) > 0 ? a.n : -1;
 }
 
 int main(int argc, char **argv) {

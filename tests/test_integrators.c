@@ -536,30 +536,11 @@ static void test_step_failure(void) {
 // redundant coordinates, index-1 form: the ODE methods with projection onto the constraints
 
 static void test_index1(void) {
-  dal_builder *b = NULL;
-  dal_system *sys = NULL;
-  int c[2], p, rc = dal_builder_create(2, &b);
-  double g[2] = {0, -G};
-  if (!rc) rc = dal_builder_add_coord(b, "x", &c[0]);
-  if (!rc) rc = dal_builder_add_coord(b, "y", &c[1]);
-  if (!rc) rc = dal_builder_add_particle(b, "bob", 1.0, &p);
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = c;
-  pd.ncoords = 2;
-  if (!rc) rc = dal_builder_place_def(b, p, &pd);
-  if (!rc) rc = dal_builder_set_gravity(b, g);
-  dal_constraint_def cd = dal_default_constraint_def();
-  cd.name = "rod";
-  cd.prim = &dal_con_anchor2;
-  cd.parts = &p;
-  cd.nparts = 1;
-  cd.param[DAL_ANCHOR_L] = 1.0;
-  if (!rc) rc = dal_builder_add_constraint_def(b, &cd, NULL);
-  if (!rc) rc = dal_builder_compile(b, &sys);
-  CHECK_OK(rc);
-  dal_builder_destroy(b);
-  if (rc) return;
+  scn_knobs k = scn_default(); // the Cartesian pendulum of the scene library, g = G
+  k.g = G;
+  dal_system *sys = scn_cart_pendulum(&k);
+  CHECK(sys != NULL);
+  if (!sys) return;
   double th0 = 120 * PI / 180, ex, exd;
   ref_pendulum(th0, sqrt(G), 10.0, &ex, &exd);
   const dal_method ms[5] = {DAL_METHOD_DOPRI5, DAL_METHOD_FEHLBERG78, DAL_METHOD_BS,

@@ -22,6 +22,7 @@
 
 #include "check.h"
 #include "dalembert/dalembert.h"
+#include "scenes.h"
 
 #define NSTATE 200
 #define TOL 1e-12
@@ -61,8 +62,10 @@ typedef struct scene {
   dal_state *st;
 } scene;
 
+// a state for sys (NULL: the scene could not be built, a failure)
 static scene scene_make(dal_system *sys) {
   scene s = {sys, NULL};
+  CHECK_MSG(sys != NULL, "the scene could not be built");
   if (sys) CHECK_OK(dal_state_create(sys, &s.st));
   return s;
 }
@@ -194,23 +197,12 @@ static void test_harmonic_oscillator(void) {
   int f0 = check_failures;
   ho_par par = {2.0, 1.0};
   // (a) Cartesian particle + anchor spring of rest length 0 at the origin
-  dal_builder *b = builder(2);
-  int q[2], p;
-  BUILD(dal_builder_add_coord(b, "x", &q[0]));
-  BUILD(dal_builder_add_coord(b, "y", &q[1]));
-  BUILD(dal_builder_add_particle(b, "m", par.m, &p));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_cartesian2;
-  pd.coords = q;
-  pd.ncoords = 2;
-  BUILD(dal_builder_place_def(b, p, &pd));
-  dal_spring_def sd = dal_default_spring_def();
-  sd.a = p;
-  sd.k = par.k;
-  BUILD(dal_builder_add_spring_def(b, &sd));
-  scene sa = scene_make(compile(b));
+  scn_knobs kn = scn_weightless(); // the oscillator of the scene library
+  kn.m = par.m;
+  kn.k = par.k;
+  scene sa = scene_make(scn_oscillator(&kn));
   // (b) whole-system identity map + U(q)
-  b = builder(2);
+  dal_builder *b = builder(2);
   BUILD(dal_builder_add_coord(b, "x", NULL));
   BUILD(dal_builder_add_coord(b, "y", NULL));
   BUILD(dal_builder_add_particle(b, "m", par.m, NULL));
@@ -313,16 +305,14 @@ done:
 
 // ---------------------------------------------------------------------------------------------
 // 2. bead on a ring of radius R turning about the vertical at rate w
-typedef struct ring_par {
-  double m, R, w, phi0, g;
-} ring_par;
+typedef scn_knobs ring_par; // m, R, spin (the rate w), phi0, g: the scene library's bead
 
 static int ring_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
   (void)t;
   const ring_par *p = ctx;
   dal_jet s = dal_sin(q[0]);
-  dal_jet T =
-      dal_scale(dal_add(dal_sq(v[0]), dal_scale(dal_sq(s), p->w * p->w)), 0.5 * p->m * p->R * p->R);
+  dal_jet T = dal_scale(dal_add(dal_sq(v[0]), dal_scale(dal_sq(s), p->spin * p->spin)),
+                        0.5 * p->m * p->R * p->R);
   dal_jet U = dal_scale(dal_cos(q[0]), -p->m * p->g * p->R);
   *L = dal_sub(T, U);
   return 0;
@@ -331,23 +321,10 @@ static int ring_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_je
 static void test_ring(void) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
-    ring_par P = {rnd(0.5, 2), rnd(0.3, 2), rnd(0, 8), rnd(-1, 1), 9.81};
+    ring_par P = {
+        .m = rnd(0.5, 2), .R = rnd(0.3, 2), .spin = rnd(0, 8), .phi0 = rnd(-1, 1), .g = 9.81};
+    scene s = scene_make(scn_bead(&P));
     dal_builder *b = builder(3);
-    int th, p;
-    double g[3] = {0, 0, -P.g};
-    BUILD(dal_builder_add_coord(b, "theta", &th));
-    BUILD(dal_builder_add_particle(b, "bead", P.m, &p));
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_ring;
-    pd.coords = &th;
-    pd.ncoords = 1;
-    pd.param[DAL_RING_R] = P.R;
-    pd.param[DAL_RING_W] = P.w;
-    pd.param[DAL_RING_PHI0] = P.phi0;
-    BUILD(dal_builder_place_def(b, p, &pd));
-    BUILD(dal_builder_set_gravity(b, g));
-    scene s = scene_make(compile(b));
-    b = builder(3);
     BUILD(dal_builder_add_coord(b, "theta", NULL));
     BUILD(dal_builder_set_lagrangian(b, ring_lagrangian, &P));
     scene sl = scene_make(compile(b));
@@ -356,7 +333,7 @@ static void test_ring(void) {
       for (int it = 0; it < NSTATE / 4; ++it) {
         double th0 = rnd(-3.1, 3.1), thd = rnd(-4, 4), t = rnd(-5, 5);
         if (at(&s, t, &th0, &thd) || at(&sl, t, &th0, &thd)) continue;
-        double sn = sin(th0), cs = cos(th0), w = P.w, R = P.R, m = P.m;
+        double sn = sin(th0), cs = cos(th0), w = P.spin, R = P.R, m = P.m;
         double hand = sn * (w * w * cs - P.g / R);
         double sc = w * w + P.g / R;
         near("ring theta'' (particle)", 0, dal_state_qddot(s.st)[0], hand, TOL, sc);
@@ -391,6 +368,8 @@ static void test_ring(void) {
           tg[a] = cs * er[a] + sn * ez[a]; // tangent along increasing theta
         }
         near_vec("ring dr/dt", dal_state_drdt(s.st), drdt, 3, TOL, w * R + 1);
+        double rh[3] = {R * n[0], R * n[1], R * n[2]}; // on the ring: R times its normal
+        near_vec("ring r", dal_state_positions(s.st), rh, 3, TOL, R);
         near_vec("ring gamma", dal_state_gamma(s.st), gam, 3, TOL, R * (thd * thd + w * w) + 1);
         // reaction force: N.n = -m R (thd^2 + w^2 sin^2) - m g cos, N.e_phi = 2 m w R cos thd,
         // N.t = 0 (frictionless ring)
@@ -412,9 +391,7 @@ static void test_ring(void) {
 
 // ---------------------------------------------------------------------------------------------
 // 3./4. pendulum with a support moving as p(t) = (x0 + ax cos(w t + ph), y0 + ay cos(w t + ph))
-typedef struct pend_par {
-  double m, l, x0, y0, ax, ay, w, ph, g;
-} pend_par;
+typedef scn_knobs pend_par; // m, l, x0, y0, ax, ay, w, ph, g: the scene library's pendulum
 
 // support position, velocity and acceleration
 static void support(const pend_par *P, double t, double *p, double *pd, double *pdd) {
@@ -458,32 +435,19 @@ static int pend_path(dal_jet t, dal_jet *q, void *ctx) {
 static void test_pendulum(int driven) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
-    pend_par P = {rnd(0.5, 2), rnd(0.3, 2),  rnd(-1, 1), rnd(-1, 1), 0,
-                  0,           rnd(0.5, 10), rnd(-1, 1), 9.81};
+    pend_par P = {.m = rnd(0.5, 2),
+                  .l = rnd(0.3, 2),
+                  .x0 = rnd(-1, 1),
+                  .y0 = rnd(-1, 1),
+                  .w = rnd(0.5, 10),
+                  .ph = rnd(-1, 1),
+                  .g = 9.81};
     if (driven) {
       P.ay = rnd(-0.5, 0.5);
       P.ax = rep % 2 ? rnd(-0.5, 0.5) : 0.0; // SICM's vertical drive, and a general one
     }
+    scene s = scene_make(scn_pendulum(&P));
     dal_builder *b = builder(2);
-    int th, p;
-    double g[2] = {0, -P.g};
-    BUILD(dal_builder_add_coord(b, "theta", &th));
-    BUILD(dal_builder_add_particle(b, "bob", P.m, &p));
-    dal_place_def pdef = dal_default_place_def();
-    pdef.prim = &dal_map_pendulum;
-    pdef.coords = &th;
-    pdef.ncoords = 1;
-    pdef.param[DAL_PENDULUM_L] = P.l;
-    pdef.param[DAL_PENDULUM_X0] = P.x0;
-    pdef.param[DAL_PENDULUM_Y0] = P.y0;
-    pdef.param[DAL_PENDULUM_AX] = P.ax;
-    pdef.param[DAL_PENDULUM_AY] = P.ay;
-    pdef.param[DAL_PENDULUM_W] = P.w;
-    pdef.param[DAL_PENDULUM_PH] = P.ph;
-    BUILD(dal_builder_place_def(b, p, &pdef));
-    BUILD(dal_builder_set_gravity(b, g));
-    scene s = scene_make(compile(b));
-    b = builder(2);
     BUILD(dal_builder_add_coord(b, "theta", NULL));
     BUILD(dal_builder_set_lagrangian(b, pend_lagrangian, &P));
     scene sl = scene_make(compile(b));
@@ -531,6 +495,11 @@ static void test_pendulum(int driven) {
         double Nh[2] = {Nm * sn, -Nm * cs};
         near_vec("pendulum reaction", dal_state_reactions(s.st), Nh, 2, TOL,
                  m * (l * thd * thd + P.g + fabs(pdd[0]) + fabs(pdd[1])));
+        // the bob at p + l (sin, -cos), moving at p' + l thd (cos, sin)
+        double rh[2] = {pp[0] + l * sn, pp[1] - l * cs}, vh[2] = {vx, vy};
+        near_vec("pendulum r", dal_state_positions(s.st), rh, 2, TOL,
+                 l + fabs(pp[0]) + fabs(pp[1]));
+        near_vec("pendulum v", dal_state_velocities(s.st), vh, 2, TOL, l * fabs(thd) + P.w + 1);
         // sizes: the Jacobian is written as exactly 2 x 1
         double J[4] = {-777, -777, -777, -777};
         CHECK_OK(dal_state_jacobian(s.sys, s.st, 0, J));
@@ -562,20 +531,18 @@ static void test_pendulum(int driven) {
 
 // ---------------------------------------------------------------------------------------------
 // 5. double pendulum
-typedef struct dbl_par {
-  double m1, m2, l1, l2, x0, y0, g;
-} dbl_par;
+typedef scn_knobs dbl_par; // m (m1), m2, l (l1), l2, x0, y0, g: the scene library's
 
 static int dbl_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
   (void)t;
   const dbl_par *P = ctx;
   // T = (m1+m2)/2 l1^2 w1^2 + m2/2 l2^2 w2^2 + m2 l1 l2 w1 w2 cos(th1 - th2)
-  dal_jet T = dal_scale(dal_sq(v[0]), 0.5 * (P->m1 + P->m2) * P->l1 * P->l1);
+  dal_jet T = dal_scale(dal_sq(v[0]), 0.5 * (P->m + P->m2) * P->l * P->l);
   T = dal_add(T, dal_scale(dal_sq(v[1]), 0.5 * P->m2 * P->l2 * P->l2));
   T = dal_add(T, dal_scale(dal_mul(dal_mul(v[0], v[1]), dal_cos(dal_sub(q[0], q[1]))),
-                           P->m2 * P->l1 * P->l2));
+                           P->m2 * P->l * P->l2));
   // U = -(m1+m2) g l1 cos th1 - m2 g l2 cos th2 (+ constant)
-  dal_jet U = dal_add(dal_scale(dal_cos(q[0]), -(P->m1 + P->m2) * P->g * P->l1),
+  dal_jet U = dal_add(dal_scale(dal_cos(q[0]), -(P->m + P->m2) * P->g * P->l),
                       dal_scale(dal_cos(q[1]), -P->m2 * P->g * P->l2));
   *L = dal_sub(T, U);
   return 0;
@@ -584,8 +551,8 @@ static int dbl_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet
 static int dbl_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
   (void)t;
   const dbl_par *P = ctx;
-  r[0] = dal_addc(dal_scale(dal_sin(q[0]), P->l1), P->x0);
-  r[1] = dal_addc(dal_scale(dal_cos(q[0]), -P->l1), P->y0);
+  r[0] = dal_addc(dal_scale(dal_sin(q[0]), P->l), P->x0);
+  r[1] = dal_addc(dal_scale(dal_cos(q[0]), -P->l), P->y0);
   r[2] = dal_add(r[0], dal_scale(dal_sin(q[1]), P->l2));
   r[3] = dal_sub(r[1], dal_scale(dal_cos(q[1]), P->l2));
   return 0;
@@ -594,44 +561,28 @@ static int dbl_map(const dal_jet *q, dal_jet t, dal_jet *r, void *ctx) {
 static double dbl_U(const double *q, double t, const void *ctx) {
   (void)t;
   const dbl_par *P = ctx;
-  double y1 = P->y0 - P->l1 * cos(q[0]), y2 = y1 - P->l2 * cos(q[1]);
-  return P->g * (P->m1 * y1 + P->m2 * y2);
+  double y1 = P->y0 - P->l * cos(q[0]), y2 = y1 - P->l2 * cos(q[1]);
+  return P->g * (P->m * y1 + P->m2 * y2);
 }
 
 static void test_double_pendulum(void) {
   int f0 = check_failures;
   for (int rep = 0; rep < 4; ++rep) {
-    dbl_par P = {rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(0.5, 2), rnd(-1, 1), rnd(-1, 1), 9.81};
+    dbl_par P = {.m = rnd(0.5, 2),
+                 .m2 = rnd(0.5, 2),
+                 .l = rnd(0.5, 2),
+                 .l2 = rnd(0.5, 2),
+                 .x0 = rnd(-1, 1),
+                 .y0 = rnd(-1, 1),
+                 .g = 9.81};
     double g[2] = {0, -P.g};
     // (a) primitives: pendulum + hanging from bob 1
-    dal_builder *b = builder(2);
-    int q[2], p1, p2;
-    BUILD(dal_builder_add_coord(b, "theta1", &q[0]));
-    BUILD(dal_builder_add_coord(b, "theta2", &q[1]));
-    BUILD(dal_builder_add_particle(b, "bob1", P.m1, &p1));
-    BUILD(dal_builder_add_particle(b, "bob2", P.m2, &p2));
-    dal_place_def pd = dal_default_place_def();
-    pd.prim = &dal_map_pendulum;
-    pd.coords = &q[0];
-    pd.ncoords = 1;
-    pd.param[DAL_PENDULUM_L] = P.l1;
-    pd.param[DAL_PENDULUM_X0] = P.x0;
-    pd.param[DAL_PENDULUM_Y0] = P.y0;
-    BUILD(dal_builder_place_def(b, p1, &pd));
-    pd = dal_default_place_def();
-    pd.prim = &dal_map_hanging;
-    pd.parent = p1;
-    pd.coords = &q[1];
-    pd.ncoords = 1;
-    pd.param[DAL_HANGING_L] = P.l2;
-    BUILD(dal_builder_place_def(b, p2, &pd));
-    BUILD(dal_builder_set_gravity(b, g));
-    scene sa = scene_make(compile(b));
+    scene sa = scene_make(scn_double_pendulum(&P));
     // (b) whole-system map
-    b = builder(2);
+    dal_builder *b = builder(2);
     BUILD(dal_builder_add_coord(b, "theta1", NULL));
     BUILD(dal_builder_add_coord(b, "theta2", NULL));
-    BUILD(dal_builder_add_particle(b, "bob1", P.m1, NULL));
+    BUILD(dal_builder_add_particle(b, "bob1", P.m, NULL));
     BUILD(dal_builder_add_particle(b, "bob2", P.m2, NULL));
     BUILD(dal_builder_set_map(b, dbl_map, &P));
     BUILD(dal_builder_set_gravity(b, g));
@@ -647,7 +598,7 @@ static void test_double_pendulum(void) {
         double th[2] = {rnd(-3.1, 3.1), rnd(-3.1, 3.1)}, w[2] = {rnd(-4, 4), rnd(-4, 4)};
         double t = rnd(-5, 5);
         if (at(&sa, t, th, w) || at(&sb, t, th, w) || at(&sc, t, th, w)) continue;
-        double m1 = P.m1, m2 = P.m2, l1 = P.l1, l2 = P.l2, G = P.g;
+        double m1 = P.m, m2 = P.m2, l1 = P.l, l2 = P.l2, G = P.g;
         double c12 = cos(th[0] - th[1]), s12 = sin(th[0] - th[1]);
         // hand: M qdd = Q - c
         double Mh[4] = {(m1 + m2) * l1 * l1, m2 * l1 * l2 * c12, m2 * l1 * l2 * c12, m2 * l2 * l2};
@@ -698,9 +649,7 @@ static void test_double_pendulum(void) {
 
 // ---------------------------------------------------------------------------------------------
 // 6. spherical pendulum
-typedef struct sph_par {
-  double m, l, g;
-} sph_par;
+typedef scn_knobs sph_par; // m, l, g and the pivot (x0, y0, z0): the scene library's
 
 static int sph_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet *L, void *ctx) {
   (void)t;
@@ -713,25 +662,9 @@ static int sph_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *v, dal_jet
 
 static void test_spherical(void) {
   int f0 = check_failures;
-  sph_par P = {1.3, 0.8, 9.81};
-  double piv[3] = {0.2, -0.3, 0.5}, g[3] = {0, 0, -P.g};
+  sph_par P = {.m = 1.3, .l = 0.8, .g = 9.81, .x0 = 0.2, .y0 = -0.3, .z0 = 0.5};
+  scene s = scene_make(scn_spherical(&P));
   dal_builder *b = builder(3);
-  int q[2], p;
-  BUILD(dal_builder_add_coord(b, "theta", &q[0]));
-  BUILD(dal_builder_add_coord(b, "phi", &q[1]));
-  BUILD(dal_builder_add_particle(b, "bob", P.m, &p));
-  dal_place_def pd = dal_default_place_def();
-  pd.prim = &dal_map_spherical;
-  pd.coords = q;
-  pd.ncoords = 2;
-  pd.param[DAL_SPHERICAL_L] = P.l;
-  pd.param[DAL_SPHERICAL_X0] = piv[0];
-  pd.param[DAL_SPHERICAL_Y0] = piv[1];
-  pd.param[DAL_SPHERICAL_Z0] = piv[2];
-  BUILD(dal_builder_place_def(b, p, &pd));
-  BUILD(dal_builder_set_gravity(b, g));
-  scene s = scene_make(compile(b));
-  b = builder(3);
   BUILD(dal_builder_add_coord(b, "theta", NULL));
   BUILD(dal_builder_add_coord(b, "phi", NULL));
   BUILD(dal_builder_set_lagrangian(b, sph_lagrangian, &P));
@@ -751,11 +684,11 @@ static void test_spherical(void) {
       double Qh[2] = {-m * P.g * l * sn, 0.0};
       near_vec("spherical Q", dal_state_genforces(s.st), Qh, 2, TOL, m * P.g * l);
       double T = 0.5 * m * l * l * (v[0] * v[0] + sn * sn * v[1] * v[1]);
-      double U = m * P.g * (piv[2] - l * cs), esc = m * (l * l * 9 + P.g * (l + 1));
+      double U = m * P.g * (P.z0 - l * cs), esc = m * (l * l * 9 + P.g * (l + 1));
       dal_energies e = energies(&s), el = energies(&sl);
       near("spherical E", 0, e.E, T + U, TOL, esc);
       near("spherical h", 0, e.h, T + U, TOL, esc);
-      near("spherical h (Lagrangian)", 0, el.h, T + U - m * P.g * piv[2], TOL, esc);
+      near("spherical h (Lagrangian)", 0, el.h, T + U - m * P.g * P.z0, TOL, esc);
       // reaction along the rod: N = -(m l (thd^2 + sin^2 phd^2) + m g cos) e_r
       double er[3] = {sn * cos(x[1]), sn * sin(x[1]), -cs};
       double Nm = -(m * l * (v[0] * v[0] + sn * sn * v[1] * v[1]) + m * P.g * cs), Nh[3];
@@ -1072,7 +1005,7 @@ static int lag_genforce(double t, const double *q, const double *qd, double *Q, 
 
 static void test_lagrangian_genforce(void) {
   int f0 = check_failures;
-  pend_par P = {1.1, 0.7, 0, 0, 0, 0, 1, 0, 9.81};
+  pend_par P = {.m = 1.1, .l = 0.7, .w = 1, .g = 9.81};
   double c[2] = {0.4, 1.5};
   dal_builder *b = builder(2);
   BUILD(dal_builder_add_coord(b, "theta", NULL));
@@ -1246,13 +1179,8 @@ static void test_non_translating_parent(void) {
     if (general) {
       BUILD(dal_builder_set_map(b, scaled_map, NULL));
     } else {
+      BUILD(scn_place_swing(b, NULL, p[0], -1, 1.0, c[0]));
       dal_place_def pd = dal_default_place_def();
-      pd.prim = &dal_map_pendulum;
-      pd.coords = &c[0];
-      pd.ncoords = 1;
-      pd.param[DAL_PENDULUM_L] = 1.0;
-      BUILD(dal_builder_place_def(b, p[0], &pd));
-      pd = dal_default_place_def();
       pd.prim = &scaled_prim;
       pd.parent = p[0];
       pd.coords = &c[1];

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // White box: what callers read off the method rows (src/integrate/methods.c) against the rules
-// the public headers document, and the integrator handle's key: AUTO's tight case (the
+// the public headers document, the integrator handle on a first-order problem against the closed
+// form, and the handle's key: AUTO's tight case (the
 // fallback formulation, solve.h) keeps its integrator over dal_advance calls exactly as the
 // same formulation asked for by name does.
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -100,6 +102,106 @@ static void test_refusals(void) {
   dal_system_destroy(sys);
 }
 
+// the first-order problem of test_fo_handle: two harmonic oscillators, y = (q, v, x, w),
+// q' = v, v' = -q, x' = w, w' = -x (the rhs ignores the pendulum: a first-order problem says
+// its own F)
+static int two_oscillators(void *ctx, dal_state *st, double t, const double *y, double *f) {
+  (void)ctx;
+  (void)st;
+  (void)t;
+  f[0] = y[1];
+  f[1] = -y[0];
+  f[2] = y[3];
+  f[3] = -y[2];
+  return DAL_OK;
+}
+
+// after every step of a hooked run: the work state placed at the middle of the step just taken,
+// against q = cos t
+typedef struct dense_probe {
+  dal_integ *it;
+  int steps;
+  double err;
+} dense_probe;
+
+static int probe_mid(void *ctx) {
+  dense_probe *pr = ctx;
+  double a = 0, b = 0;
+  pr->it->ops->window(pr->it, &a, &b);
+  double tm = 0.5 * (a + b);
+  int rc = pr->it->ops->place(pr->it, tm);
+  if (rc) return rc;
+  const dal_state *st = pr->it->st;
+  pr->err = fmax(pr->err, st->t == tm && b > a ? fabs(dal_state_q(st)[0] - cos(tm)) : INFINITY);
+  pr->steps++;
+  return DAL_OK;
+}
+
+// a first-order problem behind the integrator handle (dal__integ_create_fo), against the
+// closed form: AUTO resolved by the rows, the solution at it->y, the work state following the
+// trajectory part, dense output through place, change_y where the method keeps its memory, the
+// budget it->opts.max_steps, a refused method naming those that run one
+static void test_fo_handle(void) {
+  dal_system *sys = scn_pendulum(NULL);
+  dal_state *st = NULL;
+  CHECK_OK(dal_state_create(sys, &st));
+  const double y0[4] = {1.0, 0.0, 0.0, 1.0}; // q = cos t, v = -sin t, x = sin t, w = cos t
+  dal_first_order fo = {.ny = 4, .y0 = y0, .rhs = two_oscillators};
+  dal_solve_opts o = dal_default_solve_opts();
+  o.rtol = o.atol = 1e-10;
+  dal_integ *it = NULL;
+  CHECK_OK(dal__integ_create_fo(sys, st, &o, &fo, &it));
+  // AUTO on a first-order problem: Adams between rtol 1e-6 and 1e-12 (analysis.h)
+  CHECK(it->method == DAL_METHOD_ADAMS && it->ny == 4 && it->ops->change_y);
+  CHECK_OK(it->ops->advance(it, 1.0, NULL, NULL));
+  double err = 0;
+  CHECK(st->t == 1.0);
+  const double ref[4] = {cos(1.0), -sin(1.0), sin(1.0), cos(1.0)};
+  for (int i = 0; i < 4; ++i)
+    err = fmax(err, fabs(it->y[i] - ref[i]));
+  CHECK_MSG(err < 1e-10, "Adams at rtol 1e-10: error %.3g", err);
+  CHECK(dal_state_q(st)[0] == it->y[0] && dal_state_qdot(st)[0] == it->y[1]);
+  // dense output of the trajectory part inside every step of a hooked run
+  dense_probe pr = {.it = it};
+  it->dense_steps = 1;
+  CHECK_OK(it->ops->advance(it, 2.0, probe_mid, &pr));
+  CHECK_MSG(pr.steps > 5 && pr.err < 1e-10, "%d steps, dense output off by %.3g", pr.steps, pr.err);
+  printf("first-order handle, Adams at rtol 1e-10: error %.3g at t = 1, dense output %.3g in %d "
+         "steps\n",
+         err, pr.err, pr.steps);
+  // Adams cannot go on after y changed: nothing changed, the caller makes a fresh integrator
+  const double moved[4] = {0.0, 0.0, 0.0, 2.0};
+  double w1 = it->y[3];
+  CHECK(it->ops->change_y(it, 2, moved) == 0 && it->y[3] == w1);
+  // the step budget is read at every call
+  it->opts.max_steps = 3;
+  CHECK(it->ops->advance(it, 60.0, NULL, NULL) == DAL_E_MAXSTEPS);
+  CHECK(strstr(dal_state_errmsg(st), "opts.max_steps") != NULL);
+  dal__integ_destroy(it);
+
+  // Bulirsch-Stoer goes on from the changed tangent part: x = 2 sin(t - 1) from t = 1
+  o.method = DAL_METHOD_BS;
+  st->t = 0.0;
+  CHECK_OK(dal__integ_create_fo(sys, st, &o, &fo, &it));
+  CHECK_OK(it->ops->advance(it, 1.0, NULL, NULL));
+  CHECK(it->ops->change_y(it, 2, moved) == 1 && it->y[2] == 0.0 && it->y[3] == 2.0);
+  CHECK_OK(it->ops->advance(it, 2.0, NULL, NULL));
+  const double ref2[4] = {cos(2.0), -sin(2.0), 2.0 * sin(1.0), 2.0 * cos(1.0)};
+  err = 0;
+  for (int i = 0; i < 4; ++i)
+    err = fmax(err, fabs(it->y[i] - ref2[i]));
+  CHECK_MSG(err < 1e-10, "BS after change_y: error %.3g", err);
+  printf("first-order handle, Bulirsch-Stoer through change_y: error %.3g at t = 2\n", err);
+  dal__integ_destroy(it);
+
+  // a structure-preserving method runs no first-order problem: refused, naming those that do
+  o.method = DAL_METHOD_RATTLE;
+  CHECK(dal__integ_create_fo(sys, st, &o, &fo, &it) == DAL_E_UNSUPPORTED && it == NULL);
+  CHECK(strstr(dal_state_errmsg(st), "(dopri5, fehlberg78, bs, rk4, adams, bdf)") != NULL);
+  dal_state_destroy(st);
+  dal_system_destroy(sys);
+}
+
 // AUTO below IDA's tolerance floor runs the fallback formulation; its integrator must be kept
 // from one dal_advance call to the next like any other (it was rebuilt at every call: 200
 // steps instead of 102 for 100 calls). Reference: the same formulation asked for by name.
@@ -142,6 +244,7 @@ int main(void) {
   test_caps();
   test_auto_fo();
   test_refusals();
+  test_fo_handle();
   test_tight_key();
   return check_summary("test_method_rows");
 }

@@ -215,7 +215,118 @@ static void bad_selections(void) {
   dal_system_destroy(sys);
 }
 
-// the viewer's page: 10^4 frames of a 10-particle chain within 2 MB; bad options refused
+// the positions of a run at the frame times t0 + i / fps (a monitor keeps them)
+typedef struct keep {
+  double *r;
+  size_t rows, width;
+} keep;
+
+static int keep_positions(const dal_system *sys, const dal_state *st, void *ctx) {
+  keep *k = ctx;
+  (void)sys;
+  memcpy(k->r + k->rows++ * k->width, dal_state_positions(st), k->width * sizeof *k->r);
+  return 0;
+}
+
+// the page's series `key` decoded as docs/guide.md states the format (view.c: put_series): the
+// numbers of {"w", "lo", "step", "b64"}, base64, zigzag varints of the misses of the prediction
+// (0; k[r-1]; 2 k[r-1] - k[r-2]), x = lo + k step; rows x w values into x
+static int decode_series(const char *page, const char *key, size_t rows, double *x, double *step) {
+  char pat[32];
+  snprintf(pat, sizeof pat, "\"%s\":{\"w\":", key);
+  const char *p = strstr(page, pat);
+  if (!p) return -1;
+  int w = atoi(p + strlen(pat));
+  double *lo = calloc((size_t)w, sizeof *lo);
+  const char *q = strstr(p, "\"lo\":[") + 6;
+  for (int c = 0; c < w; ++c, ++q)
+    lo[c] = strtod(q, (char **)&q);
+  q = strstr(p, "\"step\":[") + 8;
+  for (int c = 0; c < w; ++c, ++q)
+    step[c] = strtod(q, (char **)&q);
+  q = strstr(p, "\"b64\":\"") + 7;
+  size_t n64 = strcspn(q, "\""), nb = 0;
+  unsigned char *buf = malloc(n64);
+  unsigned acc = 0;
+  int bits = 0;
+  for (size_t i = 0; i < n64 && q[i] != '='; ++i) {
+    const char *tab = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    acc = (acc << 6) | (unsigned)(strchr(tab, q[i]) - tab);
+    if ((bits += 6) >= 8) buf[nb++] = (unsigned char)(acc >> (bits -= 8)), acc &= (1u << bits) - 1;
+  }
+  long *k = calloc(2 * (size_t)w, sizeof *k);
+  size_t at = 0;
+  for (size_t r = 0; r < rows; ++r)
+    for (int c = 0; c < w; ++c) {
+      if (!(step[c] > 0)) {
+        x[r * (size_t)w + (size_t)c] = lo[c];
+        continue;
+      }
+      unsigned long z = 0;
+      for (int sh = 0; at < nb; sh += 7) {
+        z |= (unsigned long)(buf[at] & 127) << sh;
+        if (!(buf[at++] & 128)) break;
+      }
+      long miss = z & 1 ? -(long)((z + 1) / 2) : (long)(z / 2);
+      long kk = (r >= 2 ? 2 * k[2 * c] - k[2 * c + 1] : k[2 * c]) + miss;
+      k[2 * c + 1] = k[2 * c], k[2 * c] = kk;
+      x[r * (size_t)w + (size_t)c] = kk == 65535 ? NAN : lo[c] + (double)kk * step[c];
+    }
+  int ok = at == nb ? w : -1; // every byte read
+  free(lo);
+  free(buf);
+  free(k);
+  return ok;
+}
+
+// 10^4 frames at 60 per second of 10 particles within 2 MB, the positions decoded from the page
+// within the stated precision (half a step, step = the coordinate's range / 65534) of the
+// library's own run at the frame times
+static void view_page(const char *what, dal_system *sys, dal_state *st, dal_solve_opts *so) {
+  size_t nf = 10000, w = (size_t)(dal_system_nparticles(sys) * dal_system_dim(sys));
+  double t0 = dal_state_time(st), *times = malloc(nf * sizeof *times);
+  for (size_t i = 0; i < nf; ++i)
+    times[i] = t0 + (double)i / 60;
+  double *q0 = malloc(2 * (size_t)dal_system_ncoords(sys) * sizeof *q0);
+  memcpy(q0, dal_state_q(st), (size_t)dal_system_ncoords(sys) * sizeof *q0);
+  memcpy(q0 + dal_system_ncoords(sys), dal_state_qdot(st),
+         (size_t)dal_system_ncoords(sys) * sizeof *q0);
+  keep ref = {malloc(nf * w * sizeof(double)), 0, w};
+  CHECK_OK(dal_evolve_at(sys, st, so, times, nf, keep_positions, &ref));
+  CHECK(ref.rows == nf);
+  CHECK_OK(dal_state_set(sys, st, t0, q0, q0 + dal_system_ncoords(sys)));
+  dal_view_opts o = dal_default_view_opts();
+  o.solve = so;
+  o.t1 = times[nf - 1];
+  FILE *fp = tmpfile();
+  CHECK_OK(dal_view_write(sys, st, &o, NULL, fp));
+  long size = ftell(fp);
+  char *page = calloc((size_t)size + 1, 1);
+  rewind(fp);
+  CHECK(page && fread(page, 1, (size_t)size, fp) == (size_t)size);
+  fclose(fp);
+  CHECK(strstr(page, "\"frames\":10000,") != NULL);
+  double *x = malloc(nf * w * sizeof *x), *step = malloc(w * sizeof *step), worst = 0;
+  CHECK(decode_series(page, "pos", nf, x, step) == (int)w);
+  for (size_t c = 0; c < w; ++c) { // the bound from the reference's own range
+    double lo = INFINITY, hi = -INFINITY, e = 0;
+    for (size_t r = 0; r < nf; ++r)
+      lo = fmin(lo, ref.r[r * w + c]), hi = fmax(hi, ref.r[r * w + c]);
+    for (size_t r = 0; r < nf; ++r)
+      e = fmax(e, fabs(x[r * w + c] - ref.r[r * w + c]));
+    CHECK_MSG(e <= (hi - lo) / 131068 * (1 + 1e-9) + 1e-15,
+              "%s: coordinate %zu off by %.3g (range %.3g)", what, c, e, hi - lo);
+    worst = fmax(worst, e / (hi - lo));
+  }
+  printf("viewer: 10^4 frames of 10 particles (%s): %ld bytes, %.1f bytes per frame and "
+         "particle; positions within %.3g of each coordinate's range (bound 1/131068 = %.3g)\n",
+         what, size, (double)size / 1e5, worst, 1.0 / 131068);
+  CHECK(size < 2000000);
+  free(page), free(x), free(step), free(times), free(q0), free(ref.r);
+}
+
+// the viewer's page: a 2-D chain and 3-D spherical pendulums (each on its turning circle);
+// bad options refused
 static void view_size(void) {
   scn_knobs k = scn_default();
   k.N = 10;
@@ -224,20 +335,10 @@ static void view_size(void) {
   CHECK_OK(dal_state_create(sys, &st));
   double q[10] = {0.5, 0.4, 0.3, 0.2, 0.1, 0, -0.1, -0.2, -0.3, -0.4}, qd[10] = {0};
   CHECK_OK(dal_state_set(sys, st, 0.0, q, qd));
-  dal_view_opts o = dal_default_view_opts();
   dal_solve_opts so = scn_opts(DAL_FORM_AUTO, DAL_METHOD_DOPRI5, 1e-6);
-  o.solve = &so;
-  o.fps = 1000;
-  o.t1 = 9.999; // frames 0 ... 9999
-  FILE *fp = tmpfile();
-  CHECK_OK(dal_view_write(sys, st, &o, NULL, fp));
-  long size = ftell(fp);
-  fclose(fp);
-  printf("viewer: 10^4 frames of 10 particles (2-D chain): %ld bytes, %.1f bytes per frame and "
-         "particle\n",
-         size, (double)size / 1e5);
-  CHECK(size < 2000000);
+  view_page("2-D chain", sys, st, &so);
   // refused: no stream, t1 not after t, fps <= 0
+  dal_view_opts o = dal_default_view_opts();
   o.t1 = dal_state_time(st);
   CHECK(dal_view_write(sys, st, &o, NULL, stdout) == DAL_E_ARG);
   CHECK(strstr(dal_state_errmsg(st), "t1 after") != NULL);
@@ -247,6 +348,25 @@ static void view_size(void) {
   CHECK(dal_view_write(sys, st, &o, NULL, NULL) == DAL_E_ARG);
   dal_state_destroy(st);
   dal_system_destroy(sys);
+  // ten spherical pendulums in formulas, each turning about the vertical (the heaviest page per
+  // particle: every one moves on a circle whose plane turns)
+  char text[4096];
+  size_t len = (size_t)snprintf(text, sizeof text, "dim 3\n");
+  for (int i = 0; i < 10; ++i)
+    len += (size_t)snprintf(text + len, sizeof text - len,
+                            "coord th%d q=1 v=0\ncoord ph%d q=0 v=%d\nparticle p%d mass=1\n"
+                            "place p%d = %g + sin(th%d)*cos(ph%d); sin(th%d)*sin(ph%d); "
+                            "-cos(th%d)\n",
+                            i, i, 2 + i % 3, i, i, 1.5 * i, i, i, i, i, i);
+  snprintf(text + len, sizeof text - len, "gravity 0 0 -9.81\n");
+  dal_scene *sc = NULL;
+  char msg[512];
+  CHECK_OK(dal_scene_parse(text, "spherical10", &sc, msg, sizeof msg));
+  CHECK_OK(dal_scene_state(sc, &st));
+  so = scn_opts(DAL_FORM_AUTO, DAL_METHOD_DOPRI5, 1e-6);
+  view_page("3-D spherical pendulums", (dal_system *)dal_scene_system(sc), st, &so);
+  dal_state_destroy(st);
+  dal_scene_destroy(sc);
 }
 
 // the picture: each exposure's bob where the library's own run puts it, seen from the pivot

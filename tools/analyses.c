@@ -38,6 +38,29 @@ static void json_coords(cli_json *j, const char *key, const dal_system *sys, con
 // a status that refuses the request itself (the same for every start), not a start that failed
 static int refused(int rc) { return rc == DAL_E_UNSUPPORTED || rc == DAL_E_ARG; }
 
+// points kept for a chart: rows of t and w numbers
+typedef struct points {
+  double *v;
+  size_t count, cap;
+  int w;
+} points;
+
+// a row: t, x (nx, angles wrapped into [-pi, pi) when wrap is set), y (the rest of the row)
+static int keep(points *p, double t, const double *x, int nx, const double *y, int wrap) {
+  size_t w = 1 + (size_t)p->w;
+  if (p->count == p->cap) {
+    size_t cap = p->cap ? 2 * p->cap : 64;
+    double *v = realloc(p->v, cap * w * sizeof *v);
+    if (!v) return DAL_E_NOMEM;
+    p->v = v, p->cap = cap;
+  }
+  double *r = p->v + p->count++ * w;
+  r[0] = t;
+  for (int i = 0; i < p->w; ++i)
+    r[1 + i] = i >= nx ? y[i - nx] : wrap ? wrap_pi(x[i]) : x[i];
+  return DAL_OK;
+}
+
 const cli_opt cli_modes_opts[] = {
     {"here", 0, CLI_FLAG, NULL, "at the initial q (no Newton search)", 0},
     CLI_OPT_FROZEN,
@@ -296,12 +319,14 @@ static int method_named(const cli *c, const char *name, dal_method *m) {
 typedef struct lyap_ctx {
   const cli *c;
   double t1, t; // the end, the last renormalization
+  points *kept; // nullable: the running estimates (rows t, exponents) for the chart
 } lyap_ctx;
 
 static int lyap_progress(double t, const double *ex, int nexp, void *ctx) {
   lyap_ctx *l = ctx;
   char extra[64];
   l->t = t;
+  if (l->kept && nexp == l->kept->w && keep(l->kept, t, ex, nexp, NULL, 0)) return 1;
   snprintf(extra, sizeof extra, "lambda_1 %.4f", nexp ? ex[0] : NAN);
   cli_progress(l->c, "lyapunov: t", t, l->t1, extra);
   return cli_interrupted();
@@ -316,8 +341,34 @@ const cli_opt cli_lyapunov_opts[] = {
      0},
     {"h", 0, CLI_POSITIVE, "H", "the step of a fixed-step method", 0},
     CLI_OPT_FORMAT,
+    CLI_OPT_CHART("the running estimates against t, and the exponents with their 95% half-widths"),
     CLI_END,
 };
+
+// the running estimates (rows t, k exponents, every renormalization: at most 2000 drawn) and
+// the exponents with their half-widths at the end
+static int lyapunov_chart(cli *c, cli_file *f, const points *p, int k, double tend,
+                          const double *ex, const double *er) {
+  cli_series *se = calloc((size_t)k + 1, sizeof *se);
+  double *at = calloc((size_t)k + 1, sizeof *at);
+  char(*names)[48] = calloc((size_t)k + 1, sizeof *names), title[400];
+  int rc = se && at && names ? DAL_OK : DAL_E_NOMEM;
+  size_t every = p->count / 2000 + 1, w = 1 + (size_t)p->w;
+  for (int i = 0; i < k && !rc; ++i) {
+    snprintf(names[i], sizeof names[i], "running, column %d", i + 1);
+    se[i] = (cli_series){names[i],  p->v, p->v + 1 + i, NULL, (p->count + every - 1) / every,
+                         every * w, 1};
+    at[i] = tend;
+  }
+  if (!rc) {
+    se[k] = (cli_series){"exponents at the end, 95% half-widths", at, ex, er, (size_t)k, 1, 0};
+    snprintf(title, sizeof title, "%s: Lyapunov exponents", c->path);
+    cli_panel pan = {title, "t", "exponent (1/time)", se, k + 1};
+    rc = cli_chart(c, f, &pan, 1);
+  }
+  free(se), free(at), free(names);
+  return rc;
+}
 
 static void print_exponents(cli *c, FILE *fp, const dal_lyapunov_opts *o, double t0, double tend,
                             const double *ex, const double *er, int k) {
@@ -381,8 +432,16 @@ int cli_lyapunov(cli *c) {
   dal_state *st;
   rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
+  // the chart's file first: one that cannot be written stops the command before it runs
+  const char *chart = cli_text(c, "chart");
+  cli_file cf = {0};
+  if (chart && cli_open(c, chart, &cf)) {
+    dal_state_destroy(st);
+    return DAL_E_IO;
+  }
   double *ex = calloc((size_t)k + 1, sizeof *ex), *er = calloc((size_t)k + 1, sizeof *er);
-  lyap_ctx lc = {c, o.t_end, NAN};
+  points kept = {NULL, 0, 0, k}; // the running estimates (k: the monitor's count)
+  lyap_ctx lc = {c, o.t_end, NAN, chart ? &kept : NULL};
   FILE *fp = cli_out(c);
   rc = !fp        ? DAL_E_IO
        : ex && er ? dal_lyapunov(sys, st, &o, ex, er, lyap_progress, &lc)
@@ -396,11 +455,17 @@ int cli_lyapunov(cli *c) {
       cli_error(c, 0, "interrupted at t = %.17g: the estimates up to there", lc.t);
     else
       cli_note(c, st);
+    if (chart) rc = lyapunov_chart(c, &cf, &kept, k, stopped ? lc.t : o.t_end, ex, er);
   }
   free(ex);
   free(er);
+  free(kept.v);
   dal_state_destroy(st);
-  return cli_close(c, rc);
+  // the chart, then the exponents: when either fails neither is left
+  if (chart) rc = cli_commit(c, &cf, rc);
+  int done = cli_close(c, rc);
+  if (chart && done < 0 && rc >= 0) remove(chart);
+  return done;
 }
 
 // the monitor of a run: the progress line, the interruption, and a row (CSV or JSON)
@@ -410,6 +475,7 @@ typedef struct rows {
   cli_json *json;  // nullable: objects into its open array
   double t1, last; // the end, the time of the last row written (NaN: none)
   const char *what;
+  points *kept; // nullable: every row's t, q, qdot kept (for a chart)
 } rows;
 
 static int row(const dal_system *sys, const dal_state *st, void *ctx) {
@@ -419,6 +485,9 @@ static int row(const dal_system *sys, const dal_state *st, void *ctx) {
   FILE *fp = r->json ? r->json->fp : r->csv.fp;
   if (fp && ferror(fp)) return -1; // a row not written: cli_commit says why
   r->last = dal_state_time(st);
+  if (r->kept && keep(r->kept, r->last, dal_state_q(st), dal_system_ncoords(sys),
+                      dal_state_qdot(st), r->csv.wrap_angles))
+    return -1;
   if (r->json) {
     cli_json_object(r->json, NULL);
     cli_json_num(r->json, "t", dal_state_time(st));
@@ -468,14 +537,15 @@ int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what) {
     int rc = dal_columns_create(dal_scene_system(c->sc), spec, &cols, c->msg, sizeof c->msg);
     if (rc) return cli_fail(c, rc, c->msg);
   }
-  rows r = {c, {fp, 0, cli_given(c, "wrap"), cols}, NULL, 0, NAN, what};
+  rows r = {c, {fp, 0, cli_given(c, "wrap"), cols}, NULL, 0, NAN, what, NULL};
   int rc = evolve(c, &r, ev, dt);
   dal_columns_destroy(cols);
   return rc;
 }
 
-// the crossings of the surface sections: "t,section,<q>,<qdot>" or JSON objects
-static int write_crossings(cli *c, const dal_events *ev, FILE *fp, cli_json *j) {
+// the crossings of the surface sections: "t,section,<q>,<qdot>" or JSON objects (and kept,
+// when kept is not NULL)
+static int write_crossings(cli *c, const dal_events *ev, FILE *fp, cli_json *j, points *kept) {
   const dal_system *sys = dal_scene_system(c->sc);
   int n = dal_system_ncoords(sys), wrap = cli_given(c, "wrap");
   double *q = malloc(2 * (size_t)n * sizeof *q);
@@ -494,6 +564,10 @@ static int write_crossings(cli *c, const dal_events *ev, FILE *fp, cli_json *j) 
     if (dal_scene_event_is_section(c->sc, r.event) != 1) continue;
     for (int i = 0; wrap && i < n; ++i)
       q[i] = wrap_pi(q[i]);
+    if (kept && keep(kept, r.t, q, 2 * n, NULL, 0)) {
+      free(q);
+      return DAL_E_NOMEM;
+    }
     if (j) {
       cli_json_object(j, NULL);
       cli_json_num(j, "t", r.t);
@@ -512,8 +586,31 @@ static int write_crossings(cli *c, const dal_events *ev, FILE *fp, cli_json *j) 
   return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
+// the section's chart: a panel per coordinate, qdot_i against q_i at the section's points
+static int section_chart(cli *c, cli_file *f, const points *p) {
+  const dal_system *sys = dal_scene_system(c->sc);
+  int n = p->w / 2;
+  cli_panel *pan = calloc((size_t)n, sizeof *pan);
+  cli_series *se = calloc((size_t)n, sizeof *se);
+  char(*title)[320] = calloc((size_t)n, sizeof *title),
+  (*ylab)[300] = calloc((size_t)n, sizeof *ylab);
+  int rc = pan && se && title && ylab ? DAL_OK : DAL_E_NOMEM;
+  for (int i = 0; i < n && !rc; ++i) {
+    const char *name = dal_system_coord_name(sys, i);
+    snprintf(title[i], sizeof title[i], "%s: section of %s (%zu points)", c->path, name, p->count);
+    snprintf(ylab[i], sizeof ylab[i], "%s_dot", name);
+    se[i] =
+        (cli_series){NULL, p->v + 1 + i, p->v + 1 + n + i, NULL, p->count, 1 + 2 * (size_t)n, 0};
+    pan[i] = (cli_panel){title[i], name, ylab[i], &se[i], 1};
+  }
+  if (!rc) rc = cli_chart(c, f, pan, n);
+  free(pan), free(se), free(title), free(ylab);
+  return rc;
+}
+
 const cli_opt cli_section_opts[] = {
     CLI_OPT_OUTPUT("the section's points"),
+    CLI_OPT_CHART("the section's points, qdot against q for each coordinate"),
     {"surface", 0, CLI_FLAG, NULL, "the surface section (a 'section ... rising =' line)", 0},
     CLI_OPT_WRAP,
     CLI_OPT_T1,
@@ -531,9 +628,17 @@ int cli_section(cli *c) {
                      "%s has no %ssection line ('section <name> period=<T>' or 'section <name> "
                      "rising = <formula>')",
                      c->path, surface ? "surface " : "");
+  // the chart's file first: one that cannot be written stops the command before it runs
+  const char *chart = cli_text(c, "chart");
+  cli_file cf = {0};
+  if (chart && cli_open(c, chart, &cf)) return DAL_E_IO;
   FILE *fp = cli_out(c);
-  if (!fp) return DAL_E_IO;
+  if (!fp) {
+    if (chart) cli_commit(c, &cf, DAL_E_IO);
+    return DAL_E_IO;
+  }
   dal_events *ev = NULL;
+  points kept = {NULL, 0, 0, 2 * dal_system_ncoords(dal_scene_system(c->sc))};
   double dt;
   dal_scene_opts(c->sc, NULL, NULL, &dt);
   cli_json j, *jp = NULL;
@@ -552,14 +657,21 @@ int cli_section(cli *c) {
             strobo ? jp : NULL,
             0,
             NAN,
-            "section: t"};
+            "section: t",
+            strobo && chart ? &kept : NULL};
   if (!rc) rc = evolve(c, &r, ev, strobo ? dal_scene_strobe(c->sc) : dt);
-  if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp, jp);
+  if (!strobo && rc >= 0) rc = write_crossings(c, ev, fp, jp, chart ? &kept : NULL);
   if (jp) {
     cli_json_end(&j);
     cli_json_bool(&j, "complete", rc >= 0 && !cli_interrupted());
     cli_json_finish(&j);
   }
   dal_events_destroy(ev);
-  return cli_close(c, rc);
+  // the chart, then the points: when either fails neither is left
+  if (chart && rc >= 0) rc = section_chart(c, &cf, &kept);
+  free(kept.v);
+  if (chart) rc = cli_commit(c, &cf, rc);
+  int done = cli_close(c, rc);
+  if (chart && done < 0 && rc >= 0) remove(chart);
+  return done;
 }

@@ -117,6 +117,8 @@ CLI_COMMAND(compile);
   { "t1", 0, CLI_POSITIVE, "T", "end time (default: the scene's t1)", 0 }
 #define CLI_OPT_FROZEN                                                                             \
   { "frozen", 0, CLI_FLAG, NULL, "the linearization frozen at t0 of a time-dependent scene", 0 }
+#define CLI_OPT_CHART(what)                                                                        \
+  { "chart", 0, CLI_TEXT, "FILE.svg", what " (an SVG; docs/cli.md)", 0 }
 #define CLI_OPT_FORMAT                                                                             \
   { "format", 0, CLI_CHOICE, "csv|json", "csv (default) or json (docs/cli.md: the schema)", 0 }
 
@@ -184,5 +186,29 @@ int cli_grid(const cli *c, const char *opt, const char *spec, char *buf, size_t 
 // with events ev (nullable) attached: a CSV row of dal_csv_monitor every dt to fp (nullable:
 // none) and the progress line `what`
 int cli_evolve(cli *c, FILE *fp, dal_events *ev, double dt, const char *what);
+
+// --- charts (chart.c) ---
+
+// a series of a chart's panel: the points (x[i stride], y[i stride]), i < n (a point not finite
+// is left out), drawn as dots or as a line, with error bars +-err[i stride] (nullable)
+typedef struct cli_series {
+  const char *name; // the legend (nullable)
+  const double *x, *y, *err;
+  size_t n, stride;
+  int line;
+} cli_series;
+
+// a panel: its title, axis labels and series
+typedef struct cli_panel {
+  const char *title, *xlabel, *ylabel;
+  const cli_series *series;
+  int nseries;
+} cli_panel;
+
+// the panels stacked into one SVG written to f (opened by cli_open; the caller commits it).
+// Each panel states its map from data to px: <g class="panel" data-transform="[ax,bx,ay,by]">,
+// px = ax + bx x, py = ay + by y; a dot is <circle cx cy>, a line <polyline points>, an error bar
+// <line class="err">. Returns DAL_OK or DAL_E_IO (said).
+int cli_chart(const cli *c, cli_file *f, const cli_panel *p, int np);
 
 #endif

@@ -147,6 +147,35 @@ static int write_rows(const sweep_ctx *s, const dal_sweep_out *o, int n, FILE *f
   return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
+// the chart: a panel per coordinate, its final value against the parameter (the runs that
+// failed left out)
+static int sweep_chart(const sweep_ctx *s, const dal_sweep_out *o, int n, cli_file *f) {
+  const dal_system *sys = dal_scene_system(s->c->sc);
+  double *xy = malloc((size_t)s->npts * (1 + (size_t)n) * sizeof *xy);
+  cli_panel *pan = calloc((size_t)n + 1, sizeof *pan);
+  cli_series *se = calloc((size_t)n + 1, sizeof *se);
+  char(*title)[400] = calloc((size_t)n + 1, sizeof *title);
+  if (!xy || !pan || !se || !title) {
+    free(xy), free(pan), free(se), free(title);
+    return cli_error(s->c, DAL_E_NOMEM, "out of memory for the chart");
+  }
+  size_t w = 1 + (size_t)n;
+  for (long k = 0; k < s->npts; ++k) { // rows: the value, then the final q (NaN: failed)
+    xy[(size_t)k * w] = value_at(s, k);
+    for (int i = 0; i < n; ++i)
+      xy[(size_t)k * w + 1 + (size_t)i] = o->status[k] >= 0 ? o->results[k * 2 * n + i] : NAN;
+  }
+  for (int i = 0; i < n; ++i) {
+    const char *name = dal_system_coord_name(sys, i);
+    snprintf(title[i], sizeof title[i], "%s: %s at the end against %s", s->c->path, name, s->name);
+    se[i] = (cli_series){NULL, xy, xy + 1 + i, NULL, (size_t)s->npts, w, 0};
+    pan[i] = (cli_panel){title[i], s->name, name, &se[i], 1};
+  }
+  int rc = cli_chart(s->c, f, pan, n);
+  free(xy), free(pan), free(se), free(title);
+  return rc;
+}
+
 // run on threads, or over MPI ranks (rank 0 writes); *writer says whether this process writes
 static int run_sweep(cli *c, const dal_sweep *sw, dal_sweep_opts *so, dal_sweep_out *o,
                      int *writer) {
@@ -198,6 +227,7 @@ const cli_opt cli_sweep_opts[] = {
     {"mpi", 0, CLI_FLAG, NULL, "over MPI ranks (start with mpirun; rank 0 writes)", 0},
     CLI_OPT_OUTPUT("the final states"),
     CLI_OPT_FORMAT,
+    CLI_OPT_CHART("each coordinate's final value against the parameter"),
     CLI_END,
 };
 
@@ -251,9 +281,16 @@ int cli_sweep(cli *c) {
     rc = DAL_OK;
   }
   if (!rc && writer) {
+    // the chart, then the rows: when either fails neither is left
+    const char *chart = cli_text(c, "chart");
+    cli_file cf = {0};
     FILE *fp = cli_out(c);
     rc = fp ? write_rows(&s, &o, n, fp) : DAL_E_IO;
-    rc = cli_close(c, rc);
+    if (chart && rc >= 0 && !(rc = cli_open(c, chart, &cf)))
+      rc = cli_commit(c, &cf, sweep_chart(&s, &o, n, &cf));
+    int done = cli_close(c, rc);
+    if (chart && done < 0 && rc >= 0) remove(chart);
+    rc = done;
     long notes = 0;
     for (long k = 0; k < s.npts; ++k)
       notes += s.notes[k] != NULL;

@@ -43,6 +43,12 @@ int cli_view(cli *c) {
   int rc = dal_scene_state(c->sc, &st);
   if (rc) return cli_fail(c, rc, "the scene's initial state was refused");
   rc = dal_scene_events(c->sc, &ev);
+  // the section lines' crossings are section points, the other events' are not
+  int nev = ev ? dal_events_size(ev) : 0, *sections = calloc((size_t)nev + 1, sizeof *sections);
+  for (int i = 0; i < nev && sections; ++i)
+    sections[i] = dal_scene_event_is_section(c->sc, i) == 1;
+  o.sections = sections;
+  if (!rc && !sections) rc = cli_error(c, DAL_E_NOMEM, "out of memory");
   if (!rc) rc = cli_open(c, out, &f);
   if (!rc) {
     rc = dal_view_write(sys, st, &o, ev, f.fp);
@@ -53,6 +59,7 @@ int cli_view(cli *c) {
   }
   if (rc >= 0)
     fprintf(stderr, "dalembert view: wrote %s (%s#t=1.25 opens it at t = 1.25)\n", out, out);
+  free(sections);
   dal_events_destroy(ev);
   dal_state_destroy(st);
   return rc;

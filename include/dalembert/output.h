@@ -86,6 +86,9 @@ typedef struct dal_view_opts {
   double trail;                ///< trail length in seconds (default 1; 0: none)
   double strobe;               ///< period of a stroboscopic section (seconds; 0: none): the state
                                ///< every strobe from the start is a section point of the phase plot
+  const int *sections;         ///< nullable: per event of the page's event set (dal_events_size
+                               ///< flags), nonzero when its crossings are section points; NULL:
+                               ///< every event's are (a scene's: dal_scene_event_is_section)
 } dal_view_opts;
 
 /// The default view options: t1 = 10, fps = 60, trail = 1.
@@ -95,12 +98,16 @@ DAL_API dal_view_opts dal_default_view_opts(void);
 /// the run uses dal_evolve_at at the frame times t0 + k / fps, so frames come from the dense
 /// output, never from raw steps). The page draws particles (radius growing with the cube root of
 /// the mass), the links of placements (parent to child, and the pivot of a built-in pendulum,
-/// hanging or spherical map), distance and anchor constraints, springs as coils, dampers,
-/// circles of the built-in circle constraints, and trails; it plays, pauses, steps, scrubs, and
-/// opens paused at `FILE.html#t=1.25`; 3-D scenes rotate by drag and zoom by wheel; beside it
-/// q(t), a phase portrait, E - E(0), the multipliers and the section points of `ev` (nullable:
-/// an event set whose sections were attached; its crossings are read after the run). The page
-/// needs no network: no URL outside itself. At most 200000 frames. Returns DAL_OK, DAL_E_ARG
+/// hanging or spherical map), distance and anchor constraints, springs as coils, dampers, the
+/// curves and surfaces of the built-in constraints and maps in their frame at each time
+/// (circles, lines, the turning circle and line, spheres, planes), and trails; it plays, pauses,
+/// steps, scrubs, and opens paused at `FILE.html#t=1.25`; 3-D scenes rotate by drag and zoom by
+/// wheel; beside it q(t), a phase portrait, E - E(0), h - h(0) where the Jacobi integral is an
+/// invariant unlike E, the multipliers, and the section points: the strobe's and the crossings
+/// of `ev` (nullable: an event set attached for the run, its crossings read after it; opts
+/// sections says which of its events are sections). Positions and plots are stored within
+/// 1/131068 of each coordinate's range over the run (docs/guide.md, "Seeing the motion"). The
+/// page needs no network: no URL outside itself. At most 200000 frames. Returns DAL_OK, DAL_E_ARG
 /// (NULL sys, st or fp; t1 not after the state's time; fps <= 0; too many frames), DAL_E_NOMEM,
 /// DAL_E_IO, or the run's status (message in the state). On failure the page is not complete:
 /// the caller must not keep it (dalembert view writes to a temporary file and renames it).

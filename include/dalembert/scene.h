@@ -134,11 +134,16 @@ DAL_API int dal_scene_show(const dal_scene *sc, FILE *fp, dal_expr_format fmt, c
 
 /// Native code for every formula of the scene (dal_codegen_attach over its expressions),
 /// attached again whenever the scene is rebuilt (dal_scene_set_param): results bit-identical to
-/// the bytecode, faster. o NULL: default options. On failure the bytecode keeps running and
-/// msg says why (DAL_E_UNSUPPORTED: no compiler; DAL_E_IO: the cache refused or unwritable).
+/// the bytecode, faster. Unless o->eom is 0, also the scene's compiled equations of motion
+/// (dal_codegen_attach_eom: a minimal-coordinate scene placed by formulas; results within a
+/// stated rounding bound of the general path); where they are out of reach the call still
+/// returns DAL_OK and msg holds a note saying why. o NULL: default options. On failure the
+/// bytecode keeps running and msg says why (DAL_E_UNSUPPORTED: no compiler; DAL_E_IO: the cache
+/// refused or unwritable).
 DAL_API int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t msglen);
 
-/// The number of expressions the scene made (its formulas, compiled; the order of its lines).
+/// The number of expressions the scene made (its formulas, compiled; the order of its lines;
+/// a `lagrangian` line makes two: L, then its parts dL/dqdot and dL/dq the accelerations read).
 DAL_API int dal_scene_nexprs(const dal_scene *sc);
 
 /// Expression i (0 <= i < dal_scene_nexprs) of the scene, borrowed (valid until the scene is

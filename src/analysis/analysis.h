@@ -12,6 +12,11 @@
 int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,
                               dal_equilibrium_report *rep);
 
+/// The size of the particle forces that make an equilibrium's residual, sum_k |F_k| / sqrt(m_k)
+/// over the particles with mass (|Q_j| <= sqrt(M_jj) times it), from the state's forces F
+/// (equilibrium_manifold.c)
+double dal__force_scale(const dal_system *sys, const dal_state *st);
+
 /// The Newton step x of dal_equilibrium (n coordinate entries, then m multiplier entries)
 /// scaled to opts.max_step (max_step <= 0: unbounded): *big is its largest coordinate entry in
 /// magnitude (inf when any entry is not finite), *far the first coordinate that q_i + f x_i

@@ -69,11 +69,7 @@ typedef struct newton_ws {
 
 static void newton_free(newton_ws *w) {
   dal__tangent_free(w->tg);
-  free(w->K);
-  free(w->x);
-  free(w->q);
-  free(w->zero);
-  free(w->ipiv);
+  DAL_FREE(w->K, w->x, w->q, w->zero, w->ipiv);
   memset(w, 0, sizeof *w);
 }
 
@@ -97,14 +93,8 @@ static int newton_alloc(const dal_system *sys, newton_ws *w) {
 // the forces that make it: |Q_j| <= sqrt(M_jj) sum_k |F_k| / sqrt(m_k) bounds the particle
 // forces' part (|J_kj|^2 m_k <= M_jj), sum_i |K_ji| the part that changes by a unit move
 static double scaled_residual(const dal_system *sys, const dal_state *st, const newton_ws *w) {
-  int n = sys->n, d = sys->dim;
-  double fs = 0.0, worst = 0.0;
-  for (int k = 0; k < sys->N; ++k) {
-    double f2 = 0.0, m = st->prm.mass[k];
-    for (int a = 0; a < d; ++a)
-      f2 += st->F[k * d + a] * st->F[k * d + a];
-    if (m > 0) fs += sqrt(f2 / m);
-  }
+  int n = sys->n;
+  double fs = dal__force_scale(sys, st), worst = 0.0;
   for (int j = 0; j < n; ++j) {
     double s = sqrt(fabs(w->tg->M[(size_t)j * n + j])) * fs;
     for (int i = 0; i < n; ++i)
@@ -128,14 +118,12 @@ static int newton_step(const dal_system *sys, dal_state *st, const dal_equilibri
   memcpy(w->K, w->tg->Rq, (size_t)n * (size_t)n * sizeof(double));
   lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, n, 1, w->K, n, w->ipiv, w->x, n);
   if (info != 0) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_SINGULAR,
                     "equilibrium: the stiffness K is singular at t=%.17g, %s (pivot of "
                     "coordinate '%s'): a bifurcation point, or a direction with no restoring "
                     "force (a free or cyclic coordinate); fix that coordinate or move the "
                     "parameter off the critical value",
-                    t, qs, sys->coord_names[info > 0 ? (int)info - 1 : 0]);
+                    t, dal__qtext(sys, st->q).s, sys->coord_names[info > 0 ? (int)info - 1 : 0]);
   }
   double big = 0.0, conv = 0.0;
   int far = -1;
@@ -175,13 +163,11 @@ static int solve(const dal_system *sys, dal_state *st, const dal_equilibrium_opt
     // cannot move q, at |q| where the spacing of doubles exceeds it, is not convergence)
     if (step <= 0.0 && res <= res_tol) break;
     if (it > o->max_iter) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_CONV,
                       "equilibrium: Newton did not converge in %d iterations at t=%.17g (last "
                       "step %.3g, scaled residual %.3g against %.3g, now at %s); start closer to "
                       "the equilibrium, bound the step (max_step) or raise max_iter",
-                      o->max_iter, t, r.step, res, res_tol, qs);
+                      o->max_iter, t, r.step, res, res_tol, dal__qtext(sys, st->q).s);
     }
     if ((rc = newton_step(sys, st, o, w, reach, &step, &r.step)) != 0) return rc;
     r.iterations = it;
@@ -211,15 +197,13 @@ static int steady(const dal_system *sys, dal_state *st, const dal_equilibrium_op
   int all = dal__equilibrium_all_times(sys, st, &worst, &when);
   if (all < 0) return all;
   if (all) return DAL_OK;
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                   "equilibrium: %s, and the point found at t=%.6g, %s, is no equilibrium at "
                   "t=%.6g (scaled residual %.3g): it holds for the equations frozen at t=%.6g "
                   "only; for a periodic drive look for a periodic orbit (dal_periodic_orbit, "
                   "dalembert orbit), or ask for the frozen one by name (opts.frozen_time, "
                   "dalembert equilibria --frozen)",
-                  why, st->t, qs, when, worst, st->t);
+                  why, st->t, dal__qtext(sys, st->q).s, when, worst, st->t);
 }
 
 int dal_equilibrium(const dal_system *sys, dal_state *st, const dal_equilibrium_opts *o,

@@ -13,20 +13,26 @@
 
 #include "analysis.h"
 
+double dal__force_scale(const dal_system *sys, const dal_state *st) {
+  int d = sys->dim;
+  double fs = 0.0;
+  for (int k = 0; k < sys->N; ++k) {
+    double f2 = 0.0, m = st->prm.mass[k];
+    for (int a = 0; a < d; ++a)
+      f2 += st->F[k * d + a] * st->F[k * d + a];
+    if (m > 0) fs += sqrt(f2 / m);
+  }
+  return fs;
+}
+
 // the residual (R - G' lambda; phi) at qdot = qddot = 0 scaled as dal_equilibrium scales its
 // own (equilibrium.c): each coordinate's by the forces that make it (sqrt(M_jj) sum_k |F_k| /
 // sqrt(m_k), the change of a unit move sum_i |K_ji|, the constraint forces sum_r |G_rj lambda_r|),
 // each constraint row's by the change of a unit move sum_j |G_rj| (1 + max |q|)
 static double scaled_residual(const dal_system *sys, const dal_state *st, const dal_tangent *tg,
                               const double *lam) {
-  int n = sys->n, m = sys->m, d = sys->dim;
-  double fs = 0.0, worst = 0.0, qmax = 0.0;
-  for (int k = 0; k < sys->N; ++k) {
-    double f2 = 0.0, mk = st->prm.mass[k];
-    for (int a = 0; a < d; ++a)
-      f2 += st->F[k * d + a] * st->F[k * d + a];
-    if (mk > 0) fs += sqrt(f2 / mk);
-  }
+  int n = sys->n, m = sys->m;
+  double fs = dal__force_scale(sys, st), worst = 0.0, qmax = 0.0;
   for (int j = 0; j < n; ++j) {
     double sc = sqrt(fabs(tg->M[(size_t)j * n + j])) * fs;
     for (int i = 0; i < n; ++i)
@@ -73,13 +79,12 @@ int dal__newton_apply(const dal_system *sys, dal_state *st, const double *x, dou
   // a step that leaves the start's neighbourhood lands on no equilibrium the start was meant
   // for (|q0| <= reach / 1e4)
   if (far >= 0) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_CONV,
                     "equilibrium: the Newton step at t=%.17g from %s sends coordinate '%s' to "
                     "%.3g, beyond %.3g (1e4 (1 + max |q0|)), far from the start: %s; start "
                     "closer to the equilibrium or bound the step (max_step)",
-                    st->t, qs, sys->coord_names[far], q[far] + f * x[far], reach, singular);
+                    st->t, dal__qtext(sys, st->q).s, sys->coord_names[far], q[far] + f * x[far],
+                    reach, singular);
   }
   *conv = 0.0;
   for (int i = 0; i < sys->n; ++i) {
@@ -120,15 +125,13 @@ static int mf_solve(const dal_system *sys, dal_state *st, const dal_tangent *tg,
     w->x[n + i] = -tg->cres[i];
   lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, nk, 1, w->J, nk, w->ipiv, w->x, nk);
   if (info == 0) return DAL_OK;
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   int piv = info > 0 ? (int)info - 1 : 0;
   return DAL_FAIL(st, DAL_E_SINGULAR,
                   "equilibrium: the Newton matrix on the constraint manifold [K -G'; G 0] is "
                   "singular at t=%.17g, %s (pivot of %s '%s'): a bifurcation point, a "
                   "direction with no restoring force, or dependent constraint rows; move the "
                   "parameter off the critical value or drop a redundant constraint",
-                  st->t, qs, piv < n ? "coordinate" : "constraint",
+                  st->t, dal__qtext(sys, st->q).s, piv < n ? "coordinate" : "constraint",
                   piv < n ? sys->coord_names[piv] : sys->con[sys->row_con[piv - n]].name);
 }
 
@@ -161,14 +164,12 @@ static int mf_not_carried(const dal_system *sys, dal_state *st, const dal_tangen
     for (int j = 0; j < n; ++j)
       gn += fabs(tg->G[(size_t)j * m + i]);
     if (!(fabs(st->phit[i]) <= 1e-10 * (1.0 + gn))) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
       return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                       "equilibrium: at t=%.17g, %s the moving constraint '%s' carries the point "
                       "(dphi/dt = %.3g): a relative equilibrium, which redundant coordinates do "
                       "not cover yet; describe the moving part by a coordinate map in its frame "
                       "(dal_map_ring for a turning ring)",
-                      st->t, qs, sys->con[sys->row_con[i]].name, st->phit[i]);
+                      st->t, dal__qtext(sys, st->q).s, sys->con[sys->row_con[i]].name, st->phit[i]);
     }
   }
   return DAL_OK;
@@ -230,14 +231,12 @@ int dal__equilibrium_manifold(const dal_system *sys, dal_state *st, const dal_eq
     res = scaled_residual(sys, st, tg, w.lam);
     if (step <= 0.0 && res <= res_tol) break;
     if (it > o->max_iter) {
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
       rc = DAL_FAIL(st, DAL_E_CONV,
                     "equilibrium: Newton on the constraint manifold did not converge in %d "
                     "iterations at t=%.17g (last step %.3g, scaled residual %.3g against %.3g, "
                     "now at %s); start closer to the equilibrium, bound the step (max_step) or "
                     "raise max_iter",
-                    o->max_iter, t, r.step, res, res_tol, qs);
+                    o->max_iter, t, r.step, res, res_tol, dal__qtext(sys, st->q).s);
       goto done;
     }
     double conv = 0.0;

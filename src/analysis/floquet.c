@@ -192,64 +192,20 @@ static int monodromy(const dal_system *sys, dal_state *st, const dal_solve_opts 
     return DAL_OK;
   }
   // tmp = Phi Z (2n x k2), Mr = P tmp
-  for (int j = 0; j < k2; ++j)
-    for (size_t i = 0; i < n2; ++i) {
-      double s = 0.0;
-      for (size_t l = 0; l < n2; ++l)
-        s += Phi[l * n2 + i] * Z[(size_t)j * n2 + l];
-      tmp[(size_t)j * n2 + i] = s;
-    }
-  for (int j = 0; j < k2; ++j)
-    for (int i = 0; i < k2; ++i) {
-      double s = 0.0;
-      for (size_t l = 0; l < n2; ++l)
-        s += P[l * (size_t)k2 + i] * tmp[(size_t)j * n2 + l];
-      Mr[(size_t)j * k2 + i] = s;
-    }
+  dal__gemm('N', 'N', (int)n2, k2, (int)n2, Phi, (int)n2, Z, (int)n2, tmp, (int)n2);
+  dal__gemm('N', 'N', k2, k2, (int)n2, P, k2, tmp, (int)n2, Mr, k2);
   return DAL_OK;
 }
 
 // the basis Z (2n x k2) of the manifold's tangent space at the evaluated state and the
 // projector P (k2 x 2n) with P Z = I (see monodromy)
 static int manifold_basis(const dal_system *sys, dal_state *st, double *Z, double *P) {
-  int n = sys->n, k = n - sys->m, rc;
-  size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
   dal_tangent *tg = NULL;
-  double *N = malloc((2 * sn * sk + sk * sk + 1) * sizeof(double));
-  if (!N || dal__tangent_create(sys, &tg)) {
-    free(N);
-    return DAL_FAIL(st, DAL_E_NOMEM, "floquet: out of memory");
-  }
-  double *Y = N + sn * sk, *NY = Y + sn * sk;
-  rc = dal__tangent_eval(sys, st, tg, 0);
+  if (dal__tangent_create(sys, &tg)) return DAL_FAIL(st, DAL_E_NOMEM, "floquet: out of memory");
+  int rc = dal__tangent_eval(sys, st, tg, 0);
   if (!rc) rc = dal__tangent_on_manifold(sys, st, tg, "floquet");
-  if (!rc) rc = dal__tangent_basis(sys, st, tg, N, Y, NULL);
-  if (!rc) {
-    memset(Z, 0, n2 * k2 * sizeof(double));
-    memset(P, 0, k2 * n2 * sizeof(double));
-    // NY = N' Y (k x k)
-    for (size_t j = 0; j < sk; ++j)
-      for (size_t i = 0; i < sk; ++i) {
-        double s = 0.0;
-        for (size_t l = 0; l < sn; ++l)
-          s += N[i * sn + l] * Y[j * sn + l];
-        NY[j * sk + i] = s;
-      }
-    for (size_t j = 0; j < sk; ++j)
-      for (size_t i = 0; i < sn; ++i) {
-        Z[j * n2 + i] = N[j * sn + i];             // (N xi, Y xi)
-        Z[j * n2 + sn + i] = Y[j * sn + i];        //
-        Z[(sk + j) * n2 + sn + i] = N[j * sn + i]; // (0, N eta)
-        P[i * k2 + j] = N[j * sn + i];             // xi = N' dq
-        P[(sn + i) * k2 + sk + j] = N[j * sn + i]; // eta = N' dv - N'Y N' dq
-        double s = 0.0;
-        for (size_t l = 0; l < sk; ++l)
-          s += NY[l * sk + j] * N[l * sn + i];
-        P[i * k2 + sk + j] = -s;
-      }
-  }
+  if (!rc) rc = dal__tangent_manifold(sys, st, tg, Z, P);
   dal__tangent_free(tg);
-  free(N);
   return rc;
 }
 

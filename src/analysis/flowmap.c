@@ -15,7 +15,8 @@
 // rows). Parameters of primitives enter as plain doubles and have no exact derivative: refused.
 //
 // The variational equations are a plain first-order problem (dal_first_order) whose context
-// is the var_problem below: any method whose row can run one explicitly runs them.
+// is the var_problem below, run behind the integrator handle (dal__integ_create_fo): any
+// method whose row can run one explicitly runs them.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -161,15 +162,11 @@ static int transition_opts(const dal_system *sys, dal_state *st, const dal_solve
     o = dal_default_solve_opts();
   if ((rc = dal__check_opts(st, &o)) != 0) return rc;
   o = dal__effective_opts(&o); // atol following rtol
-  const unsigned need = DAL__CAP_FIRST_ORDER | DAL__CAP_EXPLICIT;
-  dal_method meth = o.method == DAL_METHOD_AUTO ? dal__auto_method_fo(o.rtol, need) : o.method;
-  if (!dal__method_can(meth, need)) {
-    char can[128];
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "state_transition: method '%s' does not run the variational equations; use "
-                    "an explicit one (%s)",
-                    dal_method_name(meth), dal__methods_that_can(need, can, sizeof can));
-  }
+  // the method rows' explicit methods (an implicit one would iterate on all of Phi and S)
+  dal_method meth = DAL_METHOD_AUTO;
+  if ((rc = dal__fo_method(st, o.method, o.rtol, DAL__CAP_EXPLICIT, "state_transition", &meth)) !=
+      0)
+    return rc;
   if (sys->m > 0 && (o.baumgarte_alpha != 0.0 || o.baumgarte_beta != 0.0))
     return DAL_FAIL(st, DAL_E_UNSUPPORTED,
                     "state_transition: Baumgarte terms change the flow off the manifold; leave "
@@ -224,11 +221,7 @@ static int var_setup(const dal_system *sys, dal_state *st, const dal_solve_opts 
 
 static void var_free(var_problem *vp) {
   dal__tangent_free(vp->tg);
-  free(vp->ref);
-  free(vp->A);
-  free(vp->B);
-  free(vp->f);
-  free(vp->y0);
+  DAL_FREE(vp->ref, vp->A, vp->B, vp->f, vp->y0);
 }
 
 int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
@@ -246,7 +239,7 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
   dal_solve_opts o;
   if ((rc = transition_opts(sys, st, opts, &o)) != 0) return rc;
   var_problem vp;
-  dal_ode_integ *ig = NULL;
+  dal_integ *it = NULL;
   size_t n = (size_t)sys->n, n2 = 2 * n;
   if ((rc = var_setup(sys, st, &o, nparam, params, &vp)) != 0) goto done;
   // a consistent start on the manifold (the tangent space is then invariant)
@@ -256,18 +249,15 @@ int dal_state_transition(const dal_system *sys, dal_state *st, const dal_solve_o
     if ((rc = dal__tangent_on_manifold(sys, st, vp.tg, "state_transition")) != 0) goto done;
   }
   var_from_state(sys, st, vp.y0);
-  if ((rc = dal__ode_create_fo(sys, st, &o, o.method, &vp.fo, &ig)) != 0) goto done;
-  rc = dal__ode_advance(ig, t1);
-  if (rc == 0) {
-    if (Phi) memcpy(Phi, ig->y + n2, n2 * n2 * sizeof(double));
-    if (S) memcpy(S, ig->y + n2 + n2 * n2, n2 * (size_t)nparam * sizeof(double));
-    double *y = ig->y;
+  if ((rc = dal__integ_create_fo(sys, st, &o, &vp.fo, &it)) != 0) goto done;
+  if ((rc = it->ops->advance(it, t1, NULL, NULL)) == 0) {
+    const double *y = it->y;
+    if (Phi) memcpy(Phi, y + n2, n2 * n2 * sizeof(double));
+    if (S) memcpy(S, y + n2 + n2 * n2, n2 * (size_t)nparam * sizeof(double));
     rc = dal__analysis_eval(sys, st, t1, y, y + n);
-  } else if (rc > 0) {
-    rc = dal__public_status(rc);
   }
 done:
-  if (ig) dal__ode_destroy(ig);
+  dal__integ_destroy(it);
   var_free(&vp);
   return rc;
 }
@@ -374,27 +364,14 @@ int dal_linearize_inputs(const dal_system *sys, dal_state *st, int ninput,
     // reduced: B_r = N' b, and the first-order Bf = (0, M_r^-1 B_r) = (0, N' da) with da from
     // the KKT system [M G'; G 0] (da; -dlambda) = (b; 0)
     if ((rc = dal__tangent_reduced(sys, st, tg, N, Ar, Mr, NULL, NULL)) != 0) goto done;
-    for (size_t j = 0; j < ni; ++j)
-      for (size_t i = 0; i < sk; ++i) {
-        double x = 0.0;
-        for (size_t l = 0; l < sn; ++l)
-          x += N[i * sn + l] * R[j * nk + l];
-        Br[j * sk + i] = x;
-      }
+    dal__gemm('T', 'N', (int)sk, (int)ni, n, N, n, R, (int)nk, Br, (int)sk);
     if (B) memcpy(B, Br, sk * ni * sizeof(double));
     if (Af) memcpy(Af, Ar, k2 * k2 * sizeof(double));
     if (Bf) {
       dal__tangent_kkt_solve(tg, ninput, R); // tg's LU factors are the reduction's
-      for (size_t j = 0; j < ni; ++j) {
-        double *c = Bf + j * k2;
-        for (size_t i = 0; i < sk; ++i) {
-          double x = 0.0;
-          for (size_t l = 0; l < sn; ++l)
-            x += N[i * sn + l] * R[j * nk + l];
-          c[i] = 0.0;
-          c[sk + i] = x;
-        }
-      }
+      for (size_t j = 0; j < ni; ++j)
+        memset(Bf + j * k2, 0, sk * sizeof(double));
+      dal__gemm('T', 'N', (int)sk, (int)ni, n, N, n, R, (int)nk, Bf + sk, (int)k2);
     }
   }
 done:

@@ -54,11 +54,10 @@ typedef struct lyap {
   double *tau, *qrwork; // QR
   lapack_int lwork;
   dal_first_order fo; // Y' = F(t, Y) for the library's integrators
-  dal_solve_opts so;  // their options (tolerances as for dal_advance)
-  dal_method meth;    // the method that runs (AUTO resolved)
-  dal_ode_integ *ig;  // the integrator kept between segments (methods with changed_y)
+  dal_solve_opts so;  // their options (tolerances as for dal_advance; the method resolved)
+  dal_integ *it;      // the integrator handle, kept between segments while it can go on
   double h;           // the last full step of the previous segment (the next one's first)
-  long steps;         // accepted steps
+  long steps;         // accepted steps (counted in the work state's statistics)
   int ymoved;         // the projection moved the trajectory at the last QR (constraint rows)
   // constraint rows: the full-space KKT tangent A (2n x 2n), and the basis N, Yb (n x k) of
   // the manifold's tangent space where the vectors start and are projected back at every QR
@@ -230,41 +229,38 @@ static int aug_rhs(void *ctx, dal_state *st, double t, const double *Y, double *
 }
 
 // Y from t to t1 by the library's integrator. A method that can go on after the QR changed V
-// (changed_y: RK4, Bulirsch-Stoer) keeps its integrator, compensation and step; the others get
+// (change_y: RK4, Bulirsch-Stoer) keeps its integrator, compensation and step; the others get
 // a fresh one per segment, its first step the last full one before. On failure Y and t hold
 // the last accepted step and the work state's message says what failed.
 static int segment(lyap *L, double *t, double t1) {
   if (L->steps >= L->o->max_steps) return DAL_E_MAXSTEPS;
-  long left = L->o->max_steps - L->steps;
-  dal_ode_integ *ig = L->ig;
-  if (ig) {
-    int i0 = L->ymoved ? 0 : L->ny; // the vectors, and the trajectory when projected
-    memcpy(ig->y + i0, L->Y + i0, (size_t)(L->m - i0) * sizeof(double));
-    (void)dal__ode_changed_y(ig, i0); // kept only when it can (below)
-    ig->opts.max_steps = left;
-  } else {
+  dal_integ *it = L->it;
+  // the vectors changed, and the trajectory too when it was projected
+  if (it && !it->ops->change_y(it, L->ymoved ? 0 : L->ny, L->Y)) {
+    dal__integ_destroy(it);
+    it = L->it = NULL;
+  }
+  if (!it) {
     dal_solve_opts so = L->so;
-    so.max_steps = left;
-    if (L->h > 0 && !dal__method_fixed(L->meth, &so)) so.h0 = fmin(L->h, t1 - *t);
+    if (L->h > 0 && !dal__method_fixed(so.method, &so)) so.h0 = fmin(L->h, t1 - *t);
     L->st->t = *t;
     L->fo.y0 = L->Y;
-    int rc = dal__ode_create_fo(L->sys, L->st, &so, L->meth, &L->fo, &ig);
+    int rc = dal__integ_create_fo(L->sys, L->st, &so, &L->fo, &L->it);
     if (rc) return rc;
+    it = L->it;
   }
   L->ymoved = 0;
-  int rc = dal__ode_advance(ig, t1);
-  memcpy(L->Y, ig->y, (size_t)L->m * sizeof(double));
-  *t = ig->t;
-  L->steps += ig->ncall;
+  it->opts.max_steps = L->o->max_steps - L->steps;
+  long before = L->st->stats.steps;
+  int rc = it->ops->advance(it, t1, NULL, NULL);
+  memcpy(L->Y, it->y, (size_t)L->m * sizeof(double));
+  double a = 0, b = 0;
+  it->ops->window(it, &a, &b);
+  *t = b;
+  long taken = L->st->stats.steps - before;
+  L->steps += taken;
   // the step before a landing step shortened to t1 is the natural one
-  double hl = ig->t - ig->tprev;
-  if (ig->ncall > 1 || hl > L->h) L->h = hl;
-  if (!rc && dal__ode_can_change_y(ig)) {
-    L->ig = ig;
-  } else {
-    dal__ode_destroy(ig);
-    L->ig = NULL;
-  }
+  if (taken > 1 || b - a > L->h) L->h = b - a;
   return rc;
 }
 
@@ -282,7 +278,7 @@ static int orthonormalize(lyap *L, double *lg) {
 }
 
 static void lyap_free(lyap *L) {
-  dal__ode_destroy(L->ig);
+  dal__integ_destroy(L->it);
   free(L->sum);
   free(L->lg);
   free(L->est);
@@ -298,20 +294,17 @@ static void lyap_free(lyap *L) {
   dal_state_destroy(L->st);
 }
 
-static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
+// the options checked, and the method that runs them (*meth: AUTO resolved by the method rows)
+static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
+                      dal_method *meth) {
   int ny = 2 * (sys->n - sys->m); // the manifold's dimension with constraint rows
   if (!o || o->cookie != DAL_LYAP_COOKIE)
     return DAL_FAIL(st, DAL_E_ARG,
                     "lyapunov: options not initialized: call "
                     "dal_default_lyapunov_opts");
-  if (o->method != DAL_METHOD_AUTO && !dal__method_can(o->method, DAL__CAP_FIRST_ORDER)) {
-    char can[128];
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "lyapunov: method '%s' is not available for the variational equations; use "
-                    "auto or one that runs a first-order problem (%s)",
-                    dal_method_name(o->method),
-                    dal__methods_that_can(DAL__CAP_FIRST_ORDER, can, sizeof can));
-  }
+  // AUTO: the rule of the first-order problems (methods.c), validated on this tangent system
+  int rc = dal__fo_method(st, o->method, o->rtol, 0, "lyapunov", meth);
+  if (rc) return rc;
   if (o->nexp < 0 || o->nexp > ny)
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: nexp = %d must lie in 0 .. 2(n - m) = %d", o->nexp,
                     ny);
@@ -333,7 +326,7 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
                     "= %ld >= 1",
                     o->renorm, o->nblocks, o->max_steps);
   // a fixed-step method (its row: RK4) takes the step h and no tolerances
-  int fixed = dal__method_row(o->method)->fixed == 1;
+  int fixed = dal__method_row(*meth)->fixed == 1;
   if (fixed && (!(o->h > 0) || !isfinite(o->h)))
     return DAL_FAIL(st, DAL_E_ARG, "lyapunov: RK4 step h = %g must be finite and > 0", o->h);
   // the progress guard: a segment or step of a few ulps of t cannot advance t
@@ -358,7 +351,8 @@ static int check_opts(const dal_system *sys, dal_state *st, const dal_lyapunov_o
 
 // the work state, the augmented (y, V) and the workspaces of L for options o (sizes set), and
 // the integrator's options; 0 or a status with the caller's state message set
-static int lyap_alloc(lyap *L, const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o) {
+static int lyap_alloc(lyap *L, const dal_system *sys, dal_state *st, const dal_lyapunov_opts *o,
+                      dal_method meth) {
   memset(L, 0, sizeof *L);
   L->sys = sys;
   L->o = o;
@@ -395,13 +389,10 @@ static int lyap_alloc(lyap *L, const dal_system *sys, dal_state *st, const dal_l
   L->fo.rhs = aug_rhs;
   L->fo.ctx = L;
   L->so = dal_default_solve_opts();
-  L->so.method = o->method;
+  L->so.method = meth;
   L->so.rtol = o->rtol;
   L->so.atol = o->atol;
   L->so.fixed_step = o->h;
-  // AUTO: the rule of the first-order problems (methods.c), validated on this tangent system
-  L->meth =
-      o->method == DAL_METHOD_AUTO ? dal__auto_method_fo(o->rtol, DAL__CAP_FIRST_ORDER) : o->method;
   return DAL_OK;
 }
 
@@ -510,12 +501,13 @@ int dal_lyapunov(const dal_system *sys, dal_state *st, const dal_lyapunov_opts *
     return DAL_FAIL(st, DAL_E_STATE, "lyapunov: the state belongs to another system");
   if (dal__check_idle(st, "lyapunov")) return DAL_E_STATE;
   if (!exponents) return DAL_FAIL(st, DAL_E_ARG, "lyapunov: exponents is NULL");
-  int rc = check_opts(sys, st, o);
+  dal_method meth = DAL_METHOD_AUTO;
+  int rc = check_opts(sys, st, o, &meth);
   if (!rc) rc = dal__tangent_supported(sys, st, "lyapunov");
   if (rc) return rc;
   lyap L;
   double t = st->t, ta = t + o->transient;
-  if ((rc = lyap_alloc(&L, sys, st, o)) == 0 && (rc = lyap_start(&L, st)) == 0 &&
+  if ((rc = lyap_alloc(&L, sys, st, o, meth)) == 0 && (rc = lyap_start(&L, st)) == 0 &&
       (rc = lyap_run(&L, st, &t, ta, monitor, ctx)) == 0) {
     lyap_results(&L, t, ta, exponents, errors);
     // leave the user's state at the end of the trajectory, evaluated

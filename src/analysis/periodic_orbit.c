@@ -29,29 +29,6 @@ dal_orbit_opts dal_default_orbit_opts(void) {
   return d;
 }
 
-// the tangent-space basis Z (2n x k2) at the evaluated state: identity without constraint
-// rows, [N 0; Y N] with them
-static int orbit_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N, double *Y,
-                       double *Z) {
-  int n = sys->n, k = n - sys->m, rc;
-  size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
-  memset(Z, 0, n2 * k2 * sizeof(double));
-  if (sys->m == 0) {
-    for (size_t i = 0; i < n2; ++i)
-      Z[i * n2 + i] = 1.0;
-    return DAL_OK;
-  }
-  if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) return rc;
-  if ((rc = dal__tangent_basis(sys, st, tg, N, Y, NULL)) != 0) return rc;
-  for (size_t j = 0; j < sk; ++j)
-    for (size_t i = 0; i < sn; ++i) {
-      Z[j * n2 + i] = N[j * sn + i];
-      Z[j * n2 + sn + i] = Y[j * sn + i];
-      Z[(sk + j) * n2 + sn + i] = N[j * sn + i];
-    }
-  return DAL_OK;
-}
-
 // indices of the multipliers nearest +1 (the trivial ones of an autonomous orbit)
 static int nearest_one(int k2, const double *re, const double *im, int skip) {
   int best = -1;
@@ -81,15 +58,14 @@ int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opt
     return DAL_FAIL(st, DAL_E_UNSUPPORTED, "periodic_orbit: the system has no degrees of freedom");
   size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
   size_t rows = n2 + (size_t)fp, cols = k2 + (size_t)fp;
-  double *buf = calloc(n2 * n2 + 2 * n2 * k2 + rows * cols + 2 * sn * sk + 6 * n2 + 2 * rows + 8,
-                       sizeof(double));
+  double *buf = calloc(n2 * n2 + 2 * n2 * k2 + rows * cols + 6 * n2 + 2 * rows + 8, sizeof(double));
   dal_tangent *tg = NULL;
   if (!buf || dal__tangent_create(sys, &tg)) {
     free(buf);
     return DAL_FAIL(st, DAL_E_NOMEM, "periodic_orbit: out of memory");
   }
   double *Phi = buf, *Z = Phi + n2 * n2, *PZ = Z + n2 * k2, *J = PZ + n2 * k2;
-  double *N = J + rows * cols, *Y = N + sn * sk, *y0 = Y + sn * sk, *yT = y0 + n2;
+  double *y0 = J + rows * cols, *yT = y0 + n2;
   double *f0 = yT + n2, *f1 = f0 + n2, *keep = f1 + n2, *b = keep + n2, *sv = b + rows;
   double t0 = st->t, T = o->period, res = INFINITY;
   memcpy(keep, st->q, sn * sizeof(double));
@@ -105,7 +81,8 @@ int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opt
     memcpy(y0 + sn, st->qdot, sn * sizeof(double));
     memcpy(f0, st->qdot, sn * sizeof(double));
     memcpy(f0 + sn, st->qddot, sn * sizeof(double));
-    if ((rc = orbit_basis(sys, st, tg, N, Y, Z)) != 0) break;
+    if (sys->m > 0 && (rc = dal__tangent_eval(sys, st, tg, 0)) != 0) break;
+    if ((rc = dal__tangent_manifold(sys, st, tg, Z, NULL)) != 0) break;
     // one arc: y(T), Phi and f(y(T))
     if ((rc = dal_state_transition(sys, st, &o->solve, t0 + T, Phi, 0, NULL, NULL)) != 0) break;
     memcpy(yT, st->q, sn * sizeof(double));
@@ -118,14 +95,12 @@ int dal_periodic_orbit(const dal_system *sys, dal_state *st, const dal_orbit_opt
     if (!(res <= INFINITY)) res = INFINITY;
     if (res <= o->xtol) break;
     if (it >= o->max_iter || !isfinite(res)) {
-      char qs[256];
-      dal__fmt_q(sys, y0, qs, sizeof qs);
       rc = DAL_FAIL(st, DAL_E_CONV,
                     "periodic_orbit: Newton shooting did not converge in %d iterations (return "
                     "gap %.3g against xtol %.3g, start %s, period %.17g); start nearer an orbit "
                     "(a few periods of a run, or a stroboscopic section point), or shorten the "
                     "period",
-                    it, res, o->xtol, qs, T);
+                    it, res, o->xtol, dal__qtext(sys, y0).s, T);
       break;
     }
     // the Newton system [(Phi - I) Z, f1; f0' Z, 0] (dxi; dT) = (y0 - yT; 0), least squares

@@ -60,44 +60,6 @@ static int generator(const dal_system *sys, dal_state *st, const double *e, doub
   return DAL_OK;
 }
 
-// the tangent basis Z (2n x k2) = [N 0; Y N] and its left inverse L (k2 x 2n) at the evaluated
-// state (identity without constraint rows)
-static int basis(const dal_system *sys, dal_state *st, dal_tangent *tg, double *N, double *Y,
-                 double *Z, double *L) {
-  int n = sys->n, k = n - sys->m, rc;
-  size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
-  memset(Z, 0, n2 * k2 * sizeof(double));
-  memset(L, 0, k2 * n2 * sizeof(double));
-  if (sys->m == 0) {
-    for (size_t i = 0; i < n2; ++i)
-      Z[i * n2 + i] = L[i * k2 + i] = 1.0;
-    return DAL_OK;
-  }
-  if ((rc = dal__tangent_eval(sys, st, tg, 0)) != 0) return rc;
-  if ((rc = dal__tangent_basis(sys, st, tg, N, Y, NULL)) != 0) return rc;
-  for (size_t j = 0; j < sk; ++j)
-    for (size_t i = 0; i < sn; ++i) {
-      Z[j * n2 + i] = N[j * sn + i];
-      Z[j * n2 + sn + i] = Y[j * sn + i];
-      Z[(sk + j) * n2 + sn + i] = N[j * sn + i];
-      L[i * k2 + j] = N[j * sn + i];
-      L[(sn + i) * k2 + sk + j] = N[j * sn + i];
-    }
-  // eta = N' dv - (N' Y) N' dq
-  for (size_t j = 0; j < sk; ++j)
-    for (size_t i = 0; i < sn; ++i) {
-      double s = 0.0;
-      for (size_t l = 0; l < sk; ++l) {
-        double ny = 0.0;
-        for (size_t a = 0; a < sn; ++a)
-          ny += N[j * sn + a] * Y[l * sn + a];
-        s += ny * N[l * sn + i];
-      }
-      L[i * k2 + sk + j] = -s;
-    }
-  return DAL_OK;
-}
-
 int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double *axis, double rate,
                              double *lambda_re, double *lambda_im, dal_relative_report *rep) {
   int rc = dal__check_pair(sys, st, "relative_equilibrium");
@@ -114,15 +76,14 @@ int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double 
                     "relative_equilibrium: the system has no degrees of freedom");
   size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
   double e[3] = {axis[0] / an, axis[1] / an, axis[2] / an};
-  double *buf = calloc(sn * sn + 3 * n2 * n2 + 3 * n2 * k2 + 2 * sn * sk + k2 * k2 + 8 * n2 + 8,
-                       sizeof(double));
+  double *buf = calloc(sn * sn + 3 * n2 * n2 + 3 * n2 * k2 + k2 * k2 + 8 * n2 + 8, sizeof(double));
   dal_tangent *tg = NULL;
   if (!buf || dal__tangent_create(sys, &tg)) {
     free(buf);
     return DAL_FAIL(st, DAL_E_NOMEM, "relative_equilibrium: out of memory");
   }
   double *P = buf, *A = P + sn * sn, *J = A + n2 * n2, *Z = J + 2 * n2 * n2, *L = Z + n2 * k2;
-  double *N = L + n2 * k2, *Y = N + sn * sk, *Ar = Y + sn * sk, *y = Ar + k2 * k2;
+  double *Ar = L + n2 * k2, *y = Ar + k2 * k2;
   double *r = y + n2, *keep = r + n2, *sv = keep + n2, *wr = sv + n2, *wi = wr + n2;
   double *tmp = J + n2 * n2; // n2 x k2 after J: inside the 3 n2 x n2 block
   double t0 = st->t, res = INFINITY;
@@ -167,25 +128,19 @@ int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double 
         double p = (i < sn) == (j < sn) ? P[b * sn + a] : 0.0;
         J[j * n2 + i] = A[j * n2 + i] - p;
       }
-    if ((rc = basis(sys, st, tg, N, Y, Z, L)) != 0) break;
+    // the tangent basis Z (2n x k2) and its left inverse L (k2 x 2n)
+    if (sys->m > 0 && (rc = dal__tangent_eval(sys, st, tg, 0)) != 0) break;
+    if ((rc = dal__tangent_manifold(sys, st, tg, Z, L)) != 0) break;
     if (res <= 1e-12) break;
     if (it >= 50) {
-      char qs[256];
-      dal__fmt_q(sys, y, qs, sizeof qs);
       rc = DAL_FAIL(st, DAL_E_CONV,
                     "relative_equilibrium: Newton did not converge in 50 iterations (scaled "
                     "residual %.3g, at %s); start nearer a steady turning state",
-                    res, qs);
+                    res, dal__qtext(sys, y).s);
       break;
     }
     // (Dg Z) delta = -g, minimum norm
-    for (size_t j = 0; j < k2; ++j)
-      for (size_t i = 0; i < n2; ++i) {
-        double s = 0.0;
-        for (size_t l = 0; l < n2; ++l)
-          s += J[l * n2 + i] * Z[j * n2 + l];
-        tmp[j * n2 + i] = s;
-      }
+    dal__gemm('N', 'N', (int)n2, (int)k2, (int)n2, J, (int)n2, Z, (int)n2, tmp, (int)n2);
     for (size_t i = 0; i < n2; ++i)
       r[i] = -r[i];
     lapack_int rank;
@@ -206,20 +161,8 @@ int dal_relative_equilibrium(const dal_system *sys, dal_state *st, const double 
   }
   if (!rc) {
     // the co-rotating linearization on the manifold: Ar = L Dg Z, its eigenvalues
-    for (size_t j = 0; j < k2; ++j)
-      for (size_t i = 0; i < n2; ++i) {
-        double s = 0.0;
-        for (size_t l = 0; l < n2; ++l)
-          s += J[l * n2 + i] * Z[j * n2 + l];
-        tmp[j * n2 + i] = s;
-      }
-    for (size_t j = 0; j < k2; ++j)
-      for (size_t i = 0; i < k2; ++i) {
-        double s = 0.0;
-        for (size_t l = 0; l < n2; ++l)
-          s += L[l * k2 + i] * tmp[j * n2 + l];
-        Ar[j * k2 + i] = s;
-      }
+    dal__gemm('N', 'N', (int)n2, (int)k2, (int)n2, J, (int)n2, Z, (int)n2, tmp, (int)n2);
+    dal__gemm('N', 'N', (int)k2, (int)k2, (int)n2, L, (int)k2, tmp, (int)n2, Ar, (int)k2);
     lapack_int info = LAPACKE_dgeev(LAPACK_COL_MAJOR, 'N', 'N', (lapack_int)k2, Ar, (lapack_int)k2,
                                     wr, wi, NULL, 1, NULL, 1);
     if (info != 0)

@@ -83,6 +83,13 @@ typedef struct dal_vec {
   int len, cap;
 } dal_vec;
 
+/// The parts of a Lagrangian its equations read, over jets: out[i] = dL/dqdot_i and
+/// out[n + i] = dL/dq_i (i < n) at (t, q, qdot); 0 ok, as dal_lagrangian_fn otherwise. Given
+/// beside L (model/builder.c), the accelerations take n + 1 evaluations of it instead of the
+/// polarization's n (n + 3) / 2 + 1 of L (eval/lagrangian.c).
+typedef int dal__lagrangian_parts_fn(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *out,
+                                     void *ctx);
+
 struct dal_builder {
   int dim;
   dal_vec coords;    // char *
@@ -102,6 +109,8 @@ struct dal_builder {
   void *map_ctx;
   dal_lagrangian_fn *lag;
   void *lag_ctx;
+  dal__lagrangian_parts_fn *lag_parts; // nullable (model/builder.c)
+  void *lag_parts_ctx;
   int has_gravity;
   double g[3];
   dal_dynamics dynamics; // dal_builder_set_dynamics
@@ -117,6 +126,8 @@ struct dal_system {
   void *map_ctx;
   dal_lagrangian_fn *lag;
   void *lag_ctx;
+  dal__lagrangian_parts_fn *lag_parts; // dL/dqdot and dL/dq as one program (NULL: by L alone)
+  void *lag_parts_ctx;
   int *ipool;
   double *ppool;
   // per-particle dependency coordinates (sorted): pdep[pdep_off[k] .. pdep_off[k+1])
@@ -148,6 +159,9 @@ struct dal_system {
   // M couples few coordinates (sum over particles of (coordinates it depends on)^2 at most
   // DAL_KKT_LOCAL_COUPLING n: Cartesian particles): its KKT matrix goes to KLU at any order
   int kkt_local;
+  // compiled equations of motion (src/codegen/eom.c; NULL: none): the minimal-coordinate
+  // right-hand side's qddot in one call
+  struct dal_eom *eom;
 };
 
 /// compensated summation x += d with compensation c (Kahan 1965): c holds the negated
@@ -249,8 +263,21 @@ int dal__check_pair(const dal_system *sys, const dal_state *st, const char *what
 /// with "<what>: ..."; 0 when the state is idle.
 int dal__check_idle(dal_state *st, const char *what);
 
+/// free each pointer listed (any may be NULL): the buffers a structure owns, then the
+/// structure, in one statement, DAL_FREE(w->K, w->x, w)
+#define DAL_FREE(...)                                                                              \
+  dal__free_all((void *[]){__VA_ARGS__}, sizeof((void *[]){__VA_ARGS__}) / sizeof(void *))
+void dal__free_all(void *const *p, size_t n);
+
 /// format "(q0=..., q1=...)" of the state's coordinates into buf
 void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len);
+/// coordinates q as dal__fmt_q's text, returned by value so that a message names them in place:
+/// DAL_FAIL(st, code, "... at %s", dal__qtext(sys, st->q).s) (the text lives to the end of the
+/// statement)
+typedef struct dal_qtext {
+  char s[256];
+} dal_qtext;
+dal_qtext dal__qtext(const dal_system *sys, const double *q);
 
 /// check a user callback's return: 0 ok, >0 recoverable, <0 stop; name the culprit
 int dal__cb_status(dal_state *st, int rc, const char *what);

@@ -4,6 +4,7 @@
 // internal codes to public statuses, and the library version.
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 #include "base/base.h"
 
@@ -49,6 +50,17 @@ void dal__fmt_q(const dal_system *sys, const double *q, char *buf, size_t len) {
     used += (size_t)snprintf(buf + used, len - used, "%s%s=%.6g", i ? ", " : "",
                              sys->coord_names[i], q[i]);
   if (sys->n > shown && used < len) snprintf(buf + used, len - used, ", ...");
+}
+
+void dal__free_all(void *const *p, size_t n) {
+  for (size_t i = 0; i < n; ++i)
+    free(p[i]);
+}
+
+dal_qtext dal__qtext(const dal_system *sys, const double *q) {
+  dal_qtext t;
+  dal__fmt_q(sys, q, t.s, sizeof t.s);
+  return t;
 }
 
 int dal__cb_status(dal_state *st, int rc, const char *what) {

@@ -71,54 +71,6 @@ enum { P_INT = 8, P_K, P_S, P_GEN, P_SBASE };
 static const char *const fname1[] = {"sin",  "cos",  "tan",  "asin", "acos", "atan",
                                      "sinh", "cosh", "tanh", "exp",  "log",  "sqrt"};
 
-// compile.c's scalar operations: the folding of constants computes what the bytecode would
-static double sfn(int op, double a, double b) {
-  switch (op) {
-  case X_ADD:
-    return a + b;
-  case X_SUB:
-    return a - b;
-  case X_MUL:
-    return a * b;
-  case X_DIV:
-    return a / b;
-  case X_POW:
-    return pow(a, b);
-  case X_NEG:
-    return -a;
-  case X_SIN:
-    return sin(a);
-  case X_COS:
-    return cos(a);
-  case X_TAN:
-    return tan(a);
-  case X_ASIN:
-    return asin(a);
-  case X_ACOS:
-    return acos(a);
-  case X_ATAN:
-    return atan(a);
-  case X_SINH:
-    return sinh(a);
-  case X_COSH:
-    return cosh(a);
-  case X_TANH:
-    return tanh(a);
-  case X_EXP:
-    return exp(a);
-  case X_LOG:
-    return log(a);
-  case X_SQRT:
-    return sqrt(a);
-  case X_ATAN2:
-    return atan2(a, b);
-  case X_HYPOT:
-    return hypot(a, b);
-  default:
-    return NAN;
-  }
-}
-
 // a double as an exact C literal (hexadecimal), in parentheses
 typedef struct lit {
   char s[48];
@@ -185,7 +137,8 @@ void dal__cg_function(dal_cgbuf *b, const dal_expr *e, const char *fname) {
       int binary = x->op <= X_POW || x->op == X_ATAN2 || x->op == X_HYPOT;
       if (a.known && (!binary || bb.known)) {
         r.known = 1;
-        r.c = sfn(x->op, a.c, bb.c);
+        // folded as the bytecode's scalar part computes it
+        r.c = dal__xscalar(x->op, a.c, bb.c);
       } else {
         lit la = sname(&a), lb = sname(&bb);
         if (x->op >= X_ADD && x->op <= X_DIV)

@@ -20,13 +20,13 @@
 
 extern char **environ;
 
-#define CODEGEN_COOKIE 0x0c0de6e4
 #define CG_FORMAT "dalembert-codegen 1" // first words of a cache entry's sum file
 
 dal_codegen_opts dal_codegen_default_opts(void) {
   dal_codegen_opts o;
   memset(&o, 0, sizeof o);
-  o.cookie = CODEGEN_COOKIE;
+  o.eom = 1;
+  o.cookie = DAL_CODEGEN_COOKIE;
   return o;
 }
 
@@ -319,12 +319,47 @@ done:
   return rc;
 }
 
+int dal__cg_load(const dal_cgbuf *src, const dal_codegen_opts *o, const char *sym, void **handle,
+                 void **fn, char *msg, size_t msglen) {
+  *handle = *fn = NULL;
+  if (src->oom) return say(msg, msglen, DAL_E_NOMEM, "codegen: out of memory%s%s", "", "");
+  const char *cc = o->cc ? o->cc : getenv("CC");
+  if (!cc || !*cc) cc = "cc";
+  // the key: the hash of source and compiler
+  uint64_t h = fnv(fnv(FNV0, src->s, src->n), cc, strlen(cc) + 1);
+  char key[40], dir[4096], so[4200], sum[4200];
+  snprintf(key, sizeof key, "%016llx", (unsigned long long)h);
+  int rc = cache_dir(o, dir, sizeof dir, msg, msglen);
+  if (rc) return rc;
+  snprintf(so, sizeof so, "%s/%s.so", dir, key);
+  snprintf(sum, sizeof sum, "%s/%s.sum", dir, key);
+  // a cached object only when it passes; else compile (anew). Another process compiling the
+  // same entry at once may pair its object with our sum for a moment: then build again
+  for (int tries = 0; !trusted(so, sum, key); ++tries) {
+    if (tries == 3)
+      return say(msg, msglen, DAL_E_IO, "codegen: the cache entry %s keeps changing under us%s", so,
+                 "");
+    rc = build(dir, cc, src, so, sum, key, msg, msglen);
+    if (rc) return rc;
+  }
+  void *hd = dlopen(so, RTLD_NOW | RTLD_LOCAL);
+  void *f = hd ? dlsym(hd, sym) : NULL;
+  if (!f) {
+    rc = say(msg, msglen, DAL_E_IO, "codegen: cannot load %s: %s", so, dlerror());
+    if (hd) dlclose(hd);
+    return rc;
+  }
+  *handle = hd;
+  *fn = f;
+  return DAL_OK;
+}
+
 int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts *o, char *msg,
                        size_t msglen) {
   if (msg && msglen) msg[0] = 0;
   dal_codegen_opts def = dal_codegen_default_opts();
   if (!o) o = &def;
-  if (!e || n < 1 || o->cookie != CODEGEN_COOKIE)
+  if (!e || n < 1 || o->cookie != DAL_CODEGEN_COOKIE)
     return say(msg, msglen, DAL_E_ARG,
                "dal_codegen_attach: no expressions, or opts not from "
                "dal_codegen_default_opts()%s%s",
@@ -334,42 +369,16 @@ int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts *o, cha
       if (msg && msglen) snprintf(msg, msglen, "dal_codegen_attach: e[%d] is NULL", i);
       return DAL_E_ARG;
     }
-  const char *cc = o->cc ? o->cc : getenv("CC");
-  if (!cc || !*cc) cc = "cc";
-  // the source and its key: the hash of source and compiler
   dal_cgbuf src = {0};
   source(&src, e, n, "dal_cg", 0);
-  if (src.oom) {
-    dal__cg_free(&src);
-    return say(msg, msglen, DAL_E_NOMEM, "codegen: out of memory%s%s", "", "");
-  }
-  uint64_t h = fnv(fnv(FNV0, src.s, src.n), cc, strlen(cc) + 1);
-  char key[40], dir[4096], so[4200], sum[4200];
-  snprintf(key, sizeof key, "%016llx", (unsigned long long)h);
-  int rc = cache_dir(o, dir, sizeof dir, msg, msglen);
-  if (rc) goto done;
-  snprintf(so, sizeof so, "%s/%s.so", dir, key);
-  snprintf(sum, sizeof sum, "%s/%s.sum", dir, key);
-  // a cached object only when it passes; else compile (anew). Another process compiling the
-  // same entry at once may pair its object with our sum for a moment: then build again
-  for (int tries = 0; !trusted(so, sum, key); ++tries) {
-    if (tries == 3) {
-      rc = say(msg, msglen, DAL_E_IO, "codegen: the cache entry %s keeps changing under us%s", so,
-               "");
-      goto done;
-    }
-    rc = build(dir, cc, &src, so, sum, key, msg, msglen);
-    if (rc) goto done;
-  }
+  void *hd, *tab;
   lib *l = malloc(sizeof *l);
-  void *hd = l ? dlopen(so, RTLD_NOW | RTLD_LOCAL) : NULL;
-  void *tab = hd ? dlsym(hd, "dal_cg_table") : NULL;
-  if (!tab) {
-    rc = say(msg, msglen, DAL_E_IO, "codegen: cannot load %s: %s", so,
-             l ? dlerror() : "out of memory");
-    if (hd) dlclose(hd);
+  int rc = l ? dal__cg_load(&src, o, "dal_cg_table", &hd, &tab, msg, msglen)
+             : say(msg, msglen, DAL_E_NOMEM, "codegen: out of memory%s%s", "", "");
+  dal__cg_free(&src);
+  if (rc) {
     free(l);
-    goto done;
+    return rc;
   }
   // attach: every expression shares the object
   l->handle = hd;
@@ -381,8 +390,5 @@ int dal_codegen_attach(dal_expr *const *e, int n, const dal_codegen_opts *o, cha
     e[i]->native_release = release;
     e[i]->native_ctx = l;
   }
-  rc = DAL_OK;
-done:
-  dal__cg_free(&src);
-  return rc;
+  return DAL_OK;
 }

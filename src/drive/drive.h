@@ -1,15 +1,13 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The face of drive/: the events (events.c) and the stored trajectory (trajectory.c) as the
-// integration driver (driver.c) runs them.
+// integration driver (driver.c) runs them, each served by the integrator handle (dal_integ:
+// the step just taken and its dense output).
 #ifndef DAL_DRIVE_DRIVE_H
 #define DAL_DRIVE_DRIVE_H
 
 #include "dalembert/events.h"
 #include "integrate/integrate.h"
-
-/// put the state's (t, q, qdot) at time t of the step just taken (dense output; no evaluation)
-typedef int dal__place_fn(void *ctx, double t);
 
 /// a crossing found in the step just taken
 typedef struct dal__pending {
@@ -21,10 +19,10 @@ typedef struct dal__pending {
 
 /// signs of every g at the state's current (t, q, qdot) (a run starts); 0 or a status
 int dal__events_begin(dal_events *ev, dal_state *st);
-/// the crossings of the step [a, b] (the state is moved through `place`), located and in time
-/// order; the signs move on to b. 0 or a negative status (a g that is not finite: named)
-int dal__events_scan(dal_events *ev, dal_state *st, double a, double b, dal__place_fn *place,
-                     void *pctx);
+/// the crossings of the step [a, b] just taken by it (its window), located on its dense output
+/// (it->ops->place moves it->st) and in time order; the signs move on to b. 0 or a negative
+/// status (a g that is not finite: named)
+int dal__events_scan(dal_events *ev, dal_integ *it);
 /// the crossings found by the last scan
 int dal__events_npending(const dal_events *ev);
 const dal__pending *dal__events_pending(const dal_events *ev, int k);
@@ -45,11 +43,11 @@ int dal__attach_check(dal_state *st, const dal_system *owner, const char *what, 
 /// the stored dense trajectory (trajectory.c): a run recording into tr starts at the state's
 /// time, which must be where tr ends (or tr is empty): 0 or DAL_E_ARG with a message in st
 int dal__traj_begin(dal_trajectory *tr, dal_state *st);
-/// store the step [a, b] just taken as `pieces` records of equal length, each sampled through
-/// `place` at its nodes, except b, the accepted step itself, through `place_end`; the state is
-/// moved. 0 or DAL_E_NOMEM (message in st)
-int dal__traj_step(dal_trajectory *tr, dal_state *st, double a, double b, int pieces,
-                   dal__place_fn *place, dal__place_fn *place_end, void *pctx);
+/// store the step [a, b] just taken by it (its window) as it->traj_pieces records of equal
+/// length, each sampled from its dense output at its nodes (it->ops->place), except b, the
+/// accepted step itself (it->ops->place_end); it->st is moved. 0 or DAL_E_NOMEM (message in
+/// it->st)
+int dal__traj_step(dal_trajectory *tr, dal_integ *it);
 /// the run that dal__traj_begin let start ended with the state at time t: the record is valid
 /// up to t (a run stopped inside its last step by an event or a monitor); nothing otherwise
 void dal__traj_end(dal_trajectory *tr, double t);

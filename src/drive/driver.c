@@ -243,22 +243,6 @@ static inline double out_time(const run *r) {
   return r->last_out < r->t1 ? r->t1 : INFINITY;
 }
 
-// put the state at time t of the step just taken (dense output; not evaluated)
-static int place(void *p, double t) {
-  run *r = p;
-  dal_integ *it = r->h->it;
-  return it->ops->place(it, t);
-}
-
-// put the state at the end of the step just taken: the accepted step itself (a stored trajectory
-// ends its steps where the integrator is)
-static int place_end(void *p, double t) {
-  run *r = p;
-  (void)t;
-  dal_integ *it = r->h->it;
-  return it->ops->place_end(it);
-}
-
 // the outcome of a monitor that returned mr != 0 or saw a failing evaluation (its message in
 // the state); 1 = stop requested (ok), negative = failure
 static DAL__COLD int monitor_outcome(dal_state *st, int mr) {
@@ -336,9 +320,10 @@ static int serve_next(run *r) {
   return output_done(r, r->tnext, 0);
 }
 
-// the cancel hook asked to stop after the step [a, b]: the state at b, evaluated
-static DAL__COLD int cancel_here(run *r, double b) {
-  int rc = place_end(r, b);
+// the cancel hook asked to stop after the step just taken: the state at its end, evaluated
+static DAL__COLD int cancel_here(run *r) {
+  dal_integ *it = r->h->it;
+  int rc = it->ops->place_end(it);
   if (rc) return r->status = rc;
   DAL_FAIL(r->st, DAL_CANCELLED,
            "%s cancelled by the caller's cancel hook at t=%.17g (the last accepted step; the "
@@ -347,29 +332,31 @@ static DAL__COLD int cancel_here(run *r, double b) {
   return stop_here(r, DAL_CANCELLED);
 }
 
-// after every accepted step [a, b]: the outputs and event crossings inside it, in time order
+// after every accepted step [a, b]: the trajectory's records, then the outputs and event
+// crossings inside it in time order, each served by the integrator handle (its window and dense
+// output)
 static int after_step(void *p) {
   run *r = p;
   dal_state *st = r->st;
+  dal_integ *it = r->h->it;
   double a = 0, b = 0;
-  r->h->it->ops->window(r->h->it, &a, &b);
+  it->ops->window(it, &a, &b);
   int rc, np = 0, kp = 0;
-  // Bulirsch-Stoer's long steps carry an interpolant of degree up to 2 kappa + 1: four records
-  // of degree 8 per step (solve.h, dal_trajectory)
-  int pieces = r->h->it->traj_pieces;
-  if (st->traj && (rc = dal__traj_step(st->traj, st, a, b, pieces, place, place_end, r)) != 0) {
+  if (st->traj && (rc = dal__traj_step(st->traj, it)) != 0) {
     // out of memory: the run stops at the step's end, evaluated
     char msg[DAL_ERRMSG_LEN];
     memcpy(msg, st->err, sizeof msg);
-    if (place_end(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+    if (it->ops->place_end(it) == 0 && evaluate_here(r->sys, st) == 0)
+      memcpy(st->err, msg, sizeof msg);
     return r->status = rc;
   }
   if (r->ev) {
-    if ((rc = dal__events_scan(r->ev, st, a, b, place, r)) != 0) {
+    if ((rc = dal__events_scan(r->ev, it)) != 0) {
       // a failing event function: the run stops at the step's end, evaluated
       char msg[DAL_ERRMSG_LEN];
       memcpy(msg, st->err, sizeof msg);
-      if (place(r, b) == 0 && evaluate_here(r->sys, st) == 0) memcpy(st->err, msg, sizeof msg);
+      if (it->ops->place(it, b) == 0 && evaluate_here(r->sys, st) == 0)
+        memcpy(st->err, msg, sizeof msg);
       return r->status = rc;
     }
     np = dal__events_npending(r->ev);
@@ -382,7 +369,8 @@ static int after_step(void *p) {
       if ((rc = serve_next(r)) != 0) return rc;
     if (!(te <= b)) break;
     const dal__pending *e = dal__events_pending(r->ev, kp++);
-    if ((rc = place(r, e->t)) != 0 || (rc = dal__events_record(r->ev, st, e->event, e->dir)) != 0)
+    if ((rc = it->ops->place(it, e->t)) != 0 ||
+        (rc = dal__events_record(r->ev, st, e->event, e->dir)) != 0)
       return r->status = rc;
     if (dal__events_terminal(r->ev, e->event)) {
       DAL_FAIL(st, DAL_EVENT, "event '%s' (%s) at t=%.17g: stopped there as asked",
@@ -391,9 +379,9 @@ static int after_step(void *p) {
     }
   }
   // opts.max_steps counts from the last output
-  if (r->k != k0) r->h->it->ops->new_output(r->h->it);
+  if (r->k != k0) it->ops->new_output(it);
   // the caller's cancel hook: the run ends at this accepted step, evaluated
-  if (r->o->cancel && r->o->cancel(r->o->cancel_ctx)) return cancel_here(r, b);
+  if (r->o->cancel && r->o->cancel(r->o->cancel_ctx)) return cancel_here(r);
   return DAL_OK;
 }
 
@@ -490,8 +478,7 @@ static int check_call(const dal_system *sys, dal_state *st, const dal_solve_opts
     return DAL_FAIL(st, DAL_E_NONFINITE, "%s: target time is %g; give a finite time", what, t1);
   // a step bound below the spacing of doubles at t cannot move t (the fixed step counts for
   // the methods that take it: RK4, and DOPRI5/Fehlberg with fixed_erk)
-  const dal_method_row *mrow = dal__method_row(o->method);
-  int fixed = mrow && (mrow->fixed == 1 || (mrow->fixed == 2 && o->fixed_erk));
+  int fixed = dal__method_fixed(o->method, o);
   const double hs[4] = {o->h0, o->hmin, o->hmax, fixed ? o->fixed_step : 0.0};
   const char *hn[4] = {"h0", "hmin", "hmax", "fixed_step"};
   for (int i = 0; i < 4; ++i)

@@ -3,9 +3,9 @@
 // Events: definitions, sign changes over a step, crossings located on the dense output, the log.
 //
 // The driver (driver.c) calls dal__events_begin at the start of a run and dal__events_scan
-// after every accepted step with a function that places the state anywhere in the step (the
-// method's dense output). A crossing is bracketed by the sign kept from the step before and
-// the sign at the step's end, and closed to a few ulps of t by the Anderson-Bjorck variant of
+// after every accepted step with the integrator handle, whose dense output places the state
+// anywhere in the step just taken. A crossing is bracketed by the sign kept from the step before
+// and the sign at the step's end, and closed to a few ulps of t by the Anderson-Bjorck variant of
 // regula falsi (Anderson and Bjorck, BIT 13, 253 (1973)), which keeps the bracket and
 // converges superlinearly where the plain method stalls on one side.
 #include <math.h>
@@ -266,17 +266,20 @@ int dal__events_begin(dal_events *ev, dal_state *st) {
   return DAL_OK;
 }
 
-// close the bracket [a, b] (g(a) = ga of sign -s1, g(b) = gb of sign s1 or 0) of event i
-static int locate(dal_events *ev, int i, dal_state *st, double a, double ga, double b, double gb,
-                  dal__place_fn *place, void *pctx, double *root) {
+// close the bracket [a, b] (g(a) = ga of sign -s1, g(b) = gb of sign s1 or 0) of event i in
+// the step just taken by it
+static int locate(dal_events *ev, int i, dal_integ *it, double a, double ga, double b, double gb,
+                  double *root) {
+  dal_state *st = it->st;
+  int (*place)(dal_integ *, double) = it->ops->place;
   double lo = a, hi = b, flo = ga, fhi = gb;
   int last = 0;
-  for (int it = 0; it < EVENT_MAX_ITER && fhi != 0.0; ++it) {
+  for (int k = 0; k < EVENT_MAX_ITER && fhi != 0.0; ++k) {
     if (hi - lo <= 4.0 * DBL_EPSILON * fmax(fabs(lo), fabs(hi))) break;
     double c = hi - fhi * (hi - lo) / (fhi - flo);
     if (!(c > lo && c < hi)) c = lo + 0.5 * (hi - lo);
     if (!(c > lo && c < hi)) break; // lo and hi are neighbours
-    int rc = place(pctx, c);
+    int rc = place(it, c);
     double fc = 0.0;
     if (!rc) rc = value(ev, i, st, &fc);
     if (rc) return rc;
@@ -303,10 +306,12 @@ static int locate(dal_events *ev, int i, dal_state *st, double a, double ga, dou
   return DAL_OK;
 }
 
-int dal__events_scan(dal_events *ev, dal_state *st, double a, double b, dal__place_fn *place,
-                     void *pctx) {
+int dal__events_scan(dal_events *ev, dal_integ *it) {
+  dal_state *st = it->st;
+  double a = 0, b = 0;
+  it->ops->window(it, &a, &b);
   ev->npend = 0;
-  int rc = place(pctx, b);
+  int rc = it->ops->place(it, b);
   if (rc) return rc;
   // g at the step's end for every event, before any root finding moves the state
   for (int i = 0; i < ev->n; ++i) {
@@ -336,7 +341,7 @@ int dal__events_scan(dal_events *ev, dal_state *st, double a, double b, dal__pla
     if (p->g1 == 0.0) continue;
     // g at a is the value kept from the step before (the sign if that value was 0)
     double ga = p->g0 != 0.0 ? p->g0 : -(double)p->dir;
-    if ((rc = locate(ev, p->event, st, a, ga, b, p->g1, place, pctx, &p->t)) != 0) return rc;
+    if ((rc = locate(ev, p->event, it, a, ga, b, p->g1, &p->t)) != 0) return rc;
   }
   // in time order (insertion sort: a handful of events), ties in the order of the set
   for (int k = 1; k < ev->npend; ++k) {

@@ -104,9 +104,12 @@ static int grow(dal_trajectory *tr, dal_state *st) {
   return DAL_OK;
 }
 
-// one record: [a, b] sampled at the nodes (the last through place_end when `end` is set)
-static int store(dal_trajectory *tr, dal_state *st, double a, double b, int end,
-                 dal__place_fn *place, dal__place_fn *place_end, void *pctx) {
+// one record: [a, b] of the step just taken by it, sampled at the nodes from its dense output
+// (the last at the accepted step itself when `end` is set)
+static int store(dal_trajectory *tr, dal_integ *it, double a, double b, int end) {
+  dal_state *st = it->st;
+  int (*place)(dal_integ *, double) = it->ops->place;
+  int (*place_end)(dal_integ *) = it->ops->place_end;
   int rc = grow(tr, st);
   if (rc) return rc;
   double *s = tr->data + (size_t)tr->nsteps * tr->stride;
@@ -116,7 +119,7 @@ static int store(dal_trajectory *tr, dal_state *st, double a, double b, int end,
   s[2] = b;
   for (int j = 0; j < NODES; ++j) {
     double t = j == TRAJ_DEG ? b : j == 0 ? a : a + 0.5 * (b - a) * (1.0 + node_x(j));
-    if ((rc = (j == TRAJ_DEG && end ? place_end : place)(pctx, t)) != 0) return rc;
+    if ((rc = j == TRAJ_DEG && end ? place_end(it) : place(it, t)) != 0) return rc;
     double *v = s + HEAD + (size_t)j * 2 * n;
     memcpy(v, st->q, n * sizeof(double));
     memcpy(v + n, st->qdot, n * sizeof(double));
@@ -135,13 +138,16 @@ static int store(dal_trajectory *tr, dal_state *st, double a, double b, int end,
   return DAL_OK;
 }
 
-int dal__traj_step(dal_trajectory *tr, dal_state *st, double a, double b, int pieces,
-                   dal__place_fn *place, dal__place_fn *place_end, void *pctx) {
-  // the step in `pieces` records of equal length; the last ends on the accepted step itself
+int dal__traj_step(dal_trajectory *tr, dal_integ *it) {
+  double a = 0, b = 0;
+  it->ops->window(it, &a, &b);
+  // the step in the method's number of records of equal length; the last ends on the accepted
+  // step itself
+  int pieces = it->traj_pieces;
   for (int p = 0; p < pieces; ++p) {
     double ta = p == 0 ? a : a + (b - a) * p / pieces;
     double tb = p == pieces - 1 ? b : a + (b - a) * (p + 1) / pieces;
-    int rc = store(tr, st, ta, tb, p == pieces - 1, place, place_end, pctx);
+    int rc = store(tr, it, ta, tb, p == pieces - 1);
     if (rc) return rc;
   }
   return DAL_OK;

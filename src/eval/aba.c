@@ -117,22 +117,7 @@ struct dal_aba *dal__aba_create(const dal_system *sys) {
 void dal__aba_free(struct dal_aba *w) {
   if (!w) return;
   free(w->node);
-  double *p[] = {w->IA, w->Lf, w->W, w->piv, w->pA, w->acc, w->z, w->zero, w->Y, w->S, w->x0, w->r};
-  for (size_t i = 0; i < sizeof p / sizeof p[0]; ++i)
-    free(p[i]);
-  free(w);
-}
-
-// the dense route's message (dynamics.c), word for word, optionally prefixed by the caller
-static int singular_coord(const dal_system *sys, dal_state *st, int bad, const char *what) {
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
-  return DAL_FAIL(st, DAL_E_SINGULAR,
-                  "%s%smass matrix singular or not positive definite at t=%.17g, %s: coordinate "
-                  "'%s' is degenerate (it moves no mass there, e.g. a chart singularity such "
-                  "as a spherical pendulum's pole); use redundant coordinates with "
-                  "constraints, or another chart",
-                  what ? what : "", what ? ": " : "", st->t, qs, sys->coord_names[bad]);
+  DAL_FREE(w->IA, w->Lf, w->W, w->piv, w->pA, w->acc, w->z, w->zero, w->Y, w->S, w->x0, w->r, w);
 }
 
 // In-place Cholesky of the symmetric n x n block A (row-major, lower triangle read) into L
@@ -162,13 +147,7 @@ static void chol_small(double *A, int n, double *piv, const int *idx) {
 static void node_factor_multi(const aba_node *nd, int d, const double *I, const double *Lc,
                               double *L, double *W, double *piv) {
   int nc = nd->nc;
-  for (int a = 0; a < d; ++a)
-    for (int i = 0; i < nc; ++i) {
-      double s = 0.0;
-      for (int b = 0; b < d; ++b)
-        s += I[a * d + b] * Lc[b * nc + i];
-      W[a * nc + i] = s;
-    }
+  dal__gemm('N', 'N', nc, d, d, Lc, nc, I, d, W, nc); // row-major W = I Lc
   for (int i = 0; i < nc; ++i)
     for (int j = 0; j <= i; ++j) {
       double s = 0.0;
@@ -243,13 +222,7 @@ static inline void add_to_parent(double *restrict Ip, const double *restrict I, 
     return;
   }
   double T[9];
-  for (int a = 0; a < d; ++a)
-    for (int b = 0; b < d; ++b) {
-      double s = 0.0;
-      for (int c = 0; c < d; ++c)
-        s += I[a * d + c] * Lp[c * d + b];
-      T[a * d + b] = s;
-    }
+  dal__gemm('N', 'N', d, d, d, Lp, d, I, d, T, d); // row-major T = I Lp
   for (int a = 0; a < d; ++a)
     for (int b = 0; b < d; ++b) {
       double s = 0.0;
@@ -339,7 +312,7 @@ static int check_pivots(const dal_system *sys, dal_state *st, const char *what) 
     if (w->piv[j] > pmax) pmax = w->piv[j];
   w->pmax = pmax;
   for (int j = 0; j < n; ++j)
-    if (!(w->piv[j] > DAL_CHOL_RTOL * pmax)) return singular_coord(sys, st, j, what);
+    if (!(w->piv[j] > DAL_CHOL_RTOL * pmax)) return dal__fail_degenerate(sys, st, j, what);
   return DAL_OK;
 }
 
@@ -565,19 +538,13 @@ int dal__loop_factor(const dal_system *sys, dal_state *st, int metric, const cha
   for (int i = 0; i < m; ++i)
     if (!(w->r[i] > DAL_CHOL_RTOL * smax) || !(w->r[i] > floor)) {
       // a rank-deficient G is reported by name; otherwise the loop system is degenerate
-      char saved[DAL_ERRMSG_LEN];
-      rc = dal__check_rank(sys, st, NULL);
-      if (rc == DAL_E_CONSTRAINT) {
-        memcpy(saved, st->err, sizeof saved);
-        return DAL_FAIL(st, DAL_E_CONSTRAINT, "%s: %s", what, saved);
-      }
-      char qs[256];
-      dal__fmt_q(sys, st->q, qs, sizeof qs);
+      if ((rc = dal__blame_rank(sys, st, what)) != 0) return rc;
       return DAL_FAIL(st, DAL_E_SINGULAR,
                       "%s: the loop system G M^-1 G' is singular at t=%.17g, %s (constraint "
                       "'%s', pivot %.3g of %.3g): the constraints are redundant or their "
                       "gradients vanish there; check the constraint list",
-                      what, st->t, qs, sys->con[sys->row_con[i]].name, w->r[i], smax);
+                      what, st->t, dal__qtext(sys, st->q).s, sys->con[sys->row_con[i]].name,
+                      w->r[i], smax);
     }
   w->metric = metric;
   return DAL_OK;

@@ -2,7 +2,7 @@
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // Diagnosis of non-finite applied forces: which built-in force overflowed, when the dynamics
 // stage reports only the sum (the message then must not send the user to callbacks that
-// the scene does not have).
+// the scene does not have); the one message of a degenerate mass matrix.
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -79,4 +79,14 @@ int dal__blame_forces(const dal_system *sys, dal_state *st) {
                   "the particles are too far apart or too fast for double precision there, or a "
                   "coefficient is too large: check the state and the coefficients",
                   sys->part_names[k], a, st->F[j], st->t, culprit);
+}
+
+int dal__fail_degenerate(const dal_system *sys, dal_state *st, int bad, const char *what) {
+  return DAL_FAIL(st, DAL_E_SINGULAR,
+                  "%s%smass matrix singular or not positive definite at t=%.17g, %s: coordinate "
+                  "'%s' is degenerate (it moves no mass there, e.g. a chart singularity such "
+                  "as a spherical pendulum's pole); use redundant coordinates with "
+                  "constraints, or another chart",
+                  what ? what : "", what ? ": " : "", st->t, dal__qtext(sys, st->q).s,
+                  sys->coord_names[bad]);
 }

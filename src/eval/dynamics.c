@@ -483,16 +483,7 @@ int dal__solve_unconstrained(const dal_system *sys, dal_state *st) {
   int bad = -1;
   DAL_NEED(st, DAL_P_MLOW | DAL_P_DYN);
   int rc = dal__chol_solve(n, st->M, st->L, st->qddot, &bad);
-  if (rc) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
-    return DAL_FAIL(st, DAL_E_SINGULAR,
-                    "mass matrix singular or not positive definite at t=%.17g, %s: coordinate "
-                    "'%s' is degenerate (it moves no mass there, e.g. a chart singularity such "
-                    "as a spherical pendulum's pole); use redundant coordinates with "
-                    "constraints, or another chart",
-                    st->t, qs, sys->coord_names[bad]);
-  }
+  if (rc) return dal__fail_degenerate(sys, st, bad, NULL);
   return DAL_OK;
 }
 

@@ -89,6 +89,10 @@ int dal__forces(const dal_system *sys, dal_state *st);
 int dal__blame_forces(const dal_system *sys, dal_state *st);
 /// qddot from M qddot = Q - c by Cholesky (m = 0); names degenerate coordinates
 int dal__solve_unconstrained(const dal_system *sys, dal_state *st);
+/// DAL_E_SINGULAR naming coordinate `bad` of a mass matrix that is singular or not positive
+/// definite (the dense route's and the recursion's one message), prefixed "<what>: " when what
+/// is not NULL (blame.c).
+int dal__fail_degenerate(const dal_system *sys, dal_state *st, int bad, const char *what);
 /// particle accelerations and reactions from qddot, and the constraints' explicit time
 /// derivatives phit (h becomes NaN when one is non-zero) (requires KIN, ACC; J unless a tree)
 int dal__finish(const dal_system *sys, dal_state *st);
@@ -173,5 +177,9 @@ void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lam
 /// Rank check (rank.c): writes the named message into the state when G is rank
 /// deficient. Returns DAL_OK, DAL_E_CONSTRAINT or DAL_E_NOMEM; rep is nullable.
 int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report *rep);
+/// A failed solve's first suspect: when G is rank deficient, DAL_E_CONSTRAINT with
+/// "<what>: <the rank check's message naming the constraints>"; 0 otherwise (the caller then
+/// names its own failure).
+int dal__blame_rank(const dal_system *sys, dal_state *st, const char *what);
 
 #endif

@@ -170,19 +170,9 @@ void dal__kkt_free(struct dal_kkt *k) {
   for (int i = 0; i < 2; ++i)
     if (k->num[i]) klu_free_numeric(&k->num[i], &k->common);
   if (k->sym) klu_free_symbolic(&k->sym, &k->common);
-  free(k->scratch);
-  free(k->rhs);
-  free(k->K);
-  free(k->ipiv);
-  free(k->iwork);
-  free(k->work);
   dal__csc_free(&k->pat);
-  free(k->Kx);
-  free(k->mpos_off);
-  free(k->mpos);
-  free(k->gpos);
-  free(k->dpos);
-  free(k);
+  DAL_FREE(k->scratch, k->rhs, k->K, k->ipiv, k->iwork, k->work, k->Kx, k->mpos_off, k->mpos,
+           k->gpos, k->dpos, k);
 }
 
 double *dal__kkt_scratch(dal_state *st, int i) {
@@ -205,19 +195,13 @@ void dal__gt_apply(const dal_system *sys, const dal_state *st, const double *lam
 
 // name the failure: a rank-deficient G is reported by name, otherwise a degenerate M
 static int kkt_singular(const dal_system *sys, dal_state *st, const char *what, double rcond) {
-  char saved[DAL_ERRMSG_LEN];
-  int rc = dal__check_rank(sys, st, NULL);
-  if (rc == DAL_E_CONSTRAINT) {
-    memcpy(saved, st->err, sizeof saved);
-    return DAL_FAIL(st, DAL_E_CONSTRAINT, "%s: %s", what, saved);
-  }
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
+  int rc = dal__blame_rank(sys, st, what);
+  if (rc) return rc;
   return DAL_FAIL(st, DAL_E_SINGULAR,
                   "%s: the KKT matrix [M G'; G 0] is singular at t=%.17g, %s (reciprocal "
                   "condition %.3g): some motion allowed by the constraints moves no mass, or "
                   "constraints are redundant; check the masses and the constraint list",
-                  what, st->t, qs, rcond);
+                  what, st->t, dal__qtext(sys, st->q).s, rcond);
 }
 
 static int factor_dense(const dal_system *sys, dal_state *st, int metric, const char *what) {

@@ -27,12 +27,10 @@ static int eval_lagrangian(const dal_system *sys, dal_state *st, unsigned need) 
   st->have |= DAL_P_M | DAL_P_MLOW | (energies ? DAL_P_DYN : 0u);
   int bad = -1;
   if (dal__chol_solve(sys->n, st->M, st->L, st->qddot, &bad)) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_SINGULAR,
                     "d2L/dqdot2 singular or not positive definite at t=%.17g, %s: coordinate "
                     "'%s' is degenerate; use another chart",
-                    st->t, qs, sys->coord_names[bad]);
+                    st->t, dal__qtext(sys, st->q).s, sys->coord_names[bad]);
   }
   int i = first_nonfinite(st->qddot, sys->n);
   if (i >= 0) return accel_nonfinite(sys, st, i, 0);
@@ -82,8 +80,6 @@ static int first_nonfinite(const double *x, int n) {
 // dal_forward: no product is handed out non-finite.
 static int accel_nonfinite(const dal_system *sys, dal_state *st, int i, int mult) {
   int n = sys->n;
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   if (!sys->m && st->L && !sys->aba) { // the Cholesky route's pivots (the recursion has none)
     double pmin = INFINITY, pmax = 0.0;
     for (int j = 0; j < n; ++j) {
@@ -97,19 +93,21 @@ static int accel_nonfinite(const dal_system *sys, dal_state *st, int i, int mult
                       "coordinate '%s' is %g (pivot ratio %.3g; it moves almost no mass there, "
                       "e.g. a chart singularity such as a spherical pendulum's pole); use "
                       "redundant coordinates with constraints, or another chart",
-                      st->t, qs, sys->coord_names[i], st->qddot[i], pmin / pmax);
+                      st->t, dal__qtext(sys, st->q).s, sys->coord_names[i], st->qddot[i],
+                      pmin / pmax);
   }
   if (mult)
     return DAL_FAIL(st, DAL__RETRY_NONFINITE,
                     "multiplier of constraint '%s' (row %d) is %g at t=%.17g, %s: the constraint "
                     "forces overflow (forces too large for the masses, or near-redundant "
                     "constraints)",
-                    sys->con[sys->row_con[i]].name, i, st->lambda[i], st->t, qs);
+                    sys->con[sys->row_con[i]].name, i, st->lambda[i], st->t,
+                    dal__qtext(sys, st->q).s);
   return DAL_FAIL(st, DAL__RETRY_NONFINITE,
                   "acceleration of coordinate '%s' is %g at t=%.17g, %s: the forces are too large "
                   "for the masses they move (or overflow themselves); the state has left the "
                   "range the model can represent, or the units are badly scaled",
-                  sys->coord_names[i], st->qddot[i], st->t, qs);
+                  sys->coord_names[i], st->qddot[i], st->t, dal__qtext(sys, st->q).s);
 }
 
 // Products of the dynamics stage that must be finite: c and the assembled part of M (a sum

@@ -148,11 +148,13 @@ int dal__check_rank(const dal_system *sys, dal_state *st, dal_constraint_report 
   if (rank == m) goto done;
   rc = report_dependent(sys, st, A, jpvt, z, rows, rank, rep);
 done:
-  free(A);
-  free(G);
-  free(tau);
-  free(z);
-  free(jpvt);
-  free(rows);
+  DAL_FREE(A, G, tau, z, jpvt, rows);
   return rc;
+}
+
+int dal__blame_rank(const dal_system *sys, dal_state *st, const char *what) {
+  if (dal__check_rank(sys, st, NULL) != DAL_E_CONSTRAINT) return 0;
+  char saved[DAL_ERRMSG_LEN];
+  memcpy(saved, st->err, sizeof saved);
+  return DAL_FAIL(st, DAL_E_CONSTRAINT, "%s: %s", what, saved);
 }

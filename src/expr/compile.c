@@ -207,7 +207,7 @@ done:
   return rc;
 }
 
-static double sfn(int op, double a, double b) {
+double dal__xscalar(int op, double a, double b) {
   switch (op) {
   case X_ADD:
     return a + b;
@@ -356,7 +356,7 @@ static inline void run(const dal_xprog *p, const dal_jet *in, const dal_jet *in2
     else if (x->op == X_PAR)
       v = param[x->a];
     else
-      v = sfn(x->op, S[x->a], S[x->b]);
+      v = dal__xscalar(x->op, S[x->a], S[x->b]);
     S[x->dst] = v;
     if (check && *bad < 0 && !isfinite(v)) *bad = i;
   }

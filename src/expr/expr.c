@@ -101,6 +101,24 @@ static int names(dal_expr *e, const dal_expr_def *d, char *msg, size_t len) {
   return DAL_OK;
 }
 
+// the end of both constructors: with rc = DAL_OK compile the roots and hand e out; on a
+// failure (rc, or the compiler's) name it and destroy e
+static int finish(dal_expr *e, int rc, const char *name, char *msg, size_t len, dal_expr **out) {
+  if (!rc) {
+    char m[300];
+    rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
+    if (rc) say(msg, len, rc, "%s: %s", name, m);
+  }
+  if (!rc) {
+    face(e);
+    *out = e;
+    return DAL_OK;
+  }
+  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
+  dal_expr_destroy(e);
+  return rc;
+}
+
 int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len) {
   if (msg && len) msg[0] = 0;
   if (!out) return say(msg, len, DAL_E_ARG, "dal_expr_create: out is NULL%s%s", "", "");
@@ -160,21 +178,9 @@ int dal_expr_create(const dal_expr_def *d, dal_expr **out, char *msg, size_t len
       goto fail;
     }
   }
-  {
-    char m[300];
-    rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
-    if (rc) {
-      say(msg, len, rc, "%s: %s", name, m);
-      goto fail;
-    }
-  }
-  face(e);
-  *out = e;
-  return DAL_OK;
+  return finish(e, DAL_OK, name, msg, len, out);
 fail:
-  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
-  dal_expr_destroy(e);
-  return rc;
+  return finish(e, rc, name, msg, len, out);
 }
 
 // DAL_PRIM_TRANSLATES when output k = input k + f(the other inputs) for every output: the
@@ -196,6 +202,34 @@ static unsigned translates(const dal_expr *e) {
   dal__alg_free(&g);
   dal__xtree_free(&s);
   return ok ? DAL_PRIM_TRANSLATES : 0u;
+}
+
+// 1 when e is dal_map_hanging's formula: outputs (x + P sin(q), y - P cos(q)) over the inputs
+// (x, y, q) with P its only parameter and no t, found symbolically (the difference of each
+// output from that form is canonically 0)
+int dal__expr_hanging(const dal_expr *e) {
+  if (!e || e->nout != 2 || e->tree.nin != 3 || e->tree.nparam != 1 || e->velocities ||
+      !(e->prim.flags & DAL_PRIM_TRANSLATES) || e->tree.n > 4000)
+    return 0;
+  dal_xtree s;
+  if (dal__xtree_init(&s)) return 0;
+  s.nin = 3;
+  s.nparam = 1;
+  dal_alg g;
+  dal__alg_init(&g, &s);
+  int q = dal__xnode(&s, X_IN, -1, -1, 2, 0.0), P = dal__xnode(&s, X_PAR, -1, -1, 0, 0.0);
+  int ok = q >= 0 && P >= 0;
+  for (int k = 0; k < 2 && ok; ++k) {
+    int r = dal__ximport(&s, &e->tree, e->roots[k]), x = dal__xnode(&s, X_IN, -1, -1, k, 0.0);
+    int f = dal__xnode(&s, k ? X_COS : X_SIN, q, -1, 0, 0.0);
+    int off = f >= 0 ? dal__xnode(&s, X_MUL, P, f, 0, 0.0) : -1;
+    int want = off >= 0 && x >= 0 ? dal__xnode(&s, k ? X_SUB : X_ADD, x, off, 0, 0.0) : -1;
+    int diff = want >= 0 && r >= 0 ? dal__xnode(&s, X_SUB, r, want, 0, 0.0) : -1;
+    ok = diff >= 0 && dal__alg_isnum(&g, dal__alg_simplify(&g, diff), 0.0);
+  }
+  dal__alg_free(&g);
+  dal__xtree_free(&s);
+  return ok;
 }
 
 // the primitive face
@@ -250,19 +284,9 @@ int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots,
     e->formulas[k] = dup("(derived)");
     if (!e->formulas[k]) goto fail;
   }
-  char m[300];
-  rc = dal__xcompile(&e->tree, e->roots, e->nout, &e->prog, m, sizeof m);
-  if (rc) {
-    say(msg, len, rc, "%s: %s", name, m);
-    goto fail;
-  }
-  face(e);
-  *out = e;
-  return DAL_OK;
+  return finish(e, DAL_OK, name, msg, len, out);
 fail:
-  if (rc == DAL_E_NOMEM) say(msg, len, rc, "%s: out of memory%s", name, "");
-  dal_expr_destroy(e);
-  return rc;
+  return finish(e, rc, name, msg, len, out);
 }
 
 void dal_expr_destroy(dal_expr *e) {
@@ -363,6 +387,13 @@ int dal_expr_lagrangian(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_je
   const dal_expr *e = ctx;
   if (!e || !e->velocities) return -1;
   xrun(e, q, qdot, e->nin_named, t, e->values, L);
+  return 0;
+}
+
+int dal__expr_lagrange_parts_eval(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *out,
+                                  void *ctx) {
+  const dal_expr *e = ctx;
+  xrun(e, q, qdot, e->nin_named, t, e->values, out);
   return 0;
 }
 

@@ -23,6 +23,20 @@ int dal__expr_from_tree(const char *name, const dal_xtree *tr, const int *roots,
                         int nin_named, int velocities, const double *values, dal_expr **out,
                         char *msg, size_t msglen);
 
+/// 1 when e places a particle hanging from its parent in the plane exactly as dal_map_hanging
+/// does: outputs (x + P sin(q), y - P cos(q)) over inputs (x, y, q), P its only parameter, no t
+int dal__expr_hanging(const dal_expr *e);
+
+/// The parts of a Lagrangian e (one formula over q and qdot, dal_expr_lagrangian) its equations
+/// read: dL/dqdot_i and dL/dq_i (i < n), derived symbolically, as one expression of 2n outputs
+/// (in that order) over e's inputs and parameters (*out; the caller destroys it). Returns
+/// DAL_OK, DAL_E_ARG (not a Lagrangian), DAL_E_NOMEM, DAL_E_TOO_LARGE (symbolic.c).
+int dal__expr_lagrange_parts(const dal_expr *e, dal_expr **out, char *msg, size_t msglen);
+/// the parts' program at (t, q, qdot) into out (2n jets); ctx: the parts' expression (a
+/// dal__lagrangian_parts_fn of base.h; expr.c)
+int dal__expr_lagrange_parts_eval(dal_jet t, const dal_jet *q, const dal_jet *qdot, dal_jet *out,
+                                  void *ctx);
+
 /// a compiled program: a scalar part (parameters and constants, doubles) and a jet part
 typedef struct dal_xins {
   unsigned char op, mode; // mode: operand kinds for binary jet ops (see compile.c)
@@ -46,6 +60,10 @@ typedef struct dal_xprog {
 int dal__xcompile(const dal_xtree *tr, const int *roots, int nout, dal_xprog *p, char *msg,
                   size_t msglen);
 void dal__xprog_free(dal_xprog *p);
+/// a scalar instruction of a program: op (X_ADD .. X_HYPOT) of a and b (b unused by one-argument
+/// operations) in doubles, as the program's scalar part and the generated code's folding
+/// compute it
+double dal__xscalar(int op, double a, double b);
 /// run p: input i is in[i] for i < split, else in2[i - split]; `bad` (nullable) receives the
 /// index of the first instruction whose result is not finite (-1 none)
 void dal__xrun(const dal_xprog *p, const dal_jet *in, const dal_jet *in2, int split, dal_jet t,

@@ -249,35 +249,33 @@ static int unary(parser *p) {
   return r;
 }
 
-static int term(parser *p) {
-  int a = unary(p);
+// the operator at the parser's position joining two operands on level 1 (* and /; '**' and '/*' are
+// not) or level 0 (+ and -); -1 for none
+static int binary_op(const parser *p, int level) {
+  char c = p->s[p->pos];
+  if (!level) return c == '+' ? X_ADD : c == '-' ? X_SUB : -1;
+  if ((c != '*' && c != '/') || p->s[p->pos + 1] == '*') return -1;
+  return c == '*' ? X_MUL : X_DIV;
+}
+
+// a left-associative chain of operands: terms (level 1: unary operands joined by * and /) and
+// the expression (level 0: terms joined by + and -)
+static int chain(parser *p, int level) {
+  int a = level ? unary(p) : chain(p, 1);
   while (a >= 0) {
     skip(p);
     size_t col = p->pos;
-    char c = p->s[p->pos];
-    if ((c != '*' && c != '/') || p->s[p->pos + 1] == '*') break;
+    int op = binary_op(p, level);
+    if (op < 0) break;
     p->pos++;
-    int b = unary(p);
+    int b = level ? unary(p) : chain(p, 1);
     if (b < 0) return b;
-    a = mk(p, c == '*' ? X_MUL : X_DIV, a, b, 0, 0.0, col);
+    a = mk(p, op, a, b, 0, 0.0, col);
   }
   return a;
 }
 
-static int expr(parser *p) {
-  int a = term(p);
-  while (a >= 0) {
-    skip(p);
-    size_t col = p->pos;
-    char c = p->s[p->pos];
-    if (c != '+' && c != '-') break;
-    p->pos++;
-    int b = term(p);
-    if (b < 0) return b;
-    a = mk(p, c == '+' ? X_ADD : X_SUB, a, b, 0, 0.0, col);
-  }
-  return a;
-}
+static int expr(parser *p) { return chain(p, 0); }
 
 int dal__xparse(dal_xtree *tr, const char *text, int which, const char *label, int *root, char *msg,
                 size_t msglen) {

@@ -8,6 +8,12 @@
 
 #include "expr.h"
 
+// the public formats are the printer's (dal__xprint takes them as they are)
+_Static_assert((int)DAL_EXPR_TEXT == (int)DAL_XFMT_TEXT &&
+                   (int)DAL_EXPR_LATEX == (int)DAL_XFMT_LATEX &&
+                   (int)DAL_EXPR_SCHEME == (int)DAL_XFMT_SCHEME,
+               "dal_expr_format and the printer's formats differ");
+
 #define MODEL_COOKIE 0x0e7a3d19
 
 // a scratch tree with the symbols of `from` (names borrowed) for algebra on a const expression
@@ -74,6 +80,33 @@ int dal_expr_derivative(const dal_expr *e, int k, int j, dal_expr **out, char *m
                                        msg, msglen);
   dal__alg_free(&g);
   scratch_free(&s);
+  return rc;
+}
+
+int dal__expr_lagrange_parts(const dal_expr *e, dal_expr **out, char *msg, size_t msglen) {
+  *out = NULL;
+  if (!e || e->nout != 1 || !e->velocities) return DAL_E_ARG;
+  int n = e->nin_named, *r = malloc(2 * (size_t)n * sizeof *r);
+  dal_xtree s;
+  if (!r || scratch(&s, &e->tree)) {
+    free(r);
+    return DAL_E_NOMEM;
+  }
+  dal_alg g;
+  dal__alg_init(&g, &s);
+  int L = dal__ximport(&s, &e->tree, e->roots[0]), ok = L >= 0;
+  for (int i = 0; i < n && ok; ++i) {
+    r[i] = dal__alg_diff(&g, L, n + i); // dL/dqdot_i: input n + i is qdot_i
+    r[n + i] = dal__alg_diff(&g, L, i);
+    ok = r[i] >= 0 && r[n + i] >= 0;
+  }
+  char name[160];
+  snprintf(name, sizeof name, "%s: dL/dqdot, dL/dq", e->name);
+  int rc = !ok ? (g.too_large ? DAL_E_TOO_LARGE : DAL_E_NOMEM)
+               : dal__expr_from_tree(name, &s, r, 2 * n, n, 1, e->values, out, msg, msglen);
+  dal__alg_free(&g);
+  scratch_free(&s);
+  free(r);
   return rc;
 }
 

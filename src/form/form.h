@@ -110,6 +110,11 @@ typedef struct dal_ode_problem {
 } dal_ode_problem;
 /// minimal coordinates: y = (q, qdot), f = (qdot, qddot) (minimal.c)
 extern const dal_ode_problem dal__problem_minimal;
+/// The layout y = (q, qdot) of a first-order state (2n; minimal.c), which the minimal and the
+/// index-1 problems share: its size, y from the state, and the state put at (t, y), moved.
+int dal__qv_size(const dal_system *sys);
+void dal__qv_from_state(const dal_system *sys, const dal_state *st, double *y);
+void dal__qv_to_state(const dal_system *sys, dal_state *st, double t, const double *y);
 /// index-1 redundant coordinates: y = (q, v), f = (v, qddot from the KKT system with optional
 /// Baumgarte terms), projection onto phi = 0, G v + dphi/dt = 0 when opts->project (init.c)
 extern const dal_ode_problem dal__problem_index1;
@@ -216,6 +221,13 @@ int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, do
 /// tangent space (basis N, Y of dal__tangent_basis): Ar = diag(N', N') A Z.
 void dal__tangent_reduce(int n, int k, const double *A, const double *N, const double *Y,
                          double *Ar);
+/// The tangent space of the state manifold at the last dal__tangent_eval, as the basis
+/// Z (2n x 2k) = [N 0; Y N] of dal__tangent_basis and, P nullable, its left inverse
+/// P (2k x 2n) = [N' 0; -N'Y N' N'] (P Z = I), which takes (dq, dv) to (xi, eta): a 2n x 2n
+/// matrix A on the manifold is P A Z. Both are the identity when m = 0 (tg is not read then).
+/// Returns DAL_OK, DAL_E_SINGULAR (rank of G) or DAL_E_NOMEM.
+int dal__tangent_manifold(const dal_system *sys, dal_state *st, dal_tangent *tg, double *Z,
+                          double *P);
 /// The reduced linearization on the constraint manifold from the last dal__tangent_eval:
 /// N (n x k), Ar (2k x 2k) in xi = N' dq, eta = xi' with N carried along the motion by
 /// minimal rotation (tangent_con.c), and M_r = N' M N, C_r, K_r (k x k) with

@@ -15,20 +15,6 @@
 // ---------------------------------------------------------------------------------------
 // the index-1 ODE y = (q, v), y' = (v, qddot) with optional Baumgarte terms and projection
 
-static int index1_size(const dal_system *sys) { return 2 * sys->n; }
-
-static void index1_to_state(const dal_system *sys, dal_state *st, double t, const double *y) {
-  st->t = t;
-  memcpy(st->q, y, (size_t)sys->n * sizeof(double));
-  memcpy(st->qdot, y + sys->n, (size_t)sys->n * sizeof(double));
-  dal__state_moved(st);
-}
-
-static void index1_from_state(const dal_system *sys, const dal_state *st, double *y) {
-  memcpy(y, st->q, (size_t)sys->n * sizeof(double));
-  memcpy(y + sys->n, st->qdot, (size_t)sys->n * sizeof(double));
-}
-
 // The acceleration of coordinate i is not finite at a trial point: name what overflowed, the
 // Baumgarte terms or the forces (or, both finite, the accelerations themselves). A retry.
 static int index1_nonfinite(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, int i,
@@ -41,18 +27,16 @@ static int index1_nonfinite(const dal_system *sys, dal_state *st, const dal_solv
     double bt = 2.0 * al * st->phidot[r] + be * be * st->phi[r];
     baum_ok &= isfinite(bt) && isfinite(st->gphi[r] + bt);
   }
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   if (!baum_ok)
     return DAL_FAIL(st, DAL__RETRY_NONFINITE,
                     "index-1: the Baumgarte terms 2 alpha (G v + dphi/dt) + beta^2 phi overflow at "
                     "t=%.17g, %s (opts.baumgarte_alpha = %g, opts.baumgarte_beta = %g): the "
                     "acceleration of coordinate '%s' is %g; use rates near the motion's own "
                     "frequencies",
-                    t, qs, al, be, sys->coord_names[i], st->qddot[i]);
+                    t, dal__qtext(sys, st->q).s, al, be, sys->coord_names[i], st->qddot[i]);
   return DAL_FAIL(st, DAL__RETRY_NONFINITE,
                   "index-1: acceleration of coordinate '%s' is %g at t=%.17g, %s: %s",
-                  sys->coord_names[i], st->qddot[i], t, qs,
+                  sys->coord_names[i], st->qddot[i], t, dal__qtext(sys, st->q).s,
                   forces_ok ? "the forces are too large for the masses they move, or the KKT "
                               "matrix is nearly singular there (near-redundant constraints)"
                             : "the generalized forces overflow there");
@@ -61,7 +45,7 @@ static int index1_nonfinite(const dal_system *sys, dal_state *st, const dal_solv
 static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts *opts, double t,
                       const double *y, double *ydot, unsigned need) {
   int n = sys->n, m = sys->m, rc;
-  index1_to_state(sys, st, t, y);
+  dal__qv_to_state(sys, st, t, y);
   if (m == 0) {
     rc = dal__eval(sys, st, need | DAL_P_ACC);
   } else {
@@ -98,22 +82,22 @@ static int index1_rhs(const dal_system *sys, dal_state *st, const dal_solve_opts
 
 static int index1_project(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                           double t, double *y) {
-  index1_to_state(sys, st, t, y);
+  dal__qv_to_state(sys, st, t, y);
   // well below the integrator's absolute tolerance, above the rounding floor
   double tol = fmax(1e-2 * opts->atol, 4e-16 * fmax(1.0, dal__max_abs(st->q, sys->n, NULL)));
   int rc = dal__project_state(sys, st, tol, PROJECT_MAXIT, NULL);
   if (rc) return rc;
-  index1_from_state(sys, st, y);
+  dal__qv_from_state(sys, st, y);
   return DAL_OK;
 }
 
 const dal_ode_problem dal__problem_index1 = {
     .name = "index1",
-    .size = index1_size,
+    .size = dal__qv_size,
     .rhs = index1_rhs,
     .project = index1_project,
-    .from_state = index1_from_state,
-    .to_state = index1_to_state,
+    .from_state = dal__qv_from_state,
+    .to_state = dal__qv_to_state,
     .tol_factor = 0.2,
     .state_layout = 1,
 };

@@ -103,14 +103,13 @@ static int project_positions(const dal_system *sys, dal_state *st, double tol, i
   // stalled with residuals left on two or more constraints: they conflict
   if (!(res <= tol) && stalled && (rc = conflicting_constraints(sys, st, tol)) != 0) return rc;
   if (!(res <= tol)) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_INIT,
                     "positions cannot be brought onto the constraints at t=%.17g: after %d "
                     "Gauss-Newton iterations constraint '%s' (row %d) still has residual %.3g "
                     "> %.3g at %s%s; the constraints conflict (no position satisfies them all) "
                     "or the initial guess is too far from the constraint manifold",
-                    st->t, it, sys->con[sys->row_con[worst]].name, worst, res, tol, qs,
+                    st->t, it, sys->con[sys->row_con[worst]].name, worst, res, tol,
+                    dal__qtext(sys, st->q).s,
                     stalled == 2 ? ", where the constraint gradients vanish (the residual is "
                                    "stationary there)"
                                  : "");

@@ -125,30 +125,26 @@ int dal__tangent_supported(const dal_system *sys, dal_state *st, const char *wha
 
 // a user or primitive function failed or asked for a smaller step (there is none here)
 static int cb_fail(const dal_system *sys, dal_state *st, int rc, const char *what) {
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   return DAL_FAIL(st, DAL_E_CALLBACK,
                   "%s returned %d during the tangent evaluation at t=%.17g, %s; it must succeed "
                   "at the state and along the tangent curves through it",
-                  what, rc, st->t, qs);
+                  what, rc, st->t, dal__qtext(sys, st->q).s);
 }
 
 // a non-finite jet: a domain error, or (finite value and derivatives, NaN d3) a function
 // built with the order-2 constructors that cannot give a third derivative
 static int jet_fail(const dal_system *sys, dal_state *st, dal_jet x, const char *what) {
-  char qs[256];
-  dal__fmt_q(sys, st->q, qs, sizeof qs);
   if (dal_jet_isfinite(x))
     return DAL_FAIL(st, DAL_E_DOMAIN,
                     "%s gives no third derivative (d3 = %g at t=%.17g, %s): it builds jets with "
                     "dal_jet_make or dal_jet_chain, whose third derivative is unknown; the "
                     "exact tangent needs it: use dal_jet_make3 / dal_jet_chain3, or the dal_* "
                     "operations",
-                    what, x.d3, st->t, qs);
+                    what, x.d3, st->t, dal__qtext(sys, st->q).s);
   return DAL_FAIL(st, DAL_E_DOMAIN,
                   "%s produced a non-finite value or derivative (%g, %g, %g) at t=%.17g, %s, "
                   "along a tangent curve: an input is outside its domain",
-                  what, x.v, x.d, x.dd, st->t, qs);
+                  what, x.v, x.d, x.dd, st->t, dal__qtext(sys, st->q).s);
 }
 
 // particle jets tg->jr along the curve given by the coordinate jets tg->jq and the time jet tj;
@@ -553,13 +549,11 @@ int dal__tangent_factor(const dal_system *sys, dal_state *st, dal_tangent *tg) {
   memcpy(tg->L, tg->M, (size_t)n * (size_t)n * sizeof(double));
   lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', n, tg->L, n);
   if (info != 0) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     int bad = info > 0 ? (int)info - 1 : 0;
     return DAL_FAIL(st, DAL_E_SINGULAR,
                     "mass matrix not positive definite at t=%.17g, %s (coordinate '%s'): the "
                     "tangent needs M^-1; use another chart",
-                    st->t, qs, sys->coord_names[bad]);
+                    st->t, dal__qtext(sys, st->q).s, sys->coord_names[bad]);
   }
   return DAL_OK;
 }

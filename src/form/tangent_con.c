@@ -67,13 +67,11 @@ int dal__tangent_kkt(const dal_system *sys, dal_state *st, dal_tangent *tg, doub
   }
   lapack_int info = LAPACKE_dgesv_work(LAPACK_COL_MAJOR, nk, ncol, K, nk, ipiv, B, nk);
   if (info != 0) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     return DAL_FAIL(st, DAL_E_SINGULAR,
                     "tangent: the KKT matrix [M G'; G 0] is singular at t=%.17g, %s (pivot %d): "
                     "the constraint rows are dependent there or M is singular on their null "
                     "space; check the constraints with dal_check_constraints",
-                    st->t, qs, (int)info);
+                    st->t, dal__qtext(sys, st->q).s, (int)info);
   }
   if (A) {
     memset(A, 0, n2 * n2 * sizeof(double));
@@ -122,8 +120,6 @@ int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, do
   // rank: every singular value above n eps s_max
   double tol = (double)n * 2.220446049250313e-16 * (m > 0 ? s[0] : 0.0);
   if (m > 0 && !(s[m - 1] > tol)) {
-    char qs[256];
-    dal__fmt_q(sys, st->q, qs, sizeof qs);
     int row = 0; // the row that leans most on the weakest singular direction
     for (int r = 1; r < m; ++r)
       if (fabs(U[(size_t)(m - 1) * m + r]) > fabs(U[(size_t)(m - 1) * m + row])) row = r;
@@ -133,7 +129,8 @@ int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, do
                     "tangent: the constraint Jacobian G has rank below %d at t=%.17g, %s "
                     "(singular values %.3g ... %.3g; row %d of constraint '%s' is dependent): "
                     "drop a redundant constraint or move off the singular configuration",
-                    m, st->t, qs, smax, smin, row, sys->con[sys->row_con[row]].name);
+                    m, st->t, dal__qtext(sys, st->q).s, smax, smin, row,
+                    sys->con[sys->row_con[row]].name);
   }
   // N: rows m .. n-1 of V' transposed
   for (int j = 0; j < k; ++j)
@@ -141,13 +138,7 @@ int dal__tangent_basis(const dal_system *sys, dal_state *st, dal_tangent *tg, do
       N[(size_t)j * n + i] = Vt[(size_t)i * n + (m + j)];
   if (Y || W) {
     // T = P N (m x k); W = S^-1 U' T (m x k); Y = -V_1 W (n x k)
-    for (int j = 0; j < k; ++j)
-      for (int r = 0; r < m; ++r) {
-        double x = 0.0;
-        for (int i = 0; i < n; ++i)
-          x += tg->Pq[(size_t)i * m + r] * N[(size_t)j * n + i];
-        T[(size_t)j * m + r] = x;
-      }
+    dal__gemm('N', 'N', m, k, n, tg->Pq, m, N, n, T, m);
     for (int j = 0; j < k; ++j) {
       // zz = S^-1 U' T e_j
       for (int l = 0; l < m; ++l) {
@@ -191,6 +182,44 @@ void dal__tangent_reduce(int n, int k, const double *A, const double *N, const d
       Ar[c * k2 + row] = x;
     }
   }
+}
+
+int dal__tangent_manifold(const dal_system *sys, dal_state *st, dal_tangent *tg, double *Z,
+                          double *P) {
+  int n = sys->n, k = n - sys->m, rc;
+  size_t sn = (size_t)n, sk = (size_t)k, n2 = 2 * sn, k2 = 2 * sk;
+  memset(Z, 0, n2 * k2 * sizeof(double));
+  if (P) memset(P, 0, k2 * n2 * sizeof(double));
+  if (sys->m == 0) {
+    for (size_t i = 0; i < n2; ++i) {
+      Z[i * n2 + i] = 1.0;
+      if (P) P[i * k2 + i] = 1.0;
+    }
+    return DAL_OK;
+  }
+  double *N = malloc((2 * sn * sk + sk * sk + 1) * sizeof(double));
+  if (!N) return DAL_FAIL(st, DAL_E_NOMEM, "tangent: out of memory for the manifold's basis");
+  double *Y = N + sn * sk, *NY = Y + sn * sk;
+  if ((rc = dal__tangent_basis(sys, st, tg, N, Y, NULL)) != 0) {
+    free(N);
+    return rc;
+  }
+  dal__gemm('T', 'N', k, k, n, N, n, Y, n, NY, k); // NY = N' Y (k x k)
+  for (size_t j = 0; j < sk; ++j)
+    for (size_t i = 0; i < sn; ++i) {
+      Z[j * n2 + i] = N[j * sn + i];             // (N xi, Y xi)
+      Z[j * n2 + sn + i] = Y[j * sn + i];        //
+      Z[(sk + j) * n2 + sn + i] = N[j * sn + i]; // (0, N eta)
+      if (!P) continue;
+      P[i * k2 + j] = N[j * sn + i];             // xi = N' dq
+      P[(sn + i) * k2 + sk + j] = N[j * sn + i]; // eta = N' dv - N'Y N' dq
+      double s = 0.0;
+      for (size_t l = 0; l < sk; ++l)
+        s += NY[l * sk + j] * N[l * sn + i];
+      P[i * k2 + sk + j] = -s;
+    }
+  free(N);
+  return DAL_OK;
 }
 
 int dal__tangent_on_manifold(const dal_system *sys, dal_state *st, dal_tangent *tg,
@@ -246,21 +275,9 @@ int dal__tangent_reduced(const dal_system *sys, dal_state *st, dal_tangent *tg, 
   if (N) memcpy(N, Nb, sn * sk * sizeof(double));
   if (Ar) memcpy(Ar, R, k2 * k2 * sizeof(double));
   // M_r = N' M N; then C_r = -M_r A22, K_r = -M_r A21 (M_r xi'' + C_r xi' + K_r xi = 0)
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < n; ++i) {
-      double x = 0.0;
-      for (int l = 0; l < n; ++l)
-        x += tg->M[(size_t)l * n + i] * Nb[(size_t)j * n + l];
-      MN[(size_t)j * n + i] = x;
-    }
+  dal__gemm('N', 'N', n, k, n, tg->M, n, Nb, n, MN, n);
   double *mr = Y; // N' M N into the Y storage (no longer needed)
-  for (int j = 0; j < k; ++j)
-    for (int i = 0; i < k; ++i) {
-      double x = 0.0;
-      for (int l = 0; l < n; ++l)
-        x += Nb[(size_t)i * n + l] * MN[(size_t)j * n + l];
-      mr[(size_t)j * k + i] = x;
-    }
+  dal__gemm('T', 'N', k, k, n, Nb, n, MN, n, mr, k);
   for (int j = 0; j < k; ++j) // symmetric to rounding: mirror the lower triangle
     for (int i = 0; i < j; ++i)
       mr[(size_t)j * k + i] = mr[(size_t)i * k + j];

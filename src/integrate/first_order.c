@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
-// A first-order problem y' = F(t, y) of any size run by the library's ODE methods: the
-// tangent and variational integrations of the analysis layer use the same integrators, step
-// control, progress guards and failure naming as dal_advance.
+// A first-order problem y' = F(t, y) of any size run by the library's ODE methods (behind the
+// integrator handle: dal__integ_create_fo): the tangent and variational integrations of the
+// analysis layer use the same integrators, step control, progress guards and failure naming as
+// dal_advance.
 #include <string.h>
 
 #include "integrate.h"
@@ -55,13 +56,6 @@ int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opt
   if (fo->ny < 2 * sys->n)
     return DAL_FAIL(st, DAL_E_ARG, "first-order problem of size %d below 2n = %d", fo->ny,
                     2 * sys->n);
-  if (!dal__method_can(meth, DAL__CAP_FIRST_ORDER)) {
-    char can[128];
-    return DAL_FAIL(st, DAL_E_UNSUPPORTED,
-                    "method '%s' does not run a first-order problem; use one that does (%s)",
-                    dal_method_name(meth),
-                    dal__methods_that_can(DAL__CAP_FIRST_ORDER, can, sizeof can));
-  }
   dal_solve_opts o = *opts;
   o.form = DAL_FORM_ODE;
   o.work = 0;

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // One integrator interface: the formulation and method resolved from the method rows, and the
-// two families behind one handle (dal_integ): the ODE methods on a formulation's problem and
-// IDA on the DAE forms.
+// three families behind one handle (dal_integ): the ODE methods on a formulation's problem, IDA
+// on the DAE forms, and the ODE methods on a plain first-order problem (the analyses').
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -14,15 +14,22 @@
 // ---------------------------------------------------------------------------------------------
 // the ODE family: an ODE method on a dal_ode_problem
 
-static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+// the ODE method to tout, the hook called after every accepted step
+static int ode_run(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
   dal_ode_integ *ig = it->impl;
   ig->hook = hook;
   ig->hook_ctx = ctx;
   ig->dense = hook && it->dense_steps;
   int rc = dal__ode_advance(ig, tout);
   ig->hook = NULL;
+  return rc;
+}
+
+static int ode_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+  int rc = ode_run(it, tout, hook, ctx);
   if (rc) return rc;
   // the state at tout, evaluated there
+  dal_ode_integ *ig = it->impl;
   dal__ode_to_state(ig, ig->t, ig->y);
   return dal__public_status(dal__eval(it->sys, it->st, DAL_P_ALL));
 }
@@ -52,8 +59,33 @@ static void ode_destroy(dal_integ *it) {
   free(it->yi);
 }
 
-static const dal_integ_ops ode_ops = {ode_advance,   ode_window,     ode_place,
-                                      ode_place_end, ode_new_output, ode_destroy};
+static const dal_integ_ops ode_ops = {ode_advance,    ode_window,  ode_place, ode_place_end,
+                                      ode_new_output, ode_destroy, NULL};
+
+// ---------------------------------------------------------------------------------------------
+// the first-order family: an ODE method on a plain first-order problem (dal_first_order)
+
+// to tout within the caller's budget it->opts.max_steps; the work state follows the trajectory
+// part of y there (not evaluated: F evaluates what it needs)
+static int fo_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx) {
+  dal_ode_integ *ig = it->impl;
+  ig->opts.max_steps = it->opts.max_steps;
+  int rc = ode_run(it, tout, hook, ctx);
+  if (rc == DAL__HOOK_STOP) return rc;
+  if (rc) return dal__public_status(rc);
+  dal__ode_to_state(ig, ig->t, ig->y);
+  return DAL_OK;
+}
+
+static int fo_change_y(dal_integ *it, int i0, const double *y) {
+  dal_ode_integ *ig = it->impl;
+  if (!dal__ode_can_change_y(ig)) return 0;
+  memcpy(ig->y + i0, y + i0, (size_t)(ig->ny - i0) * sizeof(double));
+  return dal__ode_changed_y(ig, i0);
+}
+
+static const dal_integ_ops fo_ops = {fo_advance,     ode_window,  ode_place,  ode_place_end,
+                                     ode_new_output, ode_destroy, fo_change_y};
 
 // ---------------------------------------------------------------------------------------------
 // the DAE family: IDA on the GGL, index-3 and index-1 forms
@@ -111,8 +143,8 @@ static int ida_advance(dal_integ *it, double tout, int (*hook)(void *ctx), void 
   return rc;
 }
 
-static const dal_integ_ops ida_ops = {ida_advance,   ida_window,     ida_place,
-                                      ida_place_end, ida_new_output, ida_destroy};
+static const dal_integ_ops ida_ops = {ida_advance,    ida_window,  ida_place, ida_place_end,
+                                      ida_new_output, ida_destroy, NULL};
 
 // ---------------------------------------------------------------------------------------------
 // resolution and creation
@@ -196,7 +228,6 @@ static int create_ode(dal_integ *it, const dal_ode_problem *prob) {
   if (rc) return rc;
   it->ops = &ode_ops;
   it->impl = ig;
-  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
     return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
   // dense output straight into the state's (q, qdot) where y has its layout
@@ -222,7 +253,6 @@ static int create_ida(dal_integ *it) {
   int rc = dal__public_status(dal__ida_create(it->sys, st, o, &it->impl));
   if (rc) return rc;
   it->ops = &ida_ops;
-  it->traj_pieces = dal__method_row(it->method)->traj_pieces;
   it->can_fall_back = 1;
   if (st->stats.rtol_used > o->rtol * dal__dae_tol_factor(o->form))
     snprintf(it->note, sizeof it->note,
@@ -234,6 +264,34 @@ static int create_ida(dal_integ *it) {
   return DAL_OK;
 }
 
+// a handle of method meth in formulation form for options o, its family's memory not made yet;
+// NULL with the state's message set when out of memory
+static dal_integ *integ_alloc(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                              dal_method meth, dal_formulation form) {
+  dal_integ *it = calloc(1, sizeof *it);
+  if (!it) {
+    DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+    return NULL;
+  }
+  it->sys = sys;
+  it->st = st;
+  it->opts = *o;
+  it->method = meth;
+  it->form = form;
+  it->traj_pieces = dal__method_row(meth)->traj_pieces;
+  return it;
+}
+
+// the end of a creation with status rc: the handle into *out, or destroyed
+static int integ_done(dal_integ *it, int rc, dal_integ **out) {
+  if (rc) {
+    dal__integ_destroy(it);
+    return rc;
+  }
+  *out = it;
+  return DAL_OK;
+}
+
 int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
                       dal_integ **out) {
   *out = NULL;
@@ -242,28 +300,42 @@ int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts
   int tight = 0;
   int rc = resolve(sys, st, o, dense, &meth, &prob, &tight);
   if (rc) return rc;
-  dal_integ *it = calloc(1, sizeof *it);
-  if (!it) return DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
-  it->sys = sys;
-  it->st = st;
-  it->opts = *o;
-  it->method = meth;
-  it->form = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
-             : prob                       ? DAL_FORM_ODE
-             : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
-                                          : o->form;
+  dal_formulation form = prob == &dal__problem_index1 ? DAL_FORM_INDEX1
+                         : prob                       ? DAL_FORM_ODE
+                         : o->form == DAL_FORM_AUTO   ? DAL_FORM_GGL
+                                                      : o->form;
+  dal_integ *it = integ_alloc(sys, st, o, meth, form);
+  if (!it) return DAL_E_NOMEM;
   if (tight) {
     // the fallback formulation starts from a consistent state too
     it->opts = dal__fallback_opts(o);
     rc = dal__fallback_start(sys, st, o);
   }
   if (!rc) rc = prob ? create_ode(it, prob) : create_ida(it);
-  if (rc) {
-    dal__integ_destroy(it);
-    return rc;
+  return integ_done(it, rc, out);
+}
+
+int dal__integ_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                         dal_first_order *fo, dal_integ **out) {
+  *out = NULL;
+  dal_method meth = DAL_METHOD_AUTO;
+  int rc = dal__fo_method(st, o->method, o->rtol, DAL__CAP_FIRST_ORDER, NULL, &meth);
+  if (rc) return rc;
+  dal_integ *it = integ_alloc(sys, st, o, meth, DAL_FORM_ODE);
+  if (!it) return DAL_E_NOMEM;
+  it->opts.method = meth;
+  dal_ode_integ *ig = NULL;
+  if ((rc = dal__ode_create_fo(sys, st, &it->opts, meth, fo, &ig)) == 0) {
+    it->ops = &fo_ops;
+    it->impl = ig;
+    it->y = ig->y;
+    it->ny = ig->ny;
+    // dense output of y into a scratch, the trajectory part copied into the state
+    if (!(it->yi = calloc((size_t)ig->ny + 1, sizeof(double))))
+      rc = DAL_FAIL(st, DAL_E_NOMEM, "out of memory creating the integrator");
+    ig->yplace = it->yi;
   }
-  *out = it;
-  return DAL_OK;
+  return integ_done(it, rc, out);
 }
 
 void dal__integ_destroy(dal_integ *it) {

@@ -127,10 +127,11 @@ int dal__ode_end_slope(dal_ode_integ *ig);
 
 /// A first-order problem y' = F(t, y) of any size that is not a formulation of the system:
 /// the tangent (Lyapunov) and variational integrations of analysis/ run on the library's ODE
-/// methods through it (GSL's gsl_odeiv2_system). y starts with the trajectory (q, qdot) of the
-/// system (the state follows it in messages and on failure); the rest is the problem's own
-/// (tangent vectors, sensitivities). A constrained tangent plugs in with its own rhs and, where
-/// it has a manifold, a projection.
+/// methods through it, behind the integrator handle (dal__integ_create_fo; GSL's
+/// gsl_odeiv2_system). y starts with the trajectory (q, qdot) of the system (the state follows
+/// it in messages and on failure); the rest is the problem's own (tangent vectors,
+/// sensitivities). A constrained tangent plugs in with its own rhs and, where it has a
+/// manifold, a projection.
 typedef struct dal_first_order {
   int ny;           ///< size of y (>= 2n)
   const double *y0; ///< y at the start (ny; read at creation)
@@ -146,13 +147,12 @@ typedef struct dal_first_order {
 } dal_first_order;
 /// the problem that runs st->fo (first_order.c; its ny is set per run)
 extern const dal_ode_problem dal__problem_first_order;
-/// A fresh ODE integrator for method meth (an adaptive ODE method or RK4) on the first-order
-/// problem fo at time st->t: st is a work state the integrator owns while it lives (it keeps a
-/// pointer to fo, whose prob it fills and runs; fo must outlive the integrator). opts: tolerances
-/// (a global target, the method's calibrated factor applied as for dal_advance), h0, hmax,
-/// fixed_step, max_steps; the formulation, work and projection options are ignored (fo->project
-/// runs when set). meth must have DAL__CAP_FIRST_ORDER (else DAL_E_UNSUPPORTED naming those
-/// that do). Destroying the integrator (dal__ode_destroy) lets go of the work state's st->fo.
+/// The ODE level under dal__integ_create_fo: a fresh ODE integrator for the resolved method
+/// meth on fo at time st->t (first_order.c; st->fo = fo while it lives, fo's prob filled). opts:
+/// tolerances (a global target, the method's calibrated factor applied as for dal_advance), h0,
+/// hmax, fixed_step, max_steps; the formulation, work and projection options are ignored
+/// (fo->project runs when set). Destroying the integrator (dal__ode_destroy) lets go of the
+/// work state's st->fo.
 int dal__ode_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *opts,
                        dal_method meth, dal_first_order *fo, dal_ode_integ **out);
 
@@ -190,7 +190,7 @@ typedef struct dal_method_row {
 } dal_method_row;
 /// The capabilities of a method row:
 enum {
-  /// runs a plain first-order problem y' = F(t, y) (dal__ode_create_fo): tangent vectors,
+  /// runs a plain first-order problem y' = F(t, y) (dal__integ_create_fo): tangent vectors,
   /// variational equations
   DAL__CAP_FIRST_ORDER = 1u << 0,
   /// explicit: no Newton or fixed-point iteration per step (the variational equations of
@@ -216,6 +216,13 @@ const char *dal__methods_that_can(unsigned caps, char *buf, size_t len);
 /// gives way to the next one that has them (validated on the tangent system of
 /// tests/test_analysis_lyapunov.c, not on plain trajectories as dal__auto_method)
 dal_method dal__auto_method_fo(double rtol, unsigned caps);
+/// The method that runs a first-order problem asking the capabilities caps (DAL__CAP_FIRST_ORDER
+/// is always asked; DAL__CAP_EXPLICIT for the variational equations) under the request m at
+/// relative tolerance rtol: m itself, or for AUTO dal__auto_method_fo's choice, into *out. 0, or
+/// DAL_E_UNSUPPORTED with st's message naming m, what the problem asks and the methods that
+/// can (prefixed "what: " when what is not NULL)
+int dal__fo_method(dal_state *st, dal_method m, double rtol, unsigned caps, const char *what,
+                   dal_method *out);
 /// the method that runs formulation form as a DAE (the first row other than AUTO whose
 /// dae_forms holds it), or DAL_METHOD_AUTO when none does
 dal_method dal__dae_method(dal_formulation form);
@@ -309,16 +316,21 @@ long dal__cvode_fast_outputs(const dal_ode_integ *ig);
 void dal__cvode_slow_dense(dal_ode_integ *ig);
 
 /// One integrator behind one interface, whatever its family (an ODE method on a formulation's
-/// dal_ode_problem, IDA on a DAE form): the driver and the events talk to nothing else (GSL's
-/// evolve object over its step types). Created from the method rows by dal__integ_create.
+/// dal_ode_problem, IDA on a DAE form, an ODE method on a plain first-order problem): the
+/// driver, the events, the stored trajectory and the analyses talk to nothing else (GSL's evolve
+/// object over its step types). Created from the method rows by dal__integ_create and
+/// dal__integ_create_fo.
 typedef struct dal_integ dal_integ;
 typedef struct dal_integ_ops {
   /// integrate from the state's time to tout (> it); after every accepted step hook(ctx) when
   /// hook is set (0: go on, DAL__HOOK_STOP: stop, negative: fail). Returns 0 with the state at
   /// tout, evaluated; DAL__HOOK_STOP (the state is what the hook left); or a negative public
-  /// status with the state at the last accepted step, evaluated, its message naming the cause
+  /// status with the state at the last accepted step, evaluated, its message naming the cause.
+  /// A first-order problem's: the work state's (t, q, qdot) at tout, not evaluated (F evaluates
+  /// what it needs); its budget is it->opts.max_steps steps per call, read at every call
   int (*advance)(dal_integ *it, double tout, int (*hook)(void *ctx), void *ctx);
-  /// the step just taken, [*t0, *t1]
+  /// the step just taken, [*t0, *t1] (both the start before the first step); after an advance
+  /// without hook a method that steps past tout and interpolates back (CVODE) gives [tout, tout]
   void (*window)(const dal_integ *it, double *t0, double *t1);
   /// the state's (t, q, qdot, W) at t in the step just taken from the method's dense output
   /// (not evaluated); 0 or a negative status
@@ -329,6 +341,12 @@ typedef struct dal_integ_ops {
   /// an output was served inside the step: opts.max_steps counts from here
   void (*new_output)(dal_integ *it);
   void (*destroy)(dal_integ *it);
+  /// a first-order problem's y[i0 .. ny) replaced by y[i0 .. ny) at the time of the last
+  /// accepted step (a reorthonormalized tangent): 1 when the method goes on from there with the
+  /// rest of its memory kept (the compensation of the unchanged components, the step size), 0
+  /// when it cannot (nothing changed: create a fresh integrator there). NULL for the
+  /// formulations' families
+  int (*change_y)(dal_integ *it, int i0, const double *y);
 } dal_integ_ops;
 struct dal_integ {
   const dal_integ_ops *ops;
@@ -336,7 +354,7 @@ struct dal_integ {
   dal_state *st;
   dal_solve_opts opts;  ///< the options it runs with (the automatic choice's form set)
   dal_method method;    ///< resolved method (never AUTO)
-  dal_formulation form; ///< resolved formulation (never AUTO)
+  dal_formulation form; ///< resolved formulation (never AUTO; a first-order problem: ODE)
   /// a failure of the Newton iteration or a step size collapse may be retried from the last
   /// accepted step in another formulation (the fallback ladder, docs/dae.md)
   int can_fall_back;
@@ -352,6 +370,10 @@ struct dal_integ {
   /// what a run did not honour as asked after creation (IDA's local tolerance raised to its
   /// floor after a failed step below it): "note: ..." for the state's message, or empty
   char run_note[DAL_ERRMSG_LEN];
+  /// a first-order problem's y at the last accepted step (ny; borrowed, valid while the
+  /// integrator lives); NULL for the formulations' families
+  const double *y;
+  int ny;
   void *impl; ///< the family's memory (dal_ode_integ, IDA's)
   // after-step hook of the current advance call and the steps since the last output (the
   // families that do not count opts.max_steps themselves)
@@ -359,7 +381,7 @@ struct dal_integ {
   void *hook_ctx;
   long nsteps;
   double tout;
-  double *yi; ///< dense output scratch of the ODE family (ny)
+  double *yi; ///< dense output scratch of the ODE families (ny)
 };
 /// Resolve formulation and method for options o from the method rows (dense: a monitor reads
 /// outputs between the steps, which AUTO takes into account) and create the integrator at the
@@ -368,6 +390,17 @@ struct dal_integ {
 /// negative public status with the state's message set (integ.c)
 int dal__integ_create(const dal_system *sys, dal_state *st, const dal_solve_opts *o, int dense,
                       dal_integ **out);
+/// An integrator on the first-order problem fo at time st->t, behind the same handle: st is a
+/// work state the integrator owns while it lives (fo must outlive it). The method is
+/// o->method, or for AUTO the rule of the first-order problems (dal__fo_method); a method that
+/// does not run one is refused (DAL_E_UNSUPPORTED naming those that do). o: tolerances (a
+/// global target, the method's calibrated factor applied as for dal_advance), h0, hmax,
+/// fixed_step, max_steps; the formulation, work and projection options are ignored (fo->project
+/// runs when set). The solution is read at it->y, the last step from window; dense output of
+/// the trajectory part through place. 0 or a negative public status with st's message set
+/// (integ.c)
+int dal__integ_create_fo(const dal_system *sys, dal_state *st, const dal_solve_opts *o,
+                         dal_first_order *fo, dal_integ **out);
 /// destroy an integrator (NULL: nothing)
 void dal__integ_destroy(dal_integ *it);
 

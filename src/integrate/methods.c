@@ -92,6 +92,21 @@ dal_method dal__auto_method_fo(double rtol, unsigned caps) {
   return looser;
 }
 
+int dal__fo_method(dal_state *st, dal_method m, double rtol, unsigned caps, const char *what,
+                   dal_method *out) {
+  caps |= DAL__CAP_FIRST_ORDER;
+  *out = m == DAL_METHOD_AUTO ? dal__auto_method_fo(rtol, caps) : m;
+  if (dal__method_can(*out, caps)) return DAL_OK;
+  char can[128];
+  return DAL_FAIL(
+      st, DAL_E_UNSUPPORTED, "%s%smethod '%s' cannot run %s; use auto or one that can (%s)",
+      what ? what : "", what ? ": " : "", dal_method_name(m),
+      caps & DAL__CAP_EXPLICIT ? "this first-order problem, which asks for an explicit method (no "
+                                 "iteration per step)"
+                               : "a first-order problem y' = F(t, y)",
+      dal__methods_that_can(caps, can, sizeof can));
+}
+
 dal_method dal__dae_method(dal_formulation form) {
   for (size_t i = 0; i < sizeof rows / sizeof rows[0]; ++i)
     if (rows[i].id != DAL_METHOD_AUTO && (rows[i].dae_forms & DAL__FORM_BIT(form)))

@@ -69,12 +69,19 @@ const char *dal_builder_errmsg(const dal_builder *b) { return b ? b->err : ""; }
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
 
+// every builder call starts so: a NULL builder is refused, and the message is always that of
+// the last call
+#define BUILDER_CALL(b)                                                                            \
+  do {                                                                                             \
+    if (!(b)) return DAL_E_ARG;                                                                    \
+    (b)->err[0] = 0;                                                                               \
+  } while (0)
+
 // a nonzero subnormal (|x| < DBL_MIN) carries fewer than 53 significant bits (validate.c)
 static int subnormal(double x) { return x != 0.0 && fabs(x) < DBL_MIN; }
 
 int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   char **slot = vec_push(&b->coords, sizeof(char *));
   if (!slot) return BFAIL(DAL_E_NOMEM, "out of memory adding a coordinate");
   *slot = dup_name(name, 'q', b->coords.len - 1);
@@ -87,8 +94,7 @@ int dal_builder_add_coord(dal_builder *b, const char *name, int *index) {
 }
 
 int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int *index) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   const char *nm = name ? name : "(unnamed)";
   int mrc = dal__check_mass(b->err, nm, mass);
   if (mrc) return mrc;
@@ -125,31 +131,24 @@ int dal_builder_add_particle(dal_builder *b, const char *name, double mass, int 
   return DAL_OK;
 }
 
-// append ints and doubles to the pools; returns offsets or -1 on memory failure
-static int pool_ints(dal_builder *b, int n, const int *x) {
-  int off = b->ipool.len;
+// append n elements of size sz to a pool; returns their offset or -1 on memory failure
+static int pool_append(dal_vec *v, size_t sz, int n, const void *x) {
+  int off = v->len;
   for (int i = 0; i < n; ++i) {
-    int *s = vec_push(&b->ipool, sizeof(int));
+    void *s = vec_push(v, sz);
     if (!s) {
-      b->ipool.len = off;
+      v->len = off;
       return -1;
     }
-    *s = x[i];
+    memcpy(s, (const char *)x + (size_t)i * sz, sz);
   }
   return off;
 }
-
+static int pool_ints(dal_builder *b, int n, const int *x) {
+  return pool_append(&b->ipool, sizeof(int), n, x);
+}
 static int pool_doubles(dal_builder *b, int n, const double *x) {
-  int off = b->ppool.len;
-  for (int i = 0; i < n; ++i) {
-    double *s = vec_push(&b->ppool, sizeof(double));
-    if (!s) {
-      b->ppool.len = off;
-      return -1;
-    }
-    *s = x[i];
-  }
-  return off;
+  return pool_append(&b->ppool, sizeof(double), n, x);
 }
 
 // the "unset" marker of def parameters: a quiet NaN with a payload no arithmetic produces
@@ -291,8 +290,7 @@ static int place(dal_builder *b, int particle, const dal_primitive *prim, int pa
 }
 
 int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   if (!fn) return BFAIL(DAL_E_ARG, "set_map: map function is NULL");
   for (int k = 0; k < b->places.len; ++k)
     if (((dal_place *)b->places.data)[k].prim)
@@ -304,8 +302,7 @@ int dal_builder_set_map(dal_builder *b, dal_map_fn *fn, void *ctx) {
 }
 
 int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   if (!fn) return BFAIL(DAL_E_ARG, "set_lagrangian: Lagrangian function is NULL");
   if (b->parts.len)
     return BFAIL(DAL_E_ARG,
@@ -314,6 +311,14 @@ int dal_builder_set_lagrangian(dal_builder *b, dal_lagrangian_fn *fn, void *ctx)
                  b->parts.len);
   b->lag = fn;
   b->lag_ctx = ctx;
+  return DAL_OK;
+}
+
+int dal__builder_set_lagrangian_parts(dal_builder *b, dal__lagrangian_parts_fn *fn, void *ctx) {
+  BUILDER_CALL(b);
+  if (!b->lag) return BFAIL(DAL_E_ARG, "set_lagrangian_parts: set the Lagrangian first");
+  b->lag_parts = fn;
+  b->lag_parts_ctx = ctx;
   return DAL_OK;
 }
 
@@ -458,8 +463,7 @@ static int def_params(dal_builder *b, const char *what, const dal_primitive *pri
   } while (0)
 
 int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   DEF_CHECK(def, "place_def");
   char what[96];
   snprintf(what, sizeof what, "placing particle %d", particle);
@@ -473,8 +477,7 @@ int dal_builder_place_def(dal_builder *b, int particle, const dal_place_def *def
 }
 
 int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def, int *index) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   DEF_CHECK(def, "constraint_def");
   char what[96];
   snprintf(what, sizeof what, "constraint '%s'", def->name ? def->name : "(unnamed)");
@@ -487,8 +490,7 @@ int dal_builder_add_constraint_def(dal_builder *b, const dal_constraint_def *def
 }
 
 int dal_builder_set_gravity(dal_builder *b, const double *g) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   if (!g) return BFAIL(DAL_E_ARG, "set_gravity: g is NULL");
   if (b->dim == 0)
     return BFAIL(DAL_E_ARG, "set_gravity: the builder has dim 0 (a Lagrangian system has no "
@@ -541,8 +543,7 @@ static int add_link(dal_builder *b, dal_vec *v, const char *kind, int pa, int pb
 }
 
 int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   DEF_CHECK(def, "spring_def");
   int anchored = def->b < 0;
   if (def->b < -1) return BFAIL(DAL_E_ARG, "spring: second particle index %d invalid", def->b);
@@ -551,8 +552,7 @@ int dal_builder_add_spring_def(dal_builder *b, const dal_spring_def *def) {
 }
 
 int dal_builder_add_damper_def(dal_builder *b, const dal_damper_def *def) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   DEF_CHECK(def, "damper_def");
   int anchored = def->b < 0;
   if (def->b < -1) return BFAIL(DAL_E_ARG, "damper: second particle index %d invalid", def->b);
@@ -569,29 +569,25 @@ static int add_cb(dal_builder *b, dal_vec *v, const char *kind, int isnull, dal_
 }
 
 int dal_builder_add_potential_r(dal_builder *b, dal_potential_r_fn *fn, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   dal_cb cb = {.fn.potr = fn, .ctx = ctx};
   return add_cb(b, &b->potr, "potential U(r,t)", fn == NULL, cb);
 }
 
 int dal_builder_add_potential_q(dal_builder *b, dal_potential_q_fn *fn, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   dal_cb cb = {.fn.potq = fn, .ctx = ctx};
   return add_cb(b, &b->potq, "potential U(q,t)", fn == NULL, cb);
 }
 
 int dal_builder_add_force(dal_builder *b, dal_force_fn *fn, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   dal_cb cb = {.fn.force = fn, .ctx = ctx};
   return add_cb(b, &b->forces, "force callback", fn == NULL, cb);
 }
 
 int dal_builder_add_genforce(dal_builder *b, dal_genforce_fn *fn, void *ctx) {
-  if (!b) return DAL_E_ARG;
-  b->err[0] = 0; // the message is always that of the last call
+  BUILDER_CALL(b);
   dal_cb cb = {.fn.gen = fn, .ctx = ctx};
   return add_cb(b, &b->genforces, "generalized force callback", fn == NULL, cb);
 }

@@ -59,6 +59,10 @@ void dal__params_rewind(dal_state *st);
 /// name of parameter i of prim: its param_names entry, else "p<i>" written into buf
 /// (validate.c)
 const char *dal__param_name(const dal_primitive *prim, int i, char *buf, size_t len);
+/// Give a Lagrangian system (dal_builder_set_lagrangian first) its parts dL/dqdot and dL/dq as
+/// one function (base.h, dal__lagrangian_parts_fn; fn NULL: none): the accelerations then come
+/// from them, the energies still from L (builder.c)
+int dal__builder_set_lagrangian_parts(dal_builder *b, dal__lagrangian_parts_fn *fn, void *ctx);
 /// DAL_OK when prim->version is one this library reads, else DAL_E_ARG with a message in err
 /// (builder.c)
 int dal__prim_version_ok(const dal_primitive *prim, char *err, const char *what);

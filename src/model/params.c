@@ -52,6 +52,13 @@ static void subtree_masses(const dal_system *sys, const double *mass, double *mu
     if (sys->place[k].parent >= 0) mu[sys->place[k].parent] += mu[k];
 }
 
+// a malloc'd copy of n elements of size sz (room for one at least); NULL when out of memory
+static void *copy_of(const void *src, size_t n, size_t sz) {
+  void *p = malloc((n ? n : 1) * sz);
+  if (p && n) memcpy(p, src, n * sz);
+  return p;
+}
+
 // make the state own a copy of the array `ref` points into; 0 or DAL_E_NOMEM
 static int own(const dal_system *sys, dal_state *st, dal_param_kind kind) {
   dal_params *p = &st->prm;
@@ -59,26 +66,21 @@ static int own(const dal_system *sys, dal_state *st, dal_param_kind kind) {
   switch (kind) {
   case DAL_PARAM_MASS:
     if (p->own_mass) return DAL_OK;
-    p->own_mass = malloc((N ? N : 1) * sizeof(double));
-    p->own_mu = malloc((N ? N : 1) * sizeof(double));
+    p->own_mass = copy_of(sys->mass, N, sizeof(double));
+    p->own_mu = copy_of(sys->mu, N, sizeof(double));
     if (!p->own_mass || !p->own_mu) {
       free(p->own_mass);
       free(p->own_mu);
       p->own_mass = p->own_mu = NULL;
       return DAL_E_NOMEM;
     }
-    memcpy(p->own_mass, sys->mass, N * sizeof(double));
-    memcpy(p->own_mu, sys->mu, N * sizeof(double));
     p->mass = p->own_mass;
     p->mu = p->own_mu;
     return DAL_OK;
   case DAL_PARAM_PLACE:
   case DAL_PARAM_CONSTRAINT: {
-    if (p->own_ppool) return DAL_OK;
-    size_t len = ppool_len(sys);
-    p->own_ppool = malloc((len ? len : 1) * sizeof(double));
-    if (!p->own_ppool) return DAL_E_NOMEM;
-    if (len) memcpy(p->own_ppool, sys->ppool, len * sizeof(double));
+    if (!p->own_ppool && !(p->own_ppool = copy_of(sys->ppool, ppool_len(sys), sizeof(double))))
+      return DAL_E_NOMEM;
     p->ppool = p->own_ppool;
     return DAL_OK;
   }
@@ -90,22 +92,27 @@ static int own(const dal_system *sys, dal_state *st, dal_param_kind kind) {
     return DAL_OK;
   case DAL_PARAM_SPRING_K:
   case DAL_PARAM_SPRING_L:
-    if (p->own_springs) return DAL_OK;
-    p->own_springs = malloc(((size_t)sys->nspring + 1) * sizeof(dal_link));
-    if (!p->own_springs) return DAL_E_NOMEM;
-    if (sys->nspring) memcpy(p->own_springs, sys->springs, (size_t)sys->nspring * sizeof(dal_link));
+    if (!p->own_springs &&
+        !(p->own_springs = copy_of(sys->springs, (size_t)sys->nspring, sizeof(dal_link))))
+      return DAL_E_NOMEM;
     p->springs = p->own_springs;
     return DAL_OK;
   case DAL_PARAM_DAMPER_C:
-    if (p->own_dampers) return DAL_OK;
-    p->own_dampers = malloc(((size_t)sys->ndamper + 1) * sizeof(dal_link));
-    if (!p->own_dampers) return DAL_E_NOMEM;
-    if (sys->ndamper) memcpy(p->own_dampers, sys->dampers, (size_t)sys->ndamper * sizeof(dal_link));
+    if (!p->own_dampers &&
+        !(p->own_dampers = copy_of(sys->dampers, (size_t)sys->ndamper, sizeof(dal_link))))
+      return DAL_E_NOMEM;
     p->dampers = p->own_dampers;
     return DAL_OK;
   case DAL_PARAM_NONE:
     break;
   }
+  return DAL_E_ARG;
+}
+
+// DAL_E_ARG with "parameter: <what> index i out of range [0, n)" unless 0 <= i < n
+static int index_in(int i, int n, const char *what, char *msg, size_t len) {
+  if (i >= 0 && i < n) return DAL_OK;
+  if (msg && len) snprintf(msg, len, "parameter: %s index %d out of range [0, %d)", what, i, n);
   return DAL_E_ARG;
 }
 
@@ -119,11 +126,7 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
   switch (ref->kind) {
   case DAL_PARAM_MASS:
   case DAL_PARAM_PLACE:
-    if (t < 0 || t >= sys->N) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: particle index %d out of range [0, %d)", t, sys->N);
-      return DAL_E_ARG;
-    }
+    if (index_in(t, sys->N, "particle", msg, len)) return DAL_E_ARG;
     if (ref->kind == DAL_PARAM_MASS) return DAL_OK;
     if (!sys->place) {
       if (msg && len)
@@ -143,11 +146,7 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     }
     return DAL_OK;
   case DAL_PARAM_CONSTRAINT:
-    if (t < 0 || t >= sys->ncon) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: constraint index %d out of range [0, %d)", t, sys->ncon);
-      return DAL_E_ARG;
-    }
+    if (index_in(t, sys->ncon, "constraint", msg, len)) return DAL_E_ARG;
     if (i < 0 || i >= sys->con[t].prim->nparam) {
       if (msg && len)
         snprintf(msg, len,
@@ -165,19 +164,9 @@ int dal_param_check(const dal_system *sys, const dal_param_ref *ref, char *msg, 
     return DAL_OK;
   case DAL_PARAM_SPRING_K:
   case DAL_PARAM_SPRING_L:
-    if (t < 0 || t >= sys->nspring) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: spring index %d out of range [0, %d)", t, sys->nspring);
-      return DAL_E_ARG;
-    }
-    return DAL_OK;
+    return index_in(t, sys->nspring, "spring", msg, len);
   case DAL_PARAM_DAMPER_C:
-    if (t < 0 || t >= sys->ndamper) {
-      if (msg && len)
-        snprintf(msg, len, "parameter: damper index %d out of range [0, %d)", t, sys->ndamper);
-      return DAL_E_ARG;
-    }
-    return DAL_OK;
+    return index_in(t, sys->ndamper, "damper", msg, len);
   case DAL_PARAM_NONE:
     break;
   }
@@ -476,15 +465,20 @@ static int validate(const dal_system *sys, dal_state *st, const dal_param_ref *r
   return DAL_E_ARG;
 }
 
+// the start of every call that changes a state's parameters: the pair, then an idle state
+static int parameter_call(const dal_system *sys, dal_state *st, const char *what) {
+  int rc = dal__check_pair(sys, st, what);
+  if (rc) return rc;
+  return dal__check_idle(st, what) ? DAL_E_STATE : DAL_OK;
+}
+
 int dal_state_set_param(const dal_system *sys, dal_state *st, const dal_param_ref *ref,
                         double value) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
-  if (dal__check_idle(st, "set_param")) return DAL_E_STATE;
+  int rc = parameter_call(sys, st, "set_param");
+  if (rc) return rc;
   char msg[DAL_ERRMSG_LEN];
   if (dal_param_check(sys, ref, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
-  int rc = validate(sys, st, ref, value);
+  rc = validate(sys, st, ref, value);
   if (rc) return rc;
   if (own(sys, st, ref->kind))
     return DAL_FAIL(st, DAL_E_NOMEM, "set_param: out of memory copying the system's parameters");
@@ -524,10 +518,8 @@ int dal_state_set_param(const dal_system *sys, dal_state *st, const dal_param_re
 
 int dal_state_set_param_named(const dal_system *sys, dal_state *st, const char *name,
                               double value) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "set_param: the state belongs to another system");
-  if (dal__check_idle(st, "set_param")) return DAL_E_STATE;
+  int rc = parameter_call(sys, st, "set_param");
+  if (rc) return rc;
   dal_param_ref r;
   char msg[DAL_ERRMSG_LEN];
   if (dal_param_find(sys, name, &r, msg, sizeof msg)) return DAL_FAIL(st, DAL_E_ARG, "%s", msg);
@@ -540,17 +532,15 @@ int dal_state_set_mass(const dal_system *sys, dal_state *st, int k, double mass)
 }
 
 int dal_state_set_gravity(const dal_system *sys, dal_state *st, const double *g) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "set_gravity: the state belongs to another system");
-  if (dal__check_idle(st, "set_gravity")) return DAL_E_STATE;
+  int rc = parameter_call(sys, st, "set_gravity");
+  if (rc) return rc;
   if (!g) return DAL_FAIL(st, DAL_E_ARG, "set_gravity: g is NULL");
   for (int i = 0; i < sys->dim; ++i)
     if (!isfinite(g[i]))
       return DAL_FAIL(st, DAL_E_NONFINITE, "gravity component %d is %g", i, g[i]);
   for (int i = 0; i < sys->dim; ++i) {
     dal_param_ref r = {DAL_PARAM_GRAVITY, 0, i};
-    int rc = dal_state_set_param(sys, st, &r, g[i]);
+    rc = dal_state_set_param(sys, st, &r, g[i]);
     if (rc) return rc;
   }
   return DAL_OK;
@@ -575,10 +565,8 @@ void dal__params_rewind(dal_state *st) {
 }
 
 int dal_state_reset_params(const dal_system *sys, dal_state *st) {
-  if (!st) return DAL_E_ARG;
-  if (!sys || st->sys != sys)
-    return DAL_FAIL(st, DAL_E_STATE, "reset_params: the state belongs to another system");
-  if (dal__check_idle(st, "reset_params")) return DAL_E_STATE;
+  int rc = parameter_call(sys, st, "reset_params");
+  if (rc) return rc;
   dal__params_free(st);
   dal__params_init(st);
   dal__integ_reset(st);

@@ -20,6 +20,21 @@ static void print_ints(FILE *fp, const dal_system *sys, const int *x, int n, int
             particles ? sys->part_names[x[i]] : sys->coord_names[x[i]]);
 }
 
+// the end of a primitive instance's line: " <word> (its coordinates)", " with <parameters>"
+static void print_instance(FILE *fp, const dal_system *sys, const char *word, const int *coords,
+                           int ncoord, const dal_primitive *prim, const double *param) {
+  if (ncoord) {
+    fprintf(fp, " %s (", word);
+    print_ints(fp, sys, coords, ncoord, 0);
+    fputc(')', fp);
+  }
+  if (prim->nparam) {
+    fprintf(fp, " with ");
+    print_params(fp, prim, param);
+  }
+  fputc('\n', fp);
+}
+
 static void print_link(FILE *fp, const dal_system *sys, const dal_link *l, const char *kind,
                        const char *coef) {
   fprintf(fp, "  %s '%s' - ", kind, sys->part_names[l->a]);
@@ -55,16 +70,8 @@ int dal_system_print(const dal_system *sys, FILE *fp) {
     const dal_place *pl = &sys->place[k];
     fprintf(fp, " placed by '%s'", pl->prim->name);
     if (pl->parent >= 0) fprintf(fp, " on parent '%s'", sys->part_names[pl->parent]);
-    if (pl->ncoord) {
-      fprintf(fp, " of (");
-      print_ints(fp, sys, sys->ipool + pl->coord_off, pl->ncoord, 0);
-      fputc(')', fp);
-    }
-    if (pl->prim->nparam) {
-      fprintf(fp, " with ");
-      print_params(fp, pl->prim, sys->ppool + pl->param_off);
-    }
-    fputc('\n', fp);
+    print_instance(fp, sys, "of", sys->ipool + pl->coord_off, pl->ncoord, pl->prim,
+                   sys->ppool + pl->param_off);
   }
   if (sys->ncon) fprintf(fp, "constraints:\n");
   for (int i = 0; i < sys->ncon; ++i) {
@@ -77,16 +84,8 @@ int dal_system_print(const dal_system *sys, FILE *fp) {
       print_ints(fp, sys, sys->ipool + c->part_off, c->npart, 1);
       fputc(')', fp);
     }
-    if (c->ncoord) {
-      fprintf(fp, " on coordinates (");
-      print_ints(fp, sys, sys->ipool + c->coord_off, c->ncoord, 0);
-      fputc(')', fp);
-    }
-    if (c->prim->nparam) {
-      fprintf(fp, " with ");
-      print_params(fp, c->prim, sys->ppool + c->param_off);
-    }
-    fputc('\n', fp);
+    print_instance(fp, sys, "on coordinates", sys->ipool + c->coord_off, c->ncoord, c->prim,
+                   sys->ppool + c->param_off);
   }
   fprintf(fp, "forces:\n");
   if (sys->has_gravity) {

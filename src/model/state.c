@@ -79,20 +79,12 @@ void dal_state_destroy(dal_state *st) {
   if (!st) return;
   dal__integ_reset(st);
   dal__params_free(st);
-  double *d[] = {st->q,  st->qddot,  st->Q,     st->c,      st->work, st->r,   st->v,
-                 st->a,  st->drdt,   st->gamma, st->F,      st->N,    st->J,   st->M,
-                 st->L,  st->lambda, st->phi,   st->phidot, st->gphi, st->G,   st->loc,
-                 st->Lc, st->cf,     st->Lp,    st->Gl,     st->dir,  st->phit};
-  for (size_t i = 0; i < sizeof d / sizeof d[0]; ++i)
-    free(d[i]);
-  free(st->jin);
-  free(st->jout);
-  free(st->jq);
-  free(st->jv);
-  free(st->jr);
   dal__kkt_free(st->kkt);
   dal__aba_free(st->aba);
-  free(st);
+  DAL_FREE(st->q, st->qddot, st->Q, st->c, st->work, st->r, st->v, st->a, st->drdt, st->gamma,
+           st->F, st->N, st->J, st->M, st->L, st->lambda, st->phi, st->phidot, st->gphi, st->G,
+           st->loc, st->Lc, st->cf, st->Lp, st->Gl, st->dir, st->phit, st->jin, st->jout, st->jq,
+           st->jv, st->jr, st);
 }
 
 const char *dal_state_errmsg(const dal_state *st) { return st ? st->err : ""; }
@@ -274,13 +266,7 @@ int dal_state_jacobian(const dal_system *sys, const dal_state *st, int k, double
             s += P[a * d + c] * Lb[c * pb->ncoord + i];
           J[a * n + cb[i]] += s;
         }
-      for (int a = 0; a < d; ++a)
-        for (int c = 0; c < d; ++c) {
-          double s = 0.0;
-          for (int e = 0; e < d; ++e)
-            s += P[a * d + e] * Lp[e * d + c];
-          T[a * d + c] = s;
-        }
+      dal__gemm('N', 'N', d, d, d, Lp, d, P, d, T, d); // row-major T = P Lp
       memcpy(P, T, (size_t)d * d * sizeof(double));
     }
     return DAL_OK;

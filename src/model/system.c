@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "codegen/codegen.h"
 #include "model.h"
 
 #define BFAIL(code, ...) dal__set_err(b->err, (code), __VA_ARGS__)
@@ -339,6 +340,8 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
   s->map_ctx = b->map_ctx;
   s->lag = b->lag;
   s->lag_ctx = b->lag_ctx;
+  s->lag_parts = b->lag_parts;
+  s->lag_parts_ctx = b->lag_parts_ctx;
   s->ipool = dup_mem(b->ipool.data, (size_t)b->ipool.len * sizeof(int));
   s->ppool = dup_mem(b->ppool.data, (size_t)b->ppool.len * sizeof(double));
   s->place = b->map ? NULL : dup_mem(places, (size_t)N * sizeof(dal_place));
@@ -359,6 +362,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
        !route_and_tree(b, s, recursive);
   free(w.tmp);
   free(w.tmp2);
+  if (s->lag_parts && s->max_out < 2 * n) s->max_out = 2 * n; // the parts' outputs (st->jout)
   if (!ok) {
     dal_system_destroy(s);
     return BFAIL(DAL_E_NOMEM, "out of memory compiling the system (%d coordinates, %d particles)",
@@ -371,6 +375,7 @@ int dal_builder_compile(dal_builder *b, dal_system **out) {
 
 void dal_system_destroy(dal_system *s) {
   if (!s) return;
+  dal__eom_free(s->eom);
   if (s->coord_names)
     for (int i = 0; i < s->n; ++i)
       free(s->coord_names[i]);
@@ -380,28 +385,9 @@ void dal_system_destroy(dal_system *s) {
   if (s->con)
     for (int i = 0; i < s->ncon; ++i)
       free(s->con[i].name);
-  free(s->coord_names);
-  free(s->part_names);
-  free(s->mass);
-  free(s->place);
-  free(s->ipool);
-  free(s->ppool);
-  free(s->pdep_off);
-  free(s->pdep);
-  free(s->pj_off);
-  free(s->con_loff);
-  free(s->mu);
-  free(s->ploc_off);
-  free(s->con);
-  free(s->cdep);
-  free(s->row_con);
-  free(s->springs);
-  free(s->dampers);
-  free(s->potr);
-  free(s->potq);
-  free(s->forces);
-  free(s->genforces);
-  free(s);
+  DAL_FREE(s->coord_names, s->part_names, s->mass, s->place, s->ipool, s->ppool, s->pdep_off,
+           s->pdep, s->pj_off, s->con_loff, s->mu, s->ploc_off, s->con, s->cdep, s->row_con,
+           s->springs, s->dampers, s->potr, s->potq, s->forces, s->genforces, s);
 }
 
 int dal_system_dim(const dal_system *s) { return s ? s->dim : 0; }

@@ -12,6 +12,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "expr/expr.h"
+#include "model/model.h"
 #include "scene.h"
 
 int dal__scene_part(const dal_scene *sc, const char *name) {
@@ -23,16 +25,12 @@ static int coord_index(const dal_scene *sc, const char *name) {
 }
 
 static int keep_expr(dal_scene *sc, dal_expr *e) {
-  if (sc->nex == sc->capex) {
-    int cap = sc->capex ? 2 * sc->capex : 16;
-    dal_expr **v = realloc(sc->ex, (size_t)cap * sizeof *v);
-    if (!v) {
-      dal_expr_destroy(e);
-      return DAL_E_NOMEM;
-    }
-    sc->ex = v;
-    sc->capex = cap;
+  dal_expr **v = dal__scene_grow(sc->ex, sc->nex, &sc->capex, sizeof *v, 16);
+  if (!v) {
+    dal_expr_destroy(e);
+    return DAL_E_NOMEM;
   }
+  sc->ex = v;
   sc->ex[sc->nex++] = e;
   return DAL_OK;
 }
@@ -181,13 +179,9 @@ static int claim(dal_scene *sc, dal_tab *t, const sline *l, const char *name, in
   }
   const char *key = name;
   if (made) { // a made name (a rate, x_<p>): the scene keeps it
-    if (sc->nsymkeys == sc->capsymkeys) {
-      int cap = sc->capsymkeys ? 2 * sc->capsymkeys : 16;
-      char **v = realloc(sc->symkeys, (size_t)cap * sizeof *v);
-      if (!v) return DAL_E_NOMEM;
-      sc->symkeys = v;
-      sc->capsymkeys = cap;
-    }
+    char **v = dal__scene_grow(sc->symkeys, sc->nsymkeys, &sc->capsymkeys, sizeof *v, 16);
+    if (!v) return DAL_E_NOMEM;
+    sc->symkeys = v;
     char *k = dal__scene_dup(name);
     if (!k) return DAL_E_NOMEM;
     sc->symkeys[sc->nsymkeys++] = k;
@@ -456,6 +450,15 @@ static int prim_args(dal_scene *sc, const sline *l, const dal_primitive **pp, in
   return DAL_OK;
 }
 
+// A placement by formulas that are dal_map_hanging's, x_P + l*sin(q); y_P - l*cos(q) with l the
+// expression's one parameter (a planar chain's link), takes that primitive: its closed form
+// (kinematics.c) and the recursion's translating link, as the C route does, instead of two
+// evaluations of the formulas per right-hand side. Its parameter list is the expression's
+// ([l]); a per-trajectory parameter of the placement is named "place:P:l" by hanging's name.
+static const dal_primitive *hanging_prim(const dal_scene *sc, const dal_expr *e) {
+  return sc->dim == 2 && dal__expr_hanging(e) ? &dal_map_hanging : NULL;
+}
+
 // a placement (p >= 0) or a constraint (p < 0) by formulas (after '=') or by a built-in
 // primitive: parts are the particles whose positions the formulas may use (the parent, the
 // constraint's parts)
@@ -481,8 +484,9 @@ static int element(dal_scene *sc, const sline *l, int p, const int *parts, int n
     nparam = prim ? prim->nparam : 0;
   }
   if (!rc && p >= 0) {
+    const dal_primitive *h = e && np && nc == 1 ? hanging_prim(sc, e) : NULL;
     dal_place_def pd = dal_default_place_def();
-    pd.prim = prim;
+    pd.prim = h ? h : prim;
     pd.parent = np ? parts[0] : -1;
     pd.coords = cs;
     pd.ncoords = nc;
@@ -635,10 +639,19 @@ int dal__scene_potential(dal_scene *sc, const sline *l, char *msg, size_t len) {
   int rc = mkexpr(sc, l, k, (const char *const *)l->f, 1, (const char *const *)sc->cname,
                   sc->ncoord, lag, &e, msg, len);
   if (rc) return rc;
+  if (!lag)
+    return bcheck(sc, l, dal_builder_add_potential_q(sc->b, dal_expr_potential_q, e), msg, len);
+  if ((rc = bcheck(sc, l, dal_builder_set_lagrangian(sc->b, dal_expr_lagrangian, e), msg, len)))
+    return rc;
+  // its parts dL/dqdot and dL/dq, derived once: the accelerations in n + 1 evaluations of them
+  // instead of n (n + 3) / 2 + 1 of L (eval/lagrangian.c); past the algebra's bounds L alone
+  dal_expr *parts = NULL;
+  rc = dal__expr_lagrange_parts(e, &parts, NULL, 0);
+  if (rc == DAL_E_NOMEM || (!rc && (rc = keep_expr(sc, parts)))) return DAL_E_NOMEM;
+  if (rc) return DAL_OK;
   return bcheck(sc, l,
-                lag ? dal_builder_set_lagrangian(sc->b, dal_expr_lagrangian, e)
-                    : dal_builder_add_potential_q(sc->b, dal_expr_potential_q, e),
-                msg, len);
+                dal__builder_set_lagrangian_parts(sc->b, dal__expr_lagrange_parts_eval, parts), msg,
+                len);
 }
 
 // the generalized force of a force line, added to Q_i
@@ -816,31 +829,4 @@ void dal__scene_unbuild(dal_scene *sc) {
   free(sc->symkeys);
   sc->symkeys = NULL;
   sc->nsymkeys = sc->capsymkeys = 0;
-}
-
-int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
-  dal__scene_unbuild(sc);
-  sc->dim = 2;
-  sc->opts = dal_default_solve_opts();
-  sc->t0 = 0;
-  sc->t1 = 10;
-  sc->dt = 0.01;
-  sc->has_run = 0;
-  sc->pname = calloc((size_t)sc->nparamlines + 1, sizeof *sc->pname);
-  sc->pval = calloc((size_t)sc->nparamlines + 1, sizeof *sc->pval);
-  int rc = sc->pname && sc->pval ? DAL_OK : DAL_E_NOMEM;
-  for (int pass = 0; pass < 2; ++pass)
-    for (int i = 0; i < sc->nlines && !rc; ++i)
-      rc = dal__scene_line(sc, &sc->lines[i], pass, msg, len);
-  if (!rc && !sc->b)
-    rc = dal__scene_err(sc, sc->nlines ? sc->lines[sc->nlines - 1].line : 0, msg, len, DAL_E_ARG,
-                        "no coordinates or particles");
-  if (!rc) {
-    rc = dal_builder_compile(sc->b, &sc->sys);
-    if (rc && msg && len) snprintf(msg, len, "%s: %s", sc->name, dal_builder_errmsg(sc->b));
-  }
-  // native code again for the new expressions (the cache has it)
-  if (!rc && sc->native && sc->nex)
-    rc = dal_codegen_attach(sc->ex, sc->nex, &sc->native_opts, msg, len);
-  return rc;
 }

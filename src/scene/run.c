@@ -131,7 +131,15 @@ int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t
   if (rc) return rc;
   sc->native = 1;
   sc->native_opts = o ? *o : dal_codegen_default_opts();
-  return DAL_OK;
+  return dal__scene_native_eom(sc, msg, msglen);
+}
+
+int dal__scene_native_eom(dal_scene *sc, char *msg, size_t msglen) {
+  if (!sc->native_opts.eom) return DAL_OK;
+  int rc = dal_codegen_attach_eom(sc->sys, &sc->native_opts, msg, msglen);
+  // out of the compiled equations' reach: the general path runs, and the note says so
+  if (rc == DAL_E_UNSUPPORTED || rc == DAL_E_TOO_LARGE) rc = DAL_OK;
+  return rc;
 }
 
 int dal_scene_nexprs(const dal_scene *sc) { return sc ? sc->nex : 0; }

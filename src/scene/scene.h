@@ -30,29 +30,36 @@ int dal__tab_get(const dal_tab *t, const char *key);
 int dal__tab_put(dal_tab *t, const char *key, int v);
 void dal__tab_free(dal_tab *t);
 
-// read.c: text helpers, messages ("file:line: ..."), the grammar's dispatch
+// text.c: text helpers, name tables, messages ("file:line: ..."), key=value words
 char *dal__scene_dup(const char *s);
 char *dal__scene_dupn(const char *s, size_t n);
+/// the array v (n elements of size sz in use, room for *cap) with room for one more: v itself,
+/// or v reallocated to twice its room (`first` elements at first, *cap updated); NULL when out
+/// of memory (v is then untouched)
+void *dal__scene_grow(void *v, int n, int *cap, size_t sz, int first);
 /// a formatted string of any length (malloc'd; NULL when out of memory)
 char *dal__scene_strf(const char *fmt, ...);
 /// msg = "<scene>:<line>: " + fmt ...; returns rc
 int dal__scene_err(const dal_scene *sc, int line, char *msg, size_t len, int rc, const char *fmt,
                    ...);
 void dal__scene_free_line(sline *l);
+/// the value of word `key`=value from word `from` on (NULL if absent)
+const char *dal__scene_kv(const sline *l, int from, const char *key);
+
+// grammar.c: the table of elements (handler, pass, form), a build of every line by it
 /// line l's element by the grammar table, when the element is read in `pass` (0: parameters)
 int dal__scene_line(dal_scene *sc, const sline *l, int pass, char *msg, size_t len);
-
-// build.c: what a build made undone, a build of every line, and the element handlers
-void dal__scene_unbuild(dal_scene *sc);
+/// the scene's lines built anew into a builder and a system (what an earlier build made is
+/// undone first)
 int dal__scene_build(dal_scene *sc, char *msg, size_t len);
+
+// build.c: what a build made undone, and the element handlers
+void dal__scene_unbuild(dal_scene *sc);
 /// element handler: one line of its kind into the scene's builder
 typedef int dal_scene_element_fn(dal_scene *sc, const sline *l, char *msg, size_t len);
 dal_scene_element_fn dal__scene_param, dal__scene_dim, dal__scene_coord, dal__scene_particle,
     dal__scene_place, dal__scene_constraint, dal__scene_spring, dal__scene_force,
     dal__scene_gravity, dal__scene_potential, dal__scene_run, dal__scene_event;
-
-/// the value of word `key`=value from word `from` on (NULL if absent)
-const char *dal__scene_kv(const sline *l, int from, const char *key);
 /// index of particle `name` (-1 if absent)
 int dal__scene_part(const dal_scene *sc, const char *name);
 
@@ -121,5 +128,9 @@ struct dal_scene {
   int native;    // 1: the expressions run native code (dal_scene_native), again after a rebuild
   dal_codegen_opts native_opts;
 };
+
+/// the compiled equations of motion of the scene's system when its native options ask for them
+/// (dal_codegen_attach_eom); out of their reach DAL_OK with a note in msg (run.c)
+int dal__scene_native_eom(dal_scene *sc, char *msg, size_t msglen);
 
 #endif

@@ -467,11 +467,26 @@ static int *memo_get(dal_alg *g, int **m, int *cap, int x) {
   return &(*m)[x];
 }
 
-int dal__alg_canon(dal_alg *g, int x) {
+// the memo of x in table m: its value (>= 0); -1 on a failure (x failed, the session failed, no
+// memory); -2 when x has none yet
+static int memo_find(dal_alg *g, int **m, int *cap, int x) {
   if (x < 0 || g->fail) return -1;
-  int *slot = memo_get(g, &g->canon, &g->ncanon, x);
-  if (!slot) return -1;
-  if (*slot >= 0) return *slot;
+  int *slot = memo_get(g, m, cap, x);
+  return !slot ? -1 : *slot >= 0 ? *slot : -2;
+}
+
+// remember r as the memo of x (the table may have grown since memo_find); 0 on a failure
+static int memo_put(dal_alg *g, int **m, int *cap, int x, int r) {
+  if (g->fail) return 0;
+  int *slot = memo_get(g, m, cap, x);
+  if (!slot) return 0;
+  *slot = r;
+  return 1;
+}
+
+int dal__alg_canon(dal_alg *g, int x) {
+  int memo = memo_find(g, &g->canon, &g->ncanon, x);
+  if (memo != -2) return memo;
   const dal_xnode n = *N(g, x);
   int a = n.a >= 0 ? dal__alg_canon(g, n.a) : -1;
   int b = n.b >= 0 ? dal__alg_canon(g, n.b) : -1;
@@ -519,10 +534,7 @@ int dal__alg_canon(dal_alg *g, int x) {
   default:
     r = dal__alg_fn(g, n.op, a);
   }
-  if (g->fail) return -1;
-  slot = memo_get(g, &g->canon, &g->ncanon, x);
-  if (!slot) return -1;
-  *slot = r;
+  if (!memo_put(g, &g->canon, &g->ncanon, x, r)) return -1;
   int *self = memo_get(g, &g->canon, &g->ncanon, r);
   if (self && *self < 0) *self = r; // a canonical node is its own canonical form
   return r;
@@ -574,10 +586,8 @@ static int distribute(dal_alg *g, const int *f, int n) {
 }
 
 int dal__alg_expand(dal_alg *g, int x) {
-  if (x < 0 || g->fail) return -1;
-  int *slot = memo_get(g, &g->expand, &g->nexpand, x);
-  if (!slot) return -1;
-  if (*slot >= 0) return *slot;
+  int memo = memo_find(g, &g->expand, &g->nexpand, x);
+  if (memo != -2) return memo;
   const dal_xnode n = *N(g, x);
   int r;
   switch (n.op) {
@@ -624,11 +634,7 @@ int dal__alg_expand(dal_alg *g, int x) {
   default:
     r = dal__alg_fn(g, n.op, dal__alg_expand(g, n.a));
   }
-  if (g->fail) return -1;
-  slot = memo_get(g, &g->expand, &g->nexpand, x);
-  if (!slot) return -1;
-  *slot = r;
-  return r;
+  return memo_put(g, &g->expand, &g->nexpand, x, r) ? r : -1;
 }
 
 int dal__alg_simplify(dal_alg *g, int x) { return dal__alg_expand(g, dal__alg_canon(g, x)); }
@@ -728,16 +734,10 @@ static int deriv_node(dal_alg *g, int x, int var) {
 }
 
 static int deriv(dal_alg *g, int x, int var) {
-  if (x < 0 || g->fail) return -1;
-  int *slot = memo_get(g, &g->deriv, &g->nderiv, x);
-  if (!slot) return -1;
-  if (*slot >= 0) return *slot;
+  int memo = memo_find(g, &g->deriv, &g->nderiv, x);
+  if (memo != -2) return memo;
   int r = deriv_node(g, x, var);
-  if (g->fail) return -1;
-  slot = memo_get(g, &g->deriv, &g->nderiv, x);
-  if (!slot) return -1;
-  *slot = r;
-  return r;
+  return memo_put(g, &g->deriv, &g->nderiv, x, r) ? r : -1;
 }
 
 int dal__alg_diff(dal_alg *g, int x, int var) {

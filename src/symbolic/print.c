@@ -14,7 +14,7 @@
 
 #include "symbolic.h"
 
-enum { F_TEXT = DAL_EXPR_TEXT, F_LATEX = DAL_EXPR_LATEX, F_SCHEME = DAL_EXPR_SCHEME };
+enum { F_TEXT = DAL_XFMT_TEXT, F_LATEX = DAL_XFMT_LATEX, F_SCHEME = DAL_XFMT_SCHEME };
 
 typedef struct sb {
   char *s;
@@ -267,6 +267,14 @@ static void free_facts(fact *f, int n) {
   free(f);
 }
 
+// the exponent of a factor in the prefix and LaTeX forms: its number, or its expression
+static void exponent(const pr *p, sb *b, const fact *f, int fmt) {
+  if (f->e == f->e)
+    number(b, f->e, fmt);
+  else
+    expr(p, b, f->ex, 0);
+}
+
 // base^e for one factor (e > 0 or symbolic)
 static void power(const pr *p, sb *b, const fact *f) {
   int base = f->base;
@@ -287,10 +295,7 @@ static void power(const pr *p, sb *b, const fact *f) {
     put(b, "(expt ");
     expr(p, b, base, 0);
     put(b, " ");
-    if (f->e == f->e)
-      number(b, f->e, F_SCHEME);
-    else
-      expr(p, b, f->ex, 0);
+    exponent(p, b, f, F_SCHEME);
     put(b, ")");
     return;
   }
@@ -314,10 +319,7 @@ static void power(const pr *p, sb *b, const fact *f) {
       put(b, "\\right)");
     }
     put(b, "^{");
-    if (f->e == f->e)
-      number(b, f->e, F_LATEX);
-    else
-      expr(p, b, f->ex, 0);
+    exponent(p, b, f, F_LATEX);
     put(b, "}");
     return;
   }

@@ -9,7 +9,6 @@
 #include <stddef.h>
 
 #include "dalembert/base.h"
-#include "dalembert/expr.h"
 
 /// node operations; the order of X_SIN .. X_SQRT is the order of the function names
 enum dal_xop {
@@ -111,7 +110,10 @@ int dal__alg_isnum(const dal_alg *g, int x, double c);
 /// the terms of a canonical sum (one term when x is not a sum); *out malloc'd (NULL: no memory)
 void dal__alg_terms(const dal_alg *g, int x, int **out, int *n);
 
-/// print node x of tr in format fmt (dal_expr_format) into buf (snprintf-like: returns the
+/// the printers' formats (expr/ hands its public dal_expr_format over as these, same values)
+enum dal_xformat { DAL_XFMT_TEXT, DAL_XFMT_LATEX, DAL_XFMT_SCHEME };
+
+/// print node x of tr in format fmt (enum dal_xformat) into buf (snprintf-like: returns the
 /// length the whole text needs); names from tr->names, "t" for the time
 int dal__xprint(const dal_xtree *tr, int x, int fmt, char *buf, size_t len);
 

@@ -1,9 +1,11 @@
 // SPDX-License-Identifier: MIT
 // SPDX-FileCopyrightText: 2026 dalembert engineers
 // The viewer page's script: plays the frames the library computed (canvas 2D, no framework).
-// For tests it declares its view transform (world -> screen px, a 2 x 4 matrix) and the drawn
-// particle centres: window.dalView.transform / .drawn and the scene canvas's data-transform /
-// data-drawn / data-t attributes; console errors are counted in body's data-errors.
+// For tests it declares its view transform (world -> screen px, a 2 x 4 matrix), the drawn
+// particle centres and the drawn curves and surfaces (screen px): window.dalView.transform /
+// .drawn / .shapes and the scene canvas's data-transform / data-drawn / data-shapes / data-t
+// attributes, the phase plot's data-sections-shown; console errors are counted in body's
+// data-errors.
 (function () {
   'use strict';
   var V = (window.dalView = { errors: [], drawn: [], transform: null });
@@ -21,15 +23,38 @@
     cerr.apply(console, arguments);
   };
 
-  // the data: base64 little-endian Float32 arrays
+  // the data: series quantized over each component's range, row-to-row differences as zigzag
+  // varints of the misses of a linear prediction, in base64 (view.c: put_series); x = lo + k step,
+  // k = 65535 marks a missing value
   var D = JSON.parse(document.getElementById('dal-data').textContent);
-  function f32(b64) {
-    var s = atob(b64), n = s.length, u = new Uint8Array(n);
-    for (var i = 0; i < n; i++) u[i] = s.charCodeAt(i);
-    return new Float32Array(u.buffer, 0, n >> 2);
+  function decode(e, rows) {
+    var s = atob(e.b64), w = e.w, out = new Float64Array(rows * w), live = [], p = 0;
+    var k1 = new Array(w).fill(0), k2 = new Array(w).fill(0); // k of the rows r - 1, r - 2
+    for (var c = 0; c < w; c++) {
+      if (e.step[c] > 0) live.push(c);
+      else for (var r = 0; r < rows; r++) out[r * w + c] = e.lo[c] === null ? NaN : e.lo[c];
+    }
+    for (r = 0; r < rows; r++) {
+      for (var j = 0; j < live.length; j++) {
+        var z = 0, mul = 1, b;
+        do { b = s.charCodeAt(p++); z += (b & 127) * mul; mul *= 128; } while (b & 128);
+        c = live[j];
+        var k = (r >= 2 ? 2 * k1[c] - k2[c] : k1[c]) + (z % 2 ? -(z + 1) / 2 : z / 2);
+        k2[c] = k1[c];
+        k1[c] = k;
+        out[r * w + c] = k === 65535 ? NaN : e.lo[c] + k * e.step[c];
+      }
+    }
+    return out;
   }
-  var pos = f32(D.pos), xs = f32(D.xs), pq = f32(D.pq), pqd = f32(D.pqd), pe = f32(D.pe);
-  var pf = f32(D.pf), N = D.N, d = D.dim, K = D.K, F = D.frames;
+  var N = D.N, d = D.dim, K = D.K, F = D.frames;
+  var pos = decode(D.pos, F), xs = decode(D.xs, F), pq = decode(D.pq, D.nplot);
+  var pqd = decode(D.pqd, D.nplot), pe2 = decode(D.pe, D.nplot), pf = decode(D.pf, D.nplot);
+  var pe = new Float64Array(D.nplot), ph = new Float64Array(D.nplot); // E - E(0), h - h(0)
+  for (var s0 = 0; s0 < D.nplot; s0++) {
+    pe[s0] = pe2[2 * s0];
+    ph[s0] = pe2[2 * s0 + 1];
+  }
   var sceneCv = document.getElementById('scene'), ctx = sceneCv.getContext('2d');
   var W = 640, H = 480;
   document.getElementById('title').textContent = D.title;
@@ -47,9 +72,11 @@
     return [xs[x], xs[x + 1], xs[x + 2]];
   }
   // extra points that are directions (a circle's plane, a line's direction), not places
+  // (a circle's u may be a particle's index: the direction from the centre to it)
   var isDir = {};
-  D.circles.forEach(function (c) { if (c[1] >= 0) isDir[c[1]] = isDir[c[2]] = true; });
+  D.circles.forEach(function (c) { isDir[c[1]] = c[1] >= N; isDir[c[2]] = c[2] >= N; });
   D.lines.forEach(function (l) { isDir[l[1]] = true; });
+  D.planes.forEach(function (p) { isDir[p[1]] = true; });
 
   // the bounding box of everything drawn
   var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
@@ -66,6 +93,7 @@
     for (var i = 0; i < N; i++) grow(pt(f, i), 0);
     for (i = 0; i < K; i++) if (!isDir[N + i]) grow(pt(f, N + i), 0);
     D.circles.forEach(function (c) { grow(pt(f, c[0]), c[3]); });
+    D.spheres.forEach(function (c) { grow(pt(f, c[0]), c[1]); });
   }
   if (d === 2) lo[2] = hi[2] = 0;
   var centre = [0, 1, 2].map(function (b) { return (lo[b] + hi[b]) / 2; });
@@ -106,6 +134,24 @@
   D.particles.forEach(function (p) { mmax = Math.max(mmax, p.m); });
   var palette = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#17becf'];
 
+  function sub(a, b) { return [a[0] - b[0], a[1] - b[1], a[2] - b[2]]; }
+  function add(a, b) { return [a[0] + b[0], a[1] + b[1], a[2] + b[2]]; }
+  function scale(a, s) { return [a[0] * s, a[1] * s, a[2] * s]; }
+  function dot(a, b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+  function cross(a, b) {
+    return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+  }
+  function unit(a) { return scale(a, 1 / (Math.hypot(a[0], a[1], a[2]) || 1)); }
+  // the circle C + R (cos a u + sin a w) on screen; returns the screen points C, C + R u, C + R w
+  function ring(C, u, w, R) {
+    ctx.beginPath();
+    for (var k = 0; k <= 96; k++) {
+      var a = 2 * Math.PI * k / 96, q = px(add(C, add(scale(u, Math.cos(a) * R), scale(w, Math.sin(a) * R))));
+      if (k) ctx.lineTo(q[0], q[1]); else ctx.moveTo(q[0], q[1]);
+    }
+    ctx.stroke();
+    return [px(C), px(add(C, scale(u, R))), px(add(C, scale(w, R)))];
+  }
   function line(a, b) {
     ctx.beginPath();
     ctx.moveTo(a[0], a[1]);
@@ -151,25 +197,55 @@
     ctx.clearRect(0, 0, W, H);
     A = transform();
     var f = frame;
-    // curves of the constraints and placements, in their frame at this time
+    // curves and surfaces of the constraints and placements, in their frame at this time;
+    // each declared (screen px) for the tests in V.shapes
     ctx.strokeStyle = '#bbb';
     ctx.lineWidth = 1;
+    V.shapes = [];
     D.circles.forEach(function (c) {
-      var C = pt(f, c[0]), R = c[3]; // a 2-D circle (c[1] < 0) lies in the page's own plane
-      var u = c[1] < 0 ? [1, 0, 0] : pt(f, c[1]), w = c[1] < 0 ? [0, 1, 0] : pt(f, c[2]);
+      var C = pt(f, c[0]), u = [1, 0, 0], w = [0, 1, 0]; // 2-D (c[1] < 0): the page's plane
+      if (c[1] >= 0 && c[1] < N) u = unit(sub(pt(f, c[1]), C));
+      else if (c[1] >= 0) u = pt(f, c[1]);
+      if (c[2] >= 0) w = pt(f, c[2]);
+      var p = ring(C, u, w, c[3]);
+      V.shapes.push(['circle', p[0][0], p[0][1], p[1][0], p[1][1], p[2][0], p[2][1]]);
+    });
+    D.spheres.forEach(function (sp) { // the outline, the equator and a meridian
+      var C = pt(f, sp[0]), R = sp[1], s = Math.hypot(A[0][0], A[0][1], A[0][2]);
+      var c = px(C);
       ctx.beginPath();
-      for (var k = 0; k <= 96; k++) {
-        var a = 2 * Math.PI * k / 96, ca = Math.cos(a) * R, sa = Math.sin(a) * R;
-        var q = px([C[0] + ca * u[0] + sa * w[0], C[1] + ca * u[1] + sa * w[1],
-          C[2] + ca * u[2] + sa * w[2]]);
-        if (k) ctx.lineTo(q[0], q[1]); else ctx.moveTo(q[0], q[1]);
-      }
+      ctx.arc(c[0], c[1], s * R, 0, 2 * Math.PI);
       ctx.stroke();
+      ctx.strokeStyle = '#ddd';
+      ring(C, [1, 0, 0], [0, 1, 0], R);
+      ring(C, [1, 0, 0], [0, 0, 1], R);
+      ctx.strokeStyle = '#bbb';
+      V.shapes.push(['sphere', c[0], c[1], s * R]);
+    });
+    D.planes.forEach(function (pl) { // a square of the scene's size about the scene's centre
+      var P = pt(f, pl[0]), n = unit(pt(f, pl[1]));
+      var a = Math.abs(n[0]) < 0.9 ? [1, 0, 0] : [0, 1, 0], u = unit(cross(a, n)), w = cross(n, u);
+      var o = sub(centre, scale(n, dot(sub(centre, P), n))), h = 0.5 * ext, corners = [], dec = [];
+      ctx.strokeStyle = '#ccc';
+      for (var k = 0; k <= 4; k++) { // a grid of 4 x 4 squares
+        var e = h * (k / 2 - 1);
+        line(px(add(o, add(scale(u, e), scale(w, -h)))), px(add(o, add(scale(u, e), scale(w, h)))));
+        line(px(add(o, add(scale(w, e), scale(u, -h)))), px(add(o, add(scale(w, e), scale(u, h)))));
+      }
+      ctx.strokeStyle = '#bbb';
+      [[-1, -1], [1, -1], [1, 1], [-1, 1]].forEach(function (sg) {
+        var x = add(o, add(scale(u, sg[0] * h), scale(w, sg[1] * h)));
+        corners.push(x[0], x[1], x[2]);
+        var q = px(x);
+        dec.push(q[0], q[1]);
+      });
+      V.shapes.push(['plane'].concat(corners, dec));
     });
     D.lines.forEach(function (l) {
-      var c = px(pt(f, l[0])), a = dir(pt(f, l[1])), L = Math.hypot(a[0], a[1]) || 1;
+      var c = px(pt(f, l[0])), a = dir(unit(pt(f, l[1]))), L = Math.hypot(a[0], a[1]) || 1;
       var e = 2 * (W + H) / L;
       line([c[0] - a[0] * e, c[1] - a[1] * e], [c[0] + a[0] * e, c[1] + a[1] * e]);
+      V.shapes.push(['line', c[0], c[1], c[0] + a[0], c[1] + a[1]]);
     });
     // trails
     var nt = Math.round(D.trail / D.dt);
@@ -211,6 +287,7 @@
     V.t = t;
     sceneCv.setAttribute('data-transform', JSON.stringify(A));
     sceneCv.setAttribute('data-drawn', JSON.stringify(V.drawn));
+    sceneCv.setAttribute('data-shapes', JSON.stringify(V.shapes));
     sceneCv.setAttribute('data-t', String(t));
     sceneCv.setAttribute('data-frame', String(f));
     document.getElementById('time').textContent = 't = ' + t.toFixed(3);
@@ -280,8 +357,10 @@
     c.stroke();
   }
   function phasePlot() {
-    var c = axes(document.getElementById('plot-phase'),
-      'phase: ' + D.coords[0] + ' vs rate' + (D.sections.length ? ' (red: section points)' : ''));
+    var cv = document.getElementById('plot-phase'), kinds = [0, 0];
+    D.sections.forEach(function (p) { kinds[p[3]] = 1; });
+    var c = axes(cv, 'phase: ' + D.coords[0] + ' vs rate' + (kinds[0] ? '; red: strobe' : '') +
+      (kinds[1] ? '; orange: section crossings' : ''));
     var n = D.nplot, xr = range(pq, D.n, 0, n), yr = range(pqd, D.n, 0, n);
     var X = function (v) { return 6 + 368 * (v - xr[0]) / (xr[1] - xr[0]); };
     var Y = function (v) { return 104 - 88 * (v - yr[0]) / (yr[1] - yr[0]); };
@@ -298,10 +377,14 @@
       if (s) c.lineTo(X(pq[s * D.n]), Y(pqd[s * D.n])); else c.moveTo(X(pq[0]), Y(pqd[0]));
     }
     c.stroke();
-    c.fillStyle = '#d62728';
+    var shown = 0; // the section points filling in: those up to the time shown
     D.sections.forEach(function (p) {
-      if (p[0] <= t + 1e-12) c.fillRect(X(p[1]) - 1.5, Y(p[2]) - 1.5, 3, 3);
+      if (p[0] > t + 1e-9) return;
+      c.fillStyle = p[3] ? '#ff7f0e' : '#d62728';
+      c.fillRect(X(p[1]) - 1.5, Y(p[2]) - 1.5, 3, 3);
+      shown++;
     });
+    cv.setAttribute('data-sections-shown', String(shown));
     if (now < n) {
       c.fillStyle = '#000';
       c.beginPath();
@@ -313,6 +396,7 @@
     timePlot('plot-q', 'q(t)', pq, D.coords, D.n);
     phasePlot();
     timePlot('plot-energy', 'E - E(0)', pe, [''], 1);
+    if (D.jacobi) timePlot('plot-jacobi', 'h - h(0): the Jacobi integral\'s drift', ph, [''], 1);
     timePlot('plot-force', D.forces.length && D.forces[0].charAt(0) === 'l'
       ? 'constraint forces' : 'reaction magnitudes', pf, D.forces, D.forces.length);
   }
@@ -372,7 +456,8 @@
     draw();
   }, { passive: false });
 
-  // FILE.html#t=1.25 opens paused at t = 1.25 (and drag=DX,DY replays a drag: the tests' hook)
+  // FILE.html#t=1.25 opens paused at t = 1.25 (drag=DX,DY and wheel=DY replay a drag and a wheel
+  // turn: the tests' hooks)
   function fromHash() {
     var h = {}, parts = location.hash.replace(/^#/, '').split('&');
     parts.forEach(function (p) { var kv = p.split('='); if (kv[0]) h[kv[0]] = kv[1]; });
@@ -383,6 +468,10 @@
       window.dispatchEvent(new MouseEvent('mousemove', { clientX: x0 + dd[0], clientY: y0 + dd[1] }));
       window.dispatchEvent(new MouseEvent('mouseup', { clientX: x0 + dd[0], clientY: y0 + dd[1] }));
     }
+    if (h.wheel) { // wheel=DY replays a wheel turn (the tests' hook)
+      sceneCv.dispatchEvent(new WheelEvent('wheel', { deltaY: parseFloat(h.wheel), bubbles: true,
+        cancelable: true }));
+    }
     if (h.t !== undefined) {
       setPlaying(false);
       go(Math.round((parseFloat(h.t) - D.t0) / D.dt));
@@ -390,6 +479,7 @@
     }
     return false;
   }
+  if (D.jacobi) document.getElementById('plot-jacobi').hidden = false;
   window.addEventListener('hashchange', fromHash);
   go(0);
   if (!fromHash()) setPlaying(true);

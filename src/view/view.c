@@ -10,15 +10,17 @@
 #include <string.h>
 
 #include "base/base.h"
+#include "dalembert/analysis.h"
 #include "dalembert/output.h"
 #include "view/view.h"
 
 #define MAX_FRAMES 200000
 #define MAX_PLOT 2000
+#define QMAX 65534 // the largest quantized value of a page series (put_series)
 
 // a point the page draws besides the particles (a pivot, an anchor, a circle's centre and the
-// unit vectors of its plane), evaluated at every frame
-enum { PT_PIVOT, PT_PIVOT_U, PT_PIVOT_W, PT_ANCHOR, PT_CONST, PT_TURN_U, PT_LINK_ANCHOR };
+// unit vectors of its plane, a line's direction), evaluated at every frame
+enum { PT_PIVOT, PT_PIVOT_W, PT_ANCHOR, PT_CONST, PT_TURN_U, PT_LINK_ANCHOR };
 typedef struct xpoint {
   int kind, owner, sub; // owner: placement, constraint or link; sub: coordinate or x0 offset
   int dir;              // a direction (a circle's plane, a line's direction), not a place
@@ -31,18 +33,21 @@ typedef struct viewer {
   xpoint *xp;
   int nxp;
   // geometry text (JSON arrays), built once
-  char *links, *circles, *lines;
-  size_t llen, lcap, clen, ccap, nlen, ncap;
+  char *links, *circles, *lines, *spheres, *planes;
+  size_t links_len, links_cap, circles_len, circles_cap, lines_len, lines_cap, spheres_len,
+      spheres_cap, planes_len, planes_cap;
   // frames
   const double *times;
   size_t nt, nframes, frame, fcount;
   int *is_frame; // times[i] is a frame (else a strobe time)
-  float *pos, *xs;
+  double *pos, *xs;
   // plots
   size_t pstride, nplot;
-  float *pq, *pqd, *pe, *pf;
+  double *pq, *pqd, *pe, *pf;
   int nf; // force series: the multipliers (m) or |R| per particle (N)
-  double E0;
+  double E0, h0;
+  int jacobi; // h differs from E (a moving constraint or placement) and is conserved (the
+              // equations do not depend on t explicitly): its own plot
   // section points
   double *sec;
   size_t nsec, seccap;
@@ -167,13 +172,12 @@ static void eval_point(viewer *v, const dal_state *st, int i, double *x) {
   x[0] = x[1] = x[2] = 0;
   switch (p->kind) {
   case PT_PIVOT:
-  case PT_PIVOT_U:
   case PT_PIVOT_W:
     if (osc(v, st, p->owner, p->sub, 0.0, C, u, w, &rho)) {
       x[0] = x[1] = x[2] = NAN;
       return;
     }
-    memcpy(x, p->kind == PT_PIVOT ? C : p->kind == PT_PIVOT_U ? u : w, 3 * sizeof *x);
+    memcpy(x, p->kind == PT_PIVOT ? C : w, 3 * sizeof *x);
     return;
   case PT_ANCHOR: { // dal_con_anchor2/3: x0 + x(t) (the moving-point convention)
     const dal_con *c = &sys->con[p->owner];
@@ -187,9 +191,9 @@ static void eval_point(viewer *v, const dal_state *st, int i, double *x) {
         x[b] += jx[b].v;
     return;
   }
-  case PT_TURN_U: { // the horizontal direction of a turning circle's plane
-    const double *par = st->prm.ppool + sys->con[p->owner].param_off;
-    double a = par[DAL_TURNING_CIRCLE_W] * st->t + par[DAL_TURNING_CIRCLE_PHI0];
+  case PT_TURN_U: { // (cos a, sin a, 0), a = w t + phi0: a turning circle's plane, a turning line
+    const double *par = st->prm.ppool + sys->con[p->owner].param_off + p->sub; // at w, phi0
+    double a = par[0] * st->t + par[1];
     x[0] = cos(a), x[1] = sin(a);
     return;
   }
@@ -204,51 +208,75 @@ static void eval_point(viewer *v, const dal_state *st, int i, double *x) {
   }
 }
 
-// the scene's drawable geometry: links (particle index, or N + extra point), circles, lines
+// a JSON row of indices and numbers to a geometry list: "[a,b,...],"
+#define ROW(list, ...) app(&v->list, &v->list##_len, &v->list##_cap, __VA_ARGS__)
+
+// the scene's drawable geometry (the page's lists, point indices: a particle, or N + an extra
+// point): links [a, b, kind], circles [centre, u, w, R, pivot] (u a particle's index: the
+// direction from the centre to it; u < 0: the page's own plane), lines [point, direction],
+// spheres [centre, R], planes [point, normal]
 static int geometry(viewer *v, const dal_state *st) {
   const dal_system *sys = v->sys;
   int N = v->N, d = v->d, rc = DAL_OK;
   v->jin = malloc((size_t)(sys->max_in + 3) * sizeof *v->jin);
   v->jout = malloc((size_t)(sys->max_out + 3) * sizeof *v->jout);
   if (!v->jin || !v->jout) return DAL_E_NOMEM;
-  // placements: parent -> child, and a pivot where the path is a circle about a fixed centre
+  // placements: parent -> child; a sphere a spherical map moves on (its pivot, and the rod);
+  // a pivot where the path is a circle about a fixed centre
   for (int k = 0; sys->place && k < N && !rc; ++k) {
     const dal_place *pl = &sys->place[k];
     if (!pl->prim) continue;
-    // a child hangs from its parent: the link is enough (its circle would cost 9 floats a frame)
+    // a child hangs from its parent: the link is enough (its circle would cost 6 numbers a frame)
     if (pl->parent >= 0) {
-      rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"rod\"],", pl->parent, k);
+      rc = ROW(links, "[%d,%d,\"rod\"],", pl->parent, k);
+      continue;
+    }
+    if (pl->prim == &dal_map_spherical || pl->prim == &dal_map_sphere) {
+      const double *par = st->prm.ppool + pl->param_off; // (R or l, centre)
+      int c = add_point(v, PT_CONST, k, 0, par + 1);
+      if (c < 0) return DAL_E_NOMEM;
+      rc = ROW(spheres, "[%d,%.17g],", N + c, fabs(par[0]));
+      if (!rc && pl->prim == &dal_map_spherical) rc = ROW(links, "[%d,%d,\"rod\"],", N + c, k);
       continue;
     }
     double rho;
     int j = pl->ncoord ? circle_coord(v, st, k, &rho) : -1;
     if (j < 0) continue;
-    // the circle's plane: the page's own in 2-D (no floats stored), turning with it in 3-D
+    // the circle's plane: the page's own in 2-D (no numbers stored); in 3-D it holds the centre,
+    // the particle and the path's tangent w (stored, turning with it)
     int c = add_point(v, PT_PIVOT, k, j, NULL), u = -1 - N, w = -1 - N;
     if (d == 3) {
-      u = add_point(v, PT_PIVOT_U, k, j, NULL), w = add_point(v, PT_PIVOT_W, k, j, NULL);
-      if (u < 0 || w < 0) return DAL_E_NOMEM;
-      v->xp[u].dir = v->xp[w].dir = 1;
+      u = k - N, w = add_point(v, PT_PIVOT_W, k, j, NULL);
+      if (w < 0) return DAL_E_NOMEM;
+      v->xp[w].dir = 1;
     }
     if (c < 0) return DAL_E_NOMEM;
-    rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"rod\"],", N + c, k);
-    if (!rc)
-      rc = app(&v->circles, &v->clen, &v->ccap, "[%d,%d,%d,%.9g,1],", N + c, N + u, N + w, rho);
+    rc = ROW(links, "[%d,%d,\"rod\"],", N + c, k);
+    if (!rc) rc = ROW(circles, "[%d,%d,%d,%.17g,1],", N + c, N + u, N + w, rho);
   }
-  // built-in constraints: rods, anchors, circles, lines
+  // built-in constraints: rods, anchors, circles, lines, spheres, planes
   for (int c = 0; c < sys->ncon && !rc; ++c) {
     const dal_con *con = &sys->con[c];
     const dal_primitive *pr = con->prim;
     const int *parts = sys->ipool + con->part_off;
     const double *par = st->prm.ppool + con->param_off;
     if (pr == &dal_con_distance2 || pr == &dal_con_distance3)
-      rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"rod\"],", parts[0], parts[1]);
+      rc = ROW(links, "[%d,%d,\"rod\"],", parts[0], parts[1]);
     else if (pr == &dal_con_anchor2 || pr == &dal_con_anchor3) {
       int a = add_point(v, PT_ANCHOR, c, 0, NULL);
       if (a < 0) return DAL_E_NOMEM;
-      rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"rod\"],", N + a, parts[0]);
-    } else if (pr == &dal_con_circle2 || pr == &dal_con_circle3 || pr == &dal_con_sphere ||
-               pr == &dal_con_turning_circle) {
+      rc = ROW(links, "[%d,%d,\"rod\"],", N + a, parts[0]);
+    } else if (pr == &dal_con_sphere) {
+      int pc = add_point(v, PT_CONST, c, 0, par + DAL_SPHERE_CX);
+      if (pc < 0) return DAL_E_NOMEM;
+      rc = ROW(spheres, "[%d,%.17g],", N + pc, par[DAL_SPHERE_R]);
+    } else if (pr == &dal_con_plane) {
+      int pc = add_point(v, PT_CONST, c, 0, par + DAL_PLANE_CX);
+      int pn = add_point(v, PT_CONST, c, 0, par + DAL_PLANE_NX);
+      if (pc < 0 || pn < 0) return DAL_E_NOMEM;
+      v->xp[pn].dir = 1;
+      rc = ROW(planes, "[%d,%d],", N + pc, N + pn);
+    } else if (pr == &dal_con_circle2 || pr == &dal_con_circle3 || pr == &dal_con_turning_circle) {
       int turning = pr == &dal_con_turning_circle, off = turning ? 3 : 1;
       double cc[3] = {par[off], par[off + 1], d == 3 ? par[off + 2] : 0}, uu[3] = {1, 0, 0},
              ww[3] = {0, 1, 0};
@@ -265,21 +293,22 @@ static int geometry(viewer *v, const dal_state *st) {
       if (turning) ww[1] = 0, ww[2] = 1;
       int pc = add_point(v, PT_CONST, c, 0, cc), pu = -1 - N, pw = -1 - N;
       if (d == 3) {
-        pu = add_point(v, turning ? PT_TURN_U : PT_CONST, c, 0, uu);
+        pu = add_point(v, turning ? PT_TURN_U : PT_CONST, c, DAL_TURNING_CIRCLE_W, uu);
         pw = add_point(v, PT_CONST, c, 0, ww);
         if (pu < 0 || pw < 0) return DAL_E_NOMEM;
         v->xp[pu].dir = v->xp[pw].dir = 1;
       }
       if (pc < 0) return DAL_E_NOMEM;
-      rc = app(&v->circles, &v->clen, &v->ccap, "[%d,%d,%d,%.9g,0],", N + pc, N + pu, N + pw,
-               par[0]);
-    } else if (pr == &dal_con_line2 || pr == &dal_con_line3) {
+      rc = ROW(circles, "[%d,%d,%d,%.17g,0],", N + pc, N + pu, N + pw, par[0]);
+    } else if (pr == &dal_con_line2 || pr == &dal_con_line3 || pr == &dal_con_turning_line2) {
+      int turning = pr == &dal_con_turning_line2;
       double cc[3] = {par[0], par[1], d == 3 ? par[2] : 0},
              aa[3] = {par[d], par[d + 1], d == 3 ? par[5] : 0};
-      int pc = add_point(v, PT_CONST, c, 0, cc), pa = add_point(v, PT_CONST, c, 0, aa);
+      int pc = add_point(v, PT_CONST, c, 0, cc);
+      int pa = add_point(v, turning ? PT_TURN_U : PT_CONST, c, DAL_TURNING_LINE2_W, aa);
       if (pc < 0 || pa < 0) return DAL_E_NOMEM;
       v->xp[pa].dir = 1;
-      rc = app(&v->lines, &v->nlen, &v->ncap, "[%d,%d],", N + pc, N + pa);
+      rc = ROW(lines, "[%d,%d],", N + pc, N + pa);
     }
   }
   // springs and dampers: between particles or to an anchor
@@ -292,8 +321,7 @@ static int geometry(viewer *v, const dal_state *st) {
       if (a < 0) return DAL_E_NOMEM;
       b = N + a;
     }
-    rc = app(&v->links, &v->llen, &v->lcap, "[%d,%d,\"%s\"],", b, l->a,
-             damper ? "damper" : "spring");
+    rc = ROW(links, "[%d,%d,\"%s\"],", b, l->a, damper ? "damper" : "spring");
   }
   return rc;
 }
@@ -322,23 +350,25 @@ static int record(const dal_system *sys, const dal_state *st, void *ctx) {
   if (!r) return -1;
   int d = v->d;
   for (int k = 0; k < v->N * d; ++k)
-    v->pos[f * (size_t)(v->N * d) + (size_t)k] = (float)r[k];
+    v->pos[f * (size_t)(v->N * d) + (size_t)k] = r[k];
   for (int k = 0; k < v->nxp; ++k) {
     double x[3];
     eval_point(v, st, k, x);
     for (int b = 0; b < 3; ++b)
-      v->xs[(f * (size_t)v->nxp + (size_t)k) * 3 + (size_t)b] = (float)x[b];
+      v->xs[(f * (size_t)v->nxp + (size_t)k) * 3 + (size_t)b] = x[b];
   }
   if (f % v->pstride == 0 && f / v->pstride < v->nplot) {
     size_t s = f / v->pstride;
     dal_energies en;
     if (dal_state_energies(st, &en)) return -1;
-    if (f == 0) v->E0 = en.E;
+    if (f == 0) v->E0 = en.E, v->h0 = en.h;
+    if (en.T1 != 0 || en.T0 != 0) v->jacobi = 1;
     for (int j = 0; j < v->n; ++j) {
-      v->pq[s * (size_t)v->n + (size_t)j] = (float)q[j];
-      v->pqd[s * (size_t)v->n + (size_t)j] = (float)qd[j];
+      v->pq[s * (size_t)v->n + (size_t)j] = q[j];
+      v->pqd[s * (size_t)v->n + (size_t)j] = qd[j];
     }
-    v->pe[s] = (float)(en.E - v->E0);
+    v->pe[2 * s] = en.E - v->E0;
+    v->pe[2 * s + 1] = en.h - v->h0;
     const double *lam = v->m ? dal_state_lambda(st) : dal_state_reactions(st);
     if (!lam) return -1;
     for (int j = 0; j < v->nf; ++j) {
@@ -349,37 +379,85 @@ static int record(const dal_system *sys, const dal_state *st, void *ctx) {
           val += lam[j * d + b] * lam[j * d + b];
         val = sqrt(val);
       }
-      v->pf[s * (size_t)v->nf + (size_t)j] = (float)val;
+      v->pf[s * (size_t)v->nf + (size_t)j] = val;
     }
   }
   return 0;
 }
 
-// base64 of n floats (little-endian IEEE single, as the page's Float32Array reads them)
-static int put_b64(FILE *fp, const float *x, size_t n) {
+// base64 of n bytes, quoted
+static void put_b64(FILE *fp, const unsigned char *x, size_t n) {
   static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  const size_t nb = 4 * n;
-  unsigned char buf[3];
-  char out[4];
   fputc('"', fp);
-  for (size_t i = 0; i < nb; i += 3) {
-    size_t m = nb - i < 3 ? nb - i : 3;
-    for (size_t j = 0; j < 3; ++j) {
-      size_t bi = i + j;
-      uint32_t u = 0;
-      if (j < m) {
-        memcpy(&u, &x[bi / 4], 4);
-        buf[j] = (unsigned char)(u >> (8 * (bi % 4)));
-      } else
-        buf[j] = 0;
-    }
-    out[0] = tab[buf[0] >> 2];
-    out[1] = tab[((buf[0] & 3) << 4) | (buf[1] >> 4)];
-    out[2] = m > 1 ? tab[((buf[1] & 15) << 2) | (buf[2] >> 6)] : '=';
-    out[3] = m > 2 ? tab[buf[2] & 63] : '=';
+  for (size_t i = 0; i < n; i += 3) {
+    size_t m = n - i < 3 ? n - i : 3;
+    unsigned b0 = x[i], b1 = m > 1 ? x[i + 1] : 0, b2 = m > 2 ? x[i + 2] : 0;
+    char out[4] = {tab[b0 >> 2], tab[((b0 & 3) << 4) | (b1 >> 4)],
+                   m > 1 ? tab[((b1 & 15) << 2) | (b2 >> 6)] : '=', m > 2 ? tab[b2 & 63] : '='};
     fwrite(out, 1, 4, fp);
   }
   fputc('"', fp);
+}
+
+// A series of the page: `rows` rows of `w` numbers, written as {"w", "lo", "step", "b64"}.
+// Each component c is quantized to an integer k in [0, QMAX] over its own range
+// (x = lo_c + k step_c, step_c = (max - min) / QMAX, so the error is at most step_c / 2;
+// k = QMAX + 1 marks a value that is not finite). Row r's k is predicted from the rows before
+// (0; k[r-1]; 2 k[r-1] - k[r-2]) and the misses, zigzag-encoded base-128 varints row after row,
+// are the bytes, in base64. A component whose range is within tiny[c] (nullable: 0) is
+// constant (step 0, lo its middle value) and one never finite has lo null: neither has bytes.
+static int put_series(FILE *fp, const double *x, size_t rows, int w, const double *tiny) {
+  double *lo = malloc(2 * ((size_t)w + 1) * sizeof *lo), *step = lo + w + 1;
+  long *prev = calloc(2 * (size_t)w + 1, sizeof *prev);
+  size_t cap = rows * (size_t)w * 3 + 1, nb = 0;
+  unsigned char *buf = lo && prev ? malloc(cap) : NULL;
+  if (!buf) {
+    free(lo), free(prev);
+    return DAL_E_NOMEM;
+  }
+  fprintf(fp, "{\"w\":%d,\"lo\":[", w);
+  for (int c = 0; c < w; ++c) {
+    double a = INFINITY, b = -INFINITY;
+    int gap = 0;
+    for (size_t r = 0; r < rows; ++r) {
+      double v = x[r * (size_t)w + (size_t)c];
+      if (isfinite(v))
+        a = fmin(a, v), b = fmax(b, v);
+      else
+        gap = 1;
+    }
+    int flat = a <= b && b - a <= (tiny ? tiny[c] : 0);
+    lo[c] = flat ? (a + b) / 2 : a;
+    step[c] = a > b || (flat && !gap) ? 0 : flat ? 1 : (b - a) / QMAX; // flat with gaps: k 0
+    if (a <= b)
+      fprintf(fp, "%s%.17g", c ? "," : "", lo[c]);
+    else
+      fprintf(fp, "%snull", c ? "," : "");
+  }
+  fputs("],\"step\":[", fp);
+  for (int c = 0; c < w; ++c)
+    fprintf(fp, "%s%.17g", c ? "," : "", step[c]);
+  fputs("],\"b64\":", fp);
+  for (size_t r = 0; r < rows; ++r)
+    for (int c = 0; c < w; ++c) {
+      if (!(step[c] > 0)) continue;
+      double v = x[r * (size_t)w + (size_t)c];
+      long k = isfinite(v) ? lround((v - lo[c]) / step[c]) : QMAX + 1;
+      if (k > QMAX && isfinite(v)) k = QMAX;
+      long *k1 = &prev[2 * c], *k2 = &prev[2 * c + 1]; // k of the rows r - 1 and r - 2
+      long dk = k - (r >= 2 ? 2 * *k1 - *k2 : *k1);
+      *k2 = *k1, *k1 = k;
+      unsigned long z = dk < 0 ? 2 * (unsigned long)(-dk) - 1 : 2 * (unsigned long)dk;
+      do {
+        buf[nb++] = (unsigned char)((z & 127) | (z > 127 ? 128 : 0));
+        z >>= 7;
+      } while (z);
+    }
+  put_b64(fp, buf, nb);
+  fputc('}', fp);
+  free(buf);
+  free(lo);
+  free(prev);
   return ferror(fp) ? DAL_E_IO : DAL_OK;
 }
 
@@ -437,32 +515,57 @@ static int write_page(viewer *v, const dal_view_opts *o, dal_events *ev, FILE *f
     if (j) fputc(',', fp);
     put_str(fp, name);
   }
-  fprintf(fp, "],\"links\":[%.*s],\"circles\":[%.*s],\"lines\":[%.*s],",
-          v->llen ? (int)v->llen - 1 : 0, v->links ? v->links : "", v->clen ? (int)v->clen - 1 : 0,
-          v->circles ? v->circles : "", v->nlen ? (int)v->nlen - 1 : 0, v->lines ? v->lines : "");
+  fputs("]", fp);
+  // the geometry lists (each row written with a trailing comma: the last one dropped)
+  const char *lists[] = {"links", "circles", "lines", "spheres", "planes"};
+  const char *text[] = {v->links, v->circles, v->lines, v->spheres, v->planes};
+  const size_t len[] = {v->links_len, v->circles_len, v->lines_len, v->spheres_len, v->planes_len};
+  for (int i = 0; i < 5; ++i)
+    fprintf(fp, ",\"%s\":[%.*s]", lists[i], len[i] ? (int)len[i] - 1 : 0, text[i] ? text[i] : "");
+  fputc(',', fp);
+  // a place or direction that moves by less than 1e-9 of the scene (of a unit) is constant
+  size_t np = (size_t)(v->N * v->d), nx = (size_t)v->nxp * 3;
+  double ext = 0, *tiny = malloc((np + nx + 1) * sizeof *tiny);
+  if (!tiny) return DAL_E_NOMEM;
+  for (int b = 0; b < v->d; ++b) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t f = 0; f < v->nframes; ++f)
+      for (int k = 0; k < v->N; ++k) {
+        double x = v->pos[f * np + (size_t)(k * v->d + b)];
+        lo = fmin(lo, x), hi = fmax(hi, x);
+      }
+    ext = fmax(ext, hi - lo);
+  }
+  for (size_t i = 0; i < np + nx; ++i)
+    tiny[i] = i >= np && v->xp[(i - np) / 3].dir ? 1e-9 : 1e-9 * ext;
   fputs("\"pos\":", fp);
-  put_b64(fp, v->pos, v->nframes * (size_t)(v->N * v->d));
+  int rc = put_series(fp, v->pos, v->nframes, (int)np, tiny);
   fputs(",\"xs\":", fp);
-  put_b64(fp, v->xs, v->nframes * (size_t)v->nxp * 3);
+  if (!rc) rc = put_series(fp, v->xs, v->nframes, (int)nx, tiny + np);
+  free(tiny);
   fprintf(fp, ",\"pstride\":%zu,\"nplot\":%zu,\"pq\":", v->pstride, v->nplot);
-  put_b64(fp, v->pq, v->nplot * (size_t)v->n);
+  if (!rc) rc = put_series(fp, v->pq, v->nplot, v->n, NULL);
   fputs(",\"pqd\":", fp);
-  put_b64(fp, v->pqd, v->nplot * (size_t)v->n);
+  if (!rc) rc = put_series(fp, v->pqd, v->nplot, v->n, NULL);
   fputs(",\"pe\":", fp);
-  put_b64(fp, v->pe, v->nplot);
+  if (!rc) rc = put_series(fp, v->pe, v->nplot, 2, NULL);
+  fprintf(fp, ",\"jacobi\":%d", v->jacobi);
   fputs(",\"pf\":", fp);
-  put_b64(fp, v->pf, v->nplot * (size_t)v->nf);
-  // section points: the strobe's, then the surface sections' crossings of ev
+  if (!rc) rc = put_series(fp, v->pf, v->nplot, v->nf, NULL);
+  if (rc) return rc;
+  // section points [t, q0, qdot0, kind]: the strobe's (kind 0), then the crossings of ev's
+  // sections (kind 1)
   fputs(",\"sections\":[", fp);
   int any = 0;
   for (size_t i = 0; i < v->nsec; ++i)
-    fprintf(fp, "%s[%.9g,%.9g,%.9g]", any++ ? "," : "", v->sec[3 * i], v->sec[3 * i + 1],
+    fprintf(fp, "%s[%.17g,%.9g,%.9g,0]", any++ ? "," : "", v->sec[3 * i], v->sec[3 * i + 1],
             v->sec[3 * i + 2]);
   double *q = ev ? malloc(2 * (size_t)v->n * sizeof *q) : NULL;
   for (long i = 0; q && i < dal_events_count(ev); ++i) {
     dal_event_record rec;
     if (dal_events_get(ev, i, &rec, q, q + v->n)) break;
-    fprintf(fp, "%s[%.9g,%.9g,%.9g]", any++ ? "," : "", rec.t, q[0], q[v->n]);
+    if (o->sections && !o->sections[rec.event]) continue;
+    fprintf(fp, "%s[%.17g,%.9g,%.9g,1]", any++ ? "," : "", rec.t, q[0], q[v->n]);
   }
   free(q);
   fprintf(fp, "]}</script>\n<script>\n%s</script>\n</body></html>\n", dal__view_js);
@@ -482,7 +585,7 @@ static int frames_run(viewer *v, dal_state *st, const dal_solve_opts *solve, dal
     v->xs = malloc((nf * (size_t)v->nxp * 3 + 1) * sizeof *v->xs);
     v->pq = malloc((v->nplot * (size_t)v->n + 1) * sizeof *v->pq);
     v->pqd = malloc((v->nplot * (size_t)v->n + 1) * sizeof *v->pqd);
-    v->pe = malloc((v->nplot + 1) * sizeof *v->pe);
+    v->pe = malloc((2 * v->nplot + 2) * sizeof *v->pe);
     v->pf = malloc((v->nplot * (size_t)v->nf + 1) * sizeof *v->pf);
     if (!v->pos || !v->xs || !v->pq || !v->pqd || !v->pe || !v->pf) rc = DAL_E_NOMEM;
   }
@@ -515,6 +618,8 @@ static void viewer_free(viewer *v) {
   free(v->links);
   free(v->circles);
   free(v->lines);
+  free(v->spheres);
+  free(v->planes);
   free((void *)v->times);
   free(v->is_frame);
   free(v->pos);
@@ -580,7 +685,11 @@ int dal_view_write(const dal_system *sys, dal_state *st, const dal_view_opts *op
   v.nframes = nf;
   v.pstride = (nf + MAX_PLOT - 1) / MAX_PLOT;
   v.nplot = (nf + v.pstride - 1) / v.pstride;
+  // h is an invariant where the equations do not depend on t explicitly (a steadily turning
+  // ring); a drive pumps E and h alike
+  int steady = rc ? 0 : dal_time_dependence(sys, st, NULL, 0) == 0;
   if (!rc) rc = frames_run(&v, st, o.solve, ev, "view_write");
+  v.jacobi = v.jacobi && steady;
   if (!rc) rc = write_page(&v, &o, ev, fp);
   if (rc == DAL_E_IO) DAL_FAIL(st, rc, "view_write: writing the page failed (disk full?)");
   viewer_free(&v);
@@ -662,6 +771,14 @@ static int write_svg(viewer *v, FILE *fp) {
     p = strchr(p, ']');
     p = p ? p + 2 : NULL;
   }
+  for (const char *p = v->spheres; p && *p;) { // the spheres' radii (for the fit)
+    int a;
+    double R;
+    if (sscanf(p, "[%d,%lf]", &a, &R) != 2) break;
+    circR[a - v->N] = R;
+    p = strchr(p, ']');
+    p = p ? p + 2 : NULL;
+  }
   proj P;
   fit(v, circR, W, H, &P);
   free(circR);
@@ -677,7 +794,20 @@ static int write_svg(viewer *v, FILE *fp) {
     onscreen(v, &P, last, cs[k][0], 0, C);
     if (cs[k][1] < 0) // a 2-D circle: the plane's own axes
       u[0] = P.A[0][0], u[1] = P.A[1][0], w[0] = P.A[0][1], w[1] = P.A[1][1];
-    else {
+    else if (cs[k][1] < v->N) { // through a particle: u towards it (on screen, over R)
+      onscreen(v, &P, last, cs[k][1], 0, u);
+      onscreen(v, &P, last, cs[k][2], 1, w);
+      double rr = 0;
+      for (int b = 0; b < 3; ++b) { // the particle's distance from the centre
+        size_t ip = (last * (size_t)v->N + (size_t)cs[k][1]) * (size_t)v->d + (size_t)b;
+        double x = b < v->d ? v->pos[ip] : 0;
+        x -= v->xs[(last * (size_t)v->nxp + (size_t)(cs[k][0] - v->N)) * 3 + (size_t)b];
+        rr += x * x;
+      }
+      rr = sqrt(rr);
+      for (int b = 0; b < 2; ++b)
+        u[b] = (u[b] - C[b]) / (rr > 0 ? rr : 1);
+    } else {
       onscreen(v, &P, last, cs[k][1], 1, u);
       onscreen(v, &P, last, cs[k][2], 1, w);
     }
@@ -686,6 +816,17 @@ static int write_svg(viewer *v, FILE *fp) {
       fprintf(fp, "%.2f,%.2f ", C[0] + ca * u[0] + sa * w[0], C[1] + ca * u[1] + sa * w[1]);
     }
     fputs("\"/>\n", fp);
+  }
+  // the spheres' outlines at the last time
+  for (const char *p = v->spheres; p && *p;) {
+    int a;
+    double R, C[2];
+    if (sscanf(p, "[%d,%lf]", &a, &R) != 2) break;
+    onscreen(v, &P, last, a, 0, C);
+    fprintf(fp, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"%.2f\" fill=\"none\" stroke=\"#bbb\"/>\n",
+            C[0], C[1], R * hypot(hypot(P.A[0][0], P.A[0][1]), P.A[0][2]));
+    p = strchr(p, ']');
+    p = p ? p + 2 : NULL;
   }
   // each time: links, then particles, more opaque as time goes on
   for (size_t f = 0; f < v->nframes; ++f) {

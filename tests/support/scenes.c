@@ -49,13 +49,10 @@ int scn_builder(const scn_knobs *k, int d, dal_builder **b) {
   return rc;
 }
 
-int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m, int parent,
-                  double l, const char *coord, int *p) {
+int scn_place_swing(dal_builder *b, const scn_knobs *k, int p, int parent, double l, int coord) {
   KNOBS(k);
-  int c, rc = dal_builder_add_coord(b, coord, &c);
-  if (!rc) rc = dal_builder_add_particle(b, name, m, p);
   dal_place_def pd = dal_default_place_def();
-  pd.coords = &c;
+  pd.coords = &coord;
   pd.ncoords = 1;
   if (parent < 0) {
     pd.prim = &dal_map_pendulum;
@@ -71,8 +68,14 @@ int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m
     pd.parent = parent;
     pd.param[DAL_HANGING_L] = l;
   }
-  if (!rc) rc = dal_builder_place_def(b, *p, &pd);
-  return rc;
+  return dal_builder_place_def(b, p, &pd);
+}
+
+int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m, int parent,
+                  double l, const char *coord, int *p) {
+  int c, rc = dal_builder_add_coord(b, coord, &c);
+  if (!rc) rc = dal_builder_add_particle(b, name, m, p);
+  return rc ? rc : scn_place_swing(b, k, *p, parent, l, c);
 }
 
 // particle `name` (mass m) in its own d Cartesian coordinates named nm[0 .. d)

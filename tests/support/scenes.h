@@ -66,6 +66,9 @@ int scn_add_rod(dal_builder *b, const char *name, int a, int b2, double l, const
 /// particle `parent` on length l (dal_map_hanging); its index in *p.
 int scn_add_swing(dal_builder *b, const scn_knobs *k, const char *name, double m, int parent,
                   double l, const char *coord, int *p);
+/// Place the particle p already added on the coordinate `coord` as scn_add_swing does: on the
+/// pendulum map (k's pivot and drive) when parent < 0, else hanging from parent on length l.
+int scn_place_swing(dal_builder *b, const scn_knobs *k, int p, int parent, double l, int coord);
 
 // Every scene takes its knobs by pointer, NULL for the defaults, and returns the compiled
 // system (NULL after printing the builder's message when it cannot be built).
