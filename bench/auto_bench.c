@@ -24,7 +24,9 @@
 //       n <= 2 and n >= 3, the rule
 //       keyed on rtol (a method and atol rule per decade, at most three switches; every such rule
 //       is replayed from the named methods' rows) with the smallest worst AUTO / best, beside
-//       the worst of AUTO's own rows, as markdown on stdout.
+//       the worst of AUTO's own rows, as markdown on stdout; then the library's rule against the
+//       best of what AUTO may run (no Fehlberg 7(8), the default atol) beside the best of every
+//       configuration, and the best rule of what AUTO may run.
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -424,6 +426,9 @@ typedef struct rsearch {
 // a method the rule search may not pick (-1: none): fehlberg78, whose error estimate misses
 // the differential set of tests/test_auto_set.c (issue 31)
 static int rule_excluded = -1;
+// with this set the rule search picks only the default atol (the configurations AUTO runs:
+// it chooses a method, never the caller's atol)
+static int rule_default_atol = 0;
 
 static void rule_walk(rsearch *r, int k, int switches) {
   if (k == r->L) {
@@ -437,7 +442,7 @@ static void rule_walk(rsearch *r, int k, int switches) {
     return;
   }
   for (int c = 0; c < NCONF; ++c) {
-    if (c / 2 == rule_excluded) continue;
+    if (c / 2 == rule_excluded || (rule_default_atol && c % 2)) continue;
     int sw = k > 0 && c != r->seq[k - 1];
     if (switches + sw > RULE_SWITCHES) continue;
     r->seq[k] = c;
@@ -598,6 +603,60 @@ static int cmd_rules(const char *path) {
     if (nr > 0)
       printf("| %s | %.3f | %.2f | %.2f | %d |\n", conf_meth[c / 2],
              nr % 2 ? r[nr / 2] : 0.5 * (r[nr / 2 - 1] + r[nr / 2]), r[0], r[nr - 1], nr);
+  }
+  // what AUTO may run (issue 31: no Fehlberg 7(8); the caller's atol): the library's rule
+  // against the best of those configurations, cell by cell, and the best rule of them
+  printf("\n| coordinates | the library's rule: worst AUTO / best of every configuration | worst "
+         "AUTO / best of what AUTO may run (DOPRI5, BS, Adams at the default atol) | cells above "
+         "1.1 of either | best rule of what AUTO may run | its worst / best of every "
+         "configuration |\n|---|---|---|---|---|---|\n");
+  for (int cls = 0; cls < 2; ++cls) {
+    int nlo = cls ? 3 : 1, nhi = cls ? 1 << 30 : 2, seq[RMAX], above = 0;
+    for (int i = 0; i < L; ++i)
+      seq[i] = rt[i] >= (cls ? 1e-5 : 1e-3) * (1 - 1e-9) ? 0 : 4;
+    double w_all = 0, w_may = 0;
+    int at_all = 0, at_may = 0;
+    for (int i = 0; i < ns; ++i) {
+      if (sc[i].n < nlo || sc[i].n > nhi) continue;
+      pt curve[RMAX];
+      for (int k = 0; k < L; ++k) {
+        if (sc[i].at[seq[k]][k])
+          curve[k] = *sc[i].at[seq[k]][k];
+        else
+          memset(&curve[k], 0, sizeof curve[k]);
+      }
+      for (int b = 0; b < NBAND; ++b) {
+        double may = INFINITY, r0 = 0;
+        for (int c = 0; c < NCONF; c += 2) {
+          if (c / 2 == 1) continue; // fehlberg78
+          pt cc[RMAX];
+          for (int k = 0; k < L; ++k) {
+            if (sc[i].at[c][k])
+              cc[k] = *sc[i].at[c][k];
+            else
+              memset(&cc[k], 0, sizeof cc[k]);
+          }
+          may = fmin(may, cost_at(cc, L, bands[b], &r0));
+        }
+        double cost = cost_at(curve, L, bands[b], &r0), ra = cost / sc[i].best[b], rm = cost / may;
+        if (!isfinite(ra) || !isfinite(rm)) continue;
+        above += ra > 1.1 || rm > 1.1;
+        if (ra > w_all) w_all = ra, at_all = i * NBAND + b;
+        if (rm > w_may) w_may = rm, at_may = i * NBAND + b;
+      }
+    }
+    rule_excluded = 1;
+    rule_default_atol = 1;
+    rsearch q = {.sc = sc, .ns = ns, .nlo = nlo, .nhi = nhi, .L = L, .worst = INFINITY};
+    rule_walk(&q, 0, 0);
+    rule_excluded = -1;
+    rule_default_atol = 0;
+    char text[400];
+    rule_text(q.best, rt, L, text, sizeof text);
+    printf("| %s | %.3f (%s, %.0e) | %.3f (%s, %.0e) | %d | %s | %.3f (%s, %.0e) |\n",
+           cls ? "3 and more" : "1 to 2", w_all, sc[at_all / NBAND].name, bands[at_all % NBAND],
+           w_may, sc[at_may / NBAND].name, bands[at_may % NBAND], above, text, q.worst,
+           sc[q.where / NBAND].name, bands[q.where % NBAND]);
   }
   free(sc);
   free(p);

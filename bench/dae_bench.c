@@ -12,6 +12,12 @@
 //       tolerance for rtol (the same steps as min). Prints the statistics, and
 //       with --err the max position error at t1 against the hand-written O(N) chain by
 //       Fehlberg 7(8) at rtol 1e-12 (computed outside the region).
+//   dal_bench_dae scaling RTOL T1 [N ...]
+//       the Cartesian chain in GGL with KLU (BDF) at each N (default 256 362 512 724 1024 1448
+//       2048 2896 4096, steps of sqrt 2) to t = T1, one run inside ir_region() each: one CSV
+//       row per run (row,N,rtol,t1,steps,nonlin_iters,jac_evals,rejected,status), each followed
+//       by a callgrind dump of its counts (rowK) when run under valgrind --tool=callgrind
+//       --toggle-collect=ir_region (bench/dae_scaling.sh joins and tabulates them).
 //   dal_bench_dae configs [--quick|--full] [--out DIR]
 //       the 32-link chain at rtol 1e-3 ... 1e-10: the default configuration (dal_solve_default
 //       _opts, only rtol set) beside every forced one (GGL with dense LU or KLU; index-1 with
@@ -23,6 +29,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <valgrind/callgrind.h>
 
 #include "dalembert/dalembert.h"
 #include "hand.h"
@@ -256,6 +263,40 @@ static int mode_ir(int argc, char **argv) {
   return rc ? 1 : 0;
 }
 
+// dal_bench_dae scaling RTOL T1 [N ...]: GGL + KLU over the sizes, one callgrind dump per run
+static int mode_scaling(int argc, char **argv) {
+  static const int dflt[] = {256, 362, 512, 724, 1024, 1448, 2048, 2896, 4096};
+  if (argc < 2) {
+    fprintf(stderr, "usage: dal_bench_dae scaling RTOL T1 [N ...]\n");
+    return 2;
+  }
+  double rtol = atof(argv[0]), t1 = atof(argv[1]);
+  int nn = argc > 2 ? argc - 2 : (int)(sizeof dflt / sizeof dflt[0]);
+  if (!(rtol > 0) || !(t1 > 0)) return 2;
+  const dae_config *c = config_find("ggl", "klu", "bdf");
+  dal_solve_opts o;
+  config_opts(c, rtol, &o);
+  printf("row,N,rtol,t1,steps,nonlin_iters,jac_evals,rejected,status\n");
+  int bad = 0;
+  for (int k = 0; k < nn; ++k) {
+    int N = argc > 2 ? atoi(argv[2 + k]) : dflt[k];
+    chain_model m;
+    if (N < 1 || chain_build(N, 1, &m)) return 1;
+    int rc = ir_region(&m, &o, t1, NULL, NULL, 0.0, NULL);
+    dal_stats s;
+    dal_state_stats(m.st, &s);
+    printf("%d,%d,%.0e,%g,%ld,%ld,%ld,%ld,%s\n", k, N, rtol, t1, s.steps, s.nonlin_iters,
+           s.jac_evals, s.rejected, dal_status_name(rc));
+    fflush(stdout);
+    char label[32];
+    snprintf(label, sizeof label, "row%d", k);
+    CALLGRIND_DUMP_STATS_AT(label);
+    bad |= rc != 0;
+    chain_free(&m);
+  }
+  return bad;
+}
+
 // dal_bench_dae configs: every configuration side by side on the 32-link chain
 static int mode_configs(int argc, char **argv) {
   int quick = 1, N = 32;
@@ -350,6 +391,7 @@ static int mode_configs(int argc, char **argv) {
 int main(int argc, char **argv) {
   if (argc > 1 && strcmp(argv[1], "ir") == 0) return mode_ir(argc - 2, argv + 2);
   if (argc > 1 && strcmp(argv[1], "configs") == 0) return mode_configs(argc - 2, argv + 2);
-  fprintf(stderr, "usage: dal_bench_dae ir ... | configs ...\n");
+  if (argc > 1 && strcmp(argv[1], "scaling") == 0) return mode_scaling(argc - 2, argv + 2);
+  fprintf(stderr, "usage: dal_bench_dae ir ... | configs ... | scaling ...\n");
   return 2;
 }

@@ -116,6 +116,22 @@
 /// with 11% more steps than the old weights where they worked.
 #define DAL_IDA_MULT_SHARE 0.1
 
+/// IDA's Newton upkeep on systems of DAL_IDA_UPKEEP_MIN unknowns and more (integrate/ida.c).
+/// IDA rebuilds the Newton matrix only when cj = alpha / h moved by a share DCJ (its default
+/// 0.25): between, the matrix ages, the iteration slows until a step needs a second iteration
+/// (every step of the Cartesian chain at 724 links, rtol 1e-6) or fails (3-6 times per run
+/// at 1e-8, each failure quartering h). A matrix is rebuilt at a 5% change of cj
+/// (DAL_IDA_DCJ) and after DAL_IDA_STALE_SOLVES solves in a row that each needed two or more
+/// iterations on the same matrix. Measured (bench/dae_bench.c scaling, GGL + KLU, N = 256 ...
+/// 4096 links, rtol 1e-6 and 1e-8): Newton iterations 30-60% fewer, 1.11-1.21 per step at
+/// every size, errors within 2x either way (docs/performance.md, DAE scaling). Kept off below 24
+/// unknowns: on the car axis (12, tests/test_caraxis.c) the failures had been shortening the
+/// steps, and without them GGL gives 0.1-0.3 fewer digits at rtol 1e-7 ... 1e-10 (in 20-25%
+/// fewer steps).
+#define DAL_IDA_UPKEEP_MIN 24
+#define DAL_IDA_DCJ 0.05
+#define DAL_IDA_STALE_SOLVES 3
+
 /// IDA's first step: 0.1 sqrt(rtol) (its own estimate is ~1e-16 at tight tolerances and
 /// fails there).
 #define DAL_IDA_H0_FACTOR 0.1

@@ -4,6 +4,7 @@
 // accelerations, reactions N_k = m_k a_k - F_k, energies T, U, E and h.
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "eval.h"
@@ -434,6 +435,44 @@ void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x
       for (int c = 0; c < ndk; ++c)
         y[dk[c]] += Jk[a * ndk + c] * s;
     }
+  }
+}
+
+void dal__mass_diag(const dal_system *sys, const dal_state *st, double *md) {
+  int n = sys->n, d = sys->dim;
+  if (!(st->have & DAL_P_J) && (st->have & DAL_P_M)) {
+    for (int j = 0; j < n; ++j)
+      md[j] = st->M[(size_t)j * n + j];
+    return;
+  }
+  if (!(st->have & DAL_P_J)) {
+    // the local blocks only (large recursive trees): a column at a time
+    double *e = calloc(2 * (size_t)n + 1, sizeof(double));
+    if (!e) {
+      for (int j = 0; j < n; ++j)
+        md[j] = 0.0;
+      return;
+    }
+    for (int j = 0; j < n; ++j) {
+      e[j] = 1.0;
+      dal__mass_apply(sys, st, e, e + n);
+      e[j] = 0.0;
+      md[j] = e[n + j];
+    }
+    free(e);
+    return;
+  }
+  // sum_k m_k |J_k e_j|^2 in dal__mass_apply's order (a particle's coordinates are distinct)
+  memset(md, 0, (size_t)n * sizeof(double));
+  for (int k = 0; k < sys->N; ++k) {
+    const int *dk = sys->pdep + sys->pdep_off[k];
+    int ndk = sys->pdep_off[k + 1] - sys->pdep_off[k];
+    const double *Jk = st->J + sys->pj_off[k];
+    for (int a = 0; a < d; ++a)
+      for (int c = 0; c < ndk; ++c) {
+        double s = Jk[a * ndk + c] * st->prm.mass[k];
+        md[dk[c]] += Jk[a * ndk + c] * s;
+      }
   }
 }
 

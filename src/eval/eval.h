@@ -106,6 +106,9 @@ int dal__lagrangian_terms(const dal_system *sys, dal_state *st, double *A, doubl
 
 /// M x through the particle Jacobians (requires DAL_P_J) or the dense M (DAL_P_M): y (n) = M x
 void dal__mass_apply(const dal_system *sys, const dal_state *st, const double *x, double *y);
+/// the diagonal of M (n), the same numbers as dal__mass_apply on each unit vector, in O(n)
+/// from the particle Jacobians or the dense M (through dal__mass_apply otherwise)
+void dal__mass_diag(const dal_system *sys, const dal_state *st, double *md);
 
 /// The KKT solve of constrained systems: qddot and lambda from
 /// [M G'; G 0] [qddot; -lambda] = [Q - c; -gamma_phi]  (kkt.c)

@@ -136,35 +136,27 @@ int dal__dae_row_scales(dal_dae *f, double *sl, double *smu) {
   const dal_system *sys = f->sys;
   dal_state *st = f->st;
   int n = f->n, m = f->m;
-  double *e = calloc(2 * (size_t)n + (size_t)m + 1, sizeof(double));
-  if (!e) return DAL_E_NOMEM;
-  double *col = e + n, *lam = e + 2 * n;
-  // the diagonal of M, a column at a time through the particle Jacobians (once per start)
+  // the diagonal of M (once per start; O(n), no column-by-column products)
   double *md = malloc(((size_t)n + 1) * sizeof(double));
-  if (!md) {
-    free(e);
-    return DAL_E_NOMEM;
-  }
-  for (int j = 0; j < n; ++j) {
-    e[j] = 1.0;
-    dal__mass_apply(sys, st, e, col);
-    e[j] = 0.0;
-    md[j] = col[j];
-  }
-  // each row of G through G' e_r
-  for (int r = 0; r < m; ++r) {
-    lam[r] = 1.0;
-    dal__gt_apply(sys, st, lam, col);
-    lam[r] = 0.0;
+  if (!md) return DAL_E_NOMEM;
+  dal__mass_diag(sys, st, md);
+  for (int r = 0; r < m; ++r)
     sl[r] = smu[r] = 0.0;
-    for (int j = 0; j < n; ++j) {
-      double g = fabs(col[j]);
-      smu[r] = fmax(smu[r], g);
-      if (md[j] > 0.0) sl[r] = fmax(sl[r], g / md[j]);
+  // each row of G from its constraint's local block (the rows of G' e_r, O(nnz))
+  for (int ci = 0; ci < sys->ncon; ++ci) {
+    const dal_con *c = &sys->con[ci];
+    const int *dc = sys->cdep + c->dep_off;
+    const double *Gc = st->G + c->g_off;
+    for (int r = 0; r < c->prim->nout; ++r) {
+      int row = c->row + r;
+      for (int k = 0; k < c->ndep; ++k) {
+        double g = fabs(Gc[r * c->ndep + k]);
+        smu[row] = fmax(smu[row], g);
+        if (md[dc[k]] > 0.0) sl[row] = fmax(sl[row], g / md[dc[k]]);
+      }
     }
   }
   free(md);
-  free(e);
   return DAL_OK;
 }
 

@@ -246,23 +246,61 @@ static void hermite_newton(int ny, int nz, const double *zt, const double *y, co
     for (int o = 2; o < Z; ++o)
       for (int i = Z - 1; i >= o; --i)
         d[i] = (d[i] - d[i - 1]) / (zt[i / 2] - zt[(i - o) / 2]);
-    memcpy(cf + (size_t)k * Z, d, (size_t)Z * sizeof(double));
+    // coefficient i of every component together (cf[i ny + k]): hermite_eval reads each
+    // t - zt once for a block of components
+    for (int i = 0; i < Z; ++i)
+      cf[(size_t)i * ny + k] = d[i];
   }
 }
 
-// the Newton form (hermite_newton) at t into yout
+// the Newton form (hermite_newton) at t into yout: the nested form over the doubled nodes,
+// two coefficients per node, four (two) components at a time (their sums in registers, each
+// t - zt read once for the four; each component's operations are those of a one-component
+// loop, so the result does not depend on the blocking)
 static void hermite_eval(int ny, int nz, const double *zt, const double *cf, double t,
                          double *yout) {
   double dz[FEHL_HIST + 1];
-  int Z = 2 * nz;
   for (int i = 0; i < nz; ++i)
     dz[i] = t - zt[i];
-  for (int k = 0; k < ny; ++k, cf += Z) {
-    // nested form over the doubled nodes, two coefficients per node
-    double p = cf[Z - 1];
-    for (int i = nz - 1; i > 0; --i)
-      p = (p * dz[i] + cf[2 * i]) * dz[i - 1] + cf[2 * i - 1];
-    yout[k] = p * dz[0] + cf[0];
+  size_t top = (size_t)(2 * nz - 1) * (size_t)ny;
+  int k = 0;
+  for (; k + 4 <= ny; k += 4) {
+    const double *c = cf + top + k;
+    double p0 = c[0], p1 = c[1], p2 = c[2], p3 = c[3];
+    for (int i = nz - 1; i > 0; --i) {
+      const double *c2 = c - ny, *c1 = c2 - ny, a = dz[i], b = dz[i - 1];
+      p0 = (p0 * a + c2[0]) * b + c1[0];
+      p1 = (p1 * a + c2[1]) * b + c1[1];
+      p2 = (p2 * a + c2[2]) * b + c1[2];
+      p3 = (p3 * a + c2[3]) * b + c1[3];
+      c = c1;
+    }
+    yout[k] = p0 * dz[0] + cf[k];
+    yout[k + 1] = p1 * dz[0] + cf[k + 1];
+    yout[k + 2] = p2 * dz[0] + cf[k + 2];
+    yout[k + 3] = p3 * dz[0] + cf[k + 3];
+  }
+  for (; k + 2 <= ny; k += 2) {
+    const double *c = cf + top + k;
+    double p0 = c[0], p1 = c[1];
+    for (int i = nz - 1; i > 0; --i) {
+      const double *c2 = c - ny, *c1 = c2 - ny, a = dz[i], b = dz[i - 1];
+      p0 = (p0 * a + c2[0]) * b + c1[0];
+      p1 = (p1 * a + c2[1]) * b + c1[1];
+      c = c1;
+    }
+    yout[k] = p0 * dz[0] + cf[k];
+    yout[k + 1] = p1 * dz[0] + cf[k + 1];
+  }
+  for (; k < ny; ++k) {
+    const double *c = cf + top + k;
+    double p = c[0];
+    for (int i = nz - 1; i > 0; --i) {
+      const double *c2 = c - ny, *c1 = c2 - ny;
+      p = (p * dz[i] + c2[0]) * dz[i - 1] + c1[0];
+      c = c1;
+    }
+    yout[k] = p * dz[0] + cf[k];
   }
 }
 

@@ -263,10 +263,25 @@ static void cv_powers(const cv_mem *m, double t, int n, double *c) {
     c[i] = p *= s;
 }
 
-// p(t) into yout from the step's columns: Horner in s, two components at a time
+// p(t) into yout from the step's columns: Horner in s, four (two) components at a time
 static void cv_horner(const cv_mem *m, double t, double *yout) {
   double s = (t - m->ptn) / m->ph;
   int n = m->pn, ny = m->ny, i = 0;
+  for (; i + 3 < ny; i += 4) {
+    const double *z0 = m->zc + (size_t)i * (CV_QMAX + 1), *z1 = z0 + CV_QMAX + 1,
+                 *z2 = z1 + CV_QMAX + 1, *z3 = z2 + CV_QMAX + 1;
+    double y0 = z0[0], y1 = z1[0], y2 = z2[0], y3 = z3[0];
+    for (int j = 1; j < n; ++j) {
+      y0 = y0 * s + z0[j];
+      y1 = y1 * s + z1[j];
+      y2 = y2 * s + z2[j];
+      y3 = y3 * s + z3[j];
+    }
+    yout[i] = y0;
+    yout[i + 1] = y1;
+    yout[i + 2] = y2;
+    yout[i + 3] = y3;
+  }
   for (; i + 1 < ny; i += 2) {
     const double *z0 = m->zc + (size_t)i * (CV_QMAX + 1), *z1 = z0 + CV_QMAX + 1;
     double y0 = z0[0], y1 = z1[0];

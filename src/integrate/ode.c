@@ -434,11 +434,25 @@ static DAL__NOINLINE int ode_place_slow(dal_ode_integ *ig, double t) {
   return DAL_OK;
 }
 
-int dal__ode_place(dal_ode_integ *ig, double t) {
-  if (!((ig->hvalid & 8) && t > ig->tprev && t < ig->t)) return ode_place_slow(ig, t);
-  // inside the step, its Hermite cubic built: straight into the state's (q, qdot)
-  hermite_horner(ig, t, ig->yplace);
+// inside the step of a method with its own interpolant, y in the state's layout: straight into
+// the state's (q, qdot); else the slow path
+static int ode_place_own(dal_ode_integ *ig, double t) {
+  if (!(ig->place_direct && ig->ops->interp && t > ig->tprev && t < ig->t))
+    return ode_place_slow(ig, t);
+  int rc = ig->ops->interp(ig, t, ig->yplace);
+  if (rc) return rc;
   ig->st->t = t;
   dal__state_moved(ig->st);
   return DAL_OK;
+}
+
+int dal__ode_place(dal_ode_integ *ig, double t) {
+  if ((ig->hvalid & 8) && t > ig->tprev && t < ig->t) {
+    // inside the step, its Hermite cubic built: straight into the state's (q, qdot)
+    hermite_horner(ig, t, ig->yplace);
+    ig->st->t = t;
+    dal__state_moved(ig->st);
+    return DAL_OK;
+  }
+  return ode_place_own(ig, t);
 }
