@@ -461,6 +461,14 @@ static void group(const eb *b, int i, int j, int *grp) {
   }
 }
 
+// the members of the group led by k into set[]; their count
+static int members(const int *grp, int k, int N, int *set) {
+  int ns = 0;
+  for (int l = k; l < N; ++l)
+    if (grp[l] == k) set[ns++] = l;
+  return ns;
+}
+
 // M, Q - c and the unrolled LDL' solve. M_ij = sum_k m_k J_k,i . J_k,j and b_i = sum_k J_k,i .
 // a_k, a_k = m_k (g - gamma_k), with the particles whose columns are the same nodes taken
 // together (a chain's links beyond i: their masses and a's summed first)
@@ -486,9 +494,7 @@ static void emit_solve(dal_cgbuf *o, const eb *b) {
       int terms = 0;
       for (int k = 0; k < N; ++k) {
         if (grp[k] != k) continue;
-        int ns = 0;
-        for (int l = k; l < N; ++l)
-          if (grp[l] == k) set[ns++] = l;
+        int ns = members(grp, k, N, set);
         char mass[32];
         setsum(o, &S, set, ns, -1, mass, sizeof mass);
         dal__cg_printf(&ln, "%s%s * (", terms ? " + " : "", mass);
@@ -514,9 +520,7 @@ static void emit_solve(dal_cgbuf *o, const eb *b) {
     int terms = 0;
     for (int k = 0; k < N; ++k) {
       if (grp[k] != k) continue;
-      int ns = 0;
-      for (int l = k; l < N; ++l)
-        if (grp[l] == k) set[ns++] = l;
+      int ns = members(grp, k, N, set);
       for (int c = 0; c < d; ++c) {
         int ji = b->J[(k * d + c) * n + i];
         if (zero(b, ji)) continue;
