@@ -486,16 +486,11 @@ static int erk_advance(dal_ode_integ *ig, double tout) {
     recover = 0;
     ig->st->stats.foreign_code = flag;
     // a step that reached the stop time within rounding lands exactly on tout
-    {
-      // the time moved by the step integrated: ERKStep snaps its time to a stop time within
-      // 100 ulps of it, which at large |t| is seconds of motion that did not happen
-      realtype hlast = 0, tn = tret;
-      ERKStepGetLastStep(m->ark, &hlast);
-      ERKStepGetCurrentTime(m->ark, &tn);
-      if (flag == ARK_TSTOP_RETURN || tn > tret) tn = ig->t + hlast;
-      int gap = dal__ode_tstop_gap(ig, tn, flag == ARK_TSTOP_RETURN ? tout : tret);
-      if (gap) return gap;
-    }
+    realtype hlast = 0, tn = tret;
+    ERKStepGetLastStep(m->ark, &hlast);
+    ERKStepGetCurrentTime(m->ark, &tn);
+    int gap = dal__ode_step_gap(ig, tret, tn, hlast, flag == ARK_TSTOP_RETURN, tout);
+    if (gap) return gap;
     if (flag == ARK_TSTOP_RETURN) tret = tout;
     if (tret > tout) return erk_failure(ig, m, ARK_BAD_T);
     int projected = 0;

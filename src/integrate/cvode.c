@@ -407,6 +407,20 @@ int dal__cvode_dky(dal_ode_integ *ig, double t, int k, double *out) {
 // every output time (a stop time per call) breaks the multistep history: a loop of
 // dal_advance to 986 irregular times over [0, 20] measured 113 x rtol for Adams and 125 x
 // for BDF against 12 x and 39 x for one call (tests/test_dense.c).
+// one CVODE step toward tout: *tret its time, *flag CVODE's (>= 0) return; 0, or the failure's
+// status (cv_failure: a right-hand side that failed fatally, a collapsed step, CVODE's error)
+static int cv_one_step(dal_ode_integ *ig, cv_mem *m, double tout, realtype *tret, int *flag) {
+  ig->rhs_rc = 0;
+  cv_new_step(m);
+  *flag = CVode(m->cv, tout, m->v.y, tret, CV_ONE_STEP);
+  cv_sync_stats(ig, m);
+  if (*flag >= 0 && ig->rhs_fatal) *flag = CV_RHSFUNC_FAIL;
+  if (*flag >= 0 && dal__ode_collapsed(ig, *tret)) *flag = CV_ERR_FAILURE;
+  if (*flag < 0) return cv_failure(ig, m, *flag);
+  ig->st->stats.foreign_code = *flag;
+  return 0;
+}
+
 static int cv_advance_ahead(dal_ode_integ *ig, cv_mem *m, double tout) {
   int flag;
   if (!m->ahead && (flag = CVodeSetStopTime(m->cv, DBL_MAX)) != CV_SUCCESS)
@@ -416,14 +430,8 @@ static int cv_advance_ahead(dal_ode_integ *ig, cv_mem *m, double tout) {
   CVodeGetCurrentTime(m->cv, &tn);
   while (tn < tout) {
     realtype tret = ig->t;
-    ig->rhs_rc = 0;
-    cv_new_step(m);
-    flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
-    cv_sync_stats(ig, m);
-    if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
-    if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
-    if (flag < 0) return cv_failure(ig, m, flag);
-    ig->st->stats.foreign_code = flag;
+    int rc0 = cv_one_step(ig, m, tout, &tret, &flag);
+    if (rc0) return rc0;
     int rc = dal__ode_accept(ig, tret, N_VGetArrayPointer(m->v.y), NULL);
     if (rc) return rc;
     tn = tret;
@@ -451,24 +459,13 @@ static int cv_advance(dal_ode_integ *ig, double tout) {
   if (flag != CV_SUCCESS) return cv_failure(ig, m, flag);
   while (ig->t < tout) {
     realtype tret = ig->t;
-    ig->rhs_rc = 0;
-    cv_new_step(m);
-    flag = CVode(m->cv, tout, m->v.y, &tret, CV_ONE_STEP);
-    cv_sync_stats(ig, m);
-    if (flag >= 0 && ig->rhs_fatal) flag = CV_RHSFUNC_FAIL;
-    if (flag >= 0 && dal__ode_collapsed(ig, tret)) flag = CV_ERR_FAILURE;
-    if (flag < 0) return cv_failure(ig, m, flag);
-    ig->st->stats.foreign_code = flag;
-    {
-      // the time moved by the step integrated: CVODE snaps its time to a stop time within
-      // 100 ulps of it, which at large |t| is seconds of motion that did not happen
-      realtype hlast = 0, tn = tret;
-      CVodeGetLastStep(m->cv, &hlast);
-      CVodeGetCurrentTime(m->cv, &tn);
-      if (flag == CV_TSTOP_RETURN || tn > tret) tn = ig->t + hlast;
-      int gap = dal__ode_tstop_gap(ig, tn, flag == CV_TSTOP_RETURN ? tout : tret);
-      if (gap) return gap;
-    }
+    int rc0 = cv_one_step(ig, m, tout, &tret, &flag);
+    if (rc0) return rc0;
+    realtype hlast = 0, tn = tret;
+    CVodeGetLastStep(m->cv, &hlast);
+    CVodeGetCurrentTime(m->cv, &tn);
+    int gap = dal__ode_step_gap(ig, tret, tn, hlast, flag == CV_TSTOP_RETURN, tout);
+    if (gap) return gap;
     if (flag == CV_TSTOP_RETURN) tret = tout;
     if (tret > tout) return cv_failure(ig, m, CV_BAD_T);
     int projected = 0;

@@ -145,6 +145,12 @@ void dal__ode_destroy(void *ig);
 /// naming the resolution of t and the remedy) with the state at the last accepted step; 0 when
 /// tn is tout to a few ulps, or nothing moves over the gap beyond the tolerances.
 int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout);
+/// The same after a SUNDIALS step that returned at tret (at_tstop: at the stop time tout) with
+/// its own time tn and last step hlast: the time moved by the step integrated is tn, or
+/// t + hlast where the library snapped its time to the stop time (CVODE and ERKStep take a
+/// stop time within 100 ulps of t as reached).
+int dal__ode_step_gap(dal_ode_integ *ig, double tret, double tn, double hlast, int at_tstop,
+                      double tout);
 
 /// y' = f(t, y) through the problem with at least the products `need`, and W' = dE/dt as the
 /// last component when opts.work is set (not counted; no failure bookkeeping)

@@ -97,6 +97,12 @@ static int ode_progress(dal_ode_integ *ig, double t, const double *y) {
                         stalled ? "the step does not advance t" : "steps of a few ulps of t");
 }
 
+int dal__ode_step_gap(dal_ode_integ *ig, double tret, double tn, double hlast, int at_tstop,
+                      double tout) {
+  if (at_tstop || tn > tret) tn = ig->t + hlast;
+  return dal__ode_tstop_gap(ig, tn, at_tstop ? tout : tret);
+}
+
 int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout) {
   double gap = tout - tn;
   if (!(gap > DAL_TINY_STEP(tout))) return DAL_OK;
