@@ -109,13 +109,7 @@ static int erk_failure(dal_ode_integ *ig, erk_mem *m, int flag) {
   case ARK_FIRST_RHSFUNC_ERR:
   case ARK_REPTD_RHSFUNC_ERR:
   case ARK_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig,
-                         ig->rhs_fatal  ? ig->rhs_fatal
-                         : ig->recov_rc ? ig->recov_rc
-                                        : DAL__RECOVERABLE,
-                         "%s; stopped at t=%.17g (last accepted step) before the target "
-                         "t=%.17g",
-                         ig->rhs_err, ig->t, ig->tout);
+    return dal__ode_rhs_fail(ig);
   case ARK_ERR_FAILURE:
   case ARK_TOO_MUCH_ACC: {
     // a callback that keeps asking for a smaller step, not the solution, stopped us

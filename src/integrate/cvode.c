@@ -196,13 +196,7 @@ static int cv_failure(dal_ode_integ *ig, cv_mem *m, int flag) {
   case CV_FIRST_RHSFUNC_ERR:
   case CV_REPTD_RHSFUNC_ERR:
   case CV_UNREC_RHSFUNC_ERR:
-    return dal__ode_fail(ig,
-                         ig->rhs_fatal  ? ig->rhs_fatal
-                         : ig->recov_rc ? ig->recov_rc
-                                        : DAL__RECOVERABLE,
-                         "%s; stopped at t=%.17g (last accepted step) before the target "
-                         "t=%.17g",
-                         ig->rhs_err, ig->t, ig->tout);
+    return dal__ode_rhs_fail(ig);
   case CV_ERR_FAILURE:
   case CV_TOO_MUCH_ACC:
     // a callback that keeps asking for a smaller step, not the solution, stopped us

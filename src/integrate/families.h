@@ -145,6 +145,9 @@ void dal__ode_destroy(void *ig);
 /// naming the resolution of t and the remedy) with the state at the last accepted step; 0 when
 /// tn is tout to a few ulps, or nothing moves over the gap beyond the tolerances.
 int dal__ode_tstop_gap(dal_ode_integ *ig, double tn, double tout);
+/// The failure of a SUNDIALS step stopped by the right-hand side: the status of its fatal code
+/// (else of its last recoverable one), its message, the last accepted step and the target.
+int dal__ode_rhs_fail(dal_ode_integ *ig);
 /// The same after a SUNDIALS step that returned at tret (at_tstop: at the stop time tout) with
 /// its own time tn and last step hlast: the time moved by the step integrated is tn, or
 /// t + hlast where the library snapped its time to the stop time (CVODE and ERKStep take a

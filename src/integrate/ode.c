@@ -97,6 +97,15 @@ static int ode_progress(dal_ode_integ *ig, double t, const double *y) {
                         stalled ? "the step does not advance t" : "steps of a few ulps of t");
 }
 
+int dal__ode_rhs_fail(dal_ode_integ *ig) {
+  return dal__ode_fail(ig,
+                       ig->rhs_fatal  ? ig->rhs_fatal
+                       : ig->recov_rc ? ig->recov_rc
+                                      : DAL__RECOVERABLE,
+                       "%s; stopped at t=%.17g (last accepted step) before the target t=%.17g",
+                       ig->rhs_err, ig->t, ig->tout);
+}
+
 int dal__ode_step_gap(dal_ode_integ *ig, double tret, double tn, double hlast, int at_tstop,
                       double tout) {
   if (at_tstop || tn > tret) tn = ig->t + hlast;
