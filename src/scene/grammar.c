@@ -62,6 +62,14 @@ int dal__scene_line(dal_scene *sc, const sline *l, int pass, char *msg, size_t l
                         known);
 }
 
+int dal__scene_native_eom(dal_scene *sc, char *msg, size_t msglen) {
+  if (!sc->native_opts.eom) return DAL_OK;
+  int rc = dal_codegen_attach_eom(sc->sys, &sc->native_opts, msg, msglen);
+  // out of the compiled equations' reach: the general path runs, and the note says so
+  if (rc == DAL_E_UNSUPPORTED || rc == DAL_E_TOO_LARGE) rc = DAL_OK;
+  return rc;
+}
+
 int dal__scene_build(dal_scene *sc, char *msg, size_t len) {
   dal__scene_unbuild(sc);
   sc->dim = 2;

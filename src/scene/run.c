@@ -134,14 +134,6 @@ int dal_scene_native(dal_scene *sc, const dal_codegen_opts *o, char *msg, size_t
   return dal__scene_native_eom(sc, msg, msglen);
 }
 
-int dal__scene_native_eom(dal_scene *sc, char *msg, size_t msglen) {
-  if (!sc->native_opts.eom) return DAL_OK;
-  int rc = dal_codegen_attach_eom(sc->sys, &sc->native_opts, msg, msglen);
-  // out of the compiled equations' reach: the general path runs, and the note says so
-  if (rc == DAL_E_UNSUPPORTED || rc == DAL_E_TOO_LARGE) rc = DAL_OK;
-  return rc;
-}
-
 int dal_scene_nexprs(const dal_scene *sc) { return sc ? sc->nex : 0; }
 
 const dal_expr *dal_scene_expr(const dal_scene *sc, int i) {

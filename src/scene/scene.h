@@ -130,7 +130,7 @@ struct dal_scene {
 };
 
 /// the compiled equations of motion of the scene's system when its native options ask for them
-/// (dal_codegen_attach_eom); out of their reach DAL_OK with a note in msg (run.c)
+/// (dal_codegen_attach_eom); out of their reach DAL_OK with a note in msg (grammar.c)
 int dal__scene_native_eom(dal_scene *sc, char *msg, size_t msglen);
 
 #endif
