@@ -237,7 +237,7 @@ static dal_system *polarized(const dal_scene *sc, int n) {
   dal_system *sys = NULL;
   CHECK_OK(dal_builder_create(2, &b));
   for (int i = 0; i < n; ++i) {
-    char nm[8];
+    char nm[16];
     snprintf(nm, sizeof nm, "q%d", i);
     CHECK_OK(dal_builder_add_coord(b, nm, NULL));
   }
