@@ -18,9 +18,13 @@
 #include "cli.h"
 
 // the options every command takes (parsed here, not by the command)
-enum { COMMON_SET, COMMON_PROGRESS, COMMON_NO_PROGRESS, COMMON_HELP, NCOMMON };
+enum { COMMON_SET, COMMON_NATIVE, COMMON_PROGRESS, COMMON_NO_PROGRESS, COMMON_HELP, NCOMMON };
 static const cli_opt common[NCOMMON + 1] = {
     {"set", 0, CLI_TEXT, "NAME=VALUE", "a scene parameter's value (repeatable)", 0},
+    {"native", 0, CLI_FLAG, NULL,
+     "the scene's formulas and equations of motion as native code (dal_scene_native; a C "
+     "compiler, results within rounding of the bytecode's)",
+     0},
     {"progress", 0, CLI_FLAG, NULL, "a progress line on stderr (default: on a terminal, not in CI)",
      0},
     {"no-progress", 0, CLI_FLAG, NULL, "no progress line", 0},
@@ -232,6 +236,9 @@ static int take(cli *c, int code, const char *v, int *help) {
     case COMMON_SET:
       c->sets[c->nsets++] = v;
       break;
+    case COMMON_NATIVE:
+      c->native = 1;
+      break;
     case COMMON_PROGRESS:
       c->progress = 1;
       break;
@@ -351,7 +358,17 @@ int cli_set_params(const cli *c, dal_scene *sc, char *msg, size_t len) {
     int rc = dal_scene_set_param(sc, name, v, msg, len);
     if (rc) return rc;
   }
-  return DAL_OK;
+  if (len) msg[0] = 0;
+  if (!c->native) return DAL_OK;
+  int rc = dal_scene_native(sc, NULL, msg, len);
+  // honoured, or said why not: a note in msg for the caller to print once
+  if (!rc && len && !msg[0] && !dal_codegen_eom_attached(dal_scene_system(sc)))
+    snprintf(msg, len, "%s",
+             dal_scene_nexprs(sc) ? "the formulas run native code; the equations of motion are "
+                                    "not compiled"
+                                  : "nothing to compile: the scene has no formulas (its built-in "
+                                    "primitives are C already)");
+  return rc;
 }
 
 int cli_json_asked(const cli *c) {

@@ -80,6 +80,7 @@ struct cli {
   char *text;                  // its text
   dal_scene *sc;               // read from it, --set applied
   int progress;                // the progress line on stderr
+  int native;                  // --native: dal_scene_native after the --set values
   const char *val[CLI_MAXOPT]; // the value of each option row given (NULL: not given)
   double num[CLI_MAXOPT];      // ... as a number (numeric kinds)
   int given[CLI_MAXOPT];       // times given

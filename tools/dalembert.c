@@ -131,6 +131,8 @@ int main(int argc, char **argv) {
     rc = c.text ? dal_scene_parse(c.text, c.path, &c.sc, c.msg, sizeof c.msg) : DAL_E_IO;
     if (rc && c.text) cli_fail(&c, rc, c.msg);
     if (!rc && (rc = cli_set_params(&c, c.sc, c.msg, sizeof c.msg)) < 0) cli_fail(&c, rc, c.msg);
+    if (!rc && c.native && c.msg[0])
+      fprintf(stderr, "dalembert %s: note: %s\n", c.cmd->name, c.msg);
     if (!rc) rc = c.cmd->fn(&c);
     dal_scene_destroy(c.sc);
     free(c.text);
